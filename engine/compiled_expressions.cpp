@@ -1,0 +1,184 @@
+#include "engine/compiled_expressions.hpp"
+
+#include <cmath>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+namespace kinema {
+
+using GiNaC::ex;
+
+class TapeBuilder {
+ public:
+  explicit TapeBuilder(CompiledExpressions& target) : t_(target) {}
+
+  void add_input(const ex& symbol) {
+    if (!GiNaC::is_a<GiNaC::symbol>(symbol)) throw std::invalid_argument("input is not a symbol");
+    memo_[symbol] = new_register(0.0);
+  }
+
+  std::uint32_t compile(const ex& e) {
+    auto found = memo_.find(e);
+    if (found != memo_.end()) return found->second;
+    const std::uint32_t reg = compile_new(e);
+    memo_[e] = reg;
+    return reg;
+  }
+
+ private:
+  CompiledExpressions& t_;
+  std::map<ex, std::uint32_t, GiNaC::ex_is_less> memo_;
+  std::map<double, std::uint32_t> constants_;
+  using Op = CompiledExpressions::Op;
+
+  std::uint32_t new_register(double initial) {
+    t_.initial_registers_.push_back(initial);
+    return static_cast<std::uint32_t>(t_.initial_registers_.size() - 1);
+  }
+
+  std::uint32_t constant_register(double value) {
+    auto found = constants_.find(value);
+    if (found != constants_.end()) return found->second;
+    const std::uint32_t reg = new_register(value);
+    constants_[value] = reg;
+    return reg;
+  }
+
+  std::uint32_t emit(Op op, std::uint32_t a, std::uint32_t b = 0, int exponent = 0) {
+    const std::uint32_t out = new_register(0.0);
+    t_.instructions_.push_back({op, out, a, b, exponent});
+    return out;
+  }
+
+  std::uint32_t compile_new(const ex& e) {
+    using namespace GiNaC;
+    if (is_a<numeric>(e)) {
+      const numeric& n = ex_to<numeric>(e);
+      if (!n.is_real()) throw std::invalid_argument("complex number in a compiled expression");
+      return constant_register(n.to_double());
+    }
+    if (is_a<GiNaC::constant>(e)) return constant_register(ex_to<numeric>(evalf(e)).to_double());
+    if (is_a<symbol>(e)) {
+      std::ostringstream name;
+      name << e;
+      throw std::invalid_argument("symbol " + name.str() + " is not an input of the compiled expressions");
+    }
+    if (is_a<add>(e)) {
+      // Terms with a coefficient -1 become subtractions.
+      std::uint32_t sum = 0;
+      bool first = true;
+      for (const ex& term : e) {
+        bool negative = is_a<mul>(term) && term.op(term.nops() - 1).is_equal(-1);
+        const ex magnitude = negative ? ex(-term) : term;
+        const std::uint32_t reg = compile(magnitude);
+        if (first) sum = negative ? emit(Op::neg, reg) : reg;
+        else sum = emit(negative ? Op::sub : Op::add, sum, reg);
+        first = false;
+      }
+      return sum;
+    }
+    if (is_a<mul>(e)) {
+      std::uint32_t product = 0;
+      std::uint32_t divisor = 0;
+      bool have_product = false, have_divisor = false;
+      for (const ex& factor : e) {
+        // Factors with negative integer powers go to one divisor.
+        if (is_a<power>(factor) && is_a<numeric>(factor.op(1)) &&
+            ex_to<numeric>(factor.op(1)).is_integer() && ex_to<numeric>(factor.op(1)).is_negative()) {
+          const std::uint32_t reg = compile(pow(factor.op(0), -factor.op(1)));
+          divisor = have_divisor ? emit(Op::mul, divisor, reg) : reg;
+          have_divisor = true;
+          continue;
+        }
+        const std::uint32_t reg = compile(factor);
+        product = have_product ? emit(Op::mul, product, reg) : reg;
+        have_product = true;
+      }
+      if (!have_product) product = constant_register(1.0);
+      return have_divisor ? emit(Op::div, product, divisor) : product;
+    }
+    if (is_a<power>(e)) {
+      const ex exponent = e.op(1);
+      if (is_a<numeric>(exponent) && ex_to<numeric>(exponent).is_integer()) {
+        const int k = ex_to<numeric>(exponent).to_int();
+        const std::uint32_t base = compile(e.op(0));
+        if (k == 2) return emit(Op::square, base);
+        if (k == -1) return emit(Op::div, constant_register(1.0), base);
+        return emit(Op::powi, base, 0, k);
+      }
+      if (exponent.is_equal(numeric(1, 2))) return emit(Op::sqrt, compile(e.op(0)));
+      return emit(Op::pow, compile(e.op(0)), compile(exponent));
+    }
+    if (is_a<function>(e)) {
+      const std::string name = ex_to<function>(e).get_name();
+      if (name == "sin" || name == "cos") {
+        // One sincos for both; memoise the partner so it is never recomputed.
+        const std::uint32_t argument = compile(e.op(0));
+        const std::uint32_t sin_reg = new_register(0.0);
+        const std::uint32_t cos_reg = new_register(0.0);
+        t_.instructions_.push_back({Op::sincos, sin_reg, argument, cos_reg, 0});
+        memo_[GiNaC::sin(e.op(0))] = sin_reg;
+        memo_[GiNaC::cos(e.op(0))] = cos_reg;
+        return name == "sin" ? sin_reg : cos_reg;
+      }
+      if (name == "atan2") return emit(Op::atan2, compile(e.op(0)), compile(e.op(1)));
+      static const std::map<std::string, Op> unary = {
+          {"tan", Op::tan}, {"exp", Op::exp}, {"log", Op::log}, {"abs", Op::abs},
+          {"asin", Op::asin}, {"acos", Op::acos}, {"atan", Op::atan}};
+      auto found = unary.find(name);
+      if (found != unary.end()) return emit(found->second, compile(e.op(0)));
+      throw std::invalid_argument("function " + name + " cannot be compiled");
+    }
+    std::ostringstream text;
+    text << e;
+    throw std::invalid_argument("cannot compile " + text.str());
+  }
+};
+
+CompiledExpressions::CompiledExpressions(const std::vector<GiNaC::ex>& inputs,
+                                         const std::vector<GiNaC::ex>& outputs) {
+  TapeBuilder builder(*this);
+  input_count_ = inputs.size();
+  for (const ex& input : inputs) builder.add_input(input);
+  for (const ex& output : outputs) output_registers_.push_back(builder.compile(output));
+}
+
+void CompiledExpressions::evaluate(const double* inputs, double* outputs,
+                                   std::vector<double>& workspace) const {
+  double* r = workspace.data();
+  for (std::size_t i = 0; i < input_count_; ++i) r[i] = inputs[i];
+  for (const Instruction& in : instructions_) {
+    switch (in.op) {
+      case Op::add: r[in.out] = r[in.a] + r[in.b]; break;
+      case Op::sub: r[in.out] = r[in.a] - r[in.b]; break;
+      case Op::mul: r[in.out] = r[in.a] * r[in.b]; break;
+      case Op::div: r[in.out] = r[in.a] / r[in.b]; break;
+      case Op::neg: r[in.out] = -r[in.a]; break;
+      case Op::square: r[in.out] = r[in.a] * r[in.a]; break;
+      case Op::powi: {
+        double base = r[in.a], result = 1.0;
+        int k = in.exponent < 0 ? -in.exponent : in.exponent;
+        for (; k; k >>= 1, base *= base)
+          if (k & 1) result *= base;
+        r[in.out] = in.exponent < 0 ? 1.0 / result : result;
+        break;
+      }
+      case Op::pow: r[in.out] = std::pow(r[in.a], r[in.b]); break;
+      case Op::sincos: ::sincos(r[in.a], &r[in.out], &r[in.b]); break;
+      case Op::tan: r[in.out] = std::tan(r[in.a]); break;
+      case Op::exp: r[in.out] = std::exp(r[in.a]); break;
+      case Op::log: r[in.out] = std::log(r[in.a]); break;
+      case Op::sqrt: r[in.out] = std::sqrt(r[in.a]); break;
+      case Op::abs: r[in.out] = std::fabs(r[in.a]); break;
+      case Op::atan2: r[in.out] = std::atan2(r[in.a], r[in.b]); break;
+      case Op::asin: r[in.out] = std::asin(r[in.a]); break;
+      case Op::acos: r[in.out] = std::acos(r[in.a]); break;
+      case Op::atan: r[in.out] = std::atan(r[in.a]); break;
+    }
+  }
+  for (std::size_t i = 0; i < output_registers_.size(); ++i) outputs[i] = r[output_registers_[i]];
+}
+
+}  // namespace kinema

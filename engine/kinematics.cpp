@@ -1,0 +1,331 @@
+#include "engine/kinematics.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace kinema {
+namespace {
+
+using GiNaC::ex;
+
+// Reciprocal condition of the length-scaled Phi_q below which a position counts
+// as singular: a Newton solution at a toggle is only sqrt(eps)-accurate, so
+// exact toggles show up around 1e-8, while 0.001 deg away it is still 1e-5.
+constexpr double kSingularThreshold = 1e-6;
+
+std::string format_number(double value) {
+  std::ostringstream out;
+  out.precision(6);
+  out << value;
+  return out.str();
+}
+
+}  // namespace
+
+const char* status_name(Status status) {
+  switch (status) {
+    case Status::ok: return "ok";
+    case Status::singular: return "singular";
+    case Status::unassembled: return "unassembled";
+  }
+  return "?";
+}
+
+Kinematics::Kinematics(const Mechanism& mechanism, const Derivation& d)
+    : mechanism_(mechanism),
+      unknown_count_(d.closure.unknowns.size()),
+      point_count_(d.closure.point_x.size()),
+      parameter_count_(d.closure.parameters.size()),
+      parameter_values_(d.closure.parameter_values) {
+  double largest = 0;
+  for (const Parameter& parameter : mechanism.parameters) {
+    if (parameter.quantity && parameter.quantity->dimension == Dimension::length)
+      largest = std::max(largest, std::fabs(parameter.quantity->si_value));
+  }
+  length_scale_ = largest > 0 ? largest : 1.0;
+
+  std::vector<ex> inputs(d.closure.parameters.begin(), d.closure.parameters.end());
+  inputs.push_back(d.closure.input);
+  inputs.push_back(d.input_rate);
+  inputs.push_back(d.input_second_rate);
+  for (const auto& s : d.closure.unknowns) inputs.push_back(s);
+  for (const auto& s : d.rates) inputs.push_back(s);
+  for (const auto& s : d.second_rates) inputs.push_back(s);
+
+  const std::size_t n = unknown_count_;
+  std::vector<ex> position;
+  for (std::size_t i = 0; i < n; ++i) position.push_back(d.closure.equations[i]);
+  for (std::size_t j = 0; j < n; ++j)
+    for (std::size_t i = 0; i < n; ++i) position.push_back(d.jacobian(i, j));
+  for (std::size_t i = 0; i < n; ++i) position.push_back(d.input_jacobian(i, 0));
+  position_ = CompiledExpressions(inputs, position);
+  acceleration_ = CompiledExpressions(inputs, d.acceleration_rhs);
+  std::vector<ex> points;
+  for (std::size_t p = 0; p < point_count_; ++p) {
+    points.push_back(d.closure.point_x[p]);
+    points.push_back(d.closure.point_y[p]);
+    points.push_back(d.point_velocity_x[p]);
+    points.push_back(d.point_velocity_y[p]);
+    points.push_back(d.point_acceleration_x[p]);
+    points.push_back(d.point_acceleration_y[p]);
+  }
+  points_ = CompiledExpressions(inputs, points);
+}
+
+Eigen::VectorXd Kinematics::guess() const {
+  Eigen::VectorXd q(unknown_count_);
+  for (std::size_t i = 0; i < unknown_count_; ++i) q[i] = mechanism_.unknowns[i].guess;
+  return q;
+}
+
+std::string Kinematics::describe_input(double input) const {
+  if (mechanism_.input.dimension == Dimension::angle) {
+    return mechanism_.input.name + " = " + format_number(input * 180.0 / M_PI) + " deg";
+  }
+  return mechanism_.input.name + " = " + format_number(input / mechanism_.output.length_factor) +
+         " " + mechanism_.output.length;
+}
+
+Workspace::Workspace(const Kinematics& k)
+    : k_(k),
+      inputs_(k.parameter_count_ + 3 + 3 * k.unknown_count_, 0.0),
+      position_registers_(k.position_.make_workspace()),
+      acceleration_registers_(k.acceleration_.make_workspace()),
+      point_registers_(k.points_.make_workspace()),
+      position_out_(k.position_.output_count()),
+      acceleration_out_(k.acceleration_.output_count()),
+      point_out_(k.points_.output_count()) {
+  std::copy(k.parameter_values_.begin(), k.parameter_values_.end(), inputs_.begin());
+}
+
+void Workspace::set_position_inputs(double input, const Eigen::VectorXd& q) {
+  const std::size_t base = k_.parameter_count_;
+  inputs_[base] = input;
+  for (std::size_t i = 0; i < k_.unknown_count_; ++i) inputs_[base + 3 + i] = q[i];
+}
+
+void Workspace::evaluate_position(double input, const Eigen::VectorXd& q) {
+  set_position_inputs(input, q);
+  k_.position_.evaluate(inputs_.data(), position_out_.data(), position_registers_);
+  const std::size_t n = k_.unknown_count_;
+  phi_ = Eigen::Map<const Eigen::VectorXd>(position_out_.data(), n);
+  phi_q_ = Eigen::Map<const Eigen::MatrixXd>(position_out_.data() + n, n, n);
+  phi_theta_ = Eigen::Map<const Eigen::VectorXd>(position_out_.data() + n + n * n, n);
+}
+
+double Workspace::scaled_reciprocal_condition() const {
+  // Columns of slider lengths are unitless, columns of angles are lengths:
+  // scale them alike so the condition number does not depend on units.
+  Eigen::MatrixXd scaled = phi_q_;
+  for (std::size_t j = 0; j < k_.unknown_count_; ++j)
+    if (k_.mechanism_.unknowns[j].dimension == Dimension::length) scaled.col(j) *= k_.length_scale_;
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(scaled);
+  const auto& s = svd.singularValues();
+  if (s.size() == 0 || !(s[0] > 0) || !std::isfinite(s[0])) return 0.0;
+  return s[s.size() - 1] / s[0];
+}
+
+bool Workspace::solve_position(double input, Eigen::VectorXd& q, std::size_t* worst_loop,
+                               double* residual) {
+  // Down to rounding: near a toggle the position error is the square root of the residual.
+  const double tolerance = 1e-14 * k_.length_scale_;
+  evaluate_position(input, q);
+  double norm = phi_.lpNorm<Eigen::Infinity>();
+  bool converged = false;
+  for (int iteration = 0; iteration < 60 && std::isfinite(norm); ++iteration) {
+    if (norm <= tolerance) {
+      converged = true;
+      break;
+    }
+    // Least-squares step: stays defined where Phi_q is (nearly) singular.
+    const Eigen::VectorXd step = phi_q_.completeOrthogonalDecomposition().solve(-phi_);
+    if (!step.allFinite()) break;
+    double lambda = 1.0;
+    bool improved = false;
+    Eigen::VectorXd trial;
+    for (int halving = 0; halving < 30; ++halving, lambda *= 0.5) {
+      trial = q + lambda * step;
+      evaluate_position(input, trial);
+      const double trial_norm = phi_.lpNorm<Eigen::Infinity>();
+      if (std::isfinite(trial_norm) && trial_norm < norm) {
+        improved = true;
+        norm = trial_norm;
+        q = trial;
+        break;
+      }
+    }
+    if (!improved) break;
+  }
+  // Converged to rounding level even if just above the tolerance.
+  if (!converged && norm <= 1e-9 * k_.length_scale_) converged = true;
+  evaluate_position(input, q);
+  if (worst_loop) {
+    Eigen::Index row = 0;
+    phi_.cwiseAbs().maxCoeff(&row);
+    *worst_loop = static_cast<std::size_t>(row) / 2;
+  }
+  if (residual) *residual = phi_.lpNorm<Eigen::Infinity>();
+  return converged && q.allFinite();
+}
+
+bool Workspace::sensitivity(double input, const Eigen::VectorXd& q, Eigen::VectorXd& dq) {
+  evaluate_position(input, q);
+  if (scaled_reciprocal_condition() < kSingularThreshold) return false;
+  dq = phi_q_.partialPivLu().solve(-phi_theta_);
+  return dq.allFinite();
+}
+
+bool Workspace::continue_to(double from, double to, Eigen::VectorXd& q, double* stuck_at) {
+  const bool angle = k_.mechanism_.input.dimension == Dimension::angle;
+  const double max_step = angle ? 2.0 * M_PI / 180.0 : 0.01 * k_.length_scale_;
+  const double min_step = max_step * 1e-7;
+  // A corrected solution this far (scaled) from the prediction is another branch.
+  const double branch_tolerance = 0.05;
+  double t = from;
+  double h = std::copysign(std::min(max_step, std::fabs(to - from)), to - from);
+  Eigen::VectorXd dq;
+  while (t != to) {
+    if (std::fabs(to - t) <= std::fabs(h) * (1 + 1e-12)) h = to - t;
+    bool accepted = false;
+    if (sensitivity(t, q, dq)) {
+      Eigen::VectorXd predicted = q + dq * h;
+      Eigen::VectorXd corrected = predicted;
+      if (solve_position(t + h, corrected)) {
+        double deviation = 0;
+        for (std::size_t i = 0; i < k_.unknown_count_; ++i) {
+          const double scale =
+              k_.mechanism_.unknowns[i].dimension == Dimension::length ? k_.length_scale_ : 1.0;
+          deviation = std::max(deviation, std::fabs(corrected[i] - predicted[i]) / scale);
+        }
+        accepted = deviation <= branch_tolerance;
+        if (accepted) {
+          q = corrected;
+          t = (h == to - t) ? to : t + h;
+          h = std::copysign(std::min(max_step, 2 * std::fabs(h)), to - from);
+        }
+      }
+    }
+    if (!accepted) {
+      h /= 2;
+      if (std::fabs(h) < min_step) {
+        if (stuck_at) *stuck_at = t;
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+MotionState Workspace::motion(double input, double rate, double second_rate,
+                              const Eigen::VectorXd& q) {
+  const std::size_t n = k_.unknown_count_;
+  const std::size_t base = k_.parameter_count_;
+  MotionState state;
+  state.input = input;
+  state.input_rate = rate;
+  state.input_second_rate = second_rate;
+  state.q = q;
+  evaluate_position(input, q);
+  state.loop_residual = phi_.lpNorm<Eigen::Infinity>();
+  state.reciprocal_condition = scaled_reciprocal_condition();
+  if (state.reciprocal_condition < kSingularThreshold) {
+    state.status = Status::singular;
+    state.message = "singular position at " + k_.describe_input(input) +
+                    ": the Jacobian Phi_q is rank-deficient (toggle or dead-centre position), so "
+                    "velocities and accelerations are not defined there; choose a nearby value";
+    return state;
+  }
+  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(phi_q_);
+  state.qd = lu.solve(-phi_theta_ * rate);
+
+  inputs_[base + 1] = rate;
+  inputs_[base + 2] = second_rate;
+  for (std::size_t i = 0; i < n; ++i) inputs_[base + 3 + n + i] = state.qd[i];
+  k_.acceleration_.evaluate(inputs_.data(), acceleration_out_.data(), acceleration_registers_);
+  state.qdd = lu.solve(Eigen::Map<const Eigen::VectorXd>(acceleration_out_.data(), n));
+  for (std::size_t i = 0; i < n; ++i) inputs_[base + 3 + 2 * n + i] = state.qdd[i];
+
+  k_.points_.evaluate(inputs_.data(), point_out_.data(), point_registers_);
+  state.points.resize(k_.point_count_);
+  bool finite = state.qd.allFinite() && state.qdd.allFinite();
+  for (std::size_t p = 0; p < k_.point_count_; ++p) {
+    const double* v = point_out_.data() + 6 * p;
+    state.points[p] = {v[0], v[1], v[2], v[3], v[4], v[5]};
+    for (int i = 0; i < 6; ++i) finite = finite && std::isfinite(v[i]);
+  }
+  if (!finite) {
+    state.status = Status::singular;
+    state.message = "non-finite rates at " + k_.describe_input(input) +
+                    " (a formula divides by zero there); choose a nearby value";
+    return state;
+  }
+  state.status = Status::ok;
+  return state;
+}
+
+std::vector<MotionState> analyse(const Kinematics& kinematics, const std::vector<double>& inputs,
+                                 double rate, double second_rate) {
+  Workspace workspace(kinematics);
+  std::vector<MotionState> states;
+  states.reserve(inputs.size());
+  Eigen::VectorXd q = kinematics.guess();
+  bool have_previous = false;  // q is a solution at previous_input on the user's branch
+  double previous_input = 0;
+  bool after_gap = false;
+  bool any_solved = false;
+  for (double input : inputs) {
+    bool solved = false;
+    std::string why;
+    Eigen::VectorXd trial = q;
+    if (have_previous) {
+      double stuck_at = previous_input;
+      solved = workspace.continue_to(previous_input, input, trial, &stuck_at);
+      if (!solved) {
+        why = kinematics.describe_input(input) + " cannot be reached from " +
+              kinematics.describe_input(previous_input) +
+              " on the same assembly branch: the motion stops near " +
+              kinematics.describe_input(stuck_at) + " (a limit or toggle position)";
+      }
+    } else {
+      std::size_t worst_loop = 0;
+      double residual = 0;
+      solved = workspace.solve_position(input, trial, &worst_loop, &residual);
+      if (!solved) {
+        const Loop& loop = kinematics.mechanism().loops.at(worst_loop);
+        why = "loop \"" + loop.name + "\" (" + loop.where.str() + ") cannot be closed at " +
+              kinematics.describe_input(input) + ": the links do not reach (loop gap " +
+              format_number(residual / kinematics.mechanism().output.length_factor) + " " +
+              kinematics.mechanism().output.length + " after Newton-Raphson from the " +
+              (after_gap ? "last assembled position" : "guesses") +
+              "); choose another input value, or check the lengths and the guesses";
+      }
+    }
+    if (!solved) {
+      MotionState state;
+      state.input = input;
+      state.input_rate = rate;
+      state.input_second_rate = second_rate;
+      state.status = Status::unassembled;
+      state.message = why;
+      states.push_back(state);
+      after_gap = any_solved;
+      have_previous = false;  // resume from the last good q; the branch may differ after a gap
+      continue;
+    }
+    q = trial;
+    any_solved = true;
+    MotionState state = workspace.motion(input, rate, second_rate, q);
+    if (after_gap && state.status == Status::ok) {
+      state.message = "resumed after positions that could not be assembled; the branch across "
+                      "the gap is not guaranteed";
+    }
+    // Past a singular position the branch may change: treat it like a gap.
+    after_gap = state.status != Status::ok;
+    have_previous = state.status == Status::ok;
+    previous_input = input;
+    states.push_back(state);
+  }
+  return states;
+}
+
+}  // namespace kinema

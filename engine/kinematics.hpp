@@ -1,0 +1,105 @@
+// Numeric kinematics of one mechanism: the derivation compiled to register
+// tapes (built once), Newton-Raphson for the position, one LU of Phi_q for
+// velocity and acceleration, and continuation along lists and sweeps that
+// keeps the assembly branch and says so when it cannot.
+#pragma once
+
+#include <Eigen/Dense>
+
+#include <string>
+#include <vector>
+
+#include "engine/compiled_expressions.hpp"
+#include "engine/derivation.hpp"
+#include "loops/mechanism.hpp"
+
+namespace kinema {
+
+/// Immutable compiled model; Workspace holds the buffers of one caller.
+class Kinematics {
+ public:
+  Kinematics(const Mechanism& mechanism, const Derivation& derivation);
+
+  const Mechanism& mechanism() const { return mechanism_; }
+  std::size_t unknown_count() const { return unknown_count_; }
+  std::size_t point_count() const { return point_count_; }
+  /// Typical length (largest length parameter), for tolerances and scaling.
+  double length_scale() const { return length_scale_; }
+  /// Starting guesses from the file, SI.
+  Eigen::VectorXd guess() const;
+  /// "theta2 = 30 deg" / "r = 12.5 mm" in the output units.
+  std::string describe_input(double input) const;
+
+ private:
+  friend class Workspace;
+  Mechanism mechanism_;
+  std::size_t unknown_count_ = 0, point_count_ = 0, parameter_count_ = 0;
+  double length_scale_ = 1.0;
+  std::vector<double> parameter_values_;
+  // Tape inputs: [parameters, theta, thetad, thetadd, q, qd, qdd].
+  CompiledExpressions position_;      ///< Phi, Phi_q (column-major), Phi_theta.
+  CompiledExpressions acceleration_;  ///< gamma.
+  CompiledExpressions points_;        ///< x, y, vx, vy, ax, ay per point.
+};
+
+enum class Status {
+  ok,           ///< Position, rates and second rates are valid.
+  singular,     ///< Position valid; Phi_q rank-deficient, rates undefined.
+  unassembled,  ///< The loops cannot be closed (on this branch) at this input.
+};
+
+const char* status_name(Status status);
+
+struct PointMotion {
+  double x = 0, y = 0, vx = 0, vy = 0, ax = 0, ay = 0;  ///< SI.
+};
+
+/// Everything known at one input value (SI).
+struct MotionState {
+  double input = 0, input_rate = 0, input_second_rate = 0;
+  Status status = Status::unassembled;
+  std::string message;  ///< Why, when status is not ok.
+  Eigen::VectorXd q, qd, qdd;
+  std::vector<PointMotion> points;
+  double loop_residual = 0;      ///< max |Phi| at the solution (m).
+  double reciprocal_condition = 0;  ///< of the length-scaled Phi_q; ~0 at a toggle.
+};
+
+/// Buffers for one thread of evaluation.
+class Workspace {
+ public:
+  explicit Workspace(const Kinematics& kinematics);
+
+  /// Newton-Raphson from q (updated in place). False when it does not converge;
+  /// then worst_loop names the loop that stays open.
+  bool solve_position(double input, Eigen::VectorXd& q, std::size_t* worst_loop = nullptr,
+                      double* residual = nullptr);
+
+  /// Rates, second rates and points at a solved position.
+  MotionState motion(double input, double rate, double second_rate, const Eigen::VectorXd& q);
+
+  /// dq/dtheta at a solved position (false when Phi_q is singular).
+  bool sensitivity(double input, const Eigen::VectorXd& q, Eigen::VectorXd& dq);
+
+  /// Continues the solution from (from, q) to `to` in small steps so that the
+  /// branch is kept; false when that is impossible (limit or branch point).
+  bool continue_to(double from, double to, Eigen::VectorXd& q, double* stuck_at);
+
+ private:
+  const Kinematics& k_;
+  std::vector<double> inputs_, position_registers_, acceleration_registers_, point_registers_;
+  std::vector<double> position_out_, acceleration_out_, point_out_;
+  Eigen::VectorXd phi_, phi_theta_;
+  Eigen::MatrixXd phi_q_;
+
+  void set_position_inputs(double input, const Eigen::VectorXd& q);
+  void evaluate_position(double input, const Eigen::VectorXd& q);
+  double scaled_reciprocal_condition() const;
+};
+
+/// Solves at each input value in order, warm-starting from the previous one.
+/// Failures become states with status != ok; nothing is thrown for them.
+std::vector<MotionState> analyse(const Kinematics& kinematics, const std::vector<double>& inputs,
+                                 double rate, double second_rate);
+
+}  // namespace kinema

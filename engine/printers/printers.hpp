@@ -1,0 +1,44 @@
+// Printers: each output format is a printer over the same results (the
+// derivation and the motion states). They convert SI to the output units.
+#pragma once
+
+#include <ostream>
+#include <vector>
+
+#include "engine/derivation.hpp"
+#include "engine/kinematics.hpp"
+#include "loops/mechanism.hpp"
+
+namespace kinema {
+
+/// The derivation in readable text: loops, scalar equations, Jacobian,
+/// velocity and acceleration equations, solved rates, point motion.
+void print_derivation_text(std::ostream& out, const Mechanism& mechanism, const Derivation& derivation);
+
+/// Results for people: one block per input value.
+void print_results_table(std::ostream& out, const Mechanism& mechanism, const Derivation& derivation,
+                         const std::vector<MotionState>& states);
+
+/// Results for spreadsheets: one row per input value, units in the header.
+void print_results_csv(std::ostream& out, const Mechanism& mechanism, const Derivation& derivation,
+                       const std::vector<MotionState>& states);
+
+/// Results for programs (schema in README.md).
+void print_results_json(std::ostream& out, const Mechanism& mechanism, const Derivation& derivation,
+                        const std::vector<MotionState>& states);
+
+/// Output-unit conversions shared by the printers.
+struct OutputScale {
+  explicit OutputScale(const Mechanism& mechanism);
+  double length;  ///< SI metres per output length unit.
+  std::string length_unit;
+  bool input_is_angle;
+  /// Coordinate value in output units (angles in deg, wrapped to (-180, 180]).
+  double coordinate(Dimension dimension, double si) const;
+  double rate(Dimension dimension, double si) const;  ///< rad/s or length/s (also for second rates)
+  std::string coordinate_unit(Dimension dimension) const;
+  std::string rate_unit(Dimension dimension) const;
+  std::string second_rate_unit(Dimension dimension) const;
+};
+
+}  // namespace kinema

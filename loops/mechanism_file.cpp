@@ -1,0 +1,383 @@
+#include "loops/mechanism_file.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <toml.hpp>
+
+#include "engine/errors.hpp"
+
+namespace kinema {
+namespace {
+
+// Names GiNaC's parser gives a meaning of its own; a mechanism may not reuse them.
+const std::set<std::string>& reserved_names() {
+  static const std::set<std::string> names = {
+      "I", "Pi", "Euler", "Catalan", "sin", "cos", "tan", "exp", "log", "sqrt", "abs",
+      "asin", "acos", "atan", "atan2", "sinh", "cosh", "tanh", "pow", "t"};
+  return names;
+}
+
+class FileReader {
+ public:
+  FileReader(std::string file) : file_(std::move(file)) {}
+
+  Mechanism read(const std::string& text) {
+    toml::value root;
+    std::istringstream stream(text);
+    try {
+      root = toml::parse(stream, file_);
+    } catch (const toml::syntax_error& error) {
+      throw InputError(file_ + ":" + std::to_string(error.location().line()) +
+                       ": syntax error in the mechanism file:\n" + error.what());
+    } catch (const std::exception& error) {
+      throw InputError(file_ + ": cannot read the mechanism file: " + error.what());
+    }
+    if (!root.is_table()) throw InputError(file_ + ": the mechanism file is not a TOML table");
+
+    Mechanism mechanism;
+    mechanism.source_file = file_;
+    check_keys(root, {"title", "description", "parameters", "input", "unknowns", "loops",
+                      "points", "output"},
+               "the top level");
+    mechanism.title = optional_string(root, "title", "Untitled mechanism");
+    mechanism.description = optional_string(root, "description", "");
+    read_output(root, mechanism);
+    read_parameters(root, mechanism);
+    read_input(root, mechanism);
+    read_unknowns(root, mechanism);
+    read_loops(root, mechanism);
+    read_points(root, mechanism);
+    check_names(mechanism);
+    return mechanism;
+  }
+
+ private:
+  std::string file_;
+
+  SourceLocation where(const toml::value& value) const {
+    return {file_, static_cast<int>(value.location().line())};
+  }
+
+  [[noreturn]] void fail(const toml::value& value, const std::string& message) const {
+    throw InputError(where(value).str() + ": " + message);
+  }
+
+  // Table entries in the order they were written (TOML tables are unordered maps).
+  std::vector<std::pair<std::string, const toml::value*>> ordered(const toml::value& table) const {
+    std::vector<std::pair<std::string, const toml::value*>> entries;
+    for (const auto& [key, value] : table.as_table()) entries.emplace_back(key, &value);
+    std::stable_sort(entries.begin(), entries.end(), [](const auto& a, const auto& b) {
+      return a.second->location().line() < b.second->location().line();
+    });
+    return entries;
+  }
+
+  void check_keys(const toml::value& table, std::initializer_list<const char*> allowed,
+                  const std::string& context) const {
+    for (const auto& [key, value] : ordered(table)) {
+      bool known = false;
+      std::string list;
+      for (const char* name : allowed) {
+        known = known || key == name;
+        list += std::string(list.empty() ? "" : ", ") + name;
+      }
+      if (!known) fail(*value, "unknown key \"" + key + "\" in " + context + "; expected one of: " + list);
+    }
+  }
+
+  std::string string_value(const toml::value& value, const std::string& key) const {
+    if (value.is_string()) return value.as_string().str;
+    if (value.is_integer()) return std::to_string(value.as_integer());
+    if (value.is_floating()) {
+      std::ostringstream out;
+      out.precision(17);
+      out << value.as_floating();
+      return out.str();
+    }
+    fail(value, "\"" + key + "\" must be a string such as \"150 mm\" or a formula");
+  }
+
+  std::string optional_string(const toml::value& table, const std::string& key,
+                              const std::string& fallback) const {
+    if (!table.contains(key)) return fallback;
+    const toml::value& value = table.at(key);
+    if (!value.is_string()) fail(value, "\"" + key + "\" must be a string");
+    return value.as_string().str;
+  }
+
+  Quantity quantity(const toml::value& value, const std::string& key) const {
+    try {
+      return parse_quantity(string_value(value, key));
+    } catch (const UnitError& error) {
+      throw UnitError(where(value).str() + ": " + key + ": " + error.what());
+    }
+  }
+
+  // A quantity that must have the given dimension (a bare number is taken as SI of it).
+  double quantity_of(const toml::value& value, const std::string& key, Dimension expected) const {
+    const Quantity q = quantity(value, key);
+    if (q.dimension != expected && q.dimension != Dimension::number) {
+      throw UnitError(where(value).str() + ": " + key + " = \"" + string_value(value, key) +
+                      "\" is a " + dimension_name(q.dimension) + ", but a " +
+                      dimension_name(expected) + " is needed here");
+    }
+    return q.si_value;
+  }
+
+  static bool is_identifier(const std::string& name) {
+    if (name.empty() || !(std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_'))
+      return false;
+    return std::all_of(name.begin(), name.end(), [](char c) {
+      return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+    });
+  }
+
+  void check_identifier(const toml::value& value, const std::string& name,
+                        const std::string& what) const {
+    if (!is_identifier(name)) {
+      fail(value, what + " name \"" + name + "\" is not a valid name (letters, digits, _; "
+                  "starting with a letter)");
+    }
+    if (reserved_names().count(name)) {
+      fail(value, what + " name \"" + name + "\" is reserved (it means a constant or a "
+                  "function in formulas); rename it");
+    }
+  }
+
+  const toml::value& required_table(const toml::value& root, const std::string& key) const {
+    if (!root.contains(key)) {
+      throw InputError(file_ + ": the section [" + key + "] is missing; see the file format "
+                       "in README.md");
+    }
+    const toml::value& table = root.at(key);
+    if (!table.is_table()) fail(table, "\"" + key + "\" must be a table ([" + key + "])");
+    return table;
+  }
+
+  void read_output(const toml::value& root, Mechanism& mechanism) const {
+    if (!root.contains("output")) return;
+    const toml::value& output = root.at("output");
+    if (!output.is_table()) fail(output, "[output] must be a table");
+    check_keys(output, {"length"}, "[output]");
+    if (output.contains("length")) {
+      const toml::value& unit = output.at("length");
+      mechanism.output.length = string_value(unit, "length");
+      try {
+        mechanism.output.length_factor = length_unit_factor(mechanism.output.length);
+      } catch (const UnitError& error) {
+        throw UnitError(where(unit).str() + ": " + error.what());
+      }
+    }
+  }
+
+  void read_parameters(const toml::value& root, Mechanism& mechanism) const {
+    if (!root.contains("parameters")) return;
+    const toml::value& table = root.at("parameters");
+    if (!table.is_table()) fail(table, "[parameters] must be a table");
+    for (const auto& [name, value] : ordered(table)) {
+      check_identifier(*value, name, "parameter");
+      Parameter parameter;
+      parameter.name = name;
+      parameter.text = string_value(*value, name);
+      parameter.where = where(*value);
+      if (value->is_string() && !looks_like_quantity(parameter.text)) {
+        parameter.formula = parameter.text;
+      } else {
+        parameter.quantity = quantity(*value, name);
+      }
+      mechanism.parameters.push_back(parameter);
+    }
+  }
+
+  void read_input(const toml::value& root, Mechanism& mechanism) const {
+    const toml::value& table = required_table(root, "input");
+    check_keys(table, {"name", "value", "values", "sweep", "rate", "second_rate", "rate_name",
+                       "second_rate_name"},
+               "[input]");
+    Input& input = mechanism.input;
+    input.where = where(table);
+    if (!table.contains("name")) {
+      throw InputError(file_ + ": [input] needs name = \"...\" (the driver coordinate, e.g. theta2)");
+    }
+    input.name = string_value(table.at("name"), "name");
+    check_identifier(table.at("name"), input.name, "input");
+    input.where = where(table.at("name"));
+
+    // The driver's kind comes from its values' unit; default to a crank angle.
+    std::optional<Dimension> kind;
+    auto take_value = [&](const toml::value& value, const std::string& key) {
+      const Quantity q = quantity(value, key);
+      if (q.dimension != Dimension::angle && q.dimension != Dimension::length) {
+        throw UnitError(where(value).str() + ": " + key + " = \"" + string_value(value, key) +
+                        "\" is a " + dimension_name(q.dimension) +
+                        "; the input must be an angle (e.g. \"30 deg\") or a length (e.g. \"2 in\")");
+      }
+      if (kind && *kind != q.dimension) {
+        throw UnitError(where(value).str() + ": " + key + " mixes angles and lengths");
+      }
+      kind = q.dimension;
+      input.values.push_back(q.si_value);
+    };
+    if (table.contains("value")) take_value(table.at("value"), "value");
+    if (table.contains("values")) {
+      const toml::value& list = table.at("values");
+      if (!list.is_array()) fail(list, "values must be a list, e.g. [\"30 deg\", \"45 deg\"]");
+      for (const auto& value : list.as_array()) take_value(value, "values");
+    }
+    if (table.contains("sweep")) {
+      const toml::value& sweep = table.at("sweep");
+      const std::string text = string_value(sweep, "sweep");
+      // "0:360:1 deg": the unit after the numbers applies to all three.
+      const auto space = text.find_first_of(" \t");
+      const std::string numbers = text.substr(0, space);
+      const std::string unit = space == std::string::npos ? "" : text.substr(space);
+      const Quantity unit_q = parse_quantity("1 " + unit);
+      if (unit.find_first_not_of(" \t") == std::string::npos) {
+        fail(sweep, "sweep needs a unit, e.g. \"0:360:1 deg\"");
+      }
+      if (unit_q.dimension != Dimension::angle && unit_q.dimension != Dimension::length) {
+        fail(sweep, "sweep unit must be an angle or a length unit");
+      }
+      if (kind && *kind != unit_q.dimension) fail(sweep, "sweep mixes angles and lengths");
+      kind = unit_q.dimension;
+      try {
+        for (double v : parse_sweep(numbers, unit_q.si_value)) input.values.push_back(v);
+      } catch (const InputError& error) {
+        fail(sweep, error.what());
+      }
+    }
+    input.dimension = kind.value_or(Dimension::angle);
+    const Dimension rate = rate_dimension(input.dimension);
+    const Dimension second = rate_dimension(rate);
+    if (!table.contains("rate")) {
+      throw InputError(input.where.str() + ": [input] needs rate = \"...\" (the driver's speed, "
+                       "e.g. \"60 rpm\" or \"-42 rad/s\" for clockwise)");
+    }
+    input.rate = quantity_of(table.at("rate"), "rate", rate);
+    if (table.contains("second_rate")) {
+      input.second_rate = quantity_of(table.at("second_rate"), "second_rate", second);
+    }
+    input.rate_name = optional_string(table, "rate_name", "");
+    input.second_rate_name = optional_string(table, "second_rate_name", "");
+  }
+
+  void read_unknowns(const toml::value& root, Mechanism& mechanism) const {
+    const toml::value& table = required_table(root, "unknowns");
+    for (const auto& [name, value] : ordered(table)) {
+      check_identifier(*value, name, "unknown");
+      Unknown unknown;
+      unknown.name = name;
+      unknown.where = where(*value);
+      const toml::value* guess = value;
+      if (value->is_table()) {
+        check_keys(*value, {"guess", "rate_name", "second_rate_name", "latex"},
+                   "unknown \"" + name + "\"");
+        if (!value->contains("guess")) fail(*value, "unknown \"" + name + "\" needs guess = \"...\"");
+        guess = &value->at("guess");
+        unknown.rate_name = optional_string(*value, "rate_name", "");
+        unknown.second_rate_name = optional_string(*value, "second_rate_name", "");
+        unknown.latex_name = optional_string(*value, "latex", "");
+      }
+      const Quantity q = quantity(*guess, name);
+      if (q.dimension != Dimension::angle && q.dimension != Dimension::length) {
+        throw UnitError(where(*guess).str() + ": the guess of unknown \"" + name + "\" (\"" +
+                        string_value(*guess, name) + "\") needs an angle or a length unit, e.g. "
+                        "\"20 deg\" or \"120 mm\": the unit says what kind of coordinate it is");
+      }
+      unknown.dimension = q.dimension;
+      unknown.guess = q.si_value;
+      mechanism.unknowns.push_back(unknown);
+    }
+    if (mechanism.unknowns.empty()) fail(table, "[unknowns] is empty: name the coordinates the loops determine");
+  }
+
+  void read_loops(const toml::value& root, Mechanism& mechanism) const {
+    const toml::value& table = required_table(root, "loops");
+    for (const auto& [name, value] : ordered(table)) {
+      Loop loop;
+      loop.name = name;
+      loop.where = where(*value);
+      if (value->is_table()) {
+        check_keys(*value, {"x", "y"}, "loop \"" + name + "\"");
+        if (!value->contains("x") || !value->contains("y")) {
+          fail(*value, "loop \"" + name + "\" written by components needs both x = \"...\" and y = \"...\"");
+        }
+        loop.x_formula = string_value(value->at("x"), "x");
+        loop.y_formula = string_value(value->at("y"), "y");
+      } else {
+        loop.complex_formula = string_value(*value, name);
+      }
+      mechanism.loops.push_back(loop);
+    }
+    if (mechanism.loops.empty()) fail(table, "[loops] is empty: write at least one vector loop");
+  }
+
+  void read_points(const toml::value& root, Mechanism& mechanism) const {
+    if (!root.contains("points")) return;
+    const toml::value& table = root.at("points");
+    if (!table.is_table()) fail(table, "[points] must be a table of name = \"x + I*y formula\"");
+    for (const auto& [name, value] : ordered(table)) {
+      Point point;
+      point.name = name;
+      point.formula = string_value(*value, name);
+      point.where = where(*value);
+      mechanism.points.push_back(point);
+    }
+  }
+
+  // Parameters, the input and the unknowns share one name space (they are symbols in formulas).
+  void check_names(const Mechanism& mechanism) const {
+    std::map<std::string, SourceLocation> seen;
+    auto add = [&](const std::string& name, const SourceLocation& at, const std::string& what) {
+      auto [it, inserted] = seen.emplace(name, at);
+      if (!inserted) {
+        throw InputError(at.str() + ": duplicate name \"" + name + "\" (" + what +
+                         "): it is already defined at " + it->second.str() + "; rename one of them");
+      }
+    };
+    for (const auto& p : mechanism.parameters) add(p.name, p.where, "parameter");
+    add(mechanism.input.name, mechanism.input.where, "input");
+    for (const auto& u : mechanism.unknowns) add(u.name, u.where, "unknown");
+  }
+};
+
+}  // namespace
+
+std::vector<double> parse_sweep(const std::string& text, double unit_factor) {
+  double start = 0, stop = 0, step = 0;
+  char colon1 = 0, colon2 = 0;
+  std::istringstream in(text);
+  if (!(in >> start >> colon1 >> stop >> colon2 >> step) || colon1 != ':' || colon2 != ':' ||
+      !(in >> std::ws).eof()) {
+    throw InputError("sweep \"" + text + "\" is not start:stop:step (e.g. 0:360:1)");
+  }
+  if (!std::isfinite(start) || !std::isfinite(stop) || !std::isfinite(step) || step == 0 ||
+      (stop - start) / step < 0) {
+    throw InputError("sweep \"" + text + "\" never reaches its stop: the step must be non-zero "
+                     "and point from start to stop");
+  }
+  const double count = std::floor((stop - start) / step + 1e-9);
+  if (count > 1e8) throw InputError("sweep \"" + text + "\" has more than 10^8 values");
+  std::vector<double> values;
+  for (long i = 0; i <= static_cast<long>(count); ++i) values.push_back((start + i * step) * unit_factor);
+  return values;
+}
+
+Mechanism read_mechanism_text(const std::string& text, const std::string& name) {
+  return FileReader(name).read(text);
+}
+
+Mechanism read_mechanism_file(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw InputError(path + ": cannot open the mechanism file (does it exist?)");
+  std::ostringstream text;
+  text << file.rdbuf();
+  return read_mechanism_text(text.str(), path);
+}
+
+}  // namespace kinema

@@ -1,0 +1,20 @@
+// Reads a mechanism file (TOML; format in README.md) into a Mechanism.
+// Every error names file:line and the key, and says what to write instead.
+#pragma once
+
+#include <string>
+
+#include "loops/mechanism.hpp"
+
+namespace kinema {
+
+/// Reads and checks a mechanism file; throws InputError / UnitError.
+Mechanism read_mechanism_file(const std::string& path);
+
+/// Same, from text already in memory; `name` stands for the file in messages.
+Mechanism read_mechanism_text(const std::string& text, const std::string& name);
+
+/// Parses a sweep "start:stop:step" (numbers in `unit_factor` units) into SI values.
+std::vector<double> parse_sweep(const std::string& text, double unit_factor);
+
+}  // namespace kinema

@@ -1,0 +1,131 @@
+#include "loops/units.hpp"
+
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
+#include <map>
+
+#include "engine/errors.hpp"
+
+namespace kinema {
+namespace {
+
+struct BaseUnit {
+  double factor;
+  Dimension dimension;
+};
+
+// Base units; "/s" and "/s^2" are applied on top of these.
+const std::map<std::string, BaseUnit>& base_units() {
+  static const std::map<std::string, BaseUnit> units = {
+      {"m", {1.0, Dimension::length}},       {"mm", {1e-3, Dimension::length}},
+      {"cm", {1e-2, Dimension::length}},     {"in", {0.0254, Dimension::length}},
+      {"ft", {0.3048, Dimension::length}},   {"rad", {1.0, Dimension::angle}},
+      {"deg", {M_PI / 180.0, Dimension::angle}},
+  };
+  return units;
+}
+
+std::string trim(const std::string& text) {
+  std::size_t begin = 0, end = text.size();
+  while (begin < end && std::isspace(static_cast<unsigned char>(text[begin]))) ++begin;
+  while (end > begin && std::isspace(static_cast<unsigned char>(text[end - 1]))) --end;
+  return text.substr(begin, end - begin);
+}
+
+Dimension per_second(Dimension dimension) {
+  switch (dimension) {
+    case Dimension::length: return Dimension::velocity;
+    case Dimension::angle: return Dimension::angular_velocity;
+    case Dimension::velocity: return Dimension::acceleration;
+    case Dimension::angular_velocity: return Dimension::angular_acceleration;
+    default: return Dimension::number;  // not a unit kinema knows
+  }
+}
+
+}  // namespace
+
+const char* dimension_name(Dimension dimension) {
+  switch (dimension) {
+    case Dimension::number: return "plain number";
+    case Dimension::length: return "length";
+    case Dimension::angle: return "angle";
+    case Dimension::angular_velocity: return "angular velocity";
+    case Dimension::angular_acceleration: return "angular acceleration";
+    case Dimension::velocity: return "velocity";
+    case Dimension::acceleration: return "acceleration";
+  }
+  return "?";
+}
+
+Dimension rate_dimension(Dimension dimension) { return per_second(dimension); }
+
+const char* understood_units() {
+  return "m, mm, cm, in, ft, rad, deg, rpm, and any of these followed by /s or /s^2 "
+         "(e.g. rad/s, in/s, m/s^2)";
+}
+
+bool looks_like_quantity(const std::string& text) {
+  const std::string trimmed = trim(text);
+  if (trimmed.empty()) return false;
+  const char* begin = trimmed.c_str();
+  char* end = nullptr;
+  std::strtod(begin, &end);
+  if (end == begin) return false;
+  // "2*a" or "0.5 + a" are formulas, "2 in" is a quantity.
+  std::string rest = trim(std::string(end));
+  if (rest.empty()) return true;
+  return std::isalpha(static_cast<unsigned char>(rest[0])) != 0;
+}
+
+Quantity parse_quantity(const std::string& text) {
+  const std::string trimmed = trim(text);
+  const char* begin = trimmed.c_str();
+  char* end = nullptr;
+  const double number = std::strtod(begin, &end);
+  if (end == begin) {
+    throw UnitError("\"" + text + "\" is not a number with a unit (write e.g. \"150 mm\")");
+  }
+  if (!std::isfinite(number)) {
+    throw UnitError("\"" + text + "\" is not a finite number");
+  }
+  std::string unit = trim(std::string(end));
+  if (unit.empty()) return {number, Dimension::number};
+  if (unit == "rpm" || unit == "rev/min") {
+    return {number * 2.0 * M_PI / 60.0, Dimension::angular_velocity};
+  }
+  if (unit == "°") unit = "deg";
+
+  int time_power = 0;
+  std::string base = unit;
+  for (const char* suffix : {"/s^2", "/s2", "/s²"}) {
+    const std::string s(suffix);
+    if (base.size() > s.size() && base.compare(base.size() - s.size(), s.size(), s) == 0) {
+      base = base.substr(0, base.size() - s.size());
+      time_power = 2;
+      break;
+    }
+  }
+  if (time_power == 0 && base.size() > 2 && base.compare(base.size() - 2, 2, "/s") == 0) {
+    base = base.substr(0, base.size() - 2);
+    time_power = 1;
+  }
+  const auto found = base_units().find(base);
+  if (found == base_units().end()) {
+    throw UnitError("unit \"" + unit + "\" in \"" + text + "\" is not understood; kinema reads " +
+                    understood_units());
+  }
+  Dimension dimension = found->second.dimension;
+  for (int i = 0; i < time_power; ++i) dimension = per_second(dimension);
+  return {number * found->second.factor, dimension};
+}
+
+double length_unit_factor(const std::string& unit) {
+  const auto found = base_units().find(unit);
+  if (found == base_units().end() || found->second.dimension != Dimension::length) {
+    throw UnitError("output length unit \"" + unit + "\" is not one of m, mm, cm, in, ft");
+  }
+  return found->second.factor;
+}
+
+}  // namespace kinema

@@ -1,0 +1,45 @@
+// Physical units at the edge of kinema: quantities are read as "150 mm",
+// "60 rpm", "15 rad/s^2" and stored in SI (m, rad, s); printers convert back.
+#pragma once
+
+#include <string>
+
+namespace kinema {
+
+/// What a quantity measures; SI inside (m, rad, s).
+enum class Dimension {
+  number,                // a plain number with no unit
+  length,                // m
+  angle,                 // rad
+  angular_velocity,      // rad/s
+  angular_acceleration,  // rad/s^2
+  velocity,              // m/s
+  acceleration,          // m/s^2
+};
+
+/// "length", "angle", ... for messages.
+const char* dimension_name(Dimension dimension);
+
+/// The time derivative's dimension: angle -> angular_velocity -> angular_acceleration.
+Dimension rate_dimension(Dimension dimension);
+
+struct Quantity {
+  double si_value = 0.0;  ///< Value converted to SI.
+  Dimension dimension = Dimension::number;
+};
+
+/// Parses "<number> [unit]"; throws UnitError (with the text and what is understood)
+/// when the unit is unknown or the number does not parse.
+Quantity parse_quantity(const std::string& text);
+
+/// True when text starts like a number (so it is a quantity, not a formula).
+bool looks_like_quantity(const std::string& text);
+
+/// Factor from one SI unit of length to the named length unit (m, mm, cm, in, ft).
+/// Throws UnitError for other names.
+double length_unit_factor(const std::string& unit);
+
+/// The list of understood units, for error messages.
+const char* understood_units();
+
+}  // namespace kinema
