@@ -10,8 +10,9 @@ using GiNaC::ex;
 
 // Reciprocal condition of the length-scaled Phi_q below which a position counts
 // as singular: a Newton solution at a toggle is only sqrt(eps)-accurate, so
-// exact toggles show up around 1e-8, while 0.001 deg away it is still 1e-5.
-constexpr double kSingularThreshold = 1e-6;
+// exact toggles show up around 1e-6; rates there would be 1e5 times their
+// usual size, which is no result to print.
+constexpr double kSingularThreshold = 1e-5;
 
 std::string format_number(double value) {
   std::ostringstream out;

@@ -139,7 +139,7 @@ void print_results_csv(std::ostream& out, const Mechanism& m, const Derivation& 
 
 void print_results_json(std::ostream& out, const Mechanism& m, const Derivation& d,
                         const std::vector<MotionState>& states) {
-  using nlohmann::json;
+  using json = nlohmann::ordered_json;
   const OutputScale scale(m);
   const Names names = names_of(d);
   const Dimension input_kind = m.input.dimension;

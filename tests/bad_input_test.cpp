@@ -1,0 +1,127 @@
+// Bad input: a clear message (file:line, the name, what to do), a non-zero
+// exit status and no output on stdout or in the -o file.
+#include <doctest/doctest.h>
+
+#include <filesystem>
+
+#include "test_support.hpp"
+
+namespace {
+
+const std::string kGood = R"toml(title = "four-bar"
+[parameters]
+a = "40 mm"
+b = "120 mm"
+c = "80 mm"
+d = "100 mm"
+[input]
+name = "theta2"
+value = "40 deg"
+rate = "10 rad/s"
+[unknowns]
+theta3 = "20 deg"
+theta4 = "80 deg"
+[loops]
+ABCD = "a*exp(I*theta2) + b*exp(I*theta3) - c*exp(I*theta4) - d"
+[points]
+P = "a*exp(I*theta2)"
+)toml";
+
+std::string replaced(const std::string& from, const std::string& to, std::string text = kGood) {
+  const auto at = text.find(from);
+  REQUIRE(at != std::string::npos);
+  return text.replace(at, from.size(), to);
+}
+
+struct Expect {
+  int status;
+  std::vector<std::string> message_parts;
+};
+
+void check_bad(const std::string& name, const std::string& text, const Expect& expect) {
+  CAPTURE(name);
+  const std::string path = kinema_test::write_temporary(name + ".toml", text);
+  const std::string output = path + ".json";
+  std::filesystem::remove(output);
+  const auto result = kinema_test::run_kinema({"eval", path, "--format", "json", "-o", output});
+  CAPTURE(result.err);
+  CHECK(result.exit_status == expect.status);
+  CHECK(result.out.empty());
+  CHECK_FALSE(std::filesystem::exists(output));  // nothing half-written
+  CHECK(result.err.rfind("kinema: error: ", 0) == 0);
+  for (const auto& part : expect.message_parts) {
+    CAPTURE(part);
+    CHECK(result.err.find(part) != std::string::npos);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("the good file passes (so the failures below are the edits')") {
+  const std::string path = kinema_test::write_temporary("good.toml", kGood);
+  CHECK(kinema_test::run_kinema({"eval", path}).exit_status == 0);
+}
+
+TEST_CASE("syntax error names file and line") {
+  check_bad("syntax", replaced("b = \"120 mm\"", "b = \"120 mm"), {2, {"syntax.toml:4", "syntax error"}});
+}
+
+TEST_CASE("unknown name in a formula names the loop, line and name") {
+  check_bad("unknown_name", replaced("- d\"", "- dd\""), {2, {"unknown_name.toml:15", "loop \"ABCD\"", "unknown name \"dd\""}});
+}
+
+TEST_CASE("duplicate name between a parameter and an unknown") {
+  check_bad("duplicate", replaced("theta3 = \"20 deg\"", "d = \"20 deg\""),
+            {2, {"duplicate.toml:12", "duplicate name \"d\"", "duplicate.toml:6"}});
+}
+
+TEST_CASE("unknown key (a typo) is refused") {
+  check_bad("typo", replaced("[points]", "[pionts]"), {2, {"typo.toml", "unknown key \"pionts\""}});
+}
+
+TEST_CASE("a unit that is not understood") {
+  check_bad("bad_unit", replaced("\"40 mm\"", "\"40 furlongs\""),
+            {2, {"bad_unit.toml:3", "a", "\"furlongs\"", "not understood"}});
+}
+
+TEST_CASE("a unit that does not fit: a length as the driver's rate") {
+  check_bad("rate_unit", replaced("\"10 rad/s\"", "\"10 mm\""),
+            {2, {"rate_unit.toml:10", "rate", "is a length", "angular velocity is needed"}});
+}
+
+TEST_CASE("a unit that does not fit: a length where an angle is needed") {
+  check_bad("length_as_angle", replaced("exp(I*theta2)", "exp(I*a)"),
+            {2, {"length_as_angle.toml:15", "loop \"ABCD\"", "argument of exp", "is a length"}});
+}
+
+TEST_CASE("a unit that does not fit: an unknown's guess without an angle or length unit") {
+  check_bad("guess_unit", replaced("theta3 = \"20 deg\"", "theta3 = \"20\""),
+            {2, {"guess_unit.toml:12", "theta3", "angle or a length unit"}});
+}
+
+TEST_CASE("count of scalar equations different from the count of unknowns") {
+  check_bad("count", replaced("theta4 = \"80 deg\"", "theta4 = \"80 deg\"\nr = \"10 mm\""),
+            {2, {"count.toml", "2 scalar equations", "3 unknowns", "theta3, theta4, r"}});
+}
+
+TEST_CASE("a position that cannot be assembled names the loop and the angle") {
+  check_bad("reach", replaced("d = \"100 mm\"", "d = \"400 mm\""),
+            {3, {"reach.toml", "loop \"ABCD\"", "theta2 = 40 deg", "cannot be closed"}});
+}
+
+TEST_CASE("a singular position is reported as such") {
+  // a + d = b + c: at theta2 = 180 deg the whole linkage lies on one line.
+  check_bad("singular", replaced("d = \"100 mm\"", "d = \"160 mm\"", replaced("value = \"40 deg\"", "value = \"180 deg\"")),
+            {4, {"singular.toml", "singular position at theta2 = 180 deg", "toggle or dead-centre"}});
+}
+
+TEST_CASE("non-finite parameter values") {
+  check_bad("infinite", replaced("\"40 mm\"", "\"1e999 mm\""), {2, {"infinite.toml:3", "not a finite number"}});
+  check_bad("nan_formula", replaced("d = \"100 mm\"", "d = \"sqrt(-1)*a\""), {2, {"nan_formula.toml:6", "parameter \"d\"", "real number"}});
+}
+
+TEST_CASE("missing file") {
+  const auto result = kinema_test::run_kinema({"eval", "/nonexistent/mechanism.toml"});
+  CHECK(result.exit_status == 2);
+  CHECK(result.err.find("/nonexistent/mechanism.toml: cannot open") != std::string::npos);
+}

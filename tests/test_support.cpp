@@ -1,0 +1,80 @@
+#include "test_support.hpp"
+
+#include <sys/wait.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace kinema_test {
+
+namespace {
+
+std::string read_file(const std::string& path) {
+  std::ifstream file(path);
+  std::ostringstream text;
+  text << file.rdbuf();
+  return text.str();
+}
+
+std::string quote(const std::string& word) {
+  std::string quoted = "'";
+  for (char c : word) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return quoted + "'";
+}
+
+}  // namespace
+
+CommandResult run_kinema(const std::vector<std::string>& arguments) {
+  static int counter = 0;
+  const auto directory = std::filesystem::temp_directory_path() / "kinema_tests";
+  std::filesystem::create_directories(directory);
+  const std::string stem = (directory / ("run" + std::to_string(::getpid()) + "_" + std::to_string(counter++))).string();
+  std::string command = quote(KINEMA_EXE);
+  for (const auto& argument : arguments) command += " " + quote(argument);
+  command += " > " + quote(stem + ".out") + " 2> " + quote(stem + ".err");
+  const int raw = std::system(command.c_str());
+  CommandResult result;
+  result.exit_status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  result.out = read_file(stem + ".out");
+  result.err = read_file(stem + ".err");
+  std::remove((stem + ".out").c_str());
+  std::remove((stem + ".err").c_str());
+  return result;
+}
+
+std::string sample(const std::string& name) { return std::string(KINEMA_SAMPLES_DIR) + "/" + name; }
+std::string test_data(const std::string& name) { return std::string(KINEMA_TEST_DATA_DIR) + "/" + name; }
+
+nlohmann::json eval_json(const std::string& sample_name, const std::vector<std::string>& extra) {
+  std::vector<std::string> arguments = {"eval", sample(sample_name), "--format", "json"};
+  arguments.insert(arguments.end(), extra.begin(), extra.end());
+  const CommandResult result = run_kinema(arguments);
+  if (result.exit_status != 0) {
+    throw std::runtime_error("kinema eval " + sample_name + " failed: " + result.err);
+  }
+  return nlohmann::json::parse(result.out);
+}
+
+bool matches_printed(double actual, const std::string& printed) {
+  const double value = std::stod(printed);
+  const auto dot = printed.find('.');
+  const int decimals = dot == std::string::npos ? 0 : static_cast<int>(printed.size() - dot - 1);
+  const double last_digit = std::pow(10.0, -decimals);
+  const double tolerance = std::max(last_digit, 1e-3 * std::fabs(value)) * (1 + 1e-9);
+  return std::fabs(actual - value) <= tolerance;
+}
+
+std::string write_temporary(const std::string& name, const std::string& text) {
+  const auto directory = std::filesystem::temp_directory_path() / "kinema_tests";
+  std::filesystem::create_directories(directory);
+  const std::string path = (directory / name).string();
+  std::ofstream(path) << text;
+  return path;
+}
+
+}  // namespace kinema_test

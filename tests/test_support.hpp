@@ -1,0 +1,40 @@
+// Helpers shared by the tests: running the kinema CLI, reading its JSON,
+// and comparing with numbers as the seeds print them.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace kinema_test {
+
+struct CommandResult {
+  int exit_status = -1;
+  std::string out;  ///< stdout
+  std::string err;  ///< stderr
+};
+
+/// Runs the kinema executable with the arguments (no shell quoting needed for simple words).
+CommandResult run_kinema(const std::vector<std::string>& arguments);
+
+std::string sample(const std::string& name);     ///< Path of samples/NAME.
+std::string test_data(const std::string& name);  ///< Path of tests/data/NAME.
+
+/// Runs `kinema eval SAMPLE --format json [extra]` and returns the parsed document.
+nlohmann::json eval_json(const std::string& sample_name, const std::vector<std::string>& extra = {});
+
+/// True when actual agrees with a printed number to one unit of its last
+/// digit or 0.1 %, whichever is larger (the seeds round pi and intermediates).
+bool matches_printed(double actual, const std::string& printed);
+
+/// Writes text to a fresh file in the build tree and returns its path.
+std::string write_temporary(const std::string& name, const std::string& text);
+
+}  // namespace kinema_test
+
+#define CHECK_PRINTED(actual, printed)                                                  \
+  do {                                                                                 \
+    const double kinema_actual_ = (actual);                                            \
+    INFO("actual " << kinema_actual_ << " vs printed " << printed);                   \
+    CHECK(kinema_test::matches_printed(kinema_actual_, printed));                      \
+  } while (0)
