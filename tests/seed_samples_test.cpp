@@ -2,6 +2,7 @@
 // the precision printed (one unit of the last digit or 0.1 %).
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "test_support.hpp"
@@ -141,4 +142,27 @@ TEST_CASE("Problem 3.22 (six-bar with two sliders, seed 003): rates and vC in in
   CHECK_PRINTED(c["speed"].get<double>(), "67.76");
   // The seed's first loop gives B's speed 65.3 in/s, leftwards.
   CHECK_PRINTED(point(doc, "B")["velocity"][0].get<double>(), "-65.3");
+}
+
+TEST_CASE("every sample runs through the CLI in every format, with no NaN") {
+  for (const char* name : {"four_bar.toml", "slider_crank.toml", "piston_driven_crank.toml",
+                           "example_4_1_r_trr.toml", "example_4_2_r_rtr_rrt.toml",
+                           "problem_4_4_six_bar.toml", "problem_3_22_six_bar_sliders.toml"}) {
+    CAPTURE(name);
+    const auto derive = kinema_test::run_kinema({"derive", kinema_test::sample(name)});
+    CHECK(derive.exit_status == 0);
+    CHECK(derive.out.find("Solved rates") != std::string::npos);
+    const auto table = kinema_test::run_kinema({"eval", kinema_test::sample(name)});
+    CHECK(table.exit_status == 0);
+    CHECK(table.out.find("units:") != std::string::npos);
+    const auto csv = kinema_test::run_kinema({"eval", kinema_test::sample(name), "--format", "csv"});
+    CHECK(csv.exit_status == 0);
+    CHECK(std::count(csv.out.begin(), csv.out.end(), '\n') == 2);  // header + one value
+    const json doc = eval_json(name);
+    CHECK(doc["results"][0]["status"] == "ok");
+    for (const std::string& output : {table.out, csv.out}) {
+      CHECK(output.find("nan") == std::string::npos);
+      CHECK(output.find("inf") == std::string::npos);
+    }
+  }
 }
