@@ -7,6 +7,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "engine/codegen.hpp"
 #include "engine/errors.hpp"
 #include "engine/model.hpp"
 #include "engine/printers/printers.hpp"
@@ -65,6 +66,12 @@ int run(int argc, char** argv) {
       ->check(CLI::IsMember({"table", "csv", "json"}));
   eval_cmd->add_option("-o,--output", output_path, "write to this file instead of stdout");
 
+  std::string namespace_name;
+  auto* codegen_cmd = app.add_subcommand("codegen", "write a standalone C++ header (position, velocity, acceleration)");
+  codegen_cmd->add_option("FILE", file, "mechanism file (TOML)")->required();
+  codegen_cmd->add_option("-o,--output", output_path, "header to write, e.g. four_bar.hpp")->required();
+  codegen_cmd->add_option("--namespace", namespace_name, "namespace of the generated code (default: the header's name)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
@@ -77,6 +84,18 @@ int run(int argc, char** argv) {
 
   if (derive_cmd->parsed()) {
     print_derivation_text(out, m, model.derivation);
+    write_output(out.str(), output_path);
+    return 0;
+  }
+
+  if (codegen_cmd->parsed()) {
+    if (namespace_name.empty()) {
+      std::string stem = output_path.substr(output_path.find_last_of('/') + 1);
+      namespace_name = cpp_identifier(stem.substr(0, stem.find('.')));
+    } else if (cpp_identifier(namespace_name) != namespace_name) {
+      throw InputError("--namespace \"" + namespace_name + "\" is not a C++ identifier");
+    }
+    write_cpp_header(out, model, namespace_name);
     write_output(out.str(), output_path);
     return 0;
   }

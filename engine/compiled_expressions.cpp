@@ -145,6 +145,61 @@ CompiledExpressions::CompiledExpressions(const std::vector<GiNaC::ex>& inputs,
   for (const ex& output : outputs) output_registers_.push_back(builder.compile(output));
 }
 
+void CompiledExpressions::write_cpp(std::ostream& out, const std::vector<std::string>& input_names,
+                                    const std::vector<std::string>& output_targets,
+                                    const std::string& indent) const {
+  if (input_names.size() != input_count_ || output_targets.size() != output_registers_.size()) {
+    throw std::invalid_argument("write_cpp: wrong number of input names or output targets");
+  }
+  std::vector<bool> computed(initial_registers_.size(), false);
+  for (const Instruction& in : instructions_) {
+    computed[in.out] = true;
+    if (in.op == Op::sincos) computed[in.b] = true;
+  }
+  auto operand = [&](std::uint32_t r) {
+    if (r < input_count_) return input_names[r];
+    if (computed[r]) return "r" + std::to_string(r);
+    std::ostringstream literal;
+    literal.precision(17);
+    literal << initial_registers_[r];
+    std::string text = literal.str();
+    if (text.find_first_of(".eEn") == std::string::npos) text += ".0";
+    return initial_registers_[r] < 0 ? "(" + text + ")" : text;
+  };
+  auto define = [&](std::uint32_t r, const std::string& value) {
+    out << indent << "[[maybe_unused]] const double r" << r << " = " << value << ";\n";
+  };
+  for (const Instruction& in : instructions_) {
+    const std::string a = operand(in.a), b = operand(in.b);
+    switch (in.op) {
+      case Op::add: define(in.out, a + " + " + b); break;
+      case Op::sub: define(in.out, a + " - " + b); break;
+      case Op::mul: define(in.out, a + " * " + b); break;
+      case Op::div: define(in.out, a + " / " + b); break;
+      case Op::neg: define(in.out, "-" + a); break;
+      case Op::square: define(in.out, a + " * " + a); break;
+      case Op::powi: define(in.out, "std::pow(" + a + ", " + std::to_string(in.exponent) + ")"); break;
+      case Op::pow: define(in.out, "std::pow(" + a + ", " + b + ")"); break;
+      case Op::sincos:
+        define(in.out, "std::sin(" + a + ")");
+        define(in.b, "std::cos(" + a + ")");
+        break;
+      case Op::tan: define(in.out, "std::tan(" + a + ")"); break;
+      case Op::exp: define(in.out, "std::exp(" + a + ")"); break;
+      case Op::log: define(in.out, "std::log(" + a + ")"); break;
+      case Op::sqrt: define(in.out, "std::sqrt(" + a + ")"); break;
+      case Op::abs: define(in.out, "std::fabs(" + a + ")"); break;
+      case Op::atan2: define(in.out, "std::atan2(" + a + ", " + b + ")"); break;
+      case Op::asin: define(in.out, "std::asin(" + a + ")"); break;
+      case Op::acos: define(in.out, "std::acos(" + a + ")"); break;
+      case Op::atan: define(in.out, "std::atan(" + a + ")"); break;
+    }
+  }
+  for (std::size_t k = 0; k < output_targets.size(); ++k) {
+    out << indent << output_targets[k] << " = " << operand(output_registers_[k]) << ";\n";
+  }
+}
+
 void CompiledExpressions::evaluate(const double* inputs, double* outputs,
                                    std::vector<double>& workspace) const {
   double* r = workspace.data();

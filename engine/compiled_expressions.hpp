@@ -7,6 +7,8 @@
 #include <ginac/ginac.h>
 
 #include <cstdint>
+#include <ostream>
+#include <string>
 #include <vector>
 
 namespace kinema {
@@ -23,6 +25,11 @@ class CompiledExpressions {
 
   /// Evaluates all outputs: inputs[i] is the value of the i-th input symbol.
   void evaluate(const double* inputs, double* outputs, std::vector<double>& workspace) const;
+
+  /// Writes the tape as straight-line C++ statements: inputs are read from
+  /// input_names[i], output k is assigned to output_targets[k] (each a C++ lvalue).
+  void write_cpp(std::ostream& out, const std::vector<std::string>& input_names,
+                 const std::vector<std::string>& output_targets, const std::string& indent) const;
 
   std::size_t input_count() const { return input_count_; }
   std::size_t output_count() const { return output_registers_.size(); }

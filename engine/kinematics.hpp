@@ -30,6 +30,13 @@ class Kinematics {
   /// "theta2 = 30 deg" / "r = 12.5 mm" in the output units.
   std::string describe_input(double input) const;
 
+  // The compiled tapes, for exporters (codegen). Their inputs are
+  // [parameters, theta, thetad, thetadd, q, qd, qdd].
+  const CompiledExpressions& position_tape() const { return position_; }
+  const CompiledExpressions& acceleration_tape() const { return acceleration_; }
+  const CompiledExpressions& points_tape() const { return points_; }
+  const std::vector<double>& parameter_values() const { return parameter_values_; }
+
  private:
   friend class Workspace;
   Mechanism mechanism_;
