@@ -81,21 +81,21 @@ void write_cpp_header(std::ostream& out, const Model& model, const std::string& 
       << "  const double theta_rate = 0, theta_second_rate = 0;\n  const double* qd = nullptr;\n"
       << "  const double* qdd = nullptr;\n";
   unused_guard("  ");
-  k.position_tape().write_cpp(out, inputs, targets("out", n + n * n + n), "  ");
+  k.evaluator().write_cpp(out, inputs, Kinematics::kPositionStage, targets("out", n + n * n + n), "  ");
   out << "}\n\n"
       << "// gamma (n): Phi_q * qdd = gamma.\n"
       << "inline void acceleration_rhs(const Parameters& p, double theta, double theta_rate,\n"
       << "                             double theta_second_rate, const double* q, const double* qd,\n"
       << "                             double* out) {\n  const double* qdd = nullptr;\n";
   unused_guard("  ");
-  k.acceleration_tape().write_cpp(out, inputs, targets("out", n), "  ");
+  k.evaluator().write_cpp(out, inputs, Kinematics::kAccelerationStage, targets("out", n), "  ");
   out << "}\n\n"
       << "// x, y, vx, vy, ax, ay of each point.\n"
       << "inline void point_motion(const Parameters& p, double theta, double theta_rate,\n"
       << "                         double theta_second_rate, const double* q, const double* qd,\n"
       << "                         const double* qdd, double* out) {\n";
   unused_guard("  ");
-  k.points_tape().write_cpp(out, inputs, targets("out", 6 * points), "  ");
+  k.evaluator().write_cpp(out, inputs, Kinematics::kPointStage, targets("out", 6 * points), "  ");
   out << "}\n\n"
       << "// LU with partial pivoting of a (column-major n x n), in place; false if singular.\n"
       << "inline bool factor(double* a, int* pivot) {\n"

@@ -138,18 +138,40 @@ class TapeBuilder {
 };
 
 CompiledExpressions::CompiledExpressions(const std::vector<GiNaC::ex>& inputs,
-                                         const std::vector<GiNaC::ex>& outputs) {
+                                         const std::vector<GiNaC::ex>& outputs)
+    : CompiledExpressions(inputs, std::vector<std::vector<GiNaC::ex>>{outputs}) {}
+
+CompiledExpressions::CompiledExpressions(const std::vector<GiNaC::ex>& inputs,
+                                         const std::vector<std::vector<GiNaC::ex>>& stages) {
   TapeBuilder builder(*this);
   input_count_ = inputs.size();
   for (const ex& input : inputs) builder.add_input(input);
-  for (const ex& output : outputs) output_registers_.push_back(builder.compile(output));
+  stage_outputs_.push_back(0);
+  for (const auto& stage : stages) {
+    for (const ex& output : stage) output_registers_.push_back(builder.compile(output));
+    stage_end_.push_back(instructions_.size());
+    stage_outputs_.push_back(output_registers_.size());
+  }
 }
 
 void CompiledExpressions::write_cpp(std::ostream& out, const std::vector<std::string>& input_names,
-                                    const std::vector<std::string>& output_targets,
+                                    std::size_t stage, const std::vector<std::string>& output_targets,
                                     const std::string& indent) const {
-  if (input_names.size() != input_count_ || output_targets.size() != output_registers_.size()) {
+  if (input_names.size() != input_count_ || output_targets.size() != stage_output_count(stage)) {
     throw std::invalid_argument("write_cpp: wrong number of input names or output targets");
+  }
+  // Backward liveness from this stage's outputs selects the instructions to write.
+  std::vector<bool> live(initial_registers_.size(), false);
+  for (std::size_t i = stage_outputs_[stage]; i < stage_outputs_[stage + 1]; ++i) live[output_registers_[i]] = true;
+  std::vector<bool> needed(instructions_.size(), false);
+  for (std::size_t k = stage_end_[stage]; k-- > 0;) {
+    const Instruction& in = instructions_[k];
+    if (!live[in.out] && !(in.op == Op::sincos && live[in.b])) continue;
+    needed[k] = true;
+    live[in.a] = true;
+    if (in.op == Op::add || in.op == Op::sub || in.op == Op::mul || in.op == Op::div ||
+        in.op == Op::pow || in.op == Op::atan2)
+      live[in.b] = true;
   }
   std::vector<bool> computed(initial_registers_.size(), false);
   for (const Instruction& in : instructions_) {
@@ -169,7 +191,9 @@ void CompiledExpressions::write_cpp(std::ostream& out, const std::vector<std::st
   auto define = [&](std::uint32_t r, const std::string& value) {
     out << indent << "[[maybe_unused]] const double r" << r << " = " << value << ";\n";
   };
-  for (const Instruction& in : instructions_) {
+  for (std::size_t k = 0; k < stage_end_[stage]; ++k) {
+    if (!needed[k]) continue;
+    const Instruction& in = instructions_[k];
     const std::string a = operand(in.a), b = operand(in.b);
     switch (in.op) {
       case Op::add: define(in.out, a + " + " + b); break;
@@ -196,15 +220,13 @@ void CompiledExpressions::write_cpp(std::ostream& out, const std::vector<std::st
     }
   }
   for (std::size_t k = 0; k < output_targets.size(); ++k) {
-    out << indent << output_targets[k] << " = " << operand(output_registers_[k]) << ";\n";
+    out << indent << output_targets[k] << " = " << operand(output_registers_[stage_outputs_[stage] + k]) << ";\n";
   }
 }
 
-void CompiledExpressions::evaluate(const double* inputs, double* outputs,
-                                   std::vector<double>& workspace) const {
-  double* r = workspace.data();
-  for (std::size_t i = 0; i < input_count_; ++i) r[i] = inputs[i];
-  for (const Instruction& in : instructions_) {
+void CompiledExpressions::run(std::size_t begin, std::size_t end, double* r) const {
+  for (std::size_t k = begin; k < end; ++k) {
+    const Instruction& in = instructions_[k];
     switch (in.op) {
       case Op::add: r[in.out] = r[in.a] + r[in.b]; break;
       case Op::sub: r[in.out] = r[in.a] - r[in.b]; break;
@@ -233,6 +255,21 @@ void CompiledExpressions::evaluate(const double* inputs, double* outputs,
       case Op::atan: r[in.out] = std::atan(r[in.a]); break;
     }
   }
+}
+
+void CompiledExpressions::evaluate_stage(std::size_t stage, std::vector<double>& workspace,
+                                         double* outputs) const {
+  double* r = workspace.data();
+  run(stage == 0 ? 0 : stage_end_[stage - 1], stage_end_[stage], r);
+  for (std::size_t i = stage_outputs_[stage]; i < stage_outputs_[stage + 1]; ++i)
+    *outputs++ = r[output_registers_[i]];
+}
+
+void CompiledExpressions::evaluate(const double* inputs, double* outputs,
+                                   std::vector<double>& workspace) const {
+  double* r = workspace.data();
+  for (std::size_t i = 0; i < input_count_; ++i) r[i] = inputs[i];
+  run(0, instructions_.size(), r);
   for (std::size_t i = 0; i < output_registers_.size(); ++i) outputs[i] = r[output_registers_[i]];
 }
 

@@ -20,6 +20,20 @@ class CompiledExpressions {
   /// Throws std::invalid_argument for a symbol that is not an input or a complex number.
   CompiledExpressions(const std::vector<GiNaC::ex>& inputs, const std::vector<GiNaC::ex>& outputs);
 
+  /// Staged form: stage k may use inputs that are known only after stage k-1 has been
+  /// evaluated (e.g. qd after solving with stage 0's Jacobian). Subexpressions are
+  /// shared across stages: a later stage reuses the registers of earlier ones.
+  CompiledExpressions(const std::vector<GiNaC::ex>& inputs,
+                      const std::vector<std::vector<GiNaC::ex>>& stages);
+
+  /// Runs one stage on a workspace whose first input_count() registers hold the
+  /// inputs and whose earlier stages were run with the same values of their inputs.
+  void evaluate_stage(std::size_t stage, std::vector<double>& workspace, double* outputs) const;
+  std::size_t stage_count() const { return stage_end_.size(); }
+  std::size_t stage_output_count(std::size_t stage) const {
+    return stage_outputs_[stage + 1] - stage_outputs_[stage];
+  }
+
   /// Register buffer with the constants in place; reuse it across calls.
   std::vector<double> make_workspace() const { return initial_registers_; }
 
@@ -28,7 +42,9 @@ class CompiledExpressions {
 
   /// Writes the tape as straight-line C++ statements: inputs are read from
   /// input_names[i], output k is assigned to output_targets[k] (each a C++ lvalue).
-  void write_cpp(std::ostream& out, const std::vector<std::string>& input_names,
+  /// Only what stage `stage`'s outputs need is written (recomputing what they take from
+  /// earlier stages), so each stage becomes a self-contained function.
+  void write_cpp(std::ostream& out, const std::vector<std::string>& input_names, std::size_t stage,
                  const std::vector<std::string>& output_targets, const std::string& indent) const;
 
   std::size_t input_count() const { return input_count_; }
@@ -46,10 +62,13 @@ class CompiledExpressions {
     int exponent;             ///< powi only.
   };
   friend class TapeBuilder;
+  void run(std::size_t begin, std::size_t end, double* registers) const;
 
   std::size_t input_count_ = 0;
   std::vector<Instruction> instructions_;
   std::vector<std::uint32_t> output_registers_;
+  std::vector<std::size_t> stage_end_;      ///< One past each stage's last instruction.
+  std::vector<std::size_t> stage_outputs_;  ///< Output index where each stage starts (+ end).
   std::vector<double> initial_registers_;  ///< Inputs (overwritten), constants, temporaries.
 };
 

@@ -59,8 +59,6 @@ Kinematics::Kinematics(const Mechanism& mechanism, const Derivation& d)
   for (std::size_t j = 0; j < n; ++j)
     for (std::size_t i = 0; i < n; ++i) position.push_back(d.jacobian(i, j));
   for (std::size_t i = 0; i < n; ++i) position.push_back(d.input_jacobian(i, 0));
-  position_ = CompiledExpressions(inputs, position);
-  acceleration_ = CompiledExpressions(inputs, d.acceleration_rhs);
   std::vector<ex> points;
   for (std::size_t p = 0; p < point_count_; ++p) {
     points.push_back(d.closure.point_x[p]);
@@ -70,7 +68,7 @@ Kinematics::Kinematics(const Mechanism& mechanism, const Derivation& d)
     points.push_back(d.point_acceleration_x[p]);
     points.push_back(d.point_acceleration_y[p]);
   }
-  points_ = CompiledExpressions(inputs, points);
+  evaluator_ = CompiledExpressions(inputs, {position, d.acceleration_rhs, points});
 }
 
 Eigen::VectorXd Kinematics::guess() const {
@@ -89,25 +87,22 @@ std::string Kinematics::describe_input(double input) const {
 
 Workspace::Workspace(const Kinematics& k)
     : k_(k),
-      inputs_(k.parameter_count_ + 3 + 3 * k.unknown_count_, 0.0),
-      position_registers_(k.position_.make_workspace()),
-      acceleration_registers_(k.acceleration_.make_workspace()),
-      point_registers_(k.points_.make_workspace()),
-      position_out_(k.position_.output_count()),
-      acceleration_out_(k.acceleration_.output_count()),
-      point_out_(k.points_.output_count()) {
-  std::copy(k.parameter_values_.begin(), k.parameter_values_.end(), inputs_.begin());
+      registers_(k.evaluator_.make_workspace()),
+      position_out_(k.evaluator_.stage_output_count(Kinematics::kPositionStage)),
+      acceleration_out_(k.evaluator_.stage_output_count(Kinematics::kAccelerationStage)),
+      point_out_(k.evaluator_.stage_output_count(Kinematics::kPointStage)) {
+  std::copy(k.parameter_values_.begin(), k.parameter_values_.end(), registers_.begin());
 }
 
 void Workspace::set_position_inputs(double input, const Eigen::VectorXd& q) {
   const std::size_t base = k_.parameter_count_;
-  inputs_[base] = input;
-  for (std::size_t i = 0; i < k_.unknown_count_; ++i) inputs_[base + 3 + i] = q[i];
+  registers_[base] = input;
+  for (std::size_t i = 0; i < k_.unknown_count_; ++i) registers_[base + 3 + i] = q[i];
 }
 
 void Workspace::evaluate_position(double input, const Eigen::VectorXd& q) {
   set_position_inputs(input, q);
-  k_.position_.evaluate(inputs_.data(), position_out_.data(), position_registers_);
+  k_.evaluator_.evaluate_stage(Kinematics::kPositionStage, registers_, position_out_.data());
   const std::size_t n = k_.unknown_count_;
   phi_ = Eigen::Map<const Eigen::VectorXd>(position_out_.data(), n);
   phi_q_ = Eigen::Map<const Eigen::MatrixXd>(position_out_.data() + n, n, n);
@@ -239,14 +234,14 @@ MotionState Workspace::motion(double input, double rate, double second_rate,
   const Eigen::PartialPivLU<Eigen::MatrixXd> lu(phi_q_);
   state.qd = lu.solve(-phi_theta_ * rate);
 
-  inputs_[base + 1] = rate;
-  inputs_[base + 2] = second_rate;
-  for (std::size_t i = 0; i < n; ++i) inputs_[base + 3 + n + i] = state.qd[i];
-  k_.acceleration_.evaluate(inputs_.data(), acceleration_out_.data(), acceleration_registers_);
+  // Later stages reuse the registers of the position stage just evaluated at (input, q).
+  registers_[base + 1] = rate;
+  registers_[base + 2] = second_rate;
+  for (std::size_t i = 0; i < n; ++i) registers_[base + 3 + n + i] = state.qd[i];
+  k_.evaluator_.evaluate_stage(Kinematics::kAccelerationStage, registers_, acceleration_out_.data());
   state.qdd = lu.solve(Eigen::Map<const Eigen::VectorXd>(acceleration_out_.data(), n));
-  for (std::size_t i = 0; i < n; ++i) inputs_[base + 3 + 2 * n + i] = state.qdd[i];
-
-  k_.points_.evaluate(inputs_.data(), point_out_.data(), point_registers_);
+  for (std::size_t i = 0; i < n; ++i) registers_[base + 3 + 2 * n + i] = state.qdd[i];
+  k_.evaluator_.evaluate_stage(Kinematics::kPointStage, registers_, point_out_.data());
   state.points.resize(k_.point_count_);
   bool finite = state.qd.allFinite() && state.qdd.allFinite();
   for (std::size_t p = 0; p < k_.point_count_; ++p) {

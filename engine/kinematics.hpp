@@ -30,11 +30,12 @@ class Kinematics {
   /// "theta2 = 30 deg" / "r = 12.5 mm" in the output units.
   std::string describe_input(double input) const;
 
-  // The compiled tapes, for exporters (codegen). Their inputs are
-  // [parameters, theta, thetad, thetadd, q, qd, qdd].
-  const CompiledExpressions& position_tape() const { return position_; }
-  const CompiledExpressions& acceleration_tape() const { return acceleration_; }
-  const CompiledExpressions& points_tape() const { return points_; }
+  /// The compiled evaluator, for exporters (codegen). Inputs:
+  /// [parameters, theta, thetad, thetadd, q, qd, qdd]; stages: kPositionStage
+  /// (Phi, Phi_q column-major, Phi_theta), kAccelerationStage (gamma), kPointStage
+  /// (x, y, vx, vy, ax, ay per point).
+  const CompiledExpressions& evaluator() const { return evaluator_; }
+  static constexpr std::size_t kPositionStage = 0, kAccelerationStage = 1, kPointStage = 2;
   const std::vector<double>& parameter_values() const { return parameter_values_; }
 
  private:
@@ -43,10 +44,9 @@ class Kinematics {
   std::size_t unknown_count_ = 0, point_count_ = 0, parameter_count_ = 0;
   double length_scale_ = 1.0;
   std::vector<double> parameter_values_;
-  // Tape inputs: [parameters, theta, thetad, thetadd, q, qd, qdd].
-  CompiledExpressions position_;      ///< Phi, Phi_q (column-major), Phi_theta.
-  CompiledExpressions acceleration_;  ///< gamma.
-  CompiledExpressions points_;        ///< x, y, vx, vy, ax, ay per point.
+  /// One tape for position, acceleration and points: sin/cos and every other
+  /// subexpression computed once per input value, whatever stage needs it.
+  CompiledExpressions evaluator_;
 };
 
 enum class Status {
@@ -94,7 +94,7 @@ class Workspace {
 
  private:
   const Kinematics& k_;
-  std::vector<double> inputs_, position_registers_, acceleration_registers_, point_registers_;
+  std::vector<double> registers_;  ///< Tape registers; the first ones are its inputs.
   std::vector<double> position_out_, acceleration_out_, point_out_;
   Eigen::VectorXd phi_, phi_theta_;
   Eigen::MatrixXd phi_q_;

@@ -37,3 +37,23 @@ TEST_CASE("compiling refuses symbols that are not inputs") {
   realsymbol t("t"), y("y");
   CHECK_THROWS_AS(kinema::CompiledExpressions({t}, {t + y}), std::invalid_argument);
 }
+
+TEST_CASE("stages share registers: a later stage reuses what an earlier one computed") {
+  realsymbol t("t"), w("w"), a("a");
+  const ex position = a * cos(t), velocity = -a * sin(t) * w;
+  const kinema::CompiledExpressions separate_velocity({t, w, a}, {velocity});
+  const kinema::CompiledExpressions staged({t, w, a}, std::vector<std::vector<ex>>{{position}, {velocity}});
+  const kinema::CompiledExpressions separate_position({t, w, a}, {position});
+  // The staged tape's velocity stage needs no second sincos.
+  CHECK(staged.instruction_count() <
+        separate_position.instruction_count() + separate_velocity.instruction_count());
+  std::vector<double> workspace = staged.make_workspace();
+  workspace[0] = 0.7;
+  workspace[1] = 3.0;
+  workspace[2] = 2.0;
+  double p = 0, v = 0;
+  staged.evaluate_stage(0, workspace, &p);
+  staged.evaluate_stage(1, workspace, &v);
+  CHECK(p == doctest::Approx(2.0 * std::cos(0.7)));
+  CHECK(v == doctest::Approx(-2.0 * std::sin(0.7) * 3.0));
+}
