@@ -48,11 +48,12 @@ void kinema_scalar(benchmark::State& state, const std::string& name) {
   const auto& input = c.model->mechanism.input;
   kinema::Workspace workspace(*c.model->kinematics);
   Eigen::VectorXd q = c.solutions[0];
+  kinema::MotionState s;
   std::size_t i = 0;
   for (auto _ : state) {
     const double theta = c.angles[i];
     workspace.solve_position(theta, q);
-    const kinema::MotionState s = workspace.motion(theta, input.rate, input.second_rate, q);
+    workspace.motion_into(theta, input.rate, input.second_rate, q, s);
     benchmark::DoNotOptimize(s.qdd.data());
     i = (i + 1) % c.angles.size();
   }

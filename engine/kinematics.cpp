@@ -90,42 +90,71 @@ Workspace::Workspace(const Kinematics& k)
       registers_(k.evaluator_.make_workspace()),
       position_out_(k.evaluator_.stage_output_count(Kinematics::kPositionStage)),
       acceleration_out_(k.evaluator_.stage_output_count(Kinematics::kAccelerationStage)),
-      point_out_(k.evaluator_.stage_output_count(Kinematics::kPointStage)) {
+      point_out_(k.evaluator_.stage_output_count(Kinematics::kPointStage)),
+      phi_(k.unknown_count_),
+      phi_theta_(k.unknown_count_),
+      step_(k.unknown_count_),
+      trial_(k.unknown_count_),
+      column_scale_(k.unknown_count_),
+      rhs_(k.unknown_count_),
+      phi_q_(k.unknown_count_, k.unknown_count_),
+      scaled_phi_q_(k.unknown_count_, k.unknown_count_),
+      lu_(k.unknown_count_) {
   std::copy(k.parameter_values_.begin(), k.parameter_values_.end(), registers_.begin());
+  // Columns of slider lengths are unitless, columns of angles are lengths:
+  // scale them alike so the condition number does not depend on units.
+  for (std::size_t j = 0; j < k.unknown_count_; ++j)
+    column_scale_[j] = k.mechanism_.unknowns[j].dimension == Dimension::length ? k.length_scale_ : 1.0;
 }
 
-void Workspace::set_position_inputs(double input, const Eigen::VectorXd& q) {
-  const std::size_t base = k_.parameter_count_;
-  registers_[base] = input;
-  for (std::size_t i = 0; i < k_.unknown_count_; ++i) registers_[base + 3 + i] = q[i];
-}
 
 void Workspace::evaluate_position(double input, const Eigen::VectorXd& q) {
-  set_position_inputs(input, q);
+  const std::size_t base = k_.parameter_count_, n = k_.unknown_count_;
+  registers_[base] = input;
+  for (std::size_t i = 0; i < n; ++i) registers_[base + 3 + i] = q[i];
   k_.evaluator_.evaluate_stage(Kinematics::kPositionStage, registers_, position_out_.data());
-  const std::size_t n = k_.unknown_count_;
   phi_ = Eigen::Map<const Eigen::VectorXd>(position_out_.data(), n);
   phi_q_ = Eigen::Map<const Eigen::MatrixXd>(position_out_.data() + n, n, n);
   phi_theta_ = Eigen::Map<const Eigen::VectorXd>(position_out_.data() + n + n * n, n);
+  evaluated_ = true;
+  evaluated_input_ = input;
 }
 
-double Workspace::scaled_reciprocal_condition() const {
-  // Columns of slider lengths are unitless, columns of angles are lengths:
-  // scale them alike so the condition number does not depend on units.
-  Eigen::MatrixXd scaled = phi_q_;
-  for (std::size_t j = 0; j < k_.unknown_count_; ++j)
-    if (k_.mechanism_.unknowns[j].dimension == Dimension::length) scaled.col(j) *= k_.length_scale_;
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(scaled);
-  const auto& s = svd.singularValues();
-  if (s.size() == 0 || !(s[0] > 0) || !std::isfinite(s[0])) return 0.0;
-  return s[s.size() - 1] / s[0];
+bool Workspace::evaluated_at(double input, const Eigen::VectorXd& q) const {
+  if (!evaluated_ || evaluated_input_ != input) return false;
+  const std::size_t base = k_.parameter_count_;
+  for (std::size_t i = 0; i < k_.unknown_count_; ++i)
+    if (registers_[base + 3 + i] != q[i]) return false;
+  return true;
 }
+
+void Workspace::factorise() {
+  scaled_phi_q_.noalias() = phi_q_ * column_scale_.asDiagonal();
+  lu_.compute(scaled_phi_q_);
+}
+
+double Workspace::reciprocal_condition() const {
+  const auto pivots = lu_.matrixLU().diagonal().cwiseAbs();
+  const double ratio = pivots.minCoeff() / pivots.maxCoeff();
+  if (!std::isfinite(ratio)) return 0.0;
+  // Well away from singular the pivots say so; the estimate (which allocates) is
+  // only needed near a toggle, where it decides.
+  if (ratio >= 1e-2) return ratio;
+  const double estimate = lu_.rcond();
+  return std::isfinite(estimate) ? estimate : 0.0;
+}
+
+void Workspace::solve_rhs(Eigen::VectorXd& x) const {
+  x.noalias() = lu_.solve(rhs_);
+  x.array() *= column_scale_.array();
+}
+
 
 bool Workspace::solve_position(double input, Eigen::VectorXd& q, std::size_t* worst_loop,
                                double* residual) {
   // Down to rounding: near a toggle the position error is the square root of the residual.
   const double tolerance = 1e-14 * k_.length_scale_;
-  evaluate_position(input, q);
+  if (!evaluated_at(input, q)) evaluate_position(input, q);
   double norm = phi_.lpNorm<Eigen::Infinity>();
   bool converged = false;
   for (int iteration = 0; iteration < 60 && std::isfinite(norm); ++iteration) {
@@ -133,20 +162,26 @@ bool Workspace::solve_position(double input, Eigen::VectorXd& q, std::size_t* wo
       converged = true;
       break;
     }
-    // Least-squares step: stays defined where Phi_q is (nearly) singular.
-    const Eigen::VectorXd step = phi_q_.completeOrthogonalDecomposition().solve(-phi_);
-    if (!step.allFinite()) break;
+    factorise();
+    const auto pivots = lu_.matrixLU().diagonal().cwiseAbs();
+    if (pivots.minCoeff() > 1e-14 * pivots.maxCoeff()) {
+      rhs_ = -phi_;
+      solve_rhs(step_);
+    } else {
+      // Least-squares step: stays defined where Phi_q is (nearly) singular.
+      step_ = phi_q_.completeOrthogonalDecomposition().solve(-phi_);
+    }
+    if (!step_.allFinite()) break;
     double lambda = 1.0;
     bool improved = false;
-    Eigen::VectorXd trial;
     for (int halving = 0; halving < 30; ++halving, lambda *= 0.5) {
-      trial = q + lambda * step;
-      evaluate_position(input, trial);
+      trial_ = q + lambda * step_;
+      evaluate_position(input, trial_);
       const double trial_norm = phi_.lpNorm<Eigen::Infinity>();
       if (std::isfinite(trial_norm) && trial_norm < norm) {
         improved = true;
         norm = trial_norm;
-        q = trial;
+        q = trial_;
         break;
       }
     }
@@ -154,7 +189,7 @@ bool Workspace::solve_position(double input, Eigen::VectorXd& q, std::size_t* wo
   }
   // Converged to rounding level even if just above the tolerance.
   if (!converged && norm <= 1e-9 * k_.length_scale_) converged = true;
-  evaluate_position(input, q);
+  if (!evaluated_at(input, q)) evaluate_position(input, q);
   if (worst_loop) {
     Eigen::Index row = 0;
     phi_.cwiseAbs().maxCoeff(&row);
@@ -165,9 +200,11 @@ bool Workspace::solve_position(double input, Eigen::VectorXd& q, std::size_t* wo
 }
 
 bool Workspace::sensitivity(double input, const Eigen::VectorXd& q, Eigen::VectorXd& dq) {
-  evaluate_position(input, q);
-  if (scaled_reciprocal_condition() < kSingularThreshold) return false;
-  dq = phi_q_.partialPivLu().solve(-phi_theta_);
+  if (!evaluated_at(input, q)) evaluate_position(input, q);
+  factorise();
+  if (reciprocal_condition() < kSingularThreshold) return false;
+  rhs_ = -phi_theta_;
+  solve_rhs(dq);
   return dq.allFinite();
 }
 
@@ -214,32 +251,44 @@ bool Workspace::continue_to(double from, double to, Eigen::VectorXd& q, double* 
 
 MotionState Workspace::motion(double input, double rate, double second_rate,
                               const Eigen::VectorXd& q) {
+  MotionState state;
+  motion_into(input, rate, second_rate, q, state);
+  return state;
+}
+
+void Workspace::motion_into(double input, double rate, double second_rate, const Eigen::VectorXd& q,
+                            MotionState& state) {
   const std::size_t n = k_.unknown_count_;
   const std::size_t base = k_.parameter_count_;
-  MotionState state;
   state.input = input;
   state.input_rate = rate;
   state.input_second_rate = second_rate;
   state.q = q;
-  evaluate_position(input, q);
+  state.message.clear();
+  if (!evaluated_at(input, q)) evaluate_position(input, q);
   state.loop_residual = phi_.lpNorm<Eigen::Infinity>();
-  state.reciprocal_condition = scaled_reciprocal_condition();
+  // One factorisation of Phi_q: the singularity test, then velocity and acceleration.
+  factorise();
+  state.reciprocal_condition = reciprocal_condition();
   if (state.reciprocal_condition < kSingularThreshold) {
     state.status = Status::singular;
     state.message = "singular position at " + k_.describe_input(input) +
                     ": the Jacobian Phi_q is rank-deficient (toggle or dead-centre position), so "
                     "velocities and accelerations are not defined there; choose a nearby value";
-    return state;
+    return;
   }
-  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(phi_q_);
-  state.qd = lu.solve(-phi_theta_ * rate);
+  state.qd.resize(n);
+  state.qdd.resize(n);
+  rhs_ = -phi_theta_ * rate;
+  solve_rhs(state.qd);
 
   // Later stages reuse the registers of the position stage just evaluated at (input, q).
   registers_[base + 1] = rate;
   registers_[base + 2] = second_rate;
   for (std::size_t i = 0; i < n; ++i) registers_[base + 3 + n + i] = state.qd[i];
   k_.evaluator_.evaluate_stage(Kinematics::kAccelerationStage, registers_, acceleration_out_.data());
-  state.qdd = lu.solve(Eigen::Map<const Eigen::VectorXd>(acceleration_out_.data(), n));
+  rhs_ = Eigen::Map<const Eigen::VectorXd>(acceleration_out_.data(), n);
+  solve_rhs(state.qdd);
   for (std::size_t i = 0; i < n; ++i) registers_[base + 3 + 2 * n + i] = state.qdd[i];
   k_.evaluator_.evaluate_stage(Kinematics::kPointStage, registers_, point_out_.data());
   state.points.resize(k_.point_count_);
@@ -253,10 +302,9 @@ MotionState Workspace::motion(double input, double rate, double second_rate,
     state.status = Status::singular;
     state.message = "non-finite rates at " + k_.describe_input(input) +
                     " (a formula divides by zero there); choose a nearby value";
-    return state;
+    return;
   }
   state.status = Status::ok;
-  return state;
 }
 
 std::vector<MotionState> analyse(const Kinematics& kinematics, const std::vector<double>& inputs,

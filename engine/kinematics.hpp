@@ -84,6 +84,9 @@ class Workspace {
 
   /// Rates, second rates and points at a solved position.
   MotionState motion(double input, double rate, double second_rate, const Eigen::VectorXd& q);
+  /// The same into an existing state, reusing its storage (no allocation on the hot path).
+  void motion_into(double input, double rate, double second_rate, const Eigen::VectorXd& q,
+                   MotionState& state);
 
   /// dq/dtheta at a solved position (false when Phi_q is singular).
   bool sensitivity(double input, const Eigen::VectorXd& q, Eigen::VectorXd& dq);
@@ -96,12 +99,21 @@ class Workspace {
   const Kinematics& k_;
   std::vector<double> registers_;  ///< Tape registers; the first ones are its inputs.
   std::vector<double> position_out_, acceleration_out_, point_out_;
-  Eigen::VectorXd phi_, phi_theta_;
-  Eigen::MatrixXd phi_q_;
+  Eigen::VectorXd phi_, phi_theta_, step_, trial_, column_scale_, rhs_;
+  Eigen::MatrixXd phi_q_, scaled_phi_q_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu_;  ///< Of Phi_q with columns scaled by column_scale_.
+  bool evaluated_ = false;  ///< The position stage's registers hold (evaluated_input_, q).
+  double evaluated_input_ = 0;
 
-  void set_position_inputs(double input, const Eigen::VectorXd& q);
   void evaluate_position(double input, const Eigen::VectorXd& q);
-  double scaled_reciprocal_condition() const;
+  bool evaluated_at(double input, const Eigen::VectorXd& q) const;
+  /// LU of Phi_q with its columns scaled by column_scale_.
+  void factorise();
+  /// Reciprocal condition of the scaled Phi_q from the factorisation: the pivot
+  /// ratio where that is clearly fine, else Eigen's 1-norm estimate.
+  double reciprocal_condition() const;
+  /// Solves Phi_q x = rhs_ with the factorisation (undoing the column scaling).
+  void solve_rhs(Eigen::VectorXd& x) const;
 };
 
 /// Solves at each input value in order, warm-starting from the previous one.
