@@ -98,8 +98,8 @@ Workspace::Workspace(const Kinematics& k)
       column_scale_(k.unknown_count_),
       rhs_(k.unknown_count_),
       phi_q_(k.unknown_count_, k.unknown_count_),
-      scaled_phi_q_(k.unknown_count_, k.unknown_count_),
-      lu_(k.unknown_count_) {
+      lu_(k.unknown_count_, k.unknown_count_),
+      pivots_(k.unknown_count_) {
   std::copy(k.parameter_values_.begin(), k.parameter_values_.end(), registers_.begin());
   // Columns of slider lengths are unitless, columns of angles are lengths:
   // scale them alike so the condition number does not depend on units.
@@ -129,23 +129,46 @@ bool Workspace::evaluated_at(double input, const Eigen::VectorXd& q) const {
 }
 
 void Workspace::factorise() {
-  scaled_phi_q_.noalias() = phi_q_ * column_scale_.asDiagonal();
-  lu_.compute(scaled_phi_q_);
+  const Eigen::Index n = phi_q_.rows();
+  lu_.noalias() = phi_q_ * column_scale_.asDiagonal();
+  for (Eigen::Index c = 0; c < n; ++c) {
+    Eigen::Index best = c;
+    for (Eigen::Index r = c + 1; r < n; ++r)
+      if (std::fabs(lu_(r, c)) > std::fabs(lu_(best, c))) best = r;
+    pivots_[c] = best;
+    if (best != c) lu_.row(c).swap(lu_.row(best));
+    if (lu_(c, c) == 0.0) continue;  // singular: reciprocal_condition() reports 0
+    for (Eigen::Index r = c + 1; r < n; ++r) {
+      lu_(r, c) /= lu_(c, c);
+      for (Eigen::Index j = c + 1; j < n; ++j) lu_(r, j) -= lu_(r, c) * lu_(c, j);
+    }
+  }
 }
 
 double Workspace::reciprocal_condition() const {
-  const auto pivots = lu_.matrixLU().diagonal().cwiseAbs();
+  const auto pivots = lu_.diagonal().cwiseAbs();
   const double ratio = pivots.minCoeff() / pivots.maxCoeff();
-  if (!std::isfinite(ratio)) return 0.0;
-  // Well away from singular the pivots say so; the estimate (which allocates) is
-  // only needed near a toggle, where it decides.
+  if (!std::isfinite(ratio) || ratio == 0.0) return 0.0;
+  // Well away from singular the pivots say so; the singular values (which
+  // allocate) are only needed near a toggle, where they decide.
   if (ratio >= 1e-2) return ratio;
-  const double estimate = lu_.rcond();
-  return std::isfinite(estimate) ? estimate : 0.0;
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(phi_q_ * column_scale_.asDiagonal());
+  const auto& s = svd.singularValues();
+  return s[0] > 0 && std::isfinite(s[0]) ? s[s.size() - 1] / s[0] : 0.0;
 }
 
 void Workspace::solve_rhs(Eigen::VectorXd& x) const {
-  x.noalias() = lu_.solve(rhs_);
+  const Eigen::Index n = lu_.rows();
+  x = rhs_;
+  // Row swaps first: the rows of L are stored in their final order.
+  for (Eigen::Index c = 0; c < n; ++c)
+    if (pivots_[c] != c) std::swap(x[c], x[pivots_[c]]);
+  for (Eigen::Index c = 0; c < n; ++c)
+    for (Eigen::Index r = c + 1; r < n; ++r) x[r] -= lu_(r, c) * x[c];
+  for (Eigen::Index c = n - 1; c >= 0; --c) {
+    x[c] /= lu_(c, c);
+    for (Eigen::Index r = 0; r < c; ++r) x[r] -= lu_(r, c) * x[c];
+  }
   x.array() *= column_scale_.array();
 }
 
@@ -163,7 +186,7 @@ bool Workspace::solve_position(double input, Eigen::VectorXd& q, std::size_t* wo
       break;
     }
     factorise();
-    const auto pivots = lu_.matrixLU().diagonal().cwiseAbs();
+    const auto pivots = lu_.diagonal().cwiseAbs();
     if (pivots.minCoeff() > 1e-14 * pivots.maxCoeff()) {
       rhs_ = -phi_;
       solve_rhs(step_);

@@ -100,8 +100,11 @@ class Workspace {
   std::vector<double> registers_;  ///< Tape registers; the first ones are its inputs.
   std::vector<double> position_out_, acceleration_out_, point_out_;
   Eigen::VectorXd phi_, phi_theta_, step_, trial_, column_scale_, rhs_;
-  Eigen::MatrixXd phi_q_, scaled_phi_q_;
-  Eigen::PartialPivLU<Eigen::MatrixXd> lu_;  ///< Of Phi_q with columns scaled by column_scale_.
+  Eigen::MatrixXd phi_q_;
+  /// LU (partial pivoting, in place) of Phi_q with columns scaled by column_scale_;
+  /// hand-written for small n so the hot path allocates nothing.
+  Eigen::MatrixXd lu_;
+  std::vector<Eigen::Index> pivots_;
   bool evaluated_ = false;  ///< The position stage's registers hold (evaluated_input_, q).
   double evaluated_input_ = 0;
 
