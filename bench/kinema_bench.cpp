@@ -60,6 +60,18 @@ void kinema_scalar(benchmark::State& state, const std::string& name) {
   state.SetItemsProcessed(state.iterations());
 }
 
+// What `kinema eval --sweep` does: analyse() over the revolution (continuation with a
+// predictor from the previous rates, results stored per angle).
+void kinema_sweep(benchmark::State& state, const std::string& name) {
+  Case& c = case_for(name);
+  const auto& input = c.model->mechanism.input;
+  for (auto _ : state) {
+    const auto states = kinema::analyse(*c.model->kinematics, c.angles, input.rate, input.second_rate);
+    benchmark::DoNotOptimize(states.data());
+  }
+  state.SetItemsProcessed(state.iterations() * c.angles.size());
+}
+
 void derivation(benchmark::State& state, const std::string& name) {
   for (auto _ : state) {
     kinema::Model model = kinema::load_model(sample_path(name));
@@ -219,6 +231,7 @@ int main(int argc, char** argv) {
   const std::vector<std::string> samples = {"four_bar.toml", "slider_crank.toml", "problem_4_4_six_bar.toml"};
   for (const auto& s : samples) {
     benchmark::RegisterBenchmark(("kinema/" + s).c_str(), kinema_scalar, s);
+    benchmark::RegisterBenchmark(("kinema_sweep/" + s).c_str(), kinema_sweep, s)->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark(("ginac_subs_evalf/" + s).c_str(), ginac_subs_evalf, s);
     benchmark::RegisterBenchmark(("ginac_compile_ex/" + s).c_str(), ginac_compile_ex, s);
     benchmark::RegisterBenchmark(("derivation/" + s).c_str(), derivation, s)->Unit(benchmark::kMillisecond);
@@ -256,8 +269,8 @@ int main(int argc, char** argv) {
     return found == collector.ns_per_item.end() ? NAN : found->second;
   };
   std::printf("\nPer input value (position + velocity + acceleration), ns; ratio = other / kinema\n");
-  std::printf("%-26s %10s %18s %20s %20s %20s\n", "mechanism", "kinema", "closed form", "GiNaC subs+evalf",
-              "GiNaC compile_ex", "SymPy route");
+  std::printf("%-26s %10s %12s %18s %20s %20s %20s\n", "mechanism", "kinema", "kinema sweep", "closed form",
+              "GiNaC subs+evalf", "GiNaC compile_ex", "SymPy route");
   for (const auto& s : samples) {
     const double k = get("kinema/" + s);
     const double closed = get("closed_form/" + s), subs = get("ginac_subs_evalf/" + s),
@@ -270,8 +283,9 @@ int main(int argc, char** argv) {
       else std::snprintf(text, sizeof text, "%.0f (%.3gx)", other, other / k);
       return std::string(text);
     };
-    std::printf("%-26s %10.0f %18s %20s %20s %20s\n", s.c_str(), k, cell(closed).c_str(), cell(subs).c_str(),
-                cell(compiled).c_str(), cell(sympy_ns).c_str());
+    const double sweep = get("kinema_sweep/" + s) / kAngles;  // ns per sweep / angles
+    std::printf("%-26s %10.0f %12.0f %18s %20s %20s %20s\n", s.c_str(), k, sweep, cell(closed).c_str(),
+                cell(subs).c_str(), cell(compiled).c_str(), cell(sympy_ns).c_str());
   }
   std::printf("\nDerivation, file to ready evaluator, ms; ratio = SymPy / kinema\n");
   for (const auto& s : samples) {

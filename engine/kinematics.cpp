@@ -231,37 +231,34 @@ bool Workspace::sensitivity(double input, const Eigen::VectorXd& q, Eigen::Vecto
   return dq.allFinite();
 }
 
-bool Workspace::continue_to(double from, double to, Eigen::VectorXd& q, double* stuck_at) {
-  const bool angle = k_.mechanism_.input.dimension == Dimension::angle;
-  const double max_step = angle ? 2.0 * M_PI / 180.0 : 0.01 * k_.length_scale_;
-  const double min_step = max_step * 1e-7;
+double Workspace::max_continuation_step() const {
+  return k_.mechanism_.input.dimension == Dimension::angle ? 2.0 * M_PI / 180.0 : 0.01 * k_.length_scale_;
+}
+
+bool Workspace::predict_and_correct(double to, const Eigen::VectorXd& predicted, Eigen::VectorXd& q) {
   // A corrected solution this far (scaled) from the prediction is another branch.
-  const double branch_tolerance = 0.05;
+  constexpr double branch_tolerance = 0.05;
+  trial_q_ = predicted;
+  if (!solve_position(to, trial_q_)) return false;
+  for (std::size_t i = 0; i < k_.unknown_count_; ++i) {
+    if (std::fabs(trial_q_[i] - predicted[i]) / column_scale_[i] > branch_tolerance) return false;
+  }
+  q = trial_q_;
+  return true;
+}
+
+bool Workspace::continue_to(double from, double to, Eigen::VectorXd& q, double* stuck_at) {
+  const double max_step = max_continuation_step();
+  const double min_step = max_step * 1e-7;
   double t = from;
   double h = std::copysign(std::min(max_step, std::fabs(to - from)), to - from);
-  Eigen::VectorXd dq;
   while (t != to) {
     if (std::fabs(to - t) <= std::fabs(h) * (1 + 1e-12)) h = to - t;
-    bool accepted = false;
-    if (sensitivity(t, q, dq)) {
-      Eigen::VectorXd predicted = q + dq * h;
-      Eigen::VectorXd corrected = predicted;
-      if (solve_position(t + h, corrected)) {
-        double deviation = 0;
-        for (std::size_t i = 0; i < k_.unknown_count_; ++i) {
-          const double scale =
-              k_.mechanism_.unknowns[i].dimension == Dimension::length ? k_.length_scale_ : 1.0;
-          deviation = std::max(deviation, std::fabs(corrected[i] - predicted[i]) / scale);
-        }
-        accepted = deviation <= branch_tolerance;
-        if (accepted) {
-          q = corrected;
-          t = (h == to - t) ? to : t + h;
-          h = std::copysign(std::min(max_step, 2 * std::fabs(h)), to - from);
-        }
-      }
-    }
-    if (!accepted) {
+    const bool accepted = sensitivity(t, q, slope_) && predict_and_correct(t + h, q + slope_ * h, q);
+    if (accepted) {
+      t = (h == to - t) ? to : t + h;
+      h = std::copysign(std::min(max_step, 2 * std::fabs(h)), to - from);
+    } else {
       h /= 2;
       if (std::fabs(h) < min_step) {
         if (stuck_at) *stuck_at = t;
@@ -345,8 +342,14 @@ std::vector<MotionState> analyse(const Kinematics& kinematics, const std::vector
     std::string why;
     Eigen::VectorXd trial = q;
     if (have_previous) {
+      // Fast path for sweeps: predict from the rates just computed (dq/dtheta =
+      // qd/thetad) and correct; the general continuation only when that fails.
+      const double h = input - previous_input;
+      if (rate != 0 && std::fabs(h) <= workspace.max_continuation_step()) {
+        solved = workspace.predict_and_correct(input, q + states.back().qd * (h / rate), trial);
+      }
       double stuck_at = previous_input;
-      solved = workspace.continue_to(previous_input, input, trial, &stuck_at);
+      if (!solved) solved = workspace.continue_to(previous_input, input, trial, &stuck_at);
       if (!solved) {
         why = kinematics.describe_input(input) + " cannot be reached from " +
               kinematics.describe_input(previous_input) +

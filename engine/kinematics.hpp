@@ -95,11 +95,17 @@ class Workspace {
   /// branch is kept; false when that is impossible (limit or branch point).
   bool continue_to(double from, double to, Eigen::VectorXd& q, double* stuck_at);
 
+  /// Newton from `predicted` at `to`; accepts (into q) only a solution close to the
+  /// prediction, i.e. on the same branch.
+  bool predict_and_correct(double to, const Eigen::VectorXd& predicted, Eigen::VectorXd& q);
+  /// Largest input step continuation takes at once (2 deg, or 1 % of the length scale).
+  double max_continuation_step() const;
+
  private:
   const Kinematics& k_;
   std::vector<double> registers_;  ///< Tape registers; the first ones are its inputs.
   std::vector<double> position_out_, acceleration_out_, point_out_;
-  Eigen::VectorXd phi_, phi_theta_, step_, trial_, column_scale_, rhs_;
+  Eigen::VectorXd phi_, phi_theta_, step_, trial_, column_scale_, rhs_, slope_, trial_q_;
   Eigen::MatrixXd phi_q_;
   /// LU (partial pivoting, in place) of Phi_q with columns scaled by column_scale_;
   /// hand-written for small n so the hot path allocates nothing.
