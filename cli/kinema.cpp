@@ -65,6 +65,9 @@ int run(int argc, char** argv) {
   eval_cmd->add_option("--format", format, "table, csv or json")
       ->check(CLI::IsMember({"table", "csv", "json"}));
   eval_cmd->add_option("-o,--output", output_path, "write to this file instead of stdout");
+  unsigned threads = 1;
+  eval_cmd->add_option("--threads", threads, "threads for long sweeps (the branch is kept)")
+      ->check(CLI::Range(1u, 256u));
 
   std::string namespace_name;
   auto* codegen_cmd = app.add_subcommand("codegen", "write a standalone C++ header (position, velocity, acceleration)");
@@ -113,7 +116,7 @@ int run(int argc, char** argv) {
                      "or value = \"...\" under [input]");
   }
 
-  const auto states = analyse(*model.kinematics, inputs, m.input.rate, m.input.second_rate);
+  const auto states = analyse(*model.kinematics, inputs, m.input.rate, m.input.second_rate, threads);
   std::size_t failures = 0;
   int status = 0;
   for (const MotionState& s : states) {

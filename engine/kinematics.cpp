@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <thread>
 
 namespace kinema {
 namespace {
@@ -327,12 +328,17 @@ void Workspace::motion_into(double input, double rate, double second_rate, const
   state.status = Status::ok;
 }
 
-std::vector<MotionState> analyse(const Kinematics& kinematics, const std::vector<double>& inputs,
-                                 double rate, double second_rate) {
+namespace {
+
+// Solves inputs[begin, end) in order from q (a solution at inputs[begin] or a guess),
+// writing states[begin, end).
+void analyse_range(const Kinematics& kinematics, const std::vector<double>& all_inputs, std::size_t begin,
+                   std::size_t end, double rate, double second_rate, Eigen::VectorXd q,
+                   std::vector<MotionState>& all_states) {
   Workspace workspace(kinematics);
   std::vector<MotionState> states;
-  states.reserve(inputs.size());
-  Eigen::VectorXd q = kinematics.guess();
+  states.reserve(end - begin);
+  const std::vector<double> inputs(all_inputs.begin() + begin, all_inputs.begin() + end);
   bool have_previous = false;  // q is a solution at previous_input on the user's branch
   double previous_input = 0;
   bool after_gap = false;
@@ -395,6 +401,46 @@ std::vector<MotionState> analyse(const Kinematics& kinematics, const std::vector
     previous_input = input;
     states.push_back(state);
   }
+  std::move(states.begin(), states.end(), all_states.begin() + begin);
+}
+
+}  // namespace
+
+std::vector<MotionState> analyse(const Kinematics& kinematics, const std::vector<double>& inputs,
+                                 double rate, double second_rate, unsigned threads) {
+  std::vector<MotionState> states(inputs.size());
+  const std::size_t n = inputs.size();
+  // Short runs are not worth a thread.
+  threads = std::max(1u, std::min<unsigned>(threads, static_cast<unsigned>(n / 256)));
+  std::vector<std::size_t> begin(threads + 1);
+  for (unsigned t = 0; t <= threads; ++t) begin[t] = n * t / threads;
+  std::vector<Eigen::VectorXd> start(threads, kinematics.guess());
+  if (threads > 1) {
+    // Each chunk starts from a solution reached by continuation along the inputs
+    // (coarse steps), so every chunk is on the branch the serial run would be on.
+    // Where that is impossible (a gap or a toggle), the run stays serial.
+    Workspace workspace(kinematics);
+    Eigen::VectorXd q = start[0];
+    bool ok = workspace.solve_position(inputs[0], q);
+    for (unsigned t = 1; t < threads && ok; ++t) {
+      ok = workspace.continue_to(inputs[begin[t - 1]], inputs[begin[t]], q, nullptr);
+      start[t] = q;
+    }
+    if (!ok) {
+      threads = 1;
+      begin = {0, n};
+    }
+  }
+  if (threads == 1) {
+    analyse_range(kinematics, inputs, 0, n, rate, second_rate, start[0], states);
+    return states;
+  }
+  std::vector<std::thread> workers;
+  for (unsigned t = 0; t < threads; ++t) {
+    workers.emplace_back(analyse_range, std::cref(kinematics), std::cref(inputs), begin[t], begin[t + 1], rate,
+                         second_rate, start[t], std::ref(states));
+  }
+  for (auto& worker : workers) worker.join();
   return states;
 }
 

@@ -127,7 +127,9 @@ class Workspace {
 
 /// Solves at each input value in order, warm-starting from the previous one.
 /// Failures become states with status != ok; nothing is thrown for them.
+/// With threads > 1 a long run is split into chunks whose starting positions are
+/// found by continuation first, so the branch is the serial run's.
 std::vector<MotionState> analyse(const Kinematics& kinematics, const std::vector<double>& inputs,
-                                 double rate, double second_rate);
+                                 double rate, double second_rate, unsigned threads = 1);
 
 }  // namespace kinema
