@@ -1,5 +1,6 @@
 #include "engine/compiled_expressions.hpp"
 
+#include <Eigen/Core>
 #include <cmath>
 #include <map>
 #include <sstream>
@@ -263,6 +264,57 @@ void CompiledExpressions::evaluate_stage(std::size_t stage, std::vector<double>&
   run(stage == 0 ? 0 : stage_end_[stage - 1], stage_end_[stage], r);
   for (std::size_t i = stage_outputs_[stage]; i < stage_outputs_[stage + 1]; ++i)
     *outputs++ = r[output_registers_[i]];
+}
+
+std::vector<double> CompiledExpressions::make_batch_workspace(std::size_t lanes) const {
+  std::vector<double> registers(initial_registers_.size() * lanes);
+  for (std::size_t r = 0; r < initial_registers_.size(); ++r)
+    std::fill_n(registers.begin() + r * lanes, lanes, initial_registers_[r]);
+  return registers;
+}
+
+void CompiledExpressions::evaluate_stage_batch(std::size_t stage, std::vector<double>& workspace,
+                                               std::size_t lanes) const {
+  using Lanes = Eigen::Map<Eigen::ArrayXd>;
+  const auto lane = [&](std::uint32_t r) { return Lanes(workspace.data() + r * lanes, lanes); };
+  for (std::size_t k = stage == 0 ? 0 : stage_end_[stage - 1]; k < stage_end_[stage]; ++k) {
+    const Instruction& in = instructions_[k];
+    Lanes out = lane(in.out);
+    switch (in.op) {
+      case Op::add: out = lane(in.a) + lane(in.b); break;
+      case Op::sub: out = lane(in.a) - lane(in.b); break;
+      case Op::mul: out = lane(in.a) * lane(in.b); break;
+      case Op::div: out = lane(in.a) / lane(in.b); break;
+      case Op::neg: out = -lane(in.a); break;
+      case Op::square: out = lane(in.a).square(); break;
+      case Op::powi: {
+        const Lanes base = lane(in.a);
+        for (std::size_t l = 0; l < lanes; ++l) {
+          double b = base[l], result = 1.0;
+          for (int e = in.exponent < 0 ? -in.exponent : in.exponent; e; e >>= 1, b *= b)
+            if (e & 1) result *= b;
+          out[l] = in.exponent < 0 ? 1.0 / result : result;
+        }
+        break;
+      }
+      case Op::pow: out = lane(in.a).pow(lane(in.b)); break;
+      case Op::sincos:
+        lane(in.b) = lane(in.a).cos();
+        out = lane(in.a).sin();
+        break;
+      case Op::tan: out = lane(in.a).tan(); break;
+      case Op::exp: out = lane(in.a).exp(); break;
+      case Op::log: out = lane(in.a).log(); break;
+      case Op::sqrt: out = lane(in.a).sqrt(); break;
+      case Op::abs: out = lane(in.a).abs(); break;
+      case Op::atan2:
+        for (std::size_t l = 0; l < lanes; ++l) out[l] = std::atan2(lane(in.a)[l], lane(in.b)[l]);
+        break;
+      case Op::asin: out = lane(in.a).asin(); break;
+      case Op::acos: out = lane(in.a).acos(); break;
+      case Op::atan: out = lane(in.a).atan(); break;
+    }
+  }
 }
 
 void CompiledExpressions::evaluate(const double* inputs, double* outputs,

@@ -30,6 +30,16 @@ class CompiledExpressions {
   /// inputs and whose earlier stages were run with the same values of their inputs.
   void evaluate_stage(std::size_t stage, std::vector<double>& workspace, double* outputs) const;
   std::size_t stage_count() const { return stage_end_.size(); }
+
+  /// Batch form: `lanes` values of every register side by side (register r of lane l at
+  /// r * lanes + l), so each instruction is one vectorised loop (Eigen arrays, SIMD
+  /// sin/cos). Inputs go in registers [0, input_count()) of each lane.
+  std::vector<double> make_batch_workspace(std::size_t lanes) const;
+  void evaluate_stage_batch(std::size_t stage, std::vector<double>& workspace, std::size_t lanes) const;
+  /// Register holding output k (global numbering over all stages).
+  std::uint32_t output_register(std::size_t stage, std::size_t k) const {
+    return output_registers_[stage_outputs_[stage] + k];
+  }
   std::size_t stage_output_count(std::size_t stage) const {
     return stage_outputs_[stage + 1] - stage_outputs_[stage];
   }

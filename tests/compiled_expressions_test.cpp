@@ -57,3 +57,28 @@ TEST_CASE("stages share registers: a later stage reuses what an earlier one comp
   CHECK(p == doctest::Approx(2.0 * std::cos(0.7)));
   CHECK(v == doctest::Approx(-2.0 * std::sin(0.7) * 3.0));
 }
+
+TEST_CASE("batch evaluation equals scalar evaluation lane by lane") {
+  realsymbol a("a"), t("t"), x("x");
+  const std::vector<ex> stage0 = {a * cos(t) - pow(x, 3) / (2 * a), sqrt(a * a + x * x) * sin(t)};
+  const std::vector<ex> stage1 = {atan2(x, a) + exp(x) * cos(t) - pow(a, -2) + tan(t) + abs(-x)};
+  const kinema::CompiledExpressions tape({a, t, x}, std::vector<std::vector<ex>>{stage0, stage1});
+  constexpr std::size_t lanes = 13;  // not a multiple of the SIMD width
+  std::vector<double> batch = tape.make_batch_workspace(lanes);
+  for (std::size_t l = 0; l < lanes; ++l) {
+    batch[0 * lanes + l] = 1.5 + 0.1 * l;
+    batch[1 * lanes + l] = -1.0 + 0.3 * l;
+    batch[2 * lanes + l] = 0.2 * l;
+  }
+  tape.evaluate_stage_batch(0, batch, lanes);
+  tape.evaluate_stage_batch(1, batch, lanes);
+  std::vector<double> scalar = tape.make_workspace();
+  for (std::size_t l = 0; l < lanes; ++l) {
+    const double in[3] = {1.5 + 0.1 * l, -1.0 + 0.3 * l, 0.2 * l};
+    double out[3];
+    tape.evaluate(in, out, scalar);
+    CHECK(batch[tape.output_register(0, 0) * lanes + l] == doctest::Approx(out[0]).epsilon(1e-13));
+    CHECK(batch[tape.output_register(0, 1) * lanes + l] == doctest::Approx(out[1]).epsilon(1e-13));
+    CHECK(batch[tape.output_register(1, 0) * lanes + l] == doctest::Approx(out[2]).epsilon(1e-13));
+  }
+}
