@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <sstream>
+#include <algorithm>
+#include <memory>
 #include <thread>
 
 namespace kinema {
@@ -129,27 +131,56 @@ bool Workspace::evaluated_at(double input, const Eigen::VectorXd& q) const {
   return true;
 }
 
-void Workspace::factorise() {
-  const Eigen::Index n = phi_q_.rows();
-  lu_.noalias() = phi_q_ * column_scale_.asDiagonal();
+namespace {
+
+// LU with partial pivoting, in place, for the small Phi_q of a mechanism
+// (hand-written so that nothing is allocated per input value).
+void lu_factor(Eigen::MatrixXd& lu, std::vector<Eigen::Index>& pivots) {
+  const Eigen::Index n = lu.rows();
   for (Eigen::Index c = 0; c < n; ++c) {
     Eigen::Index best = c;
     for (Eigen::Index r = c + 1; r < n; ++r)
-      if (std::fabs(lu_(r, c)) > std::fabs(lu_(best, c))) best = r;
-    pivots_[c] = best;
-    if (best != c) lu_.row(c).swap(lu_.row(best));
-    if (lu_(c, c) == 0.0) continue;  // singular: reciprocal_condition() reports 0
+      if (std::fabs(lu(r, c)) > std::fabs(lu(best, c))) best = r;
+    pivots[c] = best;
+    if (best != c) lu.row(c).swap(lu.row(best));
+    if (lu(c, c) == 0.0) continue;  // singular: the pivot ratio reports it
     for (Eigen::Index r = c + 1; r < n; ++r) {
-      lu_(r, c) /= lu_(c, c);
-      for (Eigen::Index j = c + 1; j < n; ++j) lu_(r, j) -= lu_(r, c) * lu_(c, j);
+      lu(r, c) /= lu(c, c);
+      for (Eigen::Index j = c + 1; j < n; ++j) lu(r, j) -= lu(r, c) * lu(c, j);
     }
   }
 }
 
-double Workspace::reciprocal_condition() const {
-  const auto pivots = lu_.diagonal().cwiseAbs();
+// Solves with lu_factor's result; x holds the right-hand side on entry.
+void lu_solve(const Eigen::MatrixXd& lu, const std::vector<Eigen::Index>& pivots, Eigen::VectorXd& x) {
+  const Eigen::Index n = lu.rows();
+  // Row swaps first: the rows of L are stored in their final order.
+  for (Eigen::Index c = 0; c < n; ++c)
+    if (pivots[c] != c) std::swap(x[c], x[pivots[c]]);
+  for (Eigen::Index c = 0; c < n; ++c)
+    for (Eigen::Index r = c + 1; r < n; ++r) x[r] -= lu(r, c) * x[c];
+  for (Eigen::Index c = n - 1; c >= 0; --c) {
+    x[c] /= lu(c, c);
+    for (Eigen::Index r = 0; r < c; ++r) x[r] -= lu(r, c) * x[c];
+  }
+}
+
+double pivot_ratio(const Eigen::MatrixXd& lu) {
+  const auto pivots = lu.diagonal().cwiseAbs();
   const double ratio = pivots.minCoeff() / pivots.maxCoeff();
-  if (!std::isfinite(ratio) || ratio == 0.0) return 0.0;
+  return std::isfinite(ratio) ? ratio : 0.0;
+}
+
+}  // namespace
+
+void Workspace::factorise() {
+  lu_.noalias() = phi_q_ * column_scale_.asDiagonal();
+  lu_factor(lu_, pivots_);
+}
+
+double Workspace::reciprocal_condition() const {
+  const double ratio = pivot_ratio(lu_);
+  if (ratio == 0.0) return 0.0;
   // Well away from singular the pivots say so; the singular values (which
   // allocate) are only needed near a toggle, where they decide.
   if (ratio >= 1e-2) return ratio;
@@ -159,17 +190,8 @@ double Workspace::reciprocal_condition() const {
 }
 
 void Workspace::solve_rhs(Eigen::VectorXd& x) const {
-  const Eigen::Index n = lu_.rows();
   x = rhs_;
-  // Row swaps first: the rows of L are stored in their final order.
-  for (Eigen::Index c = 0; c < n; ++c)
-    if (pivots_[c] != c) std::swap(x[c], x[pivots_[c]]);
-  for (Eigen::Index c = 0; c < n; ++c)
-    for (Eigen::Index r = c + 1; r < n; ++r) x[r] -= lu_(r, c) * x[c];
-  for (Eigen::Index c = n - 1; c >= 0; --c) {
-    x[c] /= lu_(c, c);
-    for (Eigen::Index r = 0; r < c; ++r) x[r] -= lu_(r, c) * x[c];
-  }
+  lu_solve(lu_, pivots_, x);
   x.array() *= column_scale_.array();
 }
 
@@ -328,22 +350,171 @@ void Workspace::motion_into(double input, double rate, double second_rate, const
   state.status = Status::ok;
 }
 
+BatchWorkspace::BatchWorkspace(const Kinematics& k)
+    : k_(k),
+      registers_(k.evaluator_.make_batch_workspace(kLanes)),
+      lu_(k.unknown_count_, k.unknown_count_),
+      pivots_(k.unknown_count_),
+      x_(k.unknown_count_),
+      column_scale_(k.unknown_count_),
+      q_(kLanes, Eigen::VectorXd(k.unknown_count_)) {
+  for (std::size_t p = 0; p < k.parameter_count_; ++p)
+    for (std::size_t l = 0; l < kLanes; ++l) lane(p, l) = k.parameter_values_[p];
+  for (std::size_t j = 0; j < k.unknown_count_; ++j)
+    column_scale_[j] = k.mechanism_.unknowns[j].dimension == Dimension::length ? k.length_scale_ : 1.0;
+}
+
+void BatchWorkspace::factorise_lane(std::size_t l) {
+  const std::size_t n = k_.unknown_count_;
+  const auto& e = k_.evaluator_;
+  for (std::size_t j = 0; j < n; ++j)
+    for (std::size_t i = 0; i < n; ++i)
+      lu_(i, j) = lane(e.output_register(Kinematics::kPositionStage, n + j * n + i), l) * column_scale_[j];
+  lu_factor(lu_, pivots_);
+}
+
+bool BatchWorkspace::solve(const double* inputs, std::size_t count,
+                           const std::vector<Eigen::VectorXd>& predicted, double rate, double second_rate,
+                           std::vector<MotionState>& states) {
+  const std::size_t n = k_.unknown_count_, base = k_.parameter_count_;
+  const auto& e = k_.evaluator_;
+  const double tolerance = 1e-14 * k_.length_scale_;
+  // Unused lanes repeat the last value so the whole block stays finite.
+  for (std::size_t l = 0; l < kLanes; ++l) {
+    const std::size_t from = std::min(l, count - 1);
+    lane(base, l) = inputs[from];
+    lane(base + 1, l) = rate;
+    lane(base + 2, l) = second_rate;
+    q_[l] = predicted[from];
+  }
+  std::vector<bool> converged(kLanes, false);
+  std::size_t remaining = kLanes;
+  for (int iteration = 0; iteration < 12 && remaining > 0; ++iteration) {
+    for (std::size_t l = 0; l < kLanes; ++l)
+      for (std::size_t i = 0; i < n; ++i) lane(base + 3 + i, l) = q_[l][i];
+    e.evaluate_stage_batch(Kinematics::kPositionStage, registers_, kLanes);
+    for (std::size_t l = 0; l < kLanes; ++l) {
+      double residual = 0;
+      for (std::size_t i = 0; i < n; ++i)
+        residual = std::max(residual, std::fabs(lane(e.output_register(Kinematics::kPositionStage, i), l)));
+      if (!std::isfinite(residual)) return false;
+      converged[l] = residual <= tolerance;
+      if (converged[l]) continue;
+      // Full Newton steps: the prediction is close, so no damping is needed here;
+      // a lane that does not converge sends the block to the scalar path.
+      factorise_lane(l);
+      if (pivot_ratio(lu_) < 1e-12) return false;
+      for (std::size_t i = 0; i < n; ++i) x_[i] = -lane(e.output_register(Kinematics::kPositionStage, i), l);
+      lu_solve(lu_, pivots_, x_);
+      q_[l].array() += x_.array() * column_scale_.array();
+    }
+    remaining = static_cast<std::size_t>(std::count(converged.begin(), converged.end(), false));
+  }
+  if (remaining > 0) return false;
+  // Same branch as predicted (as Workspace::predict_and_correct checks).
+  for (std::size_t l = 0; l < count; ++l)
+    for (std::size_t i = 0; i < n; ++i)
+      if (std::fabs(q_[l][i] - predicted[l][i]) / column_scale_[i] > 0.05) return false;
+
+  // Rates: one factorisation per lane for qd and qdd; the registers hold every lane at its q.
+  std::vector<Eigen::VectorXd> qd(kLanes, Eigen::VectorXd(n));
+  for (std::size_t l = 0; l < kLanes; ++l) {
+    factorise_lane(l);
+    // Clearly regular pivots only; anything near a toggle goes to the scalar path,
+    // which decides singularity with the singular values.
+    if (pivot_ratio(lu_) < 1e-2) return false;
+    for (std::size_t i = 0; i < n; ++i)
+      x_[i] = -lane(e.output_register(Kinematics::kPositionStage, n + n * n + i), l) * rate;
+    lu_solve(lu_, pivots_, x_);
+    qd[l] = x_.cwiseProduct(column_scale_);
+    for (std::size_t i = 0; i < n; ++i) lane(base + 3 + n + i, l) = qd[l][i];
+  }
+  e.evaluate_stage_batch(Kinematics::kAccelerationStage, registers_, kLanes);
+  states.resize(count);
+  for (std::size_t l = 0; l < kLanes; ++l) {
+    factorise_lane(l);
+    for (std::size_t i = 0; i < n; ++i) x_[i] = lane(e.output_register(Kinematics::kAccelerationStage, i), l);
+    lu_solve(lu_, pivots_, x_);
+    x_.array() *= column_scale_.array();
+    for (std::size_t i = 0; i < n; ++i) lane(base + 3 + 2 * n + i, l) = x_[i];
+    if (l < count) {
+      MotionState& state = states[l];
+      state.input = inputs[l];
+      state.input_rate = rate;
+      state.input_second_rate = second_rate;
+      state.status = Status::ok;
+      state.message.clear();
+      state.q = q_[l];
+      state.qd = qd[l];
+      state.qdd = x_;
+      state.reciprocal_condition = pivot_ratio(lu_);
+      double residual = 0;
+      for (std::size_t i = 0; i < n; ++i)
+        residual = std::max(residual, std::fabs(lane(e.output_register(Kinematics::kPositionStage, i), l)));
+      state.loop_residual = residual;
+    }
+  }
+  e.evaluate_stage_batch(Kinematics::kPointStage, registers_, kLanes);
+  for (std::size_t l = 0; l < count; ++l) {
+    MotionState& state = states[l];
+    state.points.resize(k_.point_count_);
+    for (std::size_t p = 0; p < k_.point_count_; ++p) {
+      double v[6];
+      for (int c = 0; c < 6; ++c) v[c] = lane(e.output_register(Kinematics::kPointStage, 6 * p + c), l);
+      state.points[p] = {v[0], v[1], v[2], v[3], v[4], v[5]};
+      for (double value : v)
+        if (!std::isfinite(value)) return false;
+    }
+    if (!state.qd.allFinite() || !state.qdd.allFinite()) return false;
+  }
+  return true;
+}
+
 namespace {
 
 // Solves inputs[begin, end) in order from q (a solution at inputs[begin] or a guess),
 // writing states[begin, end).
 void analyse_range(const Kinematics& kinematics, const std::vector<double>& all_inputs, std::size_t begin,
                    std::size_t end, double rate, double second_rate, Eigen::VectorXd q,
-                   std::vector<MotionState>& all_states) {
+                   std::vector<MotionState>& all_states, bool batch) {
   Workspace workspace(kinematics);
+  std::unique_ptr<BatchWorkspace> batch_workspace;
+  if (batch) batch_workspace = std::make_unique<BatchWorkspace>(kinematics);
   std::vector<MotionState> states;
   states.reserve(end - begin);
   const std::vector<double> inputs(all_inputs.begin() + begin, all_inputs.begin() + end);
+  std::vector<Eigen::VectorXd> predicted(BatchWorkspace::kLanes);
+  std::vector<MotionState> block;
+  std::size_t next_batch_try = 0;  // after a refused block, go on one by one for a while
   bool have_previous = false;  // q is a solution at previous_input on the user's branch
   double previous_input = 0;
   bool after_gap = false;
   bool any_solved = false;
-  for (double input : inputs) {
+  for (std::size_t index = 0; index < inputs.size(); ++index) {
+    const double input = inputs[index];
+    if (batch && rate != 0 && index >= next_batch_try && !states.empty() && states.back().status == Status::ok &&
+        states.back().message.empty()) {
+      // A block of the following values, predicted to second order from the last state.
+      const MotionState& last = states.back();
+      const Eigen::VectorXd slope = last.qd / rate;
+      const Eigen::VectorXd curvature = (last.qdd - slope * second_rate) / (rate * rate);
+      const double reach = 4 * workspace.max_continuation_step();
+      std::size_t count = 0;
+      for (; count < BatchWorkspace::kLanes && index + count < inputs.size(); ++count) {
+        const double h = inputs[index + count] - last.input;
+        if (std::fabs(h) > reach) break;
+        predicted[count] = last.q + slope * h + 0.5 * curvature * h * h;
+      }
+      if (count == BatchWorkspace::kLanes &&
+          batch_workspace->solve(inputs.data() + index, count, predicted, rate, second_rate, block)) {
+        for (auto& state : block) states.push_back(std::move(state));
+        q = states.back().q;
+        previous_input = states.back().input;
+        index += count - 1;
+        continue;
+      }
+      next_batch_try = index + BatchWorkspace::kLanes;
+    }
     bool solved = false;
     std::string why;
     Eigen::VectorXd trial = q;
@@ -407,7 +578,7 @@ void analyse_range(const Kinematics& kinematics, const std::vector<double>& all_
 }  // namespace
 
 std::vector<MotionState> analyse(const Kinematics& kinematics, const std::vector<double>& inputs,
-                                 double rate, double second_rate, unsigned threads) {
+                                 double rate, double second_rate, unsigned threads, bool batch) {
   std::vector<MotionState> states(inputs.size());
   const std::size_t n = inputs.size();
   // Short runs are not worth a thread.
@@ -432,13 +603,13 @@ std::vector<MotionState> analyse(const Kinematics& kinematics, const std::vector
     }
   }
   if (threads == 1) {
-    analyse_range(kinematics, inputs, 0, n, rate, second_rate, start[0], states);
+    analyse_range(kinematics, inputs, 0, n, rate, second_rate, start[0], states, batch);
     return states;
   }
   std::vector<std::thread> workers;
   for (unsigned t = 0; t < threads; ++t) {
     workers.emplace_back(analyse_range, std::cref(kinematics), std::cref(inputs), begin[t], begin[t + 1], rate,
-                         second_rate, start[t], std::ref(states));
+                         second_rate, start[t], std::ref(states), batch);
   }
   for (auto& worker : workers) worker.join();
   return states;

@@ -40,6 +40,7 @@ class Kinematics {
 
  private:
   friend class Workspace;
+  friend class BatchWorkspace;
   Mechanism mechanism_;
   std::size_t unknown_count_ = 0, point_count_ = 0, parameter_count_ = 0;
   double length_scale_ = 1.0;
@@ -129,7 +130,36 @@ class Workspace {
 /// Failures become states with status != ok; nothing is thrown for them.
 /// With threads > 1 a long run is split into chunks whose starting positions are
 /// found by continuation first, so the branch is the serial run's.
+/// With batch, consecutive values of a sweep are solved kLanes at a time on the
+/// batch (SIMD) tape, each block predicted from the last solution and checked to
+/// stay on its branch (else that block is solved one value at a time).
 std::vector<MotionState> analyse(const Kinematics& kinematics, const std::vector<double>& inputs,
-                                 double rate, double second_rate, unsigned threads = 1);
+                                 double rate, double second_rate, unsigned threads = 1,
+                                 bool batch = true);
+
+/// Solves blocks of input values at once on the batch tape.
+class BatchWorkspace {
+ public:
+  static constexpr std::size_t kLanes = 16;
+  explicit BatchWorkspace(const Kinematics& kinematics);
+
+  /// Solves inputs[0, count) (count <= kLanes) from the predicted positions; fills
+  /// states (resized) only when every value converged on its predicted branch and
+  /// none is singular. Returns false otherwise (the caller solves them one by one).
+  bool solve(const double* inputs, std::size_t count, const std::vector<Eigen::VectorXd>& predicted,
+             double rate, double second_rate, std::vector<MotionState>& states);
+
+ private:
+  const Kinematics& k_;
+  std::vector<double> registers_;
+  Eigen::MatrixXd lu_;
+  std::vector<Eigen::Index> pivots_;
+  Eigen::VectorXd x_, column_scale_;
+  std::vector<Eigen::VectorXd> q_;
+
+  double& lane(std::size_t reg, std::size_t l) { return registers_[reg * kLanes + l]; }
+  /// Column-scaled Phi_q of lane l from the registers, factorised into lu_.
+  void factorise_lane(std::size_t l);
+};
 
 }  // namespace kinema

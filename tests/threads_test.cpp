@@ -8,7 +8,7 @@
 #include "engine/model.hpp"
 #include "test_support.hpp"
 
-TEST_CASE("analyse with threads equals the serial run for every sample") {
+TEST_CASE("batch (SIMD blocks), threads and both equal the scalar one-by-one run for every sample") {
   for (const char* sample : {"four_bar.toml", "slider_crank.toml", "piston_driven_crank.toml",
                              "example_4_1_r_trr.toml", "example_4_2_r_rtr_rrt.toml",
                              "problem_4_4_six_bar.toml", "problem_3_22_six_bar_sliders.toml"}) {
@@ -21,8 +21,11 @@ TEST_CASE("analyse with threads equals the serial run for every sample") {
     for (int i = 0; i < 2000; ++i) {
       inputs.push_back(angle ? input.values.at(0) + 2 * M_PI * i / 2000.0 : 0.101 + 0.098 * i / 2000.0);
     }
-    const auto serial = kinema::analyse(*model.kinematics, inputs, input.rate, input.second_rate, 1);
-    const auto parallel = kinema::analyse(*model.kinematics, inputs, input.rate, input.second_rate, 3);
+    const auto serial = kinema::analyse(*model.kinematics, inputs, input.rate, input.second_rate, 1, false);
+    for (const auto& [threads, batch] : {std::pair{1u, true}, std::pair{3u, false}, std::pair{3u, true}}) {
+    CAPTURE(threads);
+    CAPTURE(batch);
+    const auto parallel = kinema::analyse(*model.kinematics, inputs, input.rate, input.second_rate, threads, batch);
     REQUIRE(serial.size() == parallel.size());
     int ok = 0;
     for (std::size_t i = 0; i < serial.size(); ++i) {
@@ -35,8 +38,13 @@ TEST_CASE("analyse with threads equals the serial run for every sample") {
         CHECK(parallel[i].qd[j] == doctest::Approx(serial[i].qd[j]).epsilon(1e-9));
         CHECK(parallel[i].qdd[j] == doctest::Approx(serial[i].qdd[j]).epsilon(1e-9));
       }
+      for (std::size_t p = 0; p < serial[i].points.size(); ++p) {
+        CHECK(parallel[i].points[p].ax == doctest::Approx(serial[i].points[p].ax).epsilon(1e-9));
+        CHECK(parallel[i].points[p].vy == doctest::Approx(serial[i].points[p].vy).epsilon(1e-9));
+      }
     }
     CHECK(ok > 100);
+    }
   }
 }
 
