@@ -353,11 +353,12 @@ void Workspace::motion_into(double input, double rate, double second_rate, const
 BatchWorkspace::BatchWorkspace(const Kinematics& k)
     : k_(k),
       registers_(k.evaluator_.make_batch_workspace(kLanes)),
-      lu_(k.unknown_count_, k.unknown_count_),
-      pivots_(k.unknown_count_),
+      lu_(kLanes, Eigen::MatrixXd(k.unknown_count_, k.unknown_count_)),
+      pivots_(kLanes, std::vector<Eigen::Index>(k.unknown_count_)),
       x_(k.unknown_count_),
       column_scale_(k.unknown_count_),
-      q_(kLanes, Eigen::VectorXd(k.unknown_count_)) {
+      q_(kLanes, Eigen::VectorXd(k.unknown_count_)),
+      qd_(kLanes, Eigen::VectorXd(k.unknown_count_)) {
   for (std::size_t p = 0; p < k.parameter_count_; ++p)
     for (std::size_t l = 0; l < kLanes; ++l) lane(p, l) = k.parameter_values_[p];
   for (std::size_t j = 0; j < k.unknown_count_; ++j)
@@ -369,8 +370,8 @@ void BatchWorkspace::factorise_lane(std::size_t l) {
   const auto& e = k_.evaluator_;
   for (std::size_t j = 0; j < n; ++j)
     for (std::size_t i = 0; i < n; ++i)
-      lu_(i, j) = lane(e.output_register(Kinematics::kPositionStage, n + j * n + i), l) * column_scale_[j];
-  lu_factor(lu_, pivots_);
+      lu_[l](i, j) = lane(e.output_register(Kinematics::kPositionStage, n + j * n + i), l) * column_scale_[j];
+  lu_factor(lu_[l], pivots_[l]);
 }
 
 bool BatchWorkspace::solve(const double* inputs, std::size_t count,
@@ -387,6 +388,9 @@ bool BatchWorkspace::solve(const double* inputs, std::size_t count,
     lane(base + 2, l) = second_rate;
     q_[l] = predicted[from];
   }
+  // Chord Newton: each lane's Phi_q is factorised once, at the prediction; the
+  // prediction is close, so the iteration converges in a few cheap steps. A lane
+  // that does not converge sends the block to the scalar path.
   std::vector<bool> converged(kLanes, false);
   std::size_t remaining = kLanes;
   for (int iteration = 0; iteration < 12 && remaining > 0; ++iteration) {
@@ -400,12 +404,12 @@ bool BatchWorkspace::solve(const double* inputs, std::size_t count,
       if (!std::isfinite(residual)) return false;
       converged[l] = residual <= tolerance;
       if (converged[l]) continue;
-      // Full Newton steps: the prediction is close, so no damping is needed here;
-      // a lane that does not converge sends the block to the scalar path.
-      factorise_lane(l);
-      if (pivot_ratio(lu_) < 1e-12) return false;
+      if (iteration == 0) {
+        factorise_lane(l);
+        if (pivot_ratio(lu_[l]) < 1e-12) return false;
+      }
       for (std::size_t i = 0; i < n; ++i) x_[i] = -lane(e.output_register(Kinematics::kPositionStage, i), l);
-      lu_solve(lu_, pivots_, x_);
+      lu_solve(lu_[l], pivots_[l], x_);
       q_[l].array() += x_.array() * column_scale_.array();
     }
     remaining = static_cast<std::size_t>(std::count(converged.begin(), converged.end(), false));
@@ -416,25 +420,24 @@ bool BatchWorkspace::solve(const double* inputs, std::size_t count,
     for (std::size_t i = 0; i < n; ++i)
       if (std::fabs(q_[l][i] - predicted[l][i]) / column_scale_[i] > 0.05) return false;
 
-  // Rates: one factorisation per lane for qd and qdd; the registers hold every lane at its q.
-  std::vector<Eigen::VectorXd> qd(kLanes, Eigen::VectorXd(n));
+  // Rates: one factorisation per lane at the solution, for both qd and qdd; the
+  // registers hold every lane at its q.
   for (std::size_t l = 0; l < kLanes; ++l) {
     factorise_lane(l);
     // Clearly regular pivots only; anything near a toggle goes to the scalar path,
     // which decides singularity with the singular values.
-    if (pivot_ratio(lu_) < 1e-2) return false;
+    if (pivot_ratio(lu_[l]) < 1e-2) return false;
     for (std::size_t i = 0; i < n; ++i)
       x_[i] = -lane(e.output_register(Kinematics::kPositionStage, n + n * n + i), l) * rate;
-    lu_solve(lu_, pivots_, x_);
-    qd[l] = x_.cwiseProduct(column_scale_);
-    for (std::size_t i = 0; i < n; ++i) lane(base + 3 + n + i, l) = qd[l][i];
+    lu_solve(lu_[l], pivots_[l], x_);
+    qd_[l] = x_.cwiseProduct(column_scale_);
+    for (std::size_t i = 0; i < n; ++i) lane(base + 3 + n + i, l) = qd_[l][i];
   }
   e.evaluate_stage_batch(Kinematics::kAccelerationStage, registers_, kLanes);
   states.resize(count);
   for (std::size_t l = 0; l < kLanes; ++l) {
-    factorise_lane(l);
     for (std::size_t i = 0; i < n; ++i) x_[i] = lane(e.output_register(Kinematics::kAccelerationStage, i), l);
-    lu_solve(lu_, pivots_, x_);
+    lu_solve(lu_[l], pivots_[l], x_);
     x_.array() *= column_scale_.array();
     for (std::size_t i = 0; i < n; ++i) lane(base + 3 + 2 * n + i, l) = x_[i];
     if (l < count) {
@@ -445,9 +448,9 @@ bool BatchWorkspace::solve(const double* inputs, std::size_t count,
       state.status = Status::ok;
       state.message.clear();
       state.q = q_[l];
-      state.qd = qd[l];
+      state.qd = qd_[l];
       state.qdd = x_;
-      state.reciprocal_condition = pivot_ratio(lu_);
+      state.reciprocal_condition = pivot_ratio(lu_[l]);
       double residual = 0;
       for (std::size_t i = 0; i < n; ++i)
         residual = std::max(residual, std::fabs(lane(e.output_register(Kinematics::kPositionStage, i), l)));

@@ -152,13 +152,13 @@ class BatchWorkspace {
  private:
   const Kinematics& k_;
   std::vector<double> registers_;
-  Eigen::MatrixXd lu_;
-  std::vector<Eigen::Index> pivots_;
+  std::vector<Eigen::MatrixXd> lu_;                ///< Per lane.
+  std::vector<std::vector<Eigen::Index>> pivots_;  ///< Per lane.
   Eigen::VectorXd x_, column_scale_;
-  std::vector<Eigen::VectorXd> q_;
+  std::vector<Eigen::VectorXd> q_, qd_;
 
   double& lane(std::size_t reg, std::size_t l) { return registers_[reg * kLanes + l]; }
-  /// Column-scaled Phi_q of lane l from the registers, factorised into lu_.
+  /// Column-scaled Phi_q of lane l from the registers, factorised into lu_[l].
   void factorise_lane(std::size_t l);
 };
 
