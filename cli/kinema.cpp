@@ -55,6 +55,9 @@ int run(int argc, char** argv) {
   auto* derive_cmd = app.add_subcommand("derive", "print the symbolic derivation");
   derive_cmd->add_option("FILE", file, "mechanism file (TOML)")->required();
   derive_cmd->add_option("-o,--output", output_path, "write to this file instead of stdout");
+  std::string derive_format = "text";
+  derive_cmd->add_option("--format", derive_format, "text, or latex (an align* block for notes)")
+      ->check(CLI::IsMember({"text", "latex"}));
 
   auto* eval_cmd = app.add_subcommand("eval", "evaluate positions, velocities and accelerations");
   eval_cmd->add_option("FILE", file, "mechanism file (TOML)")->required();
@@ -86,7 +89,8 @@ int run(int argc, char** argv) {
   std::ostringstream out;
 
   if (derive_cmd->parsed()) {
-    print_derivation_text(out, m, model.derivation);
+    if (derive_format == "latex") print_derivation_latex(out, m, model.derivation);
+    else print_derivation_text(out, m, model.derivation);
     write_output(out.str(), output_path);
     return 0;
   }

@@ -15,6 +15,13 @@ namespace kinema {
 /// velocity and acceleration equations, solved rates, point motion.
 void print_derivation_text(std::ostream& out, const Mechanism& mechanism, const Derivation& derivation);
 
+/// The derivation as a LaTeX align* block (amsmath), each solved formula followed
+/// by a "% kinema: name = formula" comment in GiNaC syntax.
+void print_derivation_latex(std::ostream& out, const Mechanism& mechanism, const Derivation& derivation);
+
+/// A complex vector loop as course notes write it: a\,e^{i\theta_{2}} + ...
+std::string latex_vector_loop(const GiNaC::ex& loop, const GiNaC::exmap& names);
+
 /// Results for people: one block per input value.
 void print_results_table(std::ostream& out, const Mechanism& mechanism, const Derivation& derivation,
                          const std::vector<MotionState>& states);

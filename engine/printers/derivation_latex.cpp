@@ -1,0 +1,125 @@
+// The derivation as a LaTeX align* block (amsmath) for pasting into notes.
+// Each solved formula is followed by a `% kinema: name = formula` comment in
+// GiNaC syntax, so a reader (or a test) can take the formula back exactly.
+#include <sstream>
+
+#include "engine/printers/latex.hpp"
+#include "engine/printers/printers.hpp"
+#include "engine/trig_simplify.hpp"
+
+namespace kinema {
+namespace {
+
+using GiNaC::ex;
+
+std::string plain(const ex& e) {
+  std::ostringstream out;
+  out << e;
+  return out.str();
+}
+
+bool is_function(const ex& e, const char* name) {
+  return GiNaC::is_a<GiNaC::function>(e) && GiNaC::ex_to<GiNaC::function>(e).get_name() == name;
+}
+
+}  // namespace
+
+std::string latex_vector_loop(const ex& loop, const GiNaC::exmap& names) {
+  // Terms c*exp(I*angle) print as c\,e^{i angle}, as course notes write link vectors.
+  const ex expanded = loop.expand();
+  std::string text;
+  auto term_text = [&](const ex& term) {
+    ex coefficient = 1, angle = 0;
+    bool has_exp = false;
+    const auto take = [&](const ex& factor) {
+      if (is_function(factor, "exp") && !has_exp) {
+        has_exp = true;
+        angle = (factor.op(0) / GiNaC::I).expand();
+      } else {
+        coefficient *= factor;
+      }
+    };
+    if (GiNaC::is_a<GiNaC::mul>(term)) {
+      for (const ex& f : term) take(f);
+    } else {
+      take(term);
+    }
+    if (!has_exp) return to_latex(term, names);
+    std::string c = to_latex(coefficient, names);
+    if (c == "1") c.clear();
+    if (c == "-1") c = "-";
+    if (GiNaC::is_a<GiNaC::add>(coefficient)) c = "\\left(" + c + "\\right)";
+    return c + "\\,e^{i" + (GiNaC::is_a<GiNaC::add>(angle) ? "(" + to_latex(angle, names) + ")" : to_latex(angle, names)) + "}";
+  };
+  if (GiNaC::is_a<GiNaC::add>(expanded)) {
+    for (const ex& term : expanded) {
+      const std::string t = term_text(term);
+      if (!text.empty() && (t.empty() || t[0] != '-')) text += " + ";
+      else if (!text.empty()) text += " ";
+      text += t;
+    }
+  } else {
+    text = term_text(expanded);
+  }
+  return text;
+}
+
+void print_derivation_latex(std::ostream& out, const Mechanism& m, const Derivation& d) {
+  const GiNaC::exmap names = latex_symbols(m, d);
+  const auto& c = d.closure;
+  const std::size_t n = c.unknowns.size();
+  auto column = [&](const std::vector<ex>& entries) {
+    std::string text = "\\begin{bmatrix}";
+    for (std::size_t i = 0; i < entries.size(); ++i) text += (i ? " \\\\ " : " ") + to_latex(entries[i], names);
+    return text + " \\end{bmatrix}";
+  };
+  std::vector<ex> rates(d.rates.begin(), d.rates.end()), second_rates(d.second_rates.begin(), d.second_rates.end());
+  std::vector<ex> velocity_rhs, acceleration_rhs;
+  for (std::size_t i = 0; i < n; ++i) {
+    velocity_rhs.push_back(-d.input_jacobian(i, 0) * d.input_rate);
+    acceleration_rhs.push_back(combine_trig_products(d.acceleration_rhs[i]));
+  }
+  std::string jacobian = "\\begin{bmatrix}";
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = 0; j < n; ++j) jacobian += (j ? " & " : " ") + to_latex(d.jacobian(i, j), names);
+    jacobian += i + 1 < n ? " \\\\" : " ";
+  }
+  jacobian += "\\end{bmatrix}";
+
+  // Rows of the align* block; a comment may follow a row's text.
+  struct Row {
+    std::string text, comment;
+  };
+  std::vector<Row> rows;
+  for (std::size_t k = 0; k < m.loops.size(); ++k) {
+    const std::string name = latex_escape_text(m.loops[k].name);
+    rows.push_back({"\\text{" + name + ":}\\quad & " + latex_vector_loop(c.loop_vectors[k], names) + " = 0",
+                    "loop " + name});
+    rows.push_back({"& " + to_latex(c.equations[2 * k], names) + " = 0", ""});
+    rows.push_back({"& " + to_latex(c.equations[2 * k + 1], names) + " = 0", ""});
+  }
+  rows.push_back({"& " + jacobian + column(rates) + " = " + column(velocity_rhs),
+                  "velocity: Phi_q qd = -Phi_theta thetad"});
+  rows.push_back({"& " + jacobian + column(second_rates) + " = " + column(acceleration_rhs),
+                  "acceleration: Phi_q qdd = gamma"});
+  for (const auto* solved : {&d.solved_rates, &d.solved_second_rates}) {
+    const auto& symbols = solved == &d.solved_rates ? d.rates : d.second_rates;
+    for (const RateBlock& block : d.blocks) {
+      for (std::size_t j : block.unknowns) {
+        rows.push_back({to_latex(symbols[j], names) + " &= " + to_latex((*solved)[j], names),
+                        "kinema: " + symbols[j].get_name() + " = " + plain((*solved)[j])});
+      }
+    }
+  }
+  out << "% kinema derive --format latex: " << latex_escape_text(m.title) << "\n";
+  out << "% needs \\usepackage{amsmath}\n";
+  out << "\\begin{align*}\n";
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    out << "  " << rows[r].text << (r + 1 < rows.size() ? " \\\\" : "");
+    if (!rows[r].comment.empty()) out << " % " << rows[r].comment;
+    out << "\n";
+  }
+  out << "\\end{align*}\n";
+}
+
+}  // namespace kinema

@@ -1,0 +1,153 @@
+// LaTeX output: names typeset as a reader expects, formulas that are the
+// engine's (parsed back from the machine-readable comments), user text
+// escaped, and the block compiles with pdflatex.
+#include <doctest/doctest.h>
+
+#include <cstdlib>
+#include <map>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "engine/errors.hpp"
+#include "engine/model.hpp"
+#include "engine/printers/latex.hpp"
+#include "engine/trig_simplify.hpp"
+#include "test_support.hpp"
+
+namespace {
+
+const char* kSamples[] = {"four_bar.toml", "slider_crank.toml", "piston_driven_crank.toml",
+                          "example_4_1_r_trr.toml", "example_4_2_r_rtr_rrt.toml",
+                          "problem_4_4_six_bar.toml", "problem_3_22_six_bar_sliders.toml"};
+
+std::string read_all(const std::string& path) {
+  std::ifstream file(path);
+  std::ostringstream text;
+  text << file.rdbuf();
+  return text.str();
+}
+
+// Compiles an align* block in a minimal document; returns the log on failure.
+bool compiles(const std::string& block, const std::string& name, std::string& log) {
+  const auto directory = std::filesystem::temp_directory_path() / "kinema_tests" / "latex";
+  std::filesystem::create_directories(directory);
+  const std::string tex = (directory / (name + ".tex")).string();
+  std::ofstream(tex) << "\\documentclass{article}\n\\usepackage{amsmath}\n\\begin{document}\n"
+                     << block << "\\end{document}\n";
+  const std::string command = "cd '" + directory.string() + "' && pdflatex -interaction=batchmode -halt-on-error '" +
+                              name + ".tex' > /dev/null 2>&1";
+  const int status = std::system(command.c_str());
+  log = read_all((directory / (name + ".log")).string());
+  return status == 0 && std::filesystem::exists(directory / (name + ".pdf")) &&
+         log.find("Undefined control sequence") == std::string::npos;
+}
+
+}  // namespace
+
+TEST_CASE("symbol names are typeset as a reader expects") {
+  CHECK(kinema::latex_symbol_name("theta3") == "\\theta_{3}");
+  CHECK(kinema::latex_symbol_name("omega2") == "\\omega_{2}");
+  CHECK(kinema::latex_symbol_name("alpha") == "\\alpha");
+  CHECK(kinema::latex_symbol_name("r2") == "r_{2}");
+  CHECK(kinema::latex_symbol_name("r1_dot") == "\\dot{r}_{1}");
+  CHECK(kinema::latex_symbol_name("r1_ddot") == "\\ddot{r}_{1}");
+  CHECK(kinema::latex_symbol_name("xE") == "x_{E}");
+  CHECK(kinema::latex_symbol_name("AB") == "\\mathit{AB}");
+  CHECK(kinema::latex_symbol_name("theta2_given") == "\\theta_{2,\\mathrm{given}}");
+}
+
+TEST_CASE("user text is escaped and LaTeX names from files are checked") {
+  CHECK(kinema::latex_escape_text("\\input{/etc/passwd} 100% & $x$ #1 a_b ^ ~") ==
+        "\\textbackslash{}input\\{/etc/passwd\\} 100\\% \\& \\$x\\$ \\#1 a\\_b \\textasciicircum{} "
+        "\\textasciitilde{}");
+  CHECK_NOTHROW(kinema::check_latex_name("\\varphi_{2}", "here"));
+  CHECK_NOTHROW(kinema::check_latex_name("\\dot{s}'", "here"));
+  CHECK_THROWS_AS(kinema::check_latex_name("\\input{/etc/passwd}", "here"), kinema::InputError);
+  CHECK_THROWS_AS(kinema::check_latex_name("x$y", "here"), kinema::InputError);
+}
+
+TEST_CASE("derive --format latex: the solved formulas are the engine's and the block compiles") {
+  for (const char* sample : kSamples) {
+    const std::string name = sample;
+    CAPTURE(name);
+    const auto result = kinema_test::run_kinema({"derive", "--format", "latex", kinema_test::sample(sample)});
+    REQUIRE(result.exit_status == 0);
+    CHECK(result.out.find("\\begin{align*}") != std::string::npos);
+    CHECK(result.out.find("\\begin{bmatrix}") != std::string::npos);
+
+    // Every "% kinema: name = formula" comment, parsed back, equals the derivation's formula.
+    const kinema::Model model = kinema::load_model(kinema_test::sample(sample));
+    const auto& d = model.derivation;
+    GiNaC::symtab table;
+    std::map<std::string, GiNaC::ex> expected;
+    for (const auto& s : d.closure.parameters) table[s.get_name()] = s;
+    for (const auto& s : d.closure.unknowns) table[s.get_name()] = s;
+    for (const GiNaC::realsymbol& s : {d.closure.input, d.input_rate, d.input_second_rate}) table[s.get_name()] = s;
+    for (std::size_t i = 0; i < d.rates.size(); ++i) {
+      table[d.rates[i].get_name()] = d.rates[i];
+      table[d.second_rates[i].get_name()] = d.second_rates[i];
+      expected[d.rates[i].get_name()] = d.solved_rates[i];
+      expected[d.second_rates[i].get_name()] = d.solved_second_rates[i];
+    }
+    GiNaC::parser reader(table, true);
+    std::istringstream lines(result.out);
+    std::string line;
+    std::size_t parsed = 0;
+    while (std::getline(lines, line)) {
+      const auto at = line.find("% kinema: ");
+      if (at == std::string::npos) continue;
+      const std::string formula = line.substr(at + 10);
+      const auto equals = formula.find(" = ");
+      const std::string symbol = formula.substr(0, equals);
+      REQUIRE(expected.count(symbol) == 1);
+      const GiNaC::ex difference = GiNaC::normal(reader(formula.substr(equals + 3)) - expected[symbol]);
+      CHECK(kinema::combine_trig_products(difference.numer()).is_zero());
+      ++parsed;
+    }
+    CHECK(parsed == 2 * d.rates.size());
+
+    std::string log;
+    const bool ok = compiles(result.out, "derive_" + name.substr(0, name.find('.')), log);
+    INFO(log.substr(log.size() > 3000 ? log.size() - 3000 : 0));
+    CHECK(ok);
+  }
+}
+
+TEST_CASE("derive --format latex: hostile titles and names print as text") {
+  const std::string text = R"toml(title = "\\input{/etc/passwd} 100% & $x$"
+[parameters]
+a = "40 mm"
+b = "120 mm"
+c = "80 mm"
+d = "100 mm"
+[input]
+name = "theta2"
+value = "40 deg"
+rate = "10 rad/s"
+[unknowns]
+theta3 = "20 deg"
+theta4 = "80 deg"
+[loops]
+"\\write18{rm -rf ~}" = "a*exp(I*theta2) + b*exp(I*theta3) - c*exp(I*theta4) - d"
+)toml";
+  const std::string path = kinema_test::write_temporary("hostile.toml", text);
+  const auto result = kinema_test::run_kinema({"derive", "--format", "latex", path});
+  REQUIRE(result.exit_status == 0);
+  CHECK(result.out.find("\\input{") == std::string::npos);
+  CHECK(result.out.find("\\write18") == std::string::npos);
+  CHECK(result.out.find("\\textbackslash{}input\\{/etc/passwd\\}") != std::string::npos);
+  CHECK(result.out.find("\\textbackslash{}write18\\{rm -rf \\textasciitilde{}\\}") != std::string::npos);
+  std::string log;
+  CHECK(compiles(result.out, "hostile", log));
+
+  // A LaTeX name given in the file that is not a plain symbol is refused.
+  const std::string bad = kinema_test::write_temporary(
+      "bad_latex_name.toml", text.substr(0, text.find("theta3 = ")) +
+                                 "theta3 = { guess = \"20 deg\", latex = \"\\\\input{x}\" }\n" +
+                                 text.substr(text.find("theta4 = ")));
+  const auto refused = kinema_test::run_kinema({"derive", "--format", "latex", bad});
+  CHECK(refused.exit_status == 2);
+  CHECK(refused.err.find("bad_latex_name.toml:12") != std::string::npos);
+  CHECK(refused.err.find("\\input") != std::string::npos);
+}
