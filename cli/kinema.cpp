@@ -72,6 +72,13 @@ int run(int argc, char** argv) {
   eval_cmd->add_option("--threads", threads, "threads for long sweeps (the branch is kept)")
       ->check(CLI::Range(1u, 256u));
 
+  bool fragment = false;
+  auto* latex_cmd = app.add_subcommand("latex", "write a worked solution in LaTeX (drawing, equations, plots)");
+  latex_cmd->add_option("FILE", file, "mechanism file (TOML)")->required();
+  latex_cmd->add_option("--angle,--at", angles, "input value(s) to work out, as for eval");
+  latex_cmd->add_option("-o,--output", output_path, "write to this file instead of stdout");
+  latex_cmd->add_flag("--fragment", fragment, "no preamble, for \\input into existing notes");
+
   std::string namespace_name;
   auto* codegen_cmd = app.add_subcommand("codegen", "write a standalone C++ header (position, velocity, acceleration)");
   codegen_cmd->add_option("FILE", file, "mechanism file (TOML)")->required();
@@ -109,6 +116,29 @@ int run(int argc, char** argv) {
 
   std::vector<double> inputs;
   for (const std::string& angle : angles) inputs.push_back(parse_input_value(m, angle));
+
+  if (latex_cmd->parsed()) {
+    if (inputs.empty()) inputs = m.input.values;
+    if (inputs.empty()) {
+      throw InputError(m.source_file + ": no input value: give --angle VALUE or value = \"...\" under [input]");
+    }
+    const auto at_values = analyse(*model.kinematics, inputs, m.input.rate, m.input.second_rate);
+    for (const MotionState& s : at_values) {
+      if (s.status == Status::unassembled) throw AssemblyError(m.source_file + ": " + s.message);
+    }
+    // The plots: a revolution for a crank, the neighbourhood of the values for a slider.
+    std::vector<double> range;
+    if (m.input.dimension == Dimension::angle) {
+      for (int i = 0; i <= 180; ++i) range.push_back(inputs.front() + 2 * M_PI * i / 180.0);
+    } else {
+      const double span = model.kinematics->length_scale();
+      for (int i = 0; i <= 200; ++i) range.push_back(inputs.front() - span / 2 + span * i / 200.0);
+    }
+    const auto sweep = analyse(*model.kinematics, range, m.input.rate, m.input.second_rate);
+    print_latex_document(out, m, model.derivation, at_values, sweep, fragment);
+    write_output(out.str(), output_path);
+    return 0;
+  }
   const bool is_sweep = !sweep.empty() || (inputs.empty() && m.input.values.size() > 1);
   if (!sweep.empty()) {
     const double unit = m.input.dimension == Dimension::angle ? M_PI / 180.0 : m.output.length_factor;

@@ -43,6 +43,40 @@ bool compiles(const std::string& block, const std::string& name, std::string& lo
          log.find("Undefined control sequence") == std::string::npos;
 }
 
+// Every "% kinema: name = formula" comment in a LaTeX output, parsed back, must equal
+// the derivation's formula by meaning; returns how many there were.
+std::size_t formulas_parse_back(const std::string& output, const std::string& sample) {
+  const kinema::Model model = kinema::load_model(kinema_test::sample(sample));
+  const auto& d = model.derivation;
+  GiNaC::symtab table;
+  std::map<std::string, GiNaC::ex> expected;
+  for (const auto& s : d.closure.parameters) table[s.get_name()] = s;
+  for (const auto& s : d.closure.unknowns) table[s.get_name()] = s;
+  for (const GiNaC::realsymbol& s : {d.closure.input, d.input_rate, d.input_second_rate}) table[s.get_name()] = s;
+  for (std::size_t i = 0; i < d.rates.size(); ++i) {
+    table[d.rates[i].get_name()] = d.rates[i];
+    table[d.second_rates[i].get_name()] = d.second_rates[i];
+    expected[d.rates[i].get_name()] = d.solved_rates[i];
+    expected[d.second_rates[i].get_name()] = d.solved_second_rates[i];
+  }
+  GiNaC::parser reader(table, true);
+  std::istringstream lines(output);
+  std::string line;
+  std::size_t parsed = 0;
+  while (std::getline(lines, line)) {
+    const auto at = line.find("% kinema: ");
+    if (at == std::string::npos) continue;
+    const std::string formula = line.substr(at + 10);
+    const auto equals = formula.find(" = ");
+    const std::string symbol = formula.substr(0, equals);
+    REQUIRE(expected.count(symbol) == 1);
+    const GiNaC::ex difference = GiNaC::normal(reader(formula.substr(equals + 3)) - expected[symbol]);
+    CHECK(kinema::combine_trig_products(difference.numer()).is_zero());
+    ++parsed;
+  }
+  return parsed;
+}
+
 }  // namespace
 
 TEST_CASE("symbol names are typeset as a reader expects") {
@@ -76,36 +110,7 @@ TEST_CASE("derive --format latex: the solved formulas are the engine's and the b
     CHECK(result.out.find("\\begin{align*}") != std::string::npos);
     CHECK(result.out.find("\\begin{bmatrix}") != std::string::npos);
 
-    // Every "% kinema: name = formula" comment, parsed back, equals the derivation's formula.
-    const kinema::Model model = kinema::load_model(kinema_test::sample(sample));
-    const auto& d = model.derivation;
-    GiNaC::symtab table;
-    std::map<std::string, GiNaC::ex> expected;
-    for (const auto& s : d.closure.parameters) table[s.get_name()] = s;
-    for (const auto& s : d.closure.unknowns) table[s.get_name()] = s;
-    for (const GiNaC::realsymbol& s : {d.closure.input, d.input_rate, d.input_second_rate}) table[s.get_name()] = s;
-    for (std::size_t i = 0; i < d.rates.size(); ++i) {
-      table[d.rates[i].get_name()] = d.rates[i];
-      table[d.second_rates[i].get_name()] = d.second_rates[i];
-      expected[d.rates[i].get_name()] = d.solved_rates[i];
-      expected[d.second_rates[i].get_name()] = d.solved_second_rates[i];
-    }
-    GiNaC::parser reader(table, true);
-    std::istringstream lines(result.out);
-    std::string line;
-    std::size_t parsed = 0;
-    while (std::getline(lines, line)) {
-      const auto at = line.find("% kinema: ");
-      if (at == std::string::npos) continue;
-      const std::string formula = line.substr(at + 10);
-      const auto equals = formula.find(" = ");
-      const std::string symbol = formula.substr(0, equals);
-      REQUIRE(expected.count(symbol) == 1);
-      const GiNaC::ex difference = GiNaC::normal(reader(formula.substr(equals + 3)) - expected[symbol]);
-      CHECK(kinema::combine_trig_products(difference.numer()).is_zero());
-      ++parsed;
-    }
-    CHECK(parsed == 2 * d.rates.size());
+    CHECK(formulas_parse_back(result.out, sample) == 2 * kinema::load_model(kinema_test::sample(sample)).derivation.rates.size());
 
     std::string log;
     const bool ok = compiles(result.out, "derive_" + name.substr(0, name.find('.')), log);
@@ -150,4 +155,107 @@ theta4 = "80 deg"
   CHECK(refused.exit_status == 2);
   CHECK(refused.err.find("bad_latex_name.toml:12") != std::string::npos);
   CHECK(refused.err.find("\\input") != std::string::npos);
+}
+
+namespace {
+
+// Compiles a whole document; returns its page count (0 when it does not compile cleanly).
+int compile_document(const std::string& tex_text, const std::string& name, std::string& log) {
+  const auto directory = std::filesystem::temp_directory_path() / "kinema_tests" / "latex";
+  std::filesystem::create_directories(directory);
+  std::ofstream(directory / (name + ".tex")) << tex_text;
+  std::filesystem::remove(directory / (name + ".pdf"));
+  const std::string command = "cd '" + directory.string() + "' && pdflatex -interaction=batchmode -halt-on-error '" +
+                              name + ".tex' > /dev/null 2>&1";
+  const int status = std::system(command.c_str());
+  log = read_all((directory / (name + ".log")).string());
+  if (status != 0 || log.find("Undefined control sequence") != std::string::npos) return 0;
+  const std::string info = (directory / (name + ".info")).string();
+  std::system(("pdfinfo '" + (directory / (name + ".pdf")).string() + "' > '" + info + "' 2>/dev/null").c_str());
+  const std::string text = read_all(info);
+  const auto at = text.find("Pages:");
+  return at == std::string::npos ? 0 : std::stoi(text.substr(at + 6));
+}
+
+}  // namespace
+
+TEST_CASE("kinema latex: every sample's worked solution compiles, with its pages and the engine's formulas") {
+  for (const char* sample : kSamples) {
+    const std::string name = sample;
+    CAPTURE(name);
+    const auto result = kinema_test::run_kinema({"latex", kinema_test::sample(sample)});
+    REQUIRE(result.exit_status == 0);
+    for (const char* part : {"\\documentclass", "\\subsection*{Data}", "\\subsection*{Vector loops}",
+                             "\\subsection*{Velocity analysis}", "\\subsection*{Acceleration analysis}",
+                             "\\subsection*{Results at", "\\begin{tikzpicture}", "\\begin{axis}", "\\addplot"}) {
+      CAPTURE(part);
+      CHECK(result.out.find(part) != std::string::npos);
+    }
+    // The solved rates and second rates in the document are the engine's.
+    CHECK(formulas_parse_back(result.out, sample) ==
+          2 * kinema::load_model(kinema_test::sample(sample)).derivation.rates.size());
+    std::string log;
+    const int pages = compile_document(result.out, "document_" + name.substr(0, name.find('.')), log);
+    INFO(log.substr(log.size() > 3000 ? log.size() - 3000 : 0));
+    // Data and equations (one page or more), the results page, the plots page.
+    CHECK(pages >= 3);
+  }
+}
+
+TEST_CASE("kinema latex: one results page per requested value, fragments and hostile titles") {
+  const auto two = kinema_test::run_kinema({"latex", kinema_test::sample("four_bar.toml"), "--angle", "30", "--angle", "200"});
+  REQUIRE(two.exit_status == 0);
+  std::size_t results = 0;
+  for (auto at = two.out.find("Results at"); at != std::string::npos; at = two.out.find("Results at", at + 1)) ++results;
+  CHECK(results == 2);
+  std::string log;
+  const int one_value_pages = compile_document(
+      kinema_test::run_kinema({"latex", kinema_test::sample("four_bar.toml")}).out, "four_bar_one", log);
+  CHECK(compile_document(two.out, "four_bar_two", log) == one_value_pages + 1);
+
+  const auto fragment = kinema_test::run_kinema({"latex", kinema_test::sample("four_bar.toml"), "--fragment"});
+  REQUIRE(fragment.exit_status == 0);
+  CHECK(fragment.out.find("\\documentclass") == std::string::npos);
+  CHECK(fragment.out.find("\\end{document}") == std::string::npos);
+  const std::string wrapped = "\\documentclass{article}\n\\usepackage{amsmath,booktabs,tikz,pgfplots}\n"
+                              "\\usetikzlibrary{patterns}\n\\begin{document}\n" + fragment.out + "\\end{document}\n";
+  CHECK(compile_document(wrapped, "fragment", log) >= 3);
+
+  const std::string hostile = kinema_test::write_temporary("hostile_document.toml", R"toml(title = "\\input{/etc/passwd} $x$ & 100%"
+description = "\\write18{rm -rf ~} #1"
+[parameters]
+a = "40 mm"
+b = "120 mm"
+c = "80 mm"
+d = "100 mm"
+[input]
+name = "theta2"
+value = "40 deg"
+rate = "10 rad/s"
+[unknowns]
+theta3 = "20 deg"
+theta4 = "80 deg"
+[loops]
+"\\def\\x{}" = "a*exp(I*theta2) + b*exp(I*theta3) - c*exp(I*theta4) - d"
+[points]
+"\\input{x}" = "a*exp(I*theta2)"
+)toml");
+  const auto document = kinema_test::run_kinema({"latex", hostile});
+  REQUIRE(document.exit_status == 0);
+  for (const char* injected : {"\\input{", "\\write18", "\\def\\x"}) {
+    CAPTURE(injected);
+    CHECK(document.out.find(injected) == std::string::npos);
+  }
+  CHECK(document.out.find("\\textbackslash{}input\\{/etc/passwd\\}") != std::string::npos);
+  CHECK(compile_document(document.out, "hostile_document", log) >= 3);
+}
+
+TEST_CASE("kinema latex: a value that cannot be assembled is an error, nothing written") {
+  const std::string output = (std::filesystem::temp_directory_path() / "kinema_tests" / "never.tex").string();
+  std::filesystem::remove(output);
+  const auto result = kinema_test::run_kinema(
+      {"latex", kinema_test::sample("piston_driven_crank.toml"), "--at", "260", "-o", output});
+  CHECK(result.exit_status == 3);
+  CHECK(result.err.find("x = 260 mm") != std::string::npos);
+  CHECK_FALSE(std::filesystem::exists(output));
 }

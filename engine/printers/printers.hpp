@@ -19,6 +19,14 @@ void print_derivation_text(std::ostream& out, const Mechanism& mechanism, const 
 /// by a "% kinema: name = formula" comment in GiNaC syntax.
 void print_derivation_latex(std::ostream& out, const Mechanism& mechanism, const Derivation& derivation);
 
+/// A worked solution: data, loops, velocity and acceleration analysis, results and
+/// a TikZ drawing at each of at_values, pgfplots over sweep. A fragment (for
+/// \input into notes) has no preamble; it needs amsmath, booktabs, tikz with the
+/// patterns library, and pgfplots.
+void print_latex_document(std::ostream& out, const Mechanism& mechanism, const Derivation& derivation,
+                          const std::vector<MotionState>& at_values, const std::vector<MotionState>& sweep,
+                          bool fragment);
+
 /// A complex vector loop as course notes write it: a\,e^{i\theta_{2}} + ...
 std::string latex_vector_loop(const GiNaC::ex& loop, const GiNaC::exmap& names);
 
