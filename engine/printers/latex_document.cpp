@@ -166,9 +166,14 @@ class DocumentWriter {
   void acceleration() {
     out_ << "\\subsection*{Acceleration analysis}\nDifferentiating once more: $\\Phi_q\\,\\ddot q = \\gamma$ with "
             "the same matrix $\\Phi_q$:\n\\begin{align*}\n";
-    std::vector<ex> second(d_.second_rates.begin(), d_.second_rates.end()), rhs;
-    for (const ex& g : d_.acceleration_rhs) rhs.push_back(combine_trig_products(g));
-    std::vector<std::string> rows = {"& " + jacobian() + column(second) + " = " + column(rhs)};
+    std::vector<ex> second(d_.second_rates.begin(), d_.second_rates.end());
+    std::string gamma = "\\begin{bmatrix}";
+    for (std::size_t i = 0; i < second.size(); ++i) gamma += (i ? " \\\\ " : " ") + std::string("\\gamma_{") + std::to_string(i + 1) + "}";
+    gamma += " \\end{bmatrix}";
+    std::vector<std::string> rows = {"& " + jacobian() + column(second) + " = " + gamma};
+    // The right-hand side one row at a time: a column of it would not fit the page.
+    for (std::size_t i = 0; i < d_.acceleration_rhs.size(); ++i)
+      rows.push_back("\\gamma_{" + std::to_string(i + 1) + "} &= " + to_latex(combine_trig_products(d_.acceleration_rhs[i]), names_));
     for (const RateBlock& block : d_.blocks)
       for (std::size_t j : block.unknowns)
         rows.push_back(symbol(d_.second_rates[j]) + " &= " + to_latex(d_.solved_second_rates[j], names_) +
