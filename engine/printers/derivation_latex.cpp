@@ -24,9 +24,33 @@ bool is_function(const ex& e, const char* name) {
 
 }  // namespace
 
-std::string latex_vector_loop(const ex& loop, const GiNaC::exmap& names) {
-  // Terms c*exp(I*angle) print as c\,e^{i angle}, as course notes write link vectors.
-  const ex expanded = loop.expand();
+std::string latex_vector_loop(const ex& loop, const GiNaC::exmap& names, const std::string& written) {
+  // Terms c*exp(I*angle) print as c\,e^{i angle}, as course notes write link vectors,
+  // in the order the loop was written when it can be read term by term.
+  std::vector<ex> terms;
+  if (!written.empty()) {
+    GiNaC::symtab table;
+    for (const auto& [symbol, latex] : names) table[GiNaC::ex_to<GiNaC::symbol>(symbol).get_name()] = symbol;
+    GiNaC::parser reader(table, true);
+    try {
+      ex sum = 0;
+      for (const std::string& t : written_terms(written)) {
+        terms.push_back(reader(t));
+        sum += terms.back();
+      }
+      if (!(sum - loop).expand().is_zero()) terms.clear();
+    } catch (const std::exception&) {
+      terms.clear();
+    }
+  }
+  if (terms.empty()) {
+    const ex expanded = loop.expand();
+    if (GiNaC::is_a<GiNaC::add>(expanded)) {
+      for (const ex& term : expanded) terms.push_back(term);
+    } else {
+      terms.push_back(expanded);
+    }
+  }
   std::string text;
   auto term_text = [&](const ex& term) {
     ex coefficient = 1, angle = 0;
@@ -45,21 +69,28 @@ std::string latex_vector_loop(const ex& loop, const GiNaC::exmap& names) {
       take(term);
     }
     if (!has_exp) return to_latex(term, names);
+    // -(CD + CE) rather than (-CE - CD): take a common minus sign out of a sum.
+    bool negated = false;
+    if (GiNaC::is_a<GiNaC::add>(coefficient)) {
+      negated = true;
+      for (const ex& t : coefficient) {
+        const ex factor = GiNaC::is_a<GiNaC::mul>(t) ? t.op(t.nops() - 1) : ex(1);
+        negated = negated && GiNaC::is_a<GiNaC::numeric>(factor) && GiNaC::ex_to<GiNaC::numeric>(factor).is_negative();
+      }
+      if (negated) coefficient = (-coefficient).expand();
+    }
     std::string c = to_latex(coefficient, names);
     if (c == "1") c.clear();
     if (c == "-1") c = "-";
     if (GiNaC::is_a<GiNaC::add>(coefficient)) c = "\\left(" + c + "\\right)";
+    if (negated) c = "-" + c;
     return c + "\\,e^{i" + (GiNaC::is_a<GiNaC::add>(angle) ? "(" + to_latex(angle, names) + ")" : to_latex(angle, names)) + "}";
   };
-  if (GiNaC::is_a<GiNaC::add>(expanded)) {
-    for (const ex& term : expanded) {
-      const std::string t = term_text(term);
-      if (!text.empty() && (t.empty() || t[0] != '-')) text += " + ";
-      else if (!text.empty()) text += " ";
-      text += t;
-    }
-  } else {
-    text = term_text(expanded);
+  for (const ex& term : terms) {
+    const std::string t = term_text(term);
+    if (!text.empty() && (t.empty() || t[0] != '-')) text += " + ";
+    else if (!text.empty()) text += " ";
+    text += t;
   }
   return text;
 }
@@ -93,7 +124,7 @@ void print_derivation_latex(std::ostream& out, const Mechanism& m, const Derivat
   std::vector<Row> rows;
   for (std::size_t k = 0; k < m.loops.size(); ++k) {
     const std::string name = latex_escape_text(m.loops[k].name);
-    rows.push_back({"\\text{" + name + ":}\\quad & " + latex_vector_loop(c.loop_vectors[k], names) + " = 0",
+    rows.push_back({"\\text{" + name + ":}\\quad & " + latex_vector_loop(c.loop_vectors[k], names, m.loops[k].complex_formula) + " = 0",
                     "loop " + name});
     rows.push_back({"& " + to_latex(c.equations[2 * k], names) + " = 0", ""});
     rows.push_back({"& " + to_latex(c.equations[2 * k + 1], names) + " = 0", ""});

@@ -124,6 +124,31 @@ void check_latex_name(const std::string& latex, const std::string& context) {
   }
 }
 
+// Top-level terms of a formula as written ("a*exp(I*t) - d" -> "a*exp(I*t)", "-d"),
+// so the drawing follows the chain in the order the user wrote the loop.
+std::vector<std::string> written_terms(const std::string& formula) {
+  std::vector<std::string> terms;
+  std::string current;
+  int depth = 0;
+  for (std::size_t i = 0; i < formula.size(); ++i) {
+    const char c = formula[i];
+    if (c == '(') ++depth;
+    if (c == ')') --depth;
+    const bool sign = (c == '+' || c == '-') && depth == 0;
+    // Not a sign of an exponent (1e-3) and not the first character.
+    const bool exponent = i > 0 && (formula[i - 1] == 'e' || formula[i - 1] == 'E') && i > 1 &&
+                          std::isdigit(static_cast<unsigned char>(formula[i - 2]));
+    if (sign && !exponent && current.find_first_not_of(" \t") != std::string::npos) {
+      terms.push_back(current);
+      current.clear();
+    }
+    current += c;
+  }
+  if (current.find_first_not_of(" \t") != std::string::npos) terms.push_back(current);
+  return terms;
+}
+
+
 GiNaC::exmap latex_symbols(const Mechanism& m, const Derivation& d) {
   GiNaC::exmap names;
   auto add = [&](const GiNaC::realsymbol& s, const std::string& latex) {

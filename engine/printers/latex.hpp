@@ -4,6 +4,7 @@
 #include <ginac/ginac.h>
 
 #include <string>
+#include <vector>
 
 #include "engine/derivation.hpp"
 #include "loops/mechanism.hpp"
@@ -25,6 +26,9 @@ void check_latex_name(const std::string& latex, const std::string& context);
 /// Substitution that gives every symbol of the derivation its LaTeX name
 /// (the file's `latex` for unknowns, latex_symbol_name otherwise).
 GiNaC::exmap latex_symbols(const Mechanism& mechanism, const Derivation& derivation);
+
+/// Top-level terms of a formula as written ("a*exp(I*t) - d" -> "a*exp(I*t)", "-d").
+std::vector<std::string> written_terms(const std::string& formula);
 
 /// An expression in LaTeX with those names.
 std::string to_latex(const GiNaC::ex& e, const GiNaC::exmap& names);

@@ -38,30 +38,6 @@ bool is_function(const ex& e, const char* name) {
   return GiNaC::is_a<GiNaC::function>(e) && GiNaC::ex_to<GiNaC::function>(e).get_name() == name;
 }
 
-// Top-level terms of a formula as written ("a*exp(I*t) - d" -> "a*exp(I*t)", "-d"),
-// so the drawing follows the chain in the order the user wrote the loop.
-std::vector<std::string> written_terms(const std::string& formula) {
-  std::vector<std::string> terms;
-  std::string current;
-  int depth = 0;
-  for (std::size_t i = 0; i < formula.size(); ++i) {
-    const char c = formula[i];
-    if (c == '(') ++depth;
-    if (c == ')') --depth;
-    const bool sign = (c == '+' || c == '-') && depth == 0;
-    // Not a sign of an exponent (1e-3) and not the first character.
-    const bool exponent = i > 0 && (formula[i - 1] == 'e' || formula[i - 1] == 'E') && i > 1 &&
-                          std::isdigit(static_cast<unsigned char>(formula[i - 2]));
-    if (sign && !exponent && current.find_first_not_of(" \t") != std::string::npos) {
-      terms.push_back(current);
-      current.clear();
-    }
-    current += c;
-  }
-  if (current.find_first_not_of(" \t") != std::string::npos) terms.push_back(current);
-  return terms;
-}
-
 struct Drawing {
   double min_x = 0, max_x = 0, min_y = 0, max_y = 0;
   std::ostringstream body;
@@ -142,7 +118,7 @@ class DocumentWriter {
     std::vector<std::string> rows;
     for (std::size_t k = 0; k < m_.loops.size(); ++k) {
       rows.push_back("\\text{" + latex_escape_text(m_.loops[k].name) + ":}\\quad & " +
-                     latex_vector_loop(d_.closure.loop_vectors[k], names_) + " = 0");
+                     latex_vector_loop(d_.closure.loop_vectors[k], names_, m_.loops[k].complex_formula) + " = 0");
       rows.push_back("& " + to_latex(d_.closure.equations[2 * k], names_) + " = 0");
       rows.push_back("& " + to_latex(d_.closure.equations[2 * k + 1], names_) + " = 0");
     }
@@ -221,7 +197,62 @@ class DocumentWriter {
       }
       out_ << "\\bottomrule\n\\end{tabular}\n\n";
     }
+    if (s.status == Status::ok) substitution(s);
     drawing(s);
+  }
+
+  // The solved formulas with the numbers put in, as a worked solution shows them:
+  // lengths in the output unit, angles in degrees, rates as computed.
+  void substitution(const MotionState& s) {
+    const auto& c = d_.closure;
+    auto shown = [](double value, const std::string& suffix) {
+      return "(" + number(value, 5) + suffix + ")";
+    };
+    auto length_like = [&](const ex& e) {
+      for (std::size_t p = 0; p < m_.parameters.size(); ++p) {
+        const auto& q = m_.parameters[p].quantity;
+        if (q && q->dimension == Dimension::length && e.has(c.parameters[p])) return true;
+      }
+      return false;
+    };
+    GiNaC::exmap numbers;
+    auto put = [&](const GiNaC::realsymbol& symbol, const std::string& tex) {
+      numbers[symbol] = GiNaC::realsymbol(symbol.get_name(), tex);
+    };
+    for (std::size_t p = 0; p < m_.parameters.size(); ++p) {
+      const auto& q = m_.parameters[p].quantity;
+      const double v = c.parameter_values[p];
+      const bool angle = q && q->dimension == Dimension::angle;
+      const bool length = q ? q->dimension == Dimension::length
+                            : length_like(c.parameter_formulas.at(c.parameters[p]));
+      put(c.parameters[p], angle ? shown(v * 180.0 / M_PI, "^{\\circ}") : shown(length ? v / scale_.length : v, ""));
+    }
+    const Dimension kind = m_.input.dimension;
+    put(c.input, kind == Dimension::angle ? shown(s.input * 180.0 / M_PI, "^{\\circ}") : shown(s.input / scale_.length, ""));
+    put(d_.input_rate, shown(scale_.rate(kind, s.input_rate), ""));
+    put(d_.input_second_rate, shown(scale_.rate(kind, s.input_second_rate), ""));
+    for (std::size_t j = 0; j < m_.unknowns.size(); ++j) {
+      const Dimension k = m_.unknowns[j].dimension;
+      put(c.unknowns[j], k == Dimension::angle ? shown(s.q[j] * 180.0 / M_PI, "^{\\circ}") : shown(s.q[j] / scale_.length, ""));
+      put(d_.rates[j], shown(scale_.rate(k, s.qd[j]), ""));
+      put(d_.second_rates[j], shown(scale_.rate(k, s.qdd[j]), ""));
+    }
+    out_ << "Numeric substitution (lengths in " << latex_escape_text(scale_.length_unit) << "):\n\\begin{align*}\n";
+    std::vector<std::string> rows;
+    for (const auto* solved : {&d_.solved_rates, &d_.solved_second_rates}) {
+      const bool first = solved == &d_.solved_rates;
+      for (const RateBlock& block : d_.blocks) {
+        for (std::size_t j : block.unknowns) {
+          const Dimension k = m_.unknowns[j].dimension;
+          const double value = scale_.rate(k, first ? s.qd[j] : s.qdd[j]);
+          std::ostringstream substituted;
+          substituted << GiNaC::latex << (*solved)[j].subs(numbers);
+          rows.push_back(symbol(first ? d_.rates[j] : d_.second_rates[j]) + " &= " + substituted.str() + " = " +
+                         number(value) + "\\,\\mathrm{" + unit(first ? scale_.rate_unit(k) : scale_.second_rate_unit(k)) + "}");
+        }
+      }
+    }
+    align_rows(rows);
   }
 
   void plots(const std::vector<MotionState>& sweep) {

@@ -28,7 +28,8 @@ void print_latex_document(std::ostream& out, const Mechanism& mechanism, const D
                           bool fragment);
 
 /// A complex vector loop as course notes write it: a\,e^{i\theta_{2}} + ...
-std::string latex_vector_loop(const GiNaC::ex& loop, const GiNaC::exmap& names);
+/// `written` is the loop's formula as in the file: its terms keep their order.
+std::string latex_vector_loop(const GiNaC::ex& loop, const GiNaC::exmap& names, const std::string& written = "");
 
 /// Results for people: one block per input value.
 void print_results_table(std::ostream& out, const Mechanism& mechanism, const Derivation& derivation,
