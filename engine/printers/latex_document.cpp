@@ -38,16 +38,6 @@ bool is_function(const ex& e, const char* name) {
   return GiNaC::is_a<GiNaC::function>(e) && GiNaC::ex_to<GiNaC::function>(e).get_name() == name;
 }
 
-struct Drawing {
-  double min_x = 0, max_x = 0, min_y = 0, max_y = 0;
-  std::ostringstream body;
-  void extend(std::complex<double> p) {
-    min_x = std::min(min_x, p.real());
-    max_x = std::max(max_x, p.real());
-    min_y = std::min(min_y, p.imag());
-    max_y = std::max(max_y, p.imag());
-  }
-};
 
 }  // namespace
 
@@ -280,7 +270,6 @@ class DocumentWriter {
         begin_axis(x_label, what + " [$\\mathrm{" + unit(y_unit) + "}$]", plotted++);
         for (std::size_t j : members) {
           out_ << "\\addplot+[mark=none, thick] coordinates {";
-          double previous = NAN;
           for (const MotionState& s : sweep) {
             double y = NAN;
             if (order == 0 && s.status != Status::unassembled) {
@@ -290,9 +279,7 @@ class DocumentWriter {
               y = scale_.rate(dim, order == 1 ? s.qd[j] : s.qdd[j]);
             }
             out_ << " (" << coordinate(x_of(s)) << "," << (std::isfinite(y) ? coordinate(y) : "nan") << ")";
-            previous = y;
           }
-          (void)previous;
           const ex& sym = order == 0 ? ex(d_.closure.unknowns[j]) : order == 1 ? ex(d_.rates[j]) : ex(d_.second_rates[j]);
           out_ << " };\n\\addlegendentry{$" << to_latex(sym, names_) << "$}\n";
         }
