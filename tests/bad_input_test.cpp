@@ -8,30 +8,9 @@
 
 namespace {
 
-const std::string kGood = R"toml(title = "four-bar"
-[parameters]
-a = "40 mm"
-b = "120 mm"
-c = "80 mm"
-d = "100 mm"
-[input]
-name = "theta2"
-value = "40 deg"
-rate = "10 rad/s"
-[unknowns]
-theta3 = "20 deg"
-theta4 = "80 deg"
-[loops]
-ABCD = "a*exp(I*theta2) + b*exp(I*theta3) - c*exp(I*theta4) - d"
-[points]
-P = "a*exp(I*theta2)"
-)toml";
+const std::string& kGood = kinema_test::four_bar_text();
 
-std::string replaced(const std::string& from, const std::string& to, std::string text = kGood) {
-  const auto at = text.find(from);
-  REQUIRE(at != std::string::npos);
-  return text.replace(at, from.size(), to);
-}
+using kinema_test::replaced;
 
 struct Expect {
   int status;

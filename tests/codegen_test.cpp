@@ -12,16 +12,7 @@
 #include "engine/model.hpp"
 #include "test_support.hpp"
 
-namespace {
-
-std::string read_all(const std::string& path) {
-  std::ifstream file(path);
-  std::ostringstream text;
-  text << file.rdbuf();
-  return text.str();
-}
-
-}  // namespace
+using kinema_test::read_file;
 
 TEST_CASE("kinema codegen: the standalone header matches the engine for every sample") {
   const auto directory = std::filesystem::temp_directory_path() / "kinema_tests" / "codegen";
@@ -64,12 +55,12 @@ TEST_CASE("kinema codegen: the standalone header matches the engine for every sa
     const std::string compile = std::string(KINEMA_CXX) + " -std=c++17 -O2 -Wall -Wextra -Werror -o '" +
                                 program + "' '" + source + "' 2> '" + program + ".log'";
     const int compiled = std::system(compile.c_str());
-    INFO(read_all(program + ".log"));
+    INFO(read_file(program + ".log"));
     REQUIRE(compiled == 0);
     REQUIRE(std::system(("'" + program + "' > '" + program + ".out'").c_str()) == 0);
 
     const auto states = kinema::analyse(*model.kinematics, inputs, input.rate, input.second_rate);
-    std::istringstream numbers(read_all(program + ".out"));
+    std::istringstream numbers(read_file(program + ".out"));
     auto close = [](double a, double b) { return std::fabs(a - b) <= 1e-9 * (1 + std::fabs(b)); };
     for (const auto& s : states) {
       REQUIRE(s.status == kinema::Status::ok);

@@ -21,12 +21,7 @@ const char* kSamples[] = {"four_bar.toml", "slider_crank.toml", "piston_driven_c
                           "example_4_1_r_trr.toml", "example_4_2_r_rtr_rrt.toml",
                           "problem_4_4_six_bar.toml", "problem_3_22_six_bar_sliders.toml"};
 
-std::string read_all(const std::string& path) {
-  std::ifstream file(path);
-  std::ostringstream text;
-  text << file.rdbuf();
-  return text.str();
-}
+using kinema_test::read_file;
 
 // Compiles an align* block in a minimal document; returns the log on failure.
 bool compiles(const std::string& block, const std::string& name, std::string& log) {
@@ -38,7 +33,7 @@ bool compiles(const std::string& block, const std::string& name, std::string& lo
   const std::string command = "cd '" + directory.string() + "' && pdflatex -interaction=batchmode -halt-on-error '" +
                               name + ".tex' > /dev/null 2>&1";
   const int status = std::system(command.c_str());
-  log = read_all((directory / (name + ".log")).string());
+  log = read_file((directory / (name + ".log")).string());
   return status == 0 && std::filesystem::exists(directory / (name + ".pdf")) &&
          log.find("Undefined control sequence") == std::string::npos;
 }
@@ -120,22 +115,9 @@ TEST_CASE("derive --format latex: the solved formulas are the engine's and the b
 }
 
 TEST_CASE("derive --format latex: hostile titles and names print as text") {
-  const std::string text = R"toml(title = "\\input{/etc/passwd} 100% & $x$"
-[parameters]
-a = "40 mm"
-b = "120 mm"
-c = "80 mm"
-d = "100 mm"
-[input]
-name = "theta2"
-value = "40 deg"
-rate = "10 rad/s"
-[unknowns]
-theta3 = "20 deg"
-theta4 = "80 deg"
-[loops]
-"\\write18{rm -rf ~}" = "a*exp(I*theta2) + b*exp(I*theta3) - c*exp(I*theta4) - d"
-)toml";
+  const std::string text = kinema_test::replaced(
+      "ABCD = ", "\"\\\\write18{rm -rf ~}\" = ",
+      kinema_test::replaced("title = \"four-bar\"", "title = \"\\\\input{/etc/passwd} 100% & $x$\""));
   const std::string path = kinema_test::write_temporary("hostile.toml", text);
   const auto result = kinema_test::run_kinema({"derive", "--format", "latex", path});
   REQUIRE(result.exit_status == 0);
@@ -168,11 +150,11 @@ int compile_document(const std::string& tex_text, const std::string& name, std::
   const std::string command = "cd '" + directory.string() + "' && pdflatex -interaction=batchmode -halt-on-error '" +
                               name + ".tex' > /dev/null 2>&1";
   const int status = std::system(command.c_str());
-  log = read_all((directory / (name + ".log")).string());
+  log = read_file((directory / (name + ".log")).string());
   if (status != 0 || log.find("Undefined control sequence") != std::string::npos) return 0;
   const std::string info = (directory / (name + ".info")).string();
   std::system(("pdfinfo '" + (directory / (name + ".pdf")).string() + "' > '" + info + "' 2>/dev/null").c_str());
-  const std::string text = read_all(info);
+  const std::string text = read_file(info);
   const auto at = text.find("Pages:");
   return at == std::string::npos ? 0 : std::stoi(text.substr(at + 6));
 }
@@ -221,25 +203,11 @@ TEST_CASE("kinema latex: one results page per requested value, fragments and hos
                               "\\usetikzlibrary{patterns}\n\\begin{document}\n" + fragment.out + "\\end{document}\n";
   CHECK(compile_document(wrapped, "fragment", log) >= 3);
 
-  const std::string hostile = kinema_test::write_temporary("hostile_document.toml", R"toml(title = "\\input{/etc/passwd} $x$ & 100%"
-description = "\\write18{rm -rf ~} #1"
-[parameters]
-a = "40 mm"
-b = "120 mm"
-c = "80 mm"
-d = "100 mm"
-[input]
-name = "theta2"
-value = "40 deg"
-rate = "10 rad/s"
-[unknowns]
-theta3 = "20 deg"
-theta4 = "80 deg"
-[loops]
-"\\def\\x{}" = "a*exp(I*theta2) + b*exp(I*theta3) - c*exp(I*theta4) - d"
-[points]
-"\\input{x}" = "a*exp(I*theta2)"
-)toml");
+  std::string hostile_text = kinema_test::replaced(
+      "title = \"four-bar\"", "title = \"\\\\input{/etc/passwd} $x$ & 100%\"\ndescription = \"\\\\write18{rm -rf ~} #1\"");
+  hostile_text = kinema_test::replaced("ABCD = ", "\"\\\\def\\\\x{}\" = ", hostile_text);
+  hostile_text = kinema_test::replaced("P = ", "\"\\\\input{x}\" = ", hostile_text);
+  const std::string hostile = kinema_test::write_temporary("hostile_document.toml", hostile_text);
   const auto document = kinema_test::run_kinema({"latex", hostile});
   REQUIRE(document.exit_status == 0);
   for (const char* injected : {"\\input{", "\\write18", "\\def\\x"}) {

@@ -14,13 +14,6 @@ namespace kinema_test {
 
 namespace {
 
-std::string read_file(const std::string& path) {
-  std::ifstream file(path);
-  std::ostringstream text;
-  text << file.rdbuf();
-  return text.str();
-}
-
 std::string quote(const std::string& word) {
   std::string quoted = "'";
   for (char c : word) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
@@ -28,6 +21,41 @@ std::string quote(const std::string& word) {
 }
 
 }  // namespace
+
+std::string read_file(const std::string& path) {
+  std::ifstream file(path);
+  std::ostringstream text;
+  text << file.rdbuf();
+  return text.str();
+}
+
+const std::string& four_bar_text() {
+  static const std::string text = R"toml(title = "four-bar"
+[parameters]
+a = "40 mm"
+b = "120 mm"
+c = "80 mm"
+d = "100 mm"
+[input]
+name = "theta2"
+value = "40 deg"
+rate = "10 rad/s"
+[unknowns]
+theta3 = "20 deg"
+theta4 = "80 deg"
+[loops]
+ABCD = "a*exp(I*theta2) + b*exp(I*theta3) - c*exp(I*theta4) - d"
+[points]
+P = "a*exp(I*theta2)"
+)toml";
+  return text;
+}
+
+std::string replaced(const std::string& from, const std::string& to, std::string text) {
+  const auto at = text.find(from);
+  if (at == std::string::npos) throw std::runtime_error("test text has no \"" + from + "\"");
+  return text.replace(at, from.size(), to);
+}
 
 CommandResult run_kinema(const std::vector<std::string>& arguments) {
   static int counter = 0;

@@ -27,6 +27,15 @@ nlohmann::json eval_json(const std::string& sample_name, const std::vector<std::
 /// digit or 0.1 %, whichever is larger (the seeds round pi and intermediates).
 bool matches_printed(double actual, const std::string& printed);
 
+/// A small valid four-bar file; tests edit it into bad or hostile variants.
+const std::string& four_bar_text();
+
+/// text with the first `from` replaced by `to` (the test fails if `from` is missing).
+std::string replaced(const std::string& from, const std::string& to, std::string text = four_bar_text());
+
+/// The whole content of a file ("" if it cannot be read).
+std::string read_file(const std::string& path);
+
 /// Writes text to a fresh file in the build tree and returns its path.
 std::string write_temporary(const std::string& name, const std::string& text);
 
