@@ -1,5 +1,7 @@
 #include "engine/trig_simplify.hpp"
 
+#include "engine/expression_parts.hpp"
+
 #include <map>
 #include <vector>
 
@@ -17,10 +19,6 @@ struct Term {
   ex coefficient;
   std::vector<TrigFactor> factors;
 };
-
-bool is_function(const ex& e, const char* name) {
-  return GiNaC::is_a<GiNaC::function>(e) && GiNaC::ex_to<GiNaC::function>(e).get_name() == name;
-}
 
 // Splits one product into its sin/cos factors (with integer powers unrolled) and the rest.
 Term split_term(const ex& term) {

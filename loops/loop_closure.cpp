@@ -6,17 +6,12 @@
 #include <sstream>
 
 #include "engine/errors.hpp"
+#include "engine/expression_parts.hpp"
 
 namespace kinema {
 namespace {
 
 using GiNaC::ex;
-
-std::string to_text(const ex& e) {
-  std::ostringstream out;
-  out << e;
-  return out.str();
-}
 
 /// Length exponent of a formula ("a*exp(I*theta)" -> 1, "theta" -> 0);
 /// nullopt where it cannot be known (plain-number parameters, bare constants).

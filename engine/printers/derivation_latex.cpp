@@ -3,6 +3,7 @@
 // GiNaC syntax, so a reader (or a test) can take the formula back exactly.
 #include <sstream>
 
+#include "engine/expression_parts.hpp"
 #include "engine/printers/latex.hpp"
 #include "engine/printers/printers.hpp"
 #include "engine/trig_simplify.hpp"
@@ -11,16 +12,6 @@ namespace kinema {
 namespace {
 
 using GiNaC::ex;
-
-std::string plain(const ex& e) {
-  std::ostringstream out;
-  out << e;
-  return out.str();
-}
-
-bool is_function(const ex& e, const char* name) {
-  return GiNaC::is_a<GiNaC::function>(e) && GiNaC::ex_to<GiNaC::function>(e).get_name() == name;
-}
 
 }  // namespace
 
@@ -53,22 +44,9 @@ std::string latex_vector_loop(const ex& loop, const GiNaC::exmap& names, const s
   }
   std::string text;
   auto term_text = [&](const ex& term) {
-    ex coefficient = 1, angle = 0;
-    bool has_exp = false;
-    const auto take = [&](const ex& factor) {
-      if (is_function(factor, "exp") && !has_exp) {
-        has_exp = true;
-        angle = (factor.op(0) / GiNaC::I).expand();
-      } else {
-        coefficient *= factor;
-      }
-    };
-    if (GiNaC::is_a<GiNaC::mul>(term)) {
-      for (const ex& f : term) take(f);
-    } else {
-      take(term);
-    }
-    if (!has_exp) return to_latex(term, names);
+    const LinkVector link = split_link_vector(term);
+    if (!link.polar) return to_latex(term, names);
+    ex coefficient = link.length;
     // -(CD + CE) rather than (-CE - CD): take a common minus sign out of a sum.
     bool negated = false;
     if (GiNaC::is_a<GiNaC::add>(coefficient)) {
@@ -84,7 +62,7 @@ std::string latex_vector_loop(const ex& loop, const GiNaC::exmap& names, const s
     if (c == "-1") c = "-";
     if (GiNaC::is_a<GiNaC::add>(coefficient)) c = "\\left(" + c + "\\right)";
     if (negated) c = "-" + c;
-    return c + "\\,e^{i" + (GiNaC::is_a<GiNaC::add>(angle) ? "(" + to_latex(angle, names) + ")" : to_latex(angle, names)) + "}";
+    return c + "\\," + latex_exp(link.angle, names);
   };
   for (const ex& term : terms) {
     const std::string t = term_text(term);
@@ -99,23 +77,14 @@ void print_derivation_latex(std::ostream& out, const Mechanism& m, const Derivat
   const GiNaC::exmap names = latex_symbols(m, d);
   const auto& c = d.closure;
   const std::size_t n = c.unknowns.size();
-  auto column = [&](const std::vector<ex>& entries) {
-    std::string text = "\\begin{bmatrix}";
-    for (std::size_t i = 0; i < entries.size(); ++i) text += (i ? " \\\\ " : " ") + to_latex(entries[i], names);
-    return text + " \\end{bmatrix}";
-  };
+  const auto column = [&](const std::vector<ex>& entries) { return latex_column(entries, names); };
   std::vector<ex> rates(d.rates.begin(), d.rates.end()), second_rates(d.second_rates.begin(), d.second_rates.end());
   std::vector<ex> velocity_rhs, acceleration_rhs;
   for (std::size_t i = 0; i < n; ++i) {
     velocity_rhs.push_back(-d.input_jacobian(i, 0) * d.input_rate);
     acceleration_rhs.push_back(combine_trig_products(d.acceleration_rhs[i]));
   }
-  std::string jacobian = "\\begin{bmatrix}";
-  for (std::size_t i = 0; i < n; ++i) {
-    for (std::size_t j = 0; j < n; ++j) jacobian += (j ? " & " : " ") + to_latex(d.jacobian(i, j), names);
-    jacobian += i + 1 < n ? " \\\\" : " ";
-  }
-  jacobian += "\\end{bmatrix}";
+  const std::string jacobian = latex_matrix(d.jacobian, names);
 
   // Rows of the align* block; a comment may follow a row's text.
   struct Row {
@@ -138,7 +107,7 @@ void print_derivation_latex(std::ostream& out, const Mechanism& m, const Derivat
     for (const RateBlock& block : d.blocks) {
       for (std::size_t j : block.unknowns) {
         rows.push_back({to_latex(symbols[j], names) + " &= " + to_latex((*solved)[j], names),
-                        "kinema: " + symbols[j].get_name() + " = " + plain((*solved)[j])});
+                        "kinema: " + symbols[j].get_name() + " = " + to_text((*solved)[j])});
       }
     }
   }

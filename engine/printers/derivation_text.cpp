@@ -1,6 +1,7 @@
 // The derivation as readable text (GiNaC's default print context).
 #include <sstream>
 
+#include "engine/expression_parts.hpp"
 #include "engine/printers/printers.hpp"
 #include "engine/trig_simplify.hpp"
 
@@ -9,21 +10,15 @@ namespace {
 
 using GiNaC::ex;
 
-std::string text(const ex& e) {
-  std::ostringstream out;
-  out << e;
-  return out.str();
-}
-
 // "numerator/denominator" instead of GiNaC's x^(-1) factors.
 std::string fraction(const ex& e) {
   const ex nd = e.numer_denom();
   const ex numerator = nd.op(0), denominator = nd.op(1);
-  if (denominator.is_equal(1)) return text(numerator);
+  if (denominator.is_equal(1)) return to_text(numerator);
   auto grouped = [](const ex& part) {
     const bool simple = GiNaC::is_a<GiNaC::symbol>(part) || GiNaC::is_a<GiNaC::numeric>(part) ||
                         GiNaC::is_a<GiNaC::function>(part) || GiNaC::is_a<GiNaC::power>(part);
-    return simple ? text(part) : "(" + text(part) + ")";
+    return simple ? to_text(part) : "(" + to_text(part) + ")";
   };
   return grouped(numerator) + "/" + grouped(denominator);
 }
@@ -58,19 +53,19 @@ void print_derivation_text(std::ostream& out, const Mechanism& m, const Derivati
 
   out << "\n1. Loop-closure equations Phi(q, " << m.input.name << ") = 0\n";
   for (std::size_t k = 0; k < m.loops.size(); ++k) {
-    out << "\n  loop " << m.loops[k].name << ":  " << text(c.loop_vectors[k]) << " = 0\n";
-    out << "    x:  " << text(c.equations[2 * k]) << " = 0\n";
-    out << "    y:  " << text(c.equations[2 * k + 1]) << " = 0\n";
+    out << "\n  loop " << m.loops[k].name << ":  " << to_text(c.loop_vectors[k]) << " = 0\n";
+    out << "    x:  " << to_text(c.equations[2 * k]) << " = 0\n";
+    out << "    y:  " << to_text(c.equations[2 * k + 1]) << " = 0\n";
   }
 
   out << "\n2. Jacobian Phi_q (rows " << joined(rows) << "; columns " << joined(unknowns) << ")\n\n";
   for (std::size_t i = 0; i < n; ++i) {
     out << "  " << rows[i] << ":  [ ";
-    for (std::size_t j = 0; j < n; ++j) out << (j ? ",  " : "") << text(d.jacobian(i, j));
+    for (std::size_t j = 0; j < n; ++j) out << (j ? ",  " : "") << to_text(d.jacobian(i, j));
     out << " ]\n";
   }
   out << "\n  Phi_" << m.input.name << " = [ ";
-  for (std::size_t i = 0; i < n; ++i) out << (i ? ",  " : "") << text(d.input_jacobian(i, 0));
+  for (std::size_t i = 0; i < n; ++i) out << (i ? ",  " : "") << to_text(d.input_jacobian(i, 0));
   out << " ]\n";
 
   out << "\n3. Velocity equations  Phi_q * [" << joined(rates) << "] = -Phi_" << m.input.name << " * "
@@ -78,7 +73,7 @@ void print_derivation_text(std::ostream& out, const Mechanism& m, const Derivati
   for (std::size_t i = 0; i < n; ++i) {
     ex left = 0;
     for (std::size_t j = 0; j < n; ++j) left += d.jacobian(i, j) * d.rates[j];
-    out << "  " << rows[i] << ":  " << text(left) << " = " << text(-d.input_jacobian(i, 0) * d.input_rate)
+    out << "  " << rows[i] << ":  " << to_text(left) << " = " << to_text(-d.input_jacobian(i, 0) * d.input_rate)
         << "\n";
   }
 
@@ -90,7 +85,7 @@ void print_derivation_text(std::ostream& out, const Mechanism& m, const Derivati
   for (std::size_t i = 0; i < n; ++i) {
     ex left = 0;
     for (std::size_t j = 0; j < n; ++j) left += d.jacobian(i, j) * d.second_rates[j];
-    out << "  " << rows[i] << ":  " << text(left) << " = " << text(combine_trig_products(d.acceleration_rhs[i]))
+    out << "  " << rows[i] << ":  " << to_text(left) << " = " << to_text(combine_trig_products(d.acceleration_rhs[i]))
         << "\n";
   }
 
@@ -107,13 +102,13 @@ void print_derivation_text(std::ostream& out, const Mechanism& m, const Derivati
   if (!m.points.empty()) {
     out << "\n6. Points\n";
     for (std::size_t p = 0; p < m.points.size(); ++p) {
-      out << "\n  " << m.points[p].name << " = " << text(c.point_positions[p]) << "\n";
-      out << "    x   = " << text(c.point_x[p]) << "\n";
-      out << "    y   = " << text(c.point_y[p]) << "\n";
-      out << "    vx  = " << text(d.point_velocity_x[p]) << "\n";
-      out << "    vy  = " << text(d.point_velocity_y[p]) << "\n";
-      out << "    ax  = " << text(combine_trig_products(d.point_acceleration_x[p])) << "\n";
-      out << "    ay  = " << text(combine_trig_products(d.point_acceleration_y[p])) << "\n";
+      out << "\n  " << m.points[p].name << " = " << to_text(c.point_positions[p]) << "\n";
+      out << "    x   = " << to_text(c.point_x[p]) << "\n";
+      out << "    y   = " << to_text(c.point_y[p]) << "\n";
+      out << "    vx  = " << to_text(d.point_velocity_x[p]) << "\n";
+      out << "    vy  = " << to_text(d.point_velocity_y[p]) << "\n";
+      out << "    ax  = " << to_text(combine_trig_products(d.point_acceleration_x[p])) << "\n";
+      out << "    ay  = " << to_text(combine_trig_products(d.point_acceleration_y[p])) << "\n";
     }
   }
 }

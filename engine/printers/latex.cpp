@@ -169,6 +169,26 @@ GiNaC::exmap latex_symbols(const Mechanism& m, const Derivation& d) {
   return names;
 }
 
+std::string latex_exp(const GiNaC::ex& angle, const GiNaC::exmap& names) {
+  const std::string a = to_latex(angle, names);
+  return "e^{i" + (GiNaC::is_a<GiNaC::add>(angle) ? "(" + a + ")" : a) + "}";
+}
+
+std::string latex_column(const std::vector<GiNaC::ex>& entries, const GiNaC::exmap& names) {
+  std::string text = "\\begin{bmatrix}";
+  for (std::size_t i = 0; i < entries.size(); ++i) text += (i ? " \\\\ " : " ") + to_latex(entries[i], names);
+  return text + " \\end{bmatrix}";
+}
+
+std::string latex_matrix(const GiNaC::matrix& matrix, const GiNaC::exmap& names) {
+  std::string text = "\\begin{bmatrix}";
+  for (unsigned i = 0; i < matrix.rows(); ++i) {
+    for (unsigned j = 0; j < matrix.cols(); ++j) text += (j ? " & " : " ") + to_latex(matrix(i, j), names);
+    text += i + 1 < matrix.rows() ? " \\\\" : " ";
+  }
+  return text + "\\end{bmatrix}";
+}
+
 std::string to_latex(const GiNaC::ex& e, const GiNaC::exmap& names) {
   std::ostringstream out;
   out << GiNaC::latex << e.subs(names);

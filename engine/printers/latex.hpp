@@ -27,6 +27,13 @@ void check_latex_name(const std::string& latex, const std::string& context);
 /// (the file's `latex` for unknowns, latex_symbol_name otherwise).
 GiNaC::exmap latex_symbols(const Mechanism& mechanism, const Derivation& derivation);
 
+/// e^{i angle} (the angle parenthesised when it is a sum).
+std::string latex_exp(const GiNaC::ex& angle, const GiNaC::exmap& names);
+
+/// A column vector and a matrix as amsmath bmatrix.
+std::string latex_column(const std::vector<GiNaC::ex>& entries, const GiNaC::exmap& names);
+std::string latex_matrix(const GiNaC::matrix& matrix, const GiNaC::exmap& names);
+
 /// Top-level terms of a formula as written ("a*exp(I*t) - d" -> "a*exp(I*t)", "-d").
 std::vector<std::string> written_terms(const std::string& formula);
 

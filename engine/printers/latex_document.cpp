@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "engine/expression_parts.hpp"
 #include "engine/printers/latex.hpp"
 #include "engine/printers/printers.hpp"
 #include "engine/trig_simplify.hpp"
@@ -32,10 +33,6 @@ std::string coordinate(double value) {
   char buffer[64];
   std::snprintf(buffer, sizeof buffer, "%.6f", value);
   return buffer;
-}
-
-bool is_function(const ex& e, const char* name) {
-  return GiNaC::is_a<GiNaC::function>(e) && GiNaC::ex_to<GiNaC::function>(e).get_name() == name;
 }
 
 
@@ -337,21 +334,8 @@ class DocumentWriter {
     return text.str();
   }
 
-  std::string column(const std::vector<ex>& entries) const {
-    std::string text = "\\begin{bmatrix}";
-    for (std::size_t i = 0; i < entries.size(); ++i) text += (i ? " \\\\ " : " ") + to_latex(entries[i], names_);
-    return text + " \\end{bmatrix}";
-  }
-
-  std::string jacobian() const {
-    const std::size_t n = d_.closure.unknowns.size();
-    std::string text = "\\begin{bmatrix}";
-    for (std::size_t i = 0; i < n; ++i) {
-      for (std::size_t j = 0; j < n; ++j) text += (j ? " & " : " ") + to_latex(d_.jacobian(i, j), names_);
-      text += i + 1 < n ? " \\\\" : " ";
-    }
-    return text + "\\end{bmatrix}";
-  }
+  std::string column(const std::vector<ex>& entries) const { return latex_column(entries, names_); }
+  std::string jacobian() const { return latex_matrix(d_.jacobian, names_); }
 
   // A term r*exp(I*phi) with r and phi both moving: a point sliding along a
   // turning link. Its acceleration splits into the textbook's named terms.
@@ -363,23 +347,13 @@ class DocumentWriter {
       if (GiNaC::is_a<GiNaC::add>(loop)) for (const ex& t : loop) terms.push_back(t);
       else terms.push_back(loop);
       for (const ex& term : terms) {
-        ex length = 1, angle = 0;
-        bool has_exp = false;
-        const auto take = [&](const ex& f) {
-          if (is_function(f, "exp")) {
-            has_exp = true;
-            angle = (f.op(0) / GiNaC::I).expand();
-          } else {
-            length *= f;
-          }
-        };
-        if (GiNaC::is_a<GiNaC::mul>(term)) for (const ex& f : term) take(f);
-        else take(term);
-        if (!has_exp) continue;
-        const ex length_rate = d_.time_derivative(length), angle_rate = d_.time_derivative(angle);
-        if (length_rate.is_zero() || angle_rate.is_zero()) continue;
-        const ex dl = d_.time_derivative(length), ddl = d_.time_derivative(dl);
-        const std::string e = "e^{i" + (GiNaC::is_a<GiNaC::add>(angle) ? "(" + to_latex(angle, names_) + ")" : to_latex(angle, names_)) + "}";
+        const LinkVector link = split_link_vector(term);
+        if (!link.polar) continue;
+        const ex& length = link.length;
+        const ex dl = d_.time_derivative(length), angle_rate = d_.time_derivative(link.angle);
+        if (dl.is_zero() || angle_rate.is_zero()) continue;
+        const ex ddl = d_.time_derivative(dl);
+        const std::string e = latex_exp(link.angle, names_);
         sentences.push_back("In loop " + latex_escape_text(m_.loops[k].name) + ", the point at the end of $" +
                             to_latex(length, names_) + "\\," + e +
                             "$ slides along a turning link: its acceleration has the relative term $" +
