@@ -1,6 +1,7 @@
 #include "engine/compiled_expressions.hpp"
 
-#include <Eigen/Core>
+#include "engine/simd_math.hpp"
+
 #include <cmath>
 #include <map>
 #include <sstream>
@@ -225,6 +226,19 @@ void CompiledExpressions::write_cpp(std::ostream& out, const std::vector<std::st
   }
 }
 
+namespace {
+
+constexpr std::size_t kLanes = CompiledExpressions::kBatchLanes;
+
+double integer_power(double base, int exponent) {
+  double result = 1.0;
+  for (int e = exponent < 0 ? -exponent : exponent; e; e >>= 1, base *= base)
+    if (e & 1) result *= base;
+  return exponent < 0 ? 1.0 / result : result;
+}
+
+}  // namespace
+
 void CompiledExpressions::run(std::size_t begin, std::size_t end, double* r) const {
   for (std::size_t k = begin; k < end; ++k) {
     const Instruction& in = instructions_[k];
@@ -235,16 +249,9 @@ void CompiledExpressions::run(std::size_t begin, std::size_t end, double* r) con
       case Op::div: r[in.out] = r[in.a] / r[in.b]; break;
       case Op::neg: r[in.out] = -r[in.a]; break;
       case Op::square: r[in.out] = r[in.a] * r[in.a]; break;
-      case Op::powi: {
-        double base = r[in.a], result = 1.0;
-        int k = in.exponent < 0 ? -in.exponent : in.exponent;
-        for (; k; k >>= 1, base *= base)
-          if (k & 1) result *= base;
-        r[in.out] = in.exponent < 0 ? 1.0 / result : result;
-        break;
-      }
+      case Op::powi: r[in.out] = integer_power(r[in.a], in.exponent); break;
       case Op::pow: r[in.out] = std::pow(r[in.a], r[in.b]); break;
-      case Op::sincos: ::sincos(r[in.a], &r[in.out], &r[in.b]); break;
+      case Op::sincos: simd::sincos(r[in.a], r[in.out], r[in.b]); break;
       case Op::tan: r[in.out] = std::tan(r[in.a]); break;
       case Op::exp: r[in.out] = std::exp(r[in.a]); break;
       case Op::log: r[in.out] = std::log(r[in.a]); break;
@@ -266,55 +273,59 @@ void CompiledExpressions::evaluate_stage(std::size_t stage, std::vector<double>&
     *outputs++ = r[output_registers_[i]];
 }
 
-std::vector<double> CompiledExpressions::make_batch_workspace(std::size_t lanes) const {
-  std::vector<double> registers(initial_registers_.size() * lanes);
+std::vector<double> CompiledExpressions::make_batch_workspace() const {
+  std::vector<double> registers(initial_registers_.size() * kBatchLanes);
   for (std::size_t r = 0; r < initial_registers_.size(); ++r)
-    std::fill_n(registers.begin() + r * lanes, lanes, initial_registers_[r]);
+    std::fill_n(registers.begin() + r * kBatchLanes, kBatchLanes, initial_registers_[r]);
   return registers;
 }
 
-void CompiledExpressions::evaluate_stage_batch(std::size_t stage, std::vector<double>& workspace,
-                                               std::size_t lanes) const {
-  using Lanes = Eigen::Map<Eigen::ArrayXd>;
-  const auto lane = [&](std::uint32_t r) { return Lanes(workspace.data() + r * lanes, lanes); };
-  for (std::size_t k = stage == 0 ? 0 : stage_end_[stage - 1]; k < stage_end_[stage]; ++k) {
-    const Instruction& in = instructions_[k];
-    Lanes out = lane(in.out);
-    switch (in.op) {
-      case Op::add: out = lane(in.a) + lane(in.b); break;
-      case Op::sub: out = lane(in.a) - lane(in.b); break;
-      case Op::mul: out = lane(in.a) * lane(in.b); break;
-      case Op::div: out = lane(in.a) / lane(in.b); break;
-      case Op::neg: out = -lane(in.a); break;
-      case Op::square: out = lane(in.a).square(); break;
-      case Op::powi: {
-        const Lanes base = lane(in.a);
-        for (std::size_t l = 0; l < lanes; ++l) {
-          double b = base[l], result = 1.0;
-          for (int e = in.exponent < 0 ? -in.exponent : in.exponent; e; e >>= 1, b *= b)
-            if (e & 1) result *= b;
-          out[l] = in.exponent < 0 ? 1.0 / result : result;
+
+// One loop of kLanes per instruction. Registers are written once (the tape is in
+// SSA form), so an instruction's output never overlaps its operands.
+template <typename Instruction, typename Op>
+KINEMA_LANE_LOOPS static void run_batch(
+    const Instruction* begin, const Instruction* end, double* registers) {
+  for (const Instruction* in = begin; in != end; ++in) {
+    double* __restrict out = registers + in->out * kLanes;
+    const double* __restrict a = registers + in->a * kLanes;
+    const double* __restrict b = registers + in->b * kLanes;
+    switch (in->op) {
+      case Op::add: for (std::size_t l = 0; l < kLanes; ++l) out[l] = a[l] + b[l]; break;
+      case Op::sub: for (std::size_t l = 0; l < kLanes; ++l) out[l] = a[l] - b[l]; break;
+      case Op::mul: for (std::size_t l = 0; l < kLanes; ++l) out[l] = a[l] * b[l]; break;
+      case Op::div: for (std::size_t l = 0; l < kLanes; ++l) out[l] = a[l] / b[l]; break;
+      case Op::neg: for (std::size_t l = 0; l < kLanes; ++l) out[l] = -a[l]; break;
+      case Op::square: for (std::size_t l = 0; l < kLanes; ++l) out[l] = a[l] * a[l]; break;
+      case Op::powi: for (std::size_t l = 0; l < kLanes; ++l) out[l] = integer_power(a[l], in->exponent); break;
+      case Op::pow: for (std::size_t l = 0; l < kLanes; ++l) out[l] = std::pow(a[l], b[l]); break;
+      case Op::sincos: {
+        double* __restrict cos_out = registers + in->b * kLanes;
+        bool in_range = true;
+        for (std::size_t l = 0; l < kLanes; ++l) in_range &= std::fabs(a[l]) <= simd::kSinCosLimit;
+        if (in_range) {
+          for (std::size_t l = 0; l < kLanes; ++l) simd::sincos_reduced(a[l], out[l], cos_out[l]);
+        } else {
+          for (std::size_t l = 0; l < kLanes; ++l) simd::sincos(a[l], out[l], cos_out[l]);
         }
         break;
       }
-      case Op::pow: out = lane(in.a).pow(lane(in.b)); break;
-      case Op::sincos:
-        lane(in.b) = lane(in.a).cos();
-        out = lane(in.a).sin();
-        break;
-      case Op::tan: out = lane(in.a).tan(); break;
-      case Op::exp: out = lane(in.a).exp(); break;
-      case Op::log: out = lane(in.a).log(); break;
-      case Op::sqrt: out = lane(in.a).sqrt(); break;
-      case Op::abs: out = lane(in.a).abs(); break;
-      case Op::atan2:
-        for (std::size_t l = 0; l < lanes; ++l) out[l] = std::atan2(lane(in.a)[l], lane(in.b)[l]);
-        break;
-      case Op::asin: out = lane(in.a).asin(); break;
-      case Op::acos: out = lane(in.a).acos(); break;
-      case Op::atan: out = lane(in.a).atan(); break;
+      case Op::tan: for (std::size_t l = 0; l < kLanes; ++l) out[l] = std::tan(a[l]); break;
+      case Op::exp: for (std::size_t l = 0; l < kLanes; ++l) out[l] = std::exp(a[l]); break;
+      case Op::log: for (std::size_t l = 0; l < kLanes; ++l) out[l] = std::log(a[l]); break;
+      case Op::sqrt: for (std::size_t l = 0; l < kLanes; ++l) out[l] = std::sqrt(a[l]); break;
+      case Op::abs: for (std::size_t l = 0; l < kLanes; ++l) out[l] = std::fabs(a[l]); break;
+      case Op::atan2: for (std::size_t l = 0; l < kLanes; ++l) out[l] = std::atan2(a[l], b[l]); break;
+      case Op::asin: for (std::size_t l = 0; l < kLanes; ++l) out[l] = std::asin(a[l]); break;
+      case Op::acos: for (std::size_t l = 0; l < kLanes; ++l) out[l] = std::acos(a[l]); break;
+      case Op::atan: for (std::size_t l = 0; l < kLanes; ++l) out[l] = std::atan(a[l]); break;
     }
   }
+}
+
+void CompiledExpressions::evaluate_stage_batch(std::size_t stage, double* workspace) const {
+  const Instruction* first = instructions_.data() + (stage == 0 ? 0 : stage_end_[stage - 1]);
+  run_batch<Instruction, Op>(first, instructions_.data() + stage_end_[stage], workspace);
 }
 
 void CompiledExpressions::evaluate(const double* inputs, double* outputs,

@@ -31,11 +31,13 @@ class CompiledExpressions {
   void evaluate_stage(std::size_t stage, std::vector<double>& workspace, double* outputs) const;
   std::size_t stage_count() const { return stage_end_.size(); }
 
-  /// Batch form: `lanes` values of every register side by side (register r of lane l at
-  /// r * lanes + l), so each instruction is one vectorised loop (Eigen arrays, SIMD
-  /// sin/cos). Inputs go in registers [0, input_count()) of each lane.
-  std::vector<double> make_batch_workspace(std::size_t lanes) const;
-  void evaluate_stage_batch(std::size_t stage, std::vector<double>& workspace, std::size_t lanes) const;
+  /// Batch form: kBatchLanes values of every register side by side (register r of
+  /// lane l at r * kBatchLanes + l), so each instruction is one fixed-length loop
+  /// that the compiler vectorises (AVX2 where the processor has it, chosen at load
+  /// time), sin/cos included. Inputs go in registers [0, input_count()) of each lane.
+  static constexpr std::size_t kBatchLanes = 32;
+  std::vector<double> make_batch_workspace() const;
+  void evaluate_stage_batch(std::size_t stage, double* workspace) const;
   /// Register holding output k (global numbering over all stages).
   std::uint32_t output_register(std::size_t stage, std::size_t k) const {
     return output_registers_[stage_outputs_[stage] + k];

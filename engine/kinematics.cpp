@@ -1,5 +1,6 @@
 #include "engine/kinematics.hpp"
 
+#include <cfloat>
 #include <cmath>
 #include <sstream>
 #include <algorithm>
@@ -254,8 +255,8 @@ bool Workspace::sensitivity(double input, const Eigen::VectorXd& q, Eigen::Vecto
   return dq.allFinite();
 }
 
-double Workspace::max_continuation_step() const {
-  return k_.mechanism_.input.dimension == Dimension::angle ? 2.0 * M_PI / 180.0 : 0.01 * k_.length_scale_;
+double Kinematics::max_continuation_step() const {
+  return mechanism_.input.dimension == Dimension::angle ? 2.0 * M_PI / 180.0 : 0.01 * length_scale_;
 }
 
 bool Workspace::predict_and_correct(double to, const Eigen::VectorXd& predicted, Eigen::VectorXd& q) {
@@ -350,183 +351,388 @@ void Workspace::motion_into(double input, double rate, double second_rate, const
   state.status = Status::ok;
 }
 
+MotionTable::MotionTable(const std::vector<double>& inputs, std::size_t unknowns, std::size_t points, double rate,
+                         double second_rate)
+    : n_(unknowns),
+      points_per_row_(points),
+      rate_(rate),
+      second_rate_(second_rate),
+      input_(inputs),
+      q_(inputs.size() * unknowns),
+      qd_(inputs.size() * unknowns),
+      qdd_(inputs.size() * unknowns),
+      loop_residual_(inputs.size()),
+      reciprocal_condition_(inputs.size()),
+      status_(inputs.size(), Status::unassembled),
+      message_(inputs.size()),
+      points_(inputs.size() * points) {}
+
+MotionState MotionTable::operator[](std::size_t row) const {
+  MotionState s;
+  s.input = input_[row];
+  s.input_rate = rate_;
+  s.input_second_rate = second_rate_;
+  s.status = status_[row];
+  s.message = message_[row];
+  s.loop_residual = loop_residual_[row];
+  s.reciprocal_condition = reciprocal_condition_[row];
+  if (s.status != Status::unassembled) s.q = q(row);
+  if (s.status == Status::ok) {
+    s.qd = qd(row);
+    s.qdd = qdd(row);
+    s.points.assign(points_.begin() + row * points_per_row_, points_.begin() + (row + 1) * points_per_row_);
+  }
+  return s;
+}
+
+void MotionTable::set(std::size_t row, const MotionState& s) {
+  input_[row] = s.input;
+  status_[row] = s.status;
+  message_[row] = s.message;
+  loop_residual_[row] = s.loop_residual;
+  reciprocal_condition_[row] = s.reciprocal_condition;
+  auto copy = [&](const Eigen::VectorXd& from, std::vector<double>& to) {
+    if (static_cast<std::size_t>(from.size()) == n_) std::copy(from.data(), from.data() + n_, to.begin() + row * n_);
+  };
+  copy(s.q, q_);
+  copy(s.qd, qd_);
+  copy(s.qdd, qdd_);
+  if (s.points.size() == points_per_row_) std::copy(s.points.begin(), s.points.end(), points_.begin() + row * points_per_row_);
+}
+
+namespace {
+
+constexpr std::size_t kLanes = BatchWorkspace::kLanes;
+
+// LU with partial pivoting of kLanes small matrices at once, lane-parallel: the
+// pivot row of each lane is chosen and swapped in by selects, so every loop is a
+// fixed-length loop over lanes. Same operations, in the same order, as lu_factor.
+KINEMA_LANE_LOOPS void lu_factor_lanes(double* a, double* pivots, std::size_t n) {
+  auto at = [&](std::size_t i, std::size_t j) { return a + (i * n + j) * kLanes; };
+  for (std::size_t c = 0; c < n; ++c) {
+    double best[kLanes], best_magnitude[kLanes];
+    const double* diagonal = at(c, c);
+    for (std::size_t l = 0; l < kLanes; ++l) {
+      best[l] = static_cast<double>(c);
+      best_magnitude[l] = std::fabs(diagonal[l]);
+    }
+    for (std::size_t r = c + 1; r < n; ++r) {
+      const double* candidate = at(r, c);
+      for (std::size_t l = 0; l < kLanes; ++l) {
+        const double magnitude = std::fabs(candidate[l]);
+        const bool larger = magnitude > best_magnitude[l];
+        best[l] = larger ? static_cast<double>(r) : best[l];
+        best_magnitude[l] = larger ? magnitude : best_magnitude[l];
+      }
+    }
+    std::copy(best, best + kLanes, pivots + c * kLanes);
+    for (std::size_t r = c + 1; r < n; ++r) {
+      for (std::size_t j = 0; j < n; ++j) {
+        double* __restrict top = at(c, j);
+        double* __restrict other = at(r, j);
+        for (std::size_t l = 0; l < kLanes; ++l) {
+          const bool swap = best[l] == static_cast<double>(r);
+          const double t = top[l];
+          top[l] = swap ? other[l] : t;
+          other[l] = swap ? t : other[l];
+        }
+      }
+    }
+    for (std::size_t r = c + 1; r < n; ++r) {
+      double* __restrict factor = at(r, c);
+      const double* __restrict pivot = at(c, c);
+      for (std::size_t l = 0; l < kLanes; ++l) factor[l] /= pivot[l];
+      for (std::size_t j = c + 1; j < n; ++j) {
+        double* __restrict target = at(r, j);
+        const double* __restrict source = at(c, j);
+        for (std::size_t l = 0; l < kLanes; ++l) target[l] -= factor[l] * source[l];
+      }
+    }
+  }
+}
+
+// Solves with lu_factor_lanes's result; x (n rows of kLanes) holds the right-hand sides.
+KINEMA_LANE_LOOPS void lu_solve_lanes(const double* a, const double* pivots, double* x, std::size_t n) {
+  auto at = [&](std::size_t i, std::size_t j) { return a + (i * n + j) * kLanes; };
+  for (std::size_t c = 0; c < n; ++c) {
+    for (std::size_t r = c + 1; r < n; ++r) {
+      double* __restrict top = x + c * kLanes;
+      double* __restrict other = x + r * kLanes;
+      const double* __restrict pivot = pivots + c * kLanes;
+      for (std::size_t l = 0; l < kLanes; ++l) {
+        const bool swap = pivot[l] == static_cast<double>(r);
+        const double t = top[l];
+        top[l] = swap ? other[l] : t;
+        other[l] = swap ? t : other[l];
+      }
+    }
+  }
+  for (std::size_t c = 0; c < n; ++c) {
+    for (std::size_t r = c + 1; r < n; ++r) {
+      double* __restrict target = x + r * kLanes;
+      const double* __restrict source = x + c * kLanes;
+      const double* __restrict factor = at(r, c);
+      for (std::size_t l = 0; l < kLanes; ++l) target[l] -= factor[l] * source[l];
+    }
+  }
+  for (std::size_t c = n; c-- > 0;) {
+    double* __restrict value = x + c * kLanes;
+    const double* __restrict pivot = at(c, c);
+    for (std::size_t l = 0; l < kLanes; ++l) value[l] /= pivot[l];
+    for (std::size_t r = 0; r < c; ++r) {
+      double* __restrict target = x + r * kLanes;
+      const double* __restrict factor = at(r, c);
+      for (std::size_t l = 0; l < kLanes; ++l) target[l] -= factor[l] * value[l];
+    }
+  }
+}
+
+}  // namespace
+
 BatchWorkspace::BatchWorkspace(const Kinematics& k)
     : k_(k),
-      registers_(k.evaluator_.make_batch_workspace(kLanes)),
-      lu_(kLanes, Eigen::MatrixXd(k.unknown_count_, k.unknown_count_)),
-      pivots_(kLanes, std::vector<Eigen::Index>(k.unknown_count_)),
-      x_(k.unknown_count_),
-      column_scale_(k.unknown_count_),
-      q_(kLanes, Eigen::VectorXd(k.unknown_count_)),
-      qd_(kLanes, Eigen::VectorXd(k.unknown_count_)) {
-  for (std::size_t p = 0; p < k.parameter_count_; ++p)
-    for (std::size_t l = 0; l < kLanes; ++l) lane(p, l) = k.parameter_values_[p];
-  for (std::size_t j = 0; j < k.unknown_count_; ++j)
+      n_(k.unknown_count_),
+      registers_(k.evaluator_.make_batch_workspace()),
+      lu_(n_ * n_ * kLanes),
+      pivots_(n_ * kLanes),
+      x_(n_ * kLanes),
+      predicted_(n_ * kLanes),
+      column_scale_(n_) {
+  for (std::size_t p = 0; p < k.parameter_count_; ++p) std::fill_n(lanes(p), kLanes, k.parameter_values_[p]);
+  for (std::size_t j = 0; j < n_; ++j)
     column_scale_[j] = k.mechanism_.unknowns[j].dimension == Dimension::length ? k.length_scale_ : 1.0;
 }
 
-void BatchWorkspace::factorise_lane(std::size_t l) {
-  const std::size_t n = k_.unknown_count_;
+bool BatchWorkspace::factorise() {
   const auto& e = k_.evaluator_;
-  for (std::size_t j = 0; j < n; ++j)
-    for (std::size_t i = 0; i < n; ++i)
-      lu_[l](i, j) = lane(e.output_register(Kinematics::kPositionStage, n + j * n + i), l) * column_scale_[j];
-  lu_factor(lu_[l], pivots_[l]);
+  for (std::size_t i = 0; i < n_; ++i)
+    for (std::size_t j = 0; j < n_; ++j) {
+      const double* phi_q = lanes(e.output_register(Kinematics::kPositionStage, n_ + j * n_ + i));
+      double* target = lu_.data() + (i * n_ + j) * kLanes;
+      for (std::size_t l = 0; l < kLanes; ++l) target[l] = phi_q[l] * column_scale_[j];
+    }
+  lu_factor_lanes(lu_.data(), pivots_.data(), n_);
+  // Clearly regular pivots only; anything near a toggle goes to the scalar path,
+  // which decides singularity with the singular values.
+  pivot_ratios(pivot_ratio_);
+  bool regular = true;
+  for (std::size_t l = 0; l < kLanes; ++l) regular &= pivot_ratio_[l] >= 1e-2;
+  return regular;
 }
 
-bool BatchWorkspace::solve(const double* inputs, std::size_t count,
-                           const std::vector<Eigen::VectorXd>& predicted, double rate, double second_rate,
-                           std::vector<MotionState>& states) {
-  const std::size_t n = k_.unknown_count_, base = k_.parameter_count_;
-  const auto& e = k_.evaluator_;
-  const double tolerance = 1e-14 * k_.length_scale_;
-  // Unused lanes repeat the last value so the whole block stays finite.
+void BatchWorkspace::pivot_ratios(double* ratio) const {
+  double smallest[kLanes], largest[kLanes];
   for (std::size_t l = 0; l < kLanes; ++l) {
-    const std::size_t from = std::min(l, count - 1);
-    lane(base, l) = inputs[from];
-    lane(base + 1, l) = rate;
-    lane(base + 2, l) = second_rate;
-    q_[l] = predicted[from];
+    smallest[l] = INFINITY;
+    largest[l] = 0;
   }
-  // Chord Newton: each lane's Phi_q is factorised once, at the prediction; the
-  // prediction is close, so the iteration converges in a few cheap steps. A lane
-  // that does not converge sends the block to the scalar path.
-  std::vector<bool> converged(kLanes, false);
-  std::size_t remaining = kLanes;
-  for (int iteration = 0; iteration < 12 && remaining > 0; ++iteration) {
-    for (std::size_t l = 0; l < kLanes; ++l)
-      for (std::size_t i = 0; i < n; ++i) lane(base + 3 + i, l) = q_[l][i];
-    e.evaluate_stage_batch(Kinematics::kPositionStage, registers_, kLanes);
+  for (std::size_t c = 0; c < n_; ++c) {
+    const double* pivot = lu_.data() + (c * n_ + c) * kLanes;
     for (std::size_t l = 0; l < kLanes; ++l) {
-      double residual = 0;
-      for (std::size_t i = 0; i < n; ++i)
-        residual = std::max(residual, std::fabs(lane(e.output_register(Kinematics::kPositionStage, i), l)));
-      if (!std::isfinite(residual)) return false;
-      converged[l] = residual <= tolerance;
-      if (converged[l]) continue;
-      if (iteration == 0) {
-        factorise_lane(l);
-        if (pivot_ratio(lu_[l]) < 1e-12) return false;
-      }
-      for (std::size_t i = 0; i < n; ++i) x_[i] = -lane(e.output_register(Kinematics::kPositionStage, i), l);
-      lu_solve(lu_[l], pivots_[l], x_);
-      q_[l].array() += x_.array() * column_scale_.array();
+      const double magnitude = std::fabs(pivot[l]);
+      smallest[l] = magnitude < smallest[l] ? magnitude : smallest[l];
+      largest[l] = magnitude > largest[l] ? magnitude : largest[l];
     }
-    remaining = static_cast<std::size_t>(std::count(converged.begin(), converged.end(), false));
   }
-  if (remaining > 0) return false;
-  // Same branch as predicted (as Workspace::predict_and_correct checks).
-  for (std::size_t l = 0; l < count; ++l)
-    for (std::size_t i = 0; i < n; ++i)
-      if (std::fabs(q_[l][i] - predicted[l][i]) / column_scale_[i] > 0.05) return false;
+  // NaN (a zero pivot divided through) compares false: not regular.
+  for (std::size_t l = 0; l < kLanes; ++l) ratio[l] = smallest[l] / largest[l];
+}
 
-  // Rates: one factorisation per lane at the solution, for both qd and qdd; the
-  // registers hold every lane at its q.
-  for (std::size_t l = 0; l < kLanes; ++l) {
-    factorise_lane(l);
-    // Clearly regular pivots only; anything near a toggle goes to the scalar path,
-    // which decides singularity with the singular values.
-    if (pivot_ratio(lu_[l]) < 1e-2) return false;
-    for (std::size_t i = 0; i < n; ++i)
-      x_[i] = -lane(e.output_register(Kinematics::kPositionStage, n + n * n + i), l) * rate;
-    lu_solve(lu_[l], pivots_[l], x_);
-    qd_[l] = x_.cwiseProduct(column_scale_);
-    for (std::size_t i = 0; i < n; ++i) lane(base + 3 + n + i, l) = qd_[l][i];
-  }
-  e.evaluate_stage_batch(Kinematics::kAccelerationStage, registers_, kLanes);
-  states.resize(count);
-  for (std::size_t l = 0; l < kLanes; ++l) {
-    for (std::size_t i = 0; i < n; ++i) x_[i] = lane(e.output_register(Kinematics::kAccelerationStage, i), l);
-    lu_solve(lu_[l], pivots_[l], x_);
-    x_.array() *= column_scale_.array();
-    for (std::size_t i = 0; i < n; ++i) lane(base + 3 + 2 * n + i, l) = x_[i];
-    if (l < count) {
-      MotionState& state = states[l];
-      state.input = inputs[l];
-      state.input_rate = rate;
-      state.input_second_rate = second_rate;
-      state.status = Status::ok;
-      state.message.clear();
-      state.q = q_[l];
-      state.qd = qd_[l];
-      state.qdd = x_;
-      state.reciprocal_condition = pivot_ratio(lu_[l]);
-      double residual = 0;
-      for (std::size_t i = 0; i < n; ++i)
-        residual = std::max(residual, std::fabs(lane(e.output_register(Kinematics::kPositionStage, i), l)));
-      state.loop_residual = residual;
+bool BatchWorkspace::predict(const MotionTable& table, std::size_t first, std::size_t history_begin) {
+  const double rate = table.input_rate(), second_rate = table.input_second_rate();
+  const std::size_t last = first - 1;
+  const double t1 = table.input(last);
+  const double reach = 4 * k_.max_continuation_step();
+  for (std::size_t l = 0; l < kLanes; ++l)
+    if (!(std::fabs(table.input(first + l) - t1) <= reach)) return false;
+  // Quintic Hermite through the last row and the one a block earlier (values, first
+  // and second derivatives in the input) when both are on the same stretch of
+  // solved rows; else Taylor to second order from the last row.
+  bool hermite = last >= history_begin + kLanes;
+  const std::size_t earlier = hermite ? last - kLanes : last;
+  for (std::size_t row = earlier; hermite && row <= last; ++row)
+    hermite = table.status(row) == Status::ok && (row == earlier || table.message(row).empty());
+  const double t0 = table.input(earlier), span = t1 - t0;
+  hermite = hermite && span != 0 && std::fabs(span) <= reach;
+  for (std::size_t i = 0; i < n_; ++i) {
+    auto derivatives = [&](std::size_t row, double& value, double& slope, double& curvature) {
+      value = table.q(row)[i];
+      slope = table.qd(row)[i] / rate;
+      curvature = (table.qdd(row)[i] - slope * second_rate) / (rate * rate);
+    };
+    double y1, d1, c1;
+    derivatives(last, y1, d1, c1);
+    double* out = predicted_.data() + i * kLanes;
+    if (!hermite) {
+      for (std::size_t l = 0; l < kLanes; ++l) {
+        const double h = table.input(first + l) - t1;
+        out[l] = y1 + h * (d1 + 0.5 * c1 * h);
+      }
+      continue;
+    }
+    double y0, d0, c0;
+    derivatives(earlier, y0, d0, c0);
+    // Newton form on the nodes t0, t0, t0, t1, t1, t1 (confluent divided differences).
+    const double f01 = (y1 - y0) / span;
+    const double f001 = (f01 - d0) / span, f011 = (d1 - f01) / span;
+    const double f0001 = (f001 - 0.5 * c0) / span, f0011 = (f011 - f001) / span, f0111 = (0.5 * c1 - f011) / span;
+    const double f00011 = (f0011 - f0001) / span, f00111 = (f0111 - f0011) / span;
+    const double f000111 = (f00111 - f00011) / span;
+    for (std::size_t l = 0; l < kLanes; ++l) {
+      const double u = table.input(first + l) - t0, v = table.input(first + l) - t1;
+      out[l] = y0 + u * (d0 + u * (0.5 * c0 + u * (f0001 + v * (f00011 + v * f000111))));
     }
   }
-  e.evaluate_stage_batch(Kinematics::kPointStage, registers_, kLanes);
-  for (std::size_t l = 0; l < count; ++l) {
-    MotionState& state = states[l];
-    state.points.resize(k_.point_count_);
-    for (std::size_t p = 0; p < k_.point_count_; ++p) {
+  return true;
+}
+
+bool BatchWorkspace::solve(MotionTable& table, std::size_t first, std::size_t history_begin) {
+  const std::size_t n = n_, base = k_.parameter_count_, point_count = k_.point_count_;
+  const auto& e = k_.evaluator_;
+  const double rate = table.input_rate(), second_rate = table.input_second_rate();
+  const double tolerance = 1e-14 * k_.length_scale_;
+  if (!predict(table, first, history_begin)) return false;
+  for (std::size_t l = 0; l < kLanes; ++l) {
+    lanes(base)[l] = table.input(first + l);
+    lanes(base + 1)[l] = rate;
+    lanes(base + 2)[l] = second_rate;
+  }
+  for (std::size_t i = 0; i < n; ++i) std::copy_n(predicted_.data() + i * kLanes, kLanes, lanes(base + 3 + i));
+
+  // Newton on every lane at once; Phi_q is factorised at each iterate, so the last
+  // factorisation (at the solution) also gives the rates. A lane that has converged
+  // stays where it is, as the scalar solver stops there.
+  double residual[kLanes];
+  bool done[kLanes];
+  for (int iteration = 0;; ++iteration) {
+    e.evaluate_stage_batch(Kinematics::kPositionStage, registers_.data());
+    bool all_done = true;
+    for (std::size_t l = 0; l < kLanes; ++l) residual[l] = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double* phi = lanes(e.output_register(Kinematics::kPositionStage, i));
+      for (std::size_t l = 0; l < kLanes; ++l) {
+        // NaN stays: the comparison is false for it.
+        const double magnitude = std::fabs(phi[l]);
+        residual[l] = (magnitude > residual[l] || magnitude != magnitude) ? magnitude : residual[l];
+      }
+    }
+    bool finite = true;
+    for (std::size_t l = 0; l < kLanes; ++l) {
+      finite &= residual[l] <= DBL_MAX;
+      done[l] = residual[l] <= tolerance;
+      all_done &= done[l];
+    }
+    if (!finite) return false;
+    if (!factorise()) return false;
+    if (all_done) break;
+    if (iteration == 6) return false;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double* phi = lanes(e.output_register(Kinematics::kPositionStage, i));
+      for (std::size_t l = 0; l < kLanes; ++l) x_[i * kLanes + l] = -phi[l];
+    }
+    lu_solve_lanes(lu_.data(), pivots_.data(), x_.data(), n);
+    for (std::size_t i = 0; i < n; ++i) {
+      double* q = lanes(base + 3 + i);
+      for (std::size_t l = 0; l < kLanes; ++l) q[l] += done[l] ? 0.0 : x_[i * kLanes + l] * column_scale_[i];
+    }
+  }
+  // Same branch as predicted (as Workspace::predict_and_correct checks).
+  bool same_branch = true;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double* q = lanes(base + 3 + i);
+    const double* predicted = predicted_.data() + i * kLanes;
+    for (std::size_t l = 0; l < kLanes; ++l) same_branch &= std::fabs(q[l] - predicted[l]) <= 0.05 * column_scale_[i];
+  }
+  if (!same_branch) return false;
+
+  // Velocity, then acceleration, with the factorisation at the solution.
+  for (std::size_t i = 0; i < n; ++i) {
+    const double* phi_theta = lanes(e.output_register(Kinematics::kPositionStage, n + n * n + i));
+    for (std::size_t l = 0; l < kLanes; ++l) x_[i * kLanes + l] = -phi_theta[l] * rate;
+  }
+  lu_solve_lanes(lu_.data(), pivots_.data(), x_.data(), n);
+  for (std::size_t i = 0; i < n; ++i) {
+    double* qd = lanes(base + 3 + n + i);
+    for (std::size_t l = 0; l < kLanes; ++l) qd[l] = x_[i * kLanes + l] * column_scale_[i];
+  }
+  e.evaluate_stage_batch(Kinematics::kAccelerationStage, registers_.data());
+  for (std::size_t i = 0; i < n; ++i)
+    std::copy_n(lanes(e.output_register(Kinematics::kAccelerationStage, i)), kLanes, x_.data() + i * kLanes);
+  lu_solve_lanes(lu_.data(), pivots_.data(), x_.data(), n);
+  for (std::size_t i = 0; i < n; ++i) {
+    double* qdd = lanes(base + 3 + 2 * n + i);
+    for (std::size_t l = 0; l < kLanes; ++l) qdd[l] = x_[i * kLanes + l] * column_scale_[i];
+  }
+  e.evaluate_stage_batch(Kinematics::kPointStage, registers_.data());
+  // x * 0 is 0 for finite x and NaN otherwise: one sum per lane says whether all are finite.
+  double nonfinite[kLanes] = {};
+  auto accumulate = [&](const double* v) {
+    for (std::size_t l = 0; l < kLanes; ++l) nonfinite[l] += v[l] * 0.0;
+  };
+  for (std::size_t k = 0; k < 6 * point_count; ++k) accumulate(lanes(e.output_register(Kinematics::kPointStage, k)));
+  for (std::size_t i = 0; i < 2 * n; ++i) accumulate(lanes(base + 3 + n + i));
+  bool finite = true;
+  for (std::size_t l = 0; l < kLanes; ++l) finite &= nonfinite[l] == 0.0;
+  if (!finite) return false;
+
+  for (std::size_t l = 0; l < kLanes; ++l) {
+    const std::size_t row = first + l;
+    table.status_[row] = Status::ok;
+    table.message_[row].clear();
+    table.loop_residual_[row] = residual[l];
+    table.reciprocal_condition_[row] = pivot_ratio_[l];
+    for (std::size_t i = 0; i < n; ++i) {
+      table.q_[row * n + i] = lanes(base + 3 + i)[l];
+      table.qd_[row * n + i] = lanes(base + 3 + n + i)[l];
+      table.qdd_[row * n + i] = lanes(base + 3 + 2 * n + i)[l];
+    }
+    for (std::size_t p = 0; p < point_count; ++p) {
       double v[6];
-      for (int c = 0; c < 6; ++c) v[c] = lane(e.output_register(Kinematics::kPointStage, 6 * p + c), l);
-      state.points[p] = {v[0], v[1], v[2], v[3], v[4], v[5]};
-      for (double value : v)
-        if (!std::isfinite(value)) return false;
+      for (std::size_t c = 0; c < 6; ++c) v[c] = lanes(e.output_register(Kinematics::kPointStage, 6 * p + c))[l];
+      table.points_[row * point_count + p] = {v[0], v[1], v[2], v[3], v[4], v[5]};
     }
-    if (!state.qd.allFinite() || !state.qdd.allFinite()) return false;
   }
   return true;
 }
 
 namespace {
 
-// Solves inputs[begin, end) in order from q (a solution at inputs[begin] or a guess),
-// writing states[begin, end).
-void analyse_range(const Kinematics& kinematics, const std::vector<double>& all_inputs, std::size_t begin,
-                   std::size_t end, double rate, double second_rate, Eigen::VectorXd q,
-                   std::vector<MotionState>& all_states, bool batch) {
+// Solves rows [begin, end) of the table in order from q (a solution at inputs[begin]
+// or a guess); rows before begin belong to another thread and are not read.
+void analyse_range(const Kinematics& kinematics, std::size_t begin, std::size_t end, Eigen::VectorXd q,
+                   MotionTable& table, bool batch) {
+  const double rate = table.input_rate(), second_rate = table.input_second_rate();
   Workspace workspace(kinematics);
   std::unique_ptr<BatchWorkspace> batch_workspace;
-  if (batch) batch_workspace = std::make_unique<BatchWorkspace>(kinematics);
-  std::vector<MotionState> states;
-  states.reserve(end - begin);
-  const std::vector<double> inputs(all_inputs.begin() + begin, all_inputs.begin() + end);
-  std::vector<Eigen::VectorXd> predicted(BatchWorkspace::kLanes);
-  std::vector<MotionState> block;
-  std::size_t next_batch_try = 0;  // after a refused block, go on one by one for a while
-  bool have_previous = false;  // q is a solution at previous_input on the user's branch
-  double previous_input = 0;
+  if (batch && rate != 0) batch_workspace = std::make_unique<BatchWorkspace>(kinematics);
+  MotionState state;
+  Eigen::VectorXd trial, predicted;
+  std::size_t next_batch_try = begin;  // after a refused block, go on one by one for a while
+  bool have_previous = false;  // row - 1 is solved (status ok) on the user's branch
   bool after_gap = false;
   bool any_solved = false;
-  for (std::size_t index = 0; index < inputs.size(); ++index) {
-    const double input = inputs[index];
-    if (batch && rate != 0 && index >= next_batch_try && !states.empty() && states.back().status == Status::ok &&
-        states.back().message.empty()) {
-      // A block of the following values, predicted to second order from the last state.
-      const MotionState& last = states.back();
-      const Eigen::VectorXd slope = last.qd / rate;
-      const Eigen::VectorXd curvature = (last.qdd - slope * second_rate) / (rate * rate);
-      const double reach = 4 * workspace.max_continuation_step();
-      std::size_t count = 0;
-      for (; count < BatchWorkspace::kLanes && index + count < inputs.size(); ++count) {
-        const double h = inputs[index + count] - last.input;
-        if (std::fabs(h) > reach) break;
-        predicted[count] = last.q + slope * h + 0.5 * curvature * h * h;
-      }
-      if (count == BatchWorkspace::kLanes &&
-          batch_workspace->solve(inputs.data() + index, count, predicted, rate, second_rate, block)) {
-        for (auto& state : block) states.push_back(std::move(state));
-        q = states.back().q;
-        previous_input = states.back().input;
-        index += count - 1;
+  for (std::size_t row = begin; row < end; ++row) {
+    const double input = table.input(row);
+    if (batch_workspace && have_previous && row >= next_batch_try && row + BatchWorkspace::kLanes <= end &&
+        table.message(row - 1).empty()) {
+      if (batch_workspace->solve(table, row, begin)) {
+        row += BatchWorkspace::kLanes - 1;
+        q = table.q(row);
         continue;
       }
-      next_batch_try = index + BatchWorkspace::kLanes;
+      next_batch_try = row + BatchWorkspace::kLanes;
     }
     bool solved = false;
     std::string why;
-    Eigen::VectorXd trial = q;
+    trial = q;
     if (have_previous) {
       // Fast path for sweeps: predict from the rates just computed (dq/dtheta =
       // qd/thetad) and correct; the general continuation only when that fails.
+      const double previous_input = table.input(row - 1);
       const double h = input - previous_input;
-      if (rate != 0 && std::fabs(h) <= workspace.max_continuation_step()) {
-        solved = workspace.predict_and_correct(input, q + states.back().qd * (h / rate), trial);
+      if (rate != 0 && std::fabs(h) <= kinematics.max_continuation_step()) {
+        predicted = q + table.qd(row - 1) * (h / rate);
+        solved = workspace.predict_and_correct(input, predicted, trial);
       }
       double stuck_at = previous_input;
       if (!solved) solved = workspace.continue_to(previous_input, input, trial, &stuck_at);
@@ -551,20 +757,18 @@ void analyse_range(const Kinematics& kinematics, const std::vector<double>& all_
       }
     }
     if (!solved) {
-      MotionState state;
-      state.input = input;
-      state.input_rate = rate;
-      state.input_second_rate = second_rate;
-      state.status = Status::unassembled;
-      state.message = why;
-      states.push_back(state);
+      MotionState failed;
+      failed.input = input;
+      failed.status = Status::unassembled;
+      failed.message = why;
+      table.set(row, failed);
       after_gap = any_solved;
       have_previous = false;  // resume from the last good q; the branch may differ after a gap
       continue;
     }
     q = trial;
     any_solved = true;
-    MotionState state = workspace.motion(input, rate, second_rate, q);
+    workspace.motion_into(input, rate, second_rate, q, state);
     if (after_gap && state.status == Status::ok) {
       state.message = "resumed after positions that could not be assembled; the branch across "
                       "the gap is not guaranteed";
@@ -572,18 +776,17 @@ void analyse_range(const Kinematics& kinematics, const std::vector<double>& all_
     // Past a singular position the branch may change: treat it like a gap.
     after_gap = state.status != Status::ok;
     have_previous = state.status == Status::ok;
-    previous_input = input;
-    states.push_back(state);
+    table.set(row, state);
   }
-  std::move(states.begin(), states.end(), all_states.begin() + begin);
 }
 
 }  // namespace
 
-std::vector<MotionState> analyse(const Kinematics& kinematics, const std::vector<double>& inputs,
-                                 double rate, double second_rate, unsigned threads, bool batch) {
-  std::vector<MotionState> states(inputs.size());
+MotionTable analyse(const Kinematics& kinematics, const std::vector<double>& inputs, double rate,
+                    double second_rate, unsigned threads, bool batch) {
   const std::size_t n = inputs.size();
+  MotionTable table(inputs, kinematics.unknown_count(), kinematics.point_count(), rate, second_rate);
+  if (n == 0) return table;
   // Short runs are not worth a thread.
   threads = std::max(1u, std::min<unsigned>(threads, static_cast<unsigned>(n / 256)));
   std::vector<std::size_t> begin(threads + 1);
@@ -606,16 +809,16 @@ std::vector<MotionState> analyse(const Kinematics& kinematics, const std::vector
     }
   }
   if (threads == 1) {
-    analyse_range(kinematics, inputs, 0, n, rate, second_rate, start[0], states, batch);
-    return states;
+    analyse_range(kinematics, 0, n, start[0], table, batch);
+    return table;
   }
   std::vector<std::thread> workers;
   for (unsigned t = 0; t < threads; ++t) {
-    workers.emplace_back(analyse_range, std::cref(kinematics), std::cref(inputs), begin[t], begin[t + 1], rate,
-                         second_rate, start[t], std::ref(states), batch);
+    workers.emplace_back(analyse_range, std::cref(kinematics), begin[t], begin[t + 1], start[t], std::ref(table),
+                         batch);
   }
   for (auto& worker : workers) worker.join();
-  return states;
+  return table;
 }
 
 }  // namespace kinema

@@ -6,11 +6,13 @@
 
 #include <Eigen/Dense>
 
+#include <iterator>
 #include <string>
 #include <vector>
 
 #include "engine/compiled_expressions.hpp"
 #include "engine/derivation.hpp"
+#include "engine/simd_math.hpp"
 #include "loops/mechanism.hpp"
 
 namespace kinema {
@@ -25,6 +27,8 @@ class Kinematics {
   std::size_t point_count() const { return point_count_; }
   /// Typical length (largest length parameter), for tolerances and scaling.
   double length_scale() const { return length_scale_; }
+  /// Largest input step continuation takes at once (2 deg, or 1 % of the length scale).
+  double max_continuation_step() const;
   /// Starting guesses from the file, SI.
   Eigen::VectorXd guess() const;
   /// "theta2 = 30 deg" / "r = 12.5 mm" in the output units.
@@ -67,10 +71,73 @@ struct MotionState {
   double input = 0, input_rate = 0, input_second_rate = 0;
   Status status = Status::unassembled;
   std::string message;  ///< Why, when status is not ok.
-  Eigen::VectorXd q, qd, qdd;
-  std::vector<PointMotion> points;
+  Eigen::VectorXd q, qd, qdd;  ///< q empty when unassembled; qd, qdd empty unless ok.
+  std::vector<PointMotion> points;  ///< Empty unless ok.
   double loop_residual = 0;      ///< max |Phi| at the solution (m).
   double reciprocal_condition = 0;  ///< of the length-scaled Phi_q; ~0 at a toggle.
+};
+
+/// The results of analyse(): one row per input value, kept in flat arrays so that
+/// a long sweep costs no allocation per value (a 10^6-value six-bar sweep is a
+/// few hundred MB in one piece, not millions of small blocks). Rows read back as
+/// MotionState (a copy), by index or by iterating.
+class MotionTable {
+ public:
+  MotionTable() = default;
+  /// Rows for `inputs`, all unassembled until set.
+  MotionTable(const std::vector<double>& inputs, std::size_t unknowns, std::size_t points, double rate,
+              double second_rate);
+
+  std::size_t size() const { return input_.size(); }
+  bool empty() const { return input_.empty(); }
+  std::size_t unknown_count() const { return n_; }
+  std::size_t point_count() const { return points_per_row_; }
+  double input_rate() const { return rate_; }
+  double input_second_rate() const { return second_rate_; }
+
+  double input(std::size_t row) const { return input_[row]; }
+  Status status(std::size_t row) const { return status_[row]; }
+  const std::string& message(std::size_t row) const { return message_[row]; }
+  /// Coordinates, rates and second rates of a row (meaningful as MotionState says).
+  Eigen::Map<const Eigen::VectorXd> q(std::size_t row) const { return {q_.data() + row * n_, Eigen::Index(n_)}; }
+  Eigen::Map<const Eigen::VectorXd> qd(std::size_t row) const { return {qd_.data() + row * n_, Eigen::Index(n_)}; }
+  Eigen::Map<const Eigen::VectorXd> qdd(std::size_t row) const { return {qdd_.data() + row * n_, Eigen::Index(n_)}; }
+  const PointMotion& point(std::size_t row, std::size_t p) const { return points_[row * points_per_row_ + p]; }
+  double loop_residual(std::size_t row) const { return loop_residual_[row]; }
+  double reciprocal_condition(std::size_t row) const { return reciprocal_condition_[row]; }
+
+  /// Row `row` as a MotionState (a copy).
+  MotionState operator[](std::size_t row) const;
+  /// Stores a state (its input, status, message and whatever its status makes valid).
+  void set(std::size_t row, const MotionState& state);
+
+  class const_iterator {
+   public:
+    using value_type = MotionState;
+    using difference_type = std::ptrdiff_t;
+    using reference = MotionState;
+    using pointer = void;
+    using iterator_category = std::input_iterator_tag;
+    const_iterator(const MotionTable* table, std::size_t row) : table_(table), row_(row) {}
+    MotionState operator*() const { return (*table_)[row_]; }
+    const_iterator& operator++() { ++row_; return *this; }
+    bool operator==(const const_iterator& other) const { return row_ == other.row_; }
+    bool operator!=(const const_iterator& other) const { return row_ != other.row_; }
+   private:
+    const MotionTable* table_;
+    std::size_t row_;
+  };
+  const_iterator begin() const { return {this, 0}; }
+  const_iterator end() const { return {this, size()}; }
+
+ private:
+  friend class BatchWorkspace;
+  std::size_t n_ = 0, points_per_row_ = 0;
+  double rate_ = 0, second_rate_ = 0;
+  std::vector<double> input_, q_, qd_, qdd_, loop_residual_, reciprocal_condition_;
+  std::vector<Status> status_;
+  std::vector<std::string> message_;
+  std::vector<PointMotion> points_;
 };
 
 /// Buffers for one thread of evaluation.
@@ -99,8 +166,7 @@ class Workspace {
   /// Newton from `predicted` at `to`; accepts (into q) only a solution close to the
   /// prediction, i.e. on the same branch.
   bool predict_and_correct(double to, const Eigen::VectorXd& predicted, Eigen::VectorXd& q);
-  /// Largest input step continuation takes at once (2 deg, or 1 % of the length scale).
-  double max_continuation_step() const;
+  double max_continuation_step() const { return k_.max_continuation_step(); }
 
  private:
   const Kinematics& k_;
@@ -127,39 +193,44 @@ class Workspace {
 };
 
 /// Solves at each input value in order, warm-starting from the previous one.
-/// Failures become states with status != ok; nothing is thrown for them.
+/// Failures become rows with status != ok; nothing is thrown for them.
 /// With threads > 1 a long run is split into chunks whose starting positions are
 /// found by continuation first, so the branch is the serial run's.
 /// With batch, consecutive values of a sweep are solved kLanes at a time on the
-/// batch (SIMD) tape, each block predicted from the last solution and checked to
-/// stay on its branch (else that block is solved one value at a time).
-std::vector<MotionState> analyse(const Kinematics& kinematics, const std::vector<double>& inputs,
-                                 double rate, double second_rate, unsigned threads = 1,
-                                 bool batch = true);
+/// batch (SIMD) tape, predicted from the rows before and checked to stay on their
+/// branch (else that block is solved one value at a time).
+MotionTable analyse(const Kinematics& kinematics, const std::vector<double>& inputs, double rate,
+                    double second_rate, unsigned threads = 1, bool batch = true);
 
-/// Solves blocks of input values at once on the batch tape.
+/// Solves blocks of kLanes consecutive input values at once, everything lane-parallel:
+/// the tape, the LU of Phi_q (partial pivoting by selects), Newton, rates, points.
 class BatchWorkspace {
  public:
-  static constexpr std::size_t kLanes = 16;
+  static constexpr std::size_t kLanes = CompiledExpressions::kBatchLanes;
   explicit BatchWorkspace(const Kinematics& kinematics);
 
-  /// Solves inputs[0, count) (count <= kLanes) from the predicted positions; fills
-  /// states (resized) only when every value converged on its predicted branch and
-  /// none is singular. Returns false otherwise (the caller solves them one by one).
-  bool solve(const double* inputs, std::size_t count, const std::vector<Eigen::VectorXd>& predicted,
-             double rate, double second_rate, std::vector<MotionState>& states);
+  /// Solves rows [first, first + kLanes) of `table` (inputs already stored), predicted
+  /// from the solved rows [history_begin, first) (at least row first - 1, status ok).
+  /// Writes the rows only when every value converged on its predicted branch,
+  /// clearly regular; returns false otherwise (the caller solves them one by one).
+  KINEMA_LANE_LOOPS bool solve(MotionTable& table, std::size_t first, std::size_t history_begin);
 
  private:
   const Kinematics& k_;
-  std::vector<double> registers_;
-  std::vector<Eigen::MatrixXd> lu_;                ///< Per lane.
-  std::vector<std::vector<Eigen::Index>> pivots_;  ///< Per lane.
-  Eigen::VectorXd x_, column_scale_;
-  std::vector<Eigen::VectorXd> q_, qd_;
+  std::size_t n_;
+  std::vector<double> registers_;  ///< Register r of lane l at r * kLanes + l.
+  std::vector<double> lu_;         ///< Element (i, j) of lane l at (i n + j) kLanes + l.
+  std::vector<double> pivots_;     ///< Row chosen at column c for lane l at c kLanes + l.
+  std::vector<double> x_, predicted_, column_scale_;
 
-  double& lane(std::size_t reg, std::size_t l) { return registers_[reg * kLanes + l]; }
-  /// Column-scaled Phi_q of lane l from the registers, factorised into lu_[l].
-  void factorise_lane(std::size_t l);
+  double* lanes(std::size_t reg) { return registers_.data() + reg * kLanes; }
+  KINEMA_LANE_LOOPS bool predict(const MotionTable& table, std::size_t first, std::size_t history_begin);
+  /// Column-scaled Phi_q from the registers, factorised; false unless every lane's
+  /// pivots are clearly regular (ratio >= 1e-2).
+  KINEMA_LANE_LOOPS bool factorise();
+  /// min/max |pivot| of each lane's factorisation.
+  KINEMA_LANE_LOOPS void pivot_ratios(double* ratio) const;
+  double pivot_ratio_[kLanes];
 };
 
 }  // namespace kinema

@@ -1,8 +1,12 @@
 #include <doctest/doctest.h>
 
+#include <array>
 #include <cmath>
+#include <limits>
+#include <random>
 
 #include "engine/compiled_expressions.hpp"
+#include "engine/simd_math.hpp"
 
 using namespace GiNaC;
 
@@ -58,27 +62,52 @@ TEST_CASE("stages share registers: a later stage reuses what an earlier one comp
   CHECK(v == doctest::Approx(-2.0 * std::sin(0.7) * 3.0));
 }
 
-TEST_CASE("batch evaluation equals scalar evaluation lane by lane") {
+TEST_CASE("batch evaluation gives the scalar evaluation's bits lane by lane") {
   realsymbol a("a"), t("t"), x("x");
   const std::vector<ex> stage0 = {a * cos(t) - pow(x, 3) / (2 * a), sqrt(a * a + x * x) * sin(t)};
   const std::vector<ex> stage1 = {atan2(x, a) + exp(x) * cos(t) - pow(a, -2) + tan(t) + abs(-x)};
   const kinema::CompiledExpressions tape({a, t, x}, std::vector<std::vector<ex>>{stage0, stage1});
-  constexpr std::size_t lanes = 13;  // not a multiple of the SIMD width
-  std::vector<double> batch = tape.make_batch_workspace(lanes);
-  for (std::size_t l = 0; l < lanes; ++l) {
-    batch[0 * lanes + l] = 1.5 + 0.1 * l;
-    batch[1 * lanes + l] = -1.0 + 0.3 * l;
-    batch[2 * lanes + l] = 0.2 * l;
-  }
-  tape.evaluate_stage_batch(0, batch, lanes);
-  tape.evaluate_stage_batch(1, batch, lanes);
+  constexpr std::size_t lanes = kinema::CompiledExpressions::kBatchLanes;
+  auto inputs = [](std::size_t l) {
+    // Lane 5 has an angle beyond the polynomial reduction's range (libm path).
+    return std::array<double, 3>{1.5 + 0.1 * l, l == 5 ? 1e7 + 0.3 : -1.0 + 0.3 * l, 0.2 * l};
+  };
+  std::vector<double> batch = tape.make_batch_workspace();
+  for (std::size_t l = 0; l < lanes; ++l)
+    for (std::size_t i = 0; i < 3; ++i) batch[i * lanes + l] = inputs(l)[i];
+  tape.evaluate_stage_batch(0, batch.data());
+  tape.evaluate_stage_batch(1, batch.data());
   std::vector<double> scalar = tape.make_workspace();
   for (std::size_t l = 0; l < lanes; ++l) {
-    const double in[3] = {1.5 + 0.1 * l, -1.0 + 0.3 * l, 0.2 * l};
+    CAPTURE(l);
     double out[3];
-    tape.evaluate(in, out, scalar);
-    CHECK(batch[tape.output_register(0, 0) * lanes + l] == doctest::Approx(out[0]).epsilon(1e-13));
-    CHECK(batch[tape.output_register(0, 1) * lanes + l] == doctest::Approx(out[1]).epsilon(1e-13));
-    CHECK(batch[tape.output_register(1, 0) * lanes + l] == doctest::Approx(out[2]).epsilon(1e-13));
+    tape.evaluate(inputs(l).data(), out, scalar);
+    CHECK(batch[tape.output_register(0, 0) * lanes + l] == out[0]);
+    CHECK(batch[tape.output_register(0, 1) * lanes + l] == out[1]);
+    CHECK(batch[tape.output_register(1, 0) * lanes + l] == out[2]);
+    const auto in = inputs(l);
+    CHECK(out[0] == doctest::Approx(in[0] * std::cos(in[1]) - std::pow(in[2], 3) / (2 * in[0])).epsilon(1e-13));
   }
+}
+
+TEST_CASE("the tape's sin and cos are within 2 ulp of libm, also past the reduction range") {
+  std::mt19937_64 generator(7);
+  for (const double range : {1.0, 100.0, 1e5, 1e8}) {
+    std::uniform_real_distribution<double> uniform(-range, range);
+    for (int i = 0; i < 20000; ++i) {
+      const double x = uniform(generator);
+      double s = 0, c = 0;
+      kinema::simd::sincos(x, s, c);
+      CAPTURE(x);
+      CHECK(std::fabs(s - std::sin(x)) <= 2 * std::numeric_limits<double>::epsilon() * std::max(std::fabs(s), 0.5));
+      CHECK(std::fabs(c - std::cos(x)) <= 2 * std::numeric_limits<double>::epsilon() * std::max(std::fabs(c), 0.5));
+    }
+  }
+  double s = 0, c = 0;
+  kinema::simd::sincos(std::nan(""), s, c);
+  CHECK(std::isnan(s));
+  CHECK(std::isnan(c));
+  kinema::simd::sincos(0.0, s, c);
+  CHECK(s == 0.0);
+  CHECK(c == 1.0);
 }

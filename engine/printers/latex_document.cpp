@@ -242,7 +242,7 @@ class DocumentWriter {
     align_rows(rows);
   }
 
-  void plots(const std::vector<MotionState>& sweep) {
+  void plots(const MotionTable& sweep) {
     if (sweep.empty()) return;
     const Dimension kind = m_.input.dimension;
     out_ << "\\clearpage\n\\subsection*{Over the input range}\nThe unknowns, their rates and second rates";
@@ -375,7 +375,7 @@ class DocumentWriter {
   void end_axis() { out_ << "\\end{axis}\n\\end{tikzpicture}\n\\end{minipage}\n"; }
 
   template <class X>
-  void singular_marks(const std::vector<MotionState>& sweep, X x_of) {
+  void singular_marks(const MotionTable& sweep, X x_of) {
     for (const MotionState& s : sweep) {
       if (s.status != Status::singular) continue;
       out_ << "\\draw[red, dashed] ({axis cs:" << coordinate(x_of(s)) << ",0}|-{rel axis cs:0,0}) -- ({axis cs:"
@@ -496,7 +496,7 @@ class DocumentWriter {
 }  // namespace
 
 void print_latex_document(std::ostream& out, const Mechanism& mechanism, const Derivation& derivation,
-                          const std::vector<MotionState>& at_values, const std::vector<MotionState>& sweep,
+                          const MotionTable& at_values, const MotionTable& sweep,
                           bool fragment) {
   DocumentWriter writer(out, mechanism, derivation);
   if (!fragment) writer.preamble();

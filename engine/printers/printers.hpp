@@ -24,7 +24,7 @@ void print_derivation_latex(std::ostream& out, const Mechanism& mechanism, const
 /// \input into notes) has no preamble; it needs amsmath, booktabs, tikz with the
 /// patterns library, and pgfplots.
 void print_latex_document(std::ostream& out, const Mechanism& mechanism, const Derivation& derivation,
-                          const std::vector<MotionState>& at_values, const std::vector<MotionState>& sweep,
+                          const MotionTable& at_values, const MotionTable& sweep,
                           bool fragment);
 
 /// A complex vector loop as course notes write it: a\,e^{i\theta_{2}} + ...
@@ -33,15 +33,15 @@ std::string latex_vector_loop(const GiNaC::ex& loop, const GiNaC::exmap& names, 
 
 /// Results for people: one block per input value.
 void print_results_table(std::ostream& out, const Mechanism& mechanism, const Derivation& derivation,
-                         const std::vector<MotionState>& states);
+                         const MotionTable& states);
 
 /// Results for spreadsheets: one row per input value, units in the header.
 void print_results_csv(std::ostream& out, const Mechanism& mechanism, const Derivation& derivation,
-                       const std::vector<MotionState>& states);
+                       const MotionTable& states);
 
 /// Results for programs (schema in README.md).
 void print_results_json(std::ostream& out, const Mechanism& mechanism, const Derivation& derivation,
-                        const std::vector<MotionState>& states);
+                        const MotionTable& states);
 
 /// Output-unit conversions shared by the printers.
 struct OutputScale {

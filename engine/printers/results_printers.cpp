@@ -41,7 +41,7 @@ std::string pad(const std::string& text, std::size_t width) {
 }  // namespace
 
 void print_results_table(std::ostream& out, const Mechanism& m, const Derivation& d,
-                         const std::vector<MotionState>& states) {
+                         const MotionTable& states) {
   const OutputScale scale(m);
   const Names names = names_of(d);
   const Dimension input_kind = m.input.dimension;
@@ -89,7 +89,7 @@ void print_results_table(std::ostream& out, const Mechanism& m, const Derivation
 }
 
 void print_results_csv(std::ostream& out, const Mechanism& m, const Derivation& d,
-                       const std::vector<MotionState>& states) {
+                       const MotionTable& states) {
   const OutputScale scale(m);
   const Names names = names_of(d);
   const Dimension input_kind = m.input.dimension;
@@ -138,7 +138,7 @@ void print_results_csv(std::ostream& out, const Mechanism& m, const Derivation& 
 }
 
 void print_results_json(std::ostream& out, const Mechanism& m, const Derivation& d,
-                        const std::vector<MotionState>& states) {
+                        const MotionTable& states) {
   using json = nlohmann::ordered_json;
   const OutputScale scale(m);
   const Names names = names_of(d);
