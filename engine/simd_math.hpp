@@ -3,7 +3,8 @@
 // polynomials, within about 1 ulp of libm for |x| < 1.6e6; larger or non-finite
 // arguments go to libm. glibc's sin/cos are scalar calls, and Eigen 3.4 does not
 // vectorise double sin/cos, so the batch tape needs its own. The scalar tape
-// uses the same arithmetic, so a value gives the same bits on either path.
+// uses the same formulas, so both paths agree to rounding (the AVX2 build may
+// fuse multiply-adds).
 #pragma once
 
 #include <cmath>
