@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 
 namespace kinema {
 
@@ -30,10 +31,15 @@ class TapeBuilder {
   }
 
  private:
+  using Op = CompiledExpressions::Op;
   CompiledExpressions& t_;
   std::map<ex, std::uint32_t, GiNaC::ex_is_less> memo_;
   std::map<double, std::uint32_t> constants_;
-  using Op = CompiledExpressions::Op;
+  /// Value numbering: an instruction already on the tape is not emitted again, so
+  /// sub-products that GiNaC's expression tree repeats (b*sin(theta3) inside several
+  /// terms) are computed once.
+  std::map<std::tuple<Op, std::uint32_t, std::uint32_t, int>, std::uint32_t> emitted_;
+  std::map<std::uint32_t, std::pair<std::uint32_t, std::uint32_t>> sincos_of_;
 
   std::uint32_t new_register(double initial) {
     t_.initial_registers_.push_back(initial);
@@ -49,8 +55,13 @@ class TapeBuilder {
   }
 
   std::uint32_t emit(Op op, std::uint32_t a, std::uint32_t b = 0, int exponent = 0) {
+    if ((op == Op::add || op == Op::mul) && b < a) std::swap(a, b);  // commutative: one key
+    const auto key = std::make_tuple(op, a, b, exponent);
+    auto found = emitted_.find(key);
+    if (found != emitted_.end()) return found->second;
     const std::uint32_t out = new_register(0.0);
     t_.instructions_.push_back({op, out, a, b, exponent});
+    emitted_[key] = out;
     return out;
   }
 
@@ -82,6 +93,9 @@ class TapeBuilder {
       return sum;
     }
     if (is_a<mul>(e)) {
+      // A coefficient -1 (GiNaC keeps it last) is a negation, not a multiplication.
+      const ex last = e.op(e.nops() - 1);
+      if (last.is_equal(-1)) return emit(Op::neg, compile(-e));
       std::uint32_t product = 0;
       std::uint32_t divisor = 0;
       bool have_product = false, have_divisor = false;
@@ -118,9 +132,14 @@ class TapeBuilder {
       if (name == "sin" || name == "cos") {
         // One sincos for both; memoise the partner so it is never recomputed.
         const std::uint32_t argument = compile(e.op(0));
-        const std::uint32_t sin_reg = new_register(0.0);
-        const std::uint32_t cos_reg = new_register(0.0);
-        t_.instructions_.push_back({Op::sincos, sin_reg, argument, cos_reg, 0});
+        auto found = sincos_of_.find(argument);
+        if (found == sincos_of_.end()) {
+          const std::uint32_t sin_reg = new_register(0.0);
+          const std::uint32_t cos_reg = new_register(0.0);
+          t_.instructions_.push_back({Op::sincos, sin_reg, argument, cos_reg, 0});
+          found = sincos_of_.emplace(argument, std::make_pair(sin_reg, cos_reg)).first;
+        }
+        const auto [sin_reg, cos_reg] = found->second;
         memo_[GiNaC::sin(e.op(0))] = sin_reg;
         memo_[GiNaC::cos(e.op(0))] = cos_reg;
         return name == "sin" ? sin_reg : cos_reg;
