@@ -320,9 +320,9 @@ KINEMA_LANE_LOOPS static void run_batch(
       case Op::pow: for (std::size_t l = 0; l < kLanes; ++l) out[l] = std::pow(a[l], b[l]); break;
       case Op::sincos: {
         double* __restrict cos_out = registers + in->b * kLanes;
-        bool in_range = true;
-        for (std::size_t l = 0; l < kLanes; ++l) in_range &= std::fabs(a[l]) <= simd::kSinCosLimit;
-        if (in_range) {
+        int outside = 0;  // an integer sum vectorises; a bool reduction does not
+        for (std::size_t l = 0; l < kLanes; ++l) outside += !(std::fabs(a[l]) <= simd::kSinCosLimit);
+        if (outside == 0) {
           for (std::size_t l = 0; l < kLanes; ++l) simd::sincos_reduced(a[l], out[l], cos_out[l]);
         } else {
           for (std::size_t l = 0; l < kLanes; ++l) simd::sincos(a[l], out[l], cos_out[l]);

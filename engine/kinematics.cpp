@@ -365,7 +365,7 @@ MotionTable::MotionTable(const std::vector<double>& inputs, std::size_t unknowns
       reciprocal_condition_(inputs.size()),
       status_(inputs.size(), Status::unassembled),
       message_(inputs.size()),
-      points_(inputs.size() * points) {}
+      points_(inputs.size() * points * 6) {}
 
 MotionState MotionTable::operator[](std::size_t row) const {
   MotionState s;
@@ -380,7 +380,8 @@ MotionState MotionTable::operator[](std::size_t row) const {
   if (s.status == Status::ok) {
     s.qd = qd(row);
     s.qdd = qdd(row);
-    s.points.assign(points_.begin() + row * points_per_row_, points_.begin() + (row + 1) * points_per_row_);
+    s.points.resize(points_per_row_);
+    for (std::size_t p = 0; p < points_per_row_; ++p) s.points[p] = point(row, p);
   }
   return s;
 }
@@ -391,13 +392,23 @@ void MotionTable::set(std::size_t row, const MotionState& s) {
   message_[row] = s.message;
   loop_residual_[row] = s.loop_residual;
   reciprocal_condition_[row] = s.reciprocal_condition;
+  const std::size_t rows = size();
   auto copy = [&](const Eigen::VectorXd& from, std::vector<double>& to) {
-    if (static_cast<std::size_t>(from.size()) == n_) std::copy(from.data(), from.data() + n_, to.begin() + row * n_);
+    if (static_cast<std::size_t>(from.size()) != n_) return;
+    for (std::size_t i = 0; i < n_; ++i) to[i * rows + row] = from[i];
   };
   copy(s.q, q_);
   copy(s.qd, qd_);
   copy(s.qdd, qdd_);
-  if (s.points.size() == points_per_row_) std::copy(s.points.begin(), s.points.end(), points_.begin() + row * points_per_row_);
+  if (s.points.size() == points_per_row_) {
+    double* v = points_.data() + row;
+    for (const PointMotion& m : s.points) {
+      for (double value : {m.x, m.y, m.vx, m.vy, m.ax, m.ay}) {
+        *v = value;
+        v += rows;
+      }
+    }
+  }
 }
 
 namespace {
@@ -515,9 +526,9 @@ bool BatchWorkspace::factorise() {
   // Clearly regular pivots only; anything near a toggle goes to the scalar path,
   // which decides singularity with the singular values.
   pivot_ratios(pivot_ratio_);
-  bool regular = true;
-  for (std::size_t l = 0; l < kLanes; ++l) regular &= pivot_ratio_[l] >= 1e-2;
-  return regular;
+  int irregular = 0;
+  for (std::size_t l = 0; l < kLanes; ++l) irregular += !(pivot_ratio_[l] >= 1e-2);
+  return irregular == 0;
 }
 
 void BatchWorkspace::pivot_ratios(double* ratio) const {
@@ -603,7 +614,7 @@ bool BatchWorkspace::solve(MotionTable& table, std::size_t first, std::size_t hi
   // factorisation (at the solution) also gives the rates. A lane that has converged
   // stays where it is, as the scalar solver stops there.
   double residual[kLanes];
-  bool done[kLanes];
+  double done[kLanes];  // 1 for a lane that has converged
   for (int iteration = 0;; ++iteration) {
     e.evaluate_stage_batch(Kinematics::kPositionStage, registers_.data());
     bool all_done = true;
@@ -616,13 +627,14 @@ bool BatchWorkspace::solve(MotionTable& table, std::size_t first, std::size_t hi
         residual[l] = (magnitude > residual[l] || magnitude != magnitude) ? magnitude : residual[l];
       }
     }
-    bool finite = true;
+    int nonfinite = 0, open = 0;
     for (std::size_t l = 0; l < kLanes; ++l) {
-      finite &= residual[l] <= DBL_MAX;
-      done[l] = residual[l] <= tolerance;
-      all_done &= done[l];
+      nonfinite += !(residual[l] <= DBL_MAX);
+      done[l] = residual[l] <= tolerance ? 1.0 : 0.0;
+      open += !(residual[l] <= tolerance);
     }
-    if (!finite) return false;
+    if (nonfinite) return false;
+    all_done = open == 0;
     if (!factorise()) return false;
     if (all_done) break;
     if (iteration == 6) return false;
@@ -633,17 +645,17 @@ bool BatchWorkspace::solve(MotionTable& table, std::size_t first, std::size_t hi
     lu_solve_lanes(lu_.data(), pivots_.data(), x_.data(), n);
     for (std::size_t i = 0; i < n; ++i) {
       double* q = lanes(base + 3 + i);
-      for (std::size_t l = 0; l < kLanes; ++l) q[l] += done[l] ? 0.0 : x_[i * kLanes + l] * column_scale_[i];
+      for (std::size_t l = 0; l < kLanes; ++l) q[l] += (1.0 - done[l]) * x_[i * kLanes + l] * column_scale_[i];
     }
   }
   // Same branch as predicted (as Workspace::predict_and_correct checks).
-  bool same_branch = true;
+  int jumped = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const double* q = lanes(base + 3 + i);
     const double* predicted = predicted_.data() + i * kLanes;
-    for (std::size_t l = 0; l < kLanes; ++l) same_branch &= std::fabs(q[l] - predicted[l]) <= 0.05 * column_scale_[i];
+    for (std::size_t l = 0; l < kLanes; ++l) jumped += !(std::fabs(q[l] - predicted[l]) <= 0.05 * column_scale_[i]);
   }
-  if (!same_branch) return false;
+  if (jumped) return false;
 
   // Velocity, then acceleration, with the factorisation at the solution.
   for (std::size_t i = 0; i < n; ++i) {
@@ -671,27 +683,25 @@ bool BatchWorkspace::solve(MotionTable& table, std::size_t first, std::size_t hi
   };
   for (std::size_t k = 0; k < 6 * point_count; ++k) accumulate(lanes(e.output_register(Kinematics::kPointStage, k)));
   for (std::size_t i = 0; i < 2 * n; ++i) accumulate(lanes(base + 3 + n + i));
-  bool finite = true;
-  for (std::size_t l = 0; l < kLanes; ++l) finite &= nonfinite[l] == 0.0;
-  if (!finite) return false;
+  int bad = 0;
+  for (std::size_t l = 0; l < kLanes; ++l) bad += nonfinite[l] != 0.0;
+  if (bad) return false;
 
+  // Lanes to rows: the table is column-major, so each quantity is one contiguous copy.
   for (std::size_t l = 0; l < kLanes; ++l) {
-    const std::size_t row = first + l;
-    table.status_[row] = Status::ok;
-    table.message_[row].clear();
-    table.loop_residual_[row] = residual[l];
-    table.reciprocal_condition_[row] = pivot_ratio_[l];
-    for (std::size_t i = 0; i < n; ++i) {
-      table.q_[row * n + i] = lanes(base + 3 + i)[l];
-      table.qd_[row * n + i] = lanes(base + 3 + n + i)[l];
-      table.qdd_[row * n + i] = lanes(base + 3 + 2 * n + i)[l];
-    }
-    for (std::size_t p = 0; p < point_count; ++p) {
-      double v[6];
-      for (std::size_t c = 0; c < 6; ++c) v[c] = lanes(e.output_register(Kinematics::kPointStage, 6 * p + c))[l];
-      table.points_[row * point_count + p] = {v[0], v[1], v[2], v[3], v[4], v[5]};
-    }
+    table.status_[first + l] = Status::ok;
+    table.message_[first + l].clear();
   }
+  const std::size_t rows = table.size();
+  std::copy_n(residual, kLanes, table.loop_residual_.data() + first);
+  std::copy_n(pivot_ratio_, kLanes, table.reciprocal_condition_.data() + first);
+  for (std::size_t i = 0; i < n; ++i) {
+    std::copy_n(lanes(base + 3 + i), kLanes, table.q_.data() + i * rows + first);
+    std::copy_n(lanes(base + 3 + n + i), kLanes, table.qd_.data() + i * rows + first);
+    std::copy_n(lanes(base + 3 + 2 * n + i), kLanes, table.qdd_.data() + i * rows + first);
+  }
+  for (std::size_t k = 0; k < 6 * point_count; ++k)
+    std::copy_n(lanes(e.output_register(Kinematics::kPointStage, k)), kLanes, table.points_.data() + k * rows + first);
   return true;
 }
 

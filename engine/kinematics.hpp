@@ -99,10 +99,15 @@ class MotionTable {
   Status status(std::size_t row) const { return status_[row]; }
   const std::string& message(std::size_t row) const { return message_[row]; }
   /// Coordinates, rates and second rates of a row (meaningful as MotionState says).
-  Eigen::Map<const Eigen::VectorXd> q(std::size_t row) const { return {q_.data() + row * n_, Eigen::Index(n_)}; }
-  Eigen::Map<const Eigen::VectorXd> qd(std::size_t row) const { return {qd_.data() + row * n_, Eigen::Index(n_)}; }
-  Eigen::Map<const Eigen::VectorXd> qdd(std::size_t row) const { return {qdd_.data() + row * n_, Eigen::Index(n_)}; }
-  const PointMotion& point(std::size_t row, std::size_t p) const { return points_[row * points_per_row_ + p]; }
+  using Column = Eigen::Map<const Eigen::VectorXd, 0, Eigen::InnerStride<>>;
+  Column q(std::size_t row) const { return column_view(q_, row); }
+  Column qd(std::size_t row) const { return column_view(qd_, row); }
+  Column qdd(std::size_t row) const { return column_view(qdd_, row); }
+  PointMotion point(std::size_t row, std::size_t p) const {
+    const double* v = points_.data() + p * 6 * size() + row;
+    const std::size_t rows = size();
+    return {v[0], v[rows], v[2 * rows], v[3 * rows], v[4 * rows], v[5 * rows]};
+  }
   double loop_residual(std::size_t row) const { return loop_residual_[row]; }
   double reciprocal_condition(std::size_t row) const { return reciprocal_condition_[row]; }
 
@@ -137,7 +142,12 @@ class MotionTable {
   std::vector<double> input_, q_, qd_, qdd_, loop_residual_, reciprocal_condition_;
   std::vector<Status> status_;
   std::vector<std::string> message_;
-  std::vector<PointMotion> points_;
+  /// Column-major: value i of row r at i * size() + r, so a block of rows is a
+  /// contiguous copy per quantity. Points: x, y, vx, vy, ax, ay of each point.
+  std::vector<double> points_;
+  Column column_view(const std::vector<double>& values, std::size_t row) const {
+    return Column(values.data() + row, Eigen::Index(n_), Eigen::InnerStride<>(Eigen::Index(size())));
+  }
 };
 
 /// Buffers for one thread of evaluation.
