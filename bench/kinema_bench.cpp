@@ -47,15 +47,15 @@ void kinema_scalar(benchmark::State& state, const std::string& name) {
   Case& c = case_for(name);
   const auto& input = c.model->mechanism.input;
   kinema::Workspace workspace(*c.model->kinematics);
-  Eigen::VectorXd q = c.solutions[0];
-  kinema::MotionState s;
-  std::size_t i = 0;
+  kinema::MotionState s = workspace.motion(c.angles[0], input.rate, input.second_rate, c.solutions[0]);
+  std::size_t i = 1;
   for (auto _ : state) {
-    const double theta = c.angles[i];
-    workspace.solve_position(theta, q);
-    workspace.motion_into(theta, input.rate, input.second_rate, q, s);
+    // One call per value, each from the last one, as a controller or a simulation steps
+    // (revolution after revolution).
+    const double theta = c.angles[i % c.angles.size()] + 2 * M_PI * static_cast<double>(i / c.angles.size());
+    if (!workspace.advance(theta, input.rate, input.second_rate, s)) state.SkipWithError("lost the branch");
     benchmark::DoNotOptimize(s.qdd.data());
-    i = (i + 1) % c.angles.size();
+    ++i;
   }
   state.SetItemsProcessed(state.iterations());
 }

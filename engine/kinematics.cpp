@@ -91,35 +91,30 @@ std::string Kinematics::describe_input(double input) const {
 
 Workspace::Workspace(const Kinematics& k)
     : k_(k),
+      n_(k.unknown_count_),
       registers_(k.evaluator_.make_workspace()),
       position_out_(k.evaluator_.stage_output_count(Kinematics::kPositionStage)),
       acceleration_out_(k.evaluator_.stage_output_count(Kinematics::kAccelerationStage)),
       point_out_(k.evaluator_.stage_output_count(Kinematics::kPointStage)),
-      phi_(k.unknown_count_),
-      phi_theta_(k.unknown_count_),
-      step_(k.unknown_count_),
-      trial_(k.unknown_count_),
-      column_scale_(k.unknown_count_),
-      rhs_(k.unknown_count_),
-      phi_q_(k.unknown_count_, k.unknown_count_),
-      lu_(k.unknown_count_, k.unknown_count_),
-      pivots_(k.unknown_count_) {
+      lu_(n_ * n_),
+      pivots_(n_),
+      column_scale_(n_),
+      rhs_(n_),
+      step_(n_),
+      trial_(n_),
+      predicted_(n_) {
   std::copy(k.parameter_values_.begin(), k.parameter_values_.end(), registers_.begin());
   // Columns of slider lengths are unitless, columns of angles are lengths:
   // scale them alike so the condition number does not depend on units.
-  for (std::size_t j = 0; j < k.unknown_count_; ++j)
+  for (std::size_t j = 0; j < n_; ++j)
     column_scale_[j] = k.mechanism_.unknowns[j].dimension == Dimension::length ? k.length_scale_ : 1.0;
 }
 
-
 void Workspace::evaluate_position(double input, const Eigen::VectorXd& q) {
-  const std::size_t base = k_.parameter_count_, n = k_.unknown_count_;
+  const std::size_t base = k_.parameter_count_;
   registers_[base] = input;
-  for (std::size_t i = 0; i < n; ++i) registers_[base + 3 + i] = q[i];
+  for (std::size_t i = 0; i < n_; ++i) registers_[base + 3 + i] = q[i];
   k_.evaluator_.evaluate_stage(Kinematics::kPositionStage, registers_, position_out_.data());
-  phi_ = Eigen::Map<const Eigen::VectorXd>(position_out_.data(), n);
-  phi_q_ = Eigen::Map<const Eigen::MatrixXd>(position_out_.data() + n, n, n);
-  phi_theta_ = Eigen::Map<const Eigen::VectorXd>(position_out_.data() + n + n * n, n);
   evaluated_ = true;
   evaluated_input_ = input;
 }
@@ -127,82 +122,103 @@ void Workspace::evaluate_position(double input, const Eigen::VectorXd& q) {
 bool Workspace::evaluated_at(double input, const Eigen::VectorXd& q) const {
   if (!evaluated_ || evaluated_input_ != input) return false;
   const std::size_t base = k_.parameter_count_;
-  for (std::size_t i = 0; i < k_.unknown_count_; ++i)
+  for (std::size_t i = 0; i < n_; ++i)
     if (registers_[base + 3 + i] != q[i]) return false;
   return true;
 }
 
+double Workspace::residual_norm() const {
+  double norm = 0;
+  for (std::size_t i = 0; i < n_; ++i) {
+    const double magnitude = std::fabs(phi()[i]);
+    if (std::isnan(magnitude)) return magnitude;
+    norm = std::max(norm, magnitude);
+  }
+  return norm;
+}
+
 namespace {
 
-// LU with partial pivoting, in place, for the small Phi_q of a mechanism
-// (hand-written so that nothing is allocated per input value).
-void lu_factor(Eigen::MatrixXd& lu, std::vector<Eigen::Index>& pivots) {
-  const Eigen::Index n = lu.rows();
-  for (Eigen::Index c = 0; c < n; ++c) {
-    Eigen::Index best = c;
-    for (Eigen::Index r = c + 1; r < n; ++r)
-      if (std::fabs(lu(r, c)) > std::fabs(lu(best, c))) best = r;
+// LU with partial pivoting, in place, row-major, for the small Phi_q of a mechanism
+// (plain loops: nothing allocated, nothing sized at run time by a library).
+void lu_factor(double* a, std::size_t* pivots, std::size_t n) {
+  for (std::size_t c = 0; c < n; ++c) {
+    std::size_t best = c;
+    for (std::size_t r = c + 1; r < n; ++r)
+      if (std::fabs(a[r * n + c]) > std::fabs(a[best * n + c])) best = r;
     pivots[c] = best;
-    if (best != c) lu.row(c).swap(lu.row(best));
-    if (lu(c, c) == 0.0) continue;  // singular: the pivot ratio reports it
-    for (Eigen::Index r = c + 1; r < n; ++r) {
-      lu(r, c) /= lu(c, c);
-      for (Eigen::Index j = c + 1; j < n; ++j) lu(r, j) -= lu(r, c) * lu(c, j);
+    if (best != c) std::swap_ranges(a + c * n, a + c * n + n, a + best * n);
+    const double pivot = a[c * n + c];
+    if (pivot == 0.0) continue;  // singular: the pivot ratio reports it
+    for (std::size_t r = c + 1; r < n; ++r) {
+      const double factor = a[r * n + c] /= pivot;
+      for (std::size_t j = c + 1; j < n; ++j) a[r * n + j] -= factor * a[c * n + j];
     }
   }
 }
 
 // Solves with lu_factor's result; x holds the right-hand side on entry.
-void lu_solve(const Eigen::MatrixXd& lu, const std::vector<Eigen::Index>& pivots, Eigen::VectorXd& x) {
-  const Eigen::Index n = lu.rows();
+void lu_solve(const double* a, const std::size_t* pivots, double* x, std::size_t n) {
   // Row swaps first: the rows of L are stored in their final order.
-  for (Eigen::Index c = 0; c < n; ++c)
+  for (std::size_t c = 0; c < n; ++c)
     if (pivots[c] != c) std::swap(x[c], x[pivots[c]]);
-  for (Eigen::Index c = 0; c < n; ++c)
-    for (Eigen::Index r = c + 1; r < n; ++r) x[r] -= lu(r, c) * x[c];
-  for (Eigen::Index c = n - 1; c >= 0; --c) {
-    x[c] /= lu(c, c);
-    for (Eigen::Index r = 0; r < c; ++r) x[r] -= lu(r, c) * x[c];
+  for (std::size_t c = 0; c < n; ++c)
+    for (std::size_t r = c + 1; r < n; ++r) x[r] -= a[r * n + c] * x[c];
+  for (std::size_t c = n; c-- > 0;) {
+    x[c] /= a[c * n + c];
+    for (std::size_t r = 0; r < c; ++r) x[r] -= a[r * n + c] * x[c];
   }
-}
-
-double pivot_ratio(const Eigen::MatrixXd& lu) {
-  const auto pivots = lu.diagonal().cwiseAbs();
-  const double ratio = pivots.minCoeff() / pivots.maxCoeff();
-  return std::isfinite(ratio) ? ratio : 0.0;
 }
 
 }  // namespace
 
 void Workspace::factorise() {
-  lu_.noalias() = phi_q_ * column_scale_.asDiagonal();
-  lu_factor(lu_, pivots_);
+  const double* phi_q = this->phi_q();
+  for (std::size_t i = 0; i < n_; ++i)
+    for (std::size_t j = 0; j < n_; ++j) lu_[i * n_ + j] = phi_q[j * n_ + i] * column_scale_[j];
+  lu_factor(lu_.data(), pivots_.data(), n_);
+}
+
+double Workspace::pivot_ratio() const {
+  double smallest = INFINITY, largest = 0;
+  for (std::size_t c = 0; c < n_; ++c) {
+    const double pivot = std::fabs(lu_[c * n_ + c]);
+    smallest = std::min(smallest, pivot);
+    largest = std::max(largest, pivot);
+  }
+  const double ratio = smallest / largest;
+  return std::isfinite(ratio) ? ratio : 0.0;
+}
+
+Eigen::MatrixXd Workspace::scaled_phi_q() const {
+  const Eigen::Index n = static_cast<Eigen::Index>(n_);
+  return Eigen::Map<const Eigen::MatrixXd>(phi_q(), n, n) *
+         Eigen::Map<const Eigen::VectorXd>(column_scale_.data(), n).asDiagonal();
 }
 
 double Workspace::reciprocal_condition() const {
-  const double ratio = pivot_ratio(lu_);
+  const double ratio = pivot_ratio();
   if (ratio == 0.0) return 0.0;
   // Well away from singular the pivots say so; the singular values (which
   // allocate) are only needed near a toggle, where they decide.
   if (ratio >= 1e-2) return ratio;
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(phi_q_ * column_scale_.asDiagonal());
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(scaled_phi_q());
   const auto& s = svd.singularValues();
   return s[0] > 0 && std::isfinite(s[0]) ? s[s.size() - 1] / s[0] : 0.0;
 }
 
-void Workspace::solve_rhs(Eigen::VectorXd& x) const {
-  x = rhs_;
-  lu_solve(lu_, pivots_, x);
-  x.array() *= column_scale_.array();
+void Workspace::solve_rhs(double* x) const {
+  std::copy(rhs_.begin(), rhs_.end(), x);
+  lu_solve(lu_.data(), pivots_.data(), x, n_);
+  for (std::size_t i = 0; i < n_; ++i) x[i] *= column_scale_[i];
 }
-
 
 bool Workspace::solve_position(double input, Eigen::VectorXd& q, std::size_t* worst_loop,
                                double* residual) {
   // Down to rounding: near a toggle the position error is the square root of the residual.
   const double tolerance = 1e-14 * k_.length_scale_;
   if (!evaluated_at(input, q)) evaluate_position(input, q);
-  double norm = phi_.lpNorm<Eigen::Infinity>();
+  double norm = residual_norm();
   bool converged = false;
   for (int iteration = 0; iteration < 60 && std::isfinite(norm); ++iteration) {
     if (norm <= tolerance) {
@@ -210,21 +226,22 @@ bool Workspace::solve_position(double input, Eigen::VectorXd& q, std::size_t* wo
       break;
     }
     factorise();
-    const auto pivots = lu_.diagonal().cwiseAbs();
-    if (pivots.minCoeff() > 1e-14 * pivots.maxCoeff()) {
-      rhs_ = -phi_;
-      solve_rhs(step_);
+    if (pivot_ratio() > 1e-14) {
+      for (std::size_t i = 0; i < n_; ++i) rhs_[i] = -phi()[i];
+      solve_rhs(step_.data());
     } else {
       // Least-squares step: stays defined where Phi_q is (nearly) singular.
-      step_ = phi_q_.completeOrthogonalDecomposition().solve(-phi_);
+      const Eigen::Index n = static_cast<Eigen::Index>(n_);
+      step_ = Eigen::Map<const Eigen::MatrixXd>(phi_q(), n, n).completeOrthogonalDecomposition().solve(
+          -Eigen::Map<const Eigen::VectorXd>(phi(), n));
     }
     if (!step_.allFinite()) break;
     double lambda = 1.0;
     bool improved = false;
     for (int halving = 0; halving < 30; ++halving, lambda *= 0.5) {
-      trial_ = q + lambda * step_;
+      for (std::size_t i = 0; i < n_; ++i) trial_[i] = q[i] + lambda * step_[i];
       evaluate_position(input, trial_);
-      const double trial_norm = phi_.lpNorm<Eigen::Infinity>();
+      const double trial_norm = residual_norm();
       if (std::isfinite(trial_norm) && trial_norm < norm) {
         improved = true;
         norm = trial_norm;
@@ -238,11 +255,12 @@ bool Workspace::solve_position(double input, Eigen::VectorXd& q, std::size_t* wo
   if (!converged && norm <= 1e-9 * k_.length_scale_) converged = true;
   if (!evaluated_at(input, q)) evaluate_position(input, q);
   if (worst_loop) {
-    Eigen::Index row = 0;
-    phi_.cwiseAbs().maxCoeff(&row);
-    *worst_loop = static_cast<std::size_t>(row) / 2;
+    std::size_t row = 0;
+    for (std::size_t i = 1; i < n_; ++i)
+      if (std::fabs(phi()[i]) > std::fabs(phi()[row])) row = i;
+    *worst_loop = row / 2;
   }
-  if (residual) *residual = phi_.lpNorm<Eigen::Infinity>();
+  if (residual) *residual = residual_norm();
   return converged && q.allFinite();
 }
 
@@ -250,8 +268,9 @@ bool Workspace::sensitivity(double input, const Eigen::VectorXd& q, Eigen::Vecto
   if (!evaluated_at(input, q)) evaluate_position(input, q);
   factorise();
   if (reciprocal_condition() < kSingularThreshold) return false;
-  rhs_ = -phi_theta_;
-  solve_rhs(dq);
+  for (std::size_t i = 0; i < n_; ++i) rhs_[i] = -phi_theta()[i];
+  dq.resize(static_cast<Eigen::Index>(n_));
+  solve_rhs(dq.data());
   return dq.allFinite();
 }
 
@@ -264,7 +283,7 @@ bool Workspace::predict_and_correct(double to, const Eigen::VectorXd& predicted,
   constexpr double branch_tolerance = 0.05;
   trial_q_ = predicted;
   if (!solve_position(to, trial_q_)) return false;
-  for (std::size_t i = 0; i < k_.unknown_count_; ++i) {
+  for (std::size_t i = 0; i < n_; ++i) {
     if (std::fabs(trial_q_[i] - predicted[i]) / column_scale_[i] > branch_tolerance) return false;
   }
   q = trial_q_;
@@ -278,7 +297,11 @@ bool Workspace::continue_to(double from, double to, Eigen::VectorXd& q, double* 
   double h = std::copysign(std::min(max_step, std::fabs(to - from)), to - from);
   while (t != to) {
     if (std::fabs(to - t) <= std::fabs(h) * (1 + 1e-12)) h = to - t;
-    const bool accepted = sensitivity(t, q, slope_) && predict_and_correct(t + h, q + slope_ * h, q);
+    bool accepted = sensitivity(t, q, slope_);
+    if (accepted) {
+      predicted_ = q + slope_ * h;
+      accepted = predict_and_correct(t + h, predicted_, q);
+    }
     if (accepted) {
       t = (h == to - t) ? to : t + h;
       h = std::copysign(std::min(max_step, 2 * std::fabs(h)), to - from);
@@ -293,6 +316,30 @@ bool Workspace::continue_to(double from, double to, Eigen::VectorXd& q, double* 
   return true;
 }
 
+bool Workspace::advance(double input, double rate, double second_rate, MotionState& state) {
+  if (state.status != Status::ok) return false;
+  const double h = input - state.input;
+  bool solved = false;
+  trial_q_ = state.q;
+  if (std::fabs(h) <= max_continuation_step() && state.input_rate != 0) {
+    // Second order in the input: the previous rates give dq/dtheta and d2q/dtheta2.
+    const double w = state.input_rate, alpha = state.input_second_rate;
+    for (std::size_t i = 0; i < n_; ++i) {
+      const double slope = state.qd[i] / w;
+      const double curvature = (state.qdd[i] - slope * alpha) / (w * w);
+      predicted_[i] = state.q[i] + h * (slope + 0.5 * h * curvature);
+    }
+    solved = predict_and_correct(input, predicted_, trial_q_);
+  }
+  if (!solved) {
+    trial_q_ = state.q;
+    solved = continue_to(state.input, input, trial_q_, nullptr);
+  }
+  if (!solved) return false;
+  motion_into(input, rate, second_rate, trial_q_, state);
+  return true;
+}
+
 MotionState Workspace::motion(double input, double rate, double second_rate,
                               const Eigen::VectorXd& q) {
   MotionState state;
@@ -302,7 +349,7 @@ MotionState Workspace::motion(double input, double rate, double second_rate,
 
 void Workspace::motion_into(double input, double rate, double second_rate, const Eigen::VectorXd& q,
                             MotionState& state) {
-  const std::size_t n = k_.unknown_count_;
+  const std::size_t n = n_;
   const std::size_t base = k_.parameter_count_;
   state.input = input;
   state.input_rate = rate;
@@ -310,7 +357,7 @@ void Workspace::motion_into(double input, double rate, double second_rate, const
   state.q = q;
   state.message.clear();
   if (!evaluated_at(input, q)) evaluate_position(input, q);
-  state.loop_residual = phi_.lpNorm<Eigen::Infinity>();
+  state.loop_residual = residual_norm();
   // One factorisation of Phi_q: the singularity test, then velocity and acceleration.
   factorise();
   state.reciprocal_condition = reciprocal_condition();
@@ -321,18 +368,17 @@ void Workspace::motion_into(double input, double rate, double second_rate, const
                     "velocities and accelerations are not defined there; choose a nearby value";
     return;
   }
-  state.qd.resize(n);
-  state.qdd.resize(n);
-  rhs_ = -phi_theta_ * rate;
-  solve_rhs(state.qd);
+  state.qd.resize(static_cast<Eigen::Index>(n));
+  state.qdd.resize(static_cast<Eigen::Index>(n));
+  for (std::size_t i = 0; i < n; ++i) rhs_[i] = -phi_theta()[i] * rate;
+  solve_rhs(state.qd.data());
 
   // Later stages reuse the registers of the position stage just evaluated at (input, q).
   registers_[base + 1] = rate;
   registers_[base + 2] = second_rate;
   for (std::size_t i = 0; i < n; ++i) registers_[base + 3 + n + i] = state.qd[i];
-  k_.evaluator_.evaluate_stage(Kinematics::kAccelerationStage, registers_, acceleration_out_.data());
-  rhs_ = Eigen::Map<const Eigen::VectorXd>(acceleration_out_.data(), n);
-  solve_rhs(state.qdd);
+  k_.evaluator_.evaluate_stage(Kinematics::kAccelerationStage, registers_, rhs_.data());
+  solve_rhs(state.qdd.data());
   for (std::size_t i = 0; i < n; ++i) registers_[base + 3 + 2 * n + i] = state.qdd[i];
   k_.evaluator_.evaluate_stage(Kinematics::kPointStage, registers_, point_out_.data());
   state.points.resize(k_.point_count_);
@@ -741,7 +787,9 @@ void analyse_range(const Kinematics& kinematics, std::size_t begin, std::size_t 
       const double previous_input = table.input(row - 1);
       const double h = input - previous_input;
       if (rate != 0 && std::fabs(h) <= kinematics.max_continuation_step()) {
-        predicted = q + table.qd(row - 1) * (h / rate);
+        // Second order: the rates of row - 1 give dq/dtheta and d2q/dtheta2.
+        const auto slope = table.qd(row - 1) / rate;
+        predicted = q + h * slope + (0.5 * h * h / (rate * rate)) * (table.qdd(row - 1) - slope * second_rate);
         solved = workspace.predict_and_correct(input, predicted, trial);
       }
       double stuck_at = previous_input;

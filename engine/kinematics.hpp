@@ -176,30 +176,48 @@ class Workspace {
   /// Newton from `predicted` at `to`; accepts (into q) only a solution close to the
   /// prediction, i.e. on the same branch.
   bool predict_and_correct(double to, const Eigen::VectorXd& predicted, Eigen::VectorXd& q);
+  /// Largest input step continuation takes at once (2 deg, or 1 % of the length scale).
   double max_continuation_step() const { return k_.max_continuation_step(); }
+
+  /// The next value along a path: from `state` (solved at a nearby input, status ok,
+  /// on the wanted branch) predicted to second order by its rates, corrected by Newton
+  /// and checked to stay on the branch (else continued in small steps); then rates and
+  /// points at `input` into `state`. False, with state unchanged, when the branch
+  /// cannot reach `input` (a limit or toggle position in between).
+  bool advance(double input, double rate, double second_rate, MotionState& state);
 
  private:
   const Kinematics& k_;
+  std::size_t n_;
   std::vector<double> registers_;  ///< Tape registers; the first ones are its inputs.
+  /// Position stage outputs: Phi, Phi_q (column-major), Phi_theta.
   std::vector<double> position_out_, acceleration_out_, point_out_;
-  Eigen::VectorXd phi_, phi_theta_, step_, trial_, column_scale_, rhs_, slope_, trial_q_;
-  Eigen::MatrixXd phi_q_;
-  /// LU (partial pivoting, in place) of Phi_q with columns scaled by column_scale_;
-  /// hand-written for small n so the hot path allocates nothing.
-  Eigen::MatrixXd lu_;
-  std::vector<Eigen::Index> pivots_;
+  /// LU (partial pivoting, in place, row-major) of Phi_q with columns scaled by
+  /// column_scale_; plain loops for small n, so the hot path allocates nothing.
+  std::vector<double> lu_;
+  std::vector<std::size_t> pivots_;
+  std::vector<double> column_scale_, rhs_;
+  Eigen::VectorXd step_, trial_, predicted_, slope_, trial_q_;
   bool evaluated_ = false;  ///< The position stage's registers hold (evaluated_input_, q).
   double evaluated_input_ = 0;
 
+  const double* phi() const { return position_out_.data(); }
+  const double* phi_q() const { return position_out_.data() + n_; }
+  const double* phi_theta() const { return position_out_.data() + n_ + n_ * n_; }
   void evaluate_position(double input, const Eigen::VectorXd& q);
   bool evaluated_at(double input, const Eigen::VectorXd& q) const;
+  /// max |Phi| at the evaluated position (NaN if any is).
+  double residual_norm() const;
   /// LU of Phi_q with its columns scaled by column_scale_.
   void factorise();
+  /// min/max |pivot| of the factorisation (0 when not finite).
+  double pivot_ratio() const;
+  Eigen::MatrixXd scaled_phi_q() const;
   /// Reciprocal condition of the scaled Phi_q from the factorisation: the pivot
-  /// ratio where that is clearly fine, else Eigen's 1-norm estimate.
+  /// ratio where that is clearly fine, else from the singular values.
   double reciprocal_condition() const;
   /// Solves Phi_q x = rhs_ with the factorisation (undoing the column scaling).
-  void solve_rhs(Eigen::VectorXd& x) const;
+  void solve_rhs(double* x) const;
 };
 
 /// Solves at each input value in order, warm-starting from the previous one.
