@@ -2,6 +2,7 @@
 
 #include "engine/simd_math.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <sstream>
@@ -17,10 +18,14 @@ class TapeBuilder {
  public:
   explicit TapeBuilder(CompiledExpressions& target) : t_(target) {}
 
-  void add_input(const ex& symbol) {
+  void add_input(const ex& symbol, int level) {
     if (!GiNaC::is_a<GiNaC::symbol>(symbol)) throw std::invalid_argument("input is not a symbol");
     memo_[symbol] = new_register(0.0);
+    level_.back() = level;
   }
+
+  /// Level of each register: the highest input level it depends on.
+  std::vector<int> level_;
 
   std::uint32_t compile(const ex& e) {
     auto found = memo_.find(e);
@@ -43,6 +48,7 @@ class TapeBuilder {
 
   std::uint32_t new_register(double initial) {
     t_.initial_registers_.push_back(initial);
+    level_.push_back(0);
     return static_cast<std::uint32_t>(t_.initial_registers_.size() - 1);
   }
 
@@ -61,6 +67,9 @@ class TapeBuilder {
     if (found != emitted_.end()) return found->second;
     const std::uint32_t out = new_register(0.0);
     t_.instructions_.push_back({op, out, a, b, exponent});
+    const bool binary = op == Op::add || op == Op::sub || op == Op::mul || op == Op::div || op == Op::pow ||
+                        op == Op::atan2;
+    level_[out] = binary ? std::max(level_[a], level_[b]) : level_[a];
     emitted_[key] = out;
     return out;
   }
@@ -137,6 +146,7 @@ class TapeBuilder {
           const std::uint32_t sin_reg = new_register(0.0);
           const std::uint32_t cos_reg = new_register(0.0);
           t_.instructions_.push_back({Op::sincos, sin_reg, argument, cos_reg, 0});
+          level_[sin_reg] = level_[cos_reg] = level_[argument];
           found = sincos_of_.emplace(argument, std::make_pair(sin_reg, cos_reg)).first;
         }
         const auto [sin_reg, cos_reg] = found->second;
@@ -163,16 +173,48 @@ CompiledExpressions::CompiledExpressions(const std::vector<GiNaC::ex>& inputs,
     : CompiledExpressions(inputs, std::vector<std::vector<GiNaC::ex>>{outputs}) {}
 
 CompiledExpressions::CompiledExpressions(const std::vector<GiNaC::ex>& inputs,
+                                         const std::vector<std::vector<GiNaC::ex>>& stages)
+    : CompiledExpressions(inputs, std::vector<int>(inputs.size(), 0), stages) {}
+
+CompiledExpressions::CompiledExpressions(const std::vector<GiNaC::ex>& inputs, const std::vector<int>& input_levels,
                                          const std::vector<std::vector<GiNaC::ex>>& stages) {
+  if (input_levels.size() != inputs.size()) throw std::invalid_argument("one level per input");
   TapeBuilder builder(*this);
   input_count_ = inputs.size();
-  for (const ex& input : inputs) builder.add_input(input);
+  for (int level : input_levels) levels_ = std::max(levels_, level + 1);
+  for (std::size_t i = 0; i < inputs.size(); ++i) builder.add_input(inputs[i], input_levels[i]);
   stage_outputs_.push_back(0);
+  std::size_t stage_begin = 0;
   for (const auto& stage : stages) {
     for (const ex& output : stage) output_registers_.push_back(builder.compile(output));
-    stage_end_.push_back(instructions_.size());
+    // Lower levels first: an instruction's level is at least its operands', so a
+    // stable sort keeps every operand ahead of its use.
+    auto level_of = [&](const Instruction& in) { return builder.level_[in.out]; };
+    std::stable_sort(instructions_.begin() + stage_begin, instructions_.end(),
+                     [&](const Instruction& x, const Instruction& y) { return level_of(x) < level_of(y); });
+    for (int level = 0; level <= levels_; ++level) {
+      level_begin_.push_back(static_cast<std::size_t>(
+          std::find_if(instructions_.begin() + stage_begin, instructions_.end(),
+                       [&](const Instruction& in) { return level_of(in) >= level; }) -
+          instructions_.begin()));
+    }
+    stage_begin = instructions_.size();
+    stage_end_.push_back(stage_begin);
     stage_outputs_.push_back(output_registers_.size());
   }
+}
+
+void CompiledExpressions::prepare(std::vector<double>& workspace) const {
+  for (std::size_t stage = 0; stage < stage_count(); ++stage)
+    run(level_begin(stage, 0), level_begin(stage, 1), workspace.data());
+}
+
+void CompiledExpressions::evaluate_stage_from(std::size_t stage, int level, std::vector<double>& workspace,
+                                              double* outputs) const {
+  double* r = workspace.data();
+  run(level_begin(stage, std::min(level, levels_)), stage_end_[stage], r);
+  for (std::size_t i = stage_outputs_[stage]; i < stage_outputs_[stage + 1]; ++i)
+    *outputs++ = r[output_registers_[i]];
 }
 
 void CompiledExpressions::write_cpp(std::ostream& out, const std::vector<std::string>& input_names,
@@ -345,6 +387,17 @@ KINEMA_LANE_LOOPS static void run_batch(
 void CompiledExpressions::evaluate_stage_batch(std::size_t stage, double* workspace) const {
   const Instruction* first = instructions_.data() + (stage == 0 ? 0 : stage_end_[stage - 1]);
   run_batch<Instruction, Op>(first, instructions_.data() + stage_end_[stage], workspace);
+}
+
+void CompiledExpressions::evaluate_stage_batch_from(std::size_t stage, int level, double* workspace) const {
+  run_batch<Instruction, Op>(instructions_.data() + level_begin(stage, std::min(level, levels_)),
+                             instructions_.data() + stage_end_[stage], workspace);
+}
+
+void CompiledExpressions::prepare_batch(double* workspace) const {
+  for (std::size_t stage = 0; stage < stage_count(); ++stage)
+    run_batch<Instruction, Op>(instructions_.data() + level_begin(stage, 0), instructions_.data() + level_begin(stage, 1),
+                               workspace);
 }
 
 void CompiledExpressions::evaluate(const double* inputs, double* outputs,

@@ -26,6 +26,24 @@ class CompiledExpressions {
   CompiledExpressions(const std::vector<GiNaC::ex>& inputs,
                       const std::vector<std::vector<GiNaC::ex>>& stages);
 
+  /// With input levels (how often each input changes: 0 = fixed, e.g. parameters;
+  /// higher = more often). Each stage's instructions are ordered by level (the
+  /// highest level among what they depend on), so a caller that changed only inputs
+  /// of level >= L reruns just the instructions of level >= L (evaluate_stage_from),
+  /// and those of level 0 run once (prepare).
+  CompiledExpressions(const std::vector<GiNaC::ex>& inputs, const std::vector<int>& input_levels,
+                      const std::vector<std::vector<GiNaC::ex>>& stages);
+
+  /// Runs every level-0 instruction of every stage (once the level-0 inputs are set).
+  void prepare(std::vector<double>& workspace) const;
+  /// Runs the instructions of one stage whose level is >= level; lower levels must
+  /// hold their values from an earlier run with the same inputs.
+  void evaluate_stage_from(std::size_t stage, int level, std::vector<double>& workspace, double* outputs) const;
+  /// The same on the batch workspace.
+  void evaluate_stage_batch_from(std::size_t stage, int level, double* workspace) const;
+  /// prepare() on a batch workspace.
+  void prepare_batch(double* workspace) const;
+
   /// Runs one stage on a workspace whose first input_count() registers hold the
   /// inputs and whose earlier stages were run with the same values of their inputs.
   void evaluate_stage(std::size_t stage, std::vector<double>& workspace, double* outputs) const;
@@ -80,6 +98,13 @@ class CompiledExpressions {
   std::vector<Instruction> instructions_;
   std::vector<std::uint32_t> output_registers_;
   std::vector<std::size_t> stage_end_;      ///< One past each stage's last instruction.
+  int levels_ = 1;                          ///< Distinct input levels (max level + 1).
+  /// First instruction of level L in stage s at level_begin_[s * (levels_ + 1) + L];
+  /// [.. + levels_] is the stage's end.
+  std::vector<std::size_t> level_begin_;
+  std::size_t level_begin(std::size_t stage, int level) const {
+    return level_begin_[stage * (levels_ + 1) + static_cast<std::size_t>(level)];
+  }
   std::vector<std::size_t> stage_outputs_;  ///< Output index where each stage starts (+ end).
   std::vector<double> initial_registers_;  ///< Inputs (overwritten), constants, temporaries.
 };

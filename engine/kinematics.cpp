@@ -72,7 +72,16 @@ Kinematics::Kinematics(const Mechanism& mechanism, const Derivation& d)
     points.push_back(d.point_acceleration_x[p]);
     points.push_back(d.point_acceleration_y[p]);
   }
-  evaluator_ = CompiledExpressions(inputs, {position, d.acceleration_rhs, points});
+  // Levels: parameters fixed; input and its rates per value; then q (per Newton
+  // iterate), qd, qdd. Work that depends only on the input (sin/cos of a crank angle)
+  // is not redone per iterate, and work on parameters alone is done once.
+  std::vector<int> levels(inputs.size(), 0);
+  const std::size_t first_input = d.closure.parameters.size();
+  for (std::size_t i = first_input; i < inputs.size(); ++i) {
+    const std::size_t k = i - first_input;
+    levels[i] = k < 3 ? kInputLevel : k < 3 + n ? kCoordinateLevel : k < 3 + 2 * n ? kCoordinateLevel + 1 : kCoordinateLevel + 2;
+  }
+  evaluator_ = CompiledExpressions(inputs, levels, {position, d.acceleration_rhs, points});
 }
 
 Eigen::VectorXd Kinematics::guess() const {
@@ -97,6 +106,7 @@ Workspace::Workspace(const Kinematics& k)
       acceleration_out_(k.evaluator_.stage_output_count(Kinematics::kAccelerationStage)),
       point_out_(k.evaluator_.stage_output_count(Kinematics::kPointStage)),
       lu_(n_ * n_),
+      inverse_pivots_(n_),
       pivots_(n_),
       column_scale_(n_),
       rhs_(n_),
@@ -104,6 +114,7 @@ Workspace::Workspace(const Kinematics& k)
       trial_(n_),
       predicted_(n_) {
   std::copy(k.parameter_values_.begin(), k.parameter_values_.end(), registers_.begin());
+  k.evaluator_.prepare(registers_);
   // Columns of slider lengths are unitless, columns of angles are lengths:
   // scale them alike so the condition number does not depend on units.
   for (std::size_t j = 0; j < n_; ++j)
@@ -112,9 +123,11 @@ Workspace::Workspace(const Kinematics& k)
 
 void Workspace::evaluate_position(double input, const Eigen::VectorXd& q) {
   const std::size_t base = k_.parameter_count_;
+  // Only q changed (a Newton iterate): what depends on the input alone still holds.
+  const int level = evaluated_ && evaluated_input_ == input ? Kinematics::kCoordinateLevel : Kinematics::kInputLevel;
   registers_[base] = input;
   for (std::size_t i = 0; i < n_; ++i) registers_[base + 3 + i] = q[i];
-  k_.evaluator_.evaluate_stage(Kinematics::kPositionStage, registers_, position_out_.data());
+  k_.evaluator_.evaluate_stage_from(Kinematics::kPositionStage, level, registers_, position_out_.data());
   evaluated_ = true;
   evaluated_input_ = input;
 }
@@ -157,15 +170,16 @@ void lu_factor(double* a, std::size_t* pivots, std::size_t n) {
   }
 }
 
-// Solves with lu_factor's result; x holds the right-hand side on entry.
-void lu_solve(const double* a, const std::size_t* pivots, double* x, std::size_t n) {
+// Solves with lu_factor's result and the reciprocals of its pivots (a multiply is
+// much quicker than a divide on the dependent chain); x holds the right-hand side.
+void lu_solve(const double* a, const double* inverse_pivots, const std::size_t* pivots, double* x, std::size_t n) {
   // Row swaps first: the rows of L are stored in their final order.
   for (std::size_t c = 0; c < n; ++c)
     if (pivots[c] != c) std::swap(x[c], x[pivots[c]]);
   for (std::size_t c = 0; c < n; ++c)
     for (std::size_t r = c + 1; r < n; ++r) x[r] -= a[r * n + c] * x[c];
   for (std::size_t c = n; c-- > 0;) {
-    x[c] /= a[c * n + c];
+    x[c] *= inverse_pivots[c];
     for (std::size_t r = 0; r < c; ++r) x[r] -= a[r * n + c] * x[c];
   }
 }
@@ -177,6 +191,7 @@ void Workspace::factorise() {
   for (std::size_t i = 0; i < n_; ++i)
     for (std::size_t j = 0; j < n_; ++j) lu_[i * n_ + j] = phi_q[j * n_ + i] * column_scale_[j];
   lu_factor(lu_.data(), pivots_.data(), n_);
+  for (std::size_t c = 0; c < n_; ++c) inverse_pivots_[c] = 1.0 / lu_[c * n_ + c];
 }
 
 double Workspace::pivot_ratio() const {
@@ -208,8 +223,8 @@ double Workspace::reciprocal_condition() const {
 }
 
 void Workspace::solve_rhs(double* x) const {
-  std::copy(rhs_.begin(), rhs_.end(), x);
-  lu_solve(lu_.data(), pivots_.data(), x, n_);
+  for (std::size_t i = 0; i < n_; ++i) x[i] = rhs_[i];
+  lu_solve(lu_.data(), inverse_pivots_.data(), pivots_.data(), x, n_);
   for (std::size_t i = 0; i < n_; ++i) x[i] *= column_scale_[i];
 }
 
@@ -377,10 +392,10 @@ void Workspace::motion_into(double input, double rate, double second_rate, const
   registers_[base + 1] = rate;
   registers_[base + 2] = second_rate;
   for (std::size_t i = 0; i < n; ++i) registers_[base + 3 + n + i] = state.qd[i];
-  k_.evaluator_.evaluate_stage(Kinematics::kAccelerationStage, registers_, rhs_.data());
+  k_.evaluator_.evaluate_stage_from(Kinematics::kAccelerationStage, Kinematics::kInputLevel, registers_, rhs_.data());
   solve_rhs(state.qdd.data());
   for (std::size_t i = 0; i < n; ++i) registers_[base + 3 + 2 * n + i] = state.qdd[i];
-  k_.evaluator_.evaluate_stage(Kinematics::kPointStage, registers_, point_out_.data());
+  k_.evaluator_.evaluate_stage_from(Kinematics::kPointStage, Kinematics::kInputLevel, registers_, point_out_.data());
   state.points.resize(k_.point_count_);
   bool finite = state.qd.allFinite() && state.qdd.allFinite();
   for (std::size_t p = 0; p < k_.point_count_; ++p) {
@@ -556,6 +571,7 @@ BatchWorkspace::BatchWorkspace(const Kinematics& k)
       predicted_(n_ * kLanes),
       column_scale_(n_) {
   for (std::size_t p = 0; p < k.parameter_count_; ++p) std::fill_n(lanes(p), kLanes, k.parameter_values_[p]);
+  k.evaluator_.prepare_batch(registers_.data());
   for (std::size_t j = 0; j < n_; ++j)
     column_scale_[j] = k.mechanism_.unknowns[j].dimension == Dimension::length ? k.length_scale_ : 1.0;
 }
@@ -662,7 +678,9 @@ bool BatchWorkspace::solve(MotionTable& table, std::size_t first, std::size_t hi
   double residual[kLanes];
   double done[kLanes];  // 1 for a lane that has converged
   for (int iteration = 0;; ++iteration) {
-    e.evaluate_stage_batch(Kinematics::kPositionStage, registers_.data());
+    e.evaluate_stage_batch_from(Kinematics::kPositionStage,
+                                iteration == 0 ? Kinematics::kInputLevel : Kinematics::kCoordinateLevel,
+                                registers_.data());
     bool all_done = true;
     for (std::size_t l = 0; l < kLanes; ++l) residual[l] = 0;
     for (std::size_t i = 0; i < n; ++i) {
@@ -713,7 +731,7 @@ bool BatchWorkspace::solve(MotionTable& table, std::size_t first, std::size_t hi
     double* qd = lanes(base + 3 + n + i);
     for (std::size_t l = 0; l < kLanes; ++l) qd[l] = x_[i * kLanes + l] * column_scale_[i];
   }
-  e.evaluate_stage_batch(Kinematics::kAccelerationStage, registers_.data());
+  e.evaluate_stage_batch_from(Kinematics::kAccelerationStage, Kinematics::kInputLevel, registers_.data());
   for (std::size_t i = 0; i < n; ++i)
     std::copy_n(lanes(e.output_register(Kinematics::kAccelerationStage, i)), kLanes, x_.data() + i * kLanes);
   lu_solve_lanes(lu_.data(), pivots_.data(), x_.data(), n);
@@ -721,7 +739,7 @@ bool BatchWorkspace::solve(MotionTable& table, std::size_t first, std::size_t hi
     double* qdd = lanes(base + 3 + 2 * n + i);
     for (std::size_t l = 0; l < kLanes; ++l) qdd[l] = x_[i * kLanes + l] * column_scale_[i];
   }
-  e.evaluate_stage_batch(Kinematics::kPointStage, registers_.data());
+  e.evaluate_stage_batch_from(Kinematics::kPointStage, Kinematics::kInputLevel, registers_.data());
   // x * 0 is 0 for finite x and NaN otherwise: one sum per lane says whether all are finite.
   double nonfinite[kLanes] = {};
   auto accumulate = [&](const double* v) {

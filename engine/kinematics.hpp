@@ -40,6 +40,9 @@ class Kinematics {
   /// (x, y, vx, vy, ax, ay per point).
   const CompiledExpressions& evaluator() const { return evaluator_; }
   static constexpr std::size_t kPositionStage = 0, kAccelerationStage = 1, kPointStage = 2;
+  /// Input levels of the evaluator: parameters 0 (prepared once), input and rates,
+  /// then coordinates (qd, qdd above them).
+  static constexpr int kInputLevel = 1, kCoordinateLevel = 2;
   const std::vector<double>& parameter_values() const { return parameter_values_; }
 
  private:
@@ -194,7 +197,7 @@ class Workspace {
   std::vector<double> position_out_, acceleration_out_, point_out_;
   /// LU (partial pivoting, in place, row-major) of Phi_q with columns scaled by
   /// column_scale_; plain loops for small n, so the hot path allocates nothing.
-  std::vector<double> lu_;
+  std::vector<double> lu_, inverse_pivots_;
   std::vector<std::size_t> pivots_;
   std::vector<double> column_scale_, rhs_;
   Eigen::VectorXd step_, trial_, predicted_, slope_, trial_q_;
