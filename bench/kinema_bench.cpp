@@ -72,6 +72,24 @@ void kinema_sweep(benchmark::State& state, const std::string& name) {
   state.SetItemsProcessed(state.iterations() * c.angles.size());
 }
 
+// The large job: Problem 4.4 over 10^6 values of one revolution, results kept.
+void kinema_sweep_million(benchmark::State& state, unsigned threads) {
+  Case& c = case_for("problem_4_4_six_bar.toml");
+  const auto& input = c.model->mechanism.input;
+  constexpr std::size_t kValues = 1000000;
+  std::vector<double> angles(kValues);
+  for (std::size_t i = 0; i < kValues; ++i) angles[i] = c.angles[0] + 2 * M_PI * static_cast<double>(i) / kValues;
+  std::size_t bytes = 0, batch_rows = 0;
+  for (auto _ : state) {
+    const auto table = kinema::analyse(*c.model->kinematics, angles, input.rate, input.second_rate, threads);
+    benchmark::DoNotOptimize(table.q(kValues - 1).data());
+    bytes = table.bytes();
+    batch_rows = table.batch_rows();
+  }
+  state.counters["table_MB"] = static_cast<double>(bytes) / 1e6;
+  state.counters["batch_share"] = static_cast<double>(batch_rows) / kValues;
+}
+
 void derivation(benchmark::State& state, const std::string& name) {
   for (auto _ : state) {
     kinema::Model model = kinema::load_model(sample_path(name));
@@ -235,6 +253,12 @@ int main(int argc, char** argv) {
     benchmark::RegisterBenchmark(("ginac_subs_evalf/" + s).c_str(), ginac_subs_evalf, s);
     benchmark::RegisterBenchmark(("ginac_compile_ex/" + s).c_str(), ginac_compile_ex, s);
     benchmark::RegisterBenchmark(("derivation/" + s).c_str(), derivation, s)->Unit(benchmark::kMillisecond);
+  }
+  for (unsigned threads : {1u, 2u}) {
+    benchmark::RegisterBenchmark(("kinema_sweep_1e6/problem_4_4_six_bar.toml/threads:" + std::to_string(threads)).c_str(),
+                                 kinema_sweep_million, threads)
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime();
   }
   benchmark::RegisterBenchmark("closed_form/four_bar.toml", closed_form_four_bar);
   benchmark::RegisterBenchmark("closed_form/slider_crank.toml", closed_form_slider_crank);

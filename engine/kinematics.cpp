@@ -428,6 +428,16 @@ MotionTable::MotionTable(const std::vector<double>& inputs, std::size_t unknowns
       message_(inputs.size()),
       points_(inputs.size() * points * 6) {}
 
+std::size_t MotionTable::bytes() const {
+  std::size_t total = sizeof(double) * (input_.capacity() + q_.capacity() + qd_.capacity() + qdd_.capacity() +
+                                        loop_residual_.capacity() + reciprocal_condition_.capacity() +
+                                        points_.capacity());
+  total += sizeof(Status) * status_.capacity() + sizeof(std::string) * message_.capacity();
+  for (const std::string& message : message_)
+    if (message.capacity() > 15) total += message.capacity() + 1;  // beyond the small-string buffer
+  return total;
+}
+
 MotionState MotionTable::operator[](std::size_t row) const {
   MotionState s;
   s.input = input_[row];
@@ -772,9 +782,10 @@ bool BatchWorkspace::solve(MotionTable& table, std::size_t first, std::size_t hi
 namespace {
 
 // Solves rows [begin, end) of the table in order from q (a solution at inputs[begin]
-// or a guess); rows before begin belong to another thread and are not read.
+// or a guess); rows before begin belong to another thread and are not read. Adds the
+// rows solved in SIMD blocks to batch_rows.
 void analyse_range(const Kinematics& kinematics, std::size_t begin, std::size_t end, Eigen::VectorXd q,
-                   MotionTable& table, bool batch) {
+                   MotionTable& table, bool batch, std::size_t& batch_rows) {
   const double rate = table.input_rate(), second_rate = table.input_second_rate();
   Workspace workspace(kinematics);
   std::unique_ptr<BatchWorkspace> batch_workspace;
@@ -790,6 +801,7 @@ void analyse_range(const Kinematics& kinematics, std::size_t begin, std::size_t 
     if (batch_workspace && have_previous && row >= next_batch_try && row + BatchWorkspace::kLanes <= end &&
         table.message(row - 1).empty()) {
       if (batch_workspace->solve(table, row, begin)) {
+        batch_rows += BatchWorkspace::kLanes;
         row += BatchWorkspace::kLanes - 1;
         q = table.q(row);
         continue;
@@ -885,15 +897,17 @@ MotionTable analyse(const Kinematics& kinematics, const std::vector<double>& inp
     }
   }
   if (threads == 1) {
-    analyse_range(kinematics, 0, n, start[0], table, batch);
+    analyse_range(kinematics, 0, n, start[0], table, batch, table.batch_rows_);
     return table;
   }
   std::vector<std::thread> workers;
+  std::vector<std::size_t> batch_rows(threads, 0);
   for (unsigned t = 0; t < threads; ++t) {
     workers.emplace_back(analyse_range, std::cref(kinematics), begin[t], begin[t + 1], start[t], std::ref(table),
-                         batch);
+                         batch, std::ref(batch_rows[t]));
   }
   for (auto& worker : workers) worker.join();
+  for (std::size_t rows : batch_rows) table.batch_rows_ += rows;
   return table;
 }
 

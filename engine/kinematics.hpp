@@ -97,6 +97,10 @@ class MotionTable {
   std::size_t point_count() const { return points_per_row_; }
   double input_rate() const { return rate_; }
   double input_second_rate() const { return second_rate_; }
+  /// How many rows analyse() solved in SIMD blocks (the rest one by one): a diagnostic.
+  std::size_t batch_rows() const { return batch_rows_; }
+  /// Heap bytes held by the table (for the benchmark's memory figure).
+  std::size_t bytes() const;
 
   double input(std::size_t row) const { return input_[row]; }
   Status status(std::size_t row) const { return status_[row]; }
@@ -140,7 +144,8 @@ class MotionTable {
 
  private:
   friend class BatchWorkspace;
-  std::size_t n_ = 0, points_per_row_ = 0;
+  friend MotionTable analyse(const Kinematics&, const std::vector<double>&, double, double, unsigned, bool);
+  std::size_t n_ = 0, points_per_row_ = 0, batch_rows_ = 0;
   double rate_ = 0, second_rate_ = 0;
   std::vector<double> input_, q_, qd_, qdd_, loop_residual_, reciprocal_condition_;
   std::vector<Status> status_;

@@ -27,6 +27,10 @@ TEST_CASE("batch (SIMD blocks), threads and both equal the scalar one-by-one run
     CAPTURE(batch);
     const auto parallel = kinema::analyse(*model.kinematics, inputs, input.rate, input.second_rate, threads, batch);
     REQUIRE(serial.size() == parallel.size());
+    CHECK(serial.batch_rows() == 0);
+    // The SIMD path does the bulk of a fine sweep (not a fallback that never engages).
+    if (batch) CHECK(parallel.batch_rows() >= serial.size() / 2);
+    if (!batch) CHECK(parallel.batch_rows() == 0);
     int ok = 0;
     for (std::size_t i = 0; i < serial.size(); ++i) {
       CAPTURE(i);
