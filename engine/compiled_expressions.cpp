@@ -14,6 +14,11 @@ namespace kinema {
 
 using GiNaC::ex;
 
+bool CompiledExpressions::is_binary(Op op) {
+  return op == Op::add || op == Op::sub || op == Op::mul || op == Op::div || op == Op::pow || op == Op::atan2 ||
+         op == Op::mul_add || op == Op::mul_sub || op == Op::sub_mul;
+}
+
 class TapeBuilder {
  public:
   explicit TapeBuilder(CompiledExpressions& target) : t_(target) {}
@@ -67,9 +72,7 @@ class TapeBuilder {
     if (found != emitted_.end()) return found->second;
     const std::uint32_t out = new_register(0.0);
     t_.instructions_.push_back({op, out, a, b, exponent});
-    const bool binary = op == Op::add || op == Op::sub || op == Op::mul || op == Op::div || op == Op::pow ||
-                        op == Op::atan2;
-    level_[out] = binary ? std::max(level_[a], level_[b]) : level_[a];
+    level_[out] = CompiledExpressions::is_binary(op) ? std::max(level_[a], level_[b]) : level_[a];
     emitted_[key] = out;
     return out;
   }
@@ -202,6 +205,59 @@ CompiledExpressions::CompiledExpressions(const std::vector<GiNaC::ex>& inputs, c
     stage_end_.push_back(stage_begin);
     stage_outputs_.push_back(output_registers_.size());
   }
+  fuse_multiply_adds(builder.level_);
+}
+
+void CompiledExpressions::fuse_multiply_adds(const std::vector<int>& register_levels) {
+  const std::size_t registers = initial_registers_.size();
+  std::vector<int> uses(registers, 0);
+  std::vector<std::size_t> producer(registers, instructions_.size());
+  for (std::size_t k = 0; k < instructions_.size(); ++k) {
+    const Instruction& in = instructions_[k];
+    producer[in.out] = k;
+    ++uses[in.a];
+    if (is_binary(in.op)) ++uses[in.b];
+  }
+  for (std::uint32_t reg : output_registers_) uses[reg] += 2;  // outputs are read by the caller
+  // Stage of each instruction (fusing across stages would move work between them).
+  std::vector<std::size_t> stage_of(instructions_.size());
+  for (std::size_t stage = 0, k = 0; stage < stage_end_.size(); ++stage)
+    for (; k < stage_end_[stage]; ++k) stage_of[k] = stage;
+  std::vector<bool> removed(instructions_.size(), false);
+  auto fusable = [&](std::uint32_t reg, std::size_t user) {
+    const std::size_t k = producer[reg];
+    return k < user && !removed[k] && instructions_[k].op == Op::mul && uses[reg] == 1 &&
+           stage_of[k] == stage_of[user] && register_levels[reg] == register_levels[instructions_[user].out];
+  };
+  for (std::size_t k = 0; k < instructions_.size(); ++k) {
+    Instruction& in = instructions_[k];
+    if (in.op != Op::add && in.op != Op::sub) continue;
+    std::uint32_t product = 0, other = 0;
+    Op fused;
+    if (fusable(in.a, k)) {
+      product = in.a;
+      other = in.b;
+      fused = in.op == Op::add ? Op::mul_add : Op::mul_sub;
+    } else if (fusable(in.b, k)) {
+      product = in.b;
+      other = in.a;
+      fused = in.op == Op::add ? Op::mul_add : Op::sub_mul;
+    } else {
+      continue;
+    }
+    const Instruction& multiply = instructions_[producer[product]];
+    removed[producer[product]] = true;
+    in = {fused, in.out, multiply.a, multiply.b, 0, other};
+  }
+  // Compact, moving the stage and level boundaries with it.
+  std::vector<std::size_t> kept_before(instructions_.size() + 1, 0);
+  for (std::size_t k = 0; k < instructions_.size(); ++k) kept_before[k + 1] = kept_before[k] + (removed[k] ? 0 : 1);
+  std::size_t next = 0;
+  for (std::size_t k = 0; k < instructions_.size(); ++k)
+    if (!removed[k]) instructions_[next++] = instructions_[k];
+  instructions_.resize(next);
+  for (std::size_t& end : stage_end_) end = kept_before[end];
+  for (std::size_t& begin : level_begin_) begin = kept_before[begin];
 }
 
 void CompiledExpressions::prepare(std::vector<double>& workspace) const {
@@ -232,9 +288,8 @@ void CompiledExpressions::write_cpp(std::ostream& out, const std::vector<std::st
     if (!live[in.out] && !(in.op == Op::sincos && live[in.b])) continue;
     needed[k] = true;
     live[in.a] = true;
-    if (in.op == Op::add || in.op == Op::sub || in.op == Op::mul || in.op == Op::div ||
-        in.op == Op::pow || in.op == Op::atan2)
-      live[in.b] = true;
+    if (is_binary(in.op)) live[in.b] = true;
+    if (in.op == Op::mul_add || in.op == Op::mul_sub || in.op == Op::sub_mul) live[in.c] = true;
   }
   std::vector<bool> computed(initial_registers_.size(), false);
   for (const Instruction& in : instructions_) {
@@ -257,7 +312,7 @@ void CompiledExpressions::write_cpp(std::ostream& out, const std::vector<std::st
   for (std::size_t k = 0; k < stage_end_[stage]; ++k) {
     if (!needed[k]) continue;
     const Instruction& in = instructions_[k];
-    const std::string a = operand(in.a), b = operand(in.b);
+    const std::string a = operand(in.a), b = operand(in.b), c = operand(in.c);
     switch (in.op) {
       case Op::add: define(in.out, a + " + " + b); break;
       case Op::sub: define(in.out, a + " - " + b); break;
@@ -280,6 +335,9 @@ void CompiledExpressions::write_cpp(std::ostream& out, const std::vector<std::st
       case Op::asin: define(in.out, "std::asin(" + a + ")"); break;
       case Op::acos: define(in.out, "std::acos(" + a + ")"); break;
       case Op::atan: define(in.out, "std::atan(" + a + ")"); break;
+      case Op::mul_add: define(in.out, a + " * " + b + " + " + c); break;
+      case Op::mul_sub: define(in.out, a + " * " + b + " - " + c); break;
+      case Op::sub_mul: define(in.out, c + " - " + a + " * " + b); break;
     }
   }
   for (std::size_t k = 0; k < output_targets.size(); ++k) {
@@ -322,6 +380,9 @@ void CompiledExpressions::run(std::size_t begin, std::size_t end, double* r) con
       case Op::asin: r[in.out] = std::asin(r[in.a]); break;
       case Op::acos: r[in.out] = std::acos(r[in.a]); break;
       case Op::atan: r[in.out] = std::atan(r[in.a]); break;
+      case Op::mul_add: r[in.out] = r[in.a] * r[in.b] + r[in.c]; break;
+      case Op::mul_sub: r[in.out] = r[in.a] * r[in.b] - r[in.c]; break;
+      case Op::sub_mul: r[in.out] = r[in.c] - r[in.a] * r[in.b]; break;
     }
   }
 }
@@ -380,6 +441,21 @@ KINEMA_LANE_LOOPS static void run_batch(
       case Op::asin: for (std::size_t l = 0; l < kLanes; ++l) out[l] = std::asin(a[l]); break;
       case Op::acos: for (std::size_t l = 0; l < kLanes; ++l) out[l] = std::acos(a[l]); break;
       case Op::atan: for (std::size_t l = 0; l < kLanes; ++l) out[l] = std::atan(a[l]); break;
+      case Op::mul_add: {
+        const double* __restrict c = registers + in->c * kLanes;
+        for (std::size_t l = 0; l < kLanes; ++l) out[l] = a[l] * b[l] + c[l];
+        break;
+      }
+      case Op::mul_sub: {
+        const double* __restrict c = registers + in->c * kLanes;
+        for (std::size_t l = 0; l < kLanes; ++l) out[l] = a[l] * b[l] - c[l];
+        break;
+      }
+      case Op::sub_mul: {
+        const double* __restrict c = registers + in->c * kLanes;
+        for (std::size_t l = 0; l < kLanes; ++l) out[l] = c[l] - a[l] * b[l];
+        break;
+      }
     }
   }
 }

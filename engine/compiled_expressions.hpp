@@ -84,13 +84,22 @@ class CompiledExpressions {
  private:
   enum class Op : std::uint8_t {
     add, sub, mul, div, neg, square, powi, pow, sincos, tan, exp, log, sqrt, abs, atan2,
-    asin, acos, atan
+    asin, acos, atan,
+    mul_add,  ///< a * b + c
+    mul_sub,  ///< a * b - c
+    sub_mul   ///< c - a * b
   };
   struct Instruction {
     Op op;
     std::uint32_t out, a, b;  ///< Registers; sincos writes out (sin) and b (cos) from a.
     int exponent;             ///< powi only.
+    std::uint32_t c = 0;      ///< Third operand of the fused multiply-adds.
   };
+  /// Instructions that read operand b (sincos writes it; the fused ones also read c).
+  static bool is_binary(Op op);
+  /// Fuses a product used only by the sum right after it in the same stage and level
+  /// into one instruction (fewer dispatches for the interpreter).
+  void fuse_multiply_adds(const std::vector<int>& register_levels);
   friend class TapeBuilder;
   void run(std::size_t begin, std::size_t end, double* registers) const;
 
