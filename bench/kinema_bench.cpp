@@ -4,6 +4,8 @@
 // and GiNaC compile_ex of the same derived expressions, the SymPy route
 // (bench/sympy_route.py) and the derivation itself (file -> ready evaluator).
 // Run: ./build/kinema_bench   (prints Google Benchmark's table, then the ratios)
+// "kinema" is one value per call (Workspace::advance from the previous value);
+// "kinema sweep" is analyse() over a revolution (SIMD blocks of 32 values).
 #include <benchmark/benchmark.h>
 #include <ginac/ginac.h>
 
@@ -292,25 +294,35 @@ int main(int argc, char** argv) {
     auto found = collector.ns_per_item.find(key);
     return found == collector.ns_per_item.end() ? NAN : found->second;
   };
-  std::printf("\nPer input value (position + velocity + acceleration), ns; ratio = other / kinema\n");
-  std::printf("%-26s %10s %12s %18s %20s %20s %20s\n", "mechanism", "kinema", "kinema sweep", "closed form",
+  std::printf("\nPer input value (position + velocity + acceleration), ns; ratio = other / kinema one at a time"
+              " | other / kinema sweep\n");
+  std::printf("%-26s %8s %8s %22s %24s %22s %22s\n", "mechanism", "kinema", "sweep", "closed form",
               "GiNaC subs+evalf", "GiNaC compile_ex", "SymPy route");
   for (const auto& s : samples) {
     const double k = get("kinema/" + s);
+    const double sweep = get("kinema_sweep/" + s) / kAngles;  // ns per sweep / angles
     const double closed = get("closed_form/" + s), subs = get("ginac_subs_evalf/" + s),
                  compiled = get("ginac_compile_ex/" + s);
     double sympy_ns = NAN;
     if (sympy.is_object() && sympy.contains(sympy_key.at(s))) sympy_ns = sympy[sympy_key.at(s)]["per_angle_ns"].get<double>();
-    auto cell = [&](double other) {
-      char text[64];
-      if (std::isnan(other)) std::snprintf(text, sizeof text, "-");
-      else std::snprintf(text, sizeof text, "%.0f (%.3gx)", other, other / k);
+    auto ratio = [](double r) {
+      char text[32];
+      std::snprintf(text, sizeof text, r >= 100 ? "%.0fx" : "%.2fx", r);
       return std::string(text);
     };
-    const double sweep = get("kinema_sweep/" + s) / kAngles;  // ns per sweep / angles
-    std::printf("%-26s %10.0f %12.0f %18s %20s %20s %20s\n", s.c_str(), k, sweep, cell(closed).c_str(),
+    auto cell = [&](double other) {
+      if (std::isnan(other)) return std::string("-");
+      char text[32];
+      std::snprintf(text, sizeof text, "%.0f", other);
+      return std::string(text) + " (" + ratio(other / k) + "|" + ratio(other / sweep) + ")";
+    };
+    std::printf("%-26s %8.0f %8.1f %22s %24s %22s %22s\n", s.c_str(), k, sweep, cell(closed).c_str(),
                 cell(subs).c_str(), cell(compiled).c_str(), cell(sympy_ns).c_str());
   }
+  const double million = get("kinema_sweep_1e6/problem_4_4_six_bar.toml/threads:1/real_time") / 1e6;
+  const double million2 = get("kinema_sweep_1e6/problem_4_4_six_bar.toml/threads:2/real_time") / 1e6;
+  std::printf("\nProblem 4.4, 10^6 values of one revolution, results kept: %.0f ms on one thread, %.0f ms on two\n",
+              million, million2);
   std::printf("\nDerivation, file to ready evaluator, ms; ratio = SymPy / kinema\n");
   for (const auto& s : samples) {
     const double k = get("derivation/" + s) / 1e6;

@@ -20,5 +20,13 @@ int main(int argc, char** argv) {
     std::printf("theta2 = %.3f rad: omega3 = %.6f rad/s, alpha3 = %.6f rad/s^2\n", state.input,
                 state.qd[0], state.qdd[0]);
   }
+  // One value at a time, each from the last (a controller, a simulation step).
+  kinema::Workspace workspace(*model.kinematics);
+  kinema::MotionState state = states[states.size() - 1];
+  if (!workspace.advance(0.31, model.mechanism.input.rate, model.mechanism.input.second_rate, state)) {
+    std::fprintf(stderr, "%s\n", "the branch does not reach 0.31 rad");
+    return 1;
+  }
+  std::printf("theta2 = %.3f rad: omega3 = %.6f rad/s (advanced from the last value)\n", state.input, state.qd[0]);
   return 0;
 }

@@ -126,3 +126,47 @@ TEST_CASE("dead centre of the piston-driven crank is reported as singular, never
   // The rate columns of that row are empty.
   CHECK(last.find(",,") != std::string::npos);
 }
+
+TEST_CASE("Workspace::advance steps along the open branch and refuses to cross a limit") {
+  const kinema::Model model = kinema::load_model(kinema_test::sample("four_bar.toml"));
+  const double w2 = model.mechanism.input.rate, a2 = 3.0;
+  kinema::Workspace workspace(*model.kinematics);
+  kinema::MotionState state = kinema::analyse(*model.kinematics, {0.0}, w2, a2)[0];
+  REQUIRE(state.status == kinema::Status::ok);
+  // Small steps (the predicted path) and a 30 deg jump (continuation) over two turns.
+  for (double theta = 0.1 * deg; theta <= 720 * deg; theta += (theta > 400 * deg ? 30 : 0.1) * deg) {
+    REQUIRE(workspace.advance(theta, w2, a2, state));
+    CAPTURE(theta / deg);
+    const auto [t3, t4] = four_bar_open(theta);
+    CHECK(state.status == kinema::Status::ok);
+    CHECK(state.input == theta);
+    CHECK(std::remainder(state.q[0] - t3, 2 * M_PI) == doctest::Approx(0).epsilon(1e-12));
+    CHECK(std::remainder(state.q[1] - t4, 2 * M_PI) == doctest::Approx(0).epsilon(1e-12));
+    CHECK(state.qd[0] == doctest::Approx(0.04 * w2 * std::sin(t4 - theta) / (0.12 * std::sin(t3 - t4))).epsilon(1e-10));
+  }
+
+  // The triple rocker cannot turn through 180 deg: advance says so and keeps the state.
+  const std::string text = R"toml(title = "triple rocker"
+[parameters]
+a = "100 mm"
+b = "50 mm"
+c = "90 mm"
+d = "60 mm"
+[input]
+name = "theta2"
+rate = "1 rad/s"
+[unknowns]
+theta3 = "80 deg"
+theta4 = "100 deg"
+[loops]
+ABCD = "a*exp(I*theta2) + b*exp(I*theta3) - c*exp(I*theta4) - d"
+)toml";
+  const kinema::Model rocker = kinema::load_model(kinema_test::write_temporary("rocker_advance.toml", text));
+  kinema::Workspace rocker_workspace(*rocker.kinematics);
+  kinema::MotionState at_90 = kinema::analyse(*rocker.kinematics, {90 * deg}, 1.0, 0.0)[0];
+  REQUIRE(at_90.status == kinema::Status::ok);
+  const kinema::MotionState before = at_90;
+  CHECK_FALSE(rocker_workspace.advance(180 * deg, 1.0, 0.0, at_90));
+  CHECK(at_90.input == before.input);
+  CHECK(at_90.q == before.q);
+}
