@@ -12,6 +12,23 @@
 namespace {
 constexpr double deg = M_PI / 180.0;
 
+// A non-Grashof four-bar (triple rocker): the crank cannot turn all the way round.
+const char* const kTripleRocker = R"toml(title = "triple rocker"
+[parameters]
+a = "100 mm"
+b = "50 mm"
+c = "90 mm"
+d = "60 mm"
+[input]
+name = "theta2"
+rate = "1 rad/s"
+[unknowns]
+theta3 = "80 deg"
+theta4 = "100 deg"
+[loops]
+ABCD = "a*exp(I*theta2) + b*exp(I*theta3) - c*exp(I*theta4) - d"
+)toml";
+
 // Hand-written closed form of the sample four-bar (a, b, c, d = 40, 120, 80, 100 mm),
 // open branch: B is where the circles about A (radius b) and D (radius c) meet,
 // on the left of the diagonal from A to D.
@@ -50,23 +67,7 @@ TEST_CASE("four-bar sweep keeps the open branch and matches the closed form") {
 }
 
 TEST_CASE("a non-Grashof four-bar: the sweep stops at the limit and says so") {
-  // Triple rocker: the crank cannot turn all the way round.
-  const std::string text = R"toml(title = "triple rocker"
-[parameters]
-a = "100 mm"
-b = "50 mm"
-c = "90 mm"
-d = "60 mm"
-[input]
-name = "theta2"
-rate = "1 rad/s"
-[unknowns]
-theta3 = "80 deg"
-theta4 = "100 deg"
-[loops]
-ABCD = "a*exp(I*theta2) + b*exp(I*theta3) - c*exp(I*theta4) - d"
-)toml";
-  const std::string path = kinema_test::write_temporary("triple_rocker.toml", text);
+  const std::string path = kinema_test::write_temporary("triple_rocker.toml", kTripleRocker);
   const auto result = kinema_test::run_kinema({"eval", path, "--sweep", "0:360:10", "--format", "json"});
   REQUIRE(result.exit_status == 0);
   CHECK(result.err.find("warning") != std::string::npos);
@@ -146,22 +147,7 @@ TEST_CASE("Workspace::advance steps along the open branch and refuses to cross a
   }
 
   // The triple rocker cannot turn through 180 deg: advance says so and keeps the state.
-  const std::string text = R"toml(title = "triple rocker"
-[parameters]
-a = "100 mm"
-b = "50 mm"
-c = "90 mm"
-d = "60 mm"
-[input]
-name = "theta2"
-rate = "1 rad/s"
-[unknowns]
-theta3 = "80 deg"
-theta4 = "100 deg"
-[loops]
-ABCD = "a*exp(I*theta2) + b*exp(I*theta3) - c*exp(I*theta4) - d"
-)toml";
-  const kinema::Model rocker = kinema::load_model(kinema_test::write_temporary("rocker_advance.toml", text));
+  const kinema::Model rocker = kinema::load_model(kinema_test::write_temporary("rocker_advance.toml", kTripleRocker));
   kinema::Workspace rocker_workspace(*rocker.kinematics);
   kinema::MotionState at_90 = kinema::analyse(*rocker.kinematics, {90 * deg}, 1.0, 0.0)[0];
   REQUIRE(at_90.status == kinema::Status::ok);
