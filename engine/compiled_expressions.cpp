@@ -389,10 +389,7 @@ void CompiledExpressions::run(std::size_t begin, std::size_t end, double* r) con
 
 void CompiledExpressions::evaluate_stage(std::size_t stage, std::vector<double>& workspace,
                                          double* outputs) const {
-  double* r = workspace.data();
-  run(stage == 0 ? 0 : stage_end_[stage - 1], stage_end_[stage], r);
-  for (std::size_t i = stage_outputs_[stage]; i < stage_outputs_[stage + 1]; ++i)
-    *outputs++ = r[output_registers_[i]];
+  evaluate_stage_from(stage, 0, workspace, outputs);  // level 0 starts the stage
 }
 
 std::vector<double> CompiledExpressions::make_batch_workspace() const {
@@ -461,8 +458,7 @@ KINEMA_LANE_LOOPS static void run_batch(
 }
 
 void CompiledExpressions::evaluate_stage_batch(std::size_t stage, double* workspace) const {
-  const Instruction* first = instructions_.data() + (stage == 0 ? 0 : stage_end_[stage - 1]);
-  run_batch<Instruction, Op>(first, instructions_.data() + stage_end_[stage], workspace);
+  evaluate_stage_batch_from(stage, 0, workspace);
 }
 
 void CompiledExpressions::evaluate_stage_batch_from(std::size_t stage, int level, double* workspace) const {
