@@ -16,7 +16,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "engine/model.hpp"
+#include <kinema/engine/model.hpp>
 
 namespace {
 

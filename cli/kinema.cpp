@@ -7,10 +7,10 @@
 #include <iostream>
 #include <sstream>
 
-#include "engine/codegen.hpp"
-#include "engine/errors.hpp"
-#include "engine/model.hpp"
-#include "engine/printers/printers.hpp"
+#include <kinema/engine/printers/code/cpp_header.hpp>
+#include <kinema/engine/errors.hpp>
+#include <kinema/engine/model.hpp>
+#include <kinema/engine/printers/printers.hpp>
 
 namespace {
 

@@ -1,4 +1,4 @@
-#include "engine/model.hpp"
+#include <kinema/engine/model.hpp>
 
 namespace kinema {
 

@@ -5,11 +5,11 @@
 #include <memory>
 #include <string>
 
-#include "engine/derivation.hpp"
-#include "engine/kinematics.hpp"
-#include "loops/loop_closure.hpp"
-#include "loops/mechanism.hpp"
-#include "loops/mechanism_file.hpp"
+#include <kinema/engine/symbolic/derivation.hpp>
+#include <kinema/engine/numeric/kinematics.hpp>
+#include <kinema/loops/planar_loops.hpp>
+#include <kinema/loops/mechanism.hpp>
+#include <kinema/loops/mechanism_file.hpp>
 
 namespace kinema {
 

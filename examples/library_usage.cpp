@@ -3,7 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "engine/model.hpp"
+#include <kinema/engine/model.hpp>
 
 int main(int argc, char** argv) {
   const char* path = argc > 1 ? argv[1] : "samples/four_bar.toml";

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "loops/units.hpp"
+#include <kinema/loops/units.hpp>
 
 namespace kinema {
 

@@ -1,4 +1,4 @@
-#include "loops/mechanism_file.hpp"
+#include <kinema/loops/mechanism_file.hpp>
 
 #include <algorithm>
 #include <cctype>
@@ -9,7 +9,7 @@
 #include <sstream>
 #include <toml.hpp>
 
-#include "engine/errors.hpp"
+#include <kinema/engine/errors.hpp>
 
 namespace kinema {
 namespace {

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "loops/mechanism.hpp"
+#include <kinema/loops/mechanism.hpp>
 
 namespace kinema {
 

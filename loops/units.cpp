@@ -1,11 +1,11 @@
-#include "loops/units.hpp"
+#include <kinema/loops/units.hpp>
 
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <map>
 
-#include "engine/errors.hpp"
+#include <kinema/engine/errors.hpp>
 
 namespace kinema {
 namespace {

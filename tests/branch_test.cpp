@@ -5,8 +5,8 @@
 
 #include <cmath>
 
-#include "engine/model.hpp"
-#include "loops/mechanism_file.hpp"
+#include <kinema/engine/model.hpp>
+#include <kinema/loops/mechanism_file.hpp>
 #include "test_support.hpp"
 
 namespace {

@@ -9,7 +9,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "engine/model.hpp"
+#include <kinema/engine/model.hpp>
 #include "test_support.hpp"
 
 using kinema_test::read_file;

@@ -5,8 +5,8 @@
 #include <limits>
 #include <random>
 
-#include "engine/compiled_expressions.hpp"
-#include "engine/simd_math.hpp"
+#include <kinema/engine/numeric/tape.hpp>
+#include <kinema/engine/numeric/simd_math.hpp>
 
 using namespace GiNaC;
 

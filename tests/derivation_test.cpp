@@ -2,8 +2,8 @@
 // sines and cosines combined, must vanish.
 #include <doctest/doctest.h>
 
-#include "engine/model.hpp"
-#include "engine/trig_simplify.hpp"
+#include <kinema/engine/model.hpp>
+#include <kinema/engine/symbolic/trig_simplify.hpp>
 #include "test_support.hpp"
 
 using namespace GiNaC;

@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "engine/model.hpp"
+#include <kinema/engine/model.hpp>
 #include "test_support.hpp"
 
 namespace {

@@ -9,10 +9,10 @@
 #include <fstream>
 #include <sstream>
 
-#include "engine/errors.hpp"
-#include "engine/model.hpp"
-#include "engine/printers/latex.hpp"
-#include "engine/trig_simplify.hpp"
+#include <kinema/engine/errors.hpp>
+#include <kinema/engine/model.hpp>
+#include <kinema/engine/printers/latex/latex_names.hpp>
+#include <kinema/engine/symbolic/trig_simplify.hpp>
 #include "test_support.hpp"
 
 namespace {

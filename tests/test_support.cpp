@@ -76,7 +76,6 @@ CommandResult run_kinema(const std::vector<std::string>& arguments) {
 }
 
 std::string sample(const std::string& name) { return std::string(KINEMA_SAMPLES_DIR) + "/" + name; }
-std::string test_data(const std::string& name) { return std::string(KINEMA_TEST_DATA_DIR) + "/" + name; }
 
 nlohmann::json eval_json(const std::string& sample_name, const std::vector<std::string>& extra) {
   std::vector<std::string> arguments = {"eval", sample(sample_name), "--format", "json"};

@@ -18,7 +18,6 @@ struct CommandResult {
 CommandResult run_kinema(const std::vector<std::string>& arguments);
 
 std::string sample(const std::string& name);     ///< Path of samples/NAME.
-std::string test_data(const std::string& name);  ///< Path of tests/data/NAME.
 
 /// Runs `kinema eval SAMPLE --format json [extra]` and returns the parsed document.
 nlohmann::json eval_json(const std::string& sample_name, const std::vector<std::string>& extra = {});

@@ -5,7 +5,7 @@
 #include <cstdlib>
 #include <sstream>
 
-#include "engine/model.hpp"
+#include <kinema/engine/model.hpp>
 #include "test_support.hpp"
 
 TEST_CASE("batch (SIMD blocks), threads and both equal the scalar one-by-one run for every sample") {

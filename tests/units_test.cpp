@@ -2,9 +2,9 @@
 
 #include <cmath>
 
-#include "engine/errors.hpp"
-#include "loops/mechanism_file.hpp"
-#include "loops/units.hpp"
+#include <kinema/engine/errors.hpp>
+#include <kinema/loops/mechanism_file.hpp>
+#include <kinema/loops/units.hpp>
 
 using namespace kinema;
 

@@ -5,9 +5,9 @@
 #include <ostream>
 #include <vector>
 
-#include "engine/derivation.hpp"
-#include "engine/kinematics.hpp"
-#include "loops/mechanism.hpp"
+#include <kinema/engine/symbolic/derivation.hpp>
+#include <kinema/engine/numeric/kinematics.hpp>
+#include <kinema/loops/mechanism.hpp>
 
 namespace kinema {
 

@@ -1,4 +1,4 @@
-#include "engine/kinematics.hpp"
+#include <kinema/engine/numeric/kinematics.hpp>
 
 #include <cfloat>
 #include <cmath>

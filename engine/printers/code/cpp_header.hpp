@@ -6,7 +6,7 @@
 #include <ostream>
 #include <string>
 
-#include "engine/model.hpp"
+#include <kinema/engine/model.hpp>
 
 namespace kinema {
 

@@ -1,12 +1,12 @@
-#include "loops/loop_closure.hpp"
+#include <kinema/loops/planar_loops.hpp>
 
 #include <cmath>
 #include <map>
 #include <optional>
 #include <sstream>
 
-#include "engine/errors.hpp"
-#include "engine/expression_parts.hpp"
+#include <kinema/engine/errors.hpp>
+#include <kinema/engine/symbolic/expression_parts.hpp>
 
 namespace kinema {
 namespace {

@@ -6,10 +6,10 @@
 #include <cstdio>
 #include <sstream>
 
-#include "engine/expression_parts.hpp"
-#include "engine/printers/latex.hpp"
-#include "engine/printers/printers.hpp"
-#include "engine/trig_simplify.hpp"
+#include <kinema/engine/symbolic/expression_parts.hpp>
+#include <kinema/engine/printers/latex/latex_names.hpp>
+#include <kinema/engine/printers/printers.hpp>
+#include <kinema/engine/symbolic/trig_simplify.hpp>
 
 namespace kinema {
 namespace {

@@ -1,10 +1,10 @@
-#include "engine/printers/latex.hpp"
+#include <kinema/engine/printers/latex/latex_names.hpp>
 
 #include <cctype>
 #include <set>
 #include <sstream>
 
-#include "engine/errors.hpp"
+#include <kinema/engine/errors.hpp>
 
 namespace kinema {
 namespace {

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "engine/derivation.hpp"
-#include "loops/mechanism.hpp"
+#include <kinema/engine/symbolic/derivation.hpp>
+#include <kinema/loops/mechanism.hpp>
 
 namespace kinema {
 

@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
-#include "engine/compiled_expressions.hpp"
-#include "engine/derivation.hpp"
-#include "engine/simd_math.hpp"
-#include "loops/mechanism.hpp"
+#include <kinema/engine/numeric/tape.hpp>
+#include <kinema/engine/symbolic/derivation.hpp>
+#include <kinema/engine/numeric/simd_math.hpp>
+#include <kinema/loops/mechanism.hpp>
 
 namespace kinema {
 

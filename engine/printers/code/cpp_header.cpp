@@ -1,4 +1,4 @@
-#include "engine/codegen.hpp"
+#include <kinema/engine/printers/code/cpp_header.hpp>
 
 #include <cctype>
 #include <sstream>

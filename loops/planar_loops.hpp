@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "loops/mechanism.hpp"
+#include <kinema/loops/mechanism.hpp>
 
 namespace kinema {
 

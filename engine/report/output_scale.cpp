@@ -1,6 +1,6 @@
 #include <cmath>
 
-#include "engine/printers/printers.hpp"
+#include <kinema/engine/printers/printers.hpp>
 
 namespace kinema {
 

@@ -3,10 +3,10 @@
 // GiNaC syntax, so a reader (or a test) can take the formula back exactly.
 #include <sstream>
 
-#include "engine/expression_parts.hpp"
-#include "engine/printers/latex.hpp"
-#include "engine/printers/printers.hpp"
-#include "engine/trig_simplify.hpp"
+#include <kinema/engine/symbolic/expression_parts.hpp>
+#include <kinema/engine/printers/latex/latex_names.hpp>
+#include <kinema/engine/printers/printers.hpp>
+#include <kinema/engine/symbolic/trig_simplify.hpp>
 
 namespace kinema {
 namespace {

@@ -1,6 +1,6 @@
-#include "engine/compiled_expressions.hpp"
+#include <kinema/engine/numeric/tape.hpp>
 
-#include "engine/simd_math.hpp"
+#include <kinema/engine/numeric/simd_math.hpp>
 
 #include <algorithm>
 #include <cmath>

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "loops/loop_closure.hpp"
-#include "loops/mechanism.hpp"
+#include <kinema/loops/planar_loops.hpp>
+#include <kinema/loops/mechanism.hpp>
 
 namespace kinema {
 

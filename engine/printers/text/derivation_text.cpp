@@ -1,9 +1,9 @@
 // The derivation as readable text (GiNaC's default print context).
 #include <sstream>
 
-#include "engine/expression_parts.hpp"
-#include "engine/printers/printers.hpp"
-#include "engine/trig_simplify.hpp"
+#include <kinema/engine/symbolic/expression_parts.hpp>
+#include <kinema/engine/printers/printers.hpp>
+#include <kinema/engine/symbolic/trig_simplify.hpp>
 
 namespace kinema {
 namespace {

@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "engine/printers/printers.hpp"
+#include <kinema/engine/printers/printers.hpp>
 
 namespace kinema {
 namespace {

@@ -1,9 +1,9 @@
-#include "engine/derivation.hpp"
+#include <kinema/engine/symbolic/derivation.hpp>
 
 #include <set>
 
-#include "engine/errors.hpp"
-#include "engine/trig_simplify.hpp"
+#include <kinema/engine/errors.hpp>
+#include <kinema/engine/symbolic/trig_simplify.hpp>
 
 namespace kinema {
 namespace {
