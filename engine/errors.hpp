@@ -1,6 +1,6 @@
-// One exception hierarchy for kinema; the command-line tool turns the kind
-// into its exit status, so scripts can tell bad input from an unassemblable
-// position.
+// One exception hierarchy for kinema. The kind says what went wrong; the
+// command-line tool decides the exit status from it (cli/exit_status.hpp), so
+// scripts can tell bad input from an unassemblable position.
 #pragma once
 
 #include <stdexcept>
@@ -11,15 +11,12 @@ namespace kinema {
 class Error : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
-  /// Exit status the command-line tool uses for this kind of error.
-  virtual int exit_status() const { return 1; }
 };
 
 /// The mechanism file is wrong: syntax, names, units, counts, values.
 class InputError : public Error {
  public:
   using Error::Error;
-  int exit_status() const override { return 2; }
 };
 
 /// A unit that is not understood or does not fit where it is used.
@@ -32,14 +29,12 @@ class UnitError : public InputError {
 class AssemblyError : public Error {
  public:
   using Error::Error;
-  int exit_status() const override { return 3; }
 };
 
 /// Phi_q is rank-deficient (toggle / dead centre): rates are undefined there.
 class SingularPositionError : public Error {
  public:
   using Error::Error;
-  int exit_status() const override { return 4; }
 };
 
 }  // namespace kinema

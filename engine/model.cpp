@@ -1,15 +1,30 @@
 #include <kinema/engine/model.hpp>
 
+#include <kinema/engine/numeric/sweep.hpp>
+#include <kinema/loops/mechanism_file.hpp>
+#include <kinema/loops/planar_loops.hpp>
+
 namespace kinema {
 
-Model make_model(Mechanism mechanism) {
+Model make_model(const Mechanism& mechanism) {
   Model model;
-  model.mechanism = std::move(mechanism);
-  model.derivation = derive(model.mechanism, build_loop_closure(model.mechanism));
-  model.kinematics = std::make_unique<Kinematics>(model.mechanism, model.derivation);
+  model.system = build_planar_loops(mechanism);
+  model.derivation = derive(model.system);
+  model.kinematics = Kinematics(model.system, model.derivation);
   return model;
 }
 
-Model load_model(const std::string& path) { return make_model(read_mechanism_file(path)); }
+Model load_model(const std::filesystem::path& path) { return make_model(read_mechanism_file(path.string())); }
+
+MotionTable analyse(const Model& model, const std::vector<double>& inputs, const AnalysisOptions& options) {
+  SweepSettings settings;
+  settings.rate = options.rate.value_or(model.system.input.rate_value);
+  settings.second_rate = options.second_rate.value_or(model.system.input.second_rate_value);
+  settings.threads = options.threads;
+  settings.simd = options.simd;
+  return solve_sweep(model.kinematics, inputs, settings);
+}
+
+Workspace::Workspace(const Model& model) : Workspace(model.kinematics) {}
 
 }  // namespace kinema

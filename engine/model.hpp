@@ -1,26 +1,57 @@
-// The whole pipeline in one call, for programs that link kinema:
-// file -> Mechanism -> LoopClosure -> Derivation -> Kinematics (compiled).
+// kinema as a library: load a mechanism, then analyse it.
+//
+//   auto model = kinema::load_model("samples/four_bar.toml");
+//   kinema::MotionTable table = kinema::analyse(model, {0.1, 0.2, 0.3});  // SI inputs
+//   double omega3 = table.qd(0)[0];
+//
+// load_model runs the whole pipeline once: file -> Mechanism (loops/) ->
+// ConstraintSystem (the front end) -> Derivation (symbolic) -> Kinematics
+// (compiled). A Model is immutable; Workspace holds one caller's buffers.
 #pragma once
 
-#include <memory>
-#include <string>
+#include <filesystem>
+#include <optional>
+#include <vector>
 
-#include <kinema/engine/symbolic/derivation.hpp>
+#include <kinema/engine/constraint_system.hpp>
+#include <kinema/engine/errors.hpp>
 #include <kinema/engine/numeric/kinematics.hpp>
-#include <kinema/loops/planar_loops.hpp>
+#include <kinema/engine/numeric/motion_table.hpp>
+#include <kinema/engine/numeric/workspace.hpp>
+#include <kinema/engine/report/diagnostics.hpp>
+#include <kinema/engine/symbolic/derivation.hpp>
 #include <kinema/loops/mechanism.hpp>
-#include <kinema/loops/mechanism_file.hpp>
 
 namespace kinema {
 
 struct Model {
-  Mechanism mechanism;
-  Derivation derivation;
-  std::unique_ptr<Kinematics> kinematics;  ///< Compiled evaluator.
+  ConstraintSystem system;  ///< What the file says, as equations with labels.
+  Derivation derivation;    ///< Jacobians, velocity and acceleration equations, solved rates.
+  Kinematics kinematics;    ///< The compiled evaluator.
+
+  Model() = default;
+  Model(Model&&) = default;
+  Model& operator=(Model&&) = default;
+  Model(const Model&) = delete;  // workspaces refer to the compiled evaluator
+  Model& operator=(const Model&) = delete;
 };
 
-/// Reads, derives and compiles; throws InputError for a bad file.
-Model load_model(const std::string& path);
-Model make_model(Mechanism mechanism);
+/// Reads, derives and compiles a mechanism file; throws InputError for a bad file.
+Model load_model(const std::filesystem::path& path);
+/// The same from a description already in memory (loops/mechanism_file.hpp reads one).
+Model make_model(const Mechanism& mechanism);
+
+struct AnalysisOptions {
+  std::optional<double> rate;         ///< Input rate (SI); default: the model's.
+  std::optional<double> second_rate;  ///< Input second rate (SI); default: the model's.
+  unsigned threads = 1;               ///< Long runs are split into chunks on this many threads.
+  bool simd = true;                   ///< Sweeps in SIMD blocks where the motion is regular.
+};
+
+/// Solves at each input value (SI) in order, each continued from the previous one so
+/// that the assembly branch of the file's guesses is kept. A value that cannot be
+/// assembled or is singular is a row with that status and a Failure
+/// (describe_failure(model.system, state) says it in words); nothing is thrown for it.
+MotionTable analyse(const Model& model, const std::vector<double>& inputs, const AnalysisOptions& options = {});
 
 }  // namespace kinema

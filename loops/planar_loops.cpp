@@ -1,12 +1,16 @@
 #include <kinema/loops/planar_loops.hpp>
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <map>
 #include <optional>
+#include <set>
 #include <sstream>
 
 #include <kinema/engine/errors.hpp>
 #include <kinema/engine/symbolic/expression_parts.hpp>
+#include <kinema/engine/symbolic/naming.hpp>
 
 namespace kinema {
 namespace {
@@ -97,29 +101,40 @@ class LengthPower {
   std::map<ex, int, GiNaC::ex_is_less> powers_;
 };
 
+// Functions the tape compiles (sqrt and powers are powers, not functions).
+const std::set<std::string>& compiled_functions() {
+  static const std::set<std::string> names = {"sin", "cos", "tan", "exp", "log", "abs",
+                                              "asin", "acos", "atan", "atan2"};
+  return names;
+}
+
 class Builder {
  public:
   explicit Builder(const Mechanism& mechanism) : mechanism_(mechanism) {}
 
-  LoopClosure build() {
-    LoopClosure closure;
-    add_parameters(closure);
-    closure.input = symbol(mechanism_.input.name);
-    powers_[closure.input] = mechanism_.input.dimension == Dimension::length ? 1 : 0;
-    for (const Unknown& unknown : mechanism_.unknowns) {
-      closure.unknowns.push_back(symbol(unknown.name));
-      powers_[closure.unknowns.back()] = unknown.dimension == Dimension::length ? 1 : 0;
-    }
+  ConstraintSystem build() {
+    ConstraintSystem system;
+    system.title = mechanism_.title;
+    system.description = mechanism_.description;
+    system.source_file = mechanism_.source_file;
+    system.output = mechanism_.output;
+    add_parameters(system);
+    add_coordinates(system);
     const LengthPower units(powers_);
 
     for (std::size_t k = 0; k < mechanism_.loops.size(); ++k) {
       const Loop& loop = mechanism_.loops[k];
       const std::string context = loop.where.str() + ": loop \"" + loop.name + "\"";
       ex x, y, vector;
+      EquationGroup group;
+      group.kind = "loop";
+      group.name = loop.name;
+      group.where = loop.where;
       if (!loop.complex_formula.empty()) {
         vector = parse(loop.complex_formula, context);
         x = vector.real_part().expand();
         y = vector.imag_part().expand();
+        group.terms = terms_as_written(loop.complex_formula, vector, context);
       } else {
         x = parse(loop.x_formula, context + " (x)");
         y = parse(loop.y_formula, context + " (y)");
@@ -127,24 +142,27 @@ class Builder {
           throw InputError(context + ": x and y components must be real (no I)");
         }
         vector = x + GiNaC::I * y;
+        group.terms = terms_as_written("", vector, context);
       }
       auto power = units.of(vector.expand(), context);
       if (power && *power != 1) {
         throw InputError(context + " is a " + LengthPower::describe(*power) +
                          ", but a loop is a sum of link vectors (lengths)");
       }
-      if (!depends_on_unknowns(x, closure) && !depends_on_unknowns(y, closure)) {
+      if (!depends_on_unknowns(x, system) && !depends_on_unknowns(y, system)) {
         throw InputError(context + " contains none of the unknowns; each loop must close "
                          "through at least one unknown coordinate");
       }
-      closure.loop_vectors.push_back(vector);
-      closure.equations.push_back(x);
-      closure.equations.push_back(y);
-      closure.equation_loop.push_back(k);
-      closure.equation_loop.push_back(k);
+      group.vector = vector;
+      // The two rows of a planar loop: the only place that knows a loop is two equations.
+      for (const auto& [component, expression] : {std::make_pair("x", x), std::make_pair("y", y)}) {
+        group.equations.push_back(system.equations.size());
+        system.equations.push_back({expression, k, component});
+      }
+      system.groups.push_back(group);
     }
-    const std::size_t equations = closure.equations.size();
-    const std::size_t unknowns = closure.unknowns.size();
+    const std::size_t equations = system.equations.size();
+    const std::size_t unknowns = system.unknowns.size();
     if (equations != unknowns) {
       throw InputError(mechanism_.source_file + ": " + std::to_string(mechanism_.loops.size()) +
                        " loop(s) give " + std::to_string(equations) + " scalar equations, but there are " +
@@ -153,7 +171,7 @@ class Builder {
     }
     for (std::size_t i = 0; i < unknowns; ++i) {
       bool used = false;
-      for (const ex& equation : closure.equations) used = used || equation.has(closure.unknowns[i]);
+      for (const Equation& equation : system.equations) used = used || equation.expression.has(system.unknowns[i].symbol);
       if (!used) {
         throw InputError(mechanism_.unknowns[i].where.str() + ": unknown \"" +
                          mechanism_.unknowns[i].name + "\" appears in no loop");
@@ -168,22 +186,81 @@ class Builder {
         throw InputError(context + " is a " + LengthPower::describe(*power) +
                          ", but a point position must be a length (x + I*y)");
       }
-      closure.point_positions.push_back(position);
-      closure.point_x.push_back(position.real_part().expand());
-      closure.point_y.push_back(position.imag_part().expand());
+      PointObservable observable;
+      observable.name = point.name;
+      observable.where = point.where;
+      observable.components = {"x", "y"};
+      observable.position = {position.real_part().expand(), position.imag_part().expand()};
+      observable.written = position;
+      system.points.push_back(observable);
     }
-    return closure;
+    return system;
   }
 
  private:
   const Mechanism& mechanism_;
   GiNaC::symtab table_;
   std::map<ex, int, GiNaC::ex_is_less> powers_;
+  std::set<std::string> taken_;  ///< Names of symbols so far (rate names must not clash).
 
-  GiNaC::realsymbol symbol(const std::string& name) {
-    GiNaC::realsymbol s(name);
+  GiNaC::realsymbol symbol(const std::string& name, const std::string& latex = "") {
+    GiNaC::realsymbol s(name, latex.empty() ? latex_symbol_name(name) : latex);
     table_[name] = s;
+    taken_.insert(name);
     return s;
+  }
+
+  // The file's rate name, else the textbook's (omega3, alpha3), else name_dot on a clash.
+  GiNaC::realsymbol rate_symbol(const std::string& given, const std::string& coordinate, int order,
+                                const SourceLocation& where, const std::string& latex_coordinate) {
+    std::string name = given.empty() ? default_rate_name(coordinate, order) : given;
+    if (taken_.count(name)) {
+      if (!given.empty()) {
+        throw InputError(where.str() + ": rate name \"" + name + "\" of \"" + coordinate +
+                         "\" is already used; choose another");
+      }
+      name = coordinate + (order == 1 ? "_dot" : "_ddot");
+    }
+    taken_.insert(name);
+    // A coordinate with its own LaTeX name gets that name's dots.
+    const std::string latex = latex_coordinate.empty() ? latex_symbol_name(name)
+                                                       : (order == 1 ? "\\dot{" : "\\ddot{") + latex_coordinate + "}";
+    return GiNaC::realsymbol(name, latex);
+  }
+
+  void add_coordinates(ConstraintSystem& system) {
+    const Input& input = mechanism_.input;
+    Driver& driver = system.input;
+    driver.name = input.name;
+    driver.dimension = input.dimension;
+    driver.symbol = symbol(input.name);
+    driver.where = input.where;
+    driver.values = input.values;
+    driver.rate_value = input.rate;
+    driver.second_rate_value = input.second_rate;
+    powers_[driver.symbol] = input.dimension == Dimension::length ? 1 : 0;
+    for (const Unknown& unknown : mechanism_.unknowns) {
+      if (!unknown.latex_name.empty()) {
+        check_latex_name(unknown.latex_name, unknown.where.str() + ": unknown \"" + unknown.name + "\"");
+      }
+      Coordinate q;
+      q.name = unknown.name;
+      q.dimension = unknown.dimension;
+      q.symbol = symbol(unknown.name, unknown.latex_name);
+      q.guess = unknown.guess;
+      q.where = unknown.where;
+      powers_[q.symbol] = unknown.dimension == Dimension::length ? 1 : 0;
+      system.unknowns.push_back(q);
+    }
+    // Rates after every coordinate, so a default rate name never takes a coordinate's.
+    driver.rate = rate_symbol(input.rate_name, input.name, 1, input.where, "");
+    driver.second_rate = rate_symbol(input.second_rate_name, input.name, 2, input.where, "");
+    for (std::size_t i = 0; i < system.unknowns.size(); ++i) {
+      const Unknown& unknown = mechanism_.unknowns[i];
+      system.unknowns[i].rate = rate_symbol(unknown.rate_name, unknown.name, 1, unknown.where, unknown.latex_name);
+      system.unknowns[i].second_rate =
+          rate_symbol(unknown.second_rate_name, unknown.name, 2, unknown.where, unknown.latex_name);
+    }
   }
 
   std::string unknown_list() const {
@@ -194,16 +271,56 @@ class Builder {
 
   static bool has_imaginary(const ex& e) { return !e.imag_part().expand().is_zero(); }
 
-  static bool depends_on_unknowns(const ex& e, const LoopClosure& closure) {
-    for (const auto& q : closure.unknowns)
-      if (e.has(q)) return true;
+  static bool depends_on_unknowns(const ex& e, const ConstraintSystem& system) {
+    for (const auto& q : system.unknowns)
+      if (e.has(q.symbol)) return true;
     return false;
+  }
+
+  // The loop's terms in the order written, each parsed on its own; the whole loop
+  // when the text cannot be split so (the sum of the parts must be the loop).
+  std::vector<ex> terms_as_written(const std::string& formula, const ex& loop, const std::string& context) {
+    std::vector<ex> terms;
+    ex sum = 0;
+    try {
+      for (const std::string& text : formula.empty() ? std::vector<std::string>{} : written_terms(formula)) {
+        GiNaC::parser reader(table_, /*strict=*/true);
+        terms.push_back(reader(text));
+        sum += terms.back();
+      }
+    } catch (const std::exception&) {
+      terms.clear();
+    }
+    if (terms.empty() || !(sum - loop).expand().is_zero()) {
+      const ex expanded = loop.expand();
+      terms.clear();
+      if (GiNaC::is_a<GiNaC::add>(expanded)) {
+        for (const ex& term : expanded) terms.push_back(term);
+      } else {
+        terms.push_back(expanded);
+      }
+    }
+    (void)context;
+    return terms;
+  }
+
+  // Every function call must be one the evaluator compiles.
+  static void check_functions(const ex& e, const std::string& formula, const std::string& context) {
+    for (GiNaC::const_preorder_iterator it = e.preorder_begin(); it != e.preorder_end(); ++it) {
+      if (!GiNaC::is_a<GiNaC::function>(*it)) continue;
+      const std::string name = GiNaC::ex_to<GiNaC::function>(*it).get_name();
+      if (!compiled_functions().count(name)) {
+        throw InputError(context + ": the function " + name + "(...) in \"" + formula +
+                         "\" is not supported; formulas may use " + understood_functions());
+      }
+    }
   }
 
   ex parse(const std::string& formula, const std::string& context) {
     GiNaC::parser reader(table_, /*strict=*/true);
+    ex e;
     try {
-      return reader(formula);
+      e = reader(formula);
     } catch (const std::exception& error) {
       std::string why = error.what();
       const std::string marker = "symbol \"";
@@ -218,10 +335,13 @@ class Builder {
       if (newline != std::string::npos) why = why.substr(0, newline);
       throw InputError(context + ": cannot read the formula \"" + formula + "\" (" + why + ")");
     }
+    check_functions(e, formula, context);
+    return e;
   }
 
-  void add_parameters(LoopClosure& closure) {
+  void add_parameters(ConstraintSystem& system) {
     GiNaC::exmap values;
+    double largest = 0;
     for (const Parameter& parameter : mechanism_.parameters) {
       const std::string context = parameter.where.str() + ": parameter \"" + parameter.name + "\"";
       double value = 0.0;
@@ -252,29 +372,56 @@ class Builder {
       if (!std::isfinite(value)) {
         throw InputError(context + " = \"" + parameter.text + "\" is not a finite number");
       }
-      GiNaC::realsymbol s = symbol(parameter.name);
-      if (!parameter.quantity) closure.parameter_formulas[s] = formula;
-      if (power) powers_[s] = *power;
-      values[s] = value;
-      closure.parameters.push_back(s);
-      closure.parameter_values.push_back(value);
+      SystemParameter entry;
+      entry.symbol = symbol(parameter.name);
+      entry.value = value;
+      entry.text = parameter.text;
+      entry.where = parameter.where;
+      if (!parameter.quantity) entry.formula = formula;
+      entry.dimension = !power ? Dimension::number : *power == 1 ? Dimension::length
+                        : *power == 0 && parameter.quantity && parameter.quantity->dimension == Dimension::angle
+                            ? Dimension::angle
+                            : Dimension::number;
+      if (power) powers_[entry.symbol] = *power;
+      values[entry.symbol] = value;
+      if (entry.dimension == Dimension::length && parameter.quantity) largest = std::max(largest, std::fabs(value));
+      system.parameters.push_back(entry);
     }
+    system.length_scale = largest > 0 ? largest : 1.0;
   }
 };
 
 }  // namespace
 
-LoopClosure build_loop_closure(const Mechanism& mechanism) { return Builder(mechanism).build(); }
+ConstraintSystem build_planar_loops(const Mechanism& mechanism) { return Builder(mechanism).build(); }
 
-GiNaC::ex expand_parameter_formulas(const LoopClosure& closure, const GiNaC::ex& e) {
-  ex result = e;
-  // Formulas refer only to earlier parameters, so a few passes reach quantities.
-  for (std::size_t pass = 0; pass <= closure.parameter_formulas.size(); ++pass) {
-    ex next = result.subs(closure.parameter_formulas);
-    if (next.is_equal(result)) break;
-    result = next;
+// Top-level terms of a formula as written ("a*exp(I*t) - d" -> "a*exp(I*t)", "-d"),
+// so the drawing follows the chain in the order the user wrote the loop.
+std::vector<std::string> written_terms(const std::string& formula) {
+  std::vector<std::string> terms;
+  std::string current;
+  int depth = 0;
+  for (std::size_t i = 0; i < formula.size(); ++i) {
+    const char c = formula[i];
+    if (c == '(') ++depth;
+    if (c == ')') --depth;
+    const bool sign = (c == '+' || c == '-') && depth == 0;
+    // Not a sign of an exponent (1e-3) and not the first character.
+    const bool exponent = i > 0 && (formula[i - 1] == 'e' || formula[i - 1] == 'E') && i > 1 &&
+                          std::isdigit(static_cast<unsigned char>(formula[i - 2]));
+    if (sign && !exponent && current.find_first_not_of(" \t") != std::string::npos) {
+      terms.push_back(current);
+      current.clear();
+    }
+    current += c;
   }
-  return result;
+  if (current.find_first_not_of(" \t") != std::string::npos) terms.push_back(current);
+  return terms;
 }
+
+const char* understood_functions() {
+  return "sin, cos, tan, exp, log, sqrt, abs, asin, acos, atan, atan2 and powers (^)";
+}
+
 
 }  // namespace kinema

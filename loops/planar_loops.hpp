@@ -1,39 +1,22 @@
-// Loop-closure equations Phi(q, theta) = 0, built symbolically from the
-// mechanism's vector loops: each complex loop gives its x (real) and y
-// (imaginary) scalar equations. All symbols are real (GiNaC realsymbol) so
-// that real and imaginary parts simplify.
+// The vector-loop front end: a Mechanism whose loops are written as complex
+// sums of link vectors becomes a ConstraintSystem. Each loop gives two
+// labelled scalar equations, its x (real) and y (imaginary) parts; all
+// symbols are real (GiNaC realsymbol) so that those parts simplify.
 #pragma once
 
-#include <ginac/ginac.h>
-
-#include <string>
-#include <vector>
-
+#include <kinema/engine/constraint_system.hpp>
 #include <kinema/loops/mechanism.hpp>
 
 namespace kinema {
 
-struct LoopClosure {
-  std::vector<GiNaC::realsymbol> parameters;  ///< In file order.
-  std::vector<double> parameter_values;       ///< SI, same order.
-  GiNaC::exmap parameter_formulas;            ///< Formula parameters -> their formula.
-  GiNaC::realsymbol input;                    ///< The driver coordinate theta.
-  std::vector<GiNaC::realsymbol> unknowns;    ///< q, in file order.
+/// Parses every formula, checks names, units (lengths vs angles), functions and
+/// counts; throws InputError naming file:line and what to change.
+ConstraintSystem build_planar_loops(const Mechanism& mechanism);
 
-  std::vector<GiNaC::ex> loop_vectors;     ///< Each loop as a complex expression (= 0).
-  std::vector<GiNaC::ex> equations;        ///< Scalar equations: loop k gives rows 2k (x), 2k+1 (y).
-  std::vector<std::size_t> equation_loop;  ///< Loop index of each scalar equation.
+/// Top-level terms of a formula as written ("a*exp(I*t) - d" -> "a*exp(I*t)", "-d").
+std::vector<std::string> written_terms(const std::string& formula);
 
-  std::vector<GiNaC::ex> point_positions;  ///< Complex x + I*y of each named point.
-  std::vector<GiNaC::ex> point_x;
-  std::vector<GiNaC::ex> point_y;
-};
-
-/// Parses every formula, checks names, units (lengths vs angles) and counts;
-/// throws InputError naming file:line and what to change.
-LoopClosure build_loop_closure(const Mechanism& mechanism);
-
-/// Replaces formula parameters by their formulas (down to quantity parameters).
-GiNaC::ex expand_parameter_formulas(const LoopClosure& closure, const GiNaC::ex& e);
+/// Functions a formula may use (the compiled evaluator runs each of them).
+const char* understood_functions();
 
 }  // namespace kinema

@@ -21,7 +21,7 @@ const std::map<std::string, BaseUnit>& base_units() {
       {"m", {1.0, Dimension::length}},       {"mm", {1e-3, Dimension::length}},
       {"cm", {1e-2, Dimension::length}},     {"in", {0.0254, Dimension::length}},
       {"ft", {0.3048, Dimension::length}},   {"rad", {1.0, Dimension::angle}},
-      {"deg", {M_PI / 180.0, Dimension::angle}},
+      {"deg", {kRadiansPerDegree, Dimension::angle}},
   };
   return units;
 }

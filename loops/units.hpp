@@ -17,6 +17,11 @@ enum class Dimension {
   acceleration,          // m/s^2
 };
 
+/// Degrees and radians, converted here and nowhere else.
+constexpr double kRadiansPerDegree = 3.14159265358979323846 / 180.0;
+inline double from_degrees(double degrees) { return degrees * kRadiansPerDegree; }
+inline double to_degrees(double radians) { return radians * 180.0 / 3.14159265358979323846; }
+
 /// "length", "angle", ... for messages.
 const char* dimension_name(Dimension dimension);
 

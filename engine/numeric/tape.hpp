@@ -1,4 +1,5 @@
-// Expressions compiled once into a register tape and evaluated many times
+// Expressions compiled once into a register tape (built by tape_builder.cpp,
+// run by tape_run.cpp) and evaluated many times
 // without GiNaC (in the spirit of SymEngine's LambdaDouble): common
 // subexpressions are shared across all outputs, and sin/cos of one argument
 // are computed together by one sincos.
@@ -7,9 +8,10 @@
 #include <ginac/ginac.h>
 
 #include <cstdint>
-#include <ostream>
 #include <string>
 #include <vector>
+
+#include <kinema/engine/numeric/tape_ops.hpp>
 
 namespace kinema {
 
@@ -70,33 +72,29 @@ class CompiledExpressions {
   /// Evaluates all outputs: inputs[i] is the value of the i-th input symbol.
   void evaluate(const double* inputs, double* outputs, std::vector<double>& workspace) const;
 
-  /// Writes the tape as straight-line C++ statements: inputs are read from
-  /// input_names[i], output k is assigned to output_targets[k] (each a C++ lvalue).
-  /// Only what stage `stage`'s outputs need is written (recomputing what they take from
-  /// earlier stages), so each stage becomes a self-contained function.
-  void write_cpp(std::ostream& out, const std::vector<std::string>& input_names, std::size_t stage,
-                 const std::vector<std::string>& output_targets, const std::string& indent) const;
-
   std::size_t input_count() const { return input_count_; }
   std::size_t output_count() const { return output_registers_.size(); }
   std::size_t instruction_count() const { return instructions_.size(); }
 
- private:
-  enum class Op : std::uint8_t {
-    add, sub, mul, div, neg, square, powi, pow, sincos, tan, exp, log, sqrt, abs, atan2,
-    asin, acos, atan,
-    mul_add,  ///< a * b + c
-    mul_sub,  ///< a * b - c
-    sub_mul   ///< c - a * b
-  };
+#define KINEMA_TAPE_OP_NAME(name, operands, value, text) name,
+  enum class Op : std::uint8_t { KINEMA_TAPE_OPS(KINEMA_TAPE_OP_NAME) sincos };
+#undef KINEMA_TAPE_OP_NAME
   struct Instruction {
     Op op;
     std::uint32_t out, a, b;  ///< Registers; sincos writes out (sin) and b (cos) from a.
     int exponent;             ///< powi only.
     std::uint32_t c = 0;      ///< Third operand of the fused multiply-adds.
   };
-  /// Instructions that read operand b (sincos writes it; the fused ones also read c).
-  static bool is_binary(Op op);
+  /// Register operands an instruction reads (sincos reads a and writes b).
+  static int operand_count(Op op);
+
+  /// Read-only views for exporters (the C++ emitter).
+  const std::vector<Instruction>& instructions() const { return instructions_; }
+  const std::vector<double>& initial_registers() const { return initial_registers_; }
+  std::size_t stage_end(std::size_t stage) const { return stage_end_[stage]; }
+  std::size_t stage_output_begin(std::size_t stage) const { return stage_outputs_[stage]; }
+
+ private:
   /// Fuses a product used only by the sum right after it in the same stage and level
   /// into one instruction (fewer dispatches for the interpreter).
   void fuse_multiply_adds(const std::vector<int>& register_levels);

@@ -1,21 +1,25 @@
-#include <cmath>
+#include <kinema/engine/report/output_scale.hpp>
 
-#include <kinema/engine/printers/printers.hpp>
+#include <cmath>
 
 namespace kinema {
 
-OutputScale::OutputScale(const Mechanism& mechanism)
-    : length(mechanism.output.length_factor),
-      length_unit(mechanism.output.length),
-      input_is_angle(mechanism.input.dimension == Dimension::angle) {}
+OutputScale::OutputScale(const ConstraintSystem& system)
+    : length(system.output.length_factor),
+      length_unit(system.output.length),
+      input_dimension(system.input.dimension) {}
 
 double OutputScale::coordinate(Dimension dimension, double si) const {
   if (dimension == Dimension::angle) {
-    double degrees = std::remainder(si * 180.0 / M_PI, 360.0);
+    double degrees = std::remainder(to_degrees(si), 360.0);
     if (degrees <= -180.0) degrees += 360.0;
     return degrees;
   }
   return si / length;
+}
+
+double OutputScale::unwrapped(Dimension dimension, double si) const {
+  return dimension == Dimension::angle ? to_degrees(si) : si / length;
 }
 
 double OutputScale::rate(Dimension dimension, double si) const {

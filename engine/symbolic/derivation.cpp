@@ -1,8 +1,6 @@
 #include <kinema/engine/symbolic/derivation.hpp>
 
-#include <set>
-
-#include <kinema/engine/errors.hpp>
+#include <kinema/engine/symbolic/expression_parts.hpp>
 #include <kinema/engine/symbolic/trig_simplify.hpp>
 
 namespace kinema {
@@ -10,67 +8,8 @@ namespace {
 
 using GiNaC::ex;
 
-// Splits loops into blocks that can be solved one after another.
-std::vector<RateBlock> find_blocks(const LoopClosure& closure) {
-  const std::size_t loop_count = closure.loop_vectors.size();
-  std::vector<std::set<std::size_t>> loop_unknowns(loop_count);
-  for (std::size_t row = 0; row < closure.equations.size(); ++row)
-    for (std::size_t j = 0; j < closure.unknowns.size(); ++j)
-      if (closure.equations[row].has(closure.unknowns[j]))
-        loop_unknowns[closure.equation_loop[row]].insert(j);
-
-  std::vector<RateBlock> blocks;
-  std::vector<bool> loop_done(loop_count, false);
-  std::set<std::size_t> solved;
-  bool progress = true;
-  while (progress) {
-    progress = false;
-    for (std::size_t k = 0; k < loop_count; ++k) {
-      if (loop_done[k]) continue;
-      std::vector<std::size_t> fresh;
-      for (std::size_t j : loop_unknowns[k])
-        if (!solved.count(j)) fresh.push_back(j);
-      if (fresh.size() != 2) continue;
-      RateBlock block;
-      block.loops = {k};
-      block.equations = {2 * k, 2 * k + 1};
-      block.unknowns = fresh;
-      for (std::size_t j : fresh) solved.insert(j);
-      loop_done[k] = true;
-      blocks.push_back(block);
-      progress = true;
-      break;  // restart so that blocks follow the file order where possible
-    }
-  }
-  // Whatever is coupled is solved together.
-  RateBlock rest;
-  for (std::size_t k = 0; k < loop_count; ++k) {
-    if (loop_done[k]) continue;
-    rest.loops.push_back(k);
-    rest.equations.push_back(2 * k);
-    rest.equations.push_back(2 * k + 1);
-  }
-  for (std::size_t j = 0; j < closure.unknowns.size(); ++j)
-    if (!solved.count(j)) rest.unknowns.push_back(j);
-  if (!rest.loops.empty()) {
-    if (rest.unknowns.size() != rest.equations.size()) {
-      // Not separable in this order: solve the whole system at once.
-      RateBlock all;
-      for (std::size_t k = 0; k < loop_count; ++k) {
-        all.loops.push_back(k);
-        all.equations.push_back(2 * k);
-        all.equations.push_back(2 * k + 1);
-      }
-      for (std::size_t j = 0; j < closure.unknowns.size(); ++j) all.unknowns.push_back(j);
-      return {all};
-    }
-    blocks.push_back(rest);
-  }
-  return blocks;
-}
-
 // Cramer's rule on block rows/columns, each ratio simplified the textbook way.
-std::vector<ex> solve_block(const GiNaC::matrix& jacobian, const RateBlock& block,
+std::vector<ex> solve_block(const GiNaC::matrix& jacobian, const SolvingBlock& block,
                             const std::vector<ex>& right_hand_side) {
   const std::size_t k = block.unknowns.size();
   GiNaC::matrix a(k, k);
@@ -86,84 +25,71 @@ std::vector<ex> solve_block(const GiNaC::matrix& jacobian, const RateBlock& bloc
   return solution;
 }
 
-}  // namespace
-
-std::string default_rate_name(const std::string& coordinate, int order) {
-  for (const char* angle : {"theta", "phi"}) {
-    const std::string prefix(angle);
-    if (coordinate.size() > prefix.size() && coordinate.compare(0, prefix.size(), prefix) == 0) {
-      return (order == 1 ? "omega" : "alpha") + coordinate.substr(prefix.size());
+// Terms r*exp(I*phi) of each loop with r and phi both moving.
+std::vector<SlidingLinkTerms> sliding_links(const ConstraintSystem& system) {
+  std::vector<SlidingLinkTerms> found;
+  for (std::size_t k = 0; k < system.groups.size(); ++k) {
+    if (!system.groups[k].vector) continue;
+    const ex loop = system.groups[k].vector->expand();
+    std::vector<ex> terms;
+    if (GiNaC::is_a<GiNaC::add>(loop)) {
+      for (const ex& t : loop) terms.push_back(t);
+    } else {
+      terms.push_back(loop);
+    }
+    for (const ex& term : terms) {
+      const LinkVector link = split_link_vector(term);
+      if (!link.polar) continue;
+      const ex length_rate = time_derivative(system, link.length);
+      const ex angle_rate = time_derivative(system, link.angle);
+      if (length_rate.is_zero() || angle_rate.is_zero()) continue;
+      found.push_back({k, link.length, link.angle, time_derivative(system, length_rate), length_rate * angle_rate,
+                       link.length * time_derivative(system, angle_rate), link.length * angle_rate * angle_rate});
     }
   }
-  return coordinate + (order == 1 ? "_dot" : "_ddot");
+  return found;
 }
 
-GiNaC::ex Derivation::time_derivative(const GiNaC::ex& e) const {
-  ex result = e.diff(closure.input) * input_rate + e.diff(input_rate) * input_second_rate;
-  for (std::size_t j = 0; j < closure.unknowns.size(); ++j) {
-    result += e.diff(closure.unknowns[j]) * rates[j] + e.diff(rates[j]) * second_rates[j];
-  }
+}  // namespace
+
+GiNaC::ex time_derivative(const ConstraintSystem& system, const GiNaC::ex& e) {
+  const Driver& input = system.input;
+  ex result = e.diff(input.symbol) * input.rate + e.diff(input.rate) * input.second_rate;
+  for (const Coordinate& q : system.unknowns) result += e.diff(q.symbol) * q.rate + e.diff(q.rate) * q.second_rate;
   return result;
 }
 
-Derivation derive(const Mechanism& mechanism, const LoopClosure& closure) {
+Derivation derive(const ConstraintSystem& system) {
   Derivation d;
-  d.closure = closure;
-  const std::size_t n = closure.unknowns.size();
-
-  // Rate names: the file's, else the textbook's (omega3, alpha3), unless that clashes.
-  std::set<std::string> taken;
-  for (const auto& p : mechanism.parameters) taken.insert(p.name);
-  taken.insert(mechanism.input.name);
-  for (const auto& u : mechanism.unknowns) taken.insert(u.name);
-  auto pick = [&](const std::string& given, const std::string& coordinate, int order,
-                  const SourceLocation& where) {
-    std::string name = given.empty() ? default_rate_name(coordinate, order) : given;
-    if (taken.count(name)) {
-      if (!given.empty()) {
-        throw InputError(where.str() + ": rate name \"" + name + "\" of \"" + coordinate +
-                         "\" is already used; choose another");
-      }
-      name = coordinate + (order == 1 ? "_dot" : "_ddot");
-    }
-    taken.insert(name);
-    return GiNaC::realsymbol(name);
-  };
-  d.input_rate = pick(mechanism.input.rate_name, mechanism.input.name, 1, mechanism.input.where);
-  d.input_second_rate =
-      pick(mechanism.input.second_rate_name, mechanism.input.name, 2, mechanism.input.where);
-  for (const Unknown& u : mechanism.unknowns) {
-    d.unknown_names.push_back(u.name);
-    d.rates.push_back(pick(u.rate_name, u.name, 1, u.where));
-    d.second_rates.push_back(pick(u.second_rate_name, u.name, 2, u.where));
-  }
+  const std::size_t n = system.unknowns.size();
+  GiNaC::exmap no_second_rates;
+  for (const Coordinate& q : system.unknowns) no_second_rates[q.second_rate] = 0;
 
   d.jacobian = GiNaC::matrix(n, n);
   d.input_jacobian = GiNaC::matrix(n, 1);
   for (std::size_t i = 0; i < n; ++i) {
-    const ex& phi = closure.equations[i];
-    for (std::size_t j = 0; j < n; ++j) d.jacobian(i, j) = phi.diff(closure.unknowns[j]);
-    d.input_jacobian(i, 0) = phi.diff(closure.input);
-    d.velocity_equations.push_back(d.time_derivative(phi));
-    d.acceleration_equations.push_back(d.time_derivative(d.velocity_equations.back()).expand());
-    GiNaC::exmap no_second_rates;
-    for (const auto& s : d.second_rates) no_second_rates[s] = 0;
+    const ex& phi = system.equations[i].expression;
+    for (std::size_t j = 0; j < n; ++j) d.jacobian(i, j) = phi.diff(system.unknowns[j].symbol);
+    d.input_jacobian(i, 0) = phi.diff(system.input.symbol);
+    d.velocity_equations.push_back(time_derivative(system, phi));
+    d.acceleration_equations.push_back(time_derivative(system, d.velocity_equations.back()).expand());
     d.acceleration_rhs.push_back((-d.acceleration_equations.back().subs(no_second_rates)).expand());
+    d.acceleration_rhs_combined.push_back(combine_trig_products(d.acceleration_rhs.back()));
   }
 
-  d.blocks = find_blocks(closure);
+  d.blocks = solving_order(system);
   d.solved_rates.assign(n, 0);
   d.solved_second_rates.assign(n, 0);
   std::vector<bool> solved(n, false);
-  for (const RateBlock& block : d.blocks) {
+  for (const SolvingBlock& block : d.blocks) {
     std::vector<ex> velocity_rhs, acceleration_rhs;
     for (std::size_t row : block.equations) {
-      ex v = -d.input_jacobian(row, 0) * d.input_rate;
+      ex v = -d.input_jacobian(row, 0) * system.input.rate;
       ex a = d.acceleration_rhs[row];
       for (std::size_t j = 0; j < n; ++j) {
         if (!solved[j]) continue;
-        v -= d.jacobian(row, j) * d.rates[j];
-        a -= d.jacobian(row, j) * d.second_rates[j];
+        v -= d.jacobian(row, j) * system.unknowns[j].rate;
+        a -= d.jacobian(row, j) * system.unknowns[j].second_rate;
       }
       velocity_rhs.push_back(v);
       acceleration_rhs.push_back(a);
@@ -177,12 +103,16 @@ Derivation derive(const Mechanism& mechanism, const LoopClosure& closure) {
     }
   }
 
-  for (std::size_t p = 0; p < closure.point_x.size(); ++p) {
-    d.point_velocity_x.push_back(d.time_derivative(closure.point_x[p]));
-    d.point_velocity_y.push_back(d.time_derivative(closure.point_y[p]));
-    d.point_acceleration_x.push_back(d.time_derivative(d.point_velocity_x.back()));
-    d.point_acceleration_y.push_back(d.time_derivative(d.point_velocity_y.back()));
+  for (const PointObservable& point : system.points) {
+    PointMotionFormulas motion;
+    for (const ex& component : point.position) {
+      motion.velocity.push_back(time_derivative(system, component));
+      motion.acceleration.push_back(time_derivative(system, motion.velocity.back()));
+      motion.acceleration_combined.push_back(combine_trig_products(motion.acceleration.back()));
+    }
+    d.points.push_back(motion);
   }
+  d.sliding_links = sliding_links(system);
   return d;
 }
 

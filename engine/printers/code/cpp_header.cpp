@@ -1,4 +1,10 @@
+// `kinema codegen`: the compiled evaluator as a standalone C++ header (no
+// dependencies beyond <cmath>), for controllers, simulations and microcontrollers.
 #include <kinema/engine/printers/code/cpp_header.hpp>
+
+#include <kinema/engine/numeric/solver.hpp>
+#include <kinema/engine/printers/code/tape_emitter.hpp>
+#include <kinema/engine/printers/printer.hpp>
 
 #include <cctype>
 #include <sstream>
@@ -6,14 +12,7 @@
 namespace kinema {
 namespace {
 
-std::string literal(double value) {
-  std::ostringstream out;
-  out.precision(17);
-  out << value;
-  std::string text = out.str();
-  if (text.find_first_of(".eEn") == std::string::npos) text += ".0";
-  return text;
-}
+std::string literal(double value) { return cpp_double_literal(value); }
 
 // A title or name inside a // comment: no line breaks.
 std::string comment_text(const std::string& text) {
@@ -32,17 +31,31 @@ std::string cpp_identifier(const std::string& text) {
 }
 
 void write_cpp_header(std::ostream& out, const Model& model, const std::string& name) {
-  const Mechanism& m = model.mechanism;
-  const Kinematics& k = *model.kinematics;
+  const ConstraintSystem& m = model.system;
+  const Kinematics& k = model.kinematics;
+  const TapeLayout& layout = k.layout();
   const std::size_t n = k.unknown_count(), points = k.point_count();
   const std::size_t parameters = m.parameters.size();
+  const std::size_t point_values = layout.point_output_count();
+  const CompiledExpressions& tape = k.evaluator();
+  // The points of one system share their space (planar: x, y; spatial: x, y, z).
+  const std::size_t point_dimension = points ? layout.point_dimensions.front() : 2;
+  std::string point_components;
+  for (const char* prefix : {"", "v", "a"})
+    for (std::size_t c = 0; c < point_dimension; ++c)
+      point_components += std::string(point_components.empty() ? "" : ", ") + prefix + "xyz"[c];
 
-  // Tape input names: [parameters, theta, thetad, thetadd, q, qd, qdd].
-  std::vector<std::string> inputs;
-  for (const Parameter& p : m.parameters) inputs.push_back("p." + p.name);
-  inputs.insert(inputs.end(), {"theta", "theta_rate", "theta_second_rate"});
-  for (const char* array : {"q", "qd", "qdd"})
-    for (std::size_t i = 0; i < n; ++i) inputs.push_back(std::string(array) + "[" + std::to_string(i) + "]");
+  // Tape input names, in TapeLayout's order.
+  std::vector<std::string> inputs(layout.input_register_count());
+  for (std::size_t p = 0; p < parameters; ++p) inputs[layout.parameter(p)] = "p." + m.parameters[p].symbol.get_name();
+  inputs[layout.input()] = "theta";
+  inputs[layout.rate()] = "theta_rate";
+  inputs[layout.second_rate()] = "theta_second_rate";
+  for (std::size_t i = 0; i < n; ++i) {
+    inputs[layout.q(i)] = "q[" + std::to_string(i) + "]";
+    inputs[layout.qd(i)] = "qd[" + std::to_string(i) + "]";
+    inputs[layout.qdd(i)] = "qdd[" + std::to_string(i) + "]";
+  }
   auto targets = [](const std::string& array, std::size_t count, std::size_t offset = 0) {
     std::vector<std::string> names;
     for (std::size_t i = 0; i < count; ++i) names.push_back(array + "[" + std::to_string(offset + i) + "]");
@@ -57,16 +70,16 @@ void write_cpp_header(std::ostream& out, const Model& model, const std::string& 
       << comment_text(m.title) << ".\n"
       << "// Do not edit; regenerate instead. Depends on <cmath> only. All values SI\n"
       << "// (m, rad, s). Unknowns q in this order:";
-  for (const Unknown& u : m.unknowns) out << " " << u.name;
-  out << ".\n// Points (x, y, vx, vy, ax, ay each):";
-  for (const Point& p : m.points) out << " " << p.name;
+  for (const Coordinate& u : m.unknowns) out << " " << u.name;
+  out << ".\n// Points (" << point_components << " each):";
+  for (const PointObservable& p : m.points) out << " " << p.name;
   out << ".\n#pragma once\n\n#include <cmath>\n\nnamespace " << name << " {\n\n"
       << "constexpr int unknown_count = " << n << ";\n"
       << "constexpr int point_count = " << points << ";\n\n"
       << "/// The mechanism's parameters (SI); change them for design studies.\n"
       << "struct Parameters {\n";
   for (std::size_t i = 0; i < parameters; ++i) {
-    out << "  double " << m.parameters[i].name << " = " << literal(k.parameter_values()[i]) << ";  // "
+    out << "  double " << m.parameters[i].symbol.get_name() << " = " << literal(k.parameter_values()[i]) << ";  // "
         << comment_text(m.parameters[i].text) << "\n";
   }
   if (parameters == 0) out << "  int unused = 0;\n";
@@ -81,21 +94,21 @@ void write_cpp_header(std::ostream& out, const Model& model, const std::string& 
       << "  const double theta_rate = 0, theta_second_rate = 0;\n  const double* qd = nullptr;\n"
       << "  const double* qdd = nullptr;\n";
   unused_guard("  ");
-  k.evaluator().write_cpp(out, inputs, Kinematics::kPositionStage, targets("out", n + n * n + n), "  ");
+  write_tape_stage_cpp(out, tape, inputs, TapeLayout::kPositionStage, targets("out", layout.position_output_count()), "  ");
   out << "}\n\n"
       << "// gamma (n): Phi_q * qdd = gamma.\n"
       << "inline void acceleration_rhs(const Parameters& p, double theta, double theta_rate,\n"
       << "                             double theta_second_rate, const double* q, const double* qd,\n"
       << "                             double* out) {\n  const double* qdd = nullptr;\n";
   unused_guard("  ");
-  k.evaluator().write_cpp(out, inputs, Kinematics::kAccelerationStage, targets("out", n), "  ");
+  write_tape_stage_cpp(out, tape, inputs, TapeLayout::kAccelerationStage, targets("out", n), "  ");
   out << "}\n\n"
-      << "// x, y, vx, vy, ax, ay of each point.\n"
+      << "// " << point_components << " of each point.\n"
       << "inline void point_motion(const Parameters& p, double theta, double theta_rate,\n"
       << "                         double theta_second_rate, const double* q, const double* qd,\n"
       << "                         const double* qdd, double* out) {\n";
   unused_guard("  ");
-  k.evaluator().write_cpp(out, inputs, Kinematics::kPointStage, targets("out", 6 * points), "  ");
+  write_tape_stage_cpp(out, tape, inputs, TapeLayout::kPointStage, targets("out", point_values), "  ");
   out << "}\n\n"
       << "// LU with partial pivoting of a (column-major n x n), in place; false if singular.\n"
       << "inline bool factor(double* a, int* pivot) {\n"
@@ -166,7 +179,7 @@ void write_cpp_header(std::ostream& out, const Model& model, const std::string& 
       << "/// Everything at one input value.\n"
       << "struct Motion {\n"
       << "  double q[" << n << "], qd[" << n << "], qdd[" << n << "];\n"
-      << "  double points[" << (points ? points : 1) << "][6];  ///< x, y, vx, vy, ax, ay\n"
+      << "  double points[" << (points ? points : 1) << "][" << 3 * point_dimension << "];  ///< " << point_components << "\n"
       << "};\n\n"
       << "/// Position (Newton from q, updated), velocity and acceleration; false when the\n"
       << "/// position cannot be assembled or is singular (rates undefined).\n"
@@ -191,6 +204,27 @@ void write_cpp_header(std::ostream& out, const Model& model, const std::string& 
   out << "  return true;\n"
       << "}\n\n"
       << "}  // namespace " << name << "\n";
+}
+
+}  // namespace kinema
+
+namespace kinema {
+namespace {
+
+class CppHeaderPrinter : public Printer {
+ public:
+  PrintKind kind() const override { return PrintKind::code; }
+  const char* name() const override { return "cpp"; }
+  void print(std::ostream& out, const PrintJob& job) const override {
+    write_cpp_header(out, job.model, job.code_namespace);
+  }
+};
+
+}  // namespace
+
+const Printer& cpp_header_printer() {
+  static const CppHeaderPrinter printer;
+  return printer;
 }
 
 }  // namespace kinema

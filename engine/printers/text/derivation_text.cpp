@@ -1,9 +1,6 @@
-// The derivation as readable text (GiNaC's default print context).
-#include <sstream>
-
+// The derivation in readable text (GiNaC's default print context).
+#include <kinema/engine/printers/printer.hpp>
 #include <kinema/engine/symbolic/expression_parts.hpp>
-#include <kinema/engine/printers/printers.hpp>
-#include <kinema/engine/symbolic/trig_simplify.hpp>
 
 namespace kinema {
 namespace {
@@ -29,88 +26,105 @@ std::string joined(const std::vector<std::string>& items) {
   return result;
 }
 
-}  // namespace
+class DerivationTextPrinter : public Printer {
+ public:
+  PrintKind kind() const override { return PrintKind::derivation; }
+  const char* name() const override { return "text"; }
 
-void print_derivation_text(std::ostream& out, const Mechanism& m, const Derivation& d) {
-  const LoopClosure& c = d.closure;
-  const std::size_t n = c.unknowns.size();
-  std::vector<std::string> unknowns, rates, second_rates, rows;
-  for (std::size_t i = 0; i < n; ++i) {
-    unknowns.push_back(m.unknowns[i].name);
-    rates.push_back(d.rates[i].get_name());
-    second_rates.push_back(d.second_rates[i].get_name());
-  }
-  for (const Loop& loop : m.loops) {
-    rows.push_back(loop.name + ".x");
-    rows.push_back(loop.name + ".y");
-  }
+  void print(std::ostream& out, const PrintJob& job) const override {
+    const ConstraintSystem& system = job.model.system;
+    const Derivation& d = job.model.derivation;
+    const Driver& input = system.input;
+    const std::size_t n = system.unknowns.size();
+    std::vector<std::string> unknowns, rates, second_rates, rows;
+    for (const Coordinate& q : system.unknowns) {
+      unknowns.push_back(q.name);
+      rates.push_back(q.rate.get_name());
+      second_rates.push_back(q.second_rate.get_name());
+    }
+    for (const Equation& equation : system.equations) rows.push_back(system.groups[equation.group].name + "." + equation.component);
 
-  out << m.title << "\n\n";
-  out << "input:    " << m.input.name << " (rate " << d.input_rate.get_name() << ", second rate "
-      << d.input_second_rate.get_name() << ")\n";
-  out << "unknowns: q = [" << joined(unknowns) << "]\n";
-  out << "rates:    qd = [" << joined(rates) << "], qdd = [" << joined(second_rates) << "]\n";
+    out << system.title << "\n\n";
+    out << "input:    " << input.name << " (rate " << input.rate.get_name() << ", second rate "
+        << input.second_rate.get_name() << ")\n";
+    out << "unknowns: q = [" << joined(unknowns) << "]\n";
+    out << "rates:    qd = [" << joined(rates) << "], qdd = [" << joined(second_rates) << "]\n";
 
-  out << "\n1. Loop-closure equations Phi(q, " << m.input.name << ") = 0\n";
-  for (std::size_t k = 0; k < m.loops.size(); ++k) {
-    out << "\n  loop " << m.loops[k].name << ":  " << to_text(c.loop_vectors[k]) << " = 0\n";
-    out << "    x:  " << to_text(c.equations[2 * k]) << " = 0\n";
-    out << "    y:  " << to_text(c.equations[2 * k + 1]) << " = 0\n";
-  }
+    out << "\n1. Loop-closure equations Phi(q, " << input.name << ") = 0\n";
+    for (const EquationGroup& group : system.groups) {
+      out << "\n  " << group.kind << " " << group.name << ":";
+      if (group.vector) out << "  " << to_text(*group.vector) << " = 0";
+      out << "\n";
+      for (std::size_t row : group.equations) {
+        out << "    " << system.equations[row].component << ":  " << to_text(system.equations[row].expression)
+            << " = 0\n";
+      }
+    }
 
-  out << "\n2. Jacobian Phi_q (rows " << joined(rows) << "; columns " << joined(unknowns) << ")\n\n";
-  for (std::size_t i = 0; i < n; ++i) {
-    out << "  " << rows[i] << ":  [ ";
-    for (std::size_t j = 0; j < n; ++j) out << (j ? ",  " : "") << to_text(d.jacobian(i, j));
+    out << "\n2. Jacobian Phi_q (rows " << joined(rows) << "; columns " << joined(unknowns) << ")\n\n";
+    for (std::size_t i = 0; i < n; ++i) {
+      out << "  " << rows[i] << ":  [ ";
+      for (std::size_t j = 0; j < n; ++j) out << (j ? ",  " : "") << to_text(d.jacobian(i, j));
+      out << " ]\n";
+    }
+    out << "\n  Phi_" << input.name << " = [ ";
+    for (std::size_t i = 0; i < n; ++i) out << (i ? ",  " : "") << to_text(d.input_jacobian(i, 0));
     out << " ]\n";
-  }
-  out << "\n  Phi_" << m.input.name << " = [ ";
-  for (std::size_t i = 0; i < n; ++i) out << (i ? ",  " : "") << to_text(d.input_jacobian(i, 0));
-  out << " ]\n";
 
-  out << "\n3. Velocity equations  Phi_q * [" << joined(rates) << "] = -Phi_" << m.input.name << " * "
-      << d.input_rate.get_name() << "\n\n";
-  for (std::size_t i = 0; i < n; ++i) {
-    ex left = 0;
-    for (std::size_t j = 0; j < n; ++j) left += d.jacobian(i, j) * d.rates[j];
-    out << "  " << rows[i] << ":  " << to_text(left) << " = " << to_text(-d.input_jacobian(i, 0) * d.input_rate)
-        << "\n";
-  }
+    out << "\n3. Velocity equations  Phi_q * [" << joined(rates) << "] = -Phi_" << input.name << " * "
+        << input.rate.get_name() << "\n\n";
+    for (std::size_t i = 0; i < n; ++i) {
+      ex left = 0;
+      for (std::size_t j = 0; j < n; ++j) left += d.jacobian(i, j) * system.unknowns[j].rate;
+      out << "  " << rows[i] << ":  " << to_text(left) << " = " << to_text(-d.input_jacobian(i, 0) * input.rate)
+          << "\n";
+    }
 
-  out << "\n4. Acceleration equations  Phi_q * [" << joined(second_rates)
-      << "] = -(Phi_q * qd)_q * qd - 2 (Phi_q * qd)_" << m.input.name << " * "
-      << d.input_rate.get_name() << " - Phi_" << m.input.name << m.input.name << " * "
-      << d.input_rate.get_name() << "^2 - Phi_" << m.input.name << " * " << d.input_second_rate.get_name()
-      << "\n\n";
-  for (std::size_t i = 0; i < n; ++i) {
-    ex left = 0;
-    for (std::size_t j = 0; j < n; ++j) left += d.jacobian(i, j) * d.second_rates[j];
-    out << "  " << rows[i] << ":  " << to_text(left) << " = " << to_text(combine_trig_products(d.acceleration_rhs[i]))
-        << "\n";
-  }
+    out << "\n4. Acceleration equations  Phi_q * [" << joined(second_rates)
+        << "] = -(Phi_q * qd)_q * qd - 2 (Phi_q * qd)_" << input.name << " * " << input.rate.get_name()
+        << " - Phi_" << input.name << input.name << " * " << input.rate.get_name() << "^2 - Phi_" << input.name
+        << " * " << input.second_rate.get_name() << "\n\n";
+    for (std::size_t i = 0; i < n; ++i) {
+      ex left = 0;
+      for (std::size_t j = 0; j < n; ++j) left += d.jacobian(i, j) * system.unknowns[j].second_rate;
+      out << "  " << rows[i] << ":  " << to_text(left) << " = " << to_text(d.acceleration_rhs_combined[i]) << "\n";
+    }
 
-  out << "\n5. Solved rates (Cramer's rule, block by block)\n";
-  for (const RateBlock& block : d.blocks) {
-    std::vector<std::string> loops;
-    for (std::size_t k : block.loops) loops.push_back(m.loops[k].name);
-    out << "\n  from loop " << joined(loops) << ":\n";
-    for (std::size_t j : block.unknowns) out << "    " << rates[j] << " = " << fraction(d.solved_rates[j]) << "\n";
-    for (std::size_t j : block.unknowns)
-      out << "    " << second_rates[j] << " = " << fraction(d.solved_second_rates[j]) << "\n";
-  }
+    out << "\n5. Solved rates (Cramer's rule, block by block)\n";
+    for (const SolvingBlock& block : d.blocks) {
+      std::vector<std::string> groups;
+      for (std::size_t k : block.groups) groups.push_back(system.groups[k].name);
+      out << "\n  from " << system.groups[block.groups.front()].kind << " " << joined(groups) << ":\n";
+      for (std::size_t j : block.unknowns) out << "    " << rates[j] << " = " << fraction(d.solved_rates[j]) << "\n";
+      for (std::size_t j : block.unknowns)
+        out << "    " << second_rates[j] << " = " << fraction(d.solved_second_rates[j]) << "\n";
+    }
 
-  if (!m.points.empty()) {
-    out << "\n6. Points\n";
-    for (std::size_t p = 0; p < m.points.size(); ++p) {
-      out << "\n  " << m.points[p].name << " = " << to_text(c.point_positions[p]) << "\n";
-      out << "    x   = " << to_text(c.point_x[p]) << "\n";
-      out << "    y   = " << to_text(c.point_y[p]) << "\n";
-      out << "    vx  = " << to_text(d.point_velocity_x[p]) << "\n";
-      out << "    vy  = " << to_text(d.point_velocity_y[p]) << "\n";
-      out << "    ax  = " << to_text(combine_trig_products(d.point_acceleration_x[p])) << "\n";
-      out << "    ay  = " << to_text(combine_trig_products(d.point_acceleration_y[p])) << "\n";
+    if (!system.points.empty()) {
+      out << "\n6. Points\n";
+      auto label = [](const std::string& name) { return name + std::string(name.size() < 4 ? 4 - name.size() : 1, ' '); };
+      for (std::size_t p = 0; p < system.points.size(); ++p) {
+        const PointObservable& point = system.points[p];
+        out << "\n  " << point.name;
+        if (point.written) out << " = " << to_text(*point.written);
+        out << "\n";
+        const auto& components = point.components;
+        for (std::size_t c = 0; c < components.size(); ++c)
+          out << "    " << label(components[c]) << "= " << to_text(point.position[c]) << "\n";
+        for (std::size_t c = 0; c < components.size(); ++c)
+          out << "    " << label("v" + components[c]) << "= " << to_text(d.points[p].velocity[c]) << "\n";
+        for (std::size_t c = 0; c < components.size(); ++c)
+          out << "    " << label("a" + components[c]) << "= " << to_text(d.points[p].acceleration_combined[c]) << "\n";
+      }
     }
   }
+};
+
+}  // namespace
+
+const Printer& derivation_text_printer() {
+  static const DerivationTextPrinter printer;
+  return printer;
 }
 
 }  // namespace kinema

@@ -1,8 +1,8 @@
-#include <kinema/engine/printers/latex/latex_names.hpp>
+#include <kinema/engine/symbolic/naming.hpp>
 
+#include <algorithm>
 #include <cctype>
 #include <set>
-#include <sstream>
 
 #include <kinema/engine/errors.hpp>
 
@@ -80,25 +80,14 @@ std::string latex_symbol_name(const std::string& name) {
   return result;
 }
 
-std::string latex_escape_text(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '\\': out += "\\textbackslash{}"; break;
-      case '{': out += "\\{"; break;
-      case '}': out += "\\}"; break;
-      case '$': out += "\\$"; break;
-      case '&': out += "\\&"; break;
-      case '#': out += "\\#"; break;
-      case '%': out += "\\%"; break;
-      case '_': out += "\\_"; break;
-      case '^': out += "\\textasciicircum{}"; break;
-      case '~': out += "\\textasciitilde{}"; break;
-      case '\n': case '\r': out += ' '; break;
-      default: out += c;
+std::string default_rate_name(const std::string& coordinate, int order) {
+  for (const char* angle : {"theta", "phi"}) {
+    const std::string prefix(angle);
+    if (coordinate.size() > prefix.size() && coordinate.compare(0, prefix.size(), prefix) == 0) {
+      return (order == 1 ? "omega" : "alpha") + coordinate.substr(prefix.size());
     }
   }
-  return out;
+  return coordinate + (order == 1 ? "_dot" : "_ddot");
 }
 
 void check_latex_name(const std::string& latex, const std::string& context) {
@@ -122,77 +111,6 @@ void check_latex_name(const std::string& latex, const std::string& context) {
     throw InputError(context + ": LaTeX name \"" + latex + "\" contains \"" + std::string(1, c) +
                      "\"; use letters, digits, _ ^ { } and Greek letters");
   }
-}
-
-// Top-level terms of a formula as written ("a*exp(I*t) - d" -> "a*exp(I*t)", "-d"),
-// so the drawing follows the chain in the order the user wrote the loop.
-std::vector<std::string> written_terms(const std::string& formula) {
-  std::vector<std::string> terms;
-  std::string current;
-  int depth = 0;
-  for (std::size_t i = 0; i < formula.size(); ++i) {
-    const char c = formula[i];
-    if (c == '(') ++depth;
-    if (c == ')') --depth;
-    const bool sign = (c == '+' || c == '-') && depth == 0;
-    // Not a sign of an exponent (1e-3) and not the first character.
-    const bool exponent = i > 0 && (formula[i - 1] == 'e' || formula[i - 1] == 'E') && i > 1 &&
-                          std::isdigit(static_cast<unsigned char>(formula[i - 2]));
-    if (sign && !exponent && current.find_first_not_of(" \t") != std::string::npos) {
-      terms.push_back(current);
-      current.clear();
-    }
-    current += c;
-  }
-  if (current.find_first_not_of(" \t") != std::string::npos) terms.push_back(current);
-  return terms;
-}
-
-
-GiNaC::exmap latex_symbols(const Mechanism& m, const Derivation& d) {
-  GiNaC::exmap names;
-  auto add = [&](const GiNaC::realsymbol& s, const std::string& latex) {
-    names[s] = GiNaC::realsymbol(s.get_name(), latex);
-  };
-  for (const auto& p : d.closure.parameters) add(p, latex_symbol_name(p.get_name()));
-  add(d.closure.input, latex_symbol_name(d.closure.input.get_name()));
-  add(d.input_rate, latex_symbol_name(d.input_rate.get_name()));
-  add(d.input_second_rate, latex_symbol_name(d.input_second_rate.get_name()));
-  for (std::size_t i = 0; i < d.closure.unknowns.size(); ++i) {
-    const std::string& given = m.unknowns[i].latex_name;
-    if (!given.empty()) check_latex_name(given, m.unknowns[i].where.str() + ": unknown \"" + m.unknowns[i].name + "\"");
-    add(d.closure.unknowns[i], given.empty() ? latex_symbol_name(m.unknowns[i].name) : given);
-    add(d.rates[i], given.empty() ? latex_symbol_name(d.rates[i].get_name()) : "\\dot{" + given + "}");
-    add(d.second_rates[i],
-        given.empty() ? latex_symbol_name(d.second_rates[i].get_name()) : "\\ddot{" + given + "}");
-  }
-  return names;
-}
-
-std::string latex_exp(const GiNaC::ex& angle, const GiNaC::exmap& names) {
-  const std::string a = to_latex(angle, names);
-  return "e^{i" + (GiNaC::is_a<GiNaC::add>(angle) ? "(" + a + ")" : a) + "}";
-}
-
-std::string latex_column(const std::vector<GiNaC::ex>& entries, const GiNaC::exmap& names) {
-  std::string text = "\\begin{bmatrix}";
-  for (std::size_t i = 0; i < entries.size(); ++i) text += (i ? " \\\\ " : " ") + to_latex(entries[i], names);
-  return text + " \\end{bmatrix}";
-}
-
-std::string latex_matrix(const GiNaC::matrix& matrix, const GiNaC::exmap& names) {
-  std::string text = "\\begin{bmatrix}";
-  for (unsigned i = 0; i < matrix.rows(); ++i) {
-    for (unsigned j = 0; j < matrix.cols(); ++j) text += (j ? " & " : " ") + to_latex(matrix(i, j), names);
-    text += i + 1 < matrix.rows() ? " \\\\" : " ";
-  }
-  return text + "\\end{bmatrix}";
-}
-
-std::string to_latex(const GiNaC::ex& e, const GiNaC::exmap& names) {
-  std::ostringstream out;
-  out << GiNaC::latex << e.subs(names);
-  return out.str();
 }
 
 }  // namespace kinema

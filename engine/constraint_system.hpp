@@ -1,0 +1,104 @@
+// The hand-off between what the user wrote and the engine: every front end
+// (vector loops today; joints and links, frames next) produces a
+// ConstraintSystem, and derivation, compilation, reports and printers read
+// only this. Equations carry labels (loop ABCD, component x), so nothing
+// downstream counts rows; points have as many components as their space.
+#pragma once
+
+#include <ginac/ginac.h>
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <kinema/loops/mechanism.hpp>
+#include <kinema/loops/units.hpp>
+
+namespace kinema {
+
+/// A named constant of the system, with its SI value.
+struct SystemParameter {
+  GiNaC::realsymbol symbol;     ///< Carries its LaTeX name.
+  double value = 0.0;           ///< SI.
+  Dimension dimension = Dimension::number;  ///< length, angle, or number (unknown unit).
+  std::string text;             ///< As written ("150 mm", "b/2").
+  std::optional<GiNaC::ex> formula;  ///< For a parameter written as a formula of earlier ones.
+  SourceLocation where;
+};
+
+/// A coordinate and its two time derivatives (the symbols carry their LaTeX names).
+struct Coordinate {
+  std::string name;
+  Dimension dimension = Dimension::angle;  ///< angle or length
+  GiNaC::realsymbol symbol, rate, second_rate;
+  double guess = 0.0;  ///< SI starting value (unknowns): picks the assembly branch.
+  SourceLocation where;
+};
+
+/// The driver: its coordinate and the motion the file gives it.
+struct Driver : Coordinate {
+  std::vector<double> values;  ///< SI values from the file (may be empty).
+  double rate_value = 0.0;     ///< SI; negative = clockwise / retracting.
+  double second_rate_value = 0.0;
+};
+
+/// Equations that belong together as the user wrote them: a vector loop
+/// (later a dyad, a frame).
+struct EquationGroup {
+  std::string kind;  ///< "loop"
+  std::string name;  ///< "ABCD"
+  SourceLocation where;
+  std::vector<std::size_t> equations;  ///< Indices into ConstraintSystem::equations.
+  /// A planar loop as a complex sum (= 0) and its terms in the order written
+  /// (link vectors length*exp(I*angle)); empty for groups of other kinds.
+  std::optional<GiNaC::ex> vector;
+  std::vector<GiNaC::ex> terms;
+};
+
+/// One scalar equation Phi_i(q, theta) = 0 and where it comes from.
+struct Equation {
+  GiNaC::ex expression;
+  std::size_t group = 0;  ///< Index into ConstraintSystem::groups.
+  std::string component;  ///< "x", "y" (later "axis 2", ...).
+};
+
+/// A named point whose position the system determines (2-D or 3-D).
+struct PointObservable {
+  std::string name;
+  SourceLocation where;
+  std::vector<std::string> components;  ///< "x", "y" (and "z").
+  std::vector<GiNaC::ex> position;      ///< One expression per component.
+  std::optional<GiNaC::ex> written;     ///< Planar: x + I*y as written.
+};
+
+/// A frame whose angular velocity is reported (spatial chains).
+struct FrameObservable {
+  std::string name;
+  SourceLocation where;
+  std::vector<GiNaC::ex> angular_velocity;  ///< Components in the observer's basis.
+};
+
+struct ConstraintSystem {
+  std::string title;
+  std::string description;
+  std::string source_file;  ///< Path as given (for messages).
+  std::vector<SystemParameter> parameters;  ///< In file order.
+  Driver input;
+  std::vector<Coordinate> unknowns;  ///< q, in file order.
+  std::vector<Equation> equations;   ///< As many as unknowns.
+  std::vector<EquationGroup> groups;
+  std::vector<PointObservable> points;
+  std::vector<FrameObservable> frames;
+  OutputUnits output;
+  /// Typical length (largest length parameter, else 1 m): tolerances and scaling.
+  double length_scale = 1.0;
+
+  /// "loop ABCD (four_bar.toml:12)" for messages.
+  std::string describe_group(std::size_t group) const {
+    const EquationGroup& g = groups.at(group);
+    return g.kind + " \"" + g.name + "\" (" + g.where.str() + ")";
+  }
+};
+
+}  // namespace kinema

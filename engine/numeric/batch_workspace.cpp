@@ -1,0 +1,315 @@
+#include <kinema/engine/numeric/batch_workspace.hpp>
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+
+#include <kinema/engine/numeric/solver.hpp>
+
+namespace kinema {
+namespace {
+
+constexpr std::size_t kLanes = BatchWorkspace::kLanes;
+
+// LU with partial pivoting of kLanes small matrices at once, lane-parallel: the
+// pivot row of each lane is chosen and swapped in by selects, so every loop is a
+// fixed-length loop over lanes. Same operations, in the same order, as lu_factor.
+KINEMA_LANE_LOOPS void lu_factor_lanes(double* a, double* pivots, std::size_t n) {
+  auto at = [&](std::size_t i, std::size_t j) { return a + (i * n + j) * kLanes; };
+  for (std::size_t c = 0; c < n; ++c) {
+    double best[kLanes], best_magnitude[kLanes];
+    const double* diagonal = at(c, c);
+    for (std::size_t l = 0; l < kLanes; ++l) {
+      best[l] = static_cast<double>(c);
+      best_magnitude[l] = std::fabs(diagonal[l]);
+    }
+    for (std::size_t r = c + 1; r < n; ++r) {
+      const double* candidate = at(r, c);
+      for (std::size_t l = 0; l < kLanes; ++l) {
+        const double magnitude = std::fabs(candidate[l]);
+        const bool larger = magnitude > best_magnitude[l];
+        best[l] = larger ? static_cast<double>(r) : best[l];
+        best_magnitude[l] = larger ? magnitude : best_magnitude[l];
+      }
+    }
+    std::copy(best, best + kLanes, pivots + c * kLanes);
+    for (std::size_t r = c + 1; r < n; ++r) {
+      for (std::size_t j = 0; j < n; ++j) {
+        double* __restrict top = at(c, j);
+        double* __restrict other = at(r, j);
+        for (std::size_t l = 0; l < kLanes; ++l) {
+          const bool swap = best[l] == static_cast<double>(r);
+          const double t = top[l];
+          top[l] = swap ? other[l] : t;
+          other[l] = swap ? t : other[l];
+        }
+      }
+    }
+    for (std::size_t r = c + 1; r < n; ++r) {
+      double* __restrict factor = at(r, c);
+      const double* __restrict pivot = at(c, c);
+      for (std::size_t l = 0; l < kLanes; ++l) factor[l] /= pivot[l];
+      for (std::size_t j = c + 1; j < n; ++j) {
+        double* __restrict target = at(r, j);
+        const double* __restrict source = at(c, j);
+        for (std::size_t l = 0; l < kLanes; ++l) target[l] -= factor[l] * source[l];
+      }
+    }
+  }
+}
+
+// Solves with lu_factor_lanes's result; x (n rows of kLanes) holds the right-hand sides.
+KINEMA_LANE_LOOPS void lu_solve_lanes(const double* a, const double* pivots, double* x, std::size_t n) {
+  auto at = [&](std::size_t i, std::size_t j) { return a + (i * n + j) * kLanes; };
+  for (std::size_t c = 0; c < n; ++c) {
+    for (std::size_t r = c + 1; r < n; ++r) {
+      double* __restrict top = x + c * kLanes;
+      double* __restrict other = x + r * kLanes;
+      const double* __restrict pivot = pivots + c * kLanes;
+      for (std::size_t l = 0; l < kLanes; ++l) {
+        const bool swap = pivot[l] == static_cast<double>(r);
+        const double t = top[l];
+        top[l] = swap ? other[l] : t;
+        other[l] = swap ? t : other[l];
+      }
+    }
+  }
+  for (std::size_t c = 0; c < n; ++c) {
+    for (std::size_t r = c + 1; r < n; ++r) {
+      double* __restrict target = x + r * kLanes;
+      const double* __restrict source = x + c * kLanes;
+      const double* __restrict factor = at(r, c);
+      for (std::size_t l = 0; l < kLanes; ++l) target[l] -= factor[l] * source[l];
+    }
+  }
+  for (std::size_t c = n; c-- > 0;) {
+    double* __restrict value = x + c * kLanes;
+    const double* __restrict pivot = at(c, c);
+    for (std::size_t l = 0; l < kLanes; ++l) value[l] /= pivot[l];
+    for (std::size_t r = 0; r < c; ++r) {
+      double* __restrict target = x + r * kLanes;
+      const double* __restrict factor = at(r, c);
+      for (std::size_t l = 0; l < kLanes; ++l) target[l] -= factor[l] * value[l];
+    }
+  }
+}
+
+}  // namespace
+
+BatchWorkspace::BatchWorkspace(const Kinematics& k)
+    : k_(k),
+      layout_(k.layout()),
+      n_(k.unknown_count()),
+      registers_(k.evaluator().make_batch_workspace()),
+      lu_(n_ * n_ * kLanes),
+      pivots_(n_ * kLanes),
+      x_(n_ * kLanes),
+      predicted_(n_ * kLanes) {
+  for (std::size_t p = 0; p < layout_.parameter_count; ++p)
+    std::fill_n(lanes(layout_.parameter(p)), kLanes, k.parameter_values()[p]);
+  k.evaluator().prepare_batch(registers_.data());
+}
+
+bool BatchWorkspace::factorise() {
+  const auto& column_scale = k_.column_scale();
+  for (std::size_t i = 0; i < n_; ++i)
+    for (std::size_t j = 0; j < n_; ++j) {
+      const double* phi_q = output(TapeLayout::kPositionStage, layout_.phi_q(i, j));
+      double* target = lu_.data() + (i * n_ + j) * kLanes;
+      for (std::size_t l = 0; l < kLanes; ++l) target[l] = phi_q[l] * column_scale[j];
+    }
+  lu_factor_lanes(lu_.data(), pivots_.data(), n_);
+  // Clearly regular pivots only; anything near a toggle goes to the scalar path,
+  // which decides singularity with the singular values.
+  pivot_ratios(pivot_ratio_);
+  int irregular = 0;
+  for (std::size_t l = 0; l < kLanes; ++l) irregular += !(pivot_ratio_[l] >= solver::kClearlyRegularPivotRatio);
+  return irregular == 0;
+}
+
+void BatchWorkspace::pivot_ratios(double* ratio) const {
+  double smallest[kLanes], largest[kLanes];
+  for (std::size_t l = 0; l < kLanes; ++l) {
+    smallest[l] = INFINITY;
+    largest[l] = 0;
+  }
+  for (std::size_t c = 0; c < n_; ++c) {
+    const double* pivot = lu_.data() + (c * n_ + c) * kLanes;
+    for (std::size_t l = 0; l < kLanes; ++l) {
+      const double magnitude = std::fabs(pivot[l]);
+      smallest[l] = magnitude < smallest[l] ? magnitude : smallest[l];
+      largest[l] = magnitude > largest[l] ? magnitude : largest[l];
+    }
+  }
+  // NaN (a zero pivot divided through) compares false: not regular.
+  for (std::size_t l = 0; l < kLanes; ++l) ratio[l] = smallest[l] / largest[l];
+}
+
+bool BatchWorkspace::predict(const MotionTable& table, std::size_t first, std::size_t history_begin) {
+  const double rate = table.input_rate(), second_rate = table.input_second_rate();
+  const std::size_t last = first - 1;
+  const double t1 = table.input(last);
+  const double reach = 4 * k_.max_continuation_step();
+  for (std::size_t l = 0; l < kLanes; ++l)
+    if (!(std::fabs(table.input(first + l) - t1) <= reach)) return false;
+  // Quintic Hermite through the last row and the one a block earlier (values, first
+  // and second derivatives in the input) when both are on the same stretch of
+  // solved rows; else Taylor to second order from the last row.
+  bool hermite = last >= history_begin + kLanes;
+  const std::size_t earlier = hermite ? last - kLanes : last;
+  for (std::size_t row = earlier; hermite && row <= last; ++row)
+    hermite = table.status(row) == Status::ok && (row == earlier || table.failure(row).kind == Failure::Kind::none);
+  const double t0 = table.input(earlier), span = t1 - t0;
+  hermite = hermite && span != 0 && std::fabs(span) <= reach;
+  for (std::size_t i = 0; i < n_; ++i) {
+    auto derivatives = [&](std::size_t row, double& value, double& slope, double& curvature) {
+      value = table.q(row)[i];
+      slope = table.qd(row)[i] / rate;
+      curvature = (table.qdd(row)[i] - slope * second_rate) / (rate * rate);
+    };
+    double y1, d1, c1;
+    derivatives(last, y1, d1, c1);
+    double* out = predicted_.data() + i * kLanes;
+    if (!hermite) {
+      const double value = table.q(last)[i], value_rate = table.qd(last)[i], value_second_rate = table.qdd(last)[i];
+      for (std::size_t l = 0; l < kLanes; ++l) {
+        out[l] = solver::predict_second_order(value, value_rate, value_second_rate, rate, second_rate,
+                                              table.input(first + l) - t1);
+      }
+      continue;
+    }
+    double y0, d0, c0;
+    derivatives(earlier, y0, d0, c0);
+    // Newton form on the nodes t0, t0, t0, t1, t1, t1 (confluent divided differences).
+    const double f01 = (y1 - y0) / span;
+    const double f001 = (f01 - d0) / span, f011 = (d1 - f01) / span;
+    const double f0001 = (f001 - 0.5 * c0) / span, f0011 = (f011 - f001) / span, f0111 = (0.5 * c1 - f011) / span;
+    const double f00011 = (f0011 - f0001) / span, f00111 = (f0111 - f0011) / span;
+    const double f000111 = (f00111 - f00011) / span;
+    for (std::size_t l = 0; l < kLanes; ++l) {
+      const double u = table.input(first + l) - t0, v = table.input(first + l) - t1;
+      out[l] = y0 + u * (d0 + u * (0.5 * c0 + u * (f0001 + v * (f00011 + v * f000111))));
+    }
+  }
+  return true;
+}
+
+bool BatchWorkspace::solve(MotionTable& table, std::size_t first, std::size_t history_begin) {
+  return solve_lanes(table, first, history_begin);
+}
+
+bool BatchWorkspace::solve_lanes(MotionTable& table, std::size_t first, std::size_t history_begin) {
+  const std::size_t n = n_;
+  const auto& e = k_.evaluator();
+  const auto& column_scale = k_.column_scale();
+  const double rate = table.input_rate(), second_rate = table.input_second_rate();
+  const double tolerance = solver::kNewtonTolerance * k_.length_scale();
+  if (!predict(table, first, history_begin)) return false;
+  for (std::size_t l = 0; l < kLanes; ++l) {
+    lanes(layout_.input())[l] = table.input(first + l);
+    lanes(layout_.rate())[l] = rate;
+    lanes(layout_.second_rate())[l] = second_rate;
+  }
+  for (std::size_t i = 0; i < n; ++i) std::copy_n(predicted_.data() + i * kLanes, kLanes, lanes(layout_.q(i)));
+
+  // Newton on every lane at once; Phi_q is factorised at each iterate, so the last
+  // factorisation (at the solution) also gives the rates. A lane that has converged
+  // stays where it is, as the scalar solver stops there.
+  double residual[kLanes];
+  double done[kLanes];  // 1 for a lane that has converged
+  for (int iteration = 0;; ++iteration) {
+    e.evaluate_stage_batch_from(TapeLayout::kPositionStage,
+                                iteration == 0 ? TapeLayout::kInputLevel : TapeLayout::kCoordinateLevel,
+                                registers_.data());
+    bool all_done = true;
+    for (std::size_t l = 0; l < kLanes; ++l) residual[l] = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double* phi = output(TapeLayout::kPositionStage, layout_.phi(i));
+      for (std::size_t l = 0; l < kLanes; ++l) {
+        // NaN stays: the comparison is false for it.
+        const double magnitude = std::fabs(phi[l]);
+        residual[l] = (magnitude > residual[l] || magnitude != magnitude) ? magnitude : residual[l];
+      }
+    }
+    int nonfinite = 0, open = 0;
+    for (std::size_t l = 0; l < kLanes; ++l) {
+      nonfinite += !(residual[l] <= DBL_MAX);
+      done[l] = residual[l] <= tolerance ? 1.0 : 0.0;
+      open += !(residual[l] <= tolerance);
+    }
+    if (nonfinite) return false;
+    all_done = open == 0;
+    if (!factorise()) return false;
+    if (all_done) break;
+    if (iteration == 6) return false;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double* phi = output(TapeLayout::kPositionStage, layout_.phi(i));
+      for (std::size_t l = 0; l < kLanes; ++l) x_[i * kLanes + l] = -phi[l];
+    }
+    lu_solve_lanes(lu_.data(), pivots_.data(), x_.data(), n);
+    for (std::size_t i = 0; i < n; ++i) {
+      double* q = lanes(layout_.q(i));
+      for (std::size_t l = 0; l < kLanes; ++l) q[l] += (1.0 - done[l]) * x_[i * kLanes + l] * column_scale[i];
+    }
+  }
+  // Same branch as predicted (as Workspace::predict_and_correct checks).
+  int jumped = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double* q = lanes(layout_.q(i));
+    const double* predicted = predicted_.data() + i * kLanes;
+    for (std::size_t l = 0; l < kLanes; ++l)
+      jumped += !(std::fabs(q[l] - predicted[l]) <= solver::kBranchTolerance * column_scale[i]);
+  }
+  if (jumped) return false;
+
+  // Velocity, then acceleration, with the factorisation at the solution.
+  for (std::size_t i = 0; i < n; ++i) {
+    const double* phi_theta = output(TapeLayout::kPositionStage, layout_.phi_theta(i));
+    for (std::size_t l = 0; l < kLanes; ++l) x_[i * kLanes + l] = -phi_theta[l] * rate;
+  }
+  lu_solve_lanes(lu_.data(), pivots_.data(), x_.data(), n);
+  for (std::size_t i = 0; i < n; ++i) {
+    double* qd = lanes(layout_.qd(i));
+    for (std::size_t l = 0; l < kLanes; ++l) qd[l] = x_[i * kLanes + l] * column_scale[i];
+  }
+  e.evaluate_stage_batch_from(TapeLayout::kAccelerationStage, TapeLayout::kInputLevel, registers_.data());
+  for (std::size_t i = 0; i < n; ++i)
+    std::copy_n(output(TapeLayout::kAccelerationStage, i), kLanes, x_.data() + i * kLanes);
+  lu_solve_lanes(lu_.data(), pivots_.data(), x_.data(), n);
+  for (std::size_t i = 0; i < n; ++i) {
+    double* qdd = lanes(layout_.qdd(i));
+    for (std::size_t l = 0; l < kLanes; ++l) qdd[l] = x_[i * kLanes + l] * column_scale[i];
+  }
+  e.evaluate_stage_batch_from(TapeLayout::kPointStage, TapeLayout::kInputLevel, registers_.data());
+  const std::size_t point_values = layout_.point_output_count();
+  // x * 0 is 0 for finite x and NaN otherwise: one sum per lane says whether all are finite.
+  double nonfinite[kLanes] = {};
+  auto accumulate = [&](const double* v) {
+    for (std::size_t l = 0; l < kLanes; ++l) nonfinite[l] += v[l] * 0.0;
+  };
+  for (std::size_t k = 0; k < point_values; ++k) accumulate(output(TapeLayout::kPointStage, k));
+  for (std::size_t i = 0; i < n; ++i) {
+    accumulate(lanes(layout_.qd(i)));
+    accumulate(lanes(layout_.qdd(i)));
+  }
+  int bad = 0;
+  for (std::size_t l = 0; l < kLanes; ++l) bad += nonfinite[l] != 0.0;
+  if (bad) return false;
+
+  // Lanes to rows: the table is column-major, so each quantity is one contiguous copy.
+  table.set_ok(first, kLanes);
+  const std::size_t rows = table.size();
+  std::copy_n(residual, kLanes, table.loop_residuals() + first);
+  std::copy_n(pivot_ratio_, kLanes, table.reciprocal_conditions() + first);
+  for (std::size_t i = 0; i < n; ++i) {
+    std::copy_n(lanes(layout_.q(i)), kLanes, table.q_values() + i * rows + first);
+    std::copy_n(lanes(layout_.qd(i)), kLanes, table.qd_values() + i * rows + first);
+    std::copy_n(lanes(layout_.qdd(i)), kLanes, table.qdd_values() + i * rows + first);
+  }
+  // The point stage's outputs are in the table's point column order.
+  for (std::size_t k = 0; k < point_values; ++k)
+    std::copy_n(output(TapeLayout::kPointStage, k), kLanes, table.point_values() + k * rows + first);
+  return true;
+}
+
+}  // namespace kinema

@@ -1,0 +1,120 @@
+// Results at input values: MotionState for one value, MotionTable for many,
+// kept in flat column-major arrays so that a long sweep costs no allocation
+// per value (a 10^6-value six-bar sweep is a few hundred MB in one piece).
+#pragma once
+
+#include <Eigen/Dense>
+
+#include <array>
+#include <cmath>
+#include <iterator>
+#include <vector>
+
+#include <kinema/engine/numeric/failure.hpp>
+
+namespace kinema {
+
+/// Position, velocity and acceleration of a point (SI); `dimension` components
+/// are meaningful (2 for planar points, 3 for spatial ones).
+struct PointMotion {
+  std::size_t dimension = 2;
+  std::array<double, 3> position{}, velocity{}, acceleration{};
+  double speed() const { return std::sqrt(velocity[0] * velocity[0] + velocity[1] * velocity[1] + velocity[2] * velocity[2]); }
+  double acceleration_magnitude() const {
+    return std::sqrt(acceleration[0] * acceleration[0] + acceleration[1] * acceleration[1] +
+                     acceleration[2] * acceleration[2]);
+  }
+};
+
+/// Everything known at one input value (SI).
+struct MotionState {
+  double input = 0, input_rate = 0, input_second_rate = 0;
+  Status status = Status::unassembled;
+  Failure failure;             ///< Why, when status is not ok (or a note when it is).
+  Eigen::VectorXd q, qd, qdd;  ///< q empty when unassembled; qd, qdd empty unless ok.
+  std::vector<PointMotion> points;  ///< Empty unless ok.
+  double loop_residual = 0;         ///< max |Phi| at the solution (m).
+  double reciprocal_condition = 0;  ///< of the length-scaled Phi_q; ~0 at a toggle.
+};
+
+class MotionTable {
+ public:
+  MotionTable() = default;
+  /// Rows for `inputs`, all unassembled until set; points of the given dimensions.
+  MotionTable(const std::vector<double>& inputs, std::size_t unknowns, const std::vector<std::size_t>& point_dimensions,
+              double rate, double second_rate);
+
+  std::size_t size() const { return input_.size(); }
+  bool empty() const { return input_.empty(); }
+  std::size_t unknown_count() const { return n_; }
+  std::size_t point_count() const { return point_dimensions_.size(); }
+  double input_rate() const { return rate_; }
+  double input_second_rate() const { return second_rate_; }
+  /// How many rows were solved in SIMD blocks (the rest one by one): a diagnostic.
+  std::size_t batch_rows() const { return batch_rows_; }
+  void add_batch_rows(std::size_t rows) { batch_rows_ += rows; }
+  /// Heap bytes held by the table (for the benchmark's memory figure).
+  std::size_t bytes() const;
+
+  double input(std::size_t row) const { return input_[row]; }
+  Status status(std::size_t row) const { return status_[row]; }
+  const Failure& failure(std::size_t row) const { return failure_[row]; }
+  /// Coordinates, rates and second rates of a row (meaningful as MotionState says).
+  using Column = Eigen::Map<const Eigen::VectorXd, 0, Eigen::InnerStride<>>;
+  Column q(std::size_t row) const { return column_view(q_, row); }
+  Column qd(std::size_t row) const { return column_view(qd_, row); }
+  Column qdd(std::size_t row) const { return column_view(qdd_, row); }
+  PointMotion point(std::size_t row, std::size_t p) const;
+  double loop_residual(std::size_t row) const { return loop_residual_[row]; }
+  double reciprocal_condition(std::size_t row) const { return reciprocal_condition_[row]; }
+
+  /// Row `row` as a MotionState (a copy).
+  MotionState operator[](std::size_t row) const;
+  /// Stores a state (its input, status, failure and whatever its status makes valid).
+  void set(std::size_t row, const MotionState& state);
+
+  /// Column storage for solvers that fill blocks of rows: value i of row r at
+  /// [i * size() + r]; points: the 3 * dimension values of each point in turn.
+  double* q_values() { return q_.data(); }
+  double* qd_values() { return qd_.data(); }
+  double* qdd_values() { return qdd_.data(); }
+  double* point_values() { return points_.data(); }
+  double* loop_residuals() { return loop_residual_.data(); }
+  double* reciprocal_conditions() { return reciprocal_condition_.data(); }
+  /// Marks rows [first, first + count) ok with nothing to report.
+  void set_ok(std::size_t first, std::size_t count);
+
+  class const_iterator {
+   public:
+    using value_type = MotionState;
+    using difference_type = std::ptrdiff_t;
+    using reference = MotionState;
+    using pointer = void;
+    using iterator_category = std::input_iterator_tag;
+    const_iterator(const MotionTable* table, std::size_t row) : table_(table), row_(row) {}
+    MotionState operator*() const { return (*table_)[row_]; }
+    const_iterator& operator++() { ++row_; return *this; }
+    bool operator==(const const_iterator& other) const { return row_ == other.row_; }
+    bool operator!=(const const_iterator& other) const { return row_ != other.row_; }
+   private:
+    const MotionTable* table_;
+    std::size_t row_;
+  };
+  const_iterator begin() const { return {this, 0}; }
+  const_iterator end() const { return {this, size()}; }
+
+ private:
+  std::size_t n_ = 0, batch_rows_ = 0;
+  std::vector<std::size_t> point_dimensions_;
+  double rate_ = 0, second_rate_ = 0;
+  std::vector<double> input_, q_, qd_, qdd_, loop_residual_, reciprocal_condition_;
+  std::vector<Status> status_;
+  std::vector<Failure> failure_;
+  std::vector<double> points_;
+  std::vector<std::size_t> point_offset_;  ///< First column of each point in points_.
+  Column column_view(const std::vector<double>& values, std::size_t row) const {
+    return Column(values.data() + row, Eigen::Index(n_), Eigen::InnerStride<>(Eigen::Index(size())));
+  }
+};
+
+}  // namespace kinema

@@ -1,0 +1,271 @@
+// GiNaC expressions to the register tape: value numbering, one sincos per
+// argument, instructions ordered by input level, products fused into sums.
+#include <kinema/engine/numeric/tape.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <tuple>
+
+namespace kinema {
+
+using GiNaC::ex;
+
+int CompiledExpressions::operand_count(Op op) {
+  switch (op) {
+#define KINEMA_TAPE_OPERANDS(name, operands, value, text) \
+  case Op::name: return operands;
+    KINEMA_TAPE_OPS(KINEMA_TAPE_OPERANDS)
+#undef KINEMA_TAPE_OPERANDS
+    case Op::sincos: return 1;
+  }
+  return 1;
+}
+
+class TapeBuilder {
+ public:
+  explicit TapeBuilder(CompiledExpressions& target) : t_(target) {}
+
+  void add_input(const ex& symbol, int level) {
+    if (!GiNaC::is_a<GiNaC::symbol>(symbol)) throw std::invalid_argument("input is not a symbol");
+    memo_[symbol] = new_register(0.0);
+    level_.back() = level;
+  }
+
+  /// Level of each register: the highest input level it depends on.
+  std::vector<int> level_;
+
+  std::uint32_t compile(const ex& e) {
+    auto found = memo_.find(e);
+    if (found != memo_.end()) return found->second;
+    const std::uint32_t reg = compile_new(e);
+    memo_[e] = reg;
+    return reg;
+  }
+
+ private:
+  using Op = CompiledExpressions::Op;
+  CompiledExpressions& t_;
+  std::map<ex, std::uint32_t, GiNaC::ex_is_less> memo_;
+  std::map<double, std::uint32_t> constants_;
+  /// Value numbering: an instruction already on the tape is not emitted again, so
+  /// sub-products that GiNaC's expression tree repeats (b*sin(theta3) inside several
+  /// terms) are computed once.
+  std::map<std::tuple<Op, std::uint32_t, std::uint32_t, int>, std::uint32_t> emitted_;
+  std::map<std::uint32_t, std::pair<std::uint32_t, std::uint32_t>> sincos_of_;
+
+  std::uint32_t new_register(double initial) {
+    t_.initial_registers_.push_back(initial);
+    level_.push_back(0);
+    return static_cast<std::uint32_t>(t_.initial_registers_.size() - 1);
+  }
+
+  std::uint32_t constant_register(double value) {
+    auto found = constants_.find(value);
+    if (found != constants_.end()) return found->second;
+    const std::uint32_t reg = new_register(value);
+    constants_[value] = reg;
+    return reg;
+  }
+
+  std::uint32_t emit(Op op, std::uint32_t a, std::uint32_t b = 0, int exponent = 0) {
+    if ((op == Op::add || op == Op::mul) && b < a) std::swap(a, b);  // commutative: one key
+    const auto key = std::make_tuple(op, a, b, exponent);
+    auto found = emitted_.find(key);
+    if (found != emitted_.end()) return found->second;
+    const std::uint32_t out = new_register(0.0);
+    t_.instructions_.push_back({op, out, a, b, exponent});
+    level_[out] = CompiledExpressions::operand_count(op) >= 2 ? std::max(level_[a], level_[b]) : level_[a];
+    emitted_[key] = out;
+    return out;
+  }
+
+  std::uint32_t compile_new(const ex& e) {
+    using namespace GiNaC;
+    if (is_a<numeric>(e)) {
+      const numeric& n = ex_to<numeric>(e);
+      if (!n.is_real()) throw std::invalid_argument("complex number in a compiled expression");
+      return constant_register(n.to_double());
+    }
+    if (is_a<GiNaC::constant>(e)) return constant_register(ex_to<numeric>(evalf(e)).to_double());
+    if (is_a<symbol>(e)) {
+      std::ostringstream name;
+      name << e;
+      throw std::invalid_argument("symbol " + name.str() + " is not an input of the compiled expressions");
+    }
+    if (is_a<add>(e)) {
+      // Terms with a coefficient -1 become subtractions.
+      std::uint32_t sum = 0;
+      bool first = true;
+      for (const ex& term : e) {
+        bool negative = is_a<mul>(term) && term.op(term.nops() - 1).is_equal(-1);
+        const ex magnitude = negative ? ex(-term) : term;
+        const std::uint32_t reg = compile(magnitude);
+        if (first) sum = negative ? emit(Op::neg, reg) : reg;
+        else sum = emit(negative ? Op::sub : Op::add, sum, reg);
+        first = false;
+      }
+      return sum;
+    }
+    if (is_a<mul>(e)) {
+      // A coefficient -1 (GiNaC keeps it last) is a negation, not a multiplication.
+      const ex last = e.op(e.nops() - 1);
+      if (last.is_equal(-1)) return emit(Op::neg, compile(-e));
+      std::uint32_t product = 0;
+      std::uint32_t divisor = 0;
+      bool have_product = false, have_divisor = false;
+      for (const ex& factor : e) {
+        // Factors with negative integer powers go to one divisor.
+        if (is_a<power>(factor) && is_a<numeric>(factor.op(1)) &&
+            ex_to<numeric>(factor.op(1)).is_integer() && ex_to<numeric>(factor.op(1)).is_negative()) {
+          const std::uint32_t reg = compile(pow(factor.op(0), -factor.op(1)));
+          divisor = have_divisor ? emit(Op::mul, divisor, reg) : reg;
+          have_divisor = true;
+          continue;
+        }
+        const std::uint32_t reg = compile(factor);
+        product = have_product ? emit(Op::mul, product, reg) : reg;
+        have_product = true;
+      }
+      if (!have_product) product = constant_register(1.0);
+      return have_divisor ? emit(Op::div, product, divisor) : product;
+    }
+    if (is_a<power>(e)) {
+      const ex exponent = e.op(1);
+      if (is_a<numeric>(exponent) && ex_to<numeric>(exponent).is_integer()) {
+        const int k = ex_to<numeric>(exponent).to_int();
+        const std::uint32_t base = compile(e.op(0));
+        if (k == 2) return emit(Op::square, base);
+        if (k == -1) return emit(Op::div, constant_register(1.0), base);
+        return emit(Op::powi, base, 0, k);
+      }
+      if (exponent.is_equal(numeric(1, 2))) return emit(Op::sqrt, compile(e.op(0)));
+      return emit(Op::pow, compile(e.op(0)), compile(exponent));
+    }
+    if (is_a<function>(e)) {
+      const std::string name = ex_to<function>(e).get_name();
+      if (name == "sin" || name == "cos") {
+        // One sincos for both; memoise the partner so it is never recomputed.
+        const std::uint32_t argument = compile(e.op(0));
+        auto found = sincos_of_.find(argument);
+        if (found == sincos_of_.end()) {
+          const std::uint32_t sin_reg = new_register(0.0);
+          const std::uint32_t cos_reg = new_register(0.0);
+          t_.instructions_.push_back({Op::sincos, sin_reg, argument, cos_reg, 0});
+          level_[sin_reg] = level_[cos_reg] = level_[argument];
+          found = sincos_of_.emplace(argument, std::make_pair(sin_reg, cos_reg)).first;
+        }
+        const auto [sin_reg, cos_reg] = found->second;
+        memo_[GiNaC::sin(e.op(0))] = sin_reg;
+        memo_[GiNaC::cos(e.op(0))] = cos_reg;
+        return name == "sin" ? sin_reg : cos_reg;
+      }
+      if (name == "atan2") return emit(Op::atan2, compile(e.op(0)), compile(e.op(1)));
+      static const std::map<std::string, Op> unary = {
+          {"tan", Op::tan}, {"exp", Op::exp}, {"log", Op::log}, {"abs", Op::abs},
+          {"asin", Op::asin}, {"acos", Op::acos}, {"atan", Op::atan}};
+      auto found = unary.find(name);
+      if (found != unary.end()) return emit(found->second, compile(e.op(0)));
+      throw std::invalid_argument("function " + name + " cannot be compiled");
+    }
+    std::ostringstream text;
+    text << e;
+    throw std::invalid_argument("cannot compile " + text.str());
+  }
+};
+
+CompiledExpressions::CompiledExpressions(const std::vector<GiNaC::ex>& inputs,
+                                         const std::vector<GiNaC::ex>& outputs)
+    : CompiledExpressions(inputs, std::vector<std::vector<GiNaC::ex>>{outputs}) {}
+
+CompiledExpressions::CompiledExpressions(const std::vector<GiNaC::ex>& inputs,
+                                         const std::vector<std::vector<GiNaC::ex>>& stages)
+    : CompiledExpressions(inputs, std::vector<int>(inputs.size(), 0), stages) {}
+
+CompiledExpressions::CompiledExpressions(const std::vector<GiNaC::ex>& inputs, const std::vector<int>& input_levels,
+                                         const std::vector<std::vector<GiNaC::ex>>& stages) {
+  if (input_levels.size() != inputs.size()) throw std::invalid_argument("one level per input");
+  TapeBuilder builder(*this);
+  input_count_ = inputs.size();
+  for (int level : input_levels) levels_ = std::max(levels_, level + 1);
+  for (std::size_t i = 0; i < inputs.size(); ++i) builder.add_input(inputs[i], input_levels[i]);
+  stage_outputs_.push_back(0);
+  std::size_t stage_begin = 0;
+  for (const auto& stage : stages) {
+    for (const ex& output : stage) output_registers_.push_back(builder.compile(output));
+    // Lower levels first: an instruction's level is at least its operands', so a
+    // stable sort keeps every operand ahead of its use.
+    auto level_of = [&](const Instruction& in) { return builder.level_[in.out]; };
+    std::stable_sort(instructions_.begin() + stage_begin, instructions_.end(),
+                     [&](const Instruction& x, const Instruction& y) { return level_of(x) < level_of(y); });
+    for (int level = 0; level <= levels_; ++level) {
+      level_begin_.push_back(static_cast<std::size_t>(
+          std::find_if(instructions_.begin() + stage_begin, instructions_.end(),
+                       [&](const Instruction& in) { return level_of(in) >= level; }) -
+          instructions_.begin()));
+    }
+    stage_begin = instructions_.size();
+    stage_end_.push_back(stage_begin);
+    stage_outputs_.push_back(output_registers_.size());
+  }
+  fuse_multiply_adds(builder.level_);
+}
+
+void CompiledExpressions::fuse_multiply_adds(const std::vector<int>& register_levels) {
+  const std::size_t registers = initial_registers_.size();
+  std::vector<int> uses(registers, 0);
+  std::vector<std::size_t> producer(registers, instructions_.size());
+  for (std::size_t k = 0; k < instructions_.size(); ++k) {
+    const Instruction& in = instructions_[k];
+    producer[in.out] = k;
+    ++uses[in.a];
+    if (operand_count(in.op) >= 2) ++uses[in.b];
+    if (operand_count(in.op) >= 3) ++uses[in.c];
+  }
+  for (std::uint32_t reg : output_registers_) uses[reg] += 2;  // outputs are read by the caller
+  // Stage of each instruction (fusing across stages would move work between them).
+  std::vector<std::size_t> stage_of(instructions_.size());
+  for (std::size_t stage = 0, k = 0; stage < stage_end_.size(); ++stage)
+    for (; k < stage_end_[stage]; ++k) stage_of[k] = stage;
+  std::vector<bool> removed(instructions_.size(), false);
+  auto fusable = [&](std::uint32_t reg, std::size_t user) {
+    const std::size_t k = producer[reg];
+    return k < user && !removed[k] && instructions_[k].op == Op::mul && uses[reg] == 1 &&
+           stage_of[k] == stage_of[user] && register_levels[reg] == register_levels[instructions_[user].out];
+  };
+  for (std::size_t k = 0; k < instructions_.size(); ++k) {
+    Instruction& in = instructions_[k];
+    if (in.op != Op::add && in.op != Op::sub) continue;
+    std::uint32_t product = 0, other = 0;
+    Op fused;
+    if (fusable(in.a, k)) {
+      product = in.a;
+      other = in.b;
+      fused = in.op == Op::add ? Op::mul_add : Op::mul_sub;
+    } else if (fusable(in.b, k)) {
+      product = in.b;
+      other = in.a;
+      fused = in.op == Op::add ? Op::mul_add : Op::sub_mul;
+    } else {
+      continue;
+    }
+    const Instruction& multiply = instructions_[producer[product]];
+    removed[producer[product]] = true;
+    in = {fused, in.out, multiply.a, multiply.b, 0, other};
+  }
+  // Compact, moving the stage and level boundaries with it.
+  std::vector<std::size_t> kept_before(instructions_.size() + 1, 0);
+  for (std::size_t k = 0; k < instructions_.size(); ++k) kept_before[k + 1] = kept_before[k] + (removed[k] ? 0 : 1);
+  std::size_t next = 0;
+  for (std::size_t k = 0; k < instructions_.size(); ++k)
+    if (!removed[k]) instructions_[next++] = instructions_[k];
+  instructions_.resize(next);
+  for (std::size_t& end : stage_end_) end = kept_before[end];
+  for (std::size_t& begin : level_begin_) begin = kept_before[begin];
+}
+
+
+}  // namespace kinema

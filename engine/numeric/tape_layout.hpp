@@ -1,0 +1,63 @@
+// Where everything sits in the compiled tape of a constraint system, said
+// once: the input registers, the stages and their outputs, the input levels.
+// The workspaces, the batch workspace and the C++ exporter all read this.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+namespace kinema {
+
+struct TapeLayout {
+  std::size_t parameter_count = 0;
+  std::size_t unknown_count = 0;
+  std::vector<std::size_t> point_dimensions;  ///< 2 or 3 per point.
+
+  // Input registers: [parameters, theta, thetad, thetadd, q, qd, qdd].
+  std::size_t parameter(std::size_t p) const { return p; }
+  std::size_t input() const { return parameter_count; }
+  std::size_t rate() const { return parameter_count + 1; }
+  std::size_t second_rate() const { return parameter_count + 2; }
+  std::size_t q(std::size_t i) const { return parameter_count + 3 + i; }
+  std::size_t qd(std::size_t i) const { return parameter_count + 3 + unknown_count + i; }
+  std::size_t qdd(std::size_t i) const { return parameter_count + 3 + 2 * unknown_count + i; }
+  std::size_t input_register_count() const { return parameter_count + 3 + 3 * unknown_count; }
+
+  // Stages, run in this order: each may use what the earlier ones computed.
+  static constexpr std::size_t kPositionStage = 0;      ///< Phi, Phi_q (column-major), Phi_theta.
+  static constexpr std::size_t kAccelerationStage = 1;  ///< gamma.
+  static constexpr std::size_t kPointStage = 2;         ///< Each point: position, velocity, acceleration.
+  static constexpr std::size_t kStageCount = 3;
+
+  // Outputs of the position stage.
+  std::size_t phi(std::size_t i) const { return i; }
+  std::size_t phi_q(std::size_t i, std::size_t j) const { return unknown_count + j * unknown_count + i; }
+  std::size_t phi_theta(std::size_t i) const { return unknown_count + unknown_count * unknown_count + i; }
+  std::size_t position_output_count() const { return unknown_count * (unknown_count + 2); }
+
+  // Outputs of the point stage: point p's components of position, then of
+  // velocity, then of acceleration (3 * dimension values).
+  std::size_t point_output(std::size_t p) const {
+    std::size_t offset = 0;
+    for (std::size_t k = 0; k < p; ++k) offset += 3 * point_dimensions[k];
+    return offset;
+  }
+  std::size_t point_output_count() const { return point_output(point_dimensions.size()); }
+
+  // Input levels (how often an input changes): work on level-0 inputs runs once,
+  // on the input and its rates once per value, on q once per Newton iterate.
+  static constexpr int kParameterLevel = 0, kInputLevel = 1, kCoordinateLevel = 2, kRateLevel = 3,
+                       kSecondRateLevel = 4;
+  std::vector<int> input_levels() const {
+    std::vector<int> levels(input_register_count(), kParameterLevel);
+    for (std::size_t r = input(); r < q(0); ++r) levels[r] = kInputLevel;
+    for (std::size_t i = 0; i < unknown_count; ++i) {
+      levels[q(i)] = kCoordinateLevel;
+      levels[qd(i)] = kRateLevel;
+      levels[qdd(i)] = kSecondRateLevel;
+    }
+    return levels;
+  }
+};
+
+}  // namespace kinema

@@ -1,0 +1,268 @@
+#include <kinema/engine/numeric/workspace.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+#include <kinema/engine/numeric/solver.hpp>
+
+namespace kinema {
+
+Workspace::Workspace(const Kinematics& k)
+    : k_(k),
+      layout_(k.layout()),
+      n_(k.unknown_count()),
+      registers_(k.evaluator().make_workspace()),
+      position_out_(k.evaluator().stage_output_count(TapeLayout::kPositionStage)),
+      acceleration_out_(k.evaluator().stage_output_count(TapeLayout::kAccelerationStage)),
+      point_out_(k.evaluator().stage_output_count(TapeLayout::kPointStage)),
+      lu_(n_ * n_),
+      inverse_pivots_(n_),
+      pivots_(n_),
+      rhs_(n_),
+      step_(n_),
+      trial_(n_),
+      predicted_(n_) {
+  std::copy(k.parameter_values().begin(), k.parameter_values().end(), registers_.begin());
+  k.evaluator().prepare(registers_);
+}
+
+void Workspace::evaluate_position(double input, const Eigen::VectorXd& q) {
+  // Only q changed (a Newton iterate): what depends on the input alone still holds.
+  const int level = evaluated_ && evaluated_input_ == input ? TapeLayout::kCoordinateLevel : TapeLayout::kInputLevel;
+  registers_[layout_.input()] = input;
+  for (std::size_t i = 0; i < n_; ++i) registers_[layout_.q(i)] = q[i];
+  k_.evaluator().evaluate_stage_from(TapeLayout::kPositionStage, level, registers_, position_out_.data());
+  evaluated_ = true;
+  evaluated_input_ = input;
+}
+
+bool Workspace::evaluated_at(double input, const Eigen::VectorXd& q) const {
+  if (!evaluated_ || evaluated_input_ != input) return false;
+  for (std::size_t i = 0; i < n_; ++i)
+    if (registers_[layout_.q(i)] != q[i]) return false;
+  return true;
+}
+
+double Workspace::residual_norm() const {
+  double norm = 0;
+  for (std::size_t i = 0; i < n_; ++i) {
+    const double magnitude = std::fabs(phi(i));
+    if (std::isnan(magnitude)) return magnitude;
+    norm = std::max(norm, magnitude);
+  }
+  return norm;
+}
+
+
+void Workspace::factorise() {
+  const auto& column_scale = k_.column_scale();
+  for (std::size_t i = 0; i < n_; ++i)
+    for (std::size_t j = 0; j < n_; ++j) lu_[i * n_ + j] = phi_q(i, j) * column_scale[j];
+  solver::lu_factor(lu_.data(), pivots_.data(), n_);
+  for (std::size_t c = 0; c < n_; ++c) inverse_pivots_[c] = 1.0 / lu_[c * n_ + c];
+}
+
+Eigen::MatrixXd Workspace::scaled_phi_q() const {
+  const Eigen::Index n = static_cast<Eigen::Index>(n_);
+  return Eigen::Map<const Eigen::MatrixXd>(position_out_.data() + layout_.phi_q(0, 0), n, n) *
+         Eigen::Map<const Eigen::VectorXd>(k_.column_scale().data(), n).asDiagonal();
+}
+
+double Workspace::reciprocal_condition() const {
+  const double ratio = solver::pivot_ratio(lu_.data(), n_);
+  if (ratio == 0.0) return 0.0;
+  // Well away from singular the pivots say so; the singular values (which
+  // allocate) are only needed near a toggle, where they decide.
+  if (ratio >= solver::kClearlyRegularPivotRatio) return ratio;
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(scaled_phi_q());
+  const auto& s = svd.singularValues();
+  return s[0] > 0 && std::isfinite(s[0]) ? s[s.size() - 1] / s[0] : 0.0;
+}
+
+void Workspace::solve_rhs(double* x) const {
+  for (std::size_t i = 0; i < n_; ++i) x[i] = rhs_[i];
+  solver::lu_solve(lu_.data(), inverse_pivots_.data(), pivots_.data(), x, n_);
+  for (std::size_t i = 0; i < n_; ++i) x[i] *= k_.column_scale()[i];
+}
+
+bool Workspace::solve_position(double input, Eigen::VectorXd& q, std::size_t* worst_group,
+                               double* residual) {
+  const double tolerance = solver::kNewtonTolerance * k_.length_scale();
+  if (!evaluated_at(input, q)) evaluate_position(input, q);
+  double norm = residual_norm();
+  bool converged = false;
+  for (int iteration = 0; iteration < solver::kNewtonIterations && std::isfinite(norm); ++iteration) {
+    if (norm <= tolerance) {
+      converged = true;
+      break;
+    }
+    factorise();
+    if (solver::pivot_ratio(lu_.data(), n_) > solver::kLeastSquaresPivotRatio) {
+      for (std::size_t i = 0; i < n_; ++i) rhs_[i] = -phi(i);
+      solve_rhs(step_.data());
+    } else {
+      // Least-squares step: stays defined where Phi_q is (nearly) singular.
+      const Eigen::Index n = static_cast<Eigen::Index>(n_);
+      step_ = Eigen::Map<const Eigen::MatrixXd>(position_out_.data() + layout_.phi_q(0, 0), n, n)
+                  .completeOrthogonalDecomposition()
+                  .solve(-Eigen::Map<const Eigen::VectorXd>(position_out_.data() + layout_.phi(0), n));
+    }
+    if (!step_.allFinite()) break;
+    double lambda = 1.0;
+    bool improved = false;
+    for (int halving = 0; halving < solver::kStepHalvings; ++halving, lambda *= 0.5) {
+      for (std::size_t i = 0; i < n_; ++i) trial_[i] = q[i] + lambda * step_[i];
+      evaluate_position(input, trial_);
+      const double trial_norm = residual_norm();
+      if (std::isfinite(trial_norm) && trial_norm < norm) {
+        improved = true;
+        norm = trial_norm;
+        q = trial_;
+        break;
+      }
+    }
+    if (!improved) break;
+  }
+  // Converged to rounding level even if just above the tolerance.
+  if (!converged && norm <= solver::kRoundingTolerance * k_.length_scale()) converged = true;
+  if (!evaluated_at(input, q)) evaluate_position(input, q);
+  if (worst_group) {
+    std::size_t row = 0;
+    for (std::size_t i = 1; i < n_; ++i)
+      if (std::fabs(phi(i)) > std::fabs(phi(row))) row = i;
+    *worst_group = k_.equation_group(row);
+  }
+  if (residual) *residual = residual_norm();
+  return converged && q.allFinite();
+}
+
+bool Workspace::sensitivity(double input, const Eigen::VectorXd& q, Eigen::VectorXd& dq) {
+  if (!evaluated_at(input, q)) evaluate_position(input, q);
+  factorise();
+  if (reciprocal_condition() < solver::kSingularThreshold) return false;
+  for (std::size_t i = 0; i < n_; ++i) rhs_[i] = -phi_theta(i);
+  dq.resize(static_cast<Eigen::Index>(n_));
+  solve_rhs(dq.data());
+  return dq.allFinite();
+}
+
+
+bool Workspace::predict_and_correct(double to, const Eigen::VectorXd& predicted, Eigen::VectorXd& q) {
+  trial_q_ = predicted;
+  if (!solve_position(to, trial_q_)) return false;
+  for (std::size_t i = 0; i < n_; ++i) {
+    if (std::fabs(trial_q_[i] - predicted[i]) / k_.column_scale()[i] > solver::kBranchTolerance) return false;
+  }
+  q = trial_q_;
+  return true;
+}
+
+bool Workspace::continue_to(double from, double to, Eigen::VectorXd& q, double* stuck_at) {
+  const double max_step = max_continuation_step();
+  const double min_step = max_step * 1e-7;
+  double t = from;
+  double h = std::copysign(std::min(max_step, std::fabs(to - from)), to - from);
+  while (t != to) {
+    if (std::fabs(to - t) <= std::fabs(h) * (1 + 1e-12)) h = to - t;
+    bool accepted = sensitivity(t, q, slope_);
+    if (accepted) {
+      predicted_ = q + slope_ * h;
+      accepted = predict_and_correct(t + h, predicted_, q);
+    }
+    if (accepted) {
+      t = (h == to - t) ? to : t + h;
+      h = std::copysign(std::min(max_step, 2 * std::fabs(h)), to - from);
+    } else {
+      h /= 2;
+      if (std::fabs(h) < min_step) {
+        if (stuck_at) *stuck_at = t;
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+bool Workspace::advance(double input, double rate, double second_rate, MotionState& state) {
+  if (state.status != Status::ok) return false;
+  const double h = input - state.input;
+  bool solved = false;
+  trial_q_ = state.q;
+  if (std::fabs(h) <= max_continuation_step() && state.input_rate != 0) {
+    // Second order in the input: the previous rates give dq/dtheta and d2q/dtheta2.
+    for (std::size_t i = 0; i < n_; ++i) {
+      predicted_[i] = solver::predict_second_order(state.q[i], state.qd[i], state.qdd[i], state.input_rate,
+                                                   state.input_second_rate, h);
+    }
+    solved = predict_and_correct(input, predicted_, trial_q_);
+  }
+  if (!solved) {
+    trial_q_ = state.q;
+    solved = continue_to(state.input, input, trial_q_, nullptr);
+  }
+  if (!solved) return false;
+  motion_into(input, rate, second_rate, trial_q_, state);
+  return true;
+}
+
+MotionState Workspace::motion(double input, double rate, double second_rate,
+                              const Eigen::VectorXd& q) {
+  MotionState state;
+  motion_into(input, rate, second_rate, q, state);
+  return state;
+}
+
+void Workspace::motion_into(double input, double rate, double second_rate, const Eigen::VectorXd& q,
+                            MotionState& state) {
+  const std::size_t n = n_;
+  state.input = input;
+  state.input_rate = rate;
+  state.input_second_rate = second_rate;
+  state.q = q;
+  state.failure = Failure{};
+  if (!evaluated_at(input, q)) evaluate_position(input, q);
+  state.loop_residual = residual_norm();
+  // One factorisation of Phi_q: the singularity test, then velocity and acceleration.
+  factorise();
+  state.reciprocal_condition = reciprocal_condition();
+  if (state.reciprocal_condition < solver::kSingularThreshold) {
+    state.status = Status::singular;
+    state.failure.kind = Failure::Kind::singular_jacobian;
+    return;
+  }
+  state.qd.resize(static_cast<Eigen::Index>(n));
+  state.qdd.resize(static_cast<Eigen::Index>(n));
+  for (std::size_t i = 0; i < n; ++i) rhs_[i] = -phi_theta(i) * rate;
+  solve_rhs(state.qd.data());
+
+  // Later stages reuse the registers of the position stage just evaluated at (input, q).
+  registers_[layout_.rate()] = rate;
+  registers_[layout_.second_rate()] = second_rate;
+  for (std::size_t i = 0; i < n; ++i) registers_[layout_.qd(i)] = state.qd[i];
+  k_.evaluator().evaluate_stage_from(TapeLayout::kAccelerationStage, TapeLayout::kInputLevel, registers_, rhs_.data());
+  solve_rhs(state.qdd.data());
+  for (std::size_t i = 0; i < n; ++i) registers_[layout_.qdd(i)] = state.qdd[i];
+  k_.evaluator().evaluate_stage_from(TapeLayout::kPointStage, TapeLayout::kInputLevel, registers_, point_out_.data());
+  state.points.resize(k_.point_count());
+  bool finite = state.qd.allFinite() && state.qdd.allFinite();
+  for (std::size_t p = 0; p < k_.point_count(); ++p) {
+    const std::size_t d = layout_.point_dimensions[p];
+    const double* v = point_out_.data() + layout_.point_output(p);
+    PointMotion& motion = state.points[p];
+    motion.dimension = d;
+    for (std::size_t c = 0; c < d; ++c) {
+      motion.position[c] = v[c];
+      motion.velocity[c] = v[d + c];
+      motion.acceleration[c] = v[2 * d + c];
+    }
+    for (std::size_t c = 0; c < 3 * d; ++c) finite = finite && std::isfinite(v[c]);
+  }
+  if (!finite) {
+    state.status = Status::singular;
+    state.failure.kind = Failure::Kind::nonfinite_rates;
+    return;
+  }
+  state.status = Status::ok;
+}
+
+}  // namespace kinema

@@ -1,0 +1,87 @@
+// Solving one input value at a time: Newton-Raphson for the position, one LU
+// of Phi_q for velocity and acceleration, continuation that keeps the
+// assembly branch. The buffers of one caller (one thread); nothing is
+// allocated per input value on the hot path.
+#pragma once
+
+#include <Eigen/Dense>
+
+#include <vector>
+
+#include <kinema/engine/numeric/kinematics.hpp>
+#include <kinema/engine/numeric/motion_table.hpp>
+
+namespace kinema {
+
+struct Model;
+
+class Workspace {
+ public:
+  explicit Workspace(const Kinematics& kinematics);
+  /// The workspace of a loaded model (engine/model.hpp).
+  explicit Workspace(const Model& model);
+
+  /// Newton-Raphson from q (updated in place). False when it does not converge;
+  /// then worst_group names the equation group that stays open.
+  bool solve_position(double input, Eigen::VectorXd& q, std::size_t* worst_group = nullptr,
+                      double* residual = nullptr);
+
+  /// Rates, second rates and points at a solved position.
+  MotionState motion(double input, double rate, double second_rate, const Eigen::VectorXd& q);
+  /// The same into an existing state, reusing its storage (no allocation on the hot path).
+  void motion_into(double input, double rate, double second_rate, const Eigen::VectorXd& q,
+                   MotionState& state);
+
+  /// dq/dtheta at a solved position (false when Phi_q is singular).
+  bool sensitivity(double input, const Eigen::VectorXd& q, Eigen::VectorXd& dq);
+
+  /// Continues the solution from (from, q) to `to` in small steps so that the
+  /// branch is kept; false when that is impossible (limit or branch point).
+  bool continue_to(double from, double to, Eigen::VectorXd& q, double* stuck_at);
+
+  /// Newton from `predicted` at `to`; accepts (into q) only a solution close to the
+  /// prediction, i.e. on the same branch.
+  bool predict_and_correct(double to, const Eigen::VectorXd& predicted, Eigen::VectorXd& q);
+  /// Largest input step continuation takes at once (2 deg, or 1 % of the length scale).
+  double max_continuation_step() const { return k_.max_continuation_step(); }
+
+  /// The next value along a path: from `state` (solved at a nearby input, status ok,
+  /// on the wanted branch) predicted to second order by its rates, corrected by Newton
+  /// and checked to stay on the branch (else continued in small steps); then rates and
+  /// points at `input` into `state`. False, with state unchanged, when the branch
+  /// cannot reach `input` (a limit or toggle position in between).
+  bool advance(double input, double rate, double second_rate, MotionState& state);
+
+ private:
+  const Kinematics& k_;
+  const TapeLayout& layout_;
+  std::size_t n_;
+  std::vector<double> registers_;  ///< Tape registers; the first ones are its inputs.
+  std::vector<double> position_out_, acceleration_out_, point_out_;
+  /// LU (partial pivoting, in place, row-major) of Phi_q with columns scaled by
+  /// the column scale; plain loops for small n, so the hot path allocates nothing.
+  std::vector<double> lu_, inverse_pivots_;
+  std::vector<std::size_t> pivots_;
+  std::vector<double> rhs_;
+  Eigen::VectorXd step_, trial_, predicted_, slope_, trial_q_;
+  bool evaluated_ = false;  ///< The position stage's registers hold (evaluated_input_, q).
+  double evaluated_input_ = 0;
+
+  double phi(std::size_t i) const { return position_out_[layout_.phi(i)]; }
+  double phi_q(std::size_t i, std::size_t j) const { return position_out_[layout_.phi_q(i, j)]; }
+  double phi_theta(std::size_t i) const { return position_out_[layout_.phi_theta(i)]; }
+  void evaluate_position(double input, const Eigen::VectorXd& q);
+  bool evaluated_at(double input, const Eigen::VectorXd& q) const;
+  /// max |Phi| at the evaluated position (NaN if any is).
+  double residual_norm() const;
+  /// LU of Phi_q with its columns scaled by the column scale.
+  void factorise();
+  Eigen::MatrixXd scaled_phi_q() const;
+  /// Reciprocal condition of the scaled Phi_q from the factorisation: the pivot
+  /// ratio where that is clearly fine, else from the singular values.
+  double reciprocal_condition() const;
+  /// Solves Phi_q x = rhs_ with the factorisation (undoing the column scaling).
+  void solve_rhs(double* x) const;
+};
+
+}  // namespace kinema

@@ -1,0 +1,24 @@
+// The compiled tape written as straight-line C++ (for the generated header):
+// the operations' text comes from the tape's one op table (tape_ops.hpp).
+#pragma once
+
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include <kinema/engine/numeric/tape.hpp>
+
+namespace kinema {
+
+/// Writes stage `stage` of the tape as C++ statements: inputs are read from
+/// input_names[i], output k is assigned to output_targets[k] (each a C++ lvalue).
+/// Only what the stage's outputs need is written (recomputing what they take from
+/// earlier stages), so each stage becomes a self-contained function.
+void write_tape_stage_cpp(std::ostream& out, const CompiledExpressions& tape,
+                          const std::vector<std::string>& input_names, std::size_t stage,
+                          const std::vector<std::string>& output_targets, const std::string& indent);
+
+/// A double as a C++ literal that reads back to the same value ("1.0", "0.10000000000000001").
+std::string cpp_double_literal(double value);
+
+}  // namespace kinema

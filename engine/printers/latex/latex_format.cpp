@@ -1,0 +1,143 @@
+#include <kinema/engine/printers/latex/latex_format.hpp>
+
+#include <sstream>
+
+#include <kinema/engine/report/number_format.hpp>
+#include <kinema/engine/symbolic/expression_parts.hpp>
+
+namespace kinema {
+namespace latex_detail {  // named: GiNaC's registry calls the default constructor
+
+using GiNaC::print_latex;  // the registry knows the parent context by this plain name
+
+// print_latex that prints the symbols of a SymbolTexts map as their text.
+class print_latex_values : public GiNaC::print_latex {
+  GINAC_DECLARE_PRINT_CONTEXT(print_latex_values, GiNaC::print_latex)
+ public:
+  print_latex_values(std::ostream& os, const SymbolTexts& texts) : GiNaC::print_latex(os), texts_(&texts) {}
+  const SymbolTexts* texts_ = nullptr;
+};
+
+print_latex_values::print_latex_values() : GiNaC::print_latex(std::cout) {}
+GINAC_IMPLEMENT_PRINT_CONTEXT(print_latex_values, print_latex)
+
+void print_symbol_value(const GiNaC::symbol& s, const print_latex_values& c, unsigned level) {
+  if (c.texts_) {
+    const auto found = c.texts_->find(s);
+    if (found != c.texts_->end()) {
+      c.s << found->second;
+      return;
+    }
+  }
+  GiNaC::print_latex plain(c.s, c.options);
+  s.print(plain, level);
+}
+
+}  // namespace latex_detail
+
+using latex_detail::print_latex_values;
+
+std::string latex_escape_text(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+      case '\\': out += "\\textbackslash{}"; break;
+      case '{': out += "\\{"; break;
+      case '}': out += "\\}"; break;
+      case '$': out += "\\$"; break;
+      case '&': out += "\\&"; break;
+      case '#': out += "\\#"; break;
+      case '%': out += "\\%"; break;
+      case '_': out += "\\_"; break;
+      case '^': out += "\\textasciicircum{}"; break;
+      case '~': out += "\\textasciitilde{}"; break;
+      case '\n': case '\r': out += ' '; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+std::string latex_number(double value, int digits) {
+  std::string text = format_significant(value, digits);
+  const auto e = text.find('e');
+  if (e != std::string::npos) {  // 1e-05 -> 1\cdot10^{-5}
+    const int exponent = std::stoi(text.substr(e + 1));
+    text = text.substr(0, e) + "\\cdot 10^{" + std::to_string(exponent) + "}";
+  }
+  return text;
+}
+
+std::string to_latex(const GiNaC::ex& e) {
+  std::ostringstream out;
+  out << GiNaC::latex << e;
+  return out.str();
+}
+
+std::string to_latex(const GiNaC::ex& e, const SymbolTexts& texts) {
+  static const bool registered = [] {
+    GiNaC::set_print_func<GiNaC::symbol, print_latex_values>(latex_detail::print_symbol_value);
+    return true;
+  }();
+  (void)registered;
+  std::ostringstream out;
+  print_latex_values context(out, texts);
+  e.print(context);
+  return out.str();
+}
+
+std::string latex_exp(const GiNaC::ex& angle) {
+  const std::string a = to_latex(angle);
+  return "e^{i" + (GiNaC::is_a<GiNaC::add>(angle) ? "(" + a + ")" : a) + "}";
+}
+
+std::string latex_column(const std::vector<GiNaC::ex>& entries) {
+  std::string text = "\\begin{bmatrix}";
+  for (std::size_t i = 0; i < entries.size(); ++i) text += (i ? " \\\\ " : " ") + to_latex(entries[i]);
+  return text + " \\end{bmatrix}";
+}
+
+std::string latex_matrix(const GiNaC::matrix& matrix) {
+  std::string text = "\\begin{bmatrix}";
+  for (unsigned i = 0; i < matrix.rows(); ++i) {
+    for (unsigned j = 0; j < matrix.cols(); ++j) text += (j ? " & " : " ") + to_latex(matrix(i, j));
+    text += i + 1 < matrix.rows() ? " \\\\" : " ";
+  }
+  return text + "\\end{bmatrix}";
+}
+
+std::string latex_vector_loop(const EquationGroup& loop) {
+  using GiNaC::ex;
+  // Terms c*exp(I*angle) print as c\,e^{i angle}, as course notes write link vectors.
+  auto term_text = [&](const ex& term) {
+    const LinkVector link = split_link_vector(term);
+    if (!link.polar) return to_latex(term);
+    ex coefficient = link.length;
+    // -(CD + CE) rather than (-CE - CD): take a common minus sign out of a sum.
+    bool negated = false;
+    if (GiNaC::is_a<GiNaC::add>(coefficient)) {
+      negated = true;
+      for (const ex& t : coefficient) {
+        const ex factor = GiNaC::is_a<GiNaC::mul>(t) ? t.op(t.nops() - 1) : ex(1);
+        negated = negated && GiNaC::is_a<GiNaC::numeric>(factor) && GiNaC::ex_to<GiNaC::numeric>(factor).is_negative();
+      }
+      if (negated) coefficient = (-coefficient).expand();
+    }
+    std::string c = to_latex(coefficient);
+    if (c == "1") c.clear();
+    if (c == "-1") c = "-";
+    if (GiNaC::is_a<GiNaC::add>(coefficient)) c = "\\left(" + c + "\\right)";
+    if (negated) c = "-" + c;
+    return c + "\\," + latex_exp(link.angle);
+  };
+  std::string text;
+  for (const ex& term : loop.terms) {
+    const std::string t = term_text(term);
+    if (!text.empty() && (t.empty() || t[0] != '-')) text += " + ";
+    else if (!text.empty()) text += " ";
+    text += t;
+  }
+  return text;
+}
+
+}  // namespace kinema

@@ -1,0 +1,45 @@
+// LaTeX helpers shared by the LaTeX printers. Symbols carry their LaTeX
+// names from the front end (GiNaC's TeX names), so an expression prints with
+// GiNaC's latex context as it is; numbers are put in with a print context
+// (print_latex_values) that prints chosen symbols as given text.
+#pragma once
+
+#include <ginac/ginac.h>
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include <kinema/engine/constraint_system.hpp>
+
+namespace kinema {
+
+/// User text (titles, descriptions) for LaTeX text mode: every special character
+/// is printed as itself, so a file cannot inject commands (\input{...} prints as text).
+std::string latex_escape_text(const std::string& text);
+
+/// An expression in LaTeX (the symbols' own LaTeX names).
+std::string to_latex(const GiNaC::ex& e);
+
+/// Text to print in place of a symbol (keyed by the symbol).
+using SymbolTexts = std::map<GiNaC::ex, std::string, GiNaC::ex_is_less>;
+
+/// An expression in LaTeX with some symbols printed as the given text (a worked
+/// solution's numbers put into a formula), the expression itself unchanged.
+std::string to_latex(const GiNaC::ex& e, const SymbolTexts& texts);
+
+/// e^{i angle} (the angle parenthesised when it is a sum).
+std::string latex_exp(const GiNaC::ex& angle);
+
+/// A column vector and a matrix as amsmath bmatrix.
+std::string latex_column(const std::vector<GiNaC::ex>& entries);
+std::string latex_matrix(const GiNaC::matrix& matrix);
+
+/// A planar loop as course notes write it, its terms in the order written:
+/// a\,e^{i\theta_{2}} + b\,e^{i\theta_{3}} - ...
+std::string latex_vector_loop(const EquationGroup& loop);
+
+/// A number for math mode, `digits` significant ("1\cdot 10^{-5}" for 1e-05).
+std::string latex_number(double value, int digits = 6);
+
+}  // namespace kinema

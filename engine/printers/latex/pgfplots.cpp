@@ -1,0 +1,105 @@
+#include <kinema/engine/printers/latex/pgfplots.hpp>
+
+#include <cmath>
+
+#include <kinema/engine/printers/latex/latex_format.hpp>
+#include <kinema/engine/report/number_format.hpp>
+#include <kinema/engine/report/output_scale.hpp>
+
+namespace kinema {
+namespace {
+
+class PlotWriter {
+ public:
+  PlotWriter(std::ostream& out, const ConstraintSystem& system, const MotionTable& sweep)
+      : out_(out), system_(system), sweep_(sweep), scale_(system) {}
+
+  void write() {
+    if (sweep_.empty()) return;
+    const Dimension kind = system_.input.dimension;
+    const std::string input = to_latex(system_.input.symbol);
+    out_ << "\\clearpage\n\\subsection*{Over the input range}\nThe unknowns, their rates and second rates";
+    if (!system_.points.empty()) out_ << ", and the speeds of the points";
+    out_ << " against $" << input << "$. Gaps: positions that cannot be assembled; red dashed "
+            "lines: singular positions (toggle or dead centre), where the rates are not defined.\n\n";
+    const std::string x_label = "$" + input + "$ [$\\mathrm{" + scale_.coordinate_unit(kind) + "}$]";
+    int plotted = 0;
+    for (int order = 0; order < 3; ++order) {
+      for (Dimension dim : {Dimension::angle, Dimension::length}) {
+        std::vector<std::size_t> members;
+        for (std::size_t j = 0; j < system_.unknowns.size(); ++j)
+          if (system_.unknowns[j].dimension == dim) members.push_back(j);
+        if (members.empty()) continue;
+        const std::string what = order == 0 ? (dim == Dimension::angle ? "angles" : "lengths")
+                                            : order == 1 ? "rates" : "second rates";
+        const std::string y_unit = order == 0 ? scale_.coordinate_unit(dim)
+                                              : order == 1 ? scale_.rate_unit(dim) : scale_.second_rate_unit(dim);
+        begin_axis(x_label, what + " [$\\mathrm{" + y_unit + "}$]", plotted++);
+        for (std::size_t j : members) {
+          out_ << "\\addplot+[mark=none, thick] coordinates {";
+          for (const MotionState& s : sweep_) {
+            double y = NAN;
+            if (order == 0 && s.status != Status::unassembled) {
+              y = scale_.unwrapped(dim, s.q[j]);  // continuous curves without +-180 deg jumps
+            } else if (order > 0 && s.status == Status::ok) {
+              y = scale_.rate(dim, order == 1 ? s.qd[j] : s.qdd[j]);
+            }
+            point(scale_.input(s.input), y);
+          }
+          const Coordinate& q = system_.unknowns[j];
+          out_ << " };\n\\addlegendentry{$" << to_latex(order == 0 ? q.symbol : order == 1 ? q.rate : q.second_rate)
+               << "$}\n";
+        }
+        singular_marks();
+        end_axis();
+      }
+    }
+    if (!system_.points.empty()) {
+      begin_axis(x_label, "speed [$\\mathrm{" + scale_.length_unit + "/s}$]", plotted++);
+      for (std::size_t p = 0; p < system_.points.size(); ++p) {
+        out_ << "\\addplot+[mark=none, thick] coordinates {";
+        for (const MotionState& s : sweep_) point(scale_.input(s.input), s.status == Status::ok ? s.points[p].speed() / scale_.length : NAN);
+        out_ << " };\n\\addlegendentry{" << latex_escape_text(system_.points[p].name) << "}\n";
+      }
+      singular_marks();
+      end_axis();
+    }
+    out_ << "\n";
+  }
+
+ private:
+  std::ostream& out_;
+  const ConstraintSystem& system_;
+  const MotionTable& sweep_;
+  OutputScale scale_;
+
+  void point(double x, double y) {
+    out_ << " (" << format_fixed(x) << "," << (std::isfinite(y) ? format_fixed(y) : "nan") << ")";
+  }
+
+  void begin_axis(const std::string& x_label, const std::string& y_label, int index) {
+    out_ << (index % 2 ? "\\hfill" : "\\noindent") << "\\begin{minipage}{0.48\\linewidth}\n"
+         << "\\begin{tikzpicture}\n\\begin{axis}[width=\\linewidth, height=5.5cm, xlabel={" << x_label
+         << "}, ylabel={" << y_label
+         << "}, unbounded coords=jump, legend style={font=\\footnotesize, at={(0.5,1.02)}, anchor=south, "
+         << "legend columns=-1}]\n";
+  }
+  void end_axis() { out_ << "\\end{axis}\n\\end{tikzpicture}\n\\end{minipage}\n"; }
+
+  void singular_marks() {
+    for (std::size_t row = 0; row < sweep_.size(); ++row) {
+      if (sweep_.status(row) != Status::singular) continue;
+      const std::string x = format_fixed(scale_.input(sweep_.input(row)));
+      out_ << "\\draw[red, dashed] ({axis cs:" << x << ",0}|-{rel axis cs:0,0}) -- ({axis cs:" << x
+           << ",0}|-{rel axis cs:0,1});\n";
+    }
+  }
+};
+
+}  // namespace
+
+void write_pgfplots(std::ostream& out, const ConstraintSystem& system, const MotionTable& sweep) {
+  PlotWriter(out, system, sweep).write();
+}
+
+}  // namespace kinema

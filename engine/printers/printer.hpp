@@ -1,0 +1,45 @@
+// Every output format is a printer over the same results: the model (its
+// constraint system and derivation) and, for the formats that show numbers,
+// the solved values. The command line finds a printer by its kind and name.
+#pragma once
+
+#include <ostream>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <kinema/engine/model.hpp>
+
+namespace kinema {
+
+/// What a printer prints from.
+struct PrintJob {
+  const Model& model;
+  const MotionTable* values = nullptr;  ///< Results at the requested input values.
+  const MotionTable* sweep = nullptr;   ///< A run over the input's range (plots).
+  bool fragment = false;                ///< Documents: no preamble, for \input into notes.
+  std::string code_namespace;           ///< Code: the namespace of the generated code.
+};
+
+/// What a printer shows.
+enum class PrintKind {
+  derivation,  ///< The symbolic derivation (kinema derive).
+  results,     ///< Numbers at input values (kinema eval).
+  document,    ///< A worked solution (kinema latex).
+  code,        ///< Exported code (kinema codegen).
+};
+
+class Printer {
+ public:
+  virtual ~Printer() = default;
+  virtual PrintKind kind() const = 0;
+  virtual const char* name() const = 0;  ///< As --format takes it: "csv".
+  virtual void print(std::ostream& out, const PrintJob& job) const = 0;
+};
+
+/// The printer of that kind and name, or nullptr.
+const Printer* find_printer(PrintKind kind, std::string_view name);
+/// Names of the printers of a kind, in a stable order (for --help and messages).
+std::vector<std::string> printer_names(PrintKind kind);
+
+}  // namespace kinema

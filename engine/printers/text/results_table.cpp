@@ -1,0 +1,99 @@
+// Results for people: one block per input value (coordinates with rates and
+// second rates, points with components and magnitudes).
+#include <kinema/engine/printers/printer.hpp>
+#include <kinema/engine/report/diagnostics.hpp>
+#include <kinema/engine/report/number_format.hpp>
+#include <kinema/engine/report/output_scale.hpp>
+
+namespace kinema {
+namespace {
+
+std::string pad(const std::string& text, std::size_t width) {
+  return text.size() >= width ? text + " " : text + std::string(width - text.size(), ' ');
+}
+
+class ResultsTablePrinter : public Printer {
+ public:
+  PrintKind kind() const override { return PrintKind::results; }
+  const char* name() const override { return "table"; }
+
+  void print(std::ostream& out, const PrintJob& job) const override {
+    const ConstraintSystem& system = job.model.system;
+    const OutputScale scale(system);
+    const Driver& input = system.input;
+    const Dimension input_kind = input.dimension;
+    const auto number = [](double value) { return format_significant(value); };
+    out << system.title << "\n";
+    out << "units: angles deg, angular rates rad/s and rad/s^2, lengths " << scale.length_unit
+        << ", velocities " << scale.length_unit << "/s, accelerations " << scale.length_unit << "/s^2\n";
+    for (const MotionState& s : *job.values) {
+      out << "\n" << input.name << " = " << number(scale.input(s.input)) << " "
+          << scale.coordinate_unit(input_kind) << "   " << input.rate.get_name() << " = "
+          << number(scale.rate(input_kind, s.input_rate)) << " " << scale.rate_unit(input_kind) << "   "
+          << input.second_rate.get_name() << " = " << number(scale.rate(input_kind, s.input_second_rate)) << " "
+          << scale.second_rate_unit(input_kind) << "\n";
+      const std::string message = describe_failure(system, s);
+      if (s.status == Status::unassembled) {
+        out << "  not assembled: " << message << "\n";
+        continue;
+      }
+      if (s.status == Status::singular) out << "  SINGULAR: " << message << "\n";
+      else if (!message.empty()) out << "  note: " << message << "\n";
+      out << "  " << pad("coordinate", 12) << pad("value", 16) << pad("rate", 26) << "second rate\n";
+      for (std::size_t i = 0; i < system.unknowns.size(); ++i) {
+        const Coordinate& q = system.unknowns[i];
+        out << "  " << pad(q.name, 12)
+            << pad(number(scale.coordinate(q.dimension, s.q[i])) + " " + scale.coordinate_unit(q.dimension), 16);
+        if (s.status == Status::ok) {
+          out << pad(q.rate.get_name() + " = " + number(scale.rate(q.dimension, s.qd[i])) + " " +
+                         scale.rate_unit(q.dimension),
+                     26)
+              << q.second_rate.get_name() << " = " << number(scale.rate(q.dimension, s.qdd[i])) << " "
+              << scale.second_rate_unit(q.dimension);
+        } else {
+          out << "undefined (singular)";
+        }
+        out << "\n";
+      }
+      if (s.status != Status::ok || system.points.empty()) continue;
+      print_points(out, system, scale, s);
+    }
+  }
+
+ private:
+  // One header per run of points with the same components.
+  static void print_points(std::ostream& out, const ConstraintSystem& system, const OutputScale& scale,
+                           const MotionState& s) {
+    const std::vector<std::string>* header = nullptr;
+    for (std::size_t p = 0; p < system.points.size(); ++p) {
+      const PointObservable& point = system.points[p];
+      if (!header || *header != point.components) {
+        header = &point.components;
+        out << "  " << pad("point", 8);
+        for (const auto& c : point.components) out << pad(c, 12);
+        for (const auto& c : point.components) out << pad("v" + c, 12);
+        out << pad("|v|", 12);
+        for (const auto& c : point.components) out << pad("a" + c, 12);
+        out << "|a|\n";
+      }
+      const PointMotion& motion = s.points[p];
+      const double l = scale.length;
+      out << "  " << pad(point.name, 8);
+      for (std::size_t c = 0; c < motion.dimension; ++c) out << pad(format_significant(motion.position[c] / l), 12);
+      for (std::size_t c = 0; c < motion.dimension; ++c) out << pad(format_significant(motion.velocity[c] / l), 12);
+      out << pad(format_significant(motion.speed() / l), 12);
+      for (std::size_t c = 0; c < motion.dimension; ++c)
+        out << pad(format_significant(motion.acceleration[c] / l), 12);
+      out << format_significant(motion.acceleration_magnitude() / l) << "\n";
+    }
+  }
+};
+
+}  // namespace
+
+const Printer& results_table_printer() {
+  static const ResultsTablePrinter printer;
+  return printer;
+}
+
+}  // namespace kinema

@@ -1,0 +1,41 @@
+#include <kinema/engine/report/diagnostics.hpp>
+
+#include <kinema/engine/report/number_format.hpp>
+#include <kinema/engine/report/output_scale.hpp>
+
+namespace kinema {
+
+std::string describe_input(const ConstraintSystem& system, double input) {
+  const OutputScale scale(system);
+  return system.input.name + " = " + format_significant(scale.input(input)) + " " +
+         scale.coordinate_unit(system.input.dimension);
+}
+
+std::string describe_failure(const ConstraintSystem& system, double input, const Failure& failure) {
+  using Kind = Failure::Kind;
+  switch (failure.kind) {
+    case Kind::none: return "";
+    case Kind::resumed_after_gap:
+      return "resumed after positions that could not be assembled; the branch across the gap is not guaranteed";
+    case Kind::group_open:
+      return system.describe_group(failure.group) + " cannot be closed at " + describe_input(system, input) +
+             ": the links do not reach (loop gap " +
+             format_significant(failure.residual / system.output.length_factor) + " " + system.output.length +
+             " after Newton-Raphson from the " + (failure.from_guesses ? "guesses" : "last assembled position") +
+             "); choose another input value, or check the lengths and the guesses";
+    case Kind::branch_stops:
+      return describe_input(system, input) + " cannot be reached from " + describe_input(system, failure.from) +
+             " on the same assembly branch: the motion stops near " + describe_input(system, failure.stopped_at) +
+             " (a limit or toggle position)";
+    case Kind::singular_jacobian:
+      return "singular position at " + describe_input(system, input) +
+             ": the Jacobian Phi_q is rank-deficient (toggle or dead-centre position), so "
+             "velocities and accelerations are not defined there; choose a nearby value";
+    case Kind::nonfinite_rates:
+      return "non-finite rates at " + describe_input(system, input) +
+             " (a formula divides by zero there); choose a nearby value";
+  }
+  return "";
+}
+
+}  // namespace kinema

@@ -1,0 +1,54 @@
+#include <kinema/engine/report/geometry.hpp>
+
+namespace kinema {
+
+MechanismGeometry::MechanismGeometry(const ConstraintSystem& system) {
+  std::vector<GiNaC::ex> inputs, outputs;
+  for (const SystemParameter& parameter : system.parameters) {
+    inputs.push_back(parameter.symbol);
+    parameter_values_.push_back(parameter.value);
+  }
+  inputs.push_back(system.input.symbol);
+  for (const Coordinate& q : system.unknowns) inputs.push_back(q.symbol);
+  for (const EquationGroup& group : system.groups) {
+    if (!group.vector) continue;
+    loop_term_count_.push_back(group.terms.size());
+    for (const GiNaC::ex& term : group.terms) {
+      outputs.push_back(term.real_part().expand());
+      outputs.push_back(term.imag_part().expand());
+      // A term that moves is a link; one whose length moves is a slider's guide.
+      bool moving = term.has(system.input.symbol);
+      bool sliding = moving && system.input.dimension == Dimension::length;
+      for (const Coordinate& q : system.unknowns) {
+        if (!term.has(q.symbol)) continue;
+        moving = true;
+        sliding = sliding || q.dimension == Dimension::length;
+      }
+      kinds_.push_back(!moving ? DrawingSegment::Kind::ground
+                               : sliding ? DrawingSegment::Kind::slider : DrawingSegment::Kind::link);
+    }
+  }
+  tape_ = CompiledExpressions(inputs, outputs);
+}
+
+std::vector<DrawingSegment> MechanismGeometry::segments(const MotionState& state) const {
+  std::vector<double> inputs(parameter_values_);
+  inputs.push_back(state.input);
+  for (Eigen::Index i = 0; i < state.q.size(); ++i) inputs.push_back(state.q[i]);
+  std::vector<double> values(tape_.output_count()), registers = tape_.make_workspace();
+  if (inputs.size() != tape_.input_count()) return {};
+  tape_.evaluate(inputs.data(), values.data(), registers);
+  std::vector<DrawingSegment> segments;
+  std::size_t term = 0;
+  for (std::size_t count : loop_term_count_) {
+    std::complex<double> at = 0;
+    for (std::size_t k = 0; k < count; ++k, ++term) {
+      const std::complex<double> v(values[2 * term], values[2 * term + 1]);
+      segments.push_back({at, at + v, kinds_[term]});
+      at += v;
+    }
+  }
+  return segments;
+}
+
+}  // namespace kinema

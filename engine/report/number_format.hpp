@@ -1,0 +1,18 @@
+// The one place numbers become text: every printer and message formats
+// through these, so a value prints the same everywhere.
+#pragma once
+
+#include <string>
+
+namespace kinema {
+
+/// `significant` significant digits, %g style ("0.129904", "1e-05"); never "-0".
+std::string format_significant(double value, int significant = 6);
+
+/// Enough digits to read back the same double (17 significant).
+std::string format_round_trip(double value);
+
+/// Fixed point with `decimals` decimals ("0.129904"), for drawing coordinates.
+std::string format_fixed(double value, int decimals = 6);
+
+}  // namespace kinema

@@ -1,0 +1,22 @@
+// Names of symbols, decided once when a front end creates them: the printed
+// name of a rate (theta3 -> omega3) and the LaTeX spelling of a name
+// (theta3 -> \theta_{3}), which GiNaC keeps with the symbol.
+#pragma once
+
+#include <string>
+
+namespace kinema {
+
+/// Conventional name of a coordinate's rate: theta3 -> omega3 / alpha3 (order 1 / 2),
+/// r1 -> r1_dot / r1_ddot.
+std::string default_rate_name(const std::string& coordinate, int order);
+
+/// theta3 -> \theta_{3}, omega2 -> \omega_{2}, r1_dot -> \dot{r}_{1}, xE -> x_{E},
+/// La -> L_{a}, AB -> \mathit{AB}. Names are identifiers, so nothing needs escaping.
+std::string latex_symbol_name(const std::string& name);
+
+/// Throws InputError unless a LaTeX name given in a mechanism file uses only
+/// letters, digits, _ ^ { } ' and the commands for Greek letters and accents.
+void check_latex_name(const std::string& latex, const std::string& context);
+
+}  // namespace kinema
