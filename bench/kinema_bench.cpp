@@ -36,10 +36,9 @@ Case& case_for(const std::string& name) {
   if (found != cases.end()) return found->second;
   Case c;
   c.model = std::make_unique<kinema::Model>(kinema::load_model(sample_path(name)));
-  const double start = c.model->mechanism.input.values.at(0);
+  const double start = c.model->system.input.values.at(0);
   for (int i = 0; i < kAngles; ++i) c.angles.push_back(start + 2 * M_PI * i / kAngles);
-  const auto states = kinema::analyse(*c.model->kinematics, c.angles, c.model->mechanism.input.rate,
-                                      c.model->mechanism.input.second_rate);
+  const auto states = kinema::analyse(*c.model, c.angles);
   for (const auto& s : states) c.solutions.push_back(s.q);
   return cases.emplace(name, std::move(c)).first->second;
 }
@@ -47,15 +46,15 @@ Case& case_for(const std::string& name) {
 // --- kinema ---------------------------------------------------------------
 void kinema_scalar(benchmark::State& state, const std::string& name) {
   Case& c = case_for(name);
-  const auto& input = c.model->mechanism.input;
-  kinema::Workspace workspace(*c.model->kinematics);
-  kinema::MotionState s = workspace.motion(c.angles[0], input.rate, input.second_rate, c.solutions[0]);
+  const auto& input = c.model->system.input;
+  kinema::Workspace workspace(*c.model);
+  kinema::MotionState s = workspace.motion(c.angles[0], input.rate_value, input.second_rate_value, c.solutions[0]);
   std::size_t i = 1;
   for (auto _ : state) {
     // One call per value, each from the last one, as a controller or a simulation steps
     // (revolution after revolution).
     const double theta = c.angles[i % c.angles.size()] + 2 * M_PI * static_cast<double>(i / c.angles.size());
-    if (!workspace.advance(theta, input.rate, input.second_rate, s)) state.SkipWithError("lost the branch");
+    if (!workspace.advance(theta, input.rate_value, input.second_rate_value, s)) state.SkipWithError("lost the branch");
     benchmark::DoNotOptimize(s.qdd.data());
     ++i;
   }
@@ -66,9 +65,8 @@ void kinema_scalar(benchmark::State& state, const std::string& name) {
 // predictor from the previous rates, results stored per angle).
 void kinema_sweep(benchmark::State& state, const std::string& name) {
   Case& c = case_for(name);
-  const auto& input = c.model->mechanism.input;
   for (auto _ : state) {
-    const auto states = kinema::analyse(*c.model->kinematics, c.angles, input.rate, input.second_rate);
+    const auto states = kinema::analyse(*c.model, c.angles);
     benchmark::DoNotOptimize(states.q(states.size() - 1).data());
   }
   state.SetItemsProcessed(state.iterations() * c.angles.size());
@@ -77,13 +75,14 @@ void kinema_sweep(benchmark::State& state, const std::string& name) {
 // The large job: Problem 4.4 over 10^6 values of one revolution, results kept.
 void kinema_sweep_million(benchmark::State& state, unsigned threads) {
   Case& c = case_for("problem_4_4_six_bar.toml");
-  const auto& input = c.model->mechanism.input;
+  kinema::AnalysisOptions options;
+  options.threads = threads;
   constexpr std::size_t kValues = 1000000;
   std::vector<double> angles(kValues);
   for (std::size_t i = 0; i < kValues; ++i) angles[i] = c.angles[0] + 2 * M_PI * static_cast<double>(i) / kValues;
   std::size_t bytes = 0, batch_rows = 0;
   for (auto _ : state) {
-    const auto table = kinema::analyse(*c.model->kinematics, angles, input.rate, input.second_rate, threads);
+    const auto table = kinema::analyse(*c.model, angles, options);
     benchmark::DoNotOptimize(table.q(kValues - 1).data());
     bytes = table.bytes();
     batch_rows = table.batch_rows();
@@ -95,7 +94,7 @@ void kinema_sweep_million(benchmark::State& state, unsigned threads) {
 void derivation(benchmark::State& state, const std::string& name) {
   for (auto _ : state) {
     kinema::Model model = kinema::load_model(sample_path(name));
-    benchmark::DoNotOptimize(model.kinematics.get());
+    benchmark::DoNotOptimize(&model.kinematics);
   }
   state.SetItemsProcessed(state.iterations());
 }
@@ -165,22 +164,23 @@ std::vector<GiNaC::ex> rate_expressions(const kinema::Derivation& d) {
 void ginac_subs_evalf(benchmark::State& state, const std::string& name) {
   Case& c = case_for(name);
   const kinema::Derivation& d = c.model->derivation;
-  const auto& input = c.model->mechanism.input;
+  const kinema::ConstraintSystem& system = c.model->system;
+  const auto& input = system.input;
   std::size_t i = 0;
   for (auto _ : state) {
     GiNaC::exmap values;
-    for (std::size_t p = 0; p < d.closure.parameters.size(); ++p)
-      values[d.closure.parameters[p]] = d.closure.parameter_values[p];
-    values[d.closure.input] = c.angles[i];
-    values[d.input_rate] = input.rate;
-    values[d.input_second_rate] = input.second_rate;
-    for (std::size_t j = 0; j < d.closure.unknowns.size(); ++j) values[d.closure.unknowns[j]] = c.solutions[i][j];
+    for (const auto& parameter : system.parameters) values[parameter.symbol] = parameter.value;
+    values[input.symbol] = c.angles[i];
+    values[input.rate] = input.rate_value;
+    values[input.second_rate] = input.second_rate_value;
+    for (std::size_t j = 0; j < system.unknowns.size(); ++j) values[system.unknowns[j].symbol] = c.solutions[i][j];
     // Blocks in order: later rates use earlier ones' values.
     for (const auto& block : d.blocks)
-      for (std::size_t j : block.unknowns) values[d.rates[j]] = GiNaC::evalf(d.solved_rates[j].subs(values));
+      for (std::size_t j : block.unknowns)
+        values[system.unknowns[j].rate] = GiNaC::evalf(d.solved_rates[j].subs(values));
     for (const auto& block : d.blocks)
       for (std::size_t j : block.unknowns)
-        values[d.second_rates[j]] = GiNaC::evalf(d.solved_second_rates[j].subs(values));
+        values[system.unknowns[j].second_rate] = GiNaC::evalf(d.solved_second_rates[j].subs(values));
     benchmark::DoNotOptimize(values.size());
     i = (i + 1) % c.angles.size();
   }
@@ -190,23 +190,24 @@ void ginac_subs_evalf(benchmark::State& state, const std::string& name) {
 void ginac_compile_ex(benchmark::State& state, const std::string& name) {
   Case& c = case_for(name);
   const kinema::Derivation& d = c.model->derivation;
-  const auto& input = c.model->mechanism.input;
+  const kinema::ConstraintSystem& system = c.model->system;
+  const auto& input = system.input;
   // compile_ex takes a flat list of expressions in a flat list of symbols; the
   // block structure is unrolled by substitution so each output stands alone.
   GiNaC::exmap rates, second_rates;
   for (const auto& block : d.blocks)
-    for (std::size_t j : block.unknowns) rates[d.rates[j]] = d.solved_rates[j].subs(rates);
+    for (std::size_t j : block.unknowns) rates[system.unknowns[j].rate] = d.solved_rates[j].subs(rates);
   for (const auto& block : d.blocks)
     for (std::size_t j : block.unknowns)
-      second_rates[d.second_rates[j]] = d.solved_second_rates[j].subs(second_rates).subs(rates);
+      second_rates[system.unknowns[j].second_rate] = d.solved_second_rates[j].subs(second_rates).subs(rates);
   GiNaC::lst outputs, symbols;
   for (const auto& [symbol, e] : rates) outputs.append(e);
   for (const auto& [symbol, e] : second_rates) outputs.append(e);
-  for (const auto& s : d.closure.parameters) symbols.append(s);
-  symbols.append(d.closure.input);
-  symbols.append(d.input_rate);
-  symbols.append(d.input_second_rate);
-  for (const auto& s : d.closure.unknowns) symbols.append(s);
+  for (const auto& parameter : system.parameters) symbols.append(parameter.symbol);
+  symbols.append(input.symbol);
+  symbols.append(input.rate);
+  symbols.append(input.second_rate);
+  for (const auto& q : system.unknowns) symbols.append(q.symbol);
   GiNaC::FUNCP_CUBA function = nullptr;
   try {
     GiNaC::compile_ex(outputs, symbols, function);
@@ -215,15 +216,15 @@ void ginac_compile_ex(benchmark::State& state, const std::string& name) {
     return;
   }
   std::vector<double> in(symbols.nops()), out(outputs.nops());
-  for (std::size_t p = 0; p < d.closure.parameters.size(); ++p) in[p] = d.closure.parameter_values[p];
-  const std::size_t base = d.closure.parameters.size();
+  for (std::size_t p = 0; p < system.parameters.size(); ++p) in[p] = system.parameters[p].value;
+  const std::size_t base = system.parameters.size();
   const int in_count = static_cast<int>(in.size()), out_count = static_cast<int>(out.size());
   std::size_t i = 0;
   for (auto _ : state) {
     in[base] = c.angles[i];
-    in[base + 1] = input.rate;
-    in[base + 2] = input.second_rate;
-    for (std::size_t j = 0; j < d.closure.unknowns.size(); ++j) in[base + 3 + j] = c.solutions[i][j];
+    in[base + 1] = input.rate_value;
+    in[base + 2] = input.second_rate_value;
+    for (std::size_t j = 0; j < system.unknowns.size(); ++j) in[base + 3 + j] = c.solutions[i][j];
     function(&in_count, in.data(), &out_count, out.data());
     benchmark::DoNotOptimize(out.data());
     i = (i + 1) % c.angles.size();
@@ -271,7 +272,7 @@ int main(int argc, char** argv) {
   // Sanity: the closed forms agree with kinema (they are the floor, not a different job).
   {
     Case& c = case_for("four_bar.toml");
-    kinema::Workspace w(*c.model->kinematics);
+    kinema::Workspace w(*c.model);
     const auto s = w.motion(c.angles[100], 10.0, 0.0, c.solutions[100]);
     const auto f = four_bar_closed_form(c.angles[100], 10.0, 0.0);
     std::printf("\nclosed-form check (four-bar at %.1f deg): omega3 %.12g vs %.12g, alpha4 %.12g vs %.12g\n",

@@ -3,25 +3,34 @@
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <iostream>
 #include <sstream>
 
-#include <kinema/engine/printers/code/cpp_header.hpp>
 #include <kinema/engine/errors.hpp>
 #include <kinema/engine/model.hpp>
-#include <kinema/engine/printers/printers.hpp>
+#include <kinema/engine/printers/code/cpp_header.hpp>
+#include <kinema/engine/printers/printer.hpp>
+#include <kinema/engine/report/diagnostics.hpp>
+#include <kinema/loops/mechanism_file.hpp>
+
+#include "exit_status.hpp"
+#include "output_file.hpp"
+#include "usage.hpp"
+
+#ifndef KINEMA_VERSION
+#error "KINEMA_VERSION (the project version) must be defined by the build"
+#endif
 
 namespace {
 
 using namespace kinema;
+using kinema_cli::write_output;  // output is built in memory and written at the end: an error leaves nothing
 
 // A command-line input value: "30" (deg, or the output length unit for a slider) or "30 deg".
-double parse_input_value(const Mechanism& m, const std::string& text) {
+double parse_input_value(const ConstraintSystem& m, const std::string& text) {
   const Quantity q = parse_quantity(text);
   if (q.dimension == Dimension::number) {
-    return m.input.dimension == Dimension::angle ? q.si_value * M_PI / 180.0
-                                                 : q.si_value * m.output.length_factor;
+    return m.input.dimension == Dimension::angle ? from_degrees(q.si_value) : q.si_value * m.output.length_factor;
   }
   if (q.dimension != m.input.dimension) {
     throw UnitError("input value \"" + text + "\" is a " + dimension_name(q.dimension) + ", but " +
@@ -30,25 +39,17 @@ double parse_input_value(const Mechanism& m, const std::string& text) {
   return q.si_value;
 }
 
-// Output is built in memory and written at the end, so an error leaves nothing half-written.
-void write_output(const std::string& text, const std::string& path) {
-  if (path.empty() || path == "-") {
-    std::cout << text;
-    return;
-  }
-  const std::string temporary = path + ".tmp";
-  {
-    std::ofstream file(temporary, std::ios::binary);
-    if (!file) throw InputError("cannot write " + path);
-    file << text;
-    if (!file) throw InputError("cannot write " + path);
-  }
-  if (std::rename(temporary.c_str(), path.c_str()) != 0) throw InputError("cannot write " + path);
+// The printer of that kind and name (the command line's own check named the choices).
+const Printer& printer(PrintKind kind, const std::string& name) {
+  const Printer* found = find_printer(kind, name);
+  if (!found) throw InputError("no output format \"" + name + "\"");
+  return *found;
 }
 
 int run(int argc, char** argv) {
   CLI::App app{"kinema: velocity and acceleration analysis of mechanisms from vector loops"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", "kinema " KINEMA_VERSION, "print the version and exit");
   std::string file, output_path, format = "table", sweep;
   std::vector<std::string> angles;
 
@@ -57,7 +58,7 @@ int run(int argc, char** argv) {
   derive_cmd->add_option("-o,--output", output_path, "write to this file instead of stdout");
   std::string derive_format = "text";
   derive_cmd->add_option("--format", derive_format, "text, or latex (an align* block for notes)")
-      ->check(CLI::IsMember({"text", "latex"}));
+      ->check(CLI::IsMember(printer_names(PrintKind::derivation)));
 
   auto* eval_cmd = app.add_subcommand("eval", "evaluate positions, velocities and accelerations");
   eval_cmd->add_option("FILE", file, "mechanism file (TOML)")->required();
@@ -66,7 +67,7 @@ int run(int argc, char** argv) {
                        "unit, e.g. \"30 deg\"); repeat for a list");
   eval_cmd->add_option("--sweep", sweep, "start:stop:step in the same units, e.g. 0:360:1");
   eval_cmd->add_option("--format", format, "table, csv or json")
-      ->check(CLI::IsMember({"table", "csv", "json"}));
+      ->check(CLI::IsMember(printer_names(PrintKind::results)));
   eval_cmd->add_option("-o,--output", output_path, "write to this file instead of stdout");
   unsigned threads = 1;
   eval_cmd->add_option("--threads", threads, "threads for long sweeps (the branch is kept)")
@@ -88,28 +89,30 @@ int run(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
-    return app.exit(error);
+    return kinema_cli::report_parse_error(app, error);  // help and version: 0; usage errors: one line, 2
   }
 
-  Model model = load_model(file);
-  const Mechanism& m = model.mechanism;
+  const Model model = load_model(file);
+  const ConstraintSystem& m = model.system;
   std::ostringstream out;
 
   if (derive_cmd->parsed()) {
-    if (derive_format == "latex") print_derivation_latex(out, m, model.derivation);
-    else print_derivation_text(out, m, model.derivation);
+    printer(PrintKind::derivation, derive_format).print(out, {model});
     write_output(out.str(), output_path);
     return 0;
   }
 
   if (codegen_cmd->parsed()) {
+    PrintJob job{model};
     if (namespace_name.empty()) {
       std::string stem = output_path.substr(output_path.find_last_of('/') + 1);
-      namespace_name = cpp_identifier(stem.substr(0, stem.find('.')));
+      job.code_namespace = cpp_identifier(stem.substr(0, stem.find('.')));
     } else if (cpp_identifier(namespace_name) != namespace_name) {
       throw InputError("--namespace \"" + namespace_name + "\" is not a C++ identifier");
+    } else {
+      job.code_namespace = namespace_name;
     }
-    write_cpp_header(out, model, namespace_name);
+    printer(PrintKind::code, "cpp").print(out, job);
     write_output(out.str(), output_path);
     return 0;
   }
@@ -122,26 +125,28 @@ int run(int argc, char** argv) {
     if (inputs.empty()) {
       throw InputError(m.source_file + ": no input value: give --angle VALUE or value = \"...\" under [input]");
     }
-    const auto at_values = analyse(*model.kinematics, inputs, m.input.rate, m.input.second_rate);
+    const MotionTable at_values = analyse(model, inputs);
     for (const MotionState& s : at_values) {
-      if (s.status == Status::unassembled) throw AssemblyError(m.source_file + ": " + s.message);
+      if (s.status == Status::unassembled) throw AssemblyError(m.source_file + ": " + describe_failure(m, s));
     }
     // The plots: a revolution for a crank, the neighbourhood of the values for a slider.
     std::vector<double> range;
     if (m.input.dimension == Dimension::angle) {
-      for (int i = 0; i <= 180; ++i) range.push_back(inputs.front() + 2 * M_PI * i / 180.0);
+      for (int i = 0; i <= 180; ++i) range.push_back(inputs.front() + from_degrees(2.0 * i));
     } else {
-      const double span = model.kinematics->length_scale();
+      const double span = m.length_scale;
       for (int i = 0; i <= 200; ++i) range.push_back(inputs.front() - span / 2 + span * i / 200.0);
     }
-    const auto sweep = analyse(*model.kinematics, range, m.input.rate, m.input.second_rate);
-    print_latex_document(out, m, model.derivation, at_values, sweep, fragment);
+    const MotionTable sweep_table = analyse(model, range);
+    PrintJob job{model, &at_values, &sweep_table};
+    job.fragment = fragment;
+    printer(PrintKind::document, "latex").print(out, job);
     write_output(out.str(), output_path);
     return 0;
   }
   const bool is_sweep = !sweep.empty() || (inputs.empty() && m.input.values.size() > 1);
   if (!sweep.empty()) {
-    const double unit = m.input.dimension == Dimension::angle ? M_PI / 180.0 : m.output.length_factor;
+    const double unit = m.input.dimension == Dimension::angle ? kRadiansPerDegree : m.output.length_factor;
     for (double v : parse_sweep(sweep, unit)) inputs.push_back(v);
   }
   if (inputs.empty()) inputs = m.input.values;
@@ -150,32 +155,33 @@ int run(int argc, char** argv) {
                      "or value = \"...\" under [input]");
   }
 
-  const auto states = analyse(*model.kinematics, inputs, m.input.rate, m.input.second_rate, threads);
+  AnalysisOptions options;
+  options.threads = threads;
+  const MotionTable states = analyse(model, inputs, options);
   std::size_t failures = 0;
   int status = 0;
-  for (const MotionState& s : states) {
-    if (s.status == Status::ok) continue;
+  for (std::size_t row = 0; row < states.size(); ++row) {
+    if (states.status(row) == Status::ok) continue;
     ++failures;
     if (!is_sweep) {
-      std::cerr << "kinema: error: " << m.source_file << ": " << s.message << "\n";
-      status = std::max(status, s.status == Status::singular ? SingularPositionError("").exit_status()
-                                                             : AssemblyError("").exit_status());
+      std::cerr << "kinema: error: " << m.source_file << ": "
+                << describe_failure(m, states.input(row), states.failure(row)) << "\n";
+      status = std::max(status, states.status(row) == Status::singular ? kinema_cli::status::singular
+                                                                       : kinema_cli::status::unassembled);
     }
   }
   if (status != 0) return status;  // nothing printed for a failed list of values
   if (failures > 0) {
     std::cerr << "kinema: warning: " << failures << " of " << states.size()
               << " input values have no rates (status singular or unassembled in the output)";
-    for (const MotionState& s : states)
-      if (s.status != Status::ok) {
-        std::cerr << "; first: " << s.message;
+    for (std::size_t row = 0; row < states.size(); ++row)
+      if (states.status(row) != Status::ok) {
+        std::cerr << "; first: " << describe_failure(m, states.input(row), states.failure(row));
         break;
       }
     std::cerr << "\n";
   }
-  if (format == "csv") print_results_csv(out, m, model.derivation, states);
-  else if (format == "json") print_results_json(out, m, model.derivation, states);
-  else print_results_table(out, m, model.derivation, states);
+  printer(PrintKind::results, format).print(out, {model, &states});
   write_output(out.str(), output_path);
   return 0;
 }
@@ -184,12 +190,17 @@ int run(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   try {
-    return run(argc, argv);
+    const int status = run(argc, argv);
+    kinema_cli::flush_standard_output();  // help or version on a full disk is an error too
+    return status;
   } catch (const kinema::Error& error) {
     std::cerr << "kinema: error: " << error.what() << "\n";
-    return error.exit_status();
+    return kinema_cli::exit_status(error);
   } catch (const std::exception& error) {
     std::cerr << "kinema: internal error: " << error.what() << "\n";
-    return 1;
+    return kinema_cli::exit_status(error);
+  } catch (...) {
+    std::cerr << "kinema: internal error: unknown exception\n";
+    return kinema_cli::status::internal;
   }
 }

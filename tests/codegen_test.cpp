@@ -28,7 +28,7 @@ TEST_CASE("kinema codegen: the standalone header matches the engine for every sa
     REQUIRE(generated.exit_status == 0);
 
     const kinema::Model model = kinema::load_model(kinema_test::sample(sample));
-    const auto& input = model.mechanism.input;
+    const auto& input = model.system.input;
     const double step = input.dimension == kinema::Dimension::angle ? M_PI / 180 : 0.001;
     std::vector<double> inputs;
     for (int i = 0; i < 5; ++i) inputs.push_back(input.values.at(0) + i * step);
@@ -42,7 +42,7 @@ TEST_CASE("kinema codegen: the standalone header matches the engine for every sa
            << "  const double inputs[] = {";
     for (double v : inputs) driver << v << ", ";
     driver << "};\n  for (double x : inputs) {\n"
-           << "    if (!" << name << "::evaluate(p, x, " << input.rate << ", " << input.second_rate
+           << "    if (!" << name << "::evaluate(p, x, " << input.rate_value << ", " << input.second_rate_value
            << ", q, m)) return 1;\n"
            << "    for (int i = 0; i < " << name << "::unknown_count; ++i)\n"
            << "      std::printf(\"%.17g %.17g %.17g\\n\", m.q[i], m.qd[i], m.qdd[i]);\n"
@@ -59,7 +59,7 @@ TEST_CASE("kinema codegen: the standalone header matches the engine for every sa
     REQUIRE(compiled == 0);
     REQUIRE(std::system(("'" + program + "' > '" + program + ".out'").c_str()) == 0);
 
-    const auto states = kinema::analyse(*model.kinematics, inputs, input.rate, input.second_rate);
+    const auto states = kinema::analyse(model, inputs, kinema_test::with_rates(input.rate_value, input.second_rate_value));
     std::istringstream numbers(read_file(program + ".out"));
     auto close = [](double a, double b) { return std::fabs(a - b) <= 1e-9 * (1 + std::fabs(b)); };
     for (const auto& s : states) {
@@ -72,7 +72,8 @@ TEST_CASE("kinema codegen: the standalone header matches the engine for every sa
         CHECK(close(qdd, s.qdd[i]));
       }
       for (const auto& point : s.points) {
-        for (double expected : {point.x, point.y, point.vx, point.vy, point.ax, point.ay}) {
+        for (double expected : {point.position[0], point.position[1], point.velocity[0], point.velocity[1],
+                                 point.acceleration[0], point.acceleration[1]}) {
           double value = 0;
           numbers >> value;
           CHECK(close(value, expected));

@@ -17,24 +17,22 @@ bool same_meaning(const ex& a, const ex& b) {
 }
 
 ex symbol_named(const Model& m, const std::string& name) {
-  const auto& c = m.derivation.closure;
-  for (const auto& s : c.parameters)
-    if (s.get_name() == name) return s;
-  for (const auto& s : c.unknowns)
-    if (s.get_name() == name) return s;
-  if (c.input.get_name() == name) return c.input;
-  if (m.derivation.input_rate.get_name() == name) return m.derivation.input_rate;
-  if (m.derivation.input_second_rate.get_name() == name) return m.derivation.input_second_rate;
-  for (std::size_t i = 0; i < c.unknowns.size(); ++i) {
-    if (m.derivation.rates[i].get_name() == name) return m.derivation.rates[i];
-    if (m.derivation.second_rates[i].get_name() == name) return m.derivation.second_rates[i];
+  const auto& system = m.system;
+  for (const auto& p : system.parameters)
+    if (p.symbol.get_name() == name) return p.symbol;
+  for (const kinema::Coordinate* c : {static_cast<const kinema::Coordinate*>(&system.input)}) {
+    for (const auto& s : {c->symbol, c->rate, c->second_rate})
+      if (s.get_name() == name) return s;
   }
+  for (const auto& q : system.unknowns)
+    for (const auto& s : {q.symbol, q.rate, q.second_rate})
+      if (s.get_name() == name) return s;
   throw std::runtime_error("no symbol " + name);
 }
 
 std::size_t unknown_index(const Model& m, const std::string& name) {
-  for (std::size_t i = 0; i < m.mechanism.unknowns.size(); ++i)
-    if (m.mechanism.unknowns[i].name == name) return i;
+  for (std::size_t i = 0; i < m.system.unknowns.size(); ++i)
+    if (m.system.unknowns[i].name == name) return i;
   throw std::runtime_error("no unknown " + name);
 }
 
@@ -86,11 +84,11 @@ TEST_CASE("solved rates satisfy the velocity and acceleration equations (every s
     // Solve in block order: substitute later blocks' rates by their formulas in earlier ones'.
     exmap rates, second_rates;
     for (const auto& block : d.blocks) {
-      for (std::size_t j : block.unknowns) rates[d.rates[j]] = d.solved_rates[j].subs(rates);
+      for (std::size_t j : block.unknowns) rates[m.system.unknowns[j].rate] = d.solved_rates[j].subs(rates);
     }
     for (const auto& block : d.blocks) {
       for (std::size_t j : block.unknowns)
-        second_rates[d.second_rates[j]] = d.solved_second_rates[j].subs(second_rates);
+        second_rates[m.system.unknowns[j].second_rate] = d.solved_second_rates[j].subs(second_rates);
     }
     for (std::size_t i = 0; i < d.velocity_equations.size(); ++i) {
       CAPTURE(i);

@@ -20,13 +20,13 @@ struct SweepCase {
 
 void check_against_finite_differences(const SweepCase& c) {
   const kinema::Model model = kinema::load_model(kinema_test::sample(c.sample));
-  const kinema::Kinematics& k = *model.kinematics;
+  const kinema::Kinematics& k = model.kinematics;
   std::vector<double> inputs;
   for (double v = c.start; v <= c.stop + 1e-12; v += c.step) inputs.push_back(v);
-  const double rate = model.mechanism.input.rate;
-  const double second_rate = model.mechanism.input.second_rate;
-  const auto states = kinema::analyse(k, inputs, rate, second_rate);
-  const bool angle_input = model.mechanism.input.dimension == kinema::Dimension::angle;
+  const double rate = model.system.input.rate_value;
+  const double second_rate = model.system.input.second_rate_value;
+  const auto states = kinema::analyse(model, inputs);
+  const bool angle_input = model.system.input.dimension == kinema::Dimension::angle;
   const double h = angle_input ? 1e-4 : 1e-5 * k.length_scale();
   kinema::Workspace workspace(k);
   int checked = 0;
@@ -40,7 +40,7 @@ void check_against_finite_differences(const SweepCase& c) {
     const Eigen::VectorXd first = (plus - minus) / (2 * h);
     const Eigen::VectorXd second = (plus - 2 * s.q + minus) / (h * h);
     for (Eigen::Index i = 0; i < s.q.size(); ++i) {
-      CAPTURE(model.mechanism.unknowns[i].name);
+      CAPTURE(model.system.unknowns[i].name);
       const double expected_rate = first[i] * rate;
       const double expected_second = second[i] * rate * rate + first[i] * second_rate;
       CHECK(std::fabs(s.qd[i] - expected_rate) <= 1e-6 * (std::fabs(rate) + std::fabs(expected_rate)));
@@ -51,17 +51,17 @@ void check_against_finite_differences(const SweepCase& c) {
     const MotionState at_plus = workspace.motion(s.input + h, rate, second_rate, plus);
     const MotionState at_minus = workspace.motion(s.input - h, rate, second_rate, minus);
     for (std::size_t p = 0; p < s.points.size(); ++p) {
-      CAPTURE(model.mechanism.points[p].name);
+      CAPTURE(model.system.points[p].name);
       const auto &pp = at_plus.points[p], &p0 = s.points[p], &pm = at_minus.points[p];
       const double scale = k.length_scale() * (std::fabs(rate) + std::fabs(second_rate) + rate * rate);
-      const double dx = (pp.x - pm.x) / (2 * h), dy = (pp.y - pm.y) / (2 * h);
-      const double ddx = (pp.x - 2 * p0.x + pm.x) / (h * h), ddy = (pp.y - 2 * p0.y + pm.y) / (h * h);
-      const double vx = dx * rate, vy = dy * rate;
-      const double ax = ddx * rate * rate + dx * second_rate, ay = ddy * rate * rate + dy * second_rate;
-      CHECK(std::fabs(p0.vx - vx) <= 1e-6 * (scale + std::fabs(vx)));
-      CHECK(std::fabs(p0.vy - vy) <= 1e-6 * (scale + std::fabs(vy)));
-      CHECK(std::fabs(p0.ax - ax) <= 1e-4 * (scale + std::fabs(ax)));
-      CHECK(std::fabs(p0.ay - ay) <= 1e-4 * (scale + std::fabs(ay)));
+      REQUIRE(p0.dimension == 2);
+      for (std::size_t c = 0; c < p0.dimension; ++c) {
+        const double d = (pp.position[c] - pm.position[c]) / (2 * h);
+        const double dd = (pp.position[c] - 2 * p0.position[c] + pm.position[c]) / (h * h);
+        const double v = d * rate, a = dd * rate * rate + d * second_rate;
+        CHECK(std::fabs(p0.velocity[c] - v) <= 1e-6 * (scale + std::fabs(v)));
+        CHECK(std::fabs(p0.acceleration[c] - a) <= 1e-4 * (scale + std::fabs(a)));
+      }
     }
     ++checked;
   }

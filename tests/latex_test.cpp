@@ -11,7 +11,8 @@
 
 #include <kinema/engine/errors.hpp>
 #include <kinema/engine/model.hpp>
-#include <kinema/engine/printers/latex/latex_names.hpp>
+#include <kinema/engine/printers/latex/latex_format.hpp>
+#include <kinema/engine/symbolic/naming.hpp>
 #include <kinema/engine/symbolic/trig_simplify.hpp>
 #include "test_support.hpp"
 
@@ -43,16 +44,17 @@ bool compiles(const std::string& block, const std::string& name, std::string& lo
 std::size_t formulas_parse_back(const std::string& output, const std::string& sample) {
   const kinema::Model model = kinema::load_model(kinema_test::sample(sample));
   const auto& d = model.derivation;
+  const auto& system = model.system;
   GiNaC::symtab table;
   std::map<std::string, GiNaC::ex> expected;
-  for (const auto& s : d.closure.parameters) table[s.get_name()] = s;
-  for (const auto& s : d.closure.unknowns) table[s.get_name()] = s;
-  for (const GiNaC::realsymbol& s : {d.closure.input, d.input_rate, d.input_second_rate}) table[s.get_name()] = s;
-  for (std::size_t i = 0; i < d.rates.size(); ++i) {
-    table[d.rates[i].get_name()] = d.rates[i];
-    table[d.second_rates[i].get_name()] = d.second_rates[i];
-    expected[d.rates[i].get_name()] = d.solved_rates[i];
-    expected[d.second_rates[i].get_name()] = d.solved_second_rates[i];
+  for (const auto& p : system.parameters) table[p.symbol.get_name()] = p.symbol;
+  for (const GiNaC::realsymbol& s : {system.input.symbol, system.input.rate, system.input.second_rate})
+    table[s.get_name()] = s;
+  for (std::size_t i = 0; i < system.unknowns.size(); ++i) {
+    const auto& q = system.unknowns[i];
+    for (const GiNaC::realsymbol& s : {q.symbol, q.rate, q.second_rate}) table[s.get_name()] = s;
+    expected[q.rate.get_name()] = d.solved_rates[i];
+    expected[q.second_rate.get_name()] = d.solved_second_rates[i];
   }
   GiNaC::parser reader(table, true);
   std::istringstream lines(output);
@@ -105,7 +107,7 @@ TEST_CASE("derive --format latex: the solved formulas are the engine's and the b
     CHECK(result.out.find("\\begin{align*}") != std::string::npos);
     CHECK(result.out.find("\\begin{bmatrix}") != std::string::npos);
 
-    CHECK(formulas_parse_back(result.out, sample) == 2 * kinema::load_model(kinema_test::sample(sample)).derivation.rates.size());
+    CHECK(formulas_parse_back(result.out, sample) == 2 * kinema::load_model(kinema_test::sample(sample)).system.unknowns.size());
 
     std::string log;
     const bool ok = compiles(result.out, "derive_" + name.substr(0, name.find('.')), log);
@@ -175,7 +177,7 @@ TEST_CASE("kinema latex: every sample's worked solution compiles, with its pages
     }
     // The solved rates and second rates in the document are the engine's.
     CHECK(formulas_parse_back(result.out, sample) ==
-          2 * kinema::load_model(kinema_test::sample(sample)).derivation.rates.size());
+          2 * kinema::load_model(kinema_test::sample(sample)).system.unknowns.size());
     std::string log;
     const int pages = compile_document(result.out, "document_" + name.substr(0, name.find('.')), log);
     INFO(log.substr(log.size() > 3000 ? log.size() - 3000 : 0));

@@ -12,12 +12,29 @@
 
 namespace kinema_test {
 
-namespace {
-
-std::string quote(const std::string& word) {
+std::string shell_quote(const std::string& word) {
   std::string quoted = "'";
   for (char c : word) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
   return quoted + "'";
+}
+
+namespace {
+
+// Runs a /bin/sh command with stdout and stderr captured in files.
+CommandResult run_captured(std::string command) {
+  static int counter = 0;
+  const auto directory = std::filesystem::temp_directory_path() / "kinema_tests";
+  std::filesystem::create_directories(directory);
+  const std::string stem = (directory / ("run" + std::to_string(::getpid()) + "_" + std::to_string(counter++))).string();
+  command += " > " + shell_quote(stem + ".out") + " 2> " + shell_quote(stem + ".err");
+  const int raw = std::system(command.c_str());
+  CommandResult result;
+  result.exit_status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  result.out = read_file(stem + ".out");
+  result.err = read_file(stem + ".err");
+  std::remove((stem + ".out").c_str());
+  std::remove((stem + ".err").c_str());
+  return result;
 }
 
 }  // namespace
@@ -58,21 +75,22 @@ std::string replaced(const std::string& from, const std::string& to, std::string
 }
 
 CommandResult run_kinema(const std::vector<std::string>& arguments) {
-  static int counter = 0;
-  const auto directory = std::filesystem::temp_directory_path() / "kinema_tests";
-  std::filesystem::create_directories(directory);
-  const std::string stem = (directory / ("run" + std::to_string(::getpid()) + "_" + std::to_string(counter++))).string();
-  std::string command = quote(KINEMA_EXE);
-  for (const auto& argument : arguments) command += " " + quote(argument);
-  command += " > " + quote(stem + ".out") + " 2> " + quote(stem + ".err");
-  const int raw = std::system(command.c_str());
-  CommandResult result;
-  result.exit_status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  result.out = read_file(stem + ".out");
-  result.err = read_file(stem + ".err");
-  std::remove((stem + ".out").c_str());
-  std::remove((stem + ".err").c_str());
-  return result;
+  std::string command = shell_quote(KINEMA_EXE);
+  for (const auto& argument : arguments) command += " " + shell_quote(argument);
+  return run_captured(command);
+}
+
+CommandResult run_shell(const std::string& command_line) {
+  return run_captured("bash -c " + shell_quote(command_line));
+}
+
+kinema::AnalysisOptions with_rates(double rate, double second_rate, unsigned threads, bool simd) {
+  kinema::AnalysisOptions options;
+  options.rate = rate;
+  options.second_rate = second_rate;
+  options.threads = threads;
+  options.simd = simd;
+  return options;
 }
 
 std::string sample(const std::string& name) { return std::string(KINEMA_SAMPLES_DIR) + "/" + name; }
@@ -102,6 +120,13 @@ std::string write_temporary(const std::string& name, const std::string& text) {
   const std::string path = (directory / name).string();
   std::ofstream(path) << text;
   return path;
+}
+
+std::string fresh_directory(const std::string& name) {
+  const auto directory = std::filesystem::path(KINEMA_TEST_WORK_DIR) / name;
+  std::filesystem::remove_all(directory);
+  std::filesystem::create_directories(directory);
+  return directory.string();
 }
 
 }  // namespace kinema_test

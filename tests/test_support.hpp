@@ -3,6 +3,8 @@
 #pragma once
 
 #include <nlohmann/json.hpp>
+
+#include <kinema/engine/model.hpp>
 #include <string>
 #include <vector>
 
@@ -16,6 +18,12 @@ struct CommandResult {
 
 /// Runs the kinema executable with the arguments (no shell quoting needed for simple words).
 CommandResult run_kinema(const std::vector<std::string>& arguments);
+
+/// Runs a bash command line (`bash -c`), e.g. with ulimit or redirections; its stdout and stderr are captured.
+CommandResult run_shell(const std::string& command_line);
+
+/// word in single quotes for the shell, e.g. a path in a run_shell command line.
+std::string shell_quote(const std::string& word);
 
 std::string sample(const std::string& name);     ///< Path of samples/NAME.
 
@@ -32,11 +40,18 @@ const std::string& four_bar_text();
 /// text with the first `from` replaced by `to` (the test fails if `from` is missing).
 std::string replaced(const std::string& from, const std::string& to, std::string text = four_bar_text());
 
+/// Analysis options with the input's rates given (and threads, SIMD on or off).
+kinema::AnalysisOptions with_rates(double rate, double second_rate, unsigned threads = 1, bool simd = true);
+
 /// The whole content of a file ("" if it cannot be read).
 std::string read_file(const std::string& path);
 
 /// Writes text to a fresh file in the build tree and returns its path.
 std::string write_temporary(const std::string& name, const std::string& text);
+
+/// An empty directory of that name under the build tree (removed and made again), for tests that
+/// look at every file a run leaves.
+std::string fresh_directory(const std::string& name);
 
 }  // namespace kinema_test
 

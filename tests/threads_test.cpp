@@ -15,17 +15,17 @@ TEST_CASE("batch (SIMD blocks), threads and both equal the scalar one-by-one run
     const std::string name = sample;
     CAPTURE(name);
     const kinema::Model model = kinema::load_model(kinema_test::sample(sample));
-    const auto& input = model.mechanism.input;
+    const auto& input = model.system.input;
     std::vector<double> inputs;
     const bool angle = input.dimension == kinema::Dimension::angle;
     for (int i = 0; i < 2000; ++i) {
       inputs.push_back(angle ? input.values.at(0) + 2 * M_PI * i / 2000.0 : 0.101 + 0.098 * i / 2000.0);
     }
-    const auto serial = kinema::analyse(*model.kinematics, inputs, input.rate, input.second_rate, 1, false);
+    const auto serial = kinema::analyse(model, inputs, kinema_test::with_rates(input.rate_value, input.second_rate_value, 1, false));
     for (const auto& [threads, batch] : {std::pair{1u, true}, std::pair{3u, false}, std::pair{3u, true}}) {
     CAPTURE(threads);
     CAPTURE(batch);
-    const auto parallel = kinema::analyse(*model.kinematics, inputs, input.rate, input.second_rate, threads, batch);
+    const auto parallel = kinema::analyse(model, inputs, kinema_test::with_rates(input.rate_value, input.second_rate_value, threads, batch));
     REQUIRE(serial.size() == parallel.size());
     CHECK(serial.batch_rows() == 0);
     // The SIMD path does the bulk of a fine sweep (not a fallback that never engages).
@@ -43,8 +43,8 @@ TEST_CASE("batch (SIMD blocks), threads and both equal the scalar one-by-one run
         CHECK(parallel[i].qdd[j] == doctest::Approx(serial[i].qdd[j]).epsilon(1e-9));
       }
       for (std::size_t p = 0; p < serial[i].points.size(); ++p) {
-        CHECK(parallel[i].points[p].ax == doctest::Approx(serial[i].points[p].ax).epsilon(1e-9));
-        CHECK(parallel[i].points[p].vy == doctest::Approx(serial[i].points[p].vy).epsilon(1e-9));
+        CHECK(parallel[i].points[p].acceleration[0] == doctest::Approx(serial[i].points[p].acceleration[0]).epsilon(1e-9));
+        CHECK(parallel[i].points[p].velocity[1] == doctest::Approx(serial[i].points[p].velocity[1]).epsilon(1e-9));
       }
     }
     CHECK(ok > 100);
