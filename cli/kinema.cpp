@@ -11,6 +11,7 @@
 #include <kinema/engine/printers/code/cpp_header.hpp>
 #include <kinema/engine/printers/printer.hpp>
 #include <kinema/engine/report/diagnostics.hpp>
+#include <kinema/engine/report/plot_range.hpp>
 #include <kinema/loops/mechanism_file.hpp>
 
 #include "exit_status.hpp"
@@ -47,7 +48,7 @@ const Printer& printer(PrintKind kind, const std::string& name) {
 }
 
 int run(int argc, char** argv) {
-  CLI::App app{"kinema: velocity and acceleration analysis of mechanisms from vector loops"};
+  CLI::App app{"kinema: velocity and acceleration analysis of mechanisms from vector loops", "kinema"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "kinema " KINEMA_VERSION, "print the version and exit");
   std::string file, output_path, format = "table", sweep;
@@ -129,15 +130,7 @@ int run(int argc, char** argv) {
     for (const MotionState& s : at_values) {
       if (s.status == Status::unassembled) throw AssemblyError(m.source_file + ": " + describe_failure(m, s));
     }
-    // The plots: a revolution for a crank, the neighbourhood of the values for a slider.
-    std::vector<double> range;
-    if (m.input.dimension == Dimension::angle) {
-      for (int i = 0; i <= 180; ++i) range.push_back(inputs.front() + from_degrees(2.0 * i));
-    } else {
-      const double span = m.length_scale;
-      for (int i = 0; i <= 200; ++i) range.push_back(inputs.front() - span / 2 + span * i / 200.0);
-    }
-    const MotionTable sweep_table = analyse(model, range);
+    const MotionTable sweep_table = analyse(model, plot_range(m, inputs.front()));
     PrintJob job{model, &at_values, &sweep_table};
     job.fragment = fragment;
     printer(PrintKind::document, "latex").print(out, job);

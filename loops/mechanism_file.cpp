@@ -10,6 +10,7 @@
 #include <toml.hpp>
 
 #include <kinema/engine/errors.hpp>
+#include <kinema/engine/report/number_format.hpp>
 
 namespace kinema {
 namespace {
@@ -93,12 +94,7 @@ class FileReader {
   std::string string_value(const toml::value& value, const std::string& key) const {
     if (value.is_string()) return value.as_string().str;
     if (value.is_integer()) return std::to_string(value.as_integer());
-    if (value.is_floating()) {
-      std::ostringstream out;
-      out.precision(17);
-      out << value.as_floating();
-      return out.str();
-    }
+    if (value.is_floating()) return format_round_trip(value.as_floating());
     fail(value, "\"" + key + "\" must be a string such as \"150 mm\" or a formula");
   }
 

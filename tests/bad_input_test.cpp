@@ -104,3 +104,10 @@ TEST_CASE("missing file") {
   CHECK(result.exit_status == 2);
   CHECK(result.err.find("/nonexistent/mechanism.toml: cannot open") != std::string::npos);
 }
+
+TEST_CASE("a function kinema cannot compile is bad input with file:line and the functions understood") {
+  check_bad("sinh", replaced("- d\"", "- d*sinh(theta2)\""),
+            {2, {"sinh.toml:15", "loop \"ABCD\"", "sinh(...)", "not supported", "sin, cos, tan"}});
+  // In a point's formula too (the message names the point).
+  check_bad("cosh_point", replaced("P = \"", "P = \"a*cosh(theta3) + "), {2, {"cosh_point.toml", "point \"P\"", "cosh(...)"}});
+}

@@ -39,11 +39,12 @@ std::vector<DrawingSegment> MechanismGeometry::segments(const MotionState& state
   if (inputs.size() != tape_.input_count()) return {};
   tape_.evaluate(inputs.data(), values.data(), registers);
   std::vector<DrawingSegment> segments;
+  const double* xy = values.data();  // x, y of each term in turn
   std::size_t term = 0;
   for (std::size_t count : loop_term_count_) {
     std::complex<double> at = 0;
-    for (std::size_t k = 0; k < count; ++k, ++term) {
-      const std::complex<double> v(values[2 * term], values[2 * term + 1]);
+    for (std::size_t k = 0; k < count; ++k, ++term, xy += 2) {
+      const std::complex<double> v(xy[0], xy[1]);
       segments.push_back({at, at + v, kinds_[term]});
       at += v;
     }
