@@ -1,0 +1,109 @@
+#include "output_file.hpp"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <iostream>
+#include <vector>
+
+namespace kinema_cli {
+
+namespace {
+
+std::string reason(int error_number) {
+  return error_number != 0 ? std::strerror(error_number) : "write error";
+}
+
+[[noreturn]] void fail_file(const std::string& path, int error_number) {
+  throw OutputError("cannot write " + path + ": " + reason(error_number) + "; nothing was written");
+}
+
+[[noreturn]] void fail_stdout(int error_number) {
+  throw OutputError("cannot write standard output: " + reason(error_number));
+}
+
+std::string directory_of(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  if (slash == std::string::npos) return ".";
+  if (slash == 0) return "/";
+  return path.substr(0, slash);
+}
+
+// The mode the file gets: that of the file it replaces, else what open(2)
+// would give a new file (0666 less the umask); mkstemp itself uses 0600.
+mode_t mode_for(const std::string& path) {
+  struct stat existing;
+  if (::stat(path.c_str(), &existing) == 0 && S_ISREG(existing.st_mode)) return existing.st_mode & 07777;
+  const mode_t mask = ::umask(0);
+  ::umask(mask);
+  return 0666 & ~mask;
+}
+
+// 0 when all of text went to fd, else the errno of the failing write.
+int write_all(int fd, const std::string& text) {
+  const char* data = text.data();
+  std::size_t left = text.size();
+  while (left > 0) {
+    const ssize_t written = ::write(fd, data, left);
+    if (written < 0) {
+      if (errno == EINTR) continue;
+      return errno;
+    }
+    if (written == 0) return EIO;  // no progress: do not loop for ever
+    data += written;
+    left -= static_cast<std::size_t>(written);
+  }
+  return 0;
+}
+
+}  // namespace
+
+void write_output(const std::string& text, const std::string& path) {
+  if (path.empty() || path == "-") write_standard_output(text);
+  else write_file(text, path);
+}
+
+void write_file(const std::string& text, const std::string& path) {
+  std::string temporary = directory_of(path) + "/.kinema-XXXXXX";
+  std::vector<char> name(temporary.begin(), temporary.end());
+  name.push_back('\0');
+  const int fd = ::mkstemp(name.data());  // O_CREAT | O_EXCL, in path's directory
+  if (fd < 0) fail_file(path, errno);
+  temporary = name.data();
+
+  int error_number = 0;
+  if (::fchmod(fd, mode_for(path)) != 0) error_number = errno;
+  if (error_number == 0) error_number = write_all(fd, text);
+  if (error_number == 0 && ::fsync(fd) != 0 && errno != EINVAL) error_number = errno;
+  if (::close(fd) != 0 && error_number == 0 && errno != EINTR) error_number = errno;
+  if (error_number == 0 && std::rename(temporary.c_str(), path.c_str()) != 0) error_number = errno;
+  if (error_number != 0) {
+    ::unlink(temporary.c_str());
+    fail_file(path, error_number);
+  }
+}
+
+void write_standard_output(const std::string& text) {
+  flush_standard_output();  // anything written before comes first
+  errno = 0;
+  if (std::fwrite(text.data(), 1, text.size(), stdout) != text.size()) fail_stdout(errno);
+  errno = 0;
+  if (std::fflush(stdout) != 0) fail_stdout(errno);
+}
+
+void flush_standard_output() {
+  errno = 0;
+  std::cout.flush();
+  const bool flushed = std::fflush(stdout) == 0;
+  int error_number = errno;
+  if (flushed && !std::ferror(stdout) && std::cout) return;
+  if (error_number == 0 && ::fcntl(STDOUT_FILENO, F_GETFL) < 0) error_number = errno;  // closed: EBADF
+  fail_stdout(error_number);
+}
+
+}  // namespace kinema_cli

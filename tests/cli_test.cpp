@@ -1,0 +1,156 @@
+// The command line as a shell user sees it: --version, one-line usage errors
+// with status 2, and output that is written completely or not at all (status 5).
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include "test_support.hpp"
+
+namespace {
+
+using kinema_test::run_kinema;
+using kinema_test::run_shell;
+using kinema_test::shell_quote;
+
+const std::string kinema_exe = shell_quote(KINEMA_EXE);
+
+// The names of the files in a directory.
+std::set<std::string> files_in(const std::string& directory) {
+  std::set<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator(directory)) names.insert(entry.path().filename().string());
+  return names;
+}
+
+// Status 2, nothing on stdout, one line on stderr with each part and the help to read.
+void check_usage_error(const std::vector<std::string>& arguments, const std::vector<std::string>& parts,
+                       const std::string& help) {
+  std::string command_line = "kinema";
+  for (const auto& argument : arguments) command_line += " " + argument;
+  CAPTURE(command_line);
+  const auto result = run_kinema(arguments);
+  CAPTURE(result.err);
+  CHECK(result.exit_status == 2);
+  CHECK(result.out.empty());
+  CHECK(result.err.rfind("kinema: usage error: ", 0) == 0);
+  CHECK(result.err.find('\n') == result.err.size() - 1);  // exactly one line
+  CHECK(result.err.find("; run '" + help + "'\n") != std::string::npos);
+  for (const auto& part : parts) {
+    CAPTURE(part);
+    CHECK(result.err.find(part) != std::string::npos);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("kinema --version prints the version and exits 0") {
+  const auto result = run_kinema({"--version"});
+  CHECK(result.exit_status == 0);
+  CHECK(result.out == std::string("kinema ") + KINEMA_VERSION + "\n");
+  CHECK(result.err.empty());
+}
+
+TEST_CASE("--help prints help on stdout and exits 0") {
+  const auto help = run_kinema({"--help"});
+  CHECK(help.exit_status == 0);
+  CHECK(help.out.find("Usage: kinema [OPTIONS] SUBCOMMAND") != std::string::npos);
+  CHECK(help.out.find("--version") != std::string::npos);
+  CHECK(help.err.empty());
+  const auto eval_help = run_kinema({"eval", "--help"});
+  CHECK(eval_help.exit_status == 0);
+  CHECK(eval_help.out.find("Usage: kinema eval [OPTIONS] FILE") != std::string::npos);
+  CHECK(eval_help.out.find("--threads") != std::string::npos);
+  CHECK(eval_help.err.empty());
+}
+
+TEST_CASE("usage errors exit 2 with one line that says what is wrong and what to do") {
+  const std::string file = kinema_test::sample("four_bar.toml");
+  check_usage_error({}, {"a command is required", "derive, eval, latex, codegen"}, "kinema --help");
+  check_usage_error({"eval"}, {"eval: FILE is required"}, "kinema eval --help");
+  check_usage_error({"derive"}, {"derive: FILE is required"}, "kinema derive --help");
+  check_usage_error({"codegen", file}, {"codegen: --output is required"}, "kinema codegen --help");
+  check_usage_error({"eval", file, "--bogus"}, {"eval: unknown option \"--bogus\""}, "kinema eval --help");
+  check_usage_error({"--bogus"}, {"unknown option \"--bogus\""}, "kinema --help");
+  check_usage_error({"eval", file, "extra.toml"}, {"eval: unexpected argument \"extra.toml\""}, "kinema eval --help");
+  check_usage_error({"eval", file, "--threads", "0"}, {"eval: --threads", "0", "1 to 256"}, "kinema eval --help");
+  check_usage_error({"eval", file, "--threads", "x"}, {"eval: --threads", "x"}, "kinema eval --help");
+  check_usage_error({"eval", file, "--threads"}, {"eval: --threads needs a value"}, "kinema eval --help");
+  check_usage_error({"eval", file, "--format", "bogus"}, {"eval: --format", "bogus", "table,csv,json"},
+                    "kinema eval --help");
+  check_usage_error({"frob", file}, {"unknown command \"frob\"", "derive, eval, latex, codegen"}, "kinema --help");
+}
+
+TEST_CASE("-o writes the whole output, replaces a previous file and keeps its mode") {
+  const std::string directory = kinema_test::fresh_directory("cli_output_replaced");
+  const std::string path = directory + "/out.csv";
+  std::ofstream(path) << "previous text\n";
+  std::filesystem::permissions(path, std::filesystem::perms::owner_read | std::filesystem::perms::owner_write |
+                                         std::filesystem::perms::group_read);
+  const auto to_stdout = run_kinema({"eval", kinema_test::sample("four_bar.toml"), "--format", "csv"});
+  const auto to_file = run_kinema({"eval", kinema_test::sample("four_bar.toml"), "--format", "csv", "-o", path});
+  REQUIRE(to_stdout.exit_status == 0);
+  CHECK(to_file.exit_status == 0);
+  CHECK(to_file.out.empty());
+  CHECK(kinema_test::read_file(path) == to_stdout.out);
+  CHECK((std::filesystem::status(path).permissions() & std::filesystem::perms::all) ==
+        (std::filesystem::perms::owner_read | std::filesystem::perms::owner_write | std::filesystem::perms::group_read));
+  CHECK(files_in(directory) == std::set<std::string>{"out.csv"});  // no temporary left
+}
+
+TEST_CASE("-o into a missing directory exits 5, names the path and writes nothing") {
+  const std::string directory = kinema_test::fresh_directory("cli_output_missing_directory");
+  const std::string path = directory + "/no/such/out.csv";
+  const auto result = run_kinema({"eval", kinema_test::sample("four_bar.toml"), "-o", path});
+  CAPTURE(result.err);
+  CHECK(result.exit_status == 5);
+  CHECK(result.out.empty());
+  CHECK(result.err.rfind("kinema: error: cannot write " + path + ": ", 0) == 0);
+  CHECK(result.err.find("nothing was written") != std::string::npos);
+  CHECK(result.err.find('\n') == result.err.size() - 1);
+  CHECK(files_in(directory).empty());
+}
+
+TEST_CASE("-o onto a directory exits 5 and leaves the directory as it was") {
+  const std::string directory = kinema_test::fresh_directory("cli_output_onto_directory");
+  std::filesystem::create_directory(directory + "/out");
+  const auto result = run_kinema({"eval", kinema_test::sample("four_bar.toml"), "-o", directory + "/out"});
+  CAPTURE(result.err);
+  CHECK(result.exit_status == 5);
+  CHECK(result.err.find("cannot write " + directory + "/out: ") != std::string::npos);
+  CHECK(files_in(directory) == std::set<std::string>{"out"});
+  CHECK(files_in(directory + "/out").empty());
+}
+
+// `ulimit -f 1` (1024 bytes) with SIGXFSZ ignored: writes past the limit fail
+// with EFBIG, the way a full disk fails them; a 361-row table is far longer.
+const std::string kLimitedSweep =
+    "ulimit -f 1; trap '' XFSZ; " + kinema_exe + " eval " + shell_quote(kinema_test::sample("four_bar.toml")) +
+    " --sweep 0:360:1";
+
+TEST_CASE("-o under a file-size limit exits 5, keeps the previous file and leaves no temporary") {
+  const std::string directory = kinema_test::fresh_directory("cli_output_file_size_limit");
+  const std::string path = directory + "/out.txt";
+  const std::string previous = "previous text, shorter than the limit\n";
+  std::ofstream(path) << previous;
+  const auto result = run_shell(kLimitedSweep + " -o " + shell_quote(path));
+  CAPTURE(result.err);
+  CHECK(result.exit_status == 5);
+  CHECK(result.out.empty());
+  CHECK(result.err.rfind("kinema: error: cannot write " + path + ": ", 0) == 0);
+  CHECK(result.err.find("nothing was written") != std::string::npos);
+  CHECK(result.err.find('\n') == result.err.size() - 1);
+  CHECK(kinema_test::read_file(path) == previous);
+  CHECK(files_in(directory) == std::set<std::string>{"out.txt"});
+}
+
+TEST_CASE("stdout redirected to a file under a file-size limit exits 5") {
+  const std::string directory = kinema_test::fresh_directory("cli_stdout_file_size_limit");
+  const std::string path = directory + "/out2.txt";
+  std::ofstream(path) << "previous text\n";
+  const auto result = run_shell(kLimitedSweep + " > " + shell_quote(path));
+  CAPTURE(result.err);
+  CHECK(result.exit_status == 5);
+  CHECK(result.err.rfind("kinema: error: cannot write standard output: ", 0) == 0);
+  CHECK(result.err.find('\n') == result.err.size() - 1);
+}
