@@ -1,0 +1,189 @@
+// engine/printers/latex/worked_solution: the document printer (kinema latex)
+// through the library: its sections, the numbers of the run in the results
+// tables and put into the solved formulas, the fragment form, failures in
+// words. (tests/latex_test.cpp runs pdflatex on it; this file does not.)
+#include <doctest/doctest.h>
+
+#include <sstream>
+#include <string>
+
+#include <kinema/engine/printers/latex/latex_format.hpp>
+#include <kinema/engine/printers/printer.hpp>
+#include <kinema/engine/report/diagnostics.hpp>
+#include <kinema/engine/report/plot_range.hpp>
+#include "../unit_support.hpp"
+#include "../../test_support.hpp"
+
+using kinema::latex_number;
+using kinema::MotionTable;
+using kinema::PrintKind;
+using kinema_unit::kDeg;
+
+namespace {
+
+std::string document(const kinema::Model& model, const MotionTable* values, const MotionTable* sweep,
+                     bool fragment = false) {
+  const kinema::Printer* printer = kinema::find_printer(PrintKind::document, "latex");
+  REQUIRE(printer != nullptr);
+  kinema::PrintJob job{model, values, sweep, fragment, ""};
+  std::ostringstream out;
+  printer->print(out, job);
+  return out.str();
+}
+
+bool has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+std::size_t count(const std::string& text, const std::string& part) {
+  std::size_t n = 0;
+  for (auto at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) ++n;
+  return n;
+}
+
+double wrapped_degrees(double radians) {
+  double d = std::remainder(radians / kDeg, 360.0);
+  return d <= -180 ? d + 360 : d;
+}
+
+}  // namespace
+
+TEST_CASE("engine/printers/worked_solution: a standalone document with every section") {
+  const kinema::Model model = kinema::load_model(kinema_test::sample("four_bar.toml"));
+  const MotionTable values = kinema::analyse(model, {40 * kDeg});
+  const MotionTable sweep = kinema::analyse(model, kinema::plot_range(model.system, 40 * kDeg));
+  const std::string tex = document(model, &values, &sweep);
+  CAPTURE(tex.substr(0, 3000));
+
+  CHECK(tex.find("\\documentclass") == 0);
+  CHECK(count(tex, "\\begin{document}") == 1);
+  CHECK(tex.size() > 15);
+  CHECK(tex.compare(tex.size() - 15, 15, "\\end{document}\n") == 0);
+  for (const char* section : {"\\section*{Four-bar linkage (crank-rocker, open branch)}", "\\subsection*{Data}",
+                              "\\subsection*{Vector loops}", "\\subsection*{Velocity analysis}",
+                              "\\subsection*{Acceleration analysis}",
+                              "\\subsection*{Results at $\\theta_{2} = 40\\,\\mathrm{deg}$}"}) {
+    CAPTURE(section);
+    CHECK(count(tex, section) == 1);
+  }
+  // In order: data, loops, velocity, acceleration, results, plots.
+  CHECK(tex.find("\\subsection*{Data}") < tex.find("\\subsection*{Vector loops}"));
+  CHECK(tex.find("\\subsection*{Vector loops}") < tex.find("\\subsection*{Velocity analysis}"));
+  CHECK(tex.find("\\subsection*{Velocity analysis}") < tex.find("\\subsection*{Acceleration analysis}"));
+  CHECK(tex.find("\\subsection*{Acceleration analysis}") < tex.find("\\subsection*{Results at"));
+  CHECK(tex.find("\\subsection*{Results at") < tex.find("\\begin{axis}"));
+
+  // Data as written, the input's motion in its units.
+  CHECK(has(tex, "$a$ & 40 mm \\\\"));
+  CHECK(has(tex, "$\\delta$ & 30 deg \\\\"));
+  CHECK(has(tex, "$\\omega_{2} = 10\\,\\mathrm{rad/s}$"));
+  // The loop as link vectors, as written.
+  CHECK(has(tex, "a\\,e^{i\\theta_{2}} + b\\,e^{i\\theta_{3}} - c\\,e^{i\\theta_{4}} - d = 0"));
+  // Each solved formula once, with its machine-readable comment.
+  CHECK(count(tex, "% kinema: omega3 = ") == 1);
+  CHECK(count(tex, "% kinema: alpha4 = ") == 1);
+
+  // The results table holds the run's numbers.
+  const kinema::MotionState s = values[0];
+  REQUIRE(s.status == kinema::Status::ok);
+  CHECK(has(tex, "$\\theta_{3}$ & $" + latex_number(wrapped_degrees(s.q[0])) + "\\,\\mathrm{deg}$ & $\\omega_{3} = " +
+                     latex_number(s.qd[0]) + "\\,\\mathrm{rad/s}$ & $\\alpha_{3} = " + latex_number(s.qdd[0]) +
+                     "\\,\\mathrm{rad/s^2}$ \\\\"));
+  CHECK(has(tex, "P & $" + latex_number(s.points[2].position[0] / 0.001, 5) + "$ & $" +
+                     latex_number(s.points[2].position[1] / 0.001, 5) + "$"));
+  // A drawing and plots.
+  CHECK(count(tex, "\\begin{tikzpicture}[line cap=round]") == 1);
+  CHECK(count(tex, "\\begin{axis}") >= 3);
+}
+
+TEST_CASE("engine/printers/worked_solution: the numbers are put into the solved formulas") {
+  const kinema::Model model = kinema::load_model(kinema_test::sample("four_bar.toml"));
+  const MotionTable values = kinema::analyse(model, {40 * kDeg});
+  const std::string tex = document(model, &values, nullptr);
+  const auto at = tex.find("Numeric substitution (lengths in mm):\n\\begin{align*}\n");
+  REQUIRE(at != std::string::npos);
+  const auto end = tex.find("\\end{align*}", at);
+  const std::string block = tex.substr(at, end - at);
+  CAPTURE(block);
+  const kinema::MotionState s = values[0];
+  // One row per rate and second rate; each ends with the computed value.
+  std::istringstream rows(block);
+  std::string row;
+  std::size_t seen = 0;
+  while (std::getline(rows, row)) {
+    const auto equals = row.find(" &= ");
+    if (equals == std::string::npos) continue;
+    ++seen;
+    CAPTURE(row);
+    const auto last = row.rfind(" = ");
+    REQUIRE(last > equals);
+    const std::string substituted = row.substr(equals + 4, last - equals - 4);
+    // Every symbol has become a number: no coordinate, rate or length names are left.
+    for (const char* name : {"\\theta", "\\omega", "\\alpha", "\\mathit"}) CHECK_FALSE(has(substituted, name));
+    CHECK(has(substituted, "(40^{\\circ})"));  // theta2 in degrees
+  }
+  CHECK(seen == 4);
+  // The values the formulas give, with their units.
+  CHECK(has(block, "\\omega_{3} &= "));
+  CHECK(has(block, " = " + latex_number(s.qd[0]) + "\\,\\mathrm{rad/s}"));
+  CHECK(has(block, " = " + latex_number(s.qdd[1]) + "\\,\\mathrm{rad/s^2}"));
+  // Lengths in mm and the crank's rate as given.
+  CHECK(has(block, "(120)"));  // b
+  CHECK(has(block, "(80)"));   // c
+  CHECK(has(block, "(10)"));   // omega2
+  CHECK(has(block, "(" + latex_number(wrapped_degrees(s.q[1]), 5) + "^{\\circ})"));  // theta4
+  // No sweep, no plots.
+  CHECK_FALSE(has(tex, "\\begin{axis}"));
+}
+
+TEST_CASE("engine/printers/worked_solution: a fragment has no preamble and no document environment") {
+  const kinema::Model model = kinema::load_model(kinema_test::sample("four_bar.toml"));
+  const MotionTable values = kinema::analyse(model, {40 * kDeg});
+  const std::string fragment = document(model, &values, nullptr, true);
+  const std::string whole = document(model, &values, nullptr, false);
+  for (const char* preamble : {"\\documentclass", "\\usepackage", "\\begin{document}", "\\end{document}"}) {
+    CAPTURE(preamble);
+    CHECK_FALSE(has(fragment, preamble));
+    CHECK(has(whole, preamble));
+  }
+  CHECK(fragment.find("\\section*{") == 0);
+  // The rest is the same.
+  CHECK(has(whole, fragment));
+  // Without values: the derivation only.
+  const std::string derivation_only = document(model, nullptr, nullptr, true);
+  CHECK_FALSE(has(derivation_only, "\\subsection*{Results at"));
+  CHECK(has(derivation_only, "\\subsection*{Acceleration analysis}"));
+}
+
+TEST_CASE("engine/printers/worked_solution: sliding links, failures in words, user text escaped") {
+  // Example 4.1: the slider on the turning link, with its relative and Coriolis terms.
+  const kinema::Model slider = kinema::load_model(kinema_test::sample("example_4_1_r_trr.toml"));
+  const std::string tex = document(slider, nullptr, nullptr, true);
+  CHECK(has(tex, "In loop ABC, the point at the end of $r\\,e^{i\\phi}$ slides along a turning link"));
+  CHECK(has(tex, "the relative term $\\ddot{r}\\,e^{i\\phi}$"));
+  CHECK(has(tex, "the Coriolis term $2\\,"));
+
+  // The piston at its dead centre (singular) and beyond reach (unassembled).
+  const kinema::Model piston = kinema::load_model(kinema_test::sample("piston_driven_crank.toml"));
+  MotionTable values({0.2, 0.25}, 2, {2, 2}, -2.0, 5.0);
+  kinema::Workspace workspace(piston);
+  values.set(0, workspace.motion(0.2, -2.0, 5.0, Eigen::VectorXd::Zero(2)));
+  values.set(1, kinema::analyse(piston, {0.25})[0]);
+  REQUIRE(values.status(0) == kinema::Status::singular);
+  REQUIRE(values.status(1) == kinema::Status::unassembled);
+  const std::string failed = document(piston, &values, nullptr, true);
+  CHECK(has(failed, "\\subsection*{Results at $x = 200\\,\\mathrm{mm}$}"));
+  CHECK(has(failed, kinema::latex_escape_text(kinema::describe_failure(piston.system, values[0]))));
+  CHECK(has(failed, "undefined & undefined"));
+  CHECK(has(failed, "\\subsection*{Results at $x = 250\\,\\mathrm{mm}$}"));
+  CHECK(has(failed, kinema::latex_escape_text(kinema::describe_failure(piston.system, values[1]))));
+  CHECK_FALSE(has(failed, "Numeric substitution"));  // no rates to put in
+  CHECK(count(failed, "\\begin{tabular}{lrrr}") == 1);  // the singular position's coordinates only
+
+  // Hostile title and description print as text.
+  const std::string hostile = kinema_test::replaced(
+      "title = \"four-bar\"", "title = \"50% & \\\\input{evil}\"\ndescription = \"$x$ #1 ~\"");
+  const kinema::Model model = kinema_unit::model_from_text(hostile, "hostile.toml");
+  const std::string escaped = document(model, nullptr, nullptr);
+  CHECK(has(escaped, "\\section*{50\\% \\& \\textbackslash{}input\\{evil\\}}"));
+  CHECK(has(escaped, "\\$x\\$ \\#1 \\textasciitilde{}"));
+  CHECK_FALSE(has(escaped, "\\input{evil}"));
+}
