@@ -127,6 +127,18 @@ TEST_CASE("engine/symbolic/solving_order: file order is kept where any order wou
   check_partition(system, blocks);
 }
 
+TEST_CASE("engine/symbolic/solving_order: once a group is solved, the earliest group it frees comes next") {
+  // G0 needs G1's q2, q3; G2 is independent. G1 frees G0, and G0 comes before G2 as in the file.
+  const ConstraintSystem system = hand_built(6, {{{0, 1, 2}, {3}}, {{2, 3}, {2}}, {{4, 5}, {5}}});
+  const auto blocks = kinema::solving_order(system);
+  REQUIRE(blocks.size() == 3);
+  CHECK(blocks[0].groups == V{1});
+  CHECK(blocks[1].groups == V{0});
+  CHECK(blocks[1].unknowns == V{0, 1});
+  CHECK(blocks[2].groups == V{2});
+  check_partition(system, blocks);
+}
+
 TEST_CASE("engine/symbolic/solving_order: coupled groups are solved together") {
   // G0 closes q0, q1; G1 and G2 share q3, q4 and each hold three new unknowns: one last block.
   const ConstraintSystem system = hand_built(6, {{{0, 1}, {0}}, {{2, 3}, {4, 0}}, {{3, 4, 5}, {5}}});
