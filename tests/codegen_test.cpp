@@ -1,85 +1,322 @@
-// The generated header compiles with -Wall -Wextra -Werror and gives the
-// engine's numbers, for every sample.
+// The generated header compiles with -Wall -Wextra -Werror, gives the engine's
+// numbers, and calls the same positions singular as the engine, for every sample.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <sstream>
+#include <string>
 
 #include <kinema/engine/model.hpp>
+#include <kinema/engine/numeric/solver.hpp>
 #include "test_support.hpp"
 
 using kinema_test::read_file;
 
-TEST_CASE("kinema codegen: the standalone header matches the engine for every sample") {
+namespace {
+
+const char* const kSamples[] = {"four_bar.toml",          "slider_crank.toml",
+                                "piston_driven_crank.toml", "example_4_1_r_trr.toml",
+                                "example_4_2_r_rtr_rrt.toml", "problem_4_4_six_bar.toml",
+                                "problem_3_22_six_bar_sliders.toml"};
+
+/// A sample's sweep (SI): a revolution in 1 deg steps from the file's first value
+/// for a crank; for a slider, the file's value +- the length scale on a whole-mm
+/// grid (exact decimal values, so dead centres at whole millimetres are hit exactly:
+/// the piston-driven crank's at 100 and 200 mm).
+std::vector<double> sweep_of(const kinema::Model& model) {
+  const auto& input = model.system.input;
+  const double first = input.values.at(0);
+  std::vector<double> inputs;
+  if (input.dimension == kinema::Dimension::angle) {
+    for (int degree = 0; degree <= 360; ++degree) inputs.push_back(first + degree * M_PI / 180);
+  } else {
+    const double reach = model.kinematics.length_scale();
+    for (long mm = std::lround(std::floor((first - reach) * 1000)); mm <= std::lround(std::ceil((first + reach) * 1000));
+         ++mm)
+      inputs.push_back(static_cast<double>(mm) / 1000.0);
+  }
+  return inputs;
+}
+
+/// A program for header NAME that reads from stdin: a count and that many input
+/// values, walked from initial_guess with each warm-started from the last (as a
+/// user would); then a count and that many rows "theta q...", each evaluated
+/// from that q. Per value it prints the status (0 ok, 1 singular, 2 unassembled),
+/// the reciprocal condition, q, qd, qdd and the points' values.
+std::string driver_source(const std::string& header, const std::string& name) {
+  std::ostringstream d;
+  d << "#include \"" << header << "\"\n#include <cstdio>\n"
+    << "namespace {\n"
+    << "void print(" << name << "::Status status, const " << name << "::Motion& m) {\n"
+    << "  std::printf(\"%d %.17g\", static_cast<int>(status), m.reciprocal_condition);\n"
+    << "  for (int i = 0; i < " << name << "::unknown_count; ++i)\n"
+    << "    std::printf(\" %.17g %.17g %.17g\", m.q[i], m.qd[i], m.qdd[i]);\n"
+    << "  for (int k = 0; k < " << name << "::point_count; ++k)\n"
+    << "    for (double value : m.points[k]) std::printf(\" %.17g\", value);\n"
+    << "  std::printf(\"\\n\");\n"
+    << "}\n"
+    << "}  // namespace\n"
+    << "int main() {\n"
+    << "  const " << name << "::Parameters p;\n"
+    << "  double rate = 0, second_rate = 0, theta = 0, q[" << name << "::unknown_count];\n"
+    << "  " << name << "::Motion m;\n"
+    << "  int count = 0;\n"
+    << "  if (std::scanf(\"%lf %lf %d\", &rate, &second_rate, &count) != 3) return 1;\n"
+    << "  " << name << "::initial_guess(q);\n"
+    << "  for (int k = 0; k < count; ++k) {\n"
+    << "    if (std::scanf(\"%lf\", &theta) != 1) return 1;\n"
+    << "    print(" << name << "::evaluate(p, theta, rate, second_rate, q, m), m);\n"
+    << "  }\n"
+    << "  if (std::scanf(\"%d\", &count) != 1) return 1;\n"
+    << "  for (int k = 0; k < count; ++k) {\n"
+    << "    if (std::scanf(\"%lf\", &theta) != 1) return 1;\n"
+    << "    for (double& value : q)\n"
+    << "      if (std::scanf(\"%lf\", &value) != 1) return 1;\n"
+    << "    print(" << name << "::evaluate(p, theta, rate, second_rate, q, m), m);\n"
+    << "  }\n"
+    << "  return 0;\n"
+    << "}\n";
+  return d.str();
+}
+
+/// One line of the driver's output.
+struct HeaderResult {
+  int status = -1;
+  double reciprocal_condition = 0;
+  std::vector<double> q, qd, qdd, points;
+};
+
+/// The next number of the driver's output ("nan" included, which >> does not read).
+double next_number(std::istream& in) {
+  std::string word;
+  in >> word;
+  return word.empty() ? -1.0 : std::strtod(word.c_str(), nullptr);
+}
+
+HeaderResult read_result(std::istream& in, std::size_t n, std::size_t point_values) {
+  HeaderResult r;
+  r.status = static_cast<int>(next_number(in));
+  r.reciprocal_condition = next_number(in);
+  r.q.resize(n);
+  r.qd.resize(n);
+  r.qdd.resize(n);
+  r.points.resize(point_values);
+  for (std::size_t i = 0; i < n; ++i) {
+    r.q[i] = next_number(in);
+    r.qd[i] = next_number(in);
+    r.qdd[i] = next_number(in);
+  }
+  for (double& value : r.points) value = next_number(in);
+  return r;
+}
+
+/// a and b agree to `relative` (b's size, or 1 if it is smaller).
+bool agree(double a, double b, double relative) { return std::fabs(a - b) <= relative * (1 + std::fabs(b)); }
+
+/// The header's numbers at an ok position are the engine's: the same code on the
+/// same values but for the rounding of the tape, which the rates and second rates
+/// amplify near a singular position (by up to 1 / reciprocal condition).
+void check_numbers(const HeaderResult& header, const kinema::MotionState& s) {
+  const double relative = 1e-9 / std::min(1.0, s.reciprocal_condition);
+  auto close = [relative](double a, double b) { return agree(a, b, relative); };
+  for (Eigen::Index i = 0; i < s.q.size(); ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    CHECK(close(header.q[k], s.q[i]));
+    CHECK(close(header.qd[k], s.qd[i]));
+    CHECK(close(header.qdd[k], s.qdd[i]));
+  }
+  std::size_t k = 0;
+  for (const auto& point : s.points) {
+    for (const auto* part : {&point.position, &point.velocity, &point.acceleration})
+      for (std::size_t c = 0; c < point.dimension; ++c, ++k) {
+        INFO("point value " << k << ": header " << header.points.at(k) << ", engine " << (*part)[c]);
+        CHECK(close(header.points.at(k), (*part)[c]));
+      }
+  }
+}
+
+const char* status_name(int status) {
+  return status == 0 ? "ok" : status == 1 ? "singular" : status == 2 ? "unassembled" : "(no output)";
+}
+
+}  // namespace
+
+TEST_CASE("kinema codegen: the header's numbers and singular positions are the engine's, for every sample") {
   const auto directory = std::filesystem::temp_directory_path() / "kinema_tests" / "codegen";
   std::filesystem::create_directories(directory);
-  for (const char* sample : {"four_bar.toml", "slider_crank.toml", "piston_driven_crank.toml",
-                             "example_4_1_r_trr.toml", "example_4_2_r_rtr_rrt.toml",
-                             "problem_4_4_six_bar.toml", "problem_3_22_six_bar_sliders.toml"}) {
+  std::size_t piston_singular = 0;
+  for (const char* sample : kSamples) {
     const std::string sample_name = sample;
     CAPTURE(sample_name);
-    const std::string name = std::string(sample).substr(0, std::string(sample).find('.'));
+    const std::string name = sample_name.substr(0, sample_name.find('.'));
     const std::string header = (directory / (name + ".hpp")).string();
     const auto generated = kinema_test::run_kinema({"codegen", kinema_test::sample(sample), "-o", header});
     REQUIRE(generated.exit_status == 0);
 
     const kinema::Model model = kinema::load_model(kinema_test::sample(sample));
     const auto& input = model.system.input;
-    const double step = input.dimension == kinema::Dimension::angle ? M_PI / 180 : 0.001;
-    std::vector<double> inputs;
-    for (int i = 0; i < 5; ++i) inputs.push_back(input.values.at(0) + i * step);
+    const std::size_t n = model.kinematics.unknown_count();
+    const std::size_t point_values = model.kinematics.layout().point_output_count();
+    const auto options = kinema_test::with_rates(input.rate_value, input.second_rate_value);
 
-    // A driver that walks the same input values, warm-starting each from the last.
-    std::ostringstream driver;
-    driver.precision(17);  // the driver must see the same numbers as the engine
-    driver << "#include \"" << header << "\"\n#include <cstdio>\nint main() {\n"
-           << "  " << name << "::Parameters p;\n  double q[" << name << "::unknown_count];\n"
-           << "  " << name << "::initial_guess(q);\n  " << name << "::Motion m;\n"
-           << "  const double inputs[] = {";
-    for (double v : inputs) driver << v << ", ";
-    driver << "};\n  for (double x : inputs) {\n"
-           << "    if (!" << name << "::evaluate(p, x, " << input.rate_value << ", " << input.second_rate_value
-           << ", q, m)) return 1;\n"
-           << "    for (int i = 0; i < " << name << "::unknown_count; ++i)\n"
-           << "      std::printf(\"%.17g %.17g %.17g\\n\", m.q[i], m.qd[i], m.qdd[i]);\n"
-           << "    for (int k = 0; k < " << name << "::point_count; ++k)\n"
-           << "      for (int c = 0; c < 6; ++c) std::printf(\"%.17g\\n\", m.points[k][c]);\n"
-           << "  }\n  return 0;\n}\n";
+    // The first five values 1 deg (1 mm) apart, walked from the guesses.
+    const double step = input.dimension == kinema::Dimension::angle ? M_PI / 180 : 0.001;
+    std::vector<double> walk;
+    for (int i = 0; i < 5; ++i) walk.push_back(input.values.at(0) + i * step);
+    const auto walked = kinema::analyse(model, walk, options);
+    // The sweep, by the engine; the header is then run at each assembled position from
+    // the engine's q (Newton converges at once), so both judge the same position.
+    // Around each singular position it finds, the sweep is refined (10^-2 to 10^-13
+    // of the length scale or a radian away), through where the pivots stop deciding
+    // and where the singular values cross the threshold.
+    std::vector<double> inputs = sweep_of(model);
+    {
+      const auto first_run = kinema::analyse(model, inputs, options);
+      const double unit = input.dimension == kinema::Dimension::angle ? 1.0 : model.kinematics.length_scale();
+      for (std::size_t row = 0; row < first_run.size(); ++row) {
+        if (first_run.status(row) != kinema::Status::singular) continue;
+        for (int k = 2; k <= 13; ++k)
+          for (double side : {-1.0, 1.0}) inputs.push_back(first_run.input(row) + side * unit * std::pow(10.0, -k));
+      }
+      std::sort(inputs.begin(), inputs.end());
+    }
+    const auto swept = kinema::analyse(model, inputs, options);
+
+    std::ostringstream stdin_text;
+    stdin_text.precision(17);  // the driver must see the same numbers as the engine
+    stdin_text << input.rate_value << " " << input.second_rate_value << " " << walk.size() << "\n";
+    for (double v : walk) stdin_text << v << "\n";
+    std::vector<std::size_t> assembled;
+    for (std::size_t row = 0; row < swept.size(); ++row)
+      if (swept.status(row) != kinema::Status::unassembled) assembled.push_back(row);
+    stdin_text << assembled.size() << "\n";
+    for (std::size_t row : assembled) {
+      stdin_text << swept.input(row);
+      const auto q = swept.q(row);
+      for (Eigen::Index i = 0; i < q.size(); ++i) stdin_text << " " << q[i];
+      stdin_text << "\n";
+    }
+
+    // One driver per sample, compiled once.
     const std::string source = (directory / (name + "_driver.cpp")).string();
     const std::string program = (directory / (name + "_driver")).string();
-    std::ofstream(source) << driver.str();
+    std::ofstream(source) << driver_source(header, name);
+    std::ofstream(program + ".in") << stdin_text.str();
     const std::string compile = std::string(KINEMA_CXX) + " -std=c++17 -O2 -Wall -Wextra -Werror -o '" +
                                 program + "' '" + source + "' 2> '" + program + ".log'";
     const int compiled = std::system(compile.c_str());
     INFO(read_file(program + ".log"));
     REQUIRE(compiled == 0);
-    REQUIRE(std::system(("'" + program + "' > '" + program + ".out'").c_str()) == 0);
+    REQUIRE(std::system(("'" + program + "' < '" + program + ".in' > '" + program + ".out'").c_str()) == 0);
+    std::istringstream out(read_file(program + ".out"));
 
-    const auto states = kinema::analyse(model, inputs, kinema_test::with_rates(input.rate_value, input.second_rate_value));
-    std::istringstream numbers(read_file(program + ".out"));
-    auto close = [](double a, double b) { return std::fabs(a - b) <= 1e-9 * (1 + std::fabs(b)); };
-    for (const auto& s : states) {
+    for (const auto& s : walked) {
       REQUIRE(s.status == kinema::Status::ok);
-      for (Eigen::Index i = 0; i < s.q.size(); ++i) {
-        double q = 0, qd = 0, qdd = 0;
-        numbers >> q >> qd >> qdd;
-        CHECK(close(q, s.q[i]));
-        CHECK(close(qd, s.qd[i]));
-        CHECK(close(qdd, s.qdd[i]));
-      }
-      for (const auto& point : s.points) {
-        for (double expected : {point.position[0], point.position[1], point.velocity[0], point.velocity[1],
-                                 point.acceleration[0], point.acceleration[1]}) {
-          double value = 0;
-          numbers >> value;
-          CHECK(close(value, expected));
-        }
+      const HeaderResult header_result = read_result(out, n, point_values);
+      REQUIRE(header_result.status == 0);
+      check_numbers(header_result, s);
+    }
+
+    std::size_t singular = 0, ok = 0;
+    double least_ok = INFINITY, most_singular = 0;
+    for (std::size_t row : assembled) {
+      const kinema::MotionState s = swept[row];
+      const HeaderResult header_result = read_result(out, n, point_values);
+      const std::string engine_status = s.status == kinema::Status::ok ? "ok" : "singular";
+      const std::string header_status = status_name(header_result.status);
+      INFO("input " << s.input << ": engine " << engine_status << " (reciprocal condition "
+                    << s.reciprocal_condition << "), header " << header_status << " ("
+                    << header_result.reciprocal_condition << ")");
+      REQUIRE(header_status == engine_status);
+      // The same matrix, the same code: the same measure (to the rounding of the tape).
+      CHECK(std::fabs(header_result.reciprocal_condition - s.reciprocal_condition) <=
+            1e-12 + 1e-9 * s.reciprocal_condition);
+      if (s.status == kinema::Status::ok) {
+        ++ok;
+        least_ok = std::min(least_ok, s.reciprocal_condition);
+        check_numbers(header_result, s);
+      } else {
+        ++singular;
+        most_singular = std::max(most_singular, s.reciprocal_condition);
       }
     }
-    CHECK(numbers.good());
+    CHECK(out.good());
+    INFO(inputs.size() << " values, " << ok << " ok, " << singular << " singular, "
+                       << inputs.size() - assembled.size() << " unassembled; reciprocal condition down to "
+                       << least_ok << " where ok, up to " << most_singular << " where singular");
+    CHECK(ok > 0);
+    if (sample_name == "piston_driven_crank.toml") {
+      // Its dead centres, x = b - a and a + b, are in the sweep, hit exactly: singular.
+      for (double dead_centre : {0.1, 0.2}) {
+        CAPTURE(dead_centre);
+        const auto row = std::find(inputs.begin(), inputs.end(), dead_centre) - inputs.begin();
+        REQUIRE(row < static_cast<std::ptrdiff_t>(inputs.size()));
+        CHECK(swept.status(static_cast<std::size_t>(row)) == kinema::Status::singular);
+      }
+      piston_singular = singular;
+    }
   }
+  // So the comparison above did meet singular positions.
+  CHECK(piston_singular >= 2);
+}
+
+TEST_CASE("solver::reciprocal_condition: the pivot ratio where clearly regular, else the singular values") {
+  std::mt19937 random(7);
+  std::normal_distribution<double> normal;
+  for (int trial = 0; trial < 300; ++trial) {
+    const std::size_t n = 1 + static_cast<std::size_t>(trial) % 6;
+    const auto size = static_cast<Eigen::Index>(n);
+    Eigen::MatrixXd m(size, size);
+    for (Eigen::Index i = 0; i < size; ++i)
+      for (Eigen::Index j = 0; j < size; ++j) m(i, j) = normal(random);
+    if (n > 1 && trial % 2 == 0) {
+      // Nearly singular: the smallest singular value pulled down to 10^-k of the largest.
+      Eigen::JacobiSVD<Eigen::MatrixXd> svd(m, Eigen::ComputeFullU | Eigen::ComputeFullV);
+      Eigen::VectorXd sigma = svd.singularValues();
+      sigma[size - 1] = sigma[0] * std::pow(10.0, -(trial % 15));
+      m = svd.matrixU() * sigma.asDiagonal() * svd.matrixV().transpose();
+    }
+    std::vector<double> row_major(n * n), lu(n * n);
+    std::vector<std::size_t> pivots(n);
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = 0; j < n; ++j)
+        row_major[i * n + j] = m(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j));
+    lu = row_major;
+    kinema::solver::lu_factor(lu.data(), pivots.data(), n);
+    const double pivots_say = kinema::solver::pivot_ratio(lu.data(), n);
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(m);
+    const Eigen::VectorXd& s = svd.singularValues();
+    const double singular_values_say = s[size - 1] / s[0];
+    std::vector<double> scratch = row_major;
+    CHECK(std::fabs(kinema::solver::singular_value_ratio(scratch.data(), n) - singular_values_say) <= 1e-14);
+    scratch = row_major;
+    const double measure = kinema::solver::reciprocal_condition(lu.data(), scratch.data(), n);
+    if (pivots_say >= kinema::solver::kClearlyRegularPivotRatio) {
+      CHECK(measure == pivots_say);
+    } else {
+      CHECK(std::fabs(measure - singular_values_say) <= 1e-14);
+    }
+
+    // The least-squares step agrees with Eigen's complete orthogonal decomposition.
+    if (singular_values_say > 1e-8) {
+      Eigen::VectorXd b(size);
+      for (Eigen::Index i = 0; i < size; ++i) b[i] = normal(random);
+      const Eigen::VectorXd expected = m.completeOrthogonalDecomposition().solve(b);
+      std::vector<double> v(n * n), x(n);
+      scratch = row_major;
+      kinema::solver::least_squares_solve(scratch.data(), v.data(), b.data(), x.data(), n);
+      const Eigen::VectorXd got = Eigen::Map<const Eigen::VectorXd>(x.data(), size);
+      CHECK((got - expected).norm() <= 1e-12 * expected.norm() / singular_values_say);
+    }
+  }
+  // Exactly singular and the identity.
+  double singular[] = {1, 2, 2, 4}, identity[] = {1, 0, 0, 1};
+  CHECK(kinema::solver::singular_value_ratio(singular, 2) <= 1e-15);
+  CHECK(kinema::solver::singular_value_ratio(identity, 2) == 1.0);
 }

@@ -1,8 +1,17 @@
 // The numeric rules of kinema, written once: the solver's constants, the LU
-// factorisation with partial pivoting and its solve, and the second-order
-// predictor. The scalar workspace uses them as they are; the lane-parallel
-// workspace follows the same pivoting rule in lane form; the generated C++
-// header carries the same constants, so both call the same positions singular.
+// factorisation with partial pivoting and its solve, the singular values and
+// the reciprocal condition that decides singular positions, and the
+// second-order predictor. The scalar workspace uses them as they are; the
+// lane-parallel workspace follows the same pivoting rule in lane form.
+//
+// The generated C++ header (`kinema codegen`, printers/code/cpp_header.cpp)
+// carries this code itself, not a restatement: at build time this file's text
+// becomes a string (CMakeLists.txt: solver_source.inc), and the printer pastes
+// everything between the line `namespace kinema::solver {` and the line
+// `}  // namespace kinema::solver` into the header's own `namespace solver`,
+// after this file's #include lines. So, in the part between those lines: no
+// Eigen, GiNaC or kinema names, only what the includes below provide; and
+// nothing a -Wall -Wextra -Werror compile of the header would reject.
 #pragma once
 
 #include <cmath>
@@ -74,6 +83,121 @@ inline double pivot_ratio(const double* a, std::size_t n) {
   }
   const double ratio = smallest / largest;
   return std::isfinite(ratio) ? ratio : 0.0;
+}
+
+/// Sweeps of one-sided Jacobi before it gives up (it converges in a handful).
+constexpr int kJacobiSweeps = 60;
+/// Two columns count as orthogonal when |cosine of their angle| is at most this.
+constexpr double kJacobiTolerance = 1e-15;
+/// Machine epsilon of double, 2^-52.
+constexpr double kEpsilon = 2.220446049250313e-16;
+
+/// One-sided Jacobi (Hestenes): rotates the columns of a (row-major n x n, in
+/// place) pairwise until they are orthogonal; their lengths are then the singular
+/// values of the original a. With v (row-major n x n), also accumulates the
+/// rotations: original a times v = final a.
+inline void jacobi_orthogonalise(double* a, double* v, std::size_t n) {
+  if (v)
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = 0; j < n; ++j) v[i * n + j] = i == j ? 1.0 : 0.0;
+  for (int sweep = 0; sweep < kJacobiSweeps; ++sweep) {
+    bool rotated = false;
+    for (std::size_t p = 0; p + 1 < n; ++p) {
+      for (std::size_t q = p + 1; q < n; ++q) {
+        double alpha = 0, beta = 0, gamma = 0;
+        for (std::size_t i = 0; i < n; ++i) {
+          alpha += a[i * n + p] * a[i * n + p];
+          beta += a[i * n + q] * a[i * n + q];
+          gamma += a[i * n + p] * a[i * n + q];
+        }
+        // Orthogonal to rounding (or a zero column): nothing to rotate.
+        if (!(std::fabs(gamma) > kJacobiTolerance * std::sqrt(alpha) * std::sqrt(beta))) continue;
+        rotated = true;
+        const double zeta = (beta - alpha) / (2 * gamma);
+        const double t = (zeta >= 0 ? 1.0 : -1.0) / (std::fabs(zeta) + std::hypot(1.0, zeta));
+        const double c = 1 / std::sqrt(1 + t * t), s = c * t;
+        for (std::size_t i = 0; i < n; ++i) {
+          const double ap = a[i * n + p], aq = a[i * n + q];
+          a[i * n + p] = c * ap - s * aq;
+          a[i * n + q] = s * ap + c * aq;
+        }
+        if (v)
+          for (std::size_t i = 0; i < n; ++i) {
+            const double vp = v[i * n + p], vq = v[i * n + q];
+            v[i * n + p] = c * vp - s * vq;
+            v[i * n + q] = s * vp + c * vq;
+          }
+      }
+    }
+    if (!rotated) break;
+  }
+}
+
+/// Length of column j of a row-major n x n matrix.
+inline double column_length(const double* a, std::size_t j, std::size_t n) {
+  double sum = 0;
+  for (std::size_t i = 0; i < n; ++i) sum += a[i * n + j] * a[i * n + j];
+  return std::sqrt(sum);
+}
+
+/// Smallest over largest singular value of a (row-major n x n; overwritten);
+/// 0 when not finite.
+inline double singular_value_ratio(double* a, std::size_t n) {
+  jacobi_orthogonalise(a, nullptr, n);
+  double smallest = INFINITY, largest = 0;
+  for (std::size_t j = 0; j < n; ++j) {
+    const double length = column_length(a, j, n);
+    smallest = length < smallest ? length : smallest;
+    largest = length > largest ? length : largest;
+  }
+  const double ratio = smallest / largest;
+  return std::isfinite(ratio) ? ratio : 0.0;
+}
+
+/// The reciprocal condition that decides singular positions (compared with
+/// kSingularThreshold), of a matrix (the column-scaled Phi_q) from its lu_factor
+/// result `lu`: the pivot ratio where that says the matrix is clearly regular
+/// (>= kClearlyRegularPivotRatio), else the ratio of its singular values; 0 when
+/// not finite. `matrix()` gives a row-major copy of the factorised matrix, which is
+/// overwritten; it is called only when the singular values are needed (near a
+/// toggle), so a caller may build the copy only then.
+template <class MatrixCopy>
+inline double reciprocal_condition(const double* lu, std::size_t n, MatrixCopy&& matrix) {
+  const double ratio = pivot_ratio(lu, n);
+  if (ratio == 0.0) return 0.0;
+  if (ratio >= kClearlyRegularPivotRatio) return ratio;
+  return singular_value_ratio(matrix(), n);
+}
+
+/// The same with the copy at hand (row-major n x n; overwritten when read).
+inline double reciprocal_condition(const double* lu, double* matrix, std::size_t n) {
+  return reciprocal_condition(lu, n, [matrix] { return matrix; });
+}
+
+/// Minimum-norm least-squares solution of a x = b (a row-major n x n, overwritten;
+/// v: n x n scratch), from the singular values: those at or below n * epsilon times
+/// the largest count as zero. The generated header's Newton step where the pivot
+/// ratio is at or below kLeastSquaresPivotRatio; Workspace::solve_position takes
+/// that step with Eigen's complete orthogonal decomposition (the same minimum-norm
+/// solution, to rounding; tested against it in tests/codegen_test.cpp).
+inline void least_squares_solve(double* a, double* v, const double* b, double* x, std::size_t n) {
+  jacobi_orthogonalise(a, v, n);
+  // a v = u sigma: column j of a is u_j sigma_j, so x = sum_j v_j (a_j . b) / sigma_j^2.
+  double largest = 0;
+  for (std::size_t j = 0; j < n; ++j) {
+    const double length = column_length(a, j, n);
+    largest = length > largest ? length : largest;
+  }
+  const double cutoff = static_cast<double>(n) * kEpsilon * largest;
+  for (std::size_t i = 0; i < n; ++i) x[i] = 0;
+  for (std::size_t j = 0; j < n; ++j) {
+    const double sigma = column_length(a, j, n);
+    if (!(sigma > cutoff)) continue;
+    double projection = 0;
+    for (std::size_t i = 0; i < n; ++i) projection += a[i * n + j] * b[i];
+    const double coefficient = projection / (sigma * sigma);
+    for (std::size_t i = 0; i < n; ++i) x[i] += v[i * n + j] * coefficient;
+  }
 }
 
 /// Second-order prediction of a coordinate at input + h from its value, rate and

@@ -62,21 +62,18 @@ void Workspace::factorise() {
   for (std::size_t c = 0; c < n_; ++c) inverse_pivots_[c] = 1.0 / lu_[c * n_ + c];
 }
 
-Eigen::MatrixXd Workspace::scaled_phi_q() const {
-  const Eigen::Index n = static_cast<Eigen::Index>(n_);
-  return Eigen::Map<const Eigen::MatrixXd>(position_out_.data() + layout_.phi_q(0, 0), n, n) *
-         Eigen::Map<const Eigen::VectorXd>(k_.column_scale().data(), n).asDiagonal();
-}
-
 double Workspace::reciprocal_condition() const {
-  const double ratio = solver::pivot_ratio(lu_.data(), n_);
-  if (ratio == 0.0) return 0.0;
-  // Well away from singular the pivots say so; the singular values (which
-  // allocate) are only needed near a toggle, where they decide.
-  if (ratio >= solver::kClearlyRegularPivotRatio) return ratio;
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(scaled_phi_q());
-  const auto& s = svd.singularValues();
-  return s[0] > 0 && std::isfinite(s[0]) ? s[s.size() - 1] / s[0] : 0.0;
+  // The rule is solver::reciprocal_condition's (the generated header runs the
+  // same code). It reads the scaled Phi_q only near a toggle, so the copy (which
+  // allocates) is made only then: row-major, as factorise() wrote it before the LU.
+  std::vector<double> scaled;
+  return solver::reciprocal_condition(lu_.data(), n_, [&] {
+    const auto& column_scale = k_.column_scale();
+    scaled.resize(n_ * n_);
+    for (std::size_t i = 0; i < n_; ++i)
+      for (std::size_t j = 0; j < n_; ++j) scaled[i * n_ + j] = phi_q(i, j) * column_scale[j];
+    return scaled.data();
+  });
 }
 
 void Workspace::solve_rhs(double* x) const {

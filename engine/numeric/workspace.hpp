@@ -76,9 +76,9 @@ class Workspace {
   double residual_norm() const;
   /// LU of Phi_q with its columns scaled by the column scale.
   void factorise();
-  Eigen::MatrixXd scaled_phi_q() const;
   /// Reciprocal condition of the scaled Phi_q from the factorisation: the pivot
-  /// ratio where that is clearly fine, else from the singular values.
+  /// ratio where that is clearly fine, else from the singular values
+  /// (solver::reciprocal_condition).
   double reciprocal_condition() const;
   /// Solves Phi_q x = rhs_ with the factorisation (undoing the column scaling).
   void solve_rhs(double* x) const;

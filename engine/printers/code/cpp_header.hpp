@@ -1,6 +1,7 @@
-// Exports a mechanism's compiled evaluator as a standalone C++ header:
-// no dependencies beyond <cmath>, for controllers, simulations and
-// microcontrollers.
+// Exports a mechanism's compiled evaluator as a standalone C++ header (the
+// standard library only), for controllers, simulations and microcontrollers.
+// Its solver is the engine's own code (engine/numeric/solver.hpp, pasted in),
+// so it calls the same positions singular as the engine.
 #pragma once
 
 #include <ostream>
@@ -10,7 +11,9 @@
 
 namespace kinema {
 
-/// Writes the header; `name` becomes its namespace (a C++ identifier).
+/// Writes the header; `name` becomes its namespace (a C++ identifier). Its
+/// evaluate() returns Status::ok, singular (position solved, rates undefined)
+/// or unassembled.
 void write_cpp_header(std::ostream& out, const Model& model, const std::string& name);
 
 /// A C++ identifier made from a file stem ("four-bar.hpp" -> "four_bar").
