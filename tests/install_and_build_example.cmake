@@ -1,0 +1,67 @@
+# Run by ctest ("package: install, find_package(kinema) from examples/, run"):
+# installs the build tree into a fresh prefix, builds examples/ as a project of
+# its own against it (find_package(kinema)), and runs the example. Any failing
+# step fails the test with its output.
+#
+#   cmake -DBUILD_DIR=<kinema build> -DSOURCE_DIR=<kinema source> -DWORK_DIR=<scratch>
+#         -DCONFIG=<build type> -DCXX_COMPILER=<c++> -DGENERATOR=<generator>
+#         -DLIBDIR=<CMAKE_INSTALL_LIBDIR> -DINCLUDEDIR=<CMAKE_INSTALL_INCLUDEDIR>
+#         [-DMAKE_PROGRAM=<make/ninja>] -P install_and_build_example.cmake
+foreach(var BUILD_DIR SOURCE_DIR WORK_DIR CONFIG CXX_COMPILER GENERATOR LIBDIR INCLUDEDIR)
+  if(NOT DEFINED ${var} OR "${${var}}" STREQUAL "")
+    message(FATAL_ERROR "install_and_build_example.cmake: -D${var}=... is required")
+  endif()
+endforeach()
+
+set(prefix "${WORK_DIR}/prefix")
+set(example_build "${WORK_DIR}/examples-build")
+file(REMOVE_RECURSE "${WORK_DIR}")
+file(MAKE_DIRECTORY "${WORK_DIR}")
+
+# Runs one step; on failure stops with the command and everything it printed.
+function(step name)
+  list(JOIN ARGN " " command_line)
+  message(STATUS "${name}: ${command_line}")
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
+  if(NOT "${rc}" STREQUAL "0")
+    message(FATAL_ERROR "${name} failed (${rc}):\n  ${command_line}\n${out}")
+  endif()
+  set(step_output "${out}" PARENT_SCOPE)
+endfunction()
+
+step("install" "${CMAKE_COMMAND}" --install "${BUILD_DIR}" --prefix "${prefix}" --config "${CONFIG}")
+foreach(file ${LIBDIR}/cmake/kinema/kinemaConfig.cmake ${LIBDIR}/cmake/kinema/kinemaConfigVersion.cmake
+             ${LIBDIR}/cmake/kinema/kinemaTargets.cmake ${INCLUDEDIR}/kinema/engine/model.hpp)
+  if(NOT EXISTS "${prefix}/${file}")
+    message(FATAL_ERROR "not installed: ${prefix}/${file}")
+  endif()
+endforeach()
+
+set(configure_args -S "${SOURCE_DIR}/examples" -B "${example_build}" -G "${GENERATOR}"
+    "-DCMAKE_CXX_COMPILER=${CXX_COMPILER}" "-DCMAKE_BUILD_TYPE=${CONFIG}" "-DCMAKE_PREFIX_PATH=${prefix}"
+    -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF)
+if(DEFINED MAKE_PROGRAM AND NOT "${MAKE_PROGRAM}" STREQUAL "")
+  list(APPEND configure_args "-DCMAKE_MAKE_PROGRAM=${MAKE_PROGRAM}")
+endif()
+step("configure examples/" "${CMAKE_COMMAND}" ${configure_args})
+# The package found must be the one just installed, not another kinema.
+file(STRINGS "${example_build}/CMakeCache.txt" kinema_dir REGEX "^kinema_DIR:")
+string(REGEX REPLACE "^kinema_DIR:[A-Z]*=" "" kinema_dir "${kinema_dir}")
+file(REAL_PATH "${prefix}" real_prefix)
+file(REAL_PATH "${kinema_dir}" real_kinema_dir)
+string(FIND "${real_kinema_dir}" "${real_prefix}/" at)
+if(NOT at EQUAL 0)
+  message(FATAL_ERROR "examples/ found kinema in ${kinema_dir}, not in ${prefix}")
+endif()
+
+step("build examples/" "${CMAKE_COMMAND}" --build "${example_build}" --config "${CONFIG}")
+
+set(program "${example_build}/library_usage")
+if(NOT EXISTS "${program}")
+  set(program "${example_build}/${CONFIG}/library_usage")  # multi-config generators
+endif()
+step("run library_usage" "${program}" "${SOURCE_DIR}/samples/four_bar.toml")
+message("${step_output}")
+if(NOT step_output MATCHES "omega3 = ")
+  message(FATAL_ERROR "library_usage did not print \"omega3 = \"")
+endif()
