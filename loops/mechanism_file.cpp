@@ -232,9 +232,15 @@ class FileReader {
       const auto space = text.find_first_of(" \t");
       const std::string numbers = text.substr(0, space);
       const std::string unit = space == std::string::npos ? "" : text.substr(space);
-      const Quantity unit_q = parse_quantity("1 " + unit);
       if (unit.find_first_not_of(" \t") == std::string::npos) {
         fail(sweep, "sweep needs a unit, e.g. \"0:360:1 deg\"");
+      }
+      Quantity unit_q;
+      try {
+        unit_q = parse_quantity("1 " + unit);
+      } catch (const UnitError&) {
+        fail(sweep, "sweep unit \"" + unit.substr(unit.find_first_not_of(" \t")) + "\" is not understood; use one of " +
+                        understood_units());
       }
       if (unit_q.dimension != Dimension::angle && unit_q.dimension != Dimension::length) {
         fail(sweep, "sweep unit must be an angle or a length unit");

@@ -177,9 +177,9 @@ inline double reciprocal_condition(const double* lu, double* matrix, std::size_t
 /// Minimum-norm least-squares solution of a x = b (a row-major n x n, overwritten;
 /// v: n x n scratch), from the singular values: those at or below n * epsilon times
 /// the largest count as zero. The generated header's Newton step where the pivot
-/// ratio is at or below kLeastSquaresPivotRatio; Workspace::solve_position takes
-/// that step with Eigen's complete orthogonal decomposition (the same minimum-norm
-/// solution, to rounding; tested against it in tests/codegen_test.cpp).
+/// ratio is at or below kLeastSquaresPivotRatio, in Workspace::solve_position and in
+/// the generated header alike (tested against Eigen's complete orthogonal
+/// decomposition in tests/codegen_test.cpp).
 inline void least_squares_solve(double* a, double* v, const double* b, double* x, std::size_t n) {
   jacobi_orthogonalise(a, v, n);
   // a v = u sigma: column j of a is u_j sigma_j, so x = sum_j v_j (a_j . b) / sigma_j^2.

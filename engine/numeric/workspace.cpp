@@ -19,6 +19,8 @@ Workspace::Workspace(const Kinematics& k)
       inverse_pivots_(n_),
       pivots_(n_),
       rhs_(n_),
+      least_squares_matrix_(n_ * n_),
+      least_squares_scratch_(n_ * n_),
       step_(n_),
       trial_(n_),
       predicted_(n_) {
@@ -98,11 +100,14 @@ bool Workspace::solve_position(double input, Eigen::VectorXd& q, std::size_t* wo
       for (std::size_t i = 0; i < n_; ++i) rhs_[i] = -phi(i);
       solve_rhs(step_.data());
     } else {
-      // Least-squares step: stays defined where Phi_q is (nearly) singular.
-      const Eigen::Index n = static_cast<Eigen::Index>(n_);
-      step_ = Eigen::Map<const Eigen::MatrixXd>(position_out_.data() + layout_.phi_q(0, 0), n, n)
-                  .completeOrthogonalDecomposition()
-                  .solve(-Eigen::Map<const Eigen::VectorXd>(position_out_.data() + layout_.phi(0), n));
+      // Least-squares step: stays defined where Phi_q is (nearly) singular. The
+      // solver's routine, as the generated header takes it (unscaled Phi_q).
+      for (std::size_t i = 0; i < n_; ++i) {
+        rhs_[i] = -phi(i);
+        for (std::size_t j = 0; j < n_; ++j) least_squares_matrix_[i * n_ + j] = phi_q(i, j);
+      }
+      solver::least_squares_solve(least_squares_matrix_.data(), least_squares_scratch_.data(), rhs_.data(),
+                                  step_.data(), n_);
     }
     if (!step_.allFinite()) break;
     double lambda = 1.0;

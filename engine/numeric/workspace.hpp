@@ -63,6 +63,7 @@ class Workspace {
   std::vector<double> lu_, inverse_pivots_;
   std::vector<std::size_t> pivots_;
   std::vector<double> rhs_;
+  std::vector<double> least_squares_matrix_, least_squares_scratch_;  ///< Near-singular Newton steps.
   Eigen::VectorXd step_, trial_, predicted_, slope_, trial_q_;
   bool evaluated_ = false;  ///< The position stage's registers hold (evaluated_input_, q).
   double evaluated_input_ = 0;

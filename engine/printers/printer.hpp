@@ -14,6 +14,8 @@ namespace kinema {
 
 /// What a printer prints from.
 struct PrintJob {
+  PrintJob(const Model& printed, const MotionTable* at_values = nullptr, const MotionTable* over_range = nullptr)
+      : model(printed), values(at_values), sweep(over_range) {}
   const Model& model;
   const MotionTable* values = nullptr;  ///< Results at the requested input values.
   const MotionTable* sweep = nullptr;   ///< A run over the input's range (plots).

@@ -23,7 +23,7 @@ std::string print(const char* name, const kinema::Model& model) {
   const kinema::Printer* printer = kinema::find_printer(PrintKind::derivation, name);
   REQUIRE(printer != nullptr);
   std::ostringstream out;
-  printer->print(out, kinema::PrintJob{model, nullptr, nullptr, false, ""});
+  printer->print(out, kinema::PrintJob{model});
   return out.str();
 }
 

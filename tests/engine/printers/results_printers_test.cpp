@@ -26,7 +26,7 @@ std::string print(const char* name, const kinema::Model& model, const MotionTabl
   const kinema::Printer* printer = kinema::find_printer(PrintKind::results, name);
   REQUIRE(printer != nullptr);
   std::ostringstream out;
-  printer->print(out, kinema::PrintJob{model, &values, nullptr, false, ""});
+  printer->print(out, kinema::PrintJob{model, &values});
   return out.str();
 }
 

@@ -25,7 +25,8 @@ std::string document(const kinema::Model& model, const MotionTable* values, cons
                      bool fragment = false) {
   const kinema::Printer* printer = kinema::find_printer(PrintKind::document, "latex");
   REQUIRE(printer != nullptr);
-  kinema::PrintJob job{model, values, sweep, fragment, ""};
+  kinema::PrintJob job{model, values, sweep};
+  job.fragment = fragment;
   std::ostringstream out;
   printer->print(out, job);
   return out.str();

@@ -17,7 +17,7 @@ OutputScale scale_of(const std::string& text) { return OutputScale(kinema_unit::
 
 }  // namespace
 
-TEST_CASE("engine/report/output_scale: angles in degrees, wrapped to (-180, 180]") {
+TEST_CASE("engine/report/output_scale: angles in degrees, wrapped to (-180, 180 deg)") {
   const OutputScale scale = scale_of(kinema_test::four_bar_text() + "[output]\nlength = \"mm\"\n");
   const auto deg = [&](double degrees) { return scale.coordinate(Dimension::angle, degrees * M_PI / 180.0); };
   CHECK(deg(40) == doctest::Approx(40).epsilon(1e-14));
