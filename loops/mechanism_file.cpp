@@ -125,24 +125,44 @@ class FileReader {
     return q.si_value;
   }
 
+  // ASCII letters, digits and _, starting with a letter: a name is safe in formulas,
+  // CSV headers, LaTeX comments and generated code alike.
   static bool is_identifier(const std::string& name) {
-    if (name.empty() || !(std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_'))
-      return false;
-    return std::all_of(name.begin(), name.end(), [](char c) {
-      return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
-    });
+    auto letter = [](char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'); };
+    if (name.empty() || !letter(name[0])) return false;
+    return std::all_of(name.begin(), name.end(),
+                       [&](char c) { return letter(c) || (c >= '0' && c <= '9') || c == '_'; });
+  }
+
+  // Names of loops and points: identifiers (they head CSV columns and LaTeX text).
+  void check_name(const toml::value& value, const std::string& name, const std::string& what) const {
+    if (!is_identifier(name)) {
+      fail(value, what + " name \"" + printable(name) + "\" is not a valid name (letters, digits, _; "
+                  "starting with a letter)");
+    }
+  }
+
+  // A name as it can be shown in a one-line message.
+  static std::string printable(const std::string& name) {
+    std::string shown;
+    for (char c : name) shown += (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) ? '?' : c;
+    return shown;
   }
 
   void check_identifier(const toml::value& value, const std::string& name,
                         const std::string& what) const {
-    if (!is_identifier(name)) {
-      fail(value, what + " name \"" + name + "\" is not a valid name (letters, digits, _; "
-                  "starting with a letter)");
-    }
+    check_name(value, name, what);
     if (reserved_names().count(name)) {
       fail(value, what + " name \"" + name + "\" is reserved (it means a constant or a "
                   "function in formulas); rename it");
     }
+  }
+
+  // An optional rate name: a symbol in formulas, so an identifier that is not reserved.
+  std::string optional_name(const toml::value& table, const std::string& key) const {
+    const std::string name = optional_string(table, key, "");
+    if (!name.empty()) check_identifier(table.at(key), name, key.substr(0, key.size() - 5));
+    return name;
   }
 
   const toml::value& required_table(const toml::value& root, const std::string& key) const {
@@ -264,8 +284,8 @@ class FileReader {
     if (table.contains("second_rate")) {
       input.second_rate = quantity_of(table.at("second_rate"), "second_rate", second);
     }
-    input.rate_name = optional_string(table, "rate_name", "");
-    input.second_rate_name = optional_string(table, "second_rate_name", "");
+    input.rate_name = optional_name(table, "rate_name");
+    input.second_rate_name = optional_name(table, "second_rate_name");
   }
 
   void read_unknowns(const toml::value& root, Mechanism& mechanism) const {
@@ -281,8 +301,8 @@ class FileReader {
                    "unknown \"" + name + "\"");
         if (!value->contains("guess")) fail(*value, "unknown \"" + name + "\" needs guess = \"...\"");
         guess = &value->at("guess");
-        unknown.rate_name = optional_string(*value, "rate_name", "");
-        unknown.second_rate_name = optional_string(*value, "second_rate_name", "");
+        unknown.rate_name = optional_name(*value, "rate_name");
+        unknown.second_rate_name = optional_name(*value, "second_rate_name");
         unknown.latex_name = optional_string(*value, "latex", "");
       }
       const Quantity q = quantity(*guess, name);
@@ -301,6 +321,7 @@ class FileReader {
   void read_loops(const toml::value& root, Mechanism& mechanism) const {
     const toml::value& table = required_table(root, "loops");
     for (const auto& [name, value] : ordered(table)) {
+      check_name(*value, name, "loop");
       Loop loop;
       loop.name = name;
       loop.where = where(*value);
@@ -324,6 +345,7 @@ class FileReader {
     const toml::value& table = root.at("points");
     if (!table.is_table()) fail(table, "[points] must be a table of name = \"x + I*y formula\"");
     for (const auto& [name, value] : ordered(table)) {
+      check_name(*value, name, "point");
       Point point;
       point.name = name;
       point.formula = string_value(*value, name);

@@ -108,6 +108,9 @@ const std::set<std::string>& compiled_functions() {
   return names;
 }
 
+// Deepest parenthesis nesting a formula may have (limits: README, "Mechanism files").
+constexpr int kMaxFormulaDepth = 100;
+
 class Builder {
  public:
   explicit Builder(const Mechanism& mechanism) : mechanism_(mechanism) {}
@@ -304,6 +307,28 @@ class Builder {
     return terms;
   }
 
+  // What GiNaC's parser cannot take safely, refused before it sees the text: nesting
+  // deeper than any mechanism needs (its recursion overflows the stack near 8,000),
+  // and a call with no argument ("sin()" dereferences a null argument).
+  static void check_shape(const std::string& formula, const std::string& context) {
+    int depth = 0;
+    for (std::size_t i = 0; i < formula.size(); ++i) {
+      const char c = formula[i];
+      if (c == '(' && ++depth > kMaxFormulaDepth) {
+        throw InputError(context + ": the formula nests parentheses more than " + std::to_string(kMaxFormulaDepth) +
+                         " deep; write it more simply");
+      }
+      if (c == ')') --depth;
+      if (c == '(' && i > 0 && (std::isalnum(static_cast<unsigned char>(formula[i - 1])) || formula[i - 1] == '_')) {
+        const std::size_t next = formula.find_first_not_of(" \t", i + 1);
+        if (next != std::string::npos && formula[next] == ')') {
+          throw InputError(context + ": a function is called with no argument in \"" + formula +
+                           "\"; write its argument, e.g. sin(theta2)");
+        }
+      }
+    }
+  }
+
   // Every function call must be one the evaluator compiles.
   static void check_functions(const ex& e, const std::string& formula, const std::string& context) {
     for (GiNaC::const_preorder_iterator it = e.preorder_begin(); it != e.preorder_end(); ++it) {
@@ -317,6 +342,7 @@ class Builder {
   }
 
   ex parse(const std::string& formula, const std::string& context) {
+    check_shape(formula, context);
     GiNaC::parser reader(table_, /*strict=*/true);
     ex e;
     try {

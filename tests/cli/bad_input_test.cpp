@@ -111,3 +111,26 @@ TEST_CASE("a function kinema cannot compile is bad input with file:line and the 
   // In a point's formula too (the message names the point).
   check_bad("cosh_point", replaced("P = \"", "P = \"a*cosh(theta3) + "), {2, {"cosh_point.toml", "point \"P\"", "cosh(...)"}});
 }
+
+// Issue 9, finding 2: every name a file gives is an identifier.
+TEST_CASE("names that are not identifiers are refused: rate names, points, loops, a leading _") {
+  check_bad("rate_name_tex", replaced("rate = \"10 rad/s\"", "rate = \"10 rad/s\"\nrate_name = \"\\\\input{/etc/passwd}\""),
+            {2, {"rate_name_tex.toml:", "rate name", "not a valid name"}});
+  check_bad("rate_name_newline", replaced("theta3 = \"20 deg\"", "theta3 = { guess = \"20 deg\", rate_name = \"w\\n% x\" }"),
+            {2, {"rate_name_newline.toml:12", "not a valid name"}});
+  check_bad("point_comma", replaced("P = \"", "\"P,Q\" = \""), {2, {"point_comma.toml", "point name \"P,Q\""}});
+  check_bad("loop_space", replaced("ABCD = \"", "\"AB CD\" = \""), {2, {"loop_space.toml:15", "loop name \"AB CD\""}});
+  check_bad("underscore", replaced("theta3 = \"20 deg\"", "_ = \"20 deg\""), {2, {"underscore.toml:12", "name \"_\""}});
+  check_bad("rate_reserved", replaced("rate = \"10 rad/s\"", "rate = \"10 rad/s\"\nrate_name = \"sin\""),
+            {2, {"rate_reserved.toml", "reserved"}});
+}
+
+// Issue 9, findings 6 and 7: what GiNaC's parser cannot take is refused before it parses.
+TEST_CASE("a function called with no argument, and nesting past the limit, are bad input") {
+  for (const char* call : {"sin()", "cos( )", "exp()", "sqrt()", "atan2()"}) {
+    check_bad("empty_call", replaced("d = \"100 mm\"", std::string("d = \"2.5*a + ") + call + "\""),
+              {2, {"empty_call.toml:6", "called with no argument"}});
+  }
+  const std::string deep = std::string(10000, '(') + "a" + std::string(10000, ')');
+  check_bad("deep", replaced("d = \"100 mm\"", "d = \"2.5*" + deep + "\""), {2, {"deep.toml:6", "more than 100 deep"}});
+}
