@@ -109,7 +109,7 @@ int run(int argc, char** argv) {
       std::string stem = output_path.substr(output_path.find_last_of('/') + 1);
       job.code_namespace = cpp_identifier(stem.substr(0, stem.find('.')));
     } else if (cpp_identifier(namespace_name) != namespace_name) {
-      throw InputError("--namespace \"" + namespace_name + "\" is not a C++ identifier");
+      throw InputError("--namespace \"" + namespace_name + "\" is not a C++ identifier (or is a C++ keyword or macro); try \"" + cpp_identifier(namespace_name) + "\"");
     } else {
       job.code_namespace = namespace_name;
     }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <set>
@@ -397,11 +398,21 @@ Mechanism read_mechanism_text(const std::string& text, const std::string& name) 
 }
 
 Mechanism read_mechanism_file(const std::string& path) {
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error)) {
+    throw InputError(path + ": is a directory, not a mechanism file; give the path of a .toml file");
+  }
   std::ifstream file(path, std::ios::binary);
   if (!file) throw InputError(path + ": cannot open the mechanism file (does it exist?)");
-  std::ostringstream text;
-  text << file.rdbuf();
-  return read_mechanism_text(text.str(), path);
+  // Read at most one byte past the limit: a stream that never ends (/dev/zero) stops there.
+  std::string text(kMaxMechanismFileBytes + 1, '\0');
+  file.read(text.data(), static_cast<std::streamsize>(text.size()));
+  text.resize(static_cast<std::size_t>(file.gcount()));
+  if (text.size() > kMaxMechanismFileBytes) {
+    throw InputError(path + ": the mechanism file is larger than " + std::to_string(kMaxMechanismFileBytes / 1024) +
+                     " KiB; a mechanism file is a few KiB of text");
+  }
+  return read_mechanism_text(text, path);
 }
 
 }  // namespace kinema

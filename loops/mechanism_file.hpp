@@ -2,11 +2,16 @@
 // Every error names file:line and the key, and says what to write instead.
 #pragma once
 
+#include <cstddef>
 #include <string>
+#include <vector>
 
 #include <kinema/loops/mechanism.hpp>
 
 namespace kinema {
+
+/// Largest mechanism file read (bytes): far above any mechanism, far below trouble.
+constexpr std::size_t kMaxMechanismFileBytes = 1024 * 1024;
 
 /// Reads and checks a mechanism file; throws InputError / UnitError.
 Mechanism read_mechanism_file(const std::string& path);

@@ -134,3 +134,17 @@ TEST_CASE("a function called with no argument, and nesting past the limit, are b
   const std::string deep = std::string(10000, '(') + "a" + std::string(10000, ')');
   check_bad("deep", replaced("d = \"100 mm\"", "d = \"2.5*" + deep + "\""), {2, {"deep.toml:6", "more than 100 deep"}});
 }
+
+// Issue 9, finding 11: a directory, or a file past the size limit, is refused at once.
+TEST_CASE("a directory as FILE and a file over 1 MiB are bad input that says what is wrong") {
+  const std::string directory = kinema_test::fresh_directory("file_is_directory");
+  const auto as_directory = kinema_test::run_kinema({"eval", directory});
+  CHECK(as_directory.exit_status == 2);
+  CHECK(as_directory.err.find("is a directory") != std::string::npos);
+  // A valid file padded with a comment past the limit: refused for its size, not parsed.
+  const std::string big = kinema_test::write_temporary("big.toml", kGood + "# " + std::string(1100 * 1024, 'x') + "\n");
+  const auto too_big = kinema_test::run_kinema({"eval", big});
+  CHECK(too_big.exit_status == 2);
+  CHECK(too_big.err.find("larger than 1024 KiB") != std::string::npos);
+  CHECK(too_big.out.empty());
+}

@@ -13,6 +13,7 @@
 #include <kinema/engine/printers/printer.hpp>
 
 #include <cctype>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <string_view>
@@ -55,10 +56,29 @@ std::string comment_text(const std::string& text) {
 
 }  // namespace
 
+bool is_cpp_reserved(const std::string& name) {
+  // C++ keywords and alternative tokens, and the macros <cmath> may define.
+  static const std::set<std::string> reserved = {
+      "alignas", "alignof", "and", "and_eq", "asm", "auto", "bitand", "bitor", "bool", "break", "case", "catch",
+      "char", "char8_t", "char16_t", "char32_t", "class", "compl", "concept", "const", "consteval", "constexpr",
+      "constinit", "const_cast", "continue", "co_await", "co_return", "co_yield", "decltype", "default", "delete",
+      "do", "double", "dynamic_cast", "else", "enum", "explicit", "export", "extern", "false", "float", "for",
+      "friend", "goto", "if", "inline", "int", "long", "mutable", "namespace", "new", "noexcept", "not", "not_eq",
+      "nullptr", "operator", "or", "or_eq", "private", "protected", "public", "register", "reinterpret_cast",
+      "requires", "return", "short", "signed", "sizeof", "static", "static_assert", "static_cast", "struct",
+      "switch", "template", "this", "thread_local", "throw", "true", "try", "typedef", "typeid", "typename",
+      "union", "unsigned", "using", "virtual", "void", "volatile", "wchar_t", "while", "xor", "xor_eq",
+      "NULL", "NAN", "INFINITY", "HUGE_VAL", "HUGE_VALF", "HUGE_VALL", "M_PI", "M_E", "M_PI_2", "M_PI_4",
+      "M_1_PI", "M_2_PI", "M_SQRT2", "M_SQRT1_2", "M_LN2", "M_LN10", "M_LOG2E", "M_LOG10E", "M_2_SQRTPI",
+      "FP_NAN", "FP_INFINITE", "FP_ZERO", "FP_NORMAL", "FP_SUBNORMAL", "EOF", "errno", "assert"};
+  return reserved.count(name) > 0;
+}
+
 std::string cpp_identifier(const std::string& text) {
   std::string id;
   for (char c : text) id += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
   if (id.empty() || std::isdigit(static_cast<unsigned char>(id[0]))) id = "mechanism_" + id;
+  if (is_cpp_reserved(id)) id += "_";
   return id;
 }
 
@@ -79,7 +99,7 @@ void write_cpp_header(std::ostream& out, const Model& model, const std::string& 
 
   // Tape input names, in TapeLayout's order.
   std::vector<std::string> inputs(layout.input_register_count());
-  for (std::size_t p = 0; p < parameters; ++p) inputs[layout.parameter(p)] = "p." + m.parameters[p].symbol.get_name();
+  for (std::size_t p = 0; p < parameters; ++p) inputs[layout.parameter(p)] = "p." + cpp_identifier(m.parameters[p].symbol.get_name());
   inputs[layout.input()] = "theta";
   inputs[layout.rate()] = "theta_rate";
   inputs[layout.second_rate()] = "theta_second_rate";
@@ -130,7 +150,7 @@ void write_cpp_header(std::ostream& out, const Model& model, const std::string& 
       << "/// The mechanism's parameters (SI); change them for design studies.\n"
       << "struct Parameters {\n";
   for (std::size_t i = 0; i < parameters; ++i) {
-    out << "  double " << m.parameters[i].symbol.get_name() << " = " << literal(k.parameter_values()[i]) << ";  // "
+    out << "  double " << cpp_identifier(m.parameters[i].symbol.get_name()) << " = " << literal(k.parameter_values()[i]) << ";  // "
         << comment_text(m.parameters[i].text) << "\n";
   }
   if (parameters == 0) out << "  int unused = 0;\n";

@@ -16,7 +16,12 @@ namespace kinema {
 /// or unassembled.
 void write_cpp_header(std::ostream& out, const Model& model, const std::string& name);
 
-/// A C++ identifier made from a file stem ("four-bar.hpp" -> "four_bar").
+/// True for a C++ keyword or alternative token (int, or, not, ...) and for the
+/// macros <cmath> may define (M_PI, NAN, ...): names generated code cannot use.
+bool is_cpp_reserved(const std::string& name);
+
+/// A C++ identifier made from a name or a file stem ("four-bar" -> "four_bar",
+/// "int" -> "int_"), safe in generated code.
 std::string cpp_identifier(const std::string& text);
 
 }  // namespace kinema

@@ -320,3 +320,42 @@ TEST_CASE("solver::reciprocal_condition: the pivot ratio where clearly regular, 
   CHECK(kinema::solver::singular_value_ratio(singular, 2) <= 1e-15);
   CHECK(kinema::solver::singular_value_ratio(identity, 2) == 1.0);
 }
+
+// Issue 9, finding 18: names that are C++ keywords or <cmath> macros, and a header
+// named int.hpp, still give a header that compiles (names get a trailing _).
+TEST_CASE("kinema codegen: keyword and macro names are renamed, the header compiles; --namespace int is refused") {
+  const auto directory = std::filesystem::temp_directory_path() / "kinema_tests" / "codegen_keywords";
+  std::filesystem::create_directories(directory);
+  std::string text = kinema_test::four_bar_text();
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"a = ", "int = "}, {"b = ", "M_PI = "},
+                                 {"c = ", "NAN = "}, {"d = ", "or = "}}) {
+    text = kinema_test::replaced(from, to, text);
+  }
+  text = kinema_test::replaced("\"a*exp(I*theta2) + b*exp(I*theta3) - c*exp(I*theta4) - d\"",
+                               "\"int*exp(I*theta2) + M_PI*exp(I*theta3) - NAN*exp(I*theta4) - or\"", text);
+  text = kinema_test::replaced("P = \"a*exp(I*theta2)\"", "P = \"int*exp(I*theta2)\"", text);
+  const std::string mechanism = kinema_test::write_temporary("keywords.toml", text);
+  const std::string header = (directory / "int.hpp").string();
+  const auto generated = kinema_test::run_kinema({"codegen", mechanism, "-o", header});
+  INFO(generated.err);
+  REQUIRE(generated.exit_status == 0);
+  const std::string code = read_file(header);
+  CHECK(code.find("namespace int_ {") != std::string::npos);
+  CHECK(code.find("double int_ = ") != std::string::npos);
+  CHECK(code.find("double M_PI_ = ") != std::string::npos);
+  const std::string source = (directory / "driver.cpp").string();
+  std::ofstream(source) << "#include \"" << header << "\"\n#include <cstdio>\nint main() {\n"
+                        << "  int_::Parameters p;\n  double q[int_::unknown_count];\n  int_::initial_guess(q);\n"
+                        << "  int_::Motion m;\n  if (int_::evaluate(p, 0.7, 10, 0, q, m) != int_::Status::ok) return 1;\n"
+                        << "  std::printf(\"%.17g\\n\", m.qd[0]);\n  return 0;\n}\n";
+  const std::string program = (directory / "driver").string();
+  const int compiled = std::system((std::string(KINEMA_CXX) + " -std=c++17 -Wall -Wextra -Werror -o '" + program +
+                                    "' '" + source + "' 2> '" + program + ".log'").c_str());
+  INFO(read_file(program + ".log"));
+  CHECK(compiled == 0);
+  CHECK(std::system(("'" + program + "' > '" + program + ".out'").c_str()) == 0);
+
+  const auto refused = kinema_test::run_kinema({"codegen", mechanism, "-o", header, "--namespace", "int"});
+  CHECK(refused.exit_status == 2);
+  CHECK(refused.err.find("int_") != std::string::npos);
+}
