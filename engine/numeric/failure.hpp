@@ -20,6 +20,7 @@ struct Failure {
     resumed_after_gap,     ///< ok, but after unassembled or singular values: the branch may differ.
     group_open,            ///< Newton could not close `group`; `residual` is what stayed open.
     branch_stops,          ///< Continuation from `from` stopped near `stopped_at` (limit or toggle).
+    too_far,               ///< Continuation from `from` refused: too many steps, or too large to step.
     singular_jacobian,     ///< Phi_q rank-deficient (toggle or dead centre).
     nonfinite_rates,       ///< A formula divides by zero at this position.
   };

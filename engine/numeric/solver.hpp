@@ -30,6 +30,9 @@ constexpr int kNewtonIterations = 60;
 constexpr int kStepHalvings = 30;
 /// Pivot ratio below which Newton takes a least-squares step instead of an LU step.
 constexpr double kLeastSquaresPivotRatio = 1e-14;
+/// Continuation takes at most this many steps from one value to the next (a step is
+/// at most 2 deg or 1 % of the length scale: about 555 turns); farther is refused.
+constexpr double kMaxContinuationSteps = 1e5;
 /// A corrected solution farther than this (scaled) from its prediction is another branch.
 constexpr double kBranchTolerance = 0.05;
 /// Pivot ratio above which Phi_q is clearly regular (below it, singular values decide).

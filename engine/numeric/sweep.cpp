@@ -56,9 +56,10 @@ void analyse_range(const Kinematics& kinematics, std::size_t begin, std::size_t 
         solved = workspace.predict_and_correct(input, predicted, trial);
       }
       double stuck_at = previous_input;
-      if (!solved) solved = workspace.continue_to(previous_input, input, trial, &stuck_at);
+      bool too_far = false;
+      if (!solved) solved = workspace.continue_to(previous_input, input, trial, &stuck_at, &too_far);
       if (!solved) {
-        why.kind = Failure::Kind::branch_stops;
+        why.kind = too_far ? Failure::Kind::too_far : Failure::Kind::branch_stops;
         why.from = previous_input;
         why.stopped_at = stuck_at;
       }

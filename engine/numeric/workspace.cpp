@@ -159,13 +159,21 @@ bool Workspace::predict_and_correct(double to, const Eigen::VectorXd& predicted,
   return true;
 }
 
-bool Workspace::continue_to(double from, double to, Eigen::VectorXd& q, double* stuck_at) {
+bool Workspace::continue_to(double from, double to, Eigen::VectorXd& q, double* stuck_at, bool* too_far) {
   const double max_step = max_continuation_step();
   const double min_step = max_step * 1e-7;
+  auto refuse = [&](double at) {
+    if (stuck_at) *stuck_at = at;
+    if (too_far) *too_far = true;
+    return false;
+  };
+  // NaN compares false: refused too.
+  if (!(std::fabs(to - from) <= solver::kMaxContinuationSteps * max_step)) return refuse(from);
   double t = from;
   double h = std::copysign(std::min(max_step, std::fabs(to - from)), to - from);
   while (t != to) {
     if (std::fabs(to - t) <= std::fabs(h) * (1 + 1e-12)) h = to - t;
+    if (t + h == t) return refuse(t);  // the input is too large for a step to change it
     bool accepted = sensitivity(t, q, slope_);
     if (accepted) {
       predicted_ = q + slope_ * h;

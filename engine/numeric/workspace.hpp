@@ -36,8 +36,10 @@ class Workspace {
   bool sensitivity(double input, const Eigen::VectorXd& q, Eigen::VectorXd& dq);
 
   /// Continues the solution from (from, q) to `to` in small steps so that the
-  /// branch is kept; false when that is impossible (limit or branch point).
-  bool continue_to(double from, double to, Eigen::VectorXd& q, double* stuck_at);
+  /// branch is kept; false when that is impossible (limit or branch point), or, with
+  /// *too_far set, when `to` is more than solver::kMaxContinuationSteps steps away or
+  /// the input is too large for a step to change it.
+  bool continue_to(double from, double to, Eigen::VectorXd& q, double* stuck_at, bool* too_far = nullptr);
 
   /// Newton from `predicted` at `to`; accepts (into q) only a solution close to the
   /// prediction, i.e. on the same branch.

@@ -1,6 +1,7 @@
 #include <kinema/engine/report/diagnostics.hpp>
 
 #include <kinema/engine/report/number_format.hpp>
+#include <kinema/engine/numeric/solver.hpp>
 #include <kinema/engine/report/output_scale.hpp>
 
 namespace kinema {
@@ -10,6 +11,16 @@ std::string describe_input(const ConstraintSystem& system, double input) {
   return system.input.name + " = " + format_significant(scale.input(input)) + " " +
          scale.coordinate_unit(system.input.dimension);
 }
+
+namespace {
+
+// The largest continuation step in words (as Kinematics sets it).
+std::string describe_step(const ConstraintSystem& system) {
+  if (system.input.dimension == Dimension::angle) return "2 deg";
+  return format_significant(0.01 * system.length_scale / system.output.length_factor) + " " + system.output.length;
+}
+
+}  // namespace
 
 std::string describe_failure(const ConstraintSystem& system, double input, const Failure& failure) {
   using Kind = Failure::Kind;
@@ -27,6 +38,11 @@ std::string describe_failure(const ConstraintSystem& system, double input, const
       return describe_input(system, input) + " cannot be reached from " + describe_input(system, failure.from) +
              " on the same assembly branch: the motion stops near " + describe_input(system, failure.stopped_at) +
              " (a limit or toggle position)";
+    case Kind::too_far:
+      return describe_input(system, input) + " cannot be reached from " + describe_input(system, failure.from) +
+             " by continuation: they are more than " + format_significant(solver::kMaxContinuationSteps) +
+             " steps apart (a step is at most " + describe_step(system) +
+             "), or too large for a step to change them; give values closer together";
     case Kind::singular_jacobian:
       return "singular position at " + describe_input(system, input) +
              ": the Jacobian Phi_q is rank-deficient (toggle or dead-centre position), so "

@@ -148,3 +148,21 @@ TEST_CASE("a directory as FILE and a file over 1 MiB are bad input that says wha
   CHECK(too_big.err.find("larger than 1024 KiB") != std::string::npos);
   CHECK(too_big.out.empty());
 }
+
+// Issue 9, finding 8: continuation has a bound; values too far apart end at once.
+TEST_CASE("values too far apart for continuation are refused at once, not stepped for hours") {
+  const std::string path = kinema_test::write_temporary("far.toml", kGood);
+  for (const auto& angles : {std::vector<std::string>{"0", "1e15"}, std::vector<std::string>{"1e20", "1.00000001e20"},
+                             std::vector<std::string>{"1e17", "1.0000000000000006e17"}}) {
+    CAPTURE(angles[1]);
+    const auto result = kinema_test::run_kinema({"eval", path, "--angle", angles[0], "--angle", angles[1]});
+    CHECK(result.exit_status == 3);
+    CHECK(result.out.empty());
+    CHECK(result.err.find("cannot be reached from") != std::string::npos);
+    CHECK(result.err.find("more than 100000 steps apart") != std::string::npos);
+  }
+  const auto sweep = kinema_test::run_kinema({"eval", path, "--sweep", "-1e300:1e300:1e299", "--format", "csv"});
+  CHECK(sweep.exit_status == 0);
+  CHECK(sweep.err.find("by continuation") != std::string::npos);
+  CHECK(sweep.out.find(",unassembled,") != std::string::npos);
+}
