@@ -24,6 +24,9 @@ const std::set<std::string>& reserved_names() {
   return names;
 }
 
+// Largest driver rate or second rate, SI (limits: README, "Mechanism files").
+constexpr double kMaxRate = 1e9;
+
 class FileReader {
  public:
   FileReader(std::string file) : file_(std::move(file)) {}
@@ -159,6 +162,18 @@ class FileReader {
     }
   }
 
+  // A driver rate: past kMaxRate (SI) the squared rates in the accelerations overflow
+  // long before any machine turns that fast, so it is refused rather than reported as
+  // non-finite results.
+  double bounded_rate(const toml::value& value, const std::string& key, Dimension dimension) const {
+    const double si = quantity_of(value, key, dimension);
+    if (!(std::fabs(si) <= kMaxRate)) {
+      fail(value, key + " = \"" + string_value(value, key) + "\" is too large: kinema takes driver rates up to " +
+                      format_significant(kMaxRate) + " in SI units (rad/s, m/s and their per-second rates)");
+    }
+    return si;
+  }
+
   // An optional rate name: a symbol in formulas, so an identifier that is not reserved.
   std::string optional_name(const toml::value& table, const std::string& key) const {
     const std::string name = optional_string(table, key, "");
@@ -281,9 +296,9 @@ class FileReader {
       throw InputError(input.where.str() + ": [input] needs rate = \"...\" (the driver's speed, "
                        "e.g. \"60 rpm\" or \"-42 rad/s\" for clockwise)");
     }
-    input.rate = quantity_of(table.at("rate"), "rate", rate);
+    input.rate = bounded_rate(table.at("rate"), "rate", rate);
     if (table.contains("second_rate")) {
-      input.second_rate = quantity_of(table.at("second_rate"), "second_rate", second);
+      input.second_rate = bounded_rate(table.at("second_rate"), "second_rate", second);
     }
     input.rate_name = optional_name(table, "rate_name");
     input.second_rate_name = optional_name(table, "second_rate_name");

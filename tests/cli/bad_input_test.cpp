@@ -166,3 +166,11 @@ TEST_CASE("values too far apart for continuation are refused at once, not steppe
   CHECK(sweep.err.find("by continuation") != std::string::npos);
   CHECK(sweep.out.find(",unassembled,") != std::string::npos);
 }
+
+// Issue 9, finding 15: an overflowing rate is bad input, not a "singular position".
+TEST_CASE("a driver rate too large for the arithmetic is refused with file:line") {
+  check_bad("huge_rate", replaced("rate = \"10 rad/s\"", "rate = \"1e300 rad/s\""),
+            {2, {"huge_rate.toml:10", "rate = \"1e300 rad/s\" is too large"}});
+  check_bad("huge_second_rate", replaced("rate = \"10 rad/s\"", "rate = \"10 rad/s\"\nsecond_rate = \"-1e200 rad/s^2\""),
+            {2, {"huge_second_rate.toml:11", "second_rate", "too large"}});
+}
