@@ -93,9 +93,14 @@ std::string default_rate_name(const std::string& coordinate, int order) {
 void check_latex_name(const std::string& latex, const std::string& context) {
   static const std::set<std::string> accents = {"dot", "ddot", "hat", "bar", "tilde", "vec", "mathrm",
                                                 "mathit", "prime"};
+  // No ^ at all: TeX's ^^5c notation would rebuild any command from plain characters.
+  int depth = 0;
   for (std::size_t i = 0; i < latex.size(); ++i) {
     const char c = latex[i];
-    if (std::isalnum(static_cast<unsigned char>(c)) || std::string("_^{}' ,").find(c) != std::string::npos) continue;
+    const bool ascii_alnum = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9');
+    if (c == '{') ++depth;
+    if (c == '}' && --depth < 0) break;
+    if (ascii_alnum || std::string("_{}' ,").find(c) != std::string::npos) continue;
     if (c == '\\') {
       std::size_t j = i + 1;
       while (j < latex.size() && std::isalpha(static_cast<unsigned char>(latex[j]))) ++j;
@@ -108,8 +113,12 @@ void check_latex_name(const std::string& latex, const std::string& context) {
                        "; only Greek letters and \\dot \\ddot \\hat \\bar \\tilde \\vec \\mathrm "
                        "\\mathit \\prime are allowed");
     }
-    throw InputError(context + ": LaTeX name \"" + latex + "\" contains \"" + std::string(1, c) +
-                     "\"; use letters, digits, _ ^ { } and Greek letters");
+    throw InputError(context + ": LaTeX name \"" + latex + "\" contains \"" +
+                     (static_cast<unsigned char>(c) < 0x20 ? std::string("a control character") : std::string(1, c)) +
+                     "\"; use letters, digits, _ { } ' and Greek letters");
+  }
+  if (depth != 0) {
+    throw InputError(context + ": LaTeX name \"" + latex + "\" has unbalanced braces { }; close each { with }");
   }
 }
 

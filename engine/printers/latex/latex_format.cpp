@@ -52,7 +52,9 @@ std::string latex_escape_text(const std::string& text) {
       case '^': out += "\\textasciicircum{}"; break;
       case '~': out += "\\textasciitilde{}"; break;
       case '\n': case '\r': out += ' '; break;
-      default: out += c;
+      default:
+        // Control characters (ESC, DEL, NUL, ...) stop pdflatex: a space instead.
+        out += (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) ? ' ' : c;
     }
   }
   return out;

@@ -235,3 +235,32 @@ TEST_CASE("kinema latex: a value that cannot be assembled is an error, nothing w
   CHECK(result.err.find("x = 260 mm") != std::string::npos);
   CHECK_FALSE(std::filesystem::exists(output));
 }
+
+// Issue 9, findings 1 and 19: no ^ in a LaTeX name (^^5c rebuilds any command),
+// braces balanced, and control characters in user text do not stop pdflatex.
+TEST_CASE("LaTeX names: ^^ notation and unbalanced braces refused; a title with ESC, DEL compiles") {
+  CHECK_THROWS_AS(kinema::check_latex_name("^^5cinput^^7b^^2fetc^^2fpasswd^^7d", "here"), kinema::InputError);
+  CHECK_THROWS_AS(kinema::check_latex_name("x^{2}", "here"), kinema::InputError);
+  CHECK_THROWS_AS(kinema::check_latex_name("}", "here"), kinema::InputError);
+  CHECK_THROWS_AS(kinema::check_latex_name("{x", "here"), kinema::InputError);
+  CHECK_THROWS_AS(kinema::check_latex_name("x}{", "here"), kinema::InputError);
+  CHECK_NOTHROW(kinema::check_latex_name("\\hat{x}_{1}", "here"));
+
+  const std::string injected = kinema_test::write_temporary(
+      "caret_name.toml", kinema_test::replaced("theta3 = \"20 deg\"",
+                                               "theta3 = { guess = \"20 deg\", latex = \"^^5cinput^^7b^^2fetc^^2fpasswd^^7d\" }"));
+  const auto refused = kinema_test::run_kinema({"latex", injected});
+  CHECK(refused.exit_status == 2);
+  CHECK(refused.out.empty());
+  CHECK(refused.err.find("caret_name.toml:12") != std::string::npos);
+
+  const std::string control = kinema_test::write_temporary(
+      "control_title.toml",
+      kinema_test::replaced("title = \"four-bar\"", "title = \"four\\u001b-bar\\u007f and\\u0001 more\""));
+  const auto document = kinema_test::run_kinema({"latex", control});
+  REQUIRE(document.exit_status == 0);
+  CHECK(document.out.find('\x1b') == std::string::npos);
+  CHECK(document.out.find('\x7f') == std::string::npos);
+  std::string log;
+  CHECK(compile_document(document.out, "control_title", log) >= 3);
+}
