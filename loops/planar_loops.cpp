@@ -111,6 +111,31 @@ const std::set<std::string>& compiled_functions() {
 // Deepest parenthesis nesting a formula may have (limits: README, "Mechanism files").
 constexpr int kMaxFormulaDepth = 100;
 
+// GiNaC leaves real_part(atan(theta3)) unevaluated although every symbol is real:
+// a function call without I inside is real here (the formulas describe real
+// geometry), so real_part(f) is f and imag_part(f) is 0.
+struct ResolveRealParts : GiNaC::map_function {
+  ex operator()(const ex& e) override {
+    if (GiNaC::is_a<GiNaC::function>(e)) {
+      const std::string name = GiNaC::ex_to<GiNaC::function>(e).get_name();
+      if ((name == "real_part" || name == "imag_part") && !e.op(0).has(GiNaC::I)) {
+        return name == "real_part" ? e.op(0).map(*this) : ex(0);
+      }
+    }
+    return e.map(*this);
+  }
+};
+
+ex real_part_of(const ex& e) {
+  ResolveRealParts resolve;
+  return resolve(e.real_part()).expand();
+}
+
+ex imag_part_of(const ex& e) {
+  ResolveRealParts resolve;
+  return resolve(e.imag_part()).expand();
+}
+
 class Builder {
  public:
   explicit Builder(const Mechanism& mechanism) : mechanism_(mechanism) {}
@@ -135,8 +160,8 @@ class Builder {
       group.where = loop.where;
       if (!loop.complex_formula.empty()) {
         vector = parse(loop.complex_formula, context);
-        x = vector.real_part().expand();
-        y = vector.imag_part().expand();
+        x = real_part_of(vector);
+        y = imag_part_of(vector);
         group.terms = terms_as_written(loop.complex_formula, vector, context);
       } else {
         x = parse(loop.x_formula, context + " (x)");
@@ -193,7 +218,7 @@ class Builder {
       observable.name = point.name;
       observable.where = point.where;
       observable.components = {"x", "y"};
-      observable.position = {position.real_part().expand(), position.imag_part().expand()};
+      observable.position = {real_part_of(position), imag_part_of(position)};
       observable.written = position;
       system.points.push_back(observable);
     }
@@ -272,7 +297,7 @@ class Builder {
     return list;
   }
 
-  static bool has_imaginary(const ex& e) { return !e.imag_part().expand().is_zero(); }
+  static bool has_imaginary(const ex& e) { return !imag_part_of(e).is_zero(); }
 
   static bool depends_on_unknowns(const ex& e, const ConstraintSystem& system) {
     for (const auto& q : system.unknowns)

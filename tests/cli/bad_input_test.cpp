@@ -174,3 +174,13 @@ TEST_CASE("a driver rate too large for the arithmetic is refused with file:line"
   check_bad("huge_second_rate", replaced("rate = \"10 rad/s\"", "rate = \"10 rad/s\"\nsecond_rate = \"-1e200 rad/s^2\""),
             {2, {"huge_second_rate.toml:11", "second_rate", "too large"}});
 }
+
+// Issue 9, finding 13: every function outside the list is bad input, not an internal error.
+TEST_CASE("functions outside the list are refused with file:line, whichever they are") {
+  for (const char* function : {"sinh", "cosh", "tanh", "lgamma", "tgamma", "zeta", "factorial", "step", "csgn", "Li2",
+                               "psi"}) {
+    CAPTURE(function);
+    check_bad("outside_list", replaced("- d\"", std::string("- d*") + function + "(theta2)\""),
+              {2, {"outside_list.toml:15", std::string(function) + "(...)", "not supported"}});
+  }
+}

@@ -367,3 +367,28 @@ TEST_CASE("loops/planar_loops: written_terms splits at top-level signs only") {
   CHECK(kinema::written_terms("2E+3*x-y") == V{"2E+3*x", "-y"});
   CHECK(kinema::written_terms("  ").empty());
 }
+
+// Issue 9, finding 12: atan, asin, acos of real symbols are real, in complex and in
+// component loops; the motion they give agrees with finite differences.
+TEST_CASE("loops/planar_loops: inverse trigonometric functions of coordinates compile and move right") {
+  for (const std::string& loop :
+       {std::string("ABCD = \"a*exp(I*theta2) + b*exp(I*theta3) - c*exp(I*theta4) - d + 0.001*a*atan(theta3)\""),
+        std::string("ABCD = { x = \"a*cos(theta2) + b*cos(theta3) - c*cos(theta4) - d + 0.001*a*acos(0.5*cos(theta3))\", "
+                    "y = \"a*sin(theta2) + b*sin(theta3) - c*sin(theta4) + 0.001*a*asin(0.5*sin(theta4))\" }")}) {
+    CAPTURE(loop);
+    const kinema::Model model = kinema_unit::model_from_text(
+        kinema_test::replaced("ABCD = \"a*exp(I*theta2) + b*exp(I*theta3) - c*exp(I*theta4) - d\"", loop));
+    for (const auto& equation : model.system.equations) {
+      CHECK_FALSE(equation.expression.has(GiNaC::real_part(GiNaC::wild())));
+      CHECK_FALSE(equation.expression.has(GiNaC::imag_part(GiNaC::wild())));
+    }
+    const double h = 1e-5, theta = 0.7;
+    const auto table = kinema::analyse(model, {theta - h, theta, theta + h});
+    REQUIRE(table.status(1) == kinema::Status::ok);
+    const double rate = model.system.input.rate_value;
+    for (Eigen::Index i = 0; i < table.q(1).size(); ++i) {
+      const double difference = (table.q(2)[i] - table.q(0)[i]) / (2 * h) * rate;
+      CHECK(table.qd(1)[i] == doctest::Approx(difference).epsilon(1e-6));
+    }
+  }
+}
