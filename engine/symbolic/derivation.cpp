@@ -1,5 +1,6 @@
 #include <kinema/engine/symbolic/derivation.hpp>
 
+#include <kinema/engine/errors.hpp>
 #include <kinema/engine/symbolic/expression_parts.hpp>
 #include <kinema/engine/symbolic/trig_simplify.hpp>
 
@@ -9,6 +10,24 @@ namespace {
 using GiNaC::ex;
 
 // Cramer's rule on block rows/columns, each ratio simplified the textbook way.
+// A block whose Jacobian vanishes identically cannot give its unknowns at any position
+// (they are not independent: only their sum appears, say). Said as bad input.
+void check_independent(const ConstraintSystem& system, const GiNaC::matrix& jacobian, const SolvingBlock& block) {
+  const std::size_t k = block.unknowns.size();
+  GiNaC::matrix a(k, k);
+  for (std::size_t r = 0; r < k; ++r)
+    for (std::size_t c = 0; c < k; ++c) a(r, c) = jacobian(block.equations[r], block.unknowns[c]);
+  if (!combine_trig_products(a.determinant(GiNaC::determinant_algo::laplace).normal().numer()).is_zero()) return;
+  std::string groups, unknowns;
+  for (std::size_t g : block.groups)
+    groups += (groups.empty() ? "" : ", ") + system.groups[g].where.str() + ": " + system.groups[g].kind + " \"" +
+              system.groups[g].name + "\"";
+  for (std::size_t j : block.unknowns) unknowns += (unknowns.empty() ? "" : ", ") + system.unknowns[j].name;
+  throw InputError(groups + ": the unknowns " + unknowns +
+                   " cannot be found from it: the Jacobian is singular at every position, so they are not "
+                   "independent (e.g. only their sum appears); write the loop with independent coordinates");
+}
+
 std::vector<ex> solve_block(const GiNaC::matrix& jacobian, const SolvingBlock& block,
                             const std::vector<ex>& right_hand_side) {
   const std::size_t k = block.unknowns.size();
@@ -82,6 +101,7 @@ Derivation derive(const ConstraintSystem& system) {
   d.solved_second_rates.assign(n, 0);
   std::vector<bool> solved(n, false);
   for (const SolvingBlock& block : d.blocks) {
+    check_independent(system, d.jacobian, block);
     std::vector<ex> velocity_rhs, acceleration_rhs;
     for (std::size_t row : block.equations) {
       ex v = -d.input_jacobian(row, 0) * system.input.rate;

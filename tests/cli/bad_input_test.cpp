@@ -184,3 +184,9 @@ TEST_CASE("functions outside the list are refused with file:line, whichever they
               {2, {"outside_list.toml:15", std::string(function) + "(...)", "not supported"}});
   }
 }
+
+// Issue 9, finding 14: unknowns that are not independent are bad input, not a division by zero.
+TEST_CASE("a Jacobian singular at every position says the unknowns are not independent") {
+  check_bad("dependent", replaced("b*exp(I*theta3) - c*exp(I*theta4)", "b*exp(I*(theta3 + theta4))"),
+            {2, {"dependent.toml:15", "loop \"ABCD\"", "theta3, theta4", "not independent"}});
+}
