@@ -1,6 +1,6 @@
 // Results for spreadsheets: one row per input value, each column named with
 // its unit in the header ("theta3 [deg]", "P_vx [mm/s]"), a status column, and
-// empty cells where a value is undefined.
+// empty cells where a value is undefined, and a note column (resumed_after_gap).
 #include <kinema/engine/printers/printer.hpp>
 #include <kinema/engine/report/number_format.hpp>
 #include <kinema/engine/report/output_scale.hpp>
@@ -38,8 +38,11 @@ class CsvPrinter : public Printer {
       out << "," << column(p.name + "_acceleration", l + "/s^2");
       point_columns += 3 * p.components.size() + 2;
     }
-    out << "\n";
+    // A last column says what a status cannot: this row was reached after a gap, so
+    // its assembly branch is not guaranteed to be the one of the rows before it.
+    out << ",note\n";
     for (const MotionState& s : *job.values) {
+      const char* note = s.failure.kind == Failure::Kind::resumed_after_gap ? "resumed_after_gap" : "";
       out << number(scale.input(s.input)) << "," << number(scale.rate(input_kind, s.input_rate)) << ","
           << number(scale.rate(input_kind, s.input_second_rate)) << "," << status_name(s.status);
       for (std::size_t i = 0; i < system.unknowns.size(); ++i) {
@@ -52,7 +55,7 @@ class CsvPrinter : public Printer {
         if (s.status == Status::ok) out << number(scale.rate(kind, s.qdd[i]));
       }
       if (s.status != Status::ok) {
-        out << std::string(point_columns, ',') << "\n";
+        out << std::string(point_columns, ',') << "," << note << "\n";
         continue;
       }
       const double f = scale.length;
@@ -63,7 +66,7 @@ class CsvPrinter : public Printer {
         for (std::size_t c = 0; c < m.dimension; ++c) out << "," << number(m.acceleration[c] / f);
         out << "," << number(m.acceleration_magnitude() / f);
       }
-      out << "\n";
+      out << "," << note << "\n";
     }
   }
 };

@@ -79,9 +79,10 @@ TEST_CASE("engine/printers/results: csv: header with units, one row per value, e
         "x [mm],x_dot [mm/s],x_ddot [mm/s^2],status,"
         "theta2 [deg],omega2 [rad/s],alpha2 [rad/s^2],theta3 [deg],omega3 [rad/s],alpha3 [rad/s^2],"
         "A_x [mm],A_y [mm],A_vx [mm/s],A_vy [mm/s],A_speed [mm/s],A_ax [mm/s^2],A_ay [mm/s^2],A_acceleration [mm/s^2],"
-        "B_x [mm],B_y [mm],B_vx [mm/s],B_vy [mm/s],B_speed [mm/s],B_ax [mm/s^2],B_ay [mm/s^2],B_acceleration [mm/s^2]");
+        "B_x [mm],B_y [mm],B_vx [mm/s],B_vy [mm/s],B_speed [mm/s],B_ax [mm/s^2],B_ay [mm/s^2],B_acceleration [mm/s^2],"
+        "note");
   const std::size_t columns = split(lines[0], ',').size();
-  REQUIRE(columns == 26);
+  REQUIRE(columns == 27);
 
   // ok: every cell a number equal to the table's value in output units (12 significant digits).
   const std::vector<std::string> ok = split(lines[1], ',');
@@ -242,4 +243,20 @@ TEST_CASE("engine/printers/results: an angle input is printed unwrapped, coordin
   CHECK(theta4 > -180);
   CHECK(theta4 <= 180);
   CHECK(theta4 == doctest::Approx(wrapped_degrees(kinema_unit::FourBar().theta4(400 * kDeg))).epsilon(1e-9));
+}
+
+// Issue 9, finding 16: a row reached after a gap says so in the CSV too (its last column).
+TEST_CASE("engine/printers/results: csv: a row resumed after a gap carries the note") {
+  const kinema::Model model = kinema::load_model(kinema_test::sample("piston_driven_crank.toml"));
+  const MotionTable table = kinema::analyse(model, {0.17, 0.25, 0.18});
+  REQUIRE(table.status(1) == Status::unassembled);
+  REQUIRE(table.failure(2).kind == kinema::Failure::Kind::resumed_after_gap);
+  const std::vector<std::string> lines = split(print("csv", model, table), '\n');
+  REQUIRE(lines.size() == 4);
+  for (std::size_t row = 1; row <= 3; ++row) {
+    CAPTURE(row);
+    const std::vector<std::string> cells = split(lines[row], ',');
+    REQUIRE(cells.size() == 27);
+    CHECK(cells.back() == (row == 3 ? "resumed_after_gap" : ""));
+  }
 }
