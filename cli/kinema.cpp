@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <sstream>
 
@@ -93,6 +94,11 @@ int run(int argc, char** argv) {
     return kinema_cli::report_parse_error(app, error);  // help and version: 0; usage errors: one line, 2
   }
 
+  // Never replace the mechanism file with its own results.
+  std::error_code same_error;
+  if (!output_path.empty() && output_path != "-" && std::filesystem::equivalent(file, output_path, same_error)) {
+    throw InputError("-o " + output_path + " is the mechanism file itself; write the output to another file");
+  }
   const Model model = load_model(file);
   const ConstraintSystem& m = model.system;
   std::ostringstream out;

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <iostream>
 #include <vector>
 
@@ -61,19 +62,43 @@ int write_all(int fd, const std::string& text) {
   return 0;
 }
 
-}  // namespace
 
-void write_output(const std::string& text, const std::string& path) {
-  if (path.empty() || path == "-") write_standard_output(text);
-  else write_file(text, path);
+// The file a path names: a symbolic link is followed (the link stays a link and its
+// target gets the text), as far as its components exist.
+std::string resolved(const std::string& path) {
+  std::error_code error;
+  const std::filesystem::path target = std::filesystem::weakly_canonical(path, error);
+  return error ? path : target.string();
 }
 
-void write_file(const std::string& text, const std::string& path) {
+// A character device, FIFO or socket takes the text as it is: nothing to replace.
+bool is_stream(const std::string& path) {
+  struct stat existing;
+  return ::stat(path.c_str(), &existing) == 0 &&
+         (S_ISCHR(existing.st_mode) || S_ISFIFO(existing.st_mode) || S_ISSOCK(existing.st_mode));
+}
+
+void write_stream(const std::string& text, const std::string& shown, const std::string& path) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_NOCTTY | O_CLOEXEC);
+  if (fd < 0) fail_file(shown, errno);
+  int error_number = write_all(fd, text);
+  if (::close(fd) != 0 && error_number == 0 && errno != EINTR) error_number = errno;
+  if (error_number != 0) throw OutputError("cannot write " + shown + ": " + reason(error_number));
+}
+
+}  // namespace
+
+void write_file(const std::string& text, const std::string& shown_path) {
+  const std::string path = resolved(shown_path);
+  if (is_stream(path)) {
+    write_stream(text, shown_path, path);
+    return;
+  }
   std::string temporary = directory_of(path) + "/.kinema-XXXXXX";
   std::vector<char> name(temporary.begin(), temporary.end());
   name.push_back('\0');
   const int fd = ::mkstemp(name.data());  // O_CREAT | O_EXCL, in path's directory
-  if (fd < 0) fail_file(path, errno);
+  if (fd < 0) fail_file(shown_path, errno);
   temporary = name.data();
 
   int error_number = 0;
@@ -84,8 +109,13 @@ void write_file(const std::string& text, const std::string& path) {
   if (error_number == 0 && std::rename(temporary.c_str(), path.c_str()) != 0) error_number = errno;
   if (error_number != 0) {
     ::unlink(temporary.c_str());
-    fail_file(path, error_number);
+    fail_file(shown_path, error_number);
   }
+}
+
+void write_output(const std::string& text, const std::string& path) {
+  if (path.empty() || path == "-") write_standard_output(text);
+  else write_file(text, path);
 }
 
 void write_standard_output(const std::string& text) {

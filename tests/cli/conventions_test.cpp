@@ -154,3 +154,50 @@ TEST_CASE("stdout redirected to a file under a file-size limit exits 5") {
   CHECK(result.err.rfind("kinema: error: cannot write standard output: ", 0) == 0);
   CHECK(result.err.find('\n') == result.err.size() - 1);
 }
+
+// Issue 9, finding 3: -o never replaces a FIFO, a device or a symbolic link with a
+// regular file, never follows a predictable temporary name, never overwrites the
+// mechanism file. All inside a fresh directory (never the machine's own /dev).
+TEST_CASE("-o writes into a FIFO, through a symlink, past a planted .tmp link, and refuses the input file") {
+  const std::string directory = kinema_test::fresh_directory("output_targets");
+  const std::string mechanism = directory + "/m.toml";
+  std::filesystem::copy_file(kinema_test::sample("four_bar.toml"), mechanism);
+  const std::string original = kinema_test::read_file(mechanism);
+  const auto expected = run_kinema({"eval", mechanism});
+  REQUIRE(expected.exit_status == 0);
+
+  // A FIFO gets the text and stays a FIFO (a reader in the background collects it).
+  const std::string fifo = directory + "/pipe";
+  const std::string received = directory + "/received.txt";
+  const auto piped = run_shell("mkfifo " + shell_quote(fifo) + " && { cat " + shell_quote(fifo) + " > " +
+                               shell_quote(received) + " & } && " + shell_quote(KINEMA_EXE) + " eval " +
+                               shell_quote(mechanism) + " -o " + shell_quote(fifo) + " && wait");
+  CHECK(piped.exit_status == 0);
+  CHECK(std::filesystem::is_fifo(fifo));
+  CHECK(kinema_test::read_file(received) == expected.out);
+
+  // A symbolic link stays a link; its target gets the text.
+  const std::string victim = directory + "/target.txt", link = directory + "/link.txt";
+  std::ofstream(victim) << "old\n";
+  std::filesystem::create_symlink(victim, link);
+  CHECK(run_kinema({"eval", mechanism, "-o", link}).exit_status == 0);
+  CHECK(std::filesystem::is_symlink(link));
+  CHECK(kinema_test::read_file(victim) == expected.out);
+
+  // A link planted at OUT.tmp is not followed (temporaries are made with O_EXCL).
+  const std::string planted_target = directory + "/planted_target.txt";
+  std::ofstream(planted_target) << "keep\n";
+  std::filesystem::create_symlink(planted_target, directory + "/result.csv.tmp");
+  CHECK(run_kinema({"eval", mechanism, "-o", directory + "/result.csv"}).exit_status == 0);
+  CHECK(kinema_test::read_file(planted_target) == "keep\n");
+  CHECK(kinema_test::read_file(directory + "/result.csv") == expected.out);
+
+  // -o of the mechanism file itself: refused, the file as it was.
+  const auto self = run_kinema({"eval", mechanism, "-o", mechanism});
+  CHECK(self.exit_status == 2);
+  CHECK(self.err.find("is the mechanism file itself") != std::string::npos);
+  CHECK(kinema_test::read_file(mechanism) == original);
+  // Leftover temporaries: none.
+  for (const auto& entry : std::filesystem::directory_iterator(directory))
+    CHECK(entry.path().filename().string().rfind(".kinema-", 0) != 0);
+}
