@@ -8,13 +8,22 @@
 #include <map>
 #include <set>
 #include <sstream>
-#include <toml.hpp>
+
+// toml++ compiled into this file (header-only mode, not Debian's shared build) so that
+// the sanitizer and fuzzer builds instrument the parser too. It bounds nesting (256),
+// checks UTF-8 and refuses integers that do not fit in 64 bits; toml11 3.7 did none of
+// these (issue 9: stack overflow at 5,880 nested arrays, a heap over-read on 3 bytes).
+#define TOML_HEADER_ONLY 1
+#define TOML_ENABLE_FORMATTERS 0
+#include <toml++/toml.h>
 
 #include <kinema/engine/errors.hpp>
 #include <kinema/engine/report/number_format.hpp>
 
 namespace kinema {
 namespace {
+
+using Node = toml::node;
 
 // Names GiNaC's parser gives a meaning of its own; a mechanism may not reuse them.
 const std::set<std::string>& reserved_names() {
@@ -32,18 +41,14 @@ class FileReader {
   FileReader(std::string file) : file_(std::move(file)) {}
 
   Mechanism read(const std::string& text) {
-    toml::value root;
-    std::istringstream stream(text);
+    toml::table root;
     try {
-      root = toml::parse(stream, file_);
-    } catch (const toml::syntax_error& error) {
-      throw InputError(file_ + ":" + std::to_string(error.location().line()) +
-                       ": syntax error in the mechanism file:\n" + error.what());
-    } catch (const std::exception& error) {
-      throw InputError(file_ + ": cannot read the mechanism file: " + error.what());
+      root = toml::parse(text, file_);
+    } catch (const toml::parse_error& error) {
+      const auto& at = error.source().begin;
+      throw InputError(file_ + ":" + std::to_string(at.line) + ": syntax error in the mechanism file (column " +
+                       std::to_string(at.column) + "): " + printable(std::string(error.description())));
     }
-    if (!root.is_table()) throw InputError(file_ + ": the mechanism file is not a TOML table");
-
     Mechanism mechanism;
     mechanism.source_file = file_;
     check_keys(root, {"title", "description", "parameters", "input", "unknowns", "loops",
@@ -64,25 +69,26 @@ class FileReader {
  private:
   std::string file_;
 
-  SourceLocation where(const toml::value& value) const {
-    return {file_, static_cast<int>(value.location().line())};
-  }
+  SourceLocation where(const Node& value) const { return {file_, static_cast<int>(value.source().begin.line)}; }
 
-  [[noreturn]] void fail(const toml::value& value, const std::string& message) const {
+  static bool has(const Node& table, const std::string& key) { return table.as_table()->contains(key); }
+  static const Node& at(const Node& table, const std::string& key) { return *table.as_table()->get(key); }
+
+  [[noreturn]] void fail(const Node& value, const std::string& message) const {
     throw InputError(where(value).str() + ": " + message);
   }
 
   // Table entries in the order they were written (TOML tables are unordered maps).
-  std::vector<std::pair<std::string, const toml::value*>> ordered(const toml::value& table) const {
-    std::vector<std::pair<std::string, const toml::value*>> entries;
-    for (const auto& [key, value] : table.as_table()) entries.emplace_back(key, &value);
+  std::vector<std::pair<std::string, const Node*>> ordered(const Node& table) const {
+    std::vector<std::pair<std::string, const Node*>> entries;
+    for (const auto& [key, value] : *table.as_table()) entries.emplace_back(std::string(key.str()), &value);
     std::stable_sort(entries.begin(), entries.end(), [](const auto& a, const auto& b) {
-      return a.second->location().line() < b.second->location().line();
+      return a.second->source().begin < b.second->source().begin;
     });
     return entries;
   }
 
-  void check_keys(const toml::value& table, std::initializer_list<const char*> allowed,
+  void check_keys(const Node& table, std::initializer_list<const char*> allowed,
                   const std::string& context) const {
     for (const auto& [key, value] : ordered(table)) {
       bool known = false;
@@ -95,22 +101,22 @@ class FileReader {
     }
   }
 
-  std::string string_value(const toml::value& value, const std::string& key) const {
-    if (value.is_string()) return value.as_string().str;
-    if (value.is_integer()) return std::to_string(value.as_integer());
-    if (value.is_floating()) return format_round_trip(value.as_floating());
+  std::string string_value(const Node& value, const std::string& key) const {
+    if (value.is_string()) return value.as_string()->get();
+    if (value.is_integer()) return std::to_string(value.as_integer()->get());
+    if (value.is_floating_point()) return format_round_trip(value.as_floating_point()->get());
     fail(value, "\"" + key + "\" must be a string such as \"150 mm\" or a formula");
   }
 
-  std::string optional_string(const toml::value& table, const std::string& key,
+  std::string optional_string(const Node& table, const std::string& key,
                               const std::string& fallback) const {
-    if (!table.contains(key)) return fallback;
-    const toml::value& value = table.at(key);
+    if (!has(table, key)) return fallback;
+    const Node& value = at(table, key);
     if (!value.is_string()) fail(value, "\"" + key + "\" must be a string");
-    return value.as_string().str;
+    return value.as_string()->get();
   }
 
-  Quantity quantity(const toml::value& value, const std::string& key) const {
+  Quantity quantity(const Node& value, const std::string& key) const {
     try {
       return parse_quantity(string_value(value, key));
     } catch (const UnitError& error) {
@@ -119,7 +125,7 @@ class FileReader {
   }
 
   // A quantity that must have the given dimension (a bare number is taken as SI of it).
-  double quantity_of(const toml::value& value, const std::string& key, Dimension expected) const {
+  double quantity_of(const Node& value, const std::string& key, Dimension expected) const {
     const Quantity q = quantity(value, key);
     if (q.dimension != expected && q.dimension != Dimension::number) {
       throw UnitError(where(value).str() + ": " + key + " = \"" + string_value(value, key) +
@@ -139,7 +145,7 @@ class FileReader {
   }
 
   // Names of loops and points: identifiers (they head CSV columns and LaTeX text).
-  void check_name(const toml::value& value, const std::string& name, const std::string& what) const {
+  void check_name(const Node& value, const std::string& name, const std::string& what) const {
     if (!is_identifier(name)) {
       fail(value, what + " name \"" + printable(name) + "\" is not a valid name (letters, digits, _; "
                   "starting with a letter)");
@@ -153,7 +159,7 @@ class FileReader {
     return shown;
   }
 
-  void check_identifier(const toml::value& value, const std::string& name,
+  void check_identifier(const Node& value, const std::string& name,
                         const std::string& what) const {
     check_name(value, name, what);
     if (reserved_names().count(name)) {
@@ -165,7 +171,7 @@ class FileReader {
   // A driver rate: past kMaxRate (SI) the squared rates in the accelerations overflow
   // long before any machine turns that fast, so it is refused rather than reported as
   // non-finite results.
-  double bounded_rate(const toml::value& value, const std::string& key, Dimension dimension) const {
+  double bounded_rate(const Node& value, const std::string& key, Dimension dimension) const {
     const double si = quantity_of(value, key, dimension);
     if (!(std::fabs(si) <= kMaxRate)) {
       fail(value, key + " = \"" + string_value(value, key) + "\" is too large: kinema takes driver rates up to " +
@@ -175,29 +181,29 @@ class FileReader {
   }
 
   // An optional rate name: a symbol in formulas, so an identifier that is not reserved.
-  std::string optional_name(const toml::value& table, const std::string& key) const {
+  std::string optional_name(const Node& table, const std::string& key) const {
     const std::string name = optional_string(table, key, "");
-    if (!name.empty()) check_identifier(table.at(key), name, key.substr(0, key.size() - 5));
+    if (!name.empty()) check_identifier(at(table, key), name, key.substr(0, key.size() - 5));
     return name;
   }
 
-  const toml::value& required_table(const toml::value& root, const std::string& key) const {
-    if (!root.contains(key)) {
+  const Node& required_table(const Node& root, const std::string& key) const {
+    if (!has(root, key)) {
       throw InputError(file_ + ": the section [" + key + "] is missing; see the file format "
                        "in README.md");
     }
-    const toml::value& table = root.at(key);
+    const Node& table = at(root, key);
     if (!table.is_table()) fail(table, "\"" + key + "\" must be a table ([" + key + "])");
     return table;
   }
 
-  void read_output(const toml::value& root, Mechanism& mechanism) const {
-    if (!root.contains("output")) return;
-    const toml::value& output = root.at("output");
+  void read_output(const Node& root, Mechanism& mechanism) const {
+    if (!has(root, "output")) return;
+    const Node& output = at(root, "output");
     if (!output.is_table()) fail(output, "[output] must be a table");
     check_keys(output, {"length"}, "[output]");
-    if (output.contains("length")) {
-      const toml::value& unit = output.at("length");
+    if (has(output, "length")) {
+      const Node& unit = at(output, "length");
       mechanism.output.length = string_value(unit, "length");
       try {
         mechanism.output.length_factor = length_unit_factor(mechanism.output.length);
@@ -207,9 +213,9 @@ class FileReader {
     }
   }
 
-  void read_parameters(const toml::value& root, Mechanism& mechanism) const {
-    if (!root.contains("parameters")) return;
-    const toml::value& table = root.at("parameters");
+  void read_parameters(const Node& root, Mechanism& mechanism) const {
+    if (!has(root, "parameters")) return;
+    const Node& table = at(root, "parameters");
     if (!table.is_table()) fail(table, "[parameters] must be a table");
     for (const auto& [name, value] : ordered(table)) {
       check_identifier(*value, name, "parameter");
@@ -226,23 +232,23 @@ class FileReader {
     }
   }
 
-  void read_input(const toml::value& root, Mechanism& mechanism) const {
-    const toml::value& table = required_table(root, "input");
+  void read_input(const Node& root, Mechanism& mechanism) const {
+    const Node& table = required_table(root, "input");
     check_keys(table, {"name", "value", "values", "sweep", "rate", "second_rate", "rate_name",
                        "second_rate_name"},
                "[input]");
     Input& input = mechanism.input;
     input.where = where(table);
-    if (!table.contains("name")) {
+    if (!has(table, "name")) {
       throw InputError(file_ + ": [input] needs name = \"...\" (the driver coordinate, e.g. theta2)");
     }
-    input.name = string_value(table.at("name"), "name");
-    check_identifier(table.at("name"), input.name, "input");
-    input.where = where(table.at("name"));
+    input.name = string_value(at(table, "name"), "name");
+    check_identifier(at(table, "name"), input.name, "input");
+    input.where = where(at(table, "name"));
 
     // The driver's kind comes from its values' unit; default to a crank angle.
     std::optional<Dimension> kind;
-    auto take_value = [&](const toml::value& value, const std::string& key) {
+    auto take_value = [&](const Node& value, const std::string& key) {
       const Quantity q = quantity(value, key);
       if (q.dimension != Dimension::angle && q.dimension != Dimension::length) {
         throw UnitError(where(value).str() + ": " + key + " = \"" + string_value(value, key) +
@@ -255,14 +261,14 @@ class FileReader {
       kind = q.dimension;
       input.values.push_back(q.si_value);
     };
-    if (table.contains("value")) take_value(table.at("value"), "value");
-    if (table.contains("values")) {
-      const toml::value& list = table.at("values");
+    if (has(table, "value")) take_value(at(table, "value"), "value");
+    if (has(table, "values")) {
+      const Node& list = at(table, "values");
       if (!list.is_array()) fail(list, "values must be a list, e.g. [\"30 deg\", \"45 deg\"]");
-      for (const auto& value : list.as_array()) take_value(value, "values");
+      for (const auto& value : *list.as_array()) take_value(value, "values");
     }
-    if (table.contains("sweep")) {
-      const toml::value& sweep = table.at("sweep");
+    if (has(table, "sweep")) {
+      const Node& sweep = at(table, "sweep");
       const std::string text = string_value(sweep, "sweep");
       // "0:360:1 deg": the unit after the numbers applies to all three.
       const auto space = text.find_first_of(" \t");
@@ -292,31 +298,31 @@ class FileReader {
     input.dimension = kind.value_or(Dimension::angle);
     const Dimension rate = rate_dimension(input.dimension);
     const Dimension second = rate_dimension(rate);
-    if (!table.contains("rate")) {
+    if (!has(table, "rate")) {
       throw InputError(input.where.str() + ": [input] needs rate = \"...\" (the driver's speed, "
                        "e.g. \"60 rpm\" or \"-42 rad/s\" for clockwise)");
     }
-    input.rate = bounded_rate(table.at("rate"), "rate", rate);
-    if (table.contains("second_rate")) {
-      input.second_rate = bounded_rate(table.at("second_rate"), "second_rate", second);
+    input.rate = bounded_rate(at(table, "rate"), "rate", rate);
+    if (has(table, "second_rate")) {
+      input.second_rate = bounded_rate(at(table, "second_rate"), "second_rate", second);
     }
     input.rate_name = optional_name(table, "rate_name");
     input.second_rate_name = optional_name(table, "second_rate_name");
   }
 
-  void read_unknowns(const toml::value& root, Mechanism& mechanism) const {
-    const toml::value& table = required_table(root, "unknowns");
+  void read_unknowns(const Node& root, Mechanism& mechanism) const {
+    const Node& table = required_table(root, "unknowns");
     for (const auto& [name, value] : ordered(table)) {
       check_identifier(*value, name, "unknown");
       Unknown unknown;
       unknown.name = name;
       unknown.where = where(*value);
-      const toml::value* guess = value;
+      const Node* guess = value;
       if (value->is_table()) {
         check_keys(*value, {"guess", "rate_name", "second_rate_name", "latex"},
                    "unknown \"" + name + "\"");
-        if (!value->contains("guess")) fail(*value, "unknown \"" + name + "\" needs guess = \"...\"");
-        guess = &value->at("guess");
+        if (!has(*value, "guess")) fail(*value, "unknown \"" + name + "\" needs guess = \"...\"");
+        guess = &at(*value, "guess");
         unknown.rate_name = optional_name(*value, "rate_name");
         unknown.second_rate_name = optional_name(*value, "second_rate_name");
         unknown.latex_name = optional_string(*value, "latex", "");
@@ -334,8 +340,8 @@ class FileReader {
     if (mechanism.unknowns.empty()) fail(table, "[unknowns] is empty: name the coordinates the loops determine");
   }
 
-  void read_loops(const toml::value& root, Mechanism& mechanism) const {
-    const toml::value& table = required_table(root, "loops");
+  void read_loops(const Node& root, Mechanism& mechanism) const {
+    const Node& table = required_table(root, "loops");
     for (const auto& [name, value] : ordered(table)) {
       check_name(*value, name, "loop");
       Loop loop;
@@ -343,11 +349,11 @@ class FileReader {
       loop.where = where(*value);
       if (value->is_table()) {
         check_keys(*value, {"x", "y"}, "loop \"" + name + "\"");
-        if (!value->contains("x") || !value->contains("y")) {
+        if (!has(*value, "x") || !has(*value, "y")) {
           fail(*value, "loop \"" + name + "\" written by components needs both x = \"...\" and y = \"...\"");
         }
-        loop.x_formula = string_value(value->at("x"), "x");
-        loop.y_formula = string_value(value->at("y"), "y");
+        loop.x_formula = string_value(at(*value, "x"), "x");
+        loop.y_formula = string_value(at(*value, "y"), "y");
       } else {
         loop.complex_formula = string_value(*value, name);
       }
@@ -356,9 +362,9 @@ class FileReader {
     if (mechanism.loops.empty()) fail(table, "[loops] is empty: write at least one vector loop");
   }
 
-  void read_points(const toml::value& root, Mechanism& mechanism) const {
-    if (!root.contains("points")) return;
-    const toml::value& table = root.at("points");
+  void read_points(const Node& root, Mechanism& mechanism) const {
+    if (!has(root, "points")) return;
+    const Node& table = at(root, "points");
     if (!table.is_table()) fail(table, "[points] must be a table of name = \"x + I*y formula\"");
     for (const auto& [name, value] : ordered(table)) {
       check_name(*value, name, "point");

@@ -190,3 +190,27 @@ TEST_CASE("a Jacobian singular at every position says the unknowns are not indep
   check_bad("dependent", replaced("b*exp(I*theta3) - c*exp(I*theta4)", "b*exp(I*(theta3 + theta4))"),
             {2, {"dependent.toml:15", "loop \"ABCD\"", "theta3, theta4", "not independent"}});
 }
+
+// Issue 9, finding 4: nesting in the TOML itself is bounded by the parser (toml++: 256),
+// so 10,000 nested arrays or 3,440 nested inline tables are a syntax error, not a stack overflow.
+TEST_CASE("deeply nested TOML arrays and inline tables are a syntax error with file:line") {
+  const std::string arrays = "x = " + std::string(10000, '[') + std::string(10000, ']') + "\n";
+  check_bad("nested_arrays", arrays + kGood, {2, {"nested_arrays.toml:1", "syntax error", "nested value depth"}});
+  std::string tables = "x = ";
+  for (int i = 0; i < 3440; ++i) tables += "{a=";
+  tables += "1" + std::string(3440, '}') + "\n";
+  check_bad("nested_tables", tables + kGood, {2, {"nested_tables.toml:1", "syntax error", "nested value depth"}});
+}
+
+// Issue 9, finding 5: bytes that are not UTF-8 and integers past 64 bits are refused
+// by the parser (toml11 over-read the first and clamped the second to 2^63-1).
+TEST_CASE("invalid UTF-8 and integers that do not fit in 64 bits are syntax errors") {
+  check_bad("not_utf8", "'\xf7'", {2, {"not_utf8.toml:1", "syntax error", "utf-8"}});
+  check_bad("not_utf8_in_string", replaced("title = \"", "title = \"\xc3\x28"), {2, {"not_utf8_in_string.toml:1", "utf-8"}});
+  check_bad("huge_integer", replaced("d = \"100 mm\"", "d = 99999999999999999999"),
+            {2, {"huge_integer.toml:6", "syntax error", "not representable in 64 bits"}});
+  // An integer that fits is still a plain number (metres), not refused.
+  const std::string fits = kinema_test::write_temporary("fits.toml", replaced("d = \"100 mm\"", "d = 9223372036854775807"));
+  const auto result = kinema_test::run_kinema({"eval", fits});
+  CHECK(result.err.find("syntax error") == std::string::npos);
+}
