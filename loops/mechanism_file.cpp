@@ -10,15 +10,17 @@
 #include <sstream>
 
 // toml++ compiled into this file (header-only mode, not Debian's shared build) so that
-// the sanitizer and fuzzer builds instrument the parser too. It bounds nesting (256),
-// checks UTF-8 and refuses integers that do not fit in 64 bits; toml11 3.7 did none of
-// these (issue 9: stack overflow at 5,880 nested arrays, a heap over-read on 3 bytes).
+// the sanitizer and fuzzer builds instrument the parser too. It bounds nesting (256)
+// and refuses integers that do not fit in 64 bits; toml11 3.7 did neither (issue 9:
+// stack overflow at 5,880 nested arrays, a heap over-read on 3 bytes). It is given
+// ASCII only (toml_ascii.hpp says why).
 #define TOML_HEADER_ONLY 1
 #define TOML_ENABLE_FORMATTERS 0
 #include <toml++/toml.h>
 
 #include <kinema/engine/errors.hpp>
 #include <kinema/engine/report/number_format.hpp>
+#include <kinema/loops/toml_ascii.hpp>
 
 namespace kinema {
 namespace {
@@ -43,7 +45,7 @@ class FileReader {
   Mechanism read(const std::string& text) {
     toml::table root;
     try {
-      root = toml::parse(text, file_);
+      root = toml::parse(ascii_toml(text, file_), file_);
     } catch (const toml::parse_error& error) {
       const auto& at = error.source().begin;
       throw InputError(file_ + ":" + std::to_string(at.line) + ": syntax error in the mechanism file (column " +

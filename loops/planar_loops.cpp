@@ -21,7 +21,8 @@ using GiNaC::ex;
 /// nullopt where it cannot be known (plain-number parameters, bare constants).
 class LengthPower {
  public:
-  explicit LengthPower(std::map<ex, int, GiNaC::ex_is_less> powers) : powers_(std::move(powers)) {}
+  // Refers to the caller's table (a copy per parameter made 10,000 parameters quadratic).
+  explicit LengthPower(const std::map<ex, int, GiNaC::ex_is_less>& powers) : powers_(powers) {}
 
   /// Throws InputError(context + why) on a mismatch.
   std::optional<int> of(const ex& e, const std::string& context) const {
@@ -98,7 +99,7 @@ class LengthPower {
   }
 
  private:
-  std::map<ex, int, GiNaC::ex_is_less> powers_;
+  const std::map<ex, int, GiNaC::ex_is_less>& powers_;
 };
 
 // Functions the tape compiles (sqrt and powers are powers, not functions).
@@ -227,13 +228,15 @@ class Builder {
 
  private:
   const Mechanism& mechanism_;
-  GiNaC::symtab table_;
+  // One parser for every formula: its symbol table grows as names are defined
+  // (a parser per formula copied the table each time: quadratic in the parameters).
+  GiNaC::parser reader_{GiNaC::symtab(), /*strict=*/true};
   std::map<ex, int, GiNaC::ex_is_less> powers_;
   std::set<std::string> taken_;  ///< Names of symbols so far (rate names must not clash).
 
   GiNaC::realsymbol symbol(const std::string& name, const std::string& latex = "") {
     GiNaC::realsymbol s(name, latex.empty() ? latex_symbol_name(name) : latex);
-    table_[name] = s;
+    reader_.get_syms()[name] = s;
     taken_.insert(name);
     return s;
   }
@@ -312,8 +315,7 @@ class Builder {
     ex sum = 0;
     try {
       for (const std::string& text : formula.empty() ? std::vector<std::string>{} : written_terms(formula)) {
-        GiNaC::parser reader(table_, /*strict=*/true);
-        terms.push_back(reader(text));
+        terms.push_back(reader_(text));
         sum += terms.back();
       }
     } catch (const std::exception&) {
@@ -368,10 +370,9 @@ class Builder {
 
   ex parse(const std::string& formula, const std::string& context) {
     check_shape(formula, context);
-    GiNaC::parser reader(table_, /*strict=*/true);
     ex e;
     try {
-      e = reader(formula);
+      e = reader_(formula);
     } catch (const std::exception& error) {
       std::string why = error.what();
       const std::string marker = "symbol \"";
@@ -412,7 +413,7 @@ class Builder {
       } else {
         // Parsed before its own symbol exists, so only earlier parameters can be used.
         formula = parse(parameter.formula, context);
-        const ex numeric = GiNaC::evalf(formula.subs(values));
+        const ex numeric = GiNaC::evalf(formula.subs(values, GiNaC::subs_options::no_pattern));
         if (!GiNaC::is_a<GiNaC::numeric>(numeric) || !GiNaC::ex_to<GiNaC::numeric>(numeric).is_real()) {
           throw InputError(context + " = \"" + parameter.formula + "\" does not evaluate to a real "
                            "number (only earlier parameters can be used)");

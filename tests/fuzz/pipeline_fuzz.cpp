@@ -1,0 +1,62 @@
+// libFuzzer target: the whole pipeline as `kinema` runs it on a file — read,
+// build the constraint system, derive, compile, analyse a few input values and
+// a short range, then every printer of every kind. A file may be refused
+// (kinema::Error, which the CLI prints with its exit status); any other exception
+// is an "internal error" and stops the fuzzer, as do crashes, runs over the
+// -timeout and memory over -rss_limit_mb (tests/fuzz/run_fuzzers.sh sets both).
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <cstdlib>
+#include <exception>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <kinema/engine/errors.hpp>
+#include <kinema/engine/model.hpp>
+#include <kinema/engine/printers/printer.hpp>
+#include <kinema/engine/report/plot_range.hpp>
+#include <kinema/loops/mechanism_file.hpp>
+
+namespace {
+
+using namespace kinema;
+
+void print_everything(const Model& model, const MotionTable& values, const MotionTable& range) {
+  for (PrintKind kind : {PrintKind::derivation, PrintKind::results, PrintKind::document, PrintKind::code}) {
+    for (const std::string& name : printer_names(kind)) {
+      PrintJob job{model, &values, &range};
+      job.code_namespace = "fuzz";
+      std::ostringstream out;
+      find_printer(kind, name)->print(out, job);
+      job.fragment = true;
+      if (kind == PrintKind::document) find_printer(kind, name)->print(out, job);
+    }
+  }
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  if (size > 16 * 1024) return -1;  // a mechanism is a few hundred bytes; keep runs short
+  const std::string text(reinterpret_cast<const char*>(data), size);
+  try {
+    const Model model = make_model(read_mechanism_text(text, "fuzz.toml"));
+    std::vector<double> inputs = model.system.input.values;
+    if (inputs.size() > 4) inputs.resize(4);
+    if (inputs.empty()) inputs = {0.5};
+    const MotionTable values = analyse(model, inputs);
+    // Every fifth value of the worked solution's plot range: the same code, a fifth of the time.
+    std::vector<double> range;
+    const std::vector<double> full = plot_range(model.system, inputs.front());
+    for (std::size_t i = 0; i < full.size(); i += 5) range.push_back(full[i]);
+    const MotionTable over_range = analyse(model, range);
+    print_everything(model, values, over_range);
+  } catch (const kinema::Error&) {
+    // Refused or reported: what should happen to a bad file or an unassemblable value.
+  } catch (const std::exception&) {
+    std::abort();
+  }
+  return 0;
+}
