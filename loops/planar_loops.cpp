@@ -11,6 +11,7 @@
 #include <kinema/engine/errors.hpp>
 #include <kinema/engine/symbolic/expression_parts.hpp>
 #include <kinema/engine/symbolic/naming.hpp>
+#include <kinema/loops/formula_reader.hpp>
 
 namespace kinema {
 namespace {
@@ -101,16 +102,6 @@ class LengthPower {
  private:
   const std::map<ex, int, GiNaC::ex_is_less>& powers_;
 };
-
-// Functions the tape compiles (sqrt and powers are powers, not functions).
-const std::set<std::string>& compiled_functions() {
-  static const std::set<std::string> names = {"sin", "cos", "tan", "exp", "log", "abs",
-                                              "asin", "acos", "atan", "atan2"};
-  return names;
-}
-
-// Deepest parenthesis nesting a formula may have (limits: README, "Mechanism files").
-constexpr int kMaxFormulaDepth = 100;
 
 // GiNaC leaves real_part(atan(theta3)) unevaluated although every symbol is real:
 // a function call without I inside is real here (the formulas describe real
@@ -228,15 +219,15 @@ class Builder {
 
  private:
   const Mechanism& mechanism_;
-  // One parser for every formula: its symbol table grows as names are defined
+  // One reader for every formula: its symbol table grows as names are defined
   // (a parser per formula copied the table each time: quadratic in the parameters).
-  GiNaC::parser reader_{GiNaC::symtab(), /*strict=*/true};
+  FormulaReader formulas_;
   std::map<ex, int, GiNaC::ex_is_less> powers_;
   std::set<std::string> taken_;  ///< Names of symbols so far (rate names must not clash).
 
   GiNaC::realsymbol symbol(const std::string& name, const std::string& latex = "") {
     GiNaC::realsymbol s(name, latex.empty() ? latex_symbol_name(name) : latex);
-    reader_.get_syms()[name] = s;
+    formulas_.define(name, s);
     taken_.insert(name);
     return s;
   }
@@ -315,7 +306,7 @@ class Builder {
     ex sum = 0;
     try {
       for (const std::string& text : formula.empty() ? std::vector<std::string>{} : written_terms(formula)) {
-        terms.push_back(reader_(text));
+        terms.push_back(formulas_.read(text, context));
         sum += terms.back();
       }
     } catch (const std::exception&) {
@@ -330,66 +321,10 @@ class Builder {
         terms.push_back(expanded);
       }
     }
-    (void)context;
     return terms;
   }
 
-  // What GiNaC's parser cannot take safely, refused before it sees the text: nesting
-  // deeper than any mechanism needs (its recursion overflows the stack near 8,000),
-  // and a call with no argument ("sin()" dereferences a null argument).
-  static void check_shape(const std::string& formula, const std::string& context) {
-    int depth = 0;
-    for (std::size_t i = 0; i < formula.size(); ++i) {
-      const char c = formula[i];
-      if (c == '(' && ++depth > kMaxFormulaDepth) {
-        throw InputError(context + ": the formula nests parentheses more than " + std::to_string(kMaxFormulaDepth) +
-                         " deep; write it more simply");
-      }
-      if (c == ')') --depth;
-      if (c == '(' && i > 0 && (std::isalnum(static_cast<unsigned char>(formula[i - 1])) || formula[i - 1] == '_')) {
-        const std::size_t next = formula.find_first_not_of(" \t", i + 1);
-        if (next != std::string::npos && formula[next] == ')') {
-          throw InputError(context + ": a function is called with no argument in \"" + formula +
-                           "\"; write its argument, e.g. sin(theta2)");
-        }
-      }
-    }
-  }
-
-  // Every function call must be one the evaluator compiles.
-  static void check_functions(const ex& e, const std::string& formula, const std::string& context) {
-    for (GiNaC::const_preorder_iterator it = e.preorder_begin(); it != e.preorder_end(); ++it) {
-      if (!GiNaC::is_a<GiNaC::function>(*it)) continue;
-      const std::string name = GiNaC::ex_to<GiNaC::function>(*it).get_name();
-      if (!compiled_functions().count(name)) {
-        throw InputError(context + ": the function " + name + "(...) in \"" + formula +
-                         "\" is not supported; formulas may use " + understood_functions());
-      }
-    }
-  }
-
-  ex parse(const std::string& formula, const std::string& context) {
-    check_shape(formula, context);
-    ex e;
-    try {
-      e = reader_(formula);
-    } catch (const std::exception& error) {
-      std::string why = error.what();
-      const std::string marker = "symbol \"";
-      const auto at = why.find(marker);
-      if (at != std::string::npos) {
-        const auto end = why.find('"', at + marker.size());
-        const std::string name = why.substr(at + marker.size(), end - at - marker.size());
-        throw InputError(context + ": unknown name \"" + name + "\" in \"" + formula +
-                         "\"; define it under [parameters] or [unknowns], or check the spelling");
-      }
-      const auto newline = why.find('\n');
-      if (newline != std::string::npos) why = why.substr(0, newline);
-      throw InputError(context + ": cannot read the formula \"" + formula + "\" (" + why + ")");
-    }
-    check_functions(e, formula, context);
-    return e;
-  }
+  ex parse(const std::string& formula, const std::string& context) { return formulas_.read(formula, context); }
 
   void add_parameters(ConstraintSystem& system) {
     GiNaC::exmap values;
@@ -413,7 +348,18 @@ class Builder {
       } else {
         // Parsed before its own symbol exists, so only earlier parameters can be used.
         formula = parse(parameter.formula, context);
-        const ex numeric = GiNaC::evalf(formula.subs(values, GiNaC::subs_options::no_pattern));
+        ex numeric;
+        try {
+          // Only the symbols it uses: subs walks its whole map (10,000 parameters: quadratic).
+          GiNaC::exmap used;
+          for (auto it = formula.preorder_begin(); it != formula.preorder_end(); ++it) {
+            const auto found = GiNaC::is_a<GiNaC::symbol>(*it) ? values.find(*it) : values.end();
+            if (found != values.end()) used.insert(*found);
+          }
+          numeric = GiNaC::evalf(formula.subs(used, GiNaC::subs_options::no_pattern));
+        } catch (const std::exception& error) {  // CLN's float overflow, GiNaC's poles (log(0))
+          throw InputError(context + " = \"" + parameter.formula + "\" cannot be evaluated (" + error.what() + ")");
+        }
         if (!GiNaC::is_a<GiNaC::numeric>(numeric) || !GiNaC::ex_to<GiNaC::numeric>(numeric).is_real()) {
           throw InputError(context + " = \"" + parameter.formula + "\" does not evaluate to a real "
                            "number (only earlier parameters can be used)");
@@ -471,9 +417,6 @@ std::vector<std::string> written_terms(const std::string& formula) {
   return terms;
 }
 
-const char* understood_functions() {
-  return "sin, cos, tan, exp, log, sqrt, abs, asin, acos, atan, atan2 and powers (^)";
-}
 
 
 }  // namespace kinema

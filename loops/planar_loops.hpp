@@ -5,6 +5,7 @@
 #pragma once
 
 #include <kinema/engine/constraint_system.hpp>
+#include <kinema/loops/formula_reader.hpp>  // understood_functions()
 #include <kinema/loops/mechanism.hpp>
 
 namespace kinema {
@@ -15,8 +16,5 @@ ConstraintSystem build_planar_loops(const Mechanism& mechanism);
 
 /// Top-level terms of a formula as written ("a*exp(I*t) - d" -> "a*exp(I*t)", "-d").
 std::vector<std::string> written_terms(const std::string& formula);
-
-/// Functions a formula may use (the compiled evaluator runs each of them).
-const char* understood_functions();
 
 }  // namespace kinema

@@ -1,0 +1,262 @@
+#include <kinema/loops/formula_reader.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <set>
+#include <vector>
+
+#include <kinema/engine/errors.hpp>
+
+namespace kinema {
+namespace {
+
+using GiNaC::ex;
+
+// Limits (README, "Mechanism files").
+constexpr int kMaxDepth = 100;                 ///< parentheses
+constexpr std::size_t kMaxLiteralLength = 100;  ///< characters of one number
+constexpr double kMaxExactDigits = 400;        ///< decimal digits of an exact power of numbers
+constexpr double kMaxExponent = 1000;          ///< magnitude of a numeric exponent
+constexpr double kMaxExpandedTerms = 10000;    ///< terms of the formula multiplied out
+
+// Functions the tape compiles (sqrt and powers are powers, not functions).
+const std::set<std::string>& compiled_functions() {
+  static const std::set<std::string> names = {"sin", "cos", "tan", "exp", "log", "abs",
+                                              "asin", "acos", "atan", "atan2"};
+  return names;
+}
+
+bool is_name_start(char c) { return std::isalpha(static_cast<unsigned char>(c)) || c == '_'; }
+bool is_name_part(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
+bool is_digit(char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; }
+
+void check_shape(const std::string& formula, const std::string& context) {
+  int depth = 0;
+  for (std::size_t i = 0; i < formula.size(); ++i) {
+    const char c = formula[i];
+    if (c == '(' && ++depth > kMaxDepth) {
+      throw InputError(context + ": the formula nests parentheses more than " + std::to_string(kMaxDepth) +
+                       " deep; write it more simply");
+    }
+    if (c == ')') --depth;
+    if (c == '(' && i > 0 && is_name_part(formula[i - 1])) {
+      const std::size_t next = formula.find_first_not_of(" \t", i + 1);
+      if (next != std::string::npos && formula[next] == ')') {
+        throw InputError(context + ": a function is called with no argument in \"" + formula +
+                         "\"; write its argument, e.g. sin(theta2)");
+      }
+    }
+  }
+}
+
+// The formula with each number literal replaced by a placeholder name, so that GiNaC's
+// parser evaluates no arithmetic on numbers before their sizes are checked.
+struct ShieldedFormula {
+  std::string text;
+  std::vector<std::string> literals;
+};
+
+ShieldedFormula shield_numbers(const std::string& formula, const std::string& prefix, const std::string& context) {
+  ShieldedFormula shielded;
+  const std::size_t n = formula.size();
+  for (std::size_t i = 0; i < n;) {
+    std::size_t j = i;
+    if (is_name_start(formula[i])) {
+      while (j < n && is_name_part(formula[j])) ++j;
+      shielded.text += formula.substr(i, j - i);
+    } else if (is_digit(formula[i]) || (formula[i] == '.' && i + 1 < n && is_digit(formula[i + 1]))) {
+      while (j < n && (is_digit(formula[j]) || formula[j] == '.')) ++j;
+      if (j < n && (formula[j] == 'e' || formula[j] == 'E')) {
+        std::size_t k = j + 1;
+        if (k < n && (formula[k] == '+' || formula[k] == '-')) ++k;
+        if (k < n && is_digit(formula[k])) {
+          j = k;
+          while (j < n && is_digit(formula[j])) ++j;
+        }
+      }
+      const std::string literal = formula.substr(i, j - i);
+      if (literal.size() > kMaxLiteralLength) {
+        throw InputError(context + ": a number in \"" + formula.substr(0, 40) + "...\" has more than " +
+                         std::to_string(kMaxLiteralLength) + " characters; write it with an exponent (1.5e300)");
+      }
+      shielded.text += " " + prefix + std::to_string(shielded.literals.size()) + " ";
+      shielded.literals.push_back(literal);
+    } else {
+      shielded.text += formula[i];
+      ++j;
+    }
+    i = j;
+  }
+  return shielded;
+}
+
+// Decimal digits of the larger of numerator and denominator (real and imaginary parts).
+double exact_digits(const GiNaC::numeric& x) {
+  auto digits = [](const GiNaC::numeric& r) {
+    const double bits = std::max(GiNaC::abs(r.numer()).int_length(), GiNaC::abs(r.denom()).int_length());
+    return bits * std::log10(2.0);
+  };
+  return std::max(digits(x.real()), digits(x.imag()));
+}
+
+// Numbers put back bottom-up; each power is checked before GiNaC evaluates it.
+class RestoreNumbers : public GiNaC::map_function {
+ public:
+  RestoreNumbers(const GiNaC::exmap& numbers, const std::string& formula, const std::string& context)
+      : numbers_(numbers), formula_(formula), context_(context) {}
+
+  ex operator()(const ex& e) override {
+    if (GiNaC::is_a<GiNaC::symbol>(e)) {
+      const auto found = numbers_.find(e);
+      return found == numbers_.end() ? e : found->second;
+    }
+    if (GiNaC::is_a<GiNaC::power>(e)) {
+      const ex base = (*this)(e.op(0));
+      const ex exponent = (*this)(e.op(1));
+      check_power(base, exponent);
+      return GiNaC::pow(base, exponent);
+    }
+    return e.map(*this);
+  }
+
+ private:
+  const GiNaC::exmap& numbers_;
+  const std::string& formula_;
+  const std::string& context_;
+
+  [[noreturn]] void fail(const std::string& why) const {
+    throw InputError(context_ + ": " + why + " in \"" + formula_ + "\"; write it more simply");
+  }
+
+  void check_power(const ex& base, const ex& exponent) const {
+    if (!GiNaC::is_a<GiNaC::numeric>(exponent)) return;
+    const GiNaC::numeric& x = GiNaC::ex_to<GiNaC::numeric>(exponent);
+    const double magnitude = std::hypot(x.real().to_double(), x.imag().to_double());
+    if (!(magnitude <= kMaxExponent)) {
+      fail("the exponent " + shown(exponent) + " is larger than " + std::to_string(int(kMaxExponent)));
+    }
+    if (!GiNaC::is_a<GiNaC::numeric>(base)) return;
+    const GiNaC::numeric& b = GiNaC::ex_to<GiNaC::numeric>(base);
+    if (b.is_crational() && exact_digits(b) * magnitude > kMaxExactDigits) {
+      fail("the power " + shown(base) + "^" + shown(exponent) + " has more than " +
+           std::to_string(int(kMaxExactDigits)) + " digits");
+    }
+  }
+
+  static std::string shown(const ex& e) {
+    std::ostringstream out;
+    out << e;
+    std::string text = out.str();
+    return text.size() > 30 ? text.substr(0, 27) + "..." : text;
+  }
+};
+
+// How many terms the formula has once multiplied out (an upper estimate, capped),
+// checked at every node so that a large power inside a function is caught too.
+double expanded_terms(const ex& e, const std::string& formula, const std::string& context) {
+  double terms = 1;
+  if (GiNaC::is_a<GiNaC::add>(e)) {
+    terms = 0;
+    for (const ex& term : e) terms += expanded_terms(term, formula, context);
+  } else if (GiNaC::is_a<GiNaC::mul>(e)) {
+    for (const ex& factor : e) terms *= expanded_terms(factor, formula, context);
+  } else if (GiNaC::is_a<GiNaC::power>(e)) {
+    const double base = expanded_terms(e.op(0), formula, context);
+    expanded_terms(e.op(1), formula, context);
+    if (GiNaC::is_a<GiNaC::numeric>(e.op(1)) && GiNaC::ex_to<GiNaC::numeric>(e.op(1)).is_integer()) {
+      // Terms of (t1 + ... + tk)^n: C(n + k - 1, k - 1).
+      const double n = std::fabs(GiNaC::ex_to<GiNaC::numeric>(e.op(1)).to_double());
+      for (double i = 1; i < base && terms <= kMaxExpandedTerms; ++i) terms = terms * (n + i) / i;
+    }
+  } else {
+    for (const ex& argument : e) expanded_terms(argument, formula, context);
+  }
+  if (terms > kMaxExpandedTerms) {
+    throw InputError(context + ": the formula \"" + formula.substr(0, 60) + (formula.size() > 60 ? "..." : "") +
+                     "\" multiplies out to more than " + std::to_string(int(kMaxExpandedTerms)) +
+                     " terms; write it more simply");
+  }
+  return terms;
+}
+
+void check_functions(const ex& e, const std::string& formula, const std::string& context) {
+  for (GiNaC::const_preorder_iterator it = e.preorder_begin(); it != e.preorder_end(); ++it) {
+    if (!GiNaC::is_a<GiNaC::function>(*it)) continue;
+    const std::string name = GiNaC::ex_to<GiNaC::function>(*it).get_name();
+    if (!compiled_functions().count(name)) {
+      throw InputError(context + ": the function " + name + "(...) in \"" + formula +
+                       "\" is not supported; formulas may use " + understood_functions());
+    }
+  }
+}
+
+}  // namespace
+
+FormulaReader::FormulaReader() : parser_(GiNaC::symtab(), /*strict=*/true) {}
+
+void FormulaReader::define(const std::string& name, const GiNaC::ex& symbol) { parser_.get_syms()[name] = symbol; }
+
+bool FormulaReader::defines(const std::string& name) const {
+  return const_cast<GiNaC::parser&>(parser_).get_syms().count(name) > 0;
+}
+
+GiNaC::ex FormulaReader::read(const std::string& formula, const std::string& context) {
+  check_shape(formula, context);
+  // A placeholder prefix no defined name starts with.
+  std::string prefix = "kinemaNumber";
+  GiNaC::symtab& names = parser_.get_syms();
+  auto taken = [&] {  // the table is sorted: the first name not below the prefix tells
+    const auto next = names.lower_bound(prefix);
+    return next != names.end() && next->first.rfind(prefix, 0) == 0;
+  };
+  while (taken()) prefix += "x";
+  const ShieldedFormula shielded = shield_numbers(formula, prefix, context);
+
+  GiNaC::exmap numbers;
+  std::vector<std::string> placeholders;
+  struct Undefine {  // placeholders leave the table however the parse ends
+    GiNaC::symtab& names;
+    std::vector<std::string>& defined;
+    ~Undefine() {
+      for (const auto& name : defined) names.erase(name);
+    }
+  } undefine{names, placeholders};
+  ex e;
+  try {
+    for (std::size_t k = 0; k < shielded.literals.size(); ++k) {
+      const std::string name = prefix + std::to_string(k);
+      const GiNaC::symbol placeholder(name);
+      names[name] = placeholder;
+      placeholders.push_back(name);
+      numbers[placeholder] = GiNaC::numeric(shielded.literals[k].c_str());
+    }
+    const ex parsed = parser_(shielded.text);
+    check_functions(parsed, formula, context);
+    RestoreNumbers restore(numbers, formula, context);
+    e = restore(parsed);
+    expanded_terms(e, formula, context);
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& error) {
+    std::string why = error.what();
+    const std::string marker = "symbol \"";
+    const auto at = why.find(marker);
+    if (at != std::string::npos) {
+      const auto end = why.find('"', at + marker.size());
+      const std::string name = why.substr(at + marker.size(), end - at - marker.size());
+      throw InputError(context + ": unknown name \"" + name + "\" in \"" + formula +
+                       "\"; define it under [parameters] or [unknowns], or check the spelling");
+    }
+    const auto newline = why.find('\n');
+    if (newline != std::string::npos) why = why.substr(0, newline);
+    throw InputError(context + ": cannot read the formula \"" + formula + "\" (" + why + ")");
+  }
+  return e;
+}
+
+const char* understood_functions() {
+  return "sin, cos, tan, exp, log, sqrt, abs, asin, acos, atan, atan2 and powers (^)";
+}
+
+}  // namespace kinema

@@ -1,0 +1,35 @@
+// Reads the formulas of a mechanism file with GiNaC's parser, refusing first what
+// the parser or what follows cannot take safely (limits: README, "Mechanism files"):
+// parentheses nested past 100 (its recursion overflows the stack near 8,000), a
+// call with no argument ("sin()" dereferences a null argument), a number literal of
+// more than 100 characters, a power of numbers whose exact value would have more
+// than 400 digits (GiNaC evaluates 10^(10^10) exactly while parsing: gigabytes),
+// an exponent past 1000 in magnitude, a formula that would expand to more than
+// 10,000 terms, and functions the evaluator does not compile.
+#pragma once
+
+#include <ginac/ginac.h>
+
+#include <string>
+
+namespace kinema {
+
+class FormulaReader {
+ public:
+  FormulaReader();
+
+  /// Makes `name` a symbol formulas may use.
+  void define(const std::string& name, const GiNaC::ex& symbol);
+  bool defines(const std::string& name) const;
+
+  /// The formula as an expression; throws InputError(context + ": ...") naming what is wrong.
+  GiNaC::ex read(const std::string& formula, const std::string& context);
+
+ private:
+  GiNaC::parser parser_;
+};
+
+/// Functions a formula may use (the compiled evaluator runs each of them).
+const char* understood_functions();
+
+}  // namespace kinema
