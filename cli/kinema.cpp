@@ -17,6 +17,7 @@
 
 #include "exit_status.hpp"
 #include "output_file.hpp"
+#include "stable_addresses.hpp"
 #include "usage.hpp"
 
 #ifndef KINEMA_VERSION
@@ -188,6 +189,7 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  kinema_cli::run_with_stable_addresses(argv);
   try {
     const int status = run(argc, argv);
     kinema_cli::flush_standard_output();  // help or version on a full disk is an error too

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 #include <tuple>
+#include <vector>
 
 namespace kinema {
 
@@ -56,6 +57,50 @@ class TapeBuilder {
   /// terms) are computed once.
   std::map<std::tuple<Op, std::uint32_t, std::uint32_t, int>, std::uint32_t> emitted_;
   std::map<std::uint32_t, std::pair<std::uint32_t, std::uint32_t>> sincos_of_;
+  std::map<ex, std::uint64_t, GiNaC::ex_is_less> shape_;
+
+  // A hash of the expression's structure and names, the same in every run. GiNaC
+  // orders the terms of a sum by hash values that include addresses, so the tape
+  // added them up in another order in each run and the last digits changed (issue 9,
+  // finding 17); operands are taken in the order of this hash instead.
+  std::uint64_t shape(const ex& e) {
+    auto found = shape_.find(e);
+    if (found != shape_.end()) return found->second;
+    auto mix = [](std::uint64_t h, std::uint64_t v) { return (h ^ v) * 0x100000001b3ull + (h >> 29); };
+    auto text_hash = [&](std::uint64_t h, const std::string& text) {
+      for (unsigned char c : text) h = mix(h, c);
+      return h;
+    };
+    std::uint64_t h = 0xcbf29ce484222325ull;
+    if (GiNaC::is_a<GiNaC::numeric>(e) || GiNaC::is_a<GiNaC::symbol>(e) || GiNaC::is_a<GiNaC::constant>(e)) {
+      std::ostringstream text;
+      text << (GiNaC::is_a<GiNaC::numeric>(e) ? "n" : "s") << e;
+      h = text_hash(h, text.str());
+    } else {
+      std::vector<std::uint64_t> parts;
+      for (const ex& operand : e) parts.push_back(shape(operand));
+      const bool commutative = GiNaC::is_a<GiNaC::add>(e) || GiNaC::is_a<GiNaC::mul>(e);
+      if (commutative) std::sort(parts.begin(), parts.end());
+      h = text_hash(h, GiNaC::is_a<GiNaC::add>(e)   ? "+"
+                       : GiNaC::is_a<GiNaC::mul>(e)   ? "*"
+                       : GiNaC::is_a<GiNaC::power>(e) ? "^"
+                       : GiNaC::is_a<GiNaC::function>(e) ? GiNaC::ex_to<GiNaC::function>(e).get_name()
+                                                        : "?");
+      for (std::uint64_t part : parts) h = mix(h, part);
+    }
+    shape_.emplace(e, h);
+    return h;
+  }
+
+  // The operands of a sum or product in canonical order (GiNaC keeps a sum's constant
+  // and a product's numeric coefficient last; that stays so).
+  std::vector<ex> operands(const ex& e) {
+    std::vector<ex> list(e.begin(), e.end());
+    const bool numeric_last = !list.empty() && GiNaC::is_a<GiNaC::numeric>(list.back());
+    std::stable_sort(list.begin(), list.end() - (numeric_last ? 1 : 0),
+                     [&](const ex& a, const ex& b) { return shape(a) < shape(b); });
+    return list;
+  }
 
   std::uint32_t new_register(double initial) {
     t_.initial_registers_.push_back(initial);
@@ -100,7 +145,7 @@ class TapeBuilder {
       // Terms with a coefficient -1 become subtractions.
       std::uint32_t sum = 0;
       bool first = true;
-      for (const ex& term : e) {
+      for (const ex& term : operands(e)) {
         bool negative = is_a<mul>(term) && term.op(term.nops() - 1).is_equal(-1);
         const ex magnitude = negative ? ex(-term) : term;
         const std::uint32_t reg = compile(magnitude);
@@ -117,7 +162,7 @@ class TapeBuilder {
       std::uint32_t product = 0;
       std::uint32_t divisor = 0;
       bool have_product = false, have_divisor = false;
-      for (const ex& factor : e) {
+      for (const ex& factor : operands(e)) {
         // Factors with negative integer powers go to one divisor.
         if (is_a<power>(factor) && is_a<numeric>(factor.op(1)) &&
             ex_to<numeric>(factor.op(1)).is_integer() && ex_to<numeric>(factor.op(1)).is_negative()) {

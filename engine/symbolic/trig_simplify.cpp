@@ -45,8 +45,10 @@ Term split_term(const ex& term) {
   return result;
 }
 
-// Product-to-sum until each term has at most one sin/cos factor.
+// Product-to-sum until each term has at most one sin/cos factor (a term with k
+// factors gives 2^(k-1) terms: the caller stops past the budget).
 void reduce(const Term& term, std::vector<Term>& out) {
+  if (out.size() > kSimplifyBudget) return;
   if (term.factors.size() <= 1) {
     out.push_back(term);
     return;
@@ -103,14 +105,23 @@ ex canonical_angle(const ex& angle, bool& negated) {
 
 }  // namespace
 
+std::size_t expression_size(const GiNaC::ex& e, std::size_t limit) {
+  std::size_t nodes = 0;
+  for (auto it = e.preorder_begin(); it != e.preorder_end() && nodes <= limit; ++it) ++nodes;
+  return nodes;
+}
+
 GiNaC::ex combine_trig_products(const GiNaC::ex& e) {
+  if (expression_size(e) > kSimplifyBudget) return e;
   const ex expanded = e.expand();
+  if (expression_size(expanded) > kSimplifyBudget) return expanded;
   std::vector<Term> terms;
   if (GiNaC::is_a<GiNaC::add>(expanded)) {
     for (const ex& term : expanded) reduce(split_term(term), terms);
   } else {
     reduce(split_term(expanded), terms);
   }
+  if (terms.size() > kSimplifyBudget) return expanded;
   // Collect coefficients by the trig function they multiply (1 for none).
   std::map<ex, ex, GiNaC::ex_is_less> collected;
   for (const Term& term : terms) {
@@ -144,8 +155,10 @@ GiNaC::ex combine_trig_products(const GiNaC::ex& e) {
 }
 
 GiNaC::ex simplify_ratio(const GiNaC::ex& numerator, const GiNaC::ex& denominator) {
+  if (expression_size(numerator) + expression_size(denominator) > kSimplifyBudget) return numerator / denominator;
   const ex n = combine_trig_products(numerator);
   const ex d = combine_trig_products(denominator);
+  if (expression_size(n) + expression_size(d) > kSimplifyBudget) return numerator / denominator;
   // normal() treats sin/cos as opaque symbols, so it cancels common factors
   // such as link lengths without expanding the trig terms again.
   return GiNaC::normal(n / d);

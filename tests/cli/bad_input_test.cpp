@@ -248,3 +248,25 @@ TEST_CASE("10,000 parameters are read in linear time") {
   CHECK(result.exit_status == 0);
   CHECK(result.out.find(",ok,") != std::string::npos);
 }
+
+// Issue 9, finding 9: the textbook simplification is for reading and has a budget; a
+// loop that makes it blow up (a 20th power, 80 cosines) gets its numbers at once and a
+// derivation printed unsimplified. Bounds, not timings: 10 s of CPU each (they took 30 s+).
+TEST_CASE("a formula that makes the simplification blow up is evaluated and derived within the budget") {
+  std::string cosines;
+  for (int k = 0; k < 80; ++k) cosines += " + 0.000001*a*cos(theta3 + " + std::to_string(k) + ")";
+  for (const auto& [name, loop_end] :
+       {std::make_pair(std::string("power20"), std::string(" - d + 0.00001*a*(theta3+theta4+1)^20\"")),
+        std::make_pair(std::string("cosines80"), " - d" + cosines + "\"")}) {
+    CAPTURE(name);
+    const std::string path = kinema_test::write_temporary(name + ".toml", replaced(" - d\"", loop_end));
+    for (const std::string command : {"eval", "derive"}) {
+      const auto result = kinema_test::run_shell("ulimit -t 10; " + kinema_test::shell_quote(KINEMA_EXE) + " " +
+                                                 command + " " + kinema_test::shell_quote(path));
+      CAPTURE(command);
+      CAPTURE(result.err);
+      CHECK(result.exit_status == 0);
+      CHECK(result.out.find(command == "eval" ? "omega3" : "omega3 = ") != std::string::npos);
+    }
+  }
+}
