@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <new>
 #include <sstream>
 
 #include <kinema/engine/errors.hpp>
@@ -197,6 +198,9 @@ int main(int argc, char** argv) {
   } catch (const kinema::Error& error) {
     std::cerr << "kinema: error: " << error.what() << "\n";
     return kinema_cli::exit_status(error);
+  } catch (const std::bad_alloc&) {
+    std::cerr << "kinema: error: out of memory; evaluate fewer values per run (a coarser --sweep, or split it)\n";
+    return kinema_cli::status::internal;
   } catch (const std::exception& error) {
     std::cerr << "kinema: internal error: " << error.what() << "\n";
     return kinema_cli::exit_status(error);

@@ -410,7 +410,10 @@ std::vector<double> parse_sweep(const std::string& text, double unit_factor) {
                      "and point from start to stop");
   }
   const double count = std::floor((stop - start) / step + 1e-9);
-  if (count > 1e8) throw InputError("sweep \"" + text + "\" has more than 10^8 values");
+  if (count >= static_cast<double>(kMaxValuesPerRun)) {
+    throw InputError("sweep \"" + text + "\" has more than " + std::to_string(kMaxValuesPerRun) +
+                     " values (the results of a run are held in memory); use a larger step or split the range");
+  }
   std::vector<double> values;
   for (long i = 0; i <= static_cast<long>(count); ++i) values.push_back((start + i * step) * unit_factor);
   return values;

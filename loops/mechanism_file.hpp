@@ -13,6 +13,9 @@ namespace kinema {
 /// Largest mechanism file read (bytes): far above any mechanism, far below trouble.
 constexpr std::size_t kMaxMechanismFileBytes = 1024 * 1024;
 
+/// Most input values one run solves: the results (and their text) are held in memory.
+constexpr std::size_t kMaxValuesPerRun = 10'000'000;
+
 /// Reads and checks a mechanism file; throws InputError / UnitError.
 Mechanism read_mechanism_file(const std::string& path);
 

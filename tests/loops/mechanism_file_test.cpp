@@ -212,7 +212,10 @@ TEST_CASE("loops/mechanism_file: parse_sweep in a unit, steps that do not divide
   }
   CHECK_THROWS_WITH_AS(kinema::parse_sweep("10:0:1", 1.0), doctest::Contains("never reaches its stop"),
                        kinema::InputError);
-  CHECK_THROWS_AS(kinema::parse_sweep("0:1e9:1", 1.0), kinema::InputError);  // more than 10^8 values
+  CHECK_THROWS_AS(kinema::parse_sweep("0:1e9:1", 1.0), kinema::InputError);  // more than 10^7 values
+  CHECK_THROWS_WITH_AS(kinema::parse_sweep("0:360:0.00001", 1.0),
+                       doctest::Contains("more than 10000000 values"), kinema::InputError);  // 3.6e7: the 10^8 of issue 9 ran out of memory
+  CHECK(kinema::parse_sweep("0:359.99999:0.00036", 1.0).size() == 1000000);
 }
 
 TEST_CASE("loops/mechanism_file: errors name file:line and what to write") {

@@ -264,3 +264,25 @@ TEST_CASE("LaTeX names: ^^ notation and unbalanced braces refused; a title with 
   std::string log;
   CHECK(compile_document(document.out, "control_title", log) >= 3);
 }
+
+// Issue 9, finding 19: a title, description and names with characters past ASCII
+// typeset (θ ≠ 0 was "Unicode character not set up"), a NUL is a space, and a
+// character LaTeX has no spelling for is written as its code point.
+TEST_CASE("user text past ASCII typesets: Greek, signs, accents, quotes; an emoji as its code point; NUL") {
+  CHECK(kinema::latex_escape_text("θ ≠ 0") == "\\ensuremath{\\theta} \\ensuremath{\\neq} 0");
+  CHECK(kinema::latex_escape_text("café — “x”") == "caf\\'e --- ``x''");
+  CHECK(kinema::latex_escape_text("🙂") == "[U+1F642]");
+  CHECK(kinema::latex_escape_text("a\xff") == "a[U+FFFD]");  // not UTF-8 (a library caller's text)
+  const std::string path = kinema_test::write_temporary(
+      "unicode_title.toml",
+      kinema_test::replaced("title = \"four-bar\"",
+                            "title = \"θ ≠ 0, α ≤ 90°, Ω — “quoted” café ß ½ 🙂 \\u0000 end\"\n"
+                            "description = 'Ψ < φ > ω | ∞ ± µ'"));
+  const auto document = kinema_test::run_kinema({"latex", path});
+  REQUIRE(document.exit_status == 0);
+  CHECK(document.out.find('\0') == std::string::npos);
+  CHECK(document.out.find("\\ensuremath{\\theta}") != std::string::npos);
+  std::string log;
+  CHECK(compile_document(document.out, "unicode_title", log) >= 3);
+  CHECK(log.find("not set up for use with LaTeX") == std::string::npos);
+}
