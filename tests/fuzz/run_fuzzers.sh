@@ -5,7 +5,8 @@
 #   bash tests/fuzz/run_fuzzers.sh [READER_RUNS] [PIPELINE_SECONDS]
 #
 # Defaults are the figures reported in the README: 10^7 executions of the reader and
-# an hour of the whole pipeline. CI runs a short smoke run (.ci/run). Each run is
+# an hour of the whole pipeline. CI runs a short smoke run (.ci/run) with FUZZ_SEED=1,
+# so that it mutates the same way in every run. Each run is
 # limited to 10 s and 2 GB; a crash, a time-out, a memory blow-up or an internal
 # error (an exception other than kinema::Error) stops the fuzzer with status 1 and
 # leaves the input in build-fuzz/findings/ — copy it to tests/fuzz/regressions/
@@ -25,6 +26,7 @@ mkdir -p build-fuzz/findings
 export ASAN_OPTIONS=detect_leaks=0:allocator_may_return_null=0 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1
 common=(-timeout=10 -rss_limit_mb=2048 -dict=tests/fuzz/kinema.dict -artifact_prefix=build-fuzz/findings/
         -print_final_stats=1)
+if [ -n "${FUZZ_SEED:-}" ]; then common+=(-seed="$FUZZ_SEED"); fi
 for target in reader pipeline; do
   corpus=build-fuzz/corpus/$target
   mkdir -p "$corpus"
@@ -32,9 +34,13 @@ for target in reader pipeline; do
   if [ "$target" = reader ]; then limit=(-runs="$reader_runs"); else limit=(-max_total_time="$pipeline_seconds"); fi
   echo "== $target: ${limit[*]}"
   start=$(date +%s)
-  ./build-fuzz/tests/fuzz/kinema_${target}_fuzz "${common[@]}" "${limit[@]}" "$corpus" 2>&1 |
-    tee build-fuzz/$target.log | grep -E "^#[0-9]+.*(DONE|pulse)|ERROR|SUMMARY|stat::" || true
-  status=${PIPESTATUS[0]}
-  echo "== $target: exit $status after $(( $(date +%s) - start )) s"
-  [ "$status" -eq 0 ] || exit 1
+  status=0
+  ./build-fuzz/tests/fuzz/kinema_${target}_fuzz "${common[@]}" "${limit[@]}" "$corpus" >build-fuzz/$target.log 2>&1 ||
+    status=$?
+  grep -E "^#[0-9]+.*DONE|ERROR|SUMMARY|stat::" build-fuzz/$target.log || true
+  echo "== $target: exit $status after $(( $(date +%s) - start )) s (log: build-fuzz/$target.log)"
+  if [ "$status" -ne 0 ]; then
+    tail -n 60 build-fuzz/$target.log
+    exit 1
+  fi
 done
