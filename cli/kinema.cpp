@@ -70,9 +70,14 @@ int run(int argc, char** argv) {
                        "input value (deg for a crank, output length unit for a slider; or with a "
                        "unit, e.g. \"30 deg\"); repeat for a list");
   eval_cmd->add_option("--sweep", sweep, "start:stop:step in the same units, e.g. 0:360:1");
-  eval_cmd->add_option("--format", format, "table, csv or json")
+  eval_cmd->add_option("--format", format, "table, csv, json, or npy (a NumPy structured array)")
       ->check(CLI::IsMember(printer_names(PrintKind::results)));
   eval_cmd->add_option("-o,--output", output_path, "write to this file instead of stdout");
+  int precision = 0;
+  eval_cmd->add_option("--precision", precision,
+                       "significant digits in table, csv and json (default: 6 in the table, 12 in csv, "
+                       "round-trip in json)")
+      ->check(CLI::Range(1, 17));
   unsigned threads = 1;
   eval_cmd->add_option("--threads", threads, "threads for long sweeps (the branch is kept)")
       ->check(CLI::Range(1u, 256u));
@@ -182,7 +187,9 @@ int run(int argc, char** argv) {
       }
     std::cerr << "\n";
   }
-  printer(PrintKind::results, format).print(out, {model, &states});
+  PrintJob job{model, &states};
+  job.precision = precision;
+  printer(PrintKind::results, format).print(out, job);
   write_output(out.str(), output_path);
   return 0;
 }

@@ -8,6 +8,7 @@ const Printer& derivation_latex_printer();
 const Printer& results_table_printer();
 const Printer& csv_printer();
 const Printer& json_printer();
+const Printer& npy_printer();
 const Printer& worked_solution_printer();
 const Printer& cpp_header_printer();
 
@@ -16,7 +17,7 @@ namespace {
 const std::vector<const Printer*>& all_printers() {
   static const std::vector<const Printer*> printers = {
       &derivation_text_printer(), &derivation_latex_printer(), &results_table_printer(), &csv_printer(),
-      &json_printer(),            &worked_solution_printer(),  &cpp_header_printer()};
+      &json_printer(),            &npy_printer(),              &worked_solution_printer(), &cpp_header_printer()};
   return printers;
 }
 

@@ -9,6 +9,9 @@ namespace kinema {
 /// `significant` significant digits, %g style ("0.129904", "1e-05"); never "-0".
 std::string format_significant(double value, int significant = 6);
 
+/// value rounded to `significant` significant digits (what format_significant prints, as a double).
+double round_significant(double value, int significant);
+
 /// Enough digits to read back the same double (17 significant).
 std::string format_round_trip(double value);
 

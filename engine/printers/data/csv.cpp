@@ -19,7 +19,8 @@ class CsvPrinter : public Printer {
     const Driver& input = system.input;
     const Dimension input_kind = input.dimension;
     auto column = [](const std::string& name, const std::string& unit) { return name + " [" + unit + "]"; };
-    auto number = [](double value) { return format_significant(value, 12); };
+    const int digits = job.precision > 0 ? job.precision : 12;
+    auto number = [&](double value) { return format_significant(value, digits); };
     out << column(input.name, scale.coordinate_unit(input_kind)) << ","
         << column(input.rate.get_name(), scale.rate_unit(input_kind)) << ","
         << column(input.second_rate.get_name(), scale.second_rate_unit(input_kind)) << ",status";

@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include <kinema/engine/printers/printer.hpp>
+#include <kinema/engine/report/number_format.hpp>
 #include <kinema/engine/report/diagnostics.hpp>
 #include <kinema/engine/report/output_scale.hpp>
 
@@ -21,6 +22,9 @@ class JsonPrinter : public Printer {
     const Driver& input = system.input;
     const Dimension input_kind = input.dimension;
     auto kind_name = [](Dimension d) { return d == Dimension::angle ? "angle" : "length"; };
+    // With --precision a number is rounded to that many significant digits (JSON then
+    // prints its shortest form); without, every double is written to round-trip.
+    const auto num = [&](double value) { return job.precision > 0 ? round_significant(value, job.precision) : value; };
     json doc;
     doc["title"] = system.title;
     doc["units"] = {{"angle", "deg"},
@@ -47,9 +51,9 @@ class JsonPrinter : public Printer {
     json results = json::array();
     for (const MotionState& s : *job.values) {
       json row;
-      row["input"] = scale.input(s.input);
-      row["input_rate"] = scale.rate(input_kind, s.input_rate);
-      row["input_second_rate"] = scale.rate(input_kind, s.input_second_rate);
+      row["input"] = num(scale.input(s.input));
+      row["input_rate"] = num(scale.rate(input_kind, s.input_rate));
+      row["input_second_rate"] = num(scale.rate(input_kind, s.input_second_rate));
       row["status"] = status_name(s.status);
       const std::string message = describe_failure(system, s);
       if (!message.empty()) row["message"] = message;
@@ -57,14 +61,14 @@ class JsonPrinter : public Printer {
       if (s.status != Status::unassembled) {
         for (std::size_t i = 0; i < system.unknowns.size(); ++i) {
           const Dimension kind = system.unknowns[i].dimension;
-          json c = {{"value", scale.coordinate(kind, s.q[i])}, {"rate", nullptr}, {"second_rate", nullptr}};
+          json c = {{"value", num(scale.coordinate(kind, s.q[i]))}, {"rate", nullptr}, {"second_rate", nullptr}};
           if (s.status == Status::ok) {
-            c["rate"] = scale.rate(kind, s.qd[i]);
-            c["second_rate"] = scale.rate(kind, s.qdd[i]);
+            c["rate"] = num(scale.rate(kind, s.qd[i]));
+            c["second_rate"] = num(scale.rate(kind, s.qdd[i]));
           }
           values[system.unknowns[i].name] = c;
         }
-        row["loop_residual"] = s.loop_residual / scale.length;
+        row["loop_residual"] = num(s.loop_residual / scale.length);
       }
       row["coordinates"] = values;
       json motion = json::object();
@@ -74,15 +78,15 @@ class JsonPrinter : public Printer {
           const PointMotion& m = s.points[p];
           json position = json::array(), velocity = json::array(), acceleration = json::array();
           for (std::size_t c = 0; c < m.dimension; ++c) {
-            position.push_back(m.position[c] / f);
-            velocity.push_back(m.velocity[c] / f);
-            acceleration.push_back(m.acceleration[c] / f);
+            position.push_back(num(m.position[c] / f));
+            velocity.push_back(num(m.velocity[c] / f));
+            acceleration.push_back(num(m.acceleration[c] / f));
           }
           motion[system.points[p].name] = {{"position", position},
                                            {"velocity", velocity},
-                                           {"speed", m.speed() / f},
+                                           {"speed", num(m.speed() / f)},
                                            {"acceleration", acceleration},
-                                           {"acceleration_magnitude", m.acceleration_magnitude() / f}};
+                                           {"acceleration_magnitude", num(m.acceleration_magnitude() / f)}};
         }
       }
       row["points"] = motion;

@@ -22,7 +22,8 @@ class ResultsTablePrinter : public Printer {
     const OutputScale scale(system);
     const Driver& input = system.input;
     const Dimension input_kind = input.dimension;
-    const auto number = [](double value) { return format_significant(value); };
+    const int digits = job.precision > 0 ? job.precision : 6;
+    const auto number = [&](double value) { return format_significant(value, digits); };
     out << system.title << "\n";
     out << "units: angles deg, angular rates rad/s and rad/s^2, lengths " << scale.length_unit
         << ", velocities " << scale.length_unit << "/s, accelerations " << scale.length_unit << "/s^2\n";
@@ -56,14 +57,15 @@ class ResultsTablePrinter : public Printer {
         out << "\n";
       }
       if (s.status != Status::ok || system.points.empty()) continue;
-      print_points(out, system, scale, s);
+      print_points(out, system, scale, s, digits);
     }
   }
 
  private:
   // One header per run of points with the same components.
   static void print_points(std::ostream& out, const ConstraintSystem& system, const OutputScale& scale,
-                           const MotionState& s) {
+                           const MotionState& s, int digits) {
+    const auto number = [&](double value) { return format_significant(value, digits); };
     const std::vector<std::string>* header = nullptr;
     for (std::size_t p = 0; p < system.points.size(); ++p) {
       const PointObservable& point = system.points[p];
@@ -79,12 +81,12 @@ class ResultsTablePrinter : public Printer {
       const PointMotion& motion = s.points[p];
       const double l = scale.length;
       out << "  " << pad(point.name, 8);
-      for (std::size_t c = 0; c < motion.dimension; ++c) out << pad(format_significant(motion.position[c] / l), 12);
-      for (std::size_t c = 0; c < motion.dimension; ++c) out << pad(format_significant(motion.velocity[c] / l), 12);
-      out << pad(format_significant(motion.speed() / l), 12);
+      for (std::size_t c = 0; c < motion.dimension; ++c) out << pad(number(motion.position[c] / l), 12);
+      for (std::size_t c = 0; c < motion.dimension; ++c) out << pad(number(motion.velocity[c] / l), 12);
+      out << pad(number(motion.speed() / l), 12);
       for (std::size_t c = 0; c < motion.dimension; ++c)
-        out << pad(format_significant(motion.acceleration[c] / l), 12);
-      out << format_significant(motion.acceleration_magnitude() / l) << "\n";
+        out << pad(number(motion.acceleration[c] / l), 12);
+      out << number(motion.acceleration_magnitude() / l) << "\n";
     }
   }
 };

@@ -28,7 +28,7 @@ TEST_CASE("engine/printers/printer: find_printer by kind and name") {
       all.insert(printer);
     }
   }
-  CHECK(all.size() == 7);
+  CHECK(all.size() == 8);
   // "latex" is two printers: the derivation block and the worked solution.
   CHECK(find_printer(PrintKind::derivation, "latex") != find_printer(PrintKind::document, "latex"));
   CHECK(find_printer(PrintKind::document, "latex")->kind() == PrintKind::document);
@@ -47,7 +47,7 @@ TEST_CASE("engine/printers/printer: unknown names and wrong kinds find nothing")
 
 TEST_CASE("engine/printers/printer: printer_names in a stable order") {
   CHECK(printer_names(PrintKind::derivation) == Names{"text", "latex"});
-  CHECK(printer_names(PrintKind::results) == Names{"table", "csv", "json"});
+  CHECK(printer_names(PrintKind::results) == Names{"table", "csv", "json", "npy"});
   CHECK(printer_names(PrintKind::document) == Names{"latex"});
   CHECK(printer_names(PrintKind::code) == Names{"cpp"});
   CHECK(printer_names(PrintKind::results) == printer_names(PrintKind::results));
@@ -68,7 +68,7 @@ TEST_CASE("engine/printers/printer: each printer prints something of its own fro
       outputs.insert(out.str());
     }
   }
-  CHECK(outputs.size() == 7);  // no two printers print the same
+  CHECK(outputs.size() == 8);  // no two printers print the same
   std::ostringstream code;
   find_printer(PrintKind::code, "cpp")->print(code, job);
   CHECK(code.str().find("namespace unit_four_bar") != std::string::npos);
