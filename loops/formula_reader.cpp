@@ -255,6 +255,8 @@ GiNaC::ex FormulaReader::read(const std::string& formula, const std::string& con
   return e;
 }
 
+bool is_compiled_function(const std::string& name) { return compiled_functions().count(name) > 0; }
+
 const char* understood_functions() {
   return "sin, cos, tan, exp, log, sqrt, abs, asin, acos, atan, atan2 and powers (^)";
 }

@@ -31,5 +31,7 @@ class FormulaReader {
 
 /// Functions a formula may use (the compiled evaluator runs each of them).
 const char* understood_functions();
+/// True for a function the compiled evaluator runs ("sin", "atan2", ...).
+bool is_compiled_function(const std::string& name);
 
 }  // namespace kinema

@@ -154,6 +154,7 @@ class Builder {
         vector = parse(loop.complex_formula, context);
         x = real_part_of(vector);
         y = imag_part_of(vector);
+        check_separated(x, y, loop.complex_formula, context);
         group.terms = terms_as_written(loop.complex_formula, vector, context);
       } else {
         x = parse(loop.x_formula, context + " (x)");
@@ -211,6 +212,7 @@ class Builder {
       observable.where = point.where;
       observable.components = {"x", "y"};
       observable.position = {real_part_of(position), imag_part_of(position)};
+      check_separated(observable.position[0], observable.position[1], point.formula, context);
       observable.written = position;
       system.points.push_back(observable);
     }
@@ -292,6 +294,22 @@ class Builder {
   }
 
   static bool has_imaginary(const ex& e) { return !imag_part_of(e).is_zero(); }
+
+  // The x and y parts must be real functions the evaluator compiles: a function of a
+  // complex argument other than exp(I*...) (log(I*phi4) has the part log(abs(I*phi4)))
+  // does not separate so, and is refused here rather than failing in the compiler.
+  static void check_separated(const ex& x, const ex& y, const std::string& formula, const std::string& context) {
+    for (const ex& part : {x, y}) {
+      bool separated = !part.has(GiNaC::I);
+      for (auto it = part.preorder_begin(); separated && it != part.preorder_end(); ++it)
+        separated = !GiNaC::is_a<GiNaC::function>(*it) || is_compiled_function(GiNaC::ex_to<GiNaC::function>(*it).get_name());
+      if (!separated) {
+        throw InputError(context + ": \"" + formula + "\" cannot be split into real x and y parts: only exp(I*angle) "
+                         "may take a complex argument (not log(I*phi), say); write it by components, "
+                         "{ x = \"...\", y = \"...\" }");
+      }
+    }
+  }
 
   static bool depends_on_unknowns(const ex& e, const ConstraintSystem& system) {
     for (const auto& q : system.unknowns)

@@ -270,3 +270,13 @@ TEST_CASE("a formula that makes the simplification blow up is evaluated and deri
     }
   }
 }
+
+// Found by the pipeline fuzzer (tests/fuzz/regressions/loop_log_of_complex_argument.toml):
+// a function of a complex argument other than exp(I*...) does not split into real x and
+// y parts (log(I*phi4) -> log(abs(I*phi4))); it was an "internal error" in the compiler.
+TEST_CASE("a loop or point with a function of a complex argument is bad input, not an internal error") {
+  check_bad("log_complex", replaced("- d\"", "- d + 0.001*a*log(I*theta4)\""),
+            {2, {"log_complex.toml:15", "loop \"ABCD\"", "cannot be split into real x and y parts", "by components"}});
+  check_bad("abs_complex_point", replaced("P = \"a*exp(I*theta2)\"", "P = \"a*exp(I*theta2) + abs(I*a)*sqrt(I)\""),
+            {2, {"abs_complex_point.toml", "point \"P\"", "cannot be split"}});
+}
