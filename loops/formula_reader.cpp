@@ -16,6 +16,7 @@ using GiNaC::ex;
 // Limits (README, "Mechanism files").
 constexpr int kMaxDepth = 100;                 ///< parentheses
 constexpr std::size_t kMaxLiteralLength = 100;  ///< characters of one number
+constexpr std::size_t kMaxLiteralExponentDigits = 4;  ///< digits of its exponent (1e9999 at most)
 constexpr double kMaxExactDigits = 400;        ///< decimal digits of an exact power of numbers
 constexpr double kMaxExponent = 1000;          ///< magnitude of a numeric exponent
 constexpr double kMaxExpandedTerms = 10000;    ///< terms of the formula multiplied out
@@ -73,6 +74,12 @@ ShieldedFormula shield_numbers(const std::string& formula, const std::string& pr
         if (k < n && is_digit(formula[k])) {
           j = k;
           while (j < n && is_digit(formula[j])) ++j;
+          // CLN builds 10^exponent to read the number: 1e(78 digits) never ends.
+          if (j - k > kMaxLiteralExponentDigits) {
+            throw InputError(context + ": the number " + formula.substr(i, std::min<std::size_t>(j - i, 30)) +
+                             "... has an exponent of more than " + std::to_string(kMaxLiteralExponentDigits) +
+                             " digits; numbers are at most about 1e308");
+          }
         }
       }
       const std::string literal = formula.substr(i, j - i);

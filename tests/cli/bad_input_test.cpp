@@ -280,3 +280,12 @@ TEST_CASE("a loop or point with a function of a complex argument is bad input, n
   check_bad("abs_complex_point", replaced("P = \"a*exp(I*theta2)\"", "P = \"a*exp(I*theta2) + abs(I*a)*sqrt(I)\""),
             {2, {"abs_complex_point.toml", "point \"P\"", "cannot be split"}});
 }
+
+// Found by the pipeline fuzzer (tests/fuzz/regressions/number_literal_exponent_78_digits.toml):
+// a number literal with a long exponent (1e111...1) made CLN compute 10^exponent for ever.
+TEST_CASE("a number with an exponent of more than 4 digits is refused at once") {
+  check_bad("long_exponent", replaced("d = \"100 mm\"", "d = \"a*1e" + std::string(78, '1') + "\""),
+            {2, {"long_exponent.toml:6", "exponent of more than 4 digits"}});
+  check_bad("long_exponent_point", replaced("P = \"a*exp(I*theta2)\"", "P = \"1e-123456*a\""),
+            {2, {"long_exponent_point.toml", "point \"P\"", "exponent of more than 4 digits"}});
+}
