@@ -204,10 +204,6 @@ FormulaReader::FormulaReader() : parser_(GiNaC::symtab(), /*strict=*/true) {}
 
 void FormulaReader::define(const std::string& name, const GiNaC::ex& symbol) { parser_.get_syms()[name] = symbol; }
 
-bool FormulaReader::defines(const std::string& name) const {
-  return const_cast<GiNaC::parser&>(parser_).get_syms().count(name) > 0;
-}
-
 GiNaC::ex FormulaReader::read(const std::string& formula, const std::string& context) {
   check_shape(formula, context);
   // A placeholder prefix no defined name starts with.

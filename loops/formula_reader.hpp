@@ -20,7 +20,6 @@ class FormulaReader {
 
   /// Makes `name` a symbol formulas may use.
   void define(const std::string& name, const GiNaC::ex& symbol);
-  bool defines(const std::string& name) const;
 
   /// The formula as an expression; throws InputError(context + ": ...") naming what is wrong.
   GiNaC::ex read(const std::string& formula, const std::string& context);

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include <kinema/engine/constraint_system.hpp>
 
@@ -23,5 +24,16 @@ struct OutputScale {
   std::string rate_unit(Dimension dimension) const;
   std::string second_rate_unit(Dimension dimension) const;
 };
+
+/// A column of the tabular formats (CSV, npy): its name and output unit.
+struct ResultColumn {
+  std::string name, unit;
+};
+
+/// The value columns of one row, in order: input, its rate and second rate; each
+/// unknown with its rate and second rate; each point's position, velocity, speed,
+/// acceleration and its magnitude. The first kInputColumns are the input's.
+std::vector<ResultColumn> result_columns(const ConstraintSystem& system, const OutputScale& scale);
+constexpr std::size_t kInputColumns = 3;
 
 }  // namespace kinema

@@ -18,27 +18,14 @@ class CsvPrinter : public Printer {
     const OutputScale scale(system);
     const Driver& input = system.input;
     const Dimension input_kind = input.dimension;
-    auto column = [](const std::string& name, const std::string& unit) { return name + " [" + unit + "]"; };
     const int digits = job.precision > 0 ? job.precision : 12;
     auto number = [&](double value) { return format_significant(value, digits); };
-    out << column(input.name, scale.coordinate_unit(input_kind)) << ","
-        << column(input.rate.get_name(), scale.rate_unit(input_kind)) << ","
-        << column(input.second_rate.get_name(), scale.second_rate_unit(input_kind)) << ",status";
-    for (const Coordinate& q : system.unknowns) {
-      out << "," << column(q.name, scale.coordinate_unit(q.dimension)) << ","
-          << column(q.rate.get_name(), scale.rate_unit(q.dimension)) << ","
-          << column(q.second_rate.get_name(), scale.second_rate_unit(q.dimension));
+    const std::vector<ResultColumn> columns = result_columns(system, scale);
+    for (std::size_t k = 0; k < columns.size(); ++k) {
+      out << (k == 0 ? "" : ",") << columns[k].name << " [" << columns[k].unit << "]";
+      if (k + 1 == kInputColumns) out << ",status";
     }
-    const std::string l = scale.length_unit;
-    std::size_t point_columns = 0;
-    for (const PointObservable& p : system.points) {
-      for (const auto& c : p.components) out << "," << column(p.name + "_" + c, l);
-      for (const auto& c : p.components) out << "," << column(p.name + "_v" + c, l + "/s");
-      out << "," << column(p.name + "_speed", l + "/s");
-      for (const auto& c : p.components) out << "," << column(p.name + "_a" + c, l + "/s^2");
-      out << "," << column(p.name + "_acceleration", l + "/s^2");
-      point_columns += 3 * p.components.size() + 2;
-    }
+    const std::size_t point_columns = columns.size() - kInputColumns - 3 * system.unknowns.size();
     // A last column says what a status cannot: this row was reached after a gap, so
     // its assembly branch is not guaranteed to be the one of the rows before it.
     out << ",note\n";

@@ -19,25 +19,6 @@ namespace {
 
 constexpr double kUndefined = std::numeric_limits<double>::quiet_NaN();
 
-// The field names, as the CSV header's names without their units.
-std::vector<std::string> field_names(const ConstraintSystem& system) {
-  std::vector<std::string> names = {system.input.name, system.input.rate.get_name(),
-                                    system.input.second_rate.get_name()};
-  for (const Coordinate& q : system.unknowns) {
-    names.push_back(q.name);
-    names.push_back(q.rate.get_name());
-    names.push_back(q.second_rate.get_name());
-  }
-  for (const PointObservable& p : system.points) {
-    for (const auto& c : p.components) names.push_back(p.name + "_" + c);
-    for (const auto& c : p.components) names.push_back(p.name + "_v" + c);
-    names.push_back(p.name + "_speed");
-    for (const auto& c : p.components) names.push_back(p.name + "_a" + c);
-    names.push_back(p.name + "_acceleration");
-  }
-  return names;
-}
-
 // The header: magic, version, length, then a Python dict literal padded with spaces
 // (and a final newline) so that the data starts on a 64-byte boundary.
 std::string npy_header(const std::vector<std::string>& names, std::size_t rows) {
@@ -76,7 +57,8 @@ class NpyPrinter : public Printer {
     const ConstraintSystem& system = job.model.system;
     const OutputScale scale(system);
     const Dimension input_kind = system.input.dimension;
-    const std::vector<std::string> names = field_names(system);
+    std::vector<std::string> names;  // the CSV's column names without their units
+    for (const ResultColumn& column : result_columns(system, scale)) names.push_back(column.name);
     std::string data = npy_header(names, job.values->size());
     const std::size_t record = names.size() * sizeof(double) + 2;
     data.reserve(data.size() + record * job.values->size());
