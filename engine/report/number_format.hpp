@@ -2,12 +2,24 @@
 // through these, so a value prints the same everywhere.
 #pragma once
 
+#include <cstddef>
 #include <string>
 
 namespace kinema {
 
 /// `significant` significant digits, %g style ("0.129904", "1e-05"); never "-0".
 std::string format_significant(double value, int significant = 6);
+
+/// The same characters written at `out` (at least kMaxNumberChars free); returns
+/// the end. What long result runs use: no allocation per number.
+char* put_significant(char* out, double value, int significant);
+
+/// The shortest text that reads back as the same double ("0.1", "6.283185307179586",
+/// "1e-05"); never "-0". Returns the end.
+char* put_shortest(char* out, double value);
+
+/// Room put_significant and put_shortest may need.
+constexpr std::size_t kMaxNumberChars = 32;
 
 /// value rounded to `significant` significant digits (what format_significant prints, as a double).
 double round_significant(double value, int significant);

@@ -1,7 +1,11 @@
 // engine/report/number_format: how every number becomes text.
 #include <doctest/doctest.h>
 
+#include <charconv>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <random>
 #include <cstdlib>
 #include <limits>
 #include <string>
@@ -52,4 +56,56 @@ TEST_CASE("engine/report/number_format: format_fixed") {
   CHECK(format_fixed(1e-9, 6) == "0.000000");
   // Large values are printed in full, not cut (the buffer holds them).
   CHECK(format_fixed(1e100, 2).size() == 101 + 3);
+}
+
+// put_significant has its own path for up to 13 digits; it must give exactly what
+// std::to_chars (%g, correctly rounded) gives, including next to rounding ties,
+// powers of ten and values that round up into the next decade.
+TEST_CASE("engine/report/number_format: put_significant equals std::to_chars for every kind of double") {
+  std::mt19937_64 random(20261122);
+  std::uniform_int_distribution<int> decade(-300, 300);
+  long mismatches = 0, checked = 0;
+  auto check = [&](double value, int digits) {
+    char fast[kinema::kMaxNumberChars], exact[64];
+    const std::string a(fast, kinema::put_significant(fast, value, digits));
+    const std::string b(exact, std::to_chars(exact, exact + sizeof exact, value == 0 ? 0.0 : value,
+                                             std::chars_format::general, digits).ptr);
+    ++checked;
+    if (a != b && ++mismatches <= 5) {
+      CAPTURE(value);
+      CAPTURE(digits);
+      CHECK(a == b);
+    }
+  };
+  for (int i = 0; i < 200000; ++i) {
+    std::uint64_t bits = random();
+    double any;
+    std::memcpy(&any, &bits, sizeof any);
+    if (std::isfinite(any))
+      for (int digits : {1, 6, 12, 13}) check(any, digits);
+    const double power = std::pow(10.0, decade(random) / 3);
+    check(power, 12);
+    check(std::nextafter(power, 0.0), 12);
+    check(std::nextafter(power, 1e300), 6);
+    const double tie = static_cast<double>(random() % 1000000000000ULL) + 0.5;  // exact ties at 12 digits
+    check(tie, 12);
+    check(tie / 1e6, 12);
+    check(-tie * 1e-9, 12);
+    check(std::ldexp(static_cast<double>(random() >> 11), decade(random)), 12);
+  }
+  for (double value : {0.5, 1.5, 2.5, 9.5, 99.5, 999999.5, 9999995.0, 1e-5, 123456789012.5, 1e22, 9.9999999999995,
+                       -0.0, 1e300, 5e-324, 2.2250738585072014e-308})
+    for (int digits = 1; digits <= 17; ++digits) check(value, digits);
+  CHECK(mismatches == 0);
+  CHECK(checked > 1000000);
+}
+
+TEST_CASE("engine/report/number_format: put_shortest reads back as the same double") {
+  char text[kinema::kMaxNumberChars];
+  for (double value : {0.1, 6.283185307179586, 1e-5, -2.5e300, 0.0684484038671}) {
+    const std::string printed(text, kinema::put_shortest(text, value));
+    CHECK(std::strtod(printed.c_str(), nullptr) == value);
+  }
+  CHECK(std::string(text, kinema::put_shortest(text, -0.0)) == "0");
+  CHECK(std::string(text, kinema::put_shortest(text, 0.1)) == "0.1");
 }
