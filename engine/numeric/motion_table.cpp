@@ -35,6 +35,19 @@ MotionTable::MotionTable(const std::vector<double>& inputs, std::size_t unknowns
   points_.resize(inputs.size() * columns);
 }
 
+void MotionTable::assign_inputs(const InputValues& inputs, std::size_t first, std::size_t count) {
+  batch_rows_ = 0;
+  input_.resize(count);
+  for (std::size_t row = 0; row < count; ++row) input_[row] = inputs[first + row];
+  for (auto* values : {&q_, &qd_, &qdd_}) values->assign(count * n_, 0.0);
+  loop_residual_.assign(count, 0.0);
+  reciprocal_condition_.assign(count, 0.0);
+  status_.assign(count, Status::unassembled);
+  failure_.assign(count, Failure{});
+  const std::size_t columns = point_offset_.empty() ? 0 : point_offset_.back() + 3 * point_dimensions_.back();
+  points_.assign(count * columns, 0.0);
+}
+
 std::size_t MotionTable::bytes() const {
   return sizeof(double) * (input_.capacity() + q_.capacity() + qd_.capacity() + qdd_.capacity() +
                            loop_residual_.capacity() + reciprocal_condition_.capacity() + points_.capacity()) +

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include <kinema/engine/numeric/failure.hpp>
+#include <kinema/engine/numeric/input_values.hpp>
 
 namespace kinema {
 
@@ -43,6 +44,10 @@ class MotionTable {
   /// Rows for `inputs`, all unassembled until set; points of the given dimensions.
   MotionTable(const std::vector<double>& inputs, std::size_t unknowns, const std::vector<std::size_t>& point_dimensions,
               double rate, double second_rate);
+
+  /// Makes the table rows for values [first, first + count) of `inputs`, all unassembled
+  /// until set (what a streamed run reuses block after block; keeps its capacity).
+  void assign_inputs(const InputValues& inputs, std::size_t first, std::size_t count);
 
   std::size_t size() const { return input_.size(); }
   bool empty() const { return input_.empty(); }

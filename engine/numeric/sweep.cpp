@@ -13,51 +13,67 @@ namespace kinema {
 
 namespace {
 
-// Solves rows [begin, end) of the table in order from q (a solution at inputs[begin]
-// or a guess); rows before begin belong to another thread and are not read. Adds the
-// rows solved in SIMD blocks to batch_rows.
-void analyse_range(const Kinematics& kinematics, std::size_t begin, std::size_t end, Eigen::VectorXd q,
-                   MotionTable& table, bool batch, std::size_t& batch_rows) {
-  const double rate = table.input_rate(), second_rate = table.input_second_rate();
-  Workspace workspace(kinematics);
-  std::unique_ptr<BatchWorkspace> batch_workspace;
-  if (batch && rate != 0) batch_workspace = std::make_unique<BatchWorkspace>(kinematics);
-  MotionState state;
-  Eigen::VectorXd trial, predicted(q.size());
-  std::size_t next_batch_try = begin;  // after a refused block, go on one by one for a while
-  bool have_previous = false;  // row - 1 is solved (status ok) on the user's branch
-  bool after_gap = false;
+// Where a run of rows stands between calls of solve_rows: the last solution and what
+// is known of the rows before the next one.
+struct RunCursor {
+  Eigen::VectorXd q;                ///< A solution at the last row solved (or the guess).
+  bool have_previous = false;       ///< The last row is solved (status ok) on the user's branch.
+  bool after_gap = false;           ///< The last row failed or was singular after solved rows.
   bool any_solved = false;
-  for (std::size_t row = begin; row < end; ++row) {
+  std::size_t next_batch_try = 0;   ///< Run row: after a refused SIMD block, one by one until here.
+  std::size_t batch_rows = 0;       ///< Rows solved in SIMD blocks.
+};
+
+struct Solvers {
+  explicit Solvers(const Kinematics& kinematics, bool batch, double rate) : scalar(kinematics) {
+    if (batch && rate != 0) simd = std::make_unique<BatchWorkspace>(kinematics);
+  }
+  Workspace scalar;
+  std::unique_ptr<BatchWorkspace> simd;
+};
+
+// Solves table rows from `first` on, in order, until a row at or past `stop`. A SIMD
+// block may run on past stop, up to `limit`; rows before first back to history_begin
+// are solved rows it may predict from (rows before history_begin belong to another
+// thread and are not read). Table row 0 is row `offset` of the run. Returns the row
+// after the last one solved.
+std::size_t solve_rows(const Kinematics& kinematics, Solvers& solvers, MotionTable& table, std::size_t first,
+                       std::size_t stop, std::size_t limit, std::size_t history_begin, std::size_t offset,
+                       RunCursor& at) {
+  const double rate = table.input_rate(), second_rate = table.input_second_rate();
+  MotionState state;
+  Eigen::VectorXd trial, predicted(at.q.size());
+  std::size_t row = first;
+  for (; row < stop; ++row) {
     const double input = table.input(row);
-    if (batch_workspace && have_previous && row >= next_batch_try && row + BatchWorkspace::kLanes <= end &&
+    if (solvers.simd && at.have_previous && offset + row >= at.next_batch_try && row + BatchWorkspace::kLanes <= limit &&
         table.failure(row - 1).kind == Failure::Kind::none) {
-      if (batch_workspace->solve(table, row, begin)) {
-        batch_rows += BatchWorkspace::kLanes;
+      if (solvers.simd->solve(table, row, history_begin)) {
+        at.batch_rows += BatchWorkspace::kLanes;
         row += BatchWorkspace::kLanes - 1;
-        q = table.q(row);
+        at.q = table.q(row);
         continue;
       }
-      next_batch_try = row + BatchWorkspace::kLanes;
+      at.next_batch_try = offset + row + BatchWorkspace::kLanes;
     }
     bool solved = false;
     Failure why;
-    trial = q;
-    if (have_previous) {
+    trial = at.q;
+    if (at.have_previous) {
       // Fast path for sweeps: predict from the rates just computed (dq/dtheta =
       // qd/thetad) and correct; the general continuation only when that fails.
       const double previous_input = table.input(row - 1);
       const double h = input - previous_input;
       if (rate != 0 && std::fabs(h) <= kinematics.max_continuation_step()) {
-        for (Eigen::Index i = 0; i < q.size(); ++i) {
-          predicted[i] = solver::predict_second_order(q[i], table.qd(row - 1)[i], table.qdd(row - 1)[i], rate,
+        for (Eigen::Index i = 0; i < at.q.size(); ++i) {
+          predicted[i] = solver::predict_second_order(at.q[i], table.qd(row - 1)[i], table.qdd(row - 1)[i], rate,
                                                       second_rate, h);
         }
-        solved = workspace.predict_and_correct(input, predicted, trial);
+        solved = solvers.scalar.predict_and_correct(input, predicted, trial);
       }
       double stuck_at = previous_input;
       bool too_far = false;
-      if (!solved) solved = workspace.continue_to(previous_input, input, trial, &stuck_at, &too_far);
+      if (!solved) solved = solvers.scalar.continue_to(previous_input, input, trial, &stuck_at, &too_far);
       if (!solved) {
         why.kind = too_far ? Failure::Kind::too_far : Failure::Kind::branch_stops;
         why.from = previous_input;
@@ -66,12 +82,12 @@ void analyse_range(const Kinematics& kinematics, std::size_t begin, std::size_t 
     } else {
       std::size_t worst_group = 0;
       double residual = 0;
-      solved = workspace.solve_position(input, trial, &worst_group, &residual);
+      solved = solvers.scalar.solve_position(input, trial, &worst_group, &residual);
       if (!solved) {
         why.kind = Failure::Kind::group_open;
         why.group = static_cast<std::uint32_t>(worst_group);
         why.residual = residual;
-        why.from_guesses = !after_gap;
+        why.from_guesses = !at.after_gap;
       }
     }
     if (!solved) {
@@ -80,19 +96,20 @@ void analyse_range(const Kinematics& kinematics, std::size_t begin, std::size_t 
       failed.status = Status::unassembled;
       failed.failure = why;
       table.set(row, failed);
-      after_gap = any_solved;
-      have_previous = false;  // resume from the last good q; the branch may differ after a gap
+      at.after_gap = at.any_solved;
+      at.have_previous = false;  // resume from the last good q; the branch may differ after a gap
       continue;
     }
-    q = trial;
-    any_solved = true;
-    workspace.motion_into(input, rate, second_rate, q, state);
-    if (after_gap && state.status == Status::ok) state.failure.kind = Failure::Kind::resumed_after_gap;
+    at.q = trial;
+    at.any_solved = true;
+    solvers.scalar.motion_into(input, rate, second_rate, at.q, state);
+    if (at.after_gap && state.status == Status::ok) state.failure.kind = Failure::Kind::resumed_after_gap;
     // Past a singular position the branch may change: treat it like a gap.
-    after_gap = state.status != Status::ok;
-    have_previous = state.status == Status::ok;
+    at.after_gap = state.status != Status::ok;
+    at.have_previous = state.status == Status::ok;
     table.set(row, state);
   }
+  return row;
 }
 
 }  // namespace
@@ -101,7 +118,6 @@ MotionTable solve_sweep(const Kinematics& kinematics, const std::vector<double>&
   const std::size_t n = inputs.size();
   MotionTable table(inputs, kinematics.unknown_count(), kinematics.layout().point_dimensions, settings.rate,
                     settings.second_rate);
-  const bool batch = settings.simd;
   unsigned threads = settings.threads;
   if (n == 0) return table;
   // Short runs are not worth a thread.
@@ -125,21 +141,78 @@ MotionTable solve_sweep(const Kinematics& kinematics, const std::vector<double>&
       begin = {0, n};
     }
   }
+  std::vector<RunCursor> cursors(threads);
+  auto solve_chunk = [&](unsigned t) {
+    Solvers solvers(kinematics, settings.simd, settings.rate);
+    cursors[t].q = start[t];
+    solve_rows(kinematics, solvers, table, begin[t], begin[t + 1], begin[t + 1], begin[t], 0, cursors[t]);
+  };
   if (threads == 1) {
-    std::size_t batch_rows = 0;
-    analyse_range(kinematics, 0, n, start[0], table, batch, batch_rows);
-    table.add_batch_rows(batch_rows);
-    return table;
+    solve_chunk(0);
+  } else {
+    std::vector<std::thread> workers;
+    for (unsigned t = 0; t < threads; ++t) workers.emplace_back(solve_chunk, t);
+    for (auto& worker : workers) worker.join();
   }
-  std::vector<std::thread> workers;
-  std::vector<std::size_t> batch_rows(threads, 0);
-  for (unsigned t = 0; t < threads; ++t) {
-    workers.emplace_back(analyse_range, std::cref(kinematics), begin[t], begin[t + 1], start[t], std::ref(table),
-                         batch, std::ref(batch_rows[t]));
-  }
-  for (auto& worker : workers) worker.join();
-  for (std::size_t rows : batch_rows) table.add_batch_rows(rows);
+  for (const RunCursor& cursor : cursors) table.add_batch_rows(cursor.batch_rows);
   return table;
+}
+
+// The serial run, block by block: each block's table holds the last rows of the one
+// before (the SIMD prediction reads back kLanes + 1 rows), then the block's values and
+// kLanes - 1 more, so that a SIMD block starting inside the block is taken or refused
+// exactly as in one table.
+struct SweepSolver::State {
+  State(const Kinematics& k, InputValues values, const SweepSettings& s)
+      : kinematics(k),
+        inputs(std::move(values)),
+        settings(s),
+        solvers(k, s.simd, s.rate),
+        history(std::vector<double>{}, k.unknown_count(), k.layout().point_dimensions, s.rate, s.second_rate) {
+    at.q = k.guess();
+  }
+  static constexpr std::size_t kHistory = BatchWorkspace::kLanes + 1;
+  const Kinematics& kinematics;
+  InputValues inputs;
+  SweepSettings settings;
+  Solvers solvers;
+  RunCursor at;
+  MotionTable history;  ///< The last rows solved (up to kHistory), ending at row next - 1.
+  std::size_t next = 0;
+};
+
+SweepSolver::SweepSolver(const Kinematics& kinematics, InputValues inputs, const SweepSettings& settings)
+    : state_(std::make_unique<State>(kinematics, std::move(inputs), settings)) {}
+SweepSolver::~SweepSolver() = default;
+
+std::size_t SweepSolver::size() const { return state_->inputs.size(); }
+std::size_t SweepSolver::solved() const { return state_->next; }
+
+void SweepSolver::solve_next(SweepBlock& block, std::size_t rows) {
+  State& s = *state_;
+  const std::size_t start = s.next, n = s.inputs.size();
+  const std::size_t history = s.history.size();
+  const std::size_t count = std::min(std::max<std::size_t>(rows, 1), n - start);
+  const std::size_t ahead = std::min(count + BatchWorkspace::kLanes - 1, n - start);
+  if (block.table.unknown_count() != s.kinematics.unknown_count() || block.table.input_rate() != s.settings.rate ||
+      block.table.input_second_rate() != s.settings.second_rate) {
+    block.table = MotionTable(std::vector<double>{}, s.kinematics.unknown_count(),
+                              s.kinematics.layout().point_dimensions, s.settings.rate, s.settings.second_rate);
+  }
+  MotionTable& table = block.table;
+  table.assign_inputs(s.inputs, start - history, history + ahead);
+  for (std::size_t row = 0; row < history; ++row) table.set(row, s.history[row]);
+  const std::size_t before = s.at.batch_rows;
+  const std::size_t reached =
+      solve_rows(s.kinematics, s.solvers, table, history, history + count, table.size(), 0, start - history, s.at);
+  table.add_batch_rows(s.at.batch_rows - before);
+  block.first = history;
+  block.last = reached;
+  block.run_row = start;
+  s.next = start + (reached - history);
+  const std::size_t keep = std::min(State::kHistory, reached);
+  s.history.assign_inputs(s.inputs, s.next - keep, keep);
+  for (std::size_t row = 0; row < keep; ++row) s.history.set(row, table[reached - keep + row]);
 }
 
 }  // namespace kinema

@@ -4,8 +4,10 @@
 // a status and a structured Failure; nothing is thrown for them.
 #pragma once
 
+#include <memory>
 #include <vector>
 
+#include <kinema/engine/numeric/input_values.hpp>
 #include <kinema/engine/numeric/kinematics.hpp>
 #include <kinema/engine/numeric/motion_table.hpp>
 
@@ -23,5 +25,35 @@ struct SweepSettings {
 };
 
 MotionTable solve_sweep(const Kinematics& kinematics, const std::vector<double>& inputs, const SweepSettings& settings);
+
+/// Rows of a run solved by SweepSolver: rows [first, last) of `table` are values
+/// [run_row, run_row + last - first) of the run (rows before first are the history
+/// the solver predicted from, rows from last on are not solved).
+struct SweepBlock {
+  MotionTable table;
+  std::size_t first = 0, last = 0, run_row = 0;
+  std::size_t size() const { return last - first; }
+};
+
+/// The serial run of solve_sweep, a block of rows at a time: the same rows, the same
+/// numbers, in memory that does not grow with the number of values (it keeps only the
+/// rows the next prediction reads).
+class SweepSolver {
+ public:
+  SweepSolver(const Kinematics& kinematics, InputValues inputs, const SweepSettings& settings);
+  ~SweepSolver();
+  SweepSolver(const SweepSolver&) = delete;
+  SweepSolver& operator=(const SweepSolver&) = delete;
+
+  std::size_t size() const;       ///< Values in the run.
+  std::size_t solved() const;     ///< Values solved so far (the next block starts there).
+  bool done() const { return solved() == size(); }
+  /// Solves the next `rows` values (a few more when a SIMD block runs past them) into block.
+  void solve_next(SweepBlock& block, std::size_t rows);
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
 
 }  // namespace kinema

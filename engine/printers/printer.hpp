@@ -40,8 +40,27 @@ class Printer {
   virtual void print(std::ostream& out, const PrintJob& job) const = 0;
 };
 
+/// A results format printed a block of rows at a time, so that a long run streams
+/// (engine/printers/results_stream.hpp): head, the rows of each block in order, tail.
+/// print() is the three over the whole of job.values, so a streamed run and a
+/// printed table give the same bytes.
+class ResultsPrinter : public Printer {
+ public:
+  PrintKind kind() const final { return PrintKind::results; }
+  void print(std::ostream& out, const PrintJob& job) const final;
+  /// What comes before the first row of a run of `rows` values.
+  virtual void head(std::string& out, const PrintJob& job, std::size_t rows) const = 0;
+  /// Rows [first, last) of table, the first being value `run_row` of the run.
+  virtual void rows(std::string& out, const PrintJob& job, const MotionTable& table, std::size_t first,
+                    std::size_t last, std::size_t run_row) const = 0;
+  /// What comes after the last row of a run of `rows` values.
+  virtual void tail(std::string& out, const PrintJob& job, std::size_t rows) const = 0;
+};
+
 /// The printer of that kind and name, or nullptr.
 const Printer* find_printer(PrintKind kind, std::string_view name);
+/// The results printer of that name, or nullptr.
+const ResultsPrinter* find_results_printer(std::string_view name);
 /// Names of the printers of a kind, in a stable order (for --help and messages).
 std::vector<std::string> printer_names(PrintKind kind);
 

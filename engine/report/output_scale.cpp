@@ -1,5 +1,8 @@
 #include <kinema/engine/report/output_scale.hpp>
 
+#include <algorithm>
+#include <limits>
+
 #include <cmath>
 
 namespace kinema {
@@ -57,6 +60,37 @@ std::vector<ResultColumn> result_columns(const ConstraintSystem& system, const O
     columns.push_back({p.name + "_acceleration", l + "/s^2"});
   }
   return columns;
+}
+
+void result_values(const ConstraintSystem& system, const OutputScale& scale, const MotionTable& table,
+                   std::size_t row, double* values) {
+  constexpr double undefined = std::numeric_limits<double>::quiet_NaN();
+  const Status status = table.status(row);
+  const Dimension input_kind = system.input.dimension;
+  *values++ = scale.input(table.input(row));
+  *values++ = scale.rate(input_kind, table.input_rate());
+  *values++ = scale.rate(input_kind, table.input_second_rate());
+  const auto q = table.q(row), qd = table.qd(row), qdd = table.qdd(row);
+  for (std::size_t i = 0; i < system.unknowns.size(); ++i) {
+    const Dimension kind = system.unknowns[i].dimension;
+    *values++ = status != Status::unassembled ? scale.coordinate(kind, q[Eigen::Index(i)]) : undefined;
+    *values++ = status == Status::ok ? scale.rate(kind, qd[Eigen::Index(i)]) : undefined;
+    *values++ = status == Status::ok ? scale.rate(kind, qdd[Eigen::Index(i)]) : undefined;
+  }
+  const double f = scale.length;
+  for (std::size_t p = 0; p < system.points.size(); ++p) {
+    const std::size_t dimension = system.points[p].components.size();
+    if (status != Status::ok) {
+      values = std::fill_n(values, 3 * dimension + 2, undefined);
+      continue;
+    }
+    const PointMotion m = table.point(row, p);
+    for (std::size_t c = 0; c < dimension; ++c) *values++ = m.position[c] / f;
+    for (std::size_t c = 0; c < dimension; ++c) *values++ = m.velocity[c] / f;
+    *values++ = m.speed() / f;
+    for (std::size_t c = 0; c < dimension; ++c) *values++ = m.acceleration[c] / f;
+    *values++ = m.acceleration_magnitude() / f;
+  }
 }
 
 }  // namespace kinema

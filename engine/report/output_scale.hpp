@@ -6,6 +6,7 @@
 #include <vector>
 
 #include <kinema/engine/constraint_system.hpp>
+#include <kinema/engine/numeric/motion_table.hpp>
 
 namespace kinema {
 
@@ -35,5 +36,11 @@ struct ResultColumn {
 /// acceleration and its magnitude. The first kInputColumns are the input's.
 std::vector<ResultColumn> result_columns(const ConstraintSystem& system, const OutputScale& scale);
 constexpr std::size_t kInputColumns = 3;
+
+/// Row `row` of a table in the order and units of result_columns, written to values
+/// (result_columns(...).size() of them); NaN where the row's status leaves a value
+/// undefined (no position when unassembled, no rates or points unless ok).
+void result_values(const ConstraintSystem& system, const OutputScale& scale, const MotionTable& table,
+                   std::size_t row, double* values);
 
 }  // namespace kinema

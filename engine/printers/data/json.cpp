@@ -1,30 +1,33 @@
-// Results for programs (schema in README.md).
-#include <iomanip>
+// Results for programs (schema in README.md): the description of the run
+// indented, then the results, one object per line so that a long run streams
+// and stays readable with line tools (grep, head, jq -c).
+#include <cmath>
+#include <vector>
+
 #include <nlohmann/json.hpp>
 
 #include <kinema/engine/printers/printer.hpp>
-#include <kinema/engine/report/number_format.hpp>
 #include <kinema/engine/report/diagnostics.hpp>
+#include <kinema/engine/report/number_format.hpp>
 #include <kinema/engine/report/output_scale.hpp>
 
 namespace kinema {
 namespace {
 
-class JsonPrinter : public Printer {
+using json = nlohmann::ordered_json;
+
+// A JSON string literal (quotes and escapes).
+std::string quoted(const std::string& text) { return json(text).dump(); }
+
+class JsonPrinter : public ResultsPrinter {
  public:
-  PrintKind kind() const override { return PrintKind::results; }
   const char* name() const override { return "json"; }
 
-  void print(std::ostream& out, const PrintJob& job) const override {
-    using json = nlohmann::ordered_json;
+  void head(std::string& out, const PrintJob& job, std::size_t) const override {
     const ConstraintSystem& system = job.model.system;
     const OutputScale scale(system);
     const Driver& input = system.input;
-    const Dimension input_kind = input.dimension;
     auto kind_name = [](Dimension d) { return d == Dimension::angle ? "angle" : "length"; };
-    // With --precision a number is rounded to that many significant digits (JSON then
-    // prints its shortest form); without, every double is written to round-trip.
-    const auto num = [&](double value) { return job.precision > 0 ? round_significant(value, job.precision) : value; };
     json doc;
     doc["title"] = system.title;
     doc["units"] = {{"angle", "deg"},
@@ -34,7 +37,7 @@ class JsonPrinter : public Printer {
                     {"velocity", scale.length_unit + "/s"},
                     {"acceleration", scale.length_unit + "/s^2"}};
     doc["input"] = {{"name", input.name},
-                    {"kind", kind_name(input_kind)},
+                    {"kind", kind_name(input.dimension)},
                     {"rate_name", input.rate.get_name()},
                     {"second_rate_name", input.second_rate.get_name()}};
     json coordinates = json::array();
@@ -48,58 +51,101 @@ class JsonPrinter : public Printer {
     json points = json::array();
     for (const PointObservable& p : system.points) points.push_back(p.name);
     doc["points"] = points;
-    json results = json::array();
-    for (const MotionState& s : *job.values) {
-      json row;
-      row["input"] = num(scale.input(s.input));
-      row["input_rate"] = num(scale.rate(input_kind, s.input_rate));
-      row["input_second_rate"] = num(scale.rate(input_kind, s.input_second_rate));
-      row["status"] = status_name(s.status);
-      const std::string message = describe_failure(system, s);
-      if (!message.empty()) row["message"] = message;
-      json values = json::object();
-      if (s.status != Status::unassembled) {
-        for (std::size_t i = 0; i < system.unknowns.size(); ++i) {
-          const Dimension kind = system.unknowns[i].dimension;
-          json c = {{"value", num(scale.coordinate(kind, s.q[i]))}, {"rate", nullptr}, {"second_rate", nullptr}};
-          if (s.status == Status::ok) {
-            c["rate"] = num(scale.rate(kind, s.qd[i]));
-            c["second_rate"] = num(scale.rate(kind, s.qdd[i]));
-          }
-          values[system.unknowns[i].name] = c;
-        }
-        row["loop_residual"] = num(s.loop_residual / scale.length);
+    std::string text = doc.dump(2);  // ends with "\n}": the results go before it
+    text.resize(text.size() - 2);
+    out += text + ",\n  \"results\": [";
+  }
+
+  void rows(std::string& out, const PrintJob& job, const MotionTable& table, std::size_t first, std::size_t last,
+            std::size_t run_row) const override {
+    const ConstraintSystem& system = job.model.system;
+    const OutputScale scale(system);
+    std::vector<double> values(result_columns(system, scale).size());
+    std::vector<std::string> coordinate_keys, point_keys;
+    for (const Coordinate& q : system.unknowns) coordinate_keys.push_back(quoted(q.name) + ": {\"value\": ");
+    for (const PointObservable& p : system.points) point_keys.push_back(quoted(p.name) + ": {\"position\": ");
+    char buffer[kMaxNumberChars];
+    // Every double so that it reads back exactly, or rounded to --precision digits;
+    // never NaN or infinity (not JSON): null.
+    const auto number = [&](double value) {
+      if (!std::isfinite(value)) {
+        out += "null";
+        return;
       }
-      row["coordinates"] = values;
-      json motion = json::object();
-      if (s.status == Status::ok) {
-        const double f = scale.length;
-        for (std::size_t p = 0; p < system.points.size(); ++p) {
-          const PointMotion& m = s.points[p];
-          json position = json::array(), velocity = json::array(), acceleration = json::array();
-          for (std::size_t c = 0; c < m.dimension; ++c) {
-            position.push_back(num(m.position[c] / f));
-            velocity.push_back(num(m.velocity[c] / f));
-            acceleration.push_back(num(m.acceleration[c] / f));
-          }
-          motion[system.points[p].name] = {{"position", position},
-                                           {"velocity", velocity},
-                                           {"speed", num(m.speed() / f)},
-                                           {"acceleration", acceleration},
-                                           {"acceleration_magnitude", num(m.acceleration_magnitude() / f)}};
-        }
+      if (job.precision > 0) value = round_significant(value, job.precision);
+      out.append(buffer, put_shortest(buffer, value));
+    };
+    const auto vector = [&](const double* v, std::size_t dimension) {
+      out += '[';
+      for (std::size_t c = 0; c < dimension; ++c) {
+        if (c > 0) out += ", ";
+        number(v[c]);
       }
-      row["points"] = motion;
-      results.push_back(row);
+      out += ']';
+    };
+    for (std::size_t row = first; row < last; ++row) {
+      result_values(system, scale, table, row, values.data());
+      const Status status = table.status(row);
+      out += run_row + (row - first) == 0 ? "\n    {\"input\": " : ",\n    {\"input\": ";
+      number(values[0]);
+      out += ", \"input_rate\": ";
+      number(values[1]);
+      out += ", \"input_second_rate\": ";
+      number(values[2]);
+      out += ", \"status\": \"";
+      out += status_name(status);
+      out += '"';
+      const std::string message = describe_failure(system, table.input(row), table.failure(row));
+      if (!message.empty()) out += ", \"message\": " + quoted(message);
+      out += ", \"coordinates\": {";
+      const double* v = values.data() + kInputColumns;
+      for (std::size_t i = 0; i < system.unknowns.size(); ++i, v += 3) {
+        if (status == Status::unassembled) continue;
+        if (i > 0) out += ", ";
+        out += coordinate_keys[i];
+        number(v[0]);
+        out += ", \"rate\": ";
+        number(v[1]);
+        out += ", \"second_rate\": ";
+        number(v[2]);
+        out += '}';
+      }
+      out += '}';
+      if (status != Status::unassembled) {
+        out += ", \"loop_residual\": ";
+        number(table.loop_residual(row) / scale.length);
+      }
+      out += ", \"points\": {";
+      for (std::size_t p = 0; p < system.points.size(); ++p) {
+        const std::size_t d = system.points[p].components.size();
+        if (status == Status::ok) {
+          if (p > 0) out += ", ";
+          out += point_keys[p];
+          vector(v, d);
+          out += ", \"velocity\": ";
+          vector(v + d, d);
+          out += ", \"speed\": ";
+          number(v[2 * d]);
+          out += ", \"acceleration\": ";
+          vector(v + 2 * d + 1, d);
+          out += ", \"acceleration_magnitude\": ";
+          number(v[3 * d + 1]);
+          out += '}';
+        }
+        v += 3 * d + 2;
+      }
+      out += "}}";
     }
-    doc["results"] = results;
-    out << std::setw(2) << doc << "\n";
+  }
+
+  void tail(std::string& out, const PrintJob&, std::size_t rows) const override {
+    out += rows > 0 ? "\n  ]\n}\n" : "]\n}\n";
   }
 };
 
 }  // namespace
 
-const Printer& json_printer() {
+const ResultsPrinter& json_printer() {
   static const JsonPrinter printer;
   return printer;
 }

@@ -17,8 +17,6 @@
 namespace kinema {
 namespace {
 
-constexpr double kUndefined = std::numeric_limits<double>::quiet_NaN();
-
 // The header: magic, version, length, then a Python dict literal padded with spaces
 // (and a final newline) so that the data starts on a 64-byte boundary.
 std::string npy_header(const std::vector<std::string>& names, std::size_t rows) {
@@ -42,57 +40,43 @@ std::string npy_header(const std::vector<std::string>& names, std::size_t rows) 
   return header + dict;
 }
 
-void put(std::string& out, double value) {
-  char bytes[sizeof value];
-  std::memcpy(bytes, &value, sizeof value);  // x86-64 and every platform kinema builds on: little-endian
-  out.append(bytes, sizeof value);
-}
-
-class NpyPrinter : public Printer {
+class NpyPrinter : public ResultsPrinter {
  public:
-  PrintKind kind() const override { return PrintKind::results; }
   const char* name() const override { return "npy"; }
 
-  void print(std::ostream& out, const PrintJob& job) const override {
+  void head(std::string& out, const PrintJob& job, std::size_t rows) const override {
+    const ConstraintSystem& system = job.model.system;
+    std::vector<std::string> names;  // the CSV's column names without their units
+    for (const ResultColumn& column : result_columns(system, OutputScale(system))) names.push_back(column.name);
+    out += npy_header(names, rows);
+  }
+
+  void rows(std::string& out, const PrintJob& job, const MotionTable& table, std::size_t first, std::size_t last,
+            std::size_t) const override {
     const ConstraintSystem& system = job.model.system;
     const OutputScale scale(system);
-    const Dimension input_kind = system.input.dimension;
-    std::vector<std::string> names;  // the CSV's column names without their units
-    for (const ResultColumn& column : result_columns(system, scale)) names.push_back(column.name);
-    std::string data = npy_header(names, job.values->size());
-    const std::size_t record = names.size() * sizeof(double) + 2;
-    data.reserve(data.size() + record * job.values->size());
-    for (const MotionState& s : *job.values) {
-      put(data, scale.input(s.input));
-      put(data, scale.rate(input_kind, s.input_rate));
-      put(data, scale.rate(input_kind, s.input_second_rate));
-      for (std::size_t i = 0; i < system.unknowns.size(); ++i) {
-        const Dimension kind = system.unknowns[i].dimension;
-        put(data, s.status != Status::unassembled ? scale.coordinate(kind, s.q[i]) : kUndefined);
-        put(data, s.status == Status::ok ? scale.rate(kind, s.qd[i]) : kUndefined);
-        put(data, s.status == Status::ok ? scale.rate(kind, s.qdd[i]) : kUndefined);
-      }
-      const double f = scale.length;
-      for (std::size_t p = 0; p < system.points.size(); ++p) {
-        const std::size_t dimension = system.points[p].components.size();
-        const bool ok = s.status == Status::ok;
-        const PointMotion* m = ok ? &s.points[p] : nullptr;
-        for (std::size_t c = 0; c < dimension; ++c) put(data, ok ? m->position[c] / f : kUndefined);
-        for (std::size_t c = 0; c < dimension; ++c) put(data, ok ? m->velocity[c] / f : kUndefined);
-        put(data, ok ? m->speed() / f : kUndefined);
-        for (std::size_t c = 0; c < dimension; ++c) put(data, ok ? m->acceleration[c] / f : kUndefined);
-        put(data, ok ? m->acceleration_magnitude() / f : kUndefined);
-      }
-      data += static_cast<char>(s.status == Status::ok ? 0 : s.status == Status::singular ? 1 : 2);
-      data += static_cast<char>(s.failure.kind == Failure::Kind::resumed_after_gap ? 1 : 0);
+    std::vector<double> values(result_columns(system, scale).size());
+    const std::size_t record = values.size() * sizeof(double) + 2;
+    const std::size_t start = out.size();
+    out.resize(start + record * (last - first));
+    char* p = out.data() + start;
+    for (std::size_t row = first; row < last; ++row) {
+      result_values(system, scale, table, row, values.data());
+      // x86-64 and every platform kinema builds on are little-endian, as '<f8' says.
+      std::memcpy(p, values.data(), values.size() * sizeof(double));
+      p += values.size() * sizeof(double);
+      const Status status = table.status(row);
+      *p++ = static_cast<char>(status == Status::ok ? 0 : status == Status::singular ? 1 : 2);
+      *p++ = static_cast<char>(table.failure(row).kind == Failure::Kind::resumed_after_gap ? 1 : 0);
     }
-    out.write(data.data(), static_cast<std::streamsize>(data.size()));
   }
+
+  void tail(std::string&, const PrintJob&, std::size_t) const override {}
 };
 
 }  // namespace
 
-const Printer& npy_printer() {
+const ResultsPrinter& npy_printer() {
   static const NpyPrinter printer;
   return printer;
 }

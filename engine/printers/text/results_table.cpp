@@ -1,5 +1,7 @@
 // Results for people: one block per input value (coordinates with rates and
 // second rates, points with components and magnitudes).
+#include <sstream>
+
 #include <kinema/engine/printers/printer.hpp>
 #include <kinema/engine/report/diagnostics.hpp>
 #include <kinema/engine/report/number_format.hpp>
@@ -12,22 +14,31 @@ std::string pad(const std::string& text, std::size_t width) {
   return text.size() >= width ? text + " " : text + std::string(width - text.size(), ' ');
 }
 
-class ResultsTablePrinter : public Printer {
+class ResultsTablePrinter : public ResultsPrinter {
  public:
-  PrintKind kind() const override { return PrintKind::results; }
   const char* name() const override { return "table"; }
 
-  void print(std::ostream& out, const PrintJob& job) const override {
+  void head(std::string& text, const PrintJob& job, std::size_t) const override {
+    const ConstraintSystem& system = job.model.system;
+    const OutputScale scale(system);
+    text += system.title + "\n";
+    text += "units: angles deg, angular rates rad/s and rad/s^2, lengths " + scale.length_unit + ", velocities " +
+            scale.length_unit + "/s, accelerations " + scale.length_unit + "/s^2\n";
+  }
+
+  void tail(std::string&, const PrintJob&, std::size_t) const override {}
+
+  void rows(std::string& text, const PrintJob& job, const MotionTable& table, std::size_t first, std::size_t last,
+            std::size_t) const override {
     const ConstraintSystem& system = job.model.system;
     const OutputScale scale(system);
     const Driver& input = system.input;
     const Dimension input_kind = input.dimension;
     const int digits = job.precision > 0 ? job.precision : 6;
     const auto number = [&](double value) { return format_significant(value, digits); };
-    out << system.title << "\n";
-    out << "units: angles deg, angular rates rad/s and rad/s^2, lengths " << scale.length_unit
-        << ", velocities " << scale.length_unit << "/s, accelerations " << scale.length_unit << "/s^2\n";
-    for (const MotionState& s : *job.values) {
+    std::ostringstream out;
+    for (std::size_t row = first; row < last; ++row) {
+      const MotionState s = table[row];
       out << "\n" << input.name << " = " << number(scale.input(s.input)) << " "
           << scale.coordinate_unit(input_kind) << "   " << input.rate.get_name() << " = "
           << number(scale.rate(input_kind, s.input_rate)) << " " << scale.rate_unit(input_kind) << "   "
@@ -59,6 +70,7 @@ class ResultsTablePrinter : public Printer {
       if (s.status != Status::ok || system.points.empty()) continue;
       print_points(out, system, scale, s, digits);
     }
+    text += out.str();
   }
 
  private:
@@ -93,7 +105,7 @@ class ResultsTablePrinter : public Printer {
 
 }  // namespace
 
-const Printer& results_table_printer() {
+const ResultsPrinter& results_table_printer() {
   static const ResultsTablePrinter printer;
   return printer;
 }
