@@ -12,12 +12,14 @@
 #include <kinema/engine/model.hpp>
 #include <kinema/engine/printers/code/cpp_header.hpp>
 #include <kinema/engine/printers/printer.hpp>
+#include <kinema/engine/printers/results_stream.hpp>
 #include <kinema/engine/report/diagnostics.hpp>
 #include <kinema/engine/report/plot_range.hpp>
 #include <kinema/loops/mechanism_file.hpp>
 
 #include "exit_status.hpp"
 #include "output_file.hpp"
+#include "progress_line.hpp"
 #include "stable_addresses.hpp"
 #include "usage.hpp"
 
@@ -79,8 +81,12 @@ int run(int argc, char** argv) {
                        "round-trip in json)")
       ->check(CLI::Range(1, 17));
   unsigned threads = 1;
-  eval_cmd->add_option("--threads", threads, "threads for long sweeps (the branch is kept)")
+  eval_cmd->add_option("--threads", threads,
+                       "threads formatting the output of long runs (the solve stays serial: same numbers, "
+                       "same bytes)")
       ->check(CLI::Range(1u, 256u));
+  bool quiet = false;
+  eval_cmd->add_flag("-q,--quiet", quiet, "no progress line and no warnings on stderr (errors still)");
 
   bool fragment = false;
   auto* latex_cmd = app.add_subcommand("latex", "write a worked solution in LaTeX (drawing, equations, plots)");
@@ -150,47 +156,56 @@ int run(int argc, char** argv) {
     write_output(out.str(), output_path);
     return 0;
   }
+  // A --sweep alone is computed value by value (a run of 10^9 holds none of them).
   const bool is_sweep = !sweep.empty() || (inputs.empty() && m.input.values.size() > 1);
+  InputValues run_inputs;
   if (!sweep.empty()) {
     const double unit = m.input.dimension == Dimension::angle ? kRadiansPerDegree : m.output.length_factor;
-    for (double v : parse_sweep(sweep, unit)) inputs.push_back(v);
+    run_inputs = parse_sweep(sweep, unit, kMaxSweepValues);
+    if (!inputs.empty()) {
+      const std::vector<double> swept = run_inputs.to_vector();
+      inputs.insert(inputs.end(), swept.begin(), swept.end());
+      run_inputs = std::move(inputs);
+    }
+  } else {
+    run_inputs = inputs.empty() ? m.input.values : std::move(inputs);
   }
-  if (inputs.empty()) inputs = m.input.values;
-  if (inputs.empty()) {
+  if (run_inputs.empty()) {
     throw InputError(m.source_file + ": no input value: give --angle VALUE or --sweep START:STOP:STEP, "
                      "or value = \"...\" under [input]");
   }
 
-  AnalysisOptions options;
-  options.threads = threads;
-  const MotionTable states = analyse(model, inputs, options);
-  std::size_t failures = 0;
-  int status = 0;
-  for (std::size_t row = 0; row < states.size(); ++row) {
-    if (states.status(row) == Status::ok) continue;
-    ++failures;
-    if (!is_sweep) {
-      std::cerr << "kinema: error: " << m.source_file << ": "
-                << describe_failure(m, states.input(row), states.failure(row)) << "\n";
-      status = std::max(status, states.status(row) == Status::singular ? kinema_cli::status::singular
-                                                                       : kinema_cli::status::unassembled);
-    }
+  StreamSettings settings;
+  settings.threads = threads;
+  if (!is_sweep) {
+    // A list of values is all or nothing: solved first, and printed only if every
+    // value is assembled and regular (solving is cheap next to printing).
+    int status = 0;
+    settings.on_failure = [&](double input, Status row_status, const Failure& failure) {
+      std::cerr << "kinema: error: " << m.source_file << ": " << describe_failure(m, input, failure) << "\n";
+      status = std::max(status, row_status == Status::singular ? kinema_cli::status::singular
+                                                               : kinema_cli::status::unassembled);
+    };
+    stream_results(model, run_inputs, {}, settings);
+    if (status != 0) return status;
+    settings.on_failure = nullptr;
   }
-  if (status != 0) return status;  // nothing printed for a failed list of values
-  if (failures > 0) {
-    std::cerr << "kinema: warning: " << failures << " of " << states.size()
-              << " input values have no rates (status singular or unassembled in the output)";
-    for (std::size_t row = 0; row < states.size(); ++row)
-      if (states.status(row) != Status::ok) {
-        std::cerr << "; first: " << describe_failure(m, states.input(row), states.failure(row));
-        break;
-      }
-    std::cerr << "\n";
+  // Solved, formatted and written a block at a time; a file appears only when complete.
+  kinema_cli::Output output(output_path);
+  kinema_cli::ProgressLine progress(!quiet);
+  settings.printer = find_results_printer(format);
+  if (!settings.printer) throw InputError("no output format \"" + format + "\"");
+  settings.precision = precision;
+  settings.write = [&](std::string_view text) { output.write(text); };
+  settings.progress = [&](std::size_t done, std::size_t total) { progress.update(done, total); };
+  const RunSummary summary = stream_results(model, run_inputs, {}, settings);
+  output.commit();
+  progress.finish();
+  if (summary.failures > 0 && !quiet) {
+    std::cerr << "kinema: warning: " << summary.failures << " of " << summary.values
+              << " input values have no rates (status singular or unassembled in the output); first: "
+              << describe_failure(m, summary.first_failure->input, summary.first_failure->failure) << "\n";
   }
-  PrintJob job{model, &states};
-  job.precision = precision;
-  printer(PrintKind::results, format).print(out, job);
-  write_output(out.str(), output_path);
   return 0;
 }
 

@@ -46,7 +46,7 @@ mode_t mode_for(const std::string& path) {
 }
 
 // 0 when all of text went to fd, else the errno of the failing write.
-int write_all(int fd, const std::string& text) {
+int write_all(int fd, std::string_view text) {
   const char* data = text.data();
   std::size_t left = text.size();
   while (left > 0) {
@@ -78,39 +78,70 @@ bool is_stream(const std::string& path) {
          (S_ISCHR(existing.st_mode) || S_ISFIFO(existing.st_mode) || S_ISSOCK(existing.st_mode));
 }
 
-void write_stream(const std::string& text, const std::string& shown, const std::string& path) {
-  const int fd = ::open(path.c_str(), O_WRONLY | O_NOCTTY | O_CLOEXEC);
-  if (fd < 0) fail_file(shown, errno);
-  int error_number = write_all(fd, text);
-  if (::close(fd) != 0 && error_number == 0 && errno != EINTR) error_number = errno;
-  if (error_number != 0) throw OutputError("cannot write " + shown + ": " + reason(error_number));
-}
-
 }  // namespace
 
-void write_file(const std::string& text, const std::string& shown_path) {
-  const std::string path = resolved(shown_path);
-  if (is_stream(path)) {
-    write_stream(text, shown_path, path);
+Output::Output(const std::string& shown_path) : shown_(shown_path) {
+  if (shown_path.empty() || shown_path == "-") {
+    flush_standard_output();  // anything written before comes first
+    fd_ = STDOUT_FILENO;
+    shown_ = "standard output";
     return;
   }
-  std::string temporary = directory_of(path) + "/.kinema-XXXXXX";
+  path_ = resolved(shown_path);
+  if (is_stream(path_)) {
+    fd_ = ::open(path_.c_str(), O_WRONLY | O_NOCTTY | O_CLOEXEC);
+    if (fd_ < 0) fail_file(shown_, errno);
+    owns_fd_ = true;
+    return;
+  }
+  std::string temporary = directory_of(path_) + "/.kinema-XXXXXX";
   std::vector<char> name(temporary.begin(), temporary.end());
   name.push_back('\0');
-  const int fd = ::mkstemp(name.data());  // O_CREAT | O_EXCL, in path's directory
-  if (fd < 0) fail_file(shown_path, errno);
-  temporary = name.data();
+  fd_ = ::mkstemp(name.data());  // O_CREAT | O_EXCL, in path's directory
+  if (fd_ < 0) fail_file(shown_, errno);
+  owns_fd_ = true;
+  temporary_ = name.data();
+  if (::fchmod(fd_, mode_for(path_)) != 0) fail(errno);
+}
 
-  int error_number = 0;
-  if (::fchmod(fd, mode_for(path)) != 0) error_number = errno;
-  if (error_number == 0) error_number = write_all(fd, text);
-  if (error_number == 0 && ::fsync(fd) != 0 && errno != EINVAL) error_number = errno;
-  if (::close(fd) != 0 && error_number == 0 && errno != EINTR) error_number = errno;
-  if (error_number == 0 && std::rename(temporary.c_str(), path.c_str()) != 0) error_number = errno;
-  if (error_number != 0) {
-    ::unlink(temporary.c_str());
-    fail_file(shown_path, error_number);
+Output::~Output() {
+  if (owns_fd_) ::close(fd_);
+  if (!temporary_.empty()) ::unlink(temporary_.c_str());
+}
+
+void Output::fail(int error_number) {
+  if (owns_fd_) ::close(fd_);
+  owns_fd_ = false;
+  if (!temporary_.empty()) {
+    ::unlink(temporary_.c_str());
+    temporary_.clear();
+    fail_file(shown_, error_number);
   }
+  throw OutputError("cannot write " + shown_ + ": " + reason(error_number));
+}
+
+void Output::write(std::string_view text) {
+  if (const int error_number = write_all(fd_, text); error_number != 0) fail(error_number);
+}
+
+void Output::commit() {
+  if (!owns_fd_) return;  // standard output: every write went out already
+  int error_number = 0;
+  std::error_code exists_error;
+  // A file that replaces another reaches the disk before the rename, so that a crash
+  // leaves the old file or the new one, never an empty one.
+  if (!temporary_.empty() && std::filesystem::exists(path_, exists_error) && ::fsync(fd_) != 0 && errno != EINVAL) error_number = errno;
+  if (::close(fd_) != 0 && error_number == 0 && errno != EINTR) error_number = errno;
+  owns_fd_ = false;
+  if (error_number == 0 && !temporary_.empty() && std::rename(temporary_.c_str(), path_.c_str()) != 0) error_number = errno;
+  if (error_number != 0) fail(error_number);
+  temporary_.clear();
+}
+
+void write_file(const std::string& text, const std::string& path) {
+  Output output(path);
+  output.write(text);
+  output.commit();
 }
 
 void write_output(const std::string& text, const std::string& path) {

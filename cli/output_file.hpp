@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 
 #include <kinema/engine/errors.hpp>
 
@@ -13,6 +14,28 @@ namespace kinema_cli {
 class OutputError : public kinema::Error {
  public:
   using kinema::Error::Error;
+};
+
+/// Output written piece by piece that appears only when complete. A file given with -o
+/// is written to a temporary created exclusively in its directory and renamed over it
+/// by commit(); an Output destroyed (or failing) before commit removes the temporary
+/// and leaves a previous file at path as it was. A character device, FIFO or socket,
+/// and stdout ("" or "-"), take the pieces as they come. Failures throw OutputError
+/// naming the path and the system's reason.
+class Output {
+ public:
+  explicit Output(const std::string& path);
+  ~Output();
+  Output(const Output&) = delete;
+  Output& operator=(const Output&) = delete;
+  void write(std::string_view text);
+  void commit();
+
+ private:
+  [[noreturn]] void fail(int error_number);
+  std::string shown_, path_, temporary_;
+  int fd_ = -1;
+  bool owns_fd_ = false;
 };
 
 /// Writes text to path, or to stdout when path is "" or "-".

@@ -292,7 +292,13 @@ class FileReader {
       if (kind && *kind != unit_q.dimension) fail(sweep, "sweep mixes angles and lengths");
       kind = unit_q.dimension;
       try {
-        for (double v : parse_sweep(numbers, unit_q.si_value)) input.values.push_back(v);
+        const InputValues values = parse_sweep(numbers, unit_q.si_value);
+        if (input.values.size() + values.size() > kMaxValuesPerRun) {
+          fail(sweep, "the input has more than " + std::to_string(kMaxValuesPerRun) +
+                          " values (a file's values are held in memory); use a larger step, or --sweep on the "
+                          "command line (streamed)");
+        }
+        for (double v : values.to_vector()) input.values.push_back(v);
       } catch (const InputError& error) {
         fail(sweep, error.what());
       }
@@ -396,7 +402,7 @@ class FileReader {
 
 }  // namespace
 
-std::vector<double> parse_sweep(const std::string& text, double unit_factor) {
+InputValues parse_sweep(const std::string& text, double unit_factor, std::size_t max_values) {
   double start = 0, stop = 0, step = 0;
   char colon1 = 0, colon2 = 0;
   std::istringstream in(text);
@@ -410,13 +416,11 @@ std::vector<double> parse_sweep(const std::string& text, double unit_factor) {
                      "and point from start to stop");
   }
   const double count = std::floor((stop - start) / step + 1e-9);
-  if (count >= static_cast<double>(kMaxValuesPerRun)) {
-    throw InputError("sweep \"" + text + "\" has more than " + std::to_string(kMaxValuesPerRun) +
-                     " values (the results of a run are held in memory); use a larger step or split the range");
+  if (count >= static_cast<double>(max_values)) {
+    throw InputError("sweep \"" + text + "\" has more than " + std::to_string(max_values) +
+                     " values; use a larger step or split the range");
   }
-  std::vector<double> values;
-  for (long i = 0; i <= static_cast<long>(count); ++i) values.push_back((start + i * step) * unit_factor);
-  return values;
+  return InputValues::sweep(start, step, static_cast<std::size_t>(count) + 1, unit_factor);
 }
 
 Mechanism read_mechanism_text(const std::string& text, const std::string& name) {

@@ -8,13 +8,21 @@
 
 #include <kinema/loops/mechanism.hpp>
 
+#include <kinema/engine/numeric/input_values.hpp>
+
 namespace kinema {
 
 /// Largest mechanism file read (bytes): far above any mechanism, far below trouble.
 constexpr std::size_t kMaxMechanismFileBytes = 1024 * 1024;
 
-/// Most input values one run solves: the results (and their text) are held in memory.
+/// Most input values a file lists or sweeps: they are held in memory (8 bytes each), and
+/// a library run of them (analyse) holds every row.
 constexpr std::size_t kMaxValuesPerRun = 10'000'000;
+
+/// Most values of a command-line sweep: streamed (computed, solved and written a block
+/// at a time), so memory stays constant; the bound only keeps a typo from asking for
+/// an output of petabytes.
+constexpr std::size_t kMaxSweepValues = 1'000'000'000;
 
 /// Reads and checks a mechanism file; throws InputError / UnitError.
 Mechanism read_mechanism_file(const std::string& path);
@@ -22,7 +30,8 @@ Mechanism read_mechanism_file(const std::string& path);
 /// Same, from text already in memory; `name` stands for the file in messages.
 Mechanism read_mechanism_text(const std::string& text, const std::string& name);
 
-/// Parses a sweep "start:stop:step" (numbers in `unit_factor` units) into SI values.
-std::vector<double> parse_sweep(const std::string& text, double unit_factor);
+/// Parses a sweep "start:stop:step" (numbers in `unit_factor` units) into its SI values
+/// (computed when asked); more than max_values of them are refused.
+InputValues parse_sweep(const std::string& text, double unit_factor, std::size_t max_values = kMaxValuesPerRun);
 
 }  // namespace kinema

@@ -192,18 +192,18 @@ TEST_CASE("loops/mechanism_file: sweeps under [input] become SI values, stop inc
 }
 
 TEST_CASE("loops/mechanism_file: parse_sweep in a unit, steps that do not divide evenly, bad text") {
-  const auto inches = kinema::parse_sweep("0:2:0.5", 0.0254);
+  const auto inches = kinema::parse_sweep("0:2:0.5", 0.0254).to_vector();
   REQUIRE(inches.size() == 5);
   for (std::size_t i = 0; i < inches.size(); ++i) CHECK(inches[i] == doctest::Approx(0.5 * i * 0.0254).epsilon(1e-15));
 
   // 0.1 is not exact in binary: (1 - 0) / 0.1 is 10 and a bit; still 11 values, stop included.
-  const auto tenths = kinema::parse_sweep("0:1:0.1", 1.0);
+  const auto tenths = kinema::parse_sweep("0:1:0.1", 1.0).to_vector();
   REQUIRE(tenths.size() == 11);
   CHECK(tenths.back() == doctest::Approx(1.0).epsilon(1e-15));
   // A step that overshoots stops before the stop value.
-  const auto uneven = kinema::parse_sweep("0:10:4", 1.0);
+  const auto uneven = kinema::parse_sweep("0:10:4", 1.0).to_vector();
   CHECK(uneven == std::vector<double>{0, 4, 8});
-  CHECK(kinema::parse_sweep("5:5:1", 1.0) == std::vector<double>{5});
+  CHECK(kinema::parse_sweep("5:5:1", 1.0).to_vector() == std::vector<double>{5});
   CHECK(kinema::parse_sweep(" 0 : 10 : 5 ", 1.0).size() == 3);
 
   for (const char* bad : {"0:10", "0:10:5:1", "0:10:5x", "a:10:1", "0;10;1", ""}) {
@@ -214,8 +214,15 @@ TEST_CASE("loops/mechanism_file: parse_sweep in a unit, steps that do not divide
                        kinema::InputError);
   CHECK_THROWS_AS(kinema::parse_sweep("0:1e9:1", 1.0), kinema::InputError);  // more than 10^7 values
   CHECK_THROWS_WITH_AS(kinema::parse_sweep("0:360:0.00001", 1.0),
-                       doctest::Contains("more than 10000000 values"), kinema::InputError);  // 3.6e7: the 10^8 of issue 9 ran out of memory
+                       doctest::Contains("more than 10000000 values"), kinema::InputError);  // a file's values are held
   CHECK(kinema::parse_sweep("0:359.99999:0.00036", 1.0).size() == 1000000);
+  // A command-line sweep is streamed: 10^8 values are a sweep, not a vector (nothing allocated).
+  const kinema::InputValues streamed = kinema::parse_sweep("0:360:0.0000036", 1.0, kinema::kMaxSweepValues);
+  CHECK(streamed.size() == 100000001);
+  CHECK(streamed.is_sweep());
+  CHECK(streamed[100000000] == doctest::Approx(360));
+  CHECK_THROWS_WITH_AS(kinema::parse_sweep("0:1e10:1", 1.0, kinema::kMaxSweepValues),
+                       doctest::Contains("more than 1000000000 values"), kinema::InputError);
 }
 
 TEST_CASE("loops/mechanism_file: errors name file:line and what to write") {

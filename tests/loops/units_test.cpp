@@ -33,7 +33,7 @@ TEST_CASE("unknown units and non-finite numbers are refused with the list of uni
 }
 
 TEST_CASE("sweeps include the stop value and refuse steps that never reach it") {
-  const auto values = parse_sweep("0:360:90", 1.0);
+  const auto values = parse_sweep("0:360:90", 1.0).to_vector();
   REQUIRE(values.size() == 5);
   CHECK(values.back() == doctest::Approx(360));
   CHECK(parse_sweep("10:0:-5", 1.0).size() == 3);

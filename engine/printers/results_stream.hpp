@@ -1,0 +1,46 @@
+// Printing a run while it is solved: block by block, so that memory does not grow
+// with the number of values; the blocks formatted on several threads and written
+// in order. The bytes are those ResultsPrinter::print gives for the whole run solved
+// in one table by analyse() on one thread.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <optional>
+#include <string_view>
+
+#include <kinema/engine/model.hpp>
+#include <kinema/engine/numeric/input_values.hpp>
+#include <kinema/engine/printers/printer.hpp>
+
+namespace kinema {
+
+struct StreamSettings {
+  const ResultsPrinter* printer = nullptr;  ///< nullptr: solve only (to check a run before printing it).
+  int precision = 0;                        ///< As PrintJob::precision.
+  /// Threads formatting blocks. The solve itself stays serial, so the numbers are the
+  /// serial run's whatever the count (AnalysisOptions::threads is not used here).
+  unsigned threads = 1;
+  std::size_t block_rows = 2048;
+  std::function<void(std::string_view)> write;  ///< Takes the text in order; throws to stop the run.
+  /// After each block written: values done of the run's total.
+  std::function<void(std::size_t done, std::size_t total)> progress;
+  /// Every row that is not ok, in order.
+  std::function<void(double input, Status status, const Failure& failure)> on_failure;
+};
+
+struct RunSummary {
+  std::size_t values = 0;
+  std::size_t failures = 0;  ///< Rows with status singular or unassembled.
+  struct FirstFailure {
+    double input;
+    Status status;
+    Failure failure;
+  };
+  std::optional<FirstFailure> first_failure;
+};
+
+RunSummary stream_results(const Model& model, const InputValues& inputs, const AnalysisOptions& options,
+                          const StreamSettings& settings);
+
+}  // namespace kinema
