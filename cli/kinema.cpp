@@ -7,6 +7,7 @@
 #include <iostream>
 #include <new>
 #include <sstream>
+#include <thread>
 
 #include <kinema/engine/errors.hpp>
 #include <kinema/engine/model.hpp>
@@ -80,10 +81,10 @@ int run(int argc, char** argv) {
                        "significant digits in table, csv and json (default: 6 in the table, 12 in csv, "
                        "round-trip in json)")
       ->check(CLI::Range(1, 17));
-  unsigned threads = 1;
+  unsigned threads = 0;  // one per core: formatting on more threads changes no byte
   eval_cmd->add_option("--threads", threads,
-                       "threads formatting the output of long runs (the solve stays serial: same numbers, "
-                       "same bytes)")
+                       "threads formatting the output of long runs (default: one per core); the solve stays "
+                       "serial, so the output is the same bytes whatever the count")
       ->check(CLI::Range(1u, 256u));
   bool quiet = false;
   eval_cmd->add_flag("-q,--quiet", quiet, "no progress line and no warnings on stderr (errors still)");
@@ -176,7 +177,7 @@ int run(int argc, char** argv) {
   }
 
   StreamSettings settings;
-  settings.threads = threads;
+  settings.threads = threads > 0 ? threads : std::max(1u, std::thread::hardware_concurrency());
   if (!is_sweep) {
     // A list of values is all or nothing: solved first, and printed only if every
     // value is assembled and regular (solving is cheap next to printing).

@@ -18,7 +18,7 @@ void ProgressLine::update(std::size_t done, std::size_t total) {
   const double rate = static_cast<double>(done) / elapsed;
   const double left = static_cast<double>(total - done) / rate;
   if (!shown_ && elapsed + left < 1.0) return;
-  std::fprintf(stderr, "\rkinema: %zu of %zu values, %.3g values/s, %.0f s left\033[K", done, total, rate, left + 0.5);
+  std::fprintf(stderr, "\rkinema: %zu of %zu values, %.0f values/s, %.0f s left\033[K", done, total, rate, left + 0.5);
   std::fflush(stderr);
   shown_ = true;
   last_shown_ = now;

@@ -1,0 +1,108 @@
+// kinema eval streams (issue 10): what it writes is the printer over the whole table
+// byte for byte, with any number of formatting threads; a run that fails half-way
+// leaves no file; a long run shows progress on a terminal and nowhere else.
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <algorithm>
+#include <sstream>
+
+#include <kinema/engine/model.hpp>
+#include <kinema/engine/printers/printer.hpp>
+#include <kinema/loops/mechanism_file.hpp>
+
+#include "test_support.hpp"
+
+namespace {
+
+using kinema_test::run_kinema;
+using kinema_test::run_shell;
+using kinema_test::shell_quote;
+
+const char* const kSamples[] = {"four_bar.toml", "slider_crank.toml", "piston_driven_crank.toml",
+                                "example_4_1_r_trr.toml", "example_4_2_r_rtr_rrt.toml",
+                                "problem_4_4_six_bar.toml", "problem_3_22_six_bar_sliders.toml"};
+
+// Over several 2048-row blocks; the slider input out past where the mechanism comes apart.
+std::string sweep_for(const kinema::Model& model) {
+  return model.system.input.dimension == kinema::Dimension::angle ? "-10:370:0.1" : "60:210:0.05";
+}
+
+}  // namespace
+
+TEST_CASE("kinema eval: streamed output is the printer over the whole table, byte for byte, on 1 or 2 threads") {
+  const std::string directory = kinema_test::fresh_directory("streaming_bytes");
+  for (const char* sample : kSamples) {
+    const std::string name = sample;
+    CAPTURE(name);
+    const kinema::Model model = kinema::load_model(kinema_test::sample(sample));
+    const std::string sweep = sweep_for(model);
+    const double unit = model.system.input.dimension == kinema::Dimension::angle ? M_PI / 180
+                                                                                : model.system.output.length_factor;
+    const kinema::MotionTable whole = kinema::analyse(model, kinema::parse_sweep(sweep, unit).to_vector());
+    REQUIRE(whole.size() > 3000);
+    for (const std::string format : {"table", "csv", "json", "npy"}) {
+      CAPTURE(format);
+      kinema::PrintJob job{model, &whole};
+      std::ostringstream expected;
+      kinema::find_printer(kinema::PrintKind::results, format)->print(expected, job);
+      for (const std::string threads : {"1", "2"}) {
+        CAPTURE(threads);
+        const std::string path = directory + "/out." + format;
+        const auto run = run_kinema({"eval", kinema_test::sample(sample), "--sweep", sweep, "--format", format,
+                                     "--threads", threads, "-o", path});
+        REQUIRE(run.exit_status == 0);
+        CHECK(kinema_test::read_file(path) == expected.str());
+      }
+    }
+  }
+}
+
+TEST_CASE("kinema eval: a list whose third value cannot be assembled writes nothing, to a file or to stdout") {
+  const std::string directory = kinema_test::fresh_directory("streaming_failed_list");
+  const std::string path = directory + "/out.csv";
+  const std::string file = kinema_test::sample("piston_driven_crank.toml");
+  const std::vector<std::string> list = {"eval", file, "--format", "csv", "--angle", "170", "--angle", "180",
+                                         "--angle", "400"};
+  auto to_file = list;
+  to_file.insert(to_file.end(), {"-o", path});
+  const auto fresh = run_kinema(to_file);
+  CAPTURE(fresh.err);
+  CHECK(fresh.exit_status == 3);
+  CHECK(fresh.err.find("x = 400 mm") != std::string::npos);
+  CHECK_FALSE(std::filesystem::exists(path));
+  CHECK(std::filesystem::is_empty(directory));  // no temporary either
+  // A file already there stays as it was.
+  std::ofstream(path) << "previous\n";
+  CHECK(run_kinema(to_file).exit_status == 3);
+  CHECK(kinema_test::read_file(path) == "previous\n");
+  const auto to_stdout = run_kinema(list);
+  CHECK(to_stdout.exit_status == 3);
+  CHECK(to_stdout.out.empty());
+  // The first two values alone are printed.
+  const auto good = run_kinema({"eval", file, "--format", "csv", "--angle", "170", "--angle", "180"});
+  CHECK(good.exit_status == 0);
+  CHECK(std::count(good.out.begin(), good.out.end(), '\n') == 3);
+}
+
+TEST_CASE("kinema eval: a progress line on a terminal for a long run, none with --quiet or when stderr is not one") {
+  const std::string checker = std::string(KINEMA_SAMPLES_DIR) + "/../tests/tools/progress_on_terminal.py";
+  const std::string run = shell_quote(KINEMA_EXE) + " eval " + shell_quote(kinema_test::sample("problem_4_4_six_bar.toml")) +
+                          " --sweep 0:720:0.0005 --format csv --threads 1 -o /dev/null";
+  // Over a second of work on any machine (1.44 million rows of 49 numbers).
+  const auto shown = run_shell("/usr/bin/python3 " + shell_quote(checker) + " " + run);
+  CAPTURE(shown.err);
+  REQUIRE(shown.exit_status == 0);
+  CHECK(shown.out.rfind("0\n", 0) == 0);  // kinema's exit status
+  CHECK(shown.out.find("of 1440001 values") != std::string::npos);
+  CHECK(shown.out.find("values/s") != std::string::npos);
+  CHECK(shown.out.find("s left") != std::string::npos);
+  CHECK(shown.out.find("\\r\\x1b[K'") != std::string::npos);  // the line is cleared at the end
+
+  const auto quiet = run_shell("/usr/bin/python3 " + shell_quote(checker) + " " + run + " --quiet");
+  CHECK(quiet.out == "0\nb''\n");
+  const auto piped = run_shell(run);  // stderr captured through a pipe
+  CHECK(piped.exit_status == 0);
+  CHECK(piped.err.empty());
+}
