@@ -39,13 +39,15 @@ void MotionTable::assign_inputs(const InputValues& inputs, std::size_t first, st
   batch_rows_ = 0;
   input_.resize(count);
   for (std::size_t row = 0; row < count; ++row) input_[row] = inputs[first + row];
-  for (auto* values : {&q_, &qd_, &qdd_}) values->assign(count * n_, 0.0);
-  loop_residual_.assign(count, 0.0);
-  reciprocal_condition_.assign(count, 0.0);
+  // Values are left as they are (a row's status says which are valid, and the solver
+  // sets every row it solves): clearing them cost more than solving.
+  for (auto* values : {&q_, &qd_, &qdd_}) values->resize(count * n_);
+  loop_residual_.resize(count);
+  reciprocal_condition_.resize(count);
   status_.assign(count, Status::unassembled);
   failure_.assign(count, Failure{});
   const std::size_t columns = point_offset_.empty() ? 0 : point_offset_.back() + 3 * point_dimensions_.back();
-  points_.assign(count * columns, 0.0);
+  points_.resize(count * columns);
 }
 
 std::size_t MotionTable::bytes() const {

@@ -14,7 +14,9 @@ OutputScale::OutputScale(const ConstraintSystem& system)
 
 double OutputScale::coordinate(Dimension dimension, double si) const {
   if (dimension == Dimension::angle) {
-    double degrees = std::remainder(to_degrees(si), 360.0);
+    double degrees = to_degrees(si);
+    if (degrees > -180.0 && degrees <= 180.0) return degrees;  // the common case, and exact
+    degrees = std::remainder(degrees, 360.0);
     if (degrees <= -180.0) degrees += 360.0;
     return degrees;
   }

@@ -56,18 +56,16 @@ class NpyPrinter : public ResultsPrinter {
     const ConstraintSystem& system = job.model.system;
     const OutputScale scale(system);
     std::vector<double> values(result_columns(system, scale).size());
-    const std::size_t record = values.size() * sizeof(double) + 2;
-    const std::size_t start = out.size();
-    out.resize(start + record * (last - first));
-    char* p = out.data() + start;
+    const std::size_t bytes = values.size() * sizeof(double);
+    std::vector<char> record(bytes + 2);
     for (std::size_t row = first; row < last; ++row) {
       result_values(system, scale, table, row, values.data());
       // x86-64 and every platform kinema builds on are little-endian, as '<f8' says.
-      std::memcpy(p, values.data(), values.size() * sizeof(double));
-      p += values.size() * sizeof(double);
+      std::memcpy(record.data(), values.data(), bytes);
       const Status status = table.status(row);
-      *p++ = static_cast<char>(status == Status::ok ? 0 : status == Status::singular ? 1 : 2);
-      *p++ = static_cast<char>(table.failure(row).kind == Failure::Kind::resumed_after_gap ? 1 : 0);
+      record[bytes] = static_cast<char>(status == Status::ok ? 0 : status == Status::singular ? 1 : 2);
+      record[bytes + 1] = static_cast<char>(table.failure(row).kind == Failure::Kind::resumed_after_gap ? 1 : 0);
+      out.append(record.data(), record.size());
     }
   }
 
