@@ -26,7 +26,7 @@ class FormatPool {
   };
 
   FormatPool(const ResultsPrinter& printer, const PrintJob& job, unsigned threads)
-      : printer_(printer), job_(job), slots_(2 * threads) {
+      : printer_(printer), job_(job), slots_(threads + 2) {
     for (unsigned t = 0; t < threads; ++t) workers_.emplace_back([this] { work(); });
   }
   ~FormatPool() {

@@ -21,7 +21,7 @@ struct StreamSettings {
   /// Threads formatting blocks. The solve itself stays serial, so the numbers are the
   /// serial run's whatever the count (AnalysisOptions::threads is not used here).
   unsigned threads = 1;
-  std::size_t block_rows = 2048;
+  std::size_t block_rows = 1024;
   std::function<void(std::string_view)> write;  ///< Takes the text in order; throws to stop the run.
   /// After each block written: values done of the run's total.
   std::function<void(std::size_t done, std::size_t total)> progress;

@@ -24,21 +24,30 @@ const std::array<double, 2 * kPowers + 1>& powers_of_ten() {
   return table;
 }
 
-// Exactly `count` decimal digits of value (leading zeros included), two at a time.
-char* put_digits(char* out, std::uint64_t value, int count) {
-  static constexpr char kPairs[] =
-      "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
-      "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
-      "8081828384858687888990919293949596979899";
-  int i = count;
-  while (i >= 2) {
-    i -= 2;
-    std::memcpy(out + i, kPairs + 2 * (value % 100), 2);
-    value /= 100;
-  }
-  if (i == 1) out[0] = static_cast<char>('0' + value % 10);
-  return out + count;
+constexpr char kDigitPairs[] =
+    "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
+    "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
+    "8081828384858687888990919293949596979899";
+
+// Exactly 8 decimal digits of value < 10^8, as four independent pairs (no chain of
+// dependent divisions: this is the inner loop of a CSV of millions of numbers).
+void put_8_digits(char* out, std::uint32_t value) {
+  const std::uint32_t high = value / 10000, low = value % 10000;
+  std::memcpy(out, kDigitPairs + 2 * (high / 100), 2);
+  std::memcpy(out + 2, kDigitPairs + 2 * (high % 100), 2);
+  std::memcpy(out + 4, kDigitPairs + 2 * (low / 100), 2);
+  std::memcpy(out + 6, kDigitPairs + 2 * (low % 100), 2);
 }
+
+// The 16 decimal digits of value < 10^16, leading zeros included.
+void put_16_digits(char* out, std::uint64_t value) {
+  put_8_digits(out, static_cast<std::uint32_t>(value / 100000000));
+  put_8_digits(out + 8, static_cast<std::uint32_t>(value % 100000000));
+}
+
+// Copies of 16 bytes whatever the length needed (the buffers have the room): a
+// variable-length memcpy is a library call, and this runs three times a number.
+void copy_16(char* to, const char* from) { std::memcpy(to, from, 16); }
 
 // %g of a finite non-zero magnitude with `digits` <= 13 significant digits, or nullptr
 // when the scaled value is too close to a rounding tie to decide in double arithmetic
@@ -66,39 +75,41 @@ char* put_significant_fast(char* out, double magnitude, int digits) {
     mantissa /= 10;
     ++exponent;
   }
-  char text[20];
-  put_digits(text, mantissa, digits);
+  char all_digits[48];  // 16 digits, then room for the fixed-size copies below
+  put_16_digits(all_digits, mantissa);
+  const char* text = all_digits + 16 - digits;
   int length = digits;
+  while (length > 1 && text[length - 1] == '0') --length;  // %g drops trailing zeros
+  // out has kMaxNumberChars - 1 bytes (a sign may precede): each copy_16 below stays inside.
   if (exponent < -4 || exponent >= digits) {  // scientific: d.ddd e+XX
-    while (length > 1 && text[length - 1] == '0') --length;
-    *out++ = text[0];
+    out[0] = text[0];
     if (length > 1) {
-      *out++ = '.';
-      std::memcpy(out, text + 1, length - 1);
-      out += length - 1;
+      out[1] = '.';
+      copy_16(out + 2, text + 1);
+      out += length + 1;
+    } else {
+      out += 1;
     }
     *out++ = 'e';
     *out++ = exponent < 0 ? '-' : '+';
     const int e = std::abs(exponent);
-    return put_digits(out, static_cast<std::uint64_t>(e), e >= 100 ? 3 : 2);
+    if (e >= 100) *out++ = static_cast<char>('0' + e / 100);
+    std::memcpy(out, kDigitPairs + 2 * (e % 100), 2);
+    return out + 2;
   }
   if (exponent >= 0) {  // ddd.ddd
     const int whole_digits = exponent + 1;
-    while (length > whole_digits && text[length - 1] == '0') --length;
-    std::memcpy(out, text, whole_digits);
-    out += whole_digits;
-    if (length > whole_digits) {
-      *out++ = '.';
-      std::memcpy(out, text + whole_digits, length - whole_digits);
-      out += length - whole_digits;
-    }
-    return out;
+    copy_16(out, text);
+    if (length <= whole_digits) return out + whole_digits;
+    out[whole_digits] = '.';
+    copy_16(out + whole_digits + 1, text + whole_digits);
+    return out + length + 1;
   }
-  while (text[length - 1] == '0') --length;  // 0.000ddd
-  *out++ = '0';
-  *out++ = '.';
-  for (int i = -1; i > exponent; --i) *out++ = '0';
-  std::memcpy(out, text, length);
+  out[0] = '0';  // 0.000ddd
+  out[1] = '.';
+  out[2] = out[3] = out[4] = '0';
+  out += 1 - exponent;
+  copy_16(out, text);
   return out + length;
 }
 

@@ -1,6 +1,6 @@
 // libFuzzer target: the whole pipeline as `kinema` runs it on a file — read,
 // build the constraint system, derive, compile, analyse a few input values and
-// a short range, then every printer of every kind. A file may be refused
+// a short range, then every printer of every kind, and the range streamed. A file may be refused
 // (kinema::Error, which the CLI prints with its exit status); any other exception
 // is an "internal error" and stops the fuzzer, as do crashes, runs over the
 // -timeout and memory over -rss_limit_mb (tests/fuzz/run_fuzzers.sh sets both).
@@ -16,6 +16,7 @@
 #include <kinema/engine/errors.hpp>
 #include <kinema/engine/model.hpp>
 #include <kinema/engine/printers/printer.hpp>
+#include <kinema/engine/printers/results_stream.hpp>
 #include <kinema/engine/report/plot_range.hpp>
 #include <kinema/loops/mechanism_file.hpp>
 
@@ -53,6 +54,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     for (std::size_t i = 0; i < full.size(); i += 5) range.push_back(full[i]);
     const MotionTable over_range = analyse(model, range);
     print_everything(model, values, over_range);
+    // The range again as kinema eval streams it: small blocks, formatted on two threads.
+    for (const std::string& name : printer_names(PrintKind::results)) {
+      StreamSettings settings;
+      settings.printer = find_results_printer(name);
+      settings.threads = 2;
+      settings.block_rows = 7;
+      std::size_t bytes = 0;
+      settings.write = [&](std::string_view text) { bytes += text.size(); };
+      stream_results(model, InputValues(range), {}, settings);
+    }
   } catch (const kinema::Error&) {
     // Refused or reported: what should happen to a bad file or an unassemblable value.
   } catch (const std::exception&) {
