@@ -164,6 +164,11 @@ int run(int argc, char** argv) {
     const double unit = m.input.dimension == Dimension::angle ? kRadiansPerDegree : m.output.length_factor;
     run_inputs = parse_sweep(sweep, unit, kMaxSweepValues);
     if (!inputs.empty()) {
+      if (run_inputs.size() > kMaxValuesPerRun) {
+        throw InputError("--sweep \"" + sweep + "\" with --angle: a list of more than " +
+                         std::to_string(kMaxValuesPerRun) +
+                         " values (held in memory); give the --sweep alone (streamed) or a larger step");
+      }
       const std::vector<double> swept = run_inputs.to_vector();
       inputs.insert(inputs.end(), swept.begin(), swept.end());
       run_inputs = std::move(inputs);

@@ -106,3 +106,13 @@ TEST_CASE("kinema eval: a progress line on a terminal for a long run, none with 
   CHECK(piped.exit_status == 0);
   CHECK(piped.err.empty());
 }
+
+TEST_CASE("kinema eval: a sweep beyond the list limit is refused only when mixed with --angle (a list)") {
+  const auto mixed = run_kinema({"eval", kinema_test::sample("four_bar.toml"), "--angle", "3", "--sweep", "0:360:0.00001"});
+  CHECK(mixed.exit_status == 2);
+  CHECK(mixed.err.find("more than 10000000 values") != std::string::npos);
+  CHECK(mixed.err.find("--sweep alone") != std::string::npos);
+  const auto huge = run_kinema({"eval", kinema_test::sample("four_bar.toml"), "--sweep", "0:1e10:1"});
+  CHECK(huge.exit_status == 2);
+  CHECK(huge.err.find("more than 1000000000 values") != std::string::npos);
+}
