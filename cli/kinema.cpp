@@ -1,5 +1,6 @@
 // kinema command-line tool: a thin layer over the library (engine/, loops/).
 #include <CLI/CLI.hpp>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
@@ -198,7 +199,9 @@ int run(int argc, char** argv) {
   }
   // Solved, formatted and written a block at a time; a file appears only when complete.
   kinema_cli::Output output(output_path);
-  kinema_cli::ProgressLine progress(!quiet);
+  // Not when the results themselves scroll by on the same terminal.
+  const bool results_on_terminal = (output_path.empty() || output_path == "-") && ::isatty(STDOUT_FILENO) == 1;
+  kinema_cli::ProgressLine progress(!quiet && !results_on_terminal);
   settings.printer = find_results_printer(format);
   if (!settings.printer) throw InputError("no output format \"" + format + "\"");
   settings.precision = precision;

@@ -140,6 +140,14 @@ TEST_CASE("kinema eval: a progress line on a terminal for a long run, none with 
 
   const auto quiet = run_shell("/usr/bin/python3 " + shell_quote(checker) + " " + run + " --quiet");
   CHECK(quiet.out == "0\nb''\n");
+  // Results scrolling on the same terminal: no progress line among them.
+  const std::string on_terminal = shell_quote(KINEMA_EXE) + " eval " +
+                                  shell_quote(kinema_test::sample("problem_4_4_six_bar.toml")) +
+                                  " --sweep 0:360:0.002 --format csv --threads 1";  // over a second on a terminal
+  const auto scrolling = run_shell("/usr/bin/python3 " + shell_quote(checker) + " --stdout-too " + on_terminal);
+  CHECK(scrolling.out.rfind("0\n", 0) == 0);
+  CHECK(scrolling.out.find(" False\n") != std::string::npos);  // over 100 MB of results, no progress line
+  CHECK(scrolling.out.size() > 12);
   const auto piped = run_shell(run);  // stderr captured through a pipe
   CHECK(piped.exit_status == 0);
   CHECK(piped.err.empty());
