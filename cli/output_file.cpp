@@ -138,23 +138,10 @@ void Output::commit() {
   temporary_.clear();
 }
 
-void write_file(const std::string& text, const std::string& path) {
+void write_output(const std::string& text, const std::string& path) {
   Output output(path);
   output.write(text);
   output.commit();
-}
-
-void write_output(const std::string& text, const std::string& path) {
-  if (path.empty() || path == "-") write_standard_output(text);
-  else write_file(text, path);
-}
-
-void write_standard_output(const std::string& text) {
-  flush_standard_output();  // anything written before comes first
-  errno = 0;
-  if (std::fwrite(text.data(), 1, text.size(), stdout) != text.size()) fail_stdout(errno);
-  errno = 0;
-  if (std::fflush(stdout) != 0) fail_stdout(errno);
 }
 
 void flush_standard_output() {

@@ -38,16 +38,8 @@ class Output {
   bool owns_fd_ = false;
 };
 
-/// Writes text to path, or to stdout when path is "" or "-".
+/// Writes text to path, or to stdout when path is "" or "-" (an Output written at once).
 void write_output(const std::string& text, const std::string& path);
-
-/// Writes text to a temporary file created in path's directory, syncs and
-/// closes it, then renames it over path. On any failure the temporary is
-/// removed, a previous file at path is left as it was, and OutputError is thrown.
-void write_file(const std::string& text, const std::string& path);
-
-/// Writes text to stdout and flushes it; OutputError on a failed or short write.
-void write_standard_output(const std::string& text);
 
 /// Flushes std::cout and stdout (help, version, anything still buffered);
 /// OutputError if that or any earlier write to them failed.

@@ -22,10 +22,6 @@ using kinema_test::run_kinema;
 using kinema_test::run_shell;
 using kinema_test::shell_quote;
 
-const char* const kSamples[] = {"four_bar.toml", "slider_crank.toml", "piston_driven_crank.toml",
-                                "example_4_1_r_trr.toml", "example_4_2_r_rtr_rrt.toml",
-                                "problem_4_4_six_bar.toml", "problem_3_22_six_bar_sliders.toml"};
-
 // Over several 2048-row blocks; the slider input out past where the mechanism comes apart.
 std::string sweep_for(const kinema::Model& model) {
   return model.system.input.dimension == kinema::Dimension::angle ? "-10:370:0.1" : "60:210:0.05";
@@ -68,7 +64,7 @@ bool same_to_rounding(const std::string& a, const std::string& b) {
 
 TEST_CASE("kinema eval: streamed output is the printer over the whole table, on 1 and 2 threads the same bytes") {
   const std::string directory = kinema_test::fresh_directory("streaming_bytes");
-  for (const char* sample : kSamples) {
+  for (const char* sample : kinema_test::kSamples) {
     const std::string name = sample;
     CAPTURE(name);
     const kinema::Model model = kinema::load_model(kinema_test::sample(sample));

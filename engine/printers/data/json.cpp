@@ -83,15 +83,22 @@ class JsonPrinter : public ResultsPrinter {
       }
       out += ']';
     };
+    // `text` (separator and key) then a number or a vector.
+    const auto member = [&](const char* text, double value) {
+      out += text;
+      number(value);
+    };
+    const auto member_vector = [&](const char* text, const double* v, std::size_t dimension) {
+      out += text;
+      vector(v, dimension);
+    };
     for (std::size_t row = first; row < last; ++row) {
       result_values(system, scale, table, row, values.data());
       const Status status = table.status(row);
       out += run_row + (row - first) == 0 ? "\n    {\"input\": " : ",\n    {\"input\": ";
       number(values[0]);
-      out += ", \"input_rate\": ";
-      number(values[1]);
-      out += ", \"input_second_rate\": ";
-      number(values[2]);
+      member(", \"input_rate\": ", values[1]);
+      member(", \"input_second_rate\": ", values[2]);
       out += ", \"status\": \"";
       out += status_name(status);
       out += '"';
@@ -104,16 +111,13 @@ class JsonPrinter : public ResultsPrinter {
         if (i > 0) out += ", ";
         out += coordinate_keys[i];
         number(v[0]);
-        out += ", \"rate\": ";
-        number(v[1]);
-        out += ", \"second_rate\": ";
-        number(v[2]);
+        member(", \"rate\": ", v[1]);
+        member(", \"second_rate\": ", v[2]);
         out += '}';
       }
       out += '}';
       if (status != Status::unassembled) {
-        out += ", \"loop_residual\": ";
-        number(table.loop_residual(row) / scale.length);
+        member(", \"loop_residual\": ", table.loop_residual(row) / scale.length);
       }
       out += ", \"points\": {";
       for (std::size_t p = 0; p < system.points.size(); ++p) {
@@ -122,14 +126,10 @@ class JsonPrinter : public ResultsPrinter {
           if (p > 0) out += ", ";
           out += point_keys[p];
           vector(v, d);
-          out += ", \"velocity\": ";
-          vector(v + d, d);
-          out += ", \"speed\": ";
-          number(v[2 * d]);
-          out += ", \"acceleration\": ";
-          vector(v + 2 * d + 1, d);
-          out += ", \"acceleration_magnitude\": ";
-          number(v[3 * d + 1]);
+          member_vector(", \"velocity\": ", v + d, d);
+          member(", \"speed\": ", v[2 * d]);
+          member_vector(", \"acceleration\": ", v + 2 * d + 1, d);
+          member(", \"acceleration_magnitude\": ", v[3 * d + 1]);
           out += '}';
         }
         v += 3 * d + 2;

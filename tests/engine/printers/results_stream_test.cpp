@@ -13,10 +13,6 @@
 
 namespace {
 
-const char* const kSamples[] = {"four_bar.toml", "slider_crank.toml", "piston_driven_crank.toml",
-                                "example_4_1_r_trr.toml", "example_4_2_r_rtr_rrt.toml",
-                                "problem_4_4_six_bar.toml", "problem_3_22_six_bar_sliders.toml"};
-
 // Angles over a turn and a bit; the slider input out past where the piston-driven crank
 // comes apart (singular and unassembled rows, rows resumed after a gap).
 kinema::InputValues run_of(const kinema::Model& model) {
@@ -41,7 +37,7 @@ std::string streamed(const kinema::Model& model, const kinema::InputValues& inpu
 }  // namespace
 
 TEST_CASE("engine/printers/results_stream: streamed output equals the printer over the whole table, byte for byte") {
-  for (const char* sample : kSamples) {
+  for (const char* sample : kinema_test::kSamples) {
     const std::string name = sample;
     CAPTURE(name);
     const kinema::Model model = kinema::load_model(kinema_test::sample(sample));
