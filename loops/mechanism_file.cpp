@@ -434,10 +434,14 @@ Mechanism read_mechanism_file(const std::string& path) {
   }
   std::ifstream file(path, std::ios::binary);
   if (!file) throw InputError(path + ": cannot open the mechanism file (does it exist?)");
-  // Read at most one byte past the limit: a stream that never ends (/dev/zero) stops there.
-  std::string text(kMaxMechanismFileBytes + 1, '\0');
-  file.read(text.data(), static_cast<std::streamsize>(text.size()));
-  text.resize(static_cast<std::size_t>(file.gcount()));
+  // Read at most one byte past the limit: a stream that never ends (/dev/zero) stops
+  // there. In chunks, so that a file of a few KiB touches a few KiB (not a zeroed MiB).
+  std::string text;
+  char chunk[16384];
+  while (text.size() <= kMaxMechanismFileBytes && file.read(chunk, sizeof chunk).gcount() > 0) {
+    text.append(chunk, static_cast<std::size_t>(file.gcount()));
+  }
+  if (text.size() > kMaxMechanismFileBytes + 1) text.resize(kMaxMechanismFileBytes + 1);
   if (text.size() > kMaxMechanismFileBytes) {
     throw InputError(path + ": the mechanism file is larger than " + std::to_string(kMaxMechanismFileBytes / 1024) +
                      " KiB; a mechanism file is a few KiB of text");

@@ -34,6 +34,9 @@ class CsvPrinter : public ResultsPrinter {
     const int digits = job.precision > 0 ? job.precision : 12;
     std::vector<double> values(result_columns(system, scale).size());
     std::vector<char> line((kMaxNumberChars + 1) * values.size() + 64);
+    // Room for a typical block at once: growing by doubling copies the text and, in
+    // fresh pages, costs more than formatting it.
+    out.reserve(out.size() + (last - first) * (values.size() * std::size_t(digits + 7) + 24));
     for (std::size_t row = first; row < last; ++row) {
       result_values(system, scale, table, row, values.data());
       char* p = line.data();

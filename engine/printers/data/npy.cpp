@@ -58,6 +58,7 @@ class NpyPrinter : public ResultsPrinter {
     std::vector<double> values(result_columns(system, scale).size());
     const std::size_t bytes = values.size() * sizeof(double);
     std::vector<char> record(bytes + 2);
+    out.reserve(out.size() + (last - first) * record.size());  // one allocation a block
     for (std::size_t row = first; row < last; ++row) {
       result_values(system, scale, table, row, values.data());
       // x86-64 and every platform kinema builds on are little-endian, as '<f8' says.
