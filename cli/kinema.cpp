@@ -17,6 +17,7 @@
 #include <kinema/engine/printers/results_stream.hpp>
 #include <kinema/engine/report/diagnostics.hpp>
 #include <kinema/engine/report/plot_range.hpp>
+#include <kinema/loops/linkage_loops.hpp>
 #include <kinema/loops/mechanism_file.hpp>
 
 #include "exit_status.hpp"
@@ -55,7 +56,7 @@ const Printer& printer(PrintKind kind, const std::string& name) {
 }
 
 int run(int argc, char** argv) {
-  CLI::App app{"kinema: velocity and acceleration analysis of mechanisms from vector loops", "kinema"};
+  CLI::App app{"kinema: velocity and acceleration analysis of mechanisms (vector loops, or joints and links)", "kinema"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "kinema " KINEMA_VERSION, "print the version and exit");
   std::string file, output_path, format = "table", sweep;
@@ -103,6 +104,11 @@ int run(int argc, char** argv) {
   codegen_cmd->add_option("-o,--output", output_path, "header to write, e.g. four_bar.hpp")->required();
   codegen_cmd->add_option("--namespace", namespace_name, "namespace of the generated code (default: the header's name)");
 
+  auto* loops_cmd = app.add_subcommand(
+      "loops", "write the mechanism as a vector-loop file (for joints and links: the loops kinema found)");
+  loops_cmd->add_option("FILE", file, "mechanism file (TOML)")->required();
+  loops_cmd->add_option("-o,--output", output_path, "write to this file instead of stdout");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
@@ -114,9 +120,15 @@ int run(int argc, char** argv) {
   if (!output_path.empty() && output_path != "-" && std::filesystem::equivalent(file, output_path, same_error)) {
     throw InputError("-o " + output_path + " is the mechanism file itself; write the output to another file");
   }
-  const Model model = load_model(file);
+  const Mechanism mechanism = read_mechanism_file(file);
+  const Model model = make_model(mechanism);  // a file kinema cannot analyse is not written as loops either
   const ConstraintSystem& m = model.system;
   std::ostringstream out;
+
+  if (loops_cmd->parsed()) {
+    write_output(vector_loop_file(mechanism), output_path);
+    return 0;
+  }
 
   if (derive_cmd->parsed()) {
     printer(PrintKind::derivation, derive_format).print(out, {model});

@@ -1,6 +1,7 @@
 // The mechanism as the user described it: names, numbers in SI, and the
 // formulas as written, each with the file line it came from (for messages).
-// Nothing here is symbolic yet; loop_closure.hpp turns it into equations.
+// Nothing here is symbolic yet; planar_loops.hpp turns it into equations
+// (linkage_loops.hpp first writes a joints-and-links file as vector loops).
 #pragma once
 
 #include <optional>
@@ -66,6 +67,53 @@ struct Point {
   SourceLocation where;
 };
 
+/// A joint of a mechanism described as drawn (joints and links, README "Joints and
+/// links"): a pin between two links, or a slider of one link (the block) on a line
+/// fixed in another (the guide; "ground" for a fixed guide).
+struct Joint {
+  enum class Kind { pin, slider };
+  std::string name;
+  Kind kind = Kind::pin;
+  bool ground = false;              ///< A pin of ground (a fixed pivot).
+  std::string x, y;                 ///< Sketch position: quantities or formulas of parameters.
+  std::string guide;                ///< Slider: the link whose line it slides on ("ground", a link name).
+  std::string angle;                ///< Slider: direction of the line in the sketch (quantity or formula).
+  std::string through_x, through_y; ///< Slider: the point of the line its coordinate is measured from (default: x, y).
+  std::string coordinate;           ///< Slider: name of its coordinate along the line (default s_<joint>).
+  std::string rate_name, second_rate_name;
+  SourceLocation where;
+};
+
+/// A rigid body and the joints on it. Its angle is the direction from its first joint to
+/// its second (a slider block's: its line's direction).
+struct Link {
+  std::string name;
+  std::vector<std::string> joints;
+  std::string angle_name;  ///< Default theta<name> (theta3) or theta_<name>.
+  std::string rate_name, second_rate_name;
+  /// Distances between its joints as written ("C-D" = "CD"); the others come from the sketch.
+  std::vector<std::pair<std::pair<std::string, std::string>, std::string>> lengths;
+  SourceLocation where;
+};
+
+/// A named point on a link (a coupler point), at its sketch position.
+struct LinkPoint {
+  std::string name;
+  std::string link;
+  std::string x, y;
+  SourceLocation where;
+};
+
+/// The joints-and-links form; loops/linkage_loops.hpp turns it into vector loops.
+struct Linkage {
+  std::vector<Joint> joints;
+  std::vector<Link> links;
+  std::vector<LinkPoint> points;
+  std::string driver_link;    ///< A crank: its angle is the input (one of driver_link, driver_slider).
+  std::string driver_slider;  ///< A slider joint: its coordinate is the input.
+  SourceLocation driver_where;
+};
+
 struct OutputUnits {
   std::string length = "m";  ///< Lengths in this unit, velocities in unit/s, ...
   double length_factor = 1.0;  ///< SI metres per output unit.
@@ -81,6 +129,9 @@ struct Mechanism {
   std::vector<Loop> loops;
   std::vector<Point> points;
   OutputUnits output;
+  /// Set for a file written as joints and links (then parameters, input, unknowns, loops
+  /// and points are what linkage_loops derived from it).
+  std::optional<Linkage> linkage;
 };
 
 }  // namespace kinema

@@ -20,6 +20,7 @@
 
 #include <kinema/engine/errors.hpp>
 #include <kinema/engine/report/number_format.hpp>
+#include <kinema/loops/linkage_loops.hpp>
 #include <kinema/loops/toml_ascii.hpp>
 
 namespace kinema {
@@ -53,6 +54,7 @@ class FileReader {
     }
     Mechanism mechanism;
     mechanism.source_file = file_;
+    if (has(root, "joints") || has(root, "links") || has(root, "driver")) return read_linkage(root, mechanism);
     check_keys(root, {"title", "description", "parameters", "input", "unknowns", "loops",
                       "points", "output"},
                "the top level");
@@ -247,6 +249,11 @@ class FileReader {
     input.name = string_value(at(table, "name"), "name");
     check_identifier(at(table, "name"), input.name, "input");
     input.where = where(at(table, "name"));
+    read_motion(table, "[input]", input);
+  }
+
+  // The driver's values, rate and second rate, as [input] and [driver] give them.
+  void read_motion(const Node& table, const std::string& section, Input& input) const {
 
     // The driver's kind comes from its values' unit; default to a crank angle.
     std::optional<Dimension> kind;
@@ -307,7 +314,7 @@ class FileReader {
     const Dimension rate = rate_dimension(input.dimension);
     const Dimension second = rate_dimension(rate);
     if (!has(table, "rate")) {
-      throw InputError(input.where.str() + ": [input] needs rate = \"...\" (the driver's speed, "
+      throw InputError(input.where.str() + ": " + section + " needs rate = \"...\" (the driver's speed, "
                        "e.g. \"60 rpm\" or \"-42 rad/s\" for clockwise)");
     }
     input.rate = bounded_rate(at(table, "rate"), "rate", rate);
@@ -381,6 +388,195 @@ class FileReader {
       point.formula = string_value(*value, name);
       point.where = where(*value);
       mechanism.points.push_back(point);
+    }
+  }
+
+  // A file written as joints and links (README, "Joints and links"): read here, then
+  // written as vector loops by linkage_loops.
+  Mechanism read_linkage(const Node& root, Mechanism& mechanism) const {
+    check_keys(root, {"title", "description", "parameters", "driver", "joints", "links", "points", "output"},
+               "the top level of a joints-and-links file (vector loops go in another file: [input], [unknowns], "
+               "[loops])");
+    mechanism.title = optional_string(root, "title", "Untitled mechanism");
+    mechanism.description = optional_string(root, "description", "");
+    read_output(root, mechanism);
+    read_parameters(root, mechanism);
+    Linkage& linkage = mechanism.linkage.emplace();
+    read_joints(root, linkage);
+    read_links(root, linkage);
+    read_driver(root, mechanism);
+    read_link_points(root, linkage);
+    linkage_loops(mechanism);
+    check_names(mechanism);
+    return mechanism;
+  }
+
+  // A sketch position ["x", "y"]: two quantities or formulas of the parameters.
+  void read_position(const Node& value, const std::string& what, std::string& x, std::string& y) const {
+    const auto* list = value.as_array();
+    if (list == nullptr || list->size() != 2) {
+      fail(value, what + " must be a position [\"x\", \"y\"], e.g. [\"0.3 m\", \"Lb\"]");
+    }
+    x = string_value(*list->get(0), what + " x");
+    y = string_value(*list->get(1), what + " y");
+  }
+
+  void read_joints(const Node& root, Linkage& linkage) const {
+    const Node& table = required_table(root, "joints");
+    for (const auto& [name, value] : ordered(table)) {
+      check_identifier(*value, name, "joint");
+      if (!value->is_table()) {
+        fail(*value, "joint \"" + name + "\" must be a table, e.g. " + name +
+                         " = { at = [\"0.1 m\", \"0.2 m\"] } (add ground = true for a fixed pivot)");
+      }
+      check_keys(*value, {"at", "ground", "slider", "angle", "through", "coordinate", "rate_name", "second_rate_name"},
+                 "joint \"" + name + "\"");
+      Joint joint;
+      joint.name = name;
+      joint.where = where(*value);
+      if (!has(*value, "at")) fail(*value, "joint \"" + name + "\" needs at = [\"x\", \"y\"] (its place in the sketch)");
+      read_position(at(*value, "at"), "at", joint.x, joint.y);
+      if (has(*value, "ground")) {
+        const Node& ground = at(*value, "ground");
+        if (!ground.is_boolean()) fail(ground, "ground must be true or false");
+        joint.ground = ground.as_boolean()->get();
+      }
+      if (has(*value, "slider")) {
+        joint.kind = Joint::Kind::slider;
+        joint.guide = string_value(at(*value, "slider"), "slider");
+        if (joint.ground) {
+          fail(*value, "joint \"" + name + "\" is a slider and a ground pivot; a slider on a fixed guide is written "
+                           "slider = \"ground\" (without ground = true)");
+        }
+        if (!has(*value, "angle")) {
+          fail(*value, "slider \"" + name + "\" needs angle = \"...\", the direction of its line in the sketch "
+                           "(e.g. \"90 deg\")");
+        }
+        joint.angle = string_value(at(*value, "angle"), "angle");
+        if (has(*value, "through")) read_position(at(*value, "through"), "through", joint.through_x, joint.through_y);
+        if (has(*value, "coordinate")) {
+          joint.coordinate = string_value(at(*value, "coordinate"), "coordinate");
+          check_identifier(at(*value, "coordinate"), joint.coordinate, "slider coordinate");
+        }
+        joint.rate_name = optional_name(*value, "rate_name");
+        joint.second_rate_name = optional_name(*value, "second_rate_name");
+      } else {
+        for (const char* key : {"angle", "through", "coordinate", "rate_name", "second_rate_name"}) {
+          if (has(*value, key)) {
+            fail(at(*value, key), std::string(key) + " belongs to a slider; joint \"" + name +
+                                      "\" is a pin (add slider = \"<guide link>\" to make it a slider)");
+          }
+        }
+      }
+      linkage.joints.push_back(joint);
+    }
+    if (linkage.joints.empty()) fail(table, "[joints] is empty: name the joints of the mechanism as in its figure");
+  }
+
+  // Link names may start with a digit, as links are numbered in figures ("2", "3").
+  void check_link_name(const Node& value, const std::string& name) const {
+    if (!is_identifier("L" + name) || name == "ground") {
+      fail(value, "link name \"" + printable(name) + "\" is not valid (letters, digits, _; \"ground\" is the frame)");
+    }
+  }
+
+  void read_links(const Node& root, Linkage& linkage) const {
+    const Node& table = required_table(root, "links");
+    for (const auto& [name, value] : ordered(table)) {
+      check_link_name(*value, name);
+      Link link;
+      link.name = name;
+      link.where = where(*value);
+      const Node* joints = value;
+      if (value->is_table()) {
+        check_keys(*value, {"joints", "length", "lengths", "angle", "rate_name", "second_rate_name"},
+                   "link \"" + name + "\"");
+        if (!has(*value, "joints")) fail(*value, "link \"" + name + "\" needs joints = [\"B\", \"C\", ...]");
+        joints = &at(*value, "joints");
+        if (has(*value, "angle")) {
+          link.angle_name = string_value(at(*value, "angle"), "angle");
+          check_identifier(at(*value, "angle"), link.angle_name, "link angle");
+        }
+        link.rate_name = optional_name(*value, "rate_name");
+        link.second_rate_name = optional_name(*value, "second_rate_name");
+      }
+      if (!joints->is_array()) fail(*joints, "the joints of link \"" + name + "\" must be a list, e.g. [\"B\", \"C\"]");
+      for (const auto& joint : *joints->as_array()) {
+        const std::string joint_name = string_value(joint, "joints");
+        if (std::find(link.joints.begin(), link.joints.end(), joint_name) != link.joints.end()) {
+          fail(joint, "link \"" + name + "\" lists joint \"" + printable(joint_name) + "\" twice");
+        }
+        link.joints.push_back(joint_name);
+      }
+      if (value->is_table() && has(*value, "length")) {
+        if (link.joints.size() != 2) {
+          fail(at(*value, "length"), "length is for a link with two joints; link \"" + name + "\" has " +
+                                         std::to_string(link.joints.size()) +
+                                         ": write lengths = { \"C-D\" = \"...\", ... }");
+        }
+        link.lengths.push_back({{link.joints[0], link.joints[1]}, string_value(at(*value, "length"), "length")});
+      }
+      if (value->is_table() && has(*value, "lengths")) {
+        const Node& lengths = at(*value, "lengths");
+        if (!lengths.is_table()) fail(lengths, "lengths must be a table such as { \"C-D\" = \"CD\" }");
+        for (const auto& [pair, length] : ordered(lengths)) {
+          const auto dash = pair.find('-');
+          const std::string a = pair.substr(0, dash), b = dash == std::string::npos ? "" : pair.substr(dash + 1);
+          const auto on_link = [&](const std::string& j) {
+            return std::find(link.joints.begin(), link.joints.end(), j) != link.joints.end();
+          };
+          if (dash == std::string::npos || !on_link(a) || !on_link(b) || a == b) {
+            fail(*length, "\"" + printable(pair) + "\" is not two joints of link \"" + name +
+                              "\" joined by '-' (e.g. \"" + link.joints[0] + "-" +
+                              (link.joints.size() > 1 ? link.joints[1] : std::string("B")) + "\")");
+          }
+          link.lengths.push_back({{a, b}, string_value(*length, pair)});
+        }
+      }
+      linkage.links.push_back(link);
+    }
+    if (linkage.links.empty()) fail(table, "[links] is empty: list each moving link and its joints");
+  }
+
+  void read_driver(const Node& root, Mechanism& mechanism) const {
+    const Node& table = required_table(root, "driver");
+    check_keys(table, {"link", "slider", "name", "value", "values", "sweep", "rate", "second_rate", "rate_name",
+                       "second_rate_name"},
+               "[driver]");
+    Linkage& linkage = *mechanism.linkage;
+    Input& input = mechanism.input;
+    input.where = where(table);
+    linkage.driver_where = where(table);
+    if (has(table, "link") == has(table, "slider")) {
+      fail(table, "[driver] needs either link = \"2\" (a crank: its angle is the input) or slider = \"F\" "
+                  "(a slider joint: its coordinate is the input)");
+    }
+    if (has(table, "link")) linkage.driver_link = string_value(at(table, "link"), "link");
+    if (has(table, "slider")) linkage.driver_slider = string_value(at(table, "slider"), "slider");
+    if (has(table, "name")) {
+      input.name = string_value(at(table, "name"), "name");
+      check_identifier(at(table, "name"), input.name, "driver");
+    }
+    read_motion(table, "[driver]", input);
+  }
+
+  void read_link_points(const Node& root, Linkage& linkage) const {
+    if (!has(root, "points")) return;
+    const Node& table = at(root, "points");
+    if (!table.is_table()) fail(table, "[points] must be a table of name = { link = \"3\", at = [\"x\", \"y\"] }");
+    for (const auto& [name, value] : ordered(table)) {
+      check_name(*value, name, "point");
+      if (!value->is_table() || !has(*value, "link") || !has(*value, "at")) {
+        fail(*value, "point \"" + name + "\" must be written { link = \"3\", at = [\"x\", \"y\"] } (the link it is "
+                                          "on and its place in the sketch)");
+      }
+      check_keys(*value, {"link", "at"}, "point \"" + name + "\"");
+      LinkPoint point;
+      point.name = name;
+      point.where = where(*value);
+      point.link = string_value(at(*value, "link"), "link");
+      read_position(at(*value, "at"), "at", point.x, point.y);
+      linkage.points.push_back(point);
     }
   }
 

@@ -1,0 +1,862 @@
+#include <kinema/loops/linkage_loops.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <functional>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include <kinema/engine/errors.hpp>
+#include <kinema/engine/report/number_format.hpp>
+#include <kinema/loops/formula_reader.hpp>
+
+namespace kinema {
+namespace {
+
+using Point2 = std::complex<double>;
+constexpr double kPi = 3.14159265358979323846;
+
+// A given length may differ from the sketch by this much (relative): sketches are
+// drawn to a few digits (Example 4.1 gives x_B = y_B = 0.256 m for |BC| = 0.3 m);
+// more than this is a typo in one of the two.
+constexpr double kSketchTolerance = 0.01;
+
+// A signed term of a loop, as written ("BC*exp(I*phi2)").
+struct Term {
+  bool negative = false;
+  std::string text;
+};
+
+std::vector<Term> negated(std::vector<Term> terms) {
+  for (Term& t : terms) t.negative = !t.negative;
+  return terms;
+}
+
+std::string sum_text(const std::vector<Term>& terms) {
+  if (terms.empty()) return "0";
+  std::string text;
+  for (const Term& t : terms) {
+    if (text.empty()) text = t.negative ? "-" + t.text : t.text;
+    else text += (t.negative ? " - " : " + ") + t.text;
+  }
+  return text;
+}
+
+bool is_identifier(const std::string& text) {
+  if (text.empty() || !std::isalpha(static_cast<unsigned char>(text[0]))) return false;
+  return std::all_of(text.begin(), text.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+}
+
+// Angle in (-pi, pi].
+double wrapped(double angle) {
+  angle = std::remainder(angle, 2 * kPi);
+  return angle <= -kPi ? angle + 2 * kPi : angle;
+}
+
+class LinkageWriter {
+ public:
+  explicit LinkageWriter(Mechanism& mechanism) : m_(mechanism), linkage_(*mechanism.linkage) {}
+
+  void write() {
+    evaluate_parameters();
+    place_joints();
+    make_bodies();
+    make_edges();
+    check_connected();
+    check_mobility();
+    choose_driver();
+    reserve_names();
+    orient_bodies();
+    name_coordinates();
+    write_loops();
+    write_points();
+  }
+
+ private:
+  struct Body {
+    std::string name;            // "ground" or the link's name
+    const Link* link = nullptr;  // nullptr for ground
+    std::vector<std::size_t> joints;
+    int slider = -1;             // joint index of the slider it is the block of
+    std::string angle;           // formula of its angle ("0" for ground; a block: its guide's) ...
+    double offset = 0;           // ... plus this constant (a block: its line's angle to its guide)
+    double angle0 = 0;           // in the sketch (offset included)
+    bool oriented = false;
+    int parent_edge = -1;
+    int parent = -1;
+    std::size_t depth = 0;
+  };
+  struct Edge {
+    std::size_t joint;
+    std::size_t a, b;  // pin: the two bodies; slider: a = guide, b = block
+    bool slider = false;
+    bool in_tree = false;
+  };
+
+  Mechanism& m_;
+  Linkage& linkage_;
+  std::map<std::string, double> values_;  // parameters, SI
+  std::set<std::string> taken_;           // symbol names
+  std::map<std::string, std::string> generated_;  // parameters made here, by the name wanted
+  FormulaReader reader_;
+  std::map<std::string, GiNaC::ex> symbols_;
+  std::vector<Point2> at_;                // joints in the sketch
+  std::vector<Body> bodies_;              // 0 = ground
+  std::map<std::string, std::size_t> body_index_;
+  std::map<std::string, std::size_t> joint_index_;
+  std::vector<Edge> edges_;
+  std::vector<std::string> slider_coordinate_;  // per joint (sliders)
+  std::vector<double> slider_value0_;
+  std::size_t driver_body_ = 0;
+  int driver_slider_ = -1;
+
+  [[noreturn]] void fail(const SourceLocation& where, const std::string& message) const {
+    throw InputError(where.str() + ": " + message);
+  }
+
+  // ---- numbers -------------------------------------------------------------------
+
+  void evaluate_parameters() {
+    for (const Parameter& p : m_.parameters) taken_.insert(p.name);
+    for (const Parameter& p : m_.parameters) {
+      double value = 0;
+      if (p.quantity) {
+        value = p.quantity->si_value;
+      } else {
+        value = evaluate(p.formula, p.where, "parameter \"" + p.name + "\"");
+      }
+      values_[p.name] = value;
+      GiNaC::realsymbol symbol(p.name);
+      reader_.define(p.name, symbol);
+      symbols_[p.name] = symbol;
+    }
+  }
+
+  double evaluate(const std::string& formula, const SourceLocation& where, const std::string& what) {
+    const GiNaC::ex e = reader_.read(formula, where.str() + ": " + what);
+    GiNaC::exmap values;
+    for (const auto& [name, symbol] : symbols_) values[symbol] = values_.at(name);
+    const GiNaC::ex number = GiNaC::evalf(e.subs(values));
+    if (!GiNaC::is_a<GiNaC::numeric>(number) || !GiNaC::ex_to<GiNaC::numeric>(number).is_real()) {
+      fail(where, what + " = \"" + formula + "\" is not a number once the parameters are put in");
+    }
+    const double value = GiNaC::ex_to<GiNaC::numeric>(number).to_double();
+    if (!std::isfinite(value)) fail(where, what + " = \"" + formula + "\" is not finite");
+    return value;
+  }
+
+  // A length or angle as written: a quantity ("0.3 m") or a formula of the parameters.
+  double value_of(const std::string& text, Dimension dimension, const SourceLocation& where, const std::string& what) {
+    if (!looks_like_quantity(text)) return evaluate(text, where, what);
+    Quantity q;
+    try {
+      q = parse_quantity(text);
+    } catch (const UnitError& error) {
+      throw UnitError(where.str() + ": " + what + ": " + error.what());
+    }
+    if (q.dimension != dimension && q.dimension != Dimension::number) {
+      throw UnitError(where.str() + ": " + what + " = \"" + text + "\" is a " + dimension_name(q.dimension) + ", but a " +
+                      dimension_name(dimension) + " is needed here");
+    }
+    return q.si_value;
+  }
+
+  std::string fresh_name(const std::string& wanted) {
+    std::string name = wanted;
+    for (int k = 2; taken_.count(name); ++k) name = wanted + "_" + std::to_string(k);
+    taken_.insert(name);
+    return name;
+  }
+
+  // A generated parameter with an SI value; asked again for the same name and value,
+  // the same parameter.
+  std::string add_parameter(const std::string& wanted, double value, Dimension dimension, const SourceLocation& where) {
+    const auto known = generated_.find(wanted);
+    if (known != generated_.end() && values_.at(known->second) == value) return known->second;
+    Parameter p;
+    p.name = fresh_name(wanted);
+    const double shown = dimension == Dimension::angle ? to_degrees(value) : value;
+    p.text = format_round_trip(shown) + (dimension == Dimension::angle ? " deg" : " m");
+    p.quantity = Quantity{value, dimension};
+    p.where = where;
+    m_.parameters.push_back(p);
+    values_[p.name] = value;
+    if (known == generated_.end()) generated_[wanted] = p.name;
+    return p.name;
+  }
+
+  // A length or coordinate as a factor in a term: the parameter or formula as written,
+  // or a parameter made for a quantity.
+  std::string as_factor(const std::string& text, const std::string& wanted, Dimension dimension,
+                        const SourceLocation& where, const std::string& what) {
+    if (is_identifier(text)) return text;
+    if (!looks_like_quantity(text)) return "(" + text + ")";
+    return add_parameter(wanted, value_of(text, dimension, where, what), dimension, where);
+  }
+
+  // ---- structure -----------------------------------------------------------------
+
+  void place_joints() {
+    std::set<std::string> names;
+    for (std::size_t j = 0; j < linkage_.joints.size(); ++j) {
+      const Joint& joint = linkage_.joints[j];
+      joint_index_[joint.name] = j;
+      const double x = value_of(joint.x, Dimension::length, joint.where, "joint " + joint.name + " x");
+      const double y = value_of(joint.y, Dimension::length, joint.where, "joint " + joint.name + " y");
+      at_.emplace_back(x, y);
+    }
+  }
+
+  void make_bodies() {
+    Body ground;
+    ground.name = "ground";
+    bodies_.push_back(ground);
+    body_index_["ground"] = 0;
+    for (const Link& link : linkage_.links) {
+      if (body_index_.count(link.name)) fail(link.where, "duplicate link name \"" + link.name + "\"");
+      Body body;
+      body.name = link.name;
+      body.link = &link;
+      for (const std::string& name : link.joints) {
+        const auto it = joint_index_.find(name);
+        if (it == joint_index_.end()) {
+          fail(link.where, "link \"" + link.name + "\" lists joint \"" + name + "\", which is not in [joints]");
+        }
+        body.joints.push_back(it->second);
+        if (linkage_.joints[it->second].kind == Joint::Kind::slider) {
+          if (body.slider >= 0) {
+            fail(link.where, "link \"" + link.name + "\" is the block of two sliders (" +
+                                 linkage_.joints[std::size_t(body.slider)].name + ", " + name +
+                                 "); kinema takes one slider per block: make the second block a link of its own "
+                                 "pinned to this one");
+          }
+          body.slider = static_cast<int>(it->second);
+        }
+      }
+      if (body.joints.size() < 2 && body.slider < 0) {
+        fail(link.where, "link \"" + link.name + "\" has " + std::to_string(body.joints.size()) +
+                             " joint; a link joins at least two (a slider block: its pin and its slider)");
+      }
+      body_index_[link.name] = bodies_.size();
+      bodies_.push_back(body);
+    }
+  }
+
+  std::string body_list(const std::vector<std::size_t>& bodies) const {
+    std::string text;
+    for (std::size_t b : bodies) text += (text.empty() ? "" : ", ") + bodies_[b].name;
+    return text;
+  }
+
+  void make_edges() {
+    for (std::size_t j = 0; j < linkage_.joints.size(); ++j) {
+      const Joint& joint = linkage_.joints[j];
+      std::vector<std::size_t> on;
+      if (joint.ground) on.push_back(0);
+      for (std::size_t b = 1; b < bodies_.size(); ++b) {
+        if (std::find(bodies_[b].joints.begin(), bodies_[b].joints.end(), j) != bodies_[b].joints.end()) on.push_back(b);
+      }
+      if (joint.kind == Joint::Kind::slider) {
+        if (on.size() != 1) {
+          fail(joint.where, on.empty() ? "slider \"" + joint.name + "\" is on no link: list it in the joints of its block"
+                                       : "slider \"" + joint.name + "\" is listed by links " + body_list(on) +
+                                             "; only its block lists it (its guide is slider = \"...\")");
+        }
+        const auto guide = body_index_.find(joint.guide);
+        if (guide == body_index_.end()) {
+          fail(joint.where, "slider \"" + joint.name + "\" slides on \"" + joint.guide +
+                                "\", which is not a link; write slider = \"ground\" for a fixed guide or the name of "
+                                "the link that carries the guide");
+        }
+        if (guide->second == on[0]) {
+          fail(joint.where, "slider \"" + joint.name + "\" slides on its own block \"" + joint.guide + "\"");
+        }
+        edges_.push_back(Edge{j, guide->second, on[0], true});
+        continue;
+      }
+      if (on.size() < 2) {
+        fail(joint.where, on.empty() ? "joint \"" + joint.name + "\" is on no link: list it in the joints of the links "
+                                                                 "it joins (or remove it)"
+                                     : "joint \"" + joint.name + "\" is used by link " + body_list(on) +
+                                           " only; a pin joins two links: add it to the other link's joints, or set "
+                                           "ground = true for a fixed pivot");
+      }
+      // A pin shared by k bodies is k - 1 joints (as Grübler counts it).
+      for (std::size_t k = 1; k < on.size(); ++k) edges_.push_back(Edge{j, on[0], on[k], false});
+    }
+  }
+
+  void check_connected() {
+    std::vector<bool> reached(bodies_.size(), false);
+    std::vector<std::size_t> queue{0};
+    reached[0] = true;
+    for (std::size_t head = 0; head < queue.size(); ++head) {
+      const std::size_t b = queue[head];
+      for (std::size_t e = 0; e < edges_.size(); ++e) {
+        const Edge& edge = edges_[e];
+        if (edge.a != b && edge.b != b) continue;
+        const std::size_t other = edge.a == b ? edge.b : edge.a;
+        if (reached[other]) continue;
+        reached[other] = true;
+        edges_[e].in_tree = true;
+        bodies_[other].parent_edge = static_cast<int>(e);
+        bodies_[other].parent = static_cast<int>(b);
+        bodies_[other].depth = bodies_[b].depth + 1;
+        queue.push_back(other);
+      }
+    }
+    std::vector<std::size_t> apart;
+    for (std::size_t b = 1; b < bodies_.size(); ++b)
+      if (!reached[b]) apart.push_back(b);
+    if (!apart.empty()) {
+      fail(bodies_[apart[0]].link->where,
+           std::string(apart.size() == 1 ? "link " : "links ") + body_list(apart) +
+               (apart.size() == 1 ? " shares" : " share") +
+               " no joint with the rest: no chain of joints leads from ground to it; add the joint that attaches it, "
+               "or give a fixed pivot ground = true");
+    }
+  }
+
+  void check_mobility() {
+    const long n = static_cast<long>(bodies_.size()), j = static_cast<long>(edges_.size());
+    const long mobility = 3 * (n - 1) - 2 * j;
+    if (mobility == 1) return;
+    std::ostringstream message;
+    message << "the mechanism's mobility is " << mobility << " (Grübler: 3(n - 1) - 2j with n = " << n
+            << " bodies, ground included, and j = " << j << " joints: 3*" << (n - 1) << " - 2*" << j << " = " << mobility
+            << "), but one driver moves a mechanism of mobility 1; ";
+    if (mobility > 1) {
+      message << "add " << (mobility - 1) << " constraint(s): a pin between two links, or a binary link with two pins "
+              << "(each takes one degree of freedom away)";
+    } else {
+      message << "it is a structure: remove " << (1 - mobility)
+              << " binary link(s) with their two pins, or free a joint (each gives one degree of freedom back)";
+    }
+    fail(linkage_.driver_where, message.str());
+  }
+
+  void choose_driver() {
+    if (!linkage_.driver_link.empty()) {
+      const auto it = body_index_.find(linkage_.driver_link);
+      if (it == body_index_.end() || it->second == 0) {
+        fail(linkage_.driver_where, "[driver] link = \"" + linkage_.driver_link + "\" is not a link of [links]");
+      }
+      driver_body_ = it->second;
+      const Body& body = bodies_[driver_body_];
+      bool grounded = false;
+      for (const Edge& e : edges_)
+        grounded = grounded || (!e.slider && ((e.a == 0 && e.b == driver_body_) || (e.b == 0 && e.a == driver_body_)));
+      if (!grounded) {
+        fail(linkage_.driver_where, "the driver, link \"" + body.name +
+                                        "\", is not attached to ground: a crank turns about a fixed pivot (a joint "
+                                        "with ground = true on it)");
+      }
+      if (body.slider >= 0) {
+        fail(linkage_.driver_where, "the driver, link \"" + body.name + "\", is a slider block: its angle is its "
+                                        "guide's; drive the slider instead ([driver] slider = \"" +
+                                        linkage_.joints[std::size_t(body.slider)].name + "\")");
+      }
+      if (m_.input.dimension != Dimension::angle && !m_.input.values.empty()) {
+        fail(linkage_.driver_where, "the driver is a crank (link \"" + body.name + "\"): its values are angles, e.g. "
+                                                                               "\"30 deg\"");
+      }
+      m_.input.dimension = Dimension::angle;
+    } else {
+      const auto it = joint_index_.find(linkage_.driver_slider);
+      if (it == joint_index_.end() || linkage_.joints[it->second].kind != Joint::Kind::slider) {
+        fail(linkage_.driver_where, "[driver] slider = \"" + linkage_.driver_slider + "\" is not a slider of [joints]");
+      }
+      driver_slider_ = static_cast<int>(it->second);
+      if (linkage_.joints[it->second].guide != "ground") {
+        fail(linkage_.driver_where, "the driver, slider \"" + linkage_.driver_slider +
+                                        "\", is not attached to ground: a driven slider moves on a fixed guide "
+                                        "(slider = \"ground\")");
+      }
+      if (m_.input.dimension != Dimension::length && !m_.input.values.empty()) {
+        fail(linkage_.driver_where, "the driver is a slider: its values are lengths, e.g. \"0.2 m\"");
+      }
+      m_.input.dimension = Dimension::length;
+    }
+  }
+
+  // ---- angles and coordinates ----------------------------------------------------
+
+  std::string default_angle_name(const Body& body) const {
+    return std::isdigit(static_cast<unsigned char>(body.name[0])) ? "theta" + body.name : "theta_" + body.name;
+  }
+
+  // Link angles, slider coordinates and the input are symbols: parameters made here
+  // must not take their names.
+  void reserve_names() {
+    if (!m_.input.name.empty()) taken_.insert(m_.input.name);
+    for (std::size_t b = 1; b < bodies_.size(); ++b) {
+      const Body& body = bodies_[b];
+      if (body.slider < 0) taken_.insert(body.link->angle_name.empty() ? default_angle_name(body) : body.link->angle_name);
+    }
+    for (const Joint& joint : linkage_.joints)
+      if (joint.kind == Joint::Kind::slider) taken_.insert(joint.coordinate.empty() ? "s_" + joint.name : joint.coordinate);
+  }
+
+  // Links with angles of their own first, then the driver's name, then slider blocks
+  // (whose angles are their guides').
+  void orient_bodies() {
+    bodies_[0].oriented = true;
+    bodies_[0].angle = "0";
+    for (std::size_t b = 1; b < bodies_.size(); ++b)
+      if (bodies_[b].slider < 0) orient(b, 0);
+    if (driver_slider_ < 0) {
+      Body& body = bodies_[driver_body_];
+      if (m_.input.name.empty()) m_.input.name = body.angle;
+      body.angle = m_.input.name;
+    }
+    for (std::size_t b = 1; b < bodies_.size(); ++b) orient(b, 0);
+  }
+
+  double slider_direction(std::size_t j) {
+    const Joint& joint = linkage_.joints[j];
+    return value_of(joint.angle, Dimension::angle, joint.where, "slider " + joint.name + " angle");
+  }
+
+  void orient(std::size_t b, int depth) {
+    Body& body = bodies_[b];
+    if (body.oriented) return;
+    if (depth > static_cast<int>(bodies_.size())) {
+      fail(body.link->where, "link \"" + body.name + "\": its slider's guides form a cycle; one of them must be a "
+                                                    "link with an angle of its own");
+    }
+    if (body.slider >= 0) {
+      const std::size_t j = static_cast<std::size_t>(body.slider);
+      const std::size_t guide = body_index_.at(linkage_.joints[j].guide);
+      orient(guide, depth + 1);
+      const Body& g = bodies_[guide];
+      body.angle0 = slider_direction(j);
+      body.angle = g.angle;
+      body.offset = wrapped(g.offset + body.angle0 - g.angle0);
+    } else {
+      const Point2 d = at_[body.joints[1]] - at_[body.joints[0]];
+      if (std::abs(d) <= 1e-12 * (1 + std::abs(at_[body.joints[0]]))) {
+        fail(body.link->where, "link \"" + body.name + "\": its first two joints, " + linkage_.joints[body.joints[0]].name +
+                                   " and " + linkage_.joints[body.joints[1]].name +
+                                   ", are at the same place in the sketch; its angle is the direction from the first "
+                                   "to the second: list a joint elsewhere second");
+      }
+      body.angle0 = std::arg(d);
+      body.angle = body.link->angle_name.empty() ? default_angle_name(body) : body.link->angle_name;
+    }
+    body.oriented = true;
+  }
+
+  void name_coordinates() {
+    slider_coordinate_.assign(linkage_.joints.size(), "");
+    slider_value0_.assign(linkage_.joints.size(), 0.0);
+    for (const Edge& e : edges_) {
+      if (!e.slider) continue;
+      const Joint& joint = linkage_.joints[e.joint];
+      slider_coordinate_[e.joint] = joint.coordinate.empty() ? "s_" + joint.name : joint.coordinate;
+      const Point2 from = through0(e.joint);
+      slider_value0_[e.joint] = std::real((at_[e.joint] - from) * std::polar(1.0, -slider_direction(e.joint)));
+      const double off = std::imag((at_[e.joint] - from) * std::polar(1.0, -slider_direction(e.joint)));
+      if (std::fabs(off) > kSketchTolerance * std::max(std::abs(at_[e.joint] - from), 1e-9) + 1e-9) {
+        fail(joint.where, "slider \"" + joint.name + "\": its place in the sketch is " + format_significant(std::fabs(off)) +
+                              " m off its line (through the point given and at its angle); put it on the line");
+      }
+    }
+    // The input: a crank's angle or a slider's coordinate.
+    Input& input = m_.input;
+    if (driver_slider_ >= 0) {
+      const Joint& joint = linkage_.joints[std::size_t(driver_slider_)];
+      if (input.name.empty()) input.name = slider_coordinate_[std::size_t(driver_slider_)];
+      slider_coordinate_[std::size_t(driver_slider_)] = input.name;
+      if (input.rate_name.empty()) input.rate_name = joint.rate_name;
+      if (input.second_rate_name.empty()) input.second_rate_name = joint.second_rate_name;
+    } else {
+      const Body& body = bodies_[driver_body_];
+      if (input.rate_name.empty()) input.rate_name = body.link->rate_name;
+      if (input.second_rate_name.empty()) input.second_rate_name = body.link->second_rate_name;
+    }
+    for (std::size_t b = 1; b < bodies_.size(); ++b) {
+      const Body& body = bodies_[b];
+      if (body.slider >= 0 || b == driver_body_) continue;
+      Unknown u;
+      u.name = body.angle;
+      u.dimension = Dimension::angle;
+      u.guess = body.angle0;
+      u.rate_name = body.link->rate_name;
+      u.second_rate_name = body.link->second_rate_name;
+      u.where = body.link->where;
+      m_.unknowns.push_back(u);
+    }
+    for (const Edge& e : edges_) {
+      if (!e.slider || static_cast<int>(e.joint) == driver_slider_) continue;
+      const Joint& joint = linkage_.joints[e.joint];
+      Unknown u;
+      u.name = slider_coordinate_[e.joint];
+      u.dimension = Dimension::length;
+      u.guess = slider_value0_[e.joint];
+      u.rate_name = joint.rate_name;
+      u.second_rate_name = joint.second_rate_name;
+      u.where = joint.where;
+      m_.unknowns.push_back(u);
+    }
+  }
+
+  // The point a slider's coordinate is measured from, in the sketch.
+  Point2 through0(std::size_t j) {
+    const Joint& joint = linkage_.joints[j];
+    if (joint.through_x.empty()) return at_[j];
+    return {value_of(joint.through_x, Dimension::length, joint.where, "slider " + joint.name + " through x"),
+            value_of(joint.through_y, Dimension::length, joint.where, "slider " + joint.name + " through y")};
+  }
+
+  // ---- vectors ---------------------------------------------------------------------
+
+  const std::string* given_length(const Body& body, const std::string& a, const std::string& b) const {
+    if (body.link == nullptr) return nullptr;
+    for (const auto& [pair, text] : body.link->lengths) {
+      if ((pair.first == a && pair.second == b) || (pair.first == b && pair.second == a)) return &text;
+    }
+    return nullptr;
+  }
+
+  // The distance between two joints of a body: as given (checked against the sketch),
+  // else the sketch's.
+  double length_value(const Body& body, std::size_t ja, std::size_t jb) {
+    const std::string& a = linkage_.joints[ja].name;
+    const std::string& b = linkage_.joints[jb].name;
+    const double sketch = std::abs(at_[jb] - at_[ja]);
+    const std::string* text = given_length(body, a, b);
+    if (text == nullptr) return sketch;
+    const SourceLocation& where = body.link->where;
+    const double given = value_of(*text, Dimension::length, where, "link " + body.name + " length " + a + "-" + b);
+    if (!(given > 0)) fail(where, "link \"" + body.name + "\": the length " + a + "-" + b + " = \"" + *text + "\" is not positive");
+    if (std::fabs(given - sketch) > kSketchTolerance * given) {
+      fail(where, "link \"" + body.name + "\": the length " + a + "-" + b + " = \"" + *text + "\" is " +
+                      format_significant(given) + " m, but the sketch puts " + a + " and " + b + " " +
+                      format_significant(sketch) + " m apart (" +
+                      format_significant(100 * std::fabs(given - sketch) / given, 3) + " %); correct the sketch or the length");
+    }
+    return given;
+  }
+
+  // The same distance as a factor of a term.
+  std::string length_factor(const Body& body, std::size_t ja, std::size_t jb) {
+    const std::string& a = linkage_.joints[ja].name;
+    const std::string& b = linkage_.joints[jb].name;
+    const std::string pair = a < b ? a + b : b + a;
+    const double value = length_value(body, ja, jb);
+    if (const std::string* text = given_length(body, a, b)) {
+      return as_factor(*text, pair, Dimension::length, body.link->where, "link " + body.name + " length");
+    }
+    return add_parameter(pair, value, Dimension::length, body.link->where);
+  }
+
+  // The angle of the vector from the body's first joint to joint j, minus the body's
+  // angle: exact from three given lengths (side from the sketch), else the sketch's.
+  double offset(const Body& body, std::size_t j, double d_first_j) {
+    const std::size_t first = body.joints[0];
+    const Point2 v = at_[j] - at_[first];
+    double beta = wrapped(std::arg(v) - body.angle0);
+    if (body.slider < 0 && j != body.joints[1] && body.joints.size() >= 2) {
+      const std::size_t second = body.joints[1];
+      const std::string& f = linkage_.joints[first].name;
+      const std::string& s = linkage_.joints[second].name;
+      const std::string& n = linkage_.joints[j].name;
+      if (given_length(body, f, n) && given_length(body, s, n)) {
+        const double a = length_value(body, first, second), c = length_value(body, second, j);
+        double cosine = (a * a + d_first_j * d_first_j - c * c) / (2 * a * d_first_j);
+        if (std::fabs(cosine) > 1 + kSketchTolerance) {
+          fail(body.link->where, "link \"" + body.name + "\": the lengths of " + f + ", " + s + " and " + n +
+                                     " do not make a triangle; correct them");
+        }
+        cosine = std::clamp(cosine, -1.0, 1.0);
+        const double exact = std::fabs(cosine) > 1 - 1e-12 ? (cosine > 0 ? 0.0 : kPi) : std::acos(cosine);
+        beta = (beta < 0 && exact != kPi ? -exact : exact);
+      }
+    } else if (j == body.joints[1] && body.slider < 0) {
+      beta = 0;
+    }
+    return beta;
+  }
+
+  // factor * e^{i(angle + beta)} as a term of a loop.
+  Term rotated(const std::string& factor, const std::string& angle, double beta, const std::string& beta_name,
+               const SourceLocation& where) {
+    const double tolerance = 1e-12;
+    bool negative = false;
+    std::string unit;  // "" = 1, or "I"
+    std::string argument = angle;
+    if (std::fabs(beta) < tolerance) {
+    } else if (std::fabs(std::fabs(beta) - kPi) < tolerance) {
+      negative = true;
+    } else if (std::fabs(beta - kPi / 2) < tolerance) {
+      unit = "I";
+    } else if (std::fabs(beta + kPi / 2) < tolerance) {
+      unit = "I";
+      negative = true;
+    } else {
+      const std::string name = add_parameter(beta_name, beta, Dimension::angle, where);
+      argument = angle == "0" ? name : angle + " + " + name;
+    }
+    std::string text = factor;
+    if (!unit.empty()) text = unit + "*" + text;
+    if (argument != "0") text += "*exp(I*" + (argument.find(' ') != std::string::npos ? "(" + argument + ")" : argument) + ")";
+    return Term{negative, text};
+  }
+
+  // The vector from body b's first joint to joint j (empty when they coincide).
+  std::vector<Term> body_vector(std::size_t b, std::size_t j) {
+    const Body& body = bodies_[b];
+    const std::size_t first = body.joints[0];
+    if (j == first || std::abs(at_[j] - at_[first]) <= 1e-12 * (1 + std::abs(at_[first]))) return {};
+    const double beta = offset(body, j, length_value(body, first, j));
+    return {rotated(length_factor(body, first, j), body.angle, wrapped(beta + body.offset),
+                    "beta_" + body.name + "_" + linkage_.joints[j].name, body.link->where)};
+  }
+
+  // A point of ground as written: x + I*y.
+  std::vector<Term> ground_point(const std::string& x, const std::string& y, const std::string& name,
+                                 const SourceLocation& where) {
+    std::vector<Term> terms;
+    const auto zero = [&](const std::string& text) {
+      return looks_like_quantity(text) && value_of(text, Dimension::length, where, name) == 0;
+    };
+    const auto term = [&](const std::string& text, const std::string& wanted, const std::string& unit) {
+      const bool negative = text.size() > 1 && text[0] == '-' && is_identifier(text.substr(1));  // "-Lc"
+      return Term{negative, unit + as_factor(negative ? text.substr(1) : text, wanted, Dimension::length, where, wanted)};
+    };
+    if (!zero(x)) terms.push_back(term(x, "x_" + name, ""));
+    if (!zero(y)) terms.push_back(term(y, "y_" + name, "I*"));
+    return terms;
+  }
+
+  // The point a slider's coordinate is measured from, on its guide, from the guide's first joint.
+  std::vector<Term> through_vector(std::size_t j) {
+    const Joint& joint = linkage_.joints[j];
+    const std::size_t g = body_index_.at(joint.guide);
+    if (g == 0) {
+      return joint.through_x.empty() ? ground_point(joint.x, joint.y, joint.name, joint.where)
+                                     : ground_point(joint.through_x, joint.through_y, joint.name, joint.where);
+    }
+    const Body& guide = bodies_[g];
+    const Point2 t = through0(j), first = at_[guide.joints[0]];
+    if (std::abs(t - first) <= 1e-12 * (1 + std::abs(first))) return {};
+    const std::string factor = add_parameter("r_" + guide.name + "_" + joint.name, std::abs(t - first), Dimension::length, joint.where);
+    const double beta = wrapped(std::arg(t - first) - guide.angle0 + guide.offset);
+    return {rotated(factor, guide.angle, beta, "beta_" + guide.name + "_" + joint.name, joint.where)};
+  }
+
+  // s * e^{i(guide angle + line offset)}: the slider's travel along its line.
+  Term travel(std::size_t j) {
+    const Joint& joint = linkage_.joints[j];
+    const Body& guide = bodies_[body_index_.at(joint.guide)];
+    const double beta = wrapped(slider_direction(j) - guide.angle0 + guide.offset);
+    return rotated(slider_coordinate_[j], guide.angle, beta, "gamma_" + joint.name, joint.where);
+  }
+
+  // Where a joint is on a body: ground's points as written, a link's from its first joint.
+  struct Path {
+    std::vector<std::pair<int, std::vector<Term>>> steps;  // (tree edge, its terms) from ground
+  };
+
+  Path position(std::size_t b, std::size_t j) {
+    Path path = reference(b);
+    if (b == 0) path.steps.push_back({-1, ground_point(linkage_.joints[j].x, linkage_.joints[j].y, linkage_.joints[j].name,
+                                                       linkage_.joints[j].where)});
+    else path.steps.push_back({-1, body_vector(b, j)});
+    return path;
+  }
+
+  // The body's first joint, from ground along the tree.
+  Path reference(std::size_t b) {
+    if (b == 0) return {};
+    const Body& body = bodies_[b];
+    const Edge& e = edges_[std::size_t(body.parent_edge)];
+    const std::size_t parent = std::size_t(body.parent);
+    Path path;
+    std::vector<Term> terms;
+    if (!e.slider) {
+      path = position(parent, e.joint);
+      terms = negated(body_vector(b, e.joint));
+    } else if (parent == e.a) {  // guide -> block
+      path = reference(parent);
+      terms = through_vector(e.joint);
+      terms.push_back(travel(e.joint));
+      for (const Term& t : negated(body_vector(b, e.joint))) terms.push_back(t);
+    } else {  // block -> guide
+      path = position(parent, e.joint);
+      terms = negated(std::vector<Term>{travel(e.joint)});
+      for (const Term& t : negated(through_vector(e.joint))) terms.push_back(t);
+    }
+    // The last step of position() is the parent's vector to the joint: same tree edge.
+    std::vector<Term> step = path.steps.empty() || path.steps.back().first != -1 ? std::vector<Term>{} : path.steps.back().second;
+    if (!path.steps.empty() && path.steps.back().first == -1) path.steps.pop_back();
+    for (const Term& t : terms) step.push_back(t);
+    path.steps.push_back({body.parent_edge, step});
+    return path;
+  }
+
+  static std::vector<Term> flatten(const Path& path, std::size_t from) {
+    std::vector<Term> terms;
+    for (std::size_t k = from; k < path.steps.size(); ++k)
+      for (const Term& t : path.steps[k].second) terms.push_back(t);
+    return terms;
+  }
+
+  std::string cycle_name(const Path& a, const Path& b, std::size_t common, std::size_t closing) const {
+    std::vector<std::string> names;
+    for (std::size_t k = common; k < a.steps.size(); ++k)
+      if (a.steps[k].first >= 0) names.push_back(linkage_.joints[edges_[std::size_t(a.steps[k].first)].joint].name);
+    names.push_back(linkage_.joints[closing].name);
+    for (std::size_t k = b.steps.size(); k-- > common;)
+      if (b.steps[k].first >= 0) names.push_back(linkage_.joints[edges_[std::size_t(b.steps[k].first)].joint].name);
+    std::string name;
+    for (const std::string& n : names) name += n;
+    return name;
+  }
+
+  void write_loops() {
+    std::set<std::string> loop_names;
+    for (const Edge& e : edges_) {
+      if (e.in_tree) continue;
+      Path a, b;
+      std::vector<Term> extra;
+      if (!e.slider) {
+        a = position(e.a, e.joint);
+        b = position(e.b, e.joint);
+      } else {  // block's joint = guide's through point + travel
+        a = position(e.b, e.joint);
+        b = reference(e.a);
+        std::vector<Term> along = through_vector(e.joint);
+        along.push_back(travel(e.joint));
+        b.steps.push_back({-1, along});
+      }
+      std::size_t common = 0;
+      while (common < a.steps.size() && common < b.steps.size() && a.steps[common].first >= 0 &&
+             a.steps[common].first == b.steps[common].first)
+        ++common;
+      std::vector<Term> terms = flatten(a, common);
+      for (const Term& t : negated(flatten(b, common))) terms.push_back(t);
+      Loop loop;
+      loop.name = cycle_name(a, b, common, e.joint);
+      while (!loop_names.insert(loop.name).second) loop.name += "_";
+      loop.complex_formula = sum_text(terms);
+      loop.where = linkage_.joints[e.joint].where;
+      m_.loops.push_back(loop);
+    }
+  }
+
+  void write_points() {
+    for (std::size_t j = 0; j < linkage_.joints.size(); ++j) {
+      const Joint& joint = linkage_.joints[j];
+      if (joint.ground) continue;
+      // From the body nearest ground: the shortest sum (a slider's point from its guide).
+      std::size_t body = 0;
+      for (std::size_t b = 1; b < bodies_.size(); ++b) {
+        const bool on = std::find(bodies_[b].joints.begin(), bodies_[b].joints.end(), j) != bodies_[b].joints.end();
+        if (on && (body == 0 || bodies_[b].depth < bodies_[body].depth)) body = b;
+      }
+      // A slider where a pin of its block is: the pin names the point.
+      bool shown = false;
+      if (joint.kind == Joint::Kind::slider) {
+        for (std::size_t k : bodies_[body].joints)
+          shown = shown || (k != j && linkage_.joints[k].kind == Joint::Kind::pin && std::abs(at_[k] - at_[j]) < 1e-12);
+      }
+      if (shown) continue;
+      Point point;
+      point.name = joint.name;
+      point.formula = sum_text(flatten(position(body, j), 0));
+      point.where = joint.where;
+      m_.points.push_back(point);
+    }
+    for (const LinkPoint& p : linkage_.points) {
+      const auto it = body_index_.find(p.link);
+      if (it == body_index_.end() || it->second == 0) {
+        fail(p.where, "point \"" + p.name + "\" is on link \"" + p.link + "\", which is not a link of [links]");
+      }
+      const Body& body = bodies_[it->second];
+      const Point2 at(value_of(p.x, Dimension::length, p.where, "point " + p.name + " x"),
+                      value_of(p.y, Dimension::length, p.where, "point " + p.name + " y"));
+      std::vector<Term> terms = flatten(reference(it->second), 0);
+      const Point2 v = at - at_[body.joints[0]];
+      if (std::abs(v) > 1e-12 * (1 + std::abs(at))) {
+        const std::string factor = add_parameter("r_" + body.name + "_" + p.name, std::abs(v), Dimension::length, p.where);
+        terms.push_back(rotated(factor, body.angle, wrapped(std::arg(v) - body.angle0 + body.offset),
+                                "beta_" + body.name + "_" + p.name, p.where));
+      }
+      Point point;
+      point.name = p.name;
+      point.formula = sum_text(terms);
+      point.where = p.where;
+      m_.points.push_back(point);
+    }
+  }
+};
+
+// A TOML basic string.
+std::string quoted(const std::string& text) {
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out + "\"";
+}
+
+}  // namespace
+
+void linkage_loops(Mechanism& mechanism) { LinkageWriter(mechanism).write(); }
+
+std::string vector_loop_file(const Mechanism& m) {
+  std::ostringstream out;
+  out << "# " << m.title << ": vector loops";
+  if (m.linkage) out << " written by kinema from the joints and links of " << m.source_file;
+  out << "\ntitle = " << quoted(m.title) << "\n";
+  if (!m.description.empty()) out << "description = " << quoted(m.description) << "\n";
+  if (!m.parameters.empty()) {
+    out << "\n[parameters]\n";
+    for (const Parameter& p : m.parameters) out << p.name << " = " << quoted(p.text) << "\n";
+  }
+  // 15 digits: what a reader expects to see ("30 deg", not 29.999999999999996), and
+  // within 1e-15 of the value.
+  const auto angle_or_length = [](double si, Dimension d) {
+    return d == Dimension::angle ? format_significant(to_degrees(si), 15) + " deg" : format_significant(si, 15) + " m";
+  };
+  const Input& input = m.input;
+  out << "\n[input]\nname = " << quoted(input.name) << "\n";
+  if (input.values.size() == 1) out << "value = " << quoted(angle_or_length(input.values[0], input.dimension)) << "\n";
+  if (input.values.size() > 1) {
+    out << "values = [";
+    for (std::size_t k = 0; k < input.values.size(); ++k)
+      out << (k ? ", " : "") << quoted(angle_or_length(input.values[k], input.dimension));
+    out << "]\n";
+  }
+  const Dimension rate = rate_dimension(input.dimension);
+  out << "rate = " << quoted(format_significant(input.rate, 15) + (rate == Dimension::angular_velocity ? " rad/s" : " m/s")) << "\n";
+  out << "second_rate = "
+      << quoted(format_significant(input.second_rate, 15) + (rate == Dimension::angular_velocity ? " rad/s^2" : " m/s^2")) << "\n";
+  if (!input.rate_name.empty()) out << "rate_name = " << quoted(input.rate_name) << "\n";
+  if (!input.second_rate_name.empty()) out << "second_rate_name = " << quoted(input.second_rate_name) << "\n";
+  out << "\n[unknowns]\n";
+  for (const Unknown& u : m.unknowns) {
+    out << u.name << " = { guess = " << quoted(angle_or_length(u.guess, u.dimension));
+    if (!u.rate_name.empty()) out << ", rate_name = " << quoted(u.rate_name);
+    if (!u.second_rate_name.empty()) out << ", second_rate_name = " << quoted(u.second_rate_name);
+    if (!u.latex_name.empty()) out << ", latex = " << quoted(u.latex_name);
+    out << " }\n";
+  }
+  out << "\n[loops]\n";
+  for (const Loop& loop : m.loops) {
+    if (loop.complex_formula.empty()) out << loop.name << " = { x = " << quoted(loop.x_formula) << ", y = " << quoted(loop.y_formula) << " }\n";
+    else out << loop.name << " = " << quoted(loop.complex_formula) << "\n";
+  }
+  if (!m.points.empty()) {
+    out << "\n[points]\n";
+    for (const Point& p : m.points) out << p.name << " = " << quoted(p.formula) << "\n";
+  }
+  if (m.output.length != "m") out << "\n[output]\nlength = " << quoted(m.output.length) << "\n";
+  return out.str();
+}
+
+}  // namespace kinema
