@@ -235,10 +235,6 @@ class LinkageWriter {
           body.slider = static_cast<int>(it->second);
         }
       }
-      if (body.joints.size() < 2 && body.slider < 0) {
-        fail(link.where, "link \"" + link.name + "\" has " + std::to_string(body.joints.size()) +
-                             " joint; a link joins at least two (a slider block: its pin and its slider)");
-      }
       body_index_[link.name] = bodies_.size();
       bodies_.push_back(body);
     }
@@ -434,6 +430,19 @@ class LinkageWriter {
       body.angle0 = slider_direction(j);
       body.angle = g.angle;
       body.offset = wrapped(g.offset + body.angle0 - g.angle0);
+    } else if (body.joints.size() < 2) {
+      // A link with one joint carries the guide of a slider (a crank with a block sliding
+      // on it): its angle is the direction of that line.
+      int guided = -1;
+      for (std::size_t j = 0; j < linkage_.joints.size() && guided < 0; ++j)
+        if (linkage_.joints[j].kind == Joint::Kind::slider && linkage_.joints[j].guide == body.name) guided = static_cast<int>(j);
+      if (guided < 0 || body.joints.empty()) {
+        fail(body.link->where, "link \"" + body.name + "\" has " + std::to_string(body.joints.size()) +
+                                   " joint; a link joins at least two (a crank that only guides a slider: its pivot, "
+                                   "and the slider names it, slider = \"" + body.name + "\")");
+      }
+      body.angle0 = slider_direction(std::size_t(guided));
+      body.angle = body.link->angle_name.empty() ? default_angle_name(body) : body.link->angle_name;
     } else {
       const Point2 d = at_[body.joints[1]] - at_[body.joints[0]];
       if (std::abs(d) <= 1e-12 * (1 + std::abs(at_[body.joints[0]]))) {
@@ -558,7 +567,7 @@ class LinkageWriter {
     const std::size_t first = body.joints[0];
     const Point2 v = at_[j] - at_[first];
     double beta = wrapped(std::arg(v) - body.angle0);
-    if (body.slider < 0 && j != body.joints[1] && body.joints.size() >= 2) {
+    if (body.slider < 0 && body.joints.size() >= 2 && j != body.joints[1]) {
       const std::size_t second = body.joints[1];
       const std::string& f = linkage_.joints[first].name;
       const std::string& s = linkage_.joints[second].name;
@@ -574,7 +583,7 @@ class LinkageWriter {
         const double exact = std::fabs(cosine) > 1 - 1e-12 ? (cosine > 0 ? 0.0 : kPi) : std::acos(cosine);
         beta = (beta < 0 && exact != kPi ? -exact : exact);
       }
-    } else if (j == body.joints[1] && body.slider < 0) {
+    } else if (body.joints.size() >= 2 && j == body.joints[1] && body.slider < 0) {
       beta = 0;
     }
     return beta;

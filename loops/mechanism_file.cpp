@@ -557,6 +557,25 @@ class FileReader {
       input.name = string_value(at(table, "name"), "name");
       check_identifier(at(table, "name"), input.name, "driver");
     }
+    // A crank turns through angles, a slider moves through lengths: say so before the
+    // rates are read in the units the values imply.
+    const Dimension kind = has(table, "link") ? Dimension::angle : Dimension::length;
+    for (const char* key : {"value", "values"}) {
+      if (!has(table, key)) continue;
+      const Node& node = at(table, key);
+      const auto check = [&](const Node& value) {
+        const Quantity q = quantity(value, key);
+        if (q.dimension != kind && q.dimension != Dimension::number) {
+          fail(value, std::string("the driver is a ") + (kind == Dimension::angle ? "crank: its values are angles, e.g. \"30 deg\""
+                                                                                  : "slider: its values are lengths, e.g. \"0.2 m\""));
+        }
+      };
+      if (node.is_array()) {
+        for (const auto& value : *node.as_array()) check(value);
+      } else {
+        check(node);
+      }
+    }
     read_motion(table, "[driver]", input);
   }
 

@@ -1,0 +1,277 @@
+// loops/linkage_loops: a mechanism written as joints and links is written as vector
+// loops that give the numbers of the loops a student writes by hand (the bundled
+// joints-and-links samples against their hand-written twins, over whole sweeps),
+// the loop file it writes reads back to the same numbers, and every structural
+// mistake is refused with file:line, the names, and what to change.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <kinema/engine/errors.hpp>
+#include <kinema/engine/model.hpp>
+#include <kinema/loops/linkage_loops.hpp>
+#include <kinema/loops/mechanism_file.hpp>
+#include "../test_support.hpp"
+
+using kinema::MotionTable;
+using kinema::Model;
+using kinema_test::sample;
+
+namespace {
+
+// The crank-rocker of samples/four_bar.toml, as drawn, at theta2 = 40 deg.
+const std::string kFourBar = R"(title = "four-bar as drawn"
+[parameters]
+a = "40 mm"
+b = "120 mm"
+c = "80 mm"
+[joints]
+A = { ground = true, at = ["0 mm", "0 mm"] }
+B = { at = ["30.6417777 mm", "25.7115044 mm"] }
+C = { at = ["143.189988 mm", "67.3396237 mm"] }
+D = { ground = true, at = ["100 mm", "0 mm"] }
+[links]
+2 = { joints = ["A", "B"], length = "a" }
+3 = { joints = ["B", "C"], length = "b" }
+4 = { joints = ["D", "C"], length = "c" }
+[driver]
+link = "2"
+value = "40 deg"
+rate = "10 rad/s"
+)";
+
+Model model_of(const std::string& text) { return kinema::make_model(kinema::read_mechanism_text(text, "lk.toml")); }
+
+std::string error_of(const std::string& text) {
+  try {
+    model_of(text);
+  } catch (const kinema::InputError& error) {
+    return error.what();
+  }
+  return "";
+}
+
+std::string edited(const std::string& from, const std::string& to, std::string text = kFourBar) {
+  const auto at = text.find(from);
+  REQUIRE_MESSAGE(at != std::string::npos, from);
+  return text.replace(at, from.size(), to);
+}
+
+std::vector<double> degrees(double from, double to, double step) {
+  std::vector<double> values;
+  for (double d = from; d <= to + 1e-9; d += step) values.push_back(d * M_PI / 180);
+  return values;
+}
+
+double coordinate_value(const Model& model, const MotionTable& table, std::size_t row, const std::string& name, int order) {
+  const auto& unknowns = model.system.unknowns;
+  for (std::size_t i = 0; i < unknowns.size(); ++i) {
+    if (unknowns[i].name != name) continue;
+    const auto at = Eigen::Index(i);
+    return order == 0 ? table.q(row)[at] : order == 1 ? table.qd(row)[at] : table.qdd(row)[at];
+  }
+  FAIL("no coordinate " << name);
+  return 0;
+}
+
+std::size_t point_index(const Model& model, const std::string& name) {
+  for (std::size_t p = 0; p < model.system.points.size(); ++p)
+    if (model.system.points[p].name == name) return p;
+  FAIL("no point " << name);
+  return 0;
+}
+
+// Every coordinate and every point of `hand` equal in `drawn`, row by row.
+void check_same_motion(const Model& drawn, const Model& hand, const std::vector<double>& inputs) {
+  const MotionTable a = kinema::analyse(drawn, inputs), b = kinema::analyse(hand, inputs);
+  for (std::size_t row = 0; row < inputs.size(); ++row) {
+    CAPTURE(inputs[row] * 180 / M_PI);
+    REQUIRE(a.status(row) == b.status(row));
+    if (a.status(row) != kinema::Status::ok) continue;
+    for (const auto& u : hand.system.unknowns) {
+      CAPTURE(u.name);
+      for (int order = 0; order < 3; ++order) {
+        const double x = coordinate_value(drawn, a, row, u.name, order), y = coordinate_value(hand, b, row, u.name, order);
+        const double scale = std::max(1.0, std::fabs(y));
+        // Angles may differ by whole turns (the sketch's angle against a guess).
+        const double difference = order == 0 && u.dimension == kinema::Dimension::angle
+                                      ? std::remainder(x - y, 2 * M_PI)
+                                      : x - y;
+        CHECK(std::fabs(difference) <= 1e-9 * scale);
+      }
+    }
+    for (std::size_t p = 0; p < hand.system.points.size(); ++p) {
+      const auto& name = hand.system.points[p].name;
+      CAPTURE(name);
+      const kinema::PointMotion x = a.point(row, point_index(drawn, name)), y = b.point(row, p);
+      for (std::size_t c = 0; c < 2; ++c) {
+        CHECK(std::fabs(x.position[c] - y.position[c]) <= 1e-9 * (1 + std::fabs(y.position[c])));
+        CHECK(std::fabs(x.velocity[c] - y.velocity[c]) <= 1e-9 * (1 + std::fabs(y.velocity[c])));
+        CHECK(std::fabs(x.acceleration[c] - y.acceleration[c]) <= 1e-9 * (1 + std::fabs(y.acceleration[c])));
+      }
+    }
+  }
+}
+
+}  // namespace
+
+TEST_CASE("loops/linkage_loops: Problem 4.4 as drawn moves as its hand-written loops, over the whole crank turn") {
+  const Model drawn = kinema::load_model(sample("problem_4_4_joints.toml"));
+  const Model hand = kinema::load_model(sample("problem_4_4_six_bar.toml"));
+  // The loops found: one per joint outside the spanning tree (7 joints, 6 bodies: two).
+  REQUIRE(drawn.system.groups.size() == 2);
+  CHECK(drawn.system.groups[0].name == "ABCD");
+  CHECK(drawn.system.groups[1].name == "DEFF5");
+  check_same_motion(drawn, hand, degrees(0, 360, 7.5));
+}
+
+TEST_CASE("loops/linkage_loops: Example 4.1 as drawn (a slider on the moving crank) moves as its loop") {
+  const Model drawn = kinema::load_model(sample("example_4_1_joints.toml"));
+  const Model hand = kinema::load_model(sample("example_4_1_r_trr.toml"));
+  check_same_motion(drawn, hand, degrees(20, 160, 5));
+}
+
+TEST_CASE("loops/linkage_loops: the vector-loop file kinema writes reads back to the same numbers") {
+  for (const char* name : {"problem_4_4_joints.toml", "example_4_1_joints.toml"}) {
+    CAPTURE(name);
+    const kinema::Mechanism drawn = kinema::read_mechanism_file(sample(name));
+    const std::string loops = kinema::vector_loop_file(drawn);
+    CHECK(loops.find("[joints]") == std::string::npos);
+    const kinema::Mechanism again = kinema::read_mechanism_text(loops, "loops.toml");
+    CHECK_FALSE(again.linkage);
+    check_same_motion(kinema::make_model(drawn), kinema::make_model(again), degrees(10, 350, 20));
+  }
+}
+
+TEST_CASE("loops/linkage_loops: the four-bar as drawn: link angles from the sketch, lengths as given") {
+  const kinema::Mechanism m = kinema::read_mechanism_text(kFourBar, "lk.toml");
+  REQUIRE(m.unknowns.size() == 2);
+  CHECK(m.input.name == "theta2");
+  CHECK(m.unknowns[0].name == "theta3");
+  CHECK(m.unknowns[1].name == "theta4");
+  // The sketch's angles are the guesses (the assembly branch is the sketch's).
+  CHECK(m.unknowns[0].guess == doctest::Approx(20.2978828 * M_PI / 180).epsilon(1e-7));
+  CHECK(m.unknowns[1].guess == doctest::Approx(57.3248801 * M_PI / 180).epsilon(1e-7));
+  REQUIRE(m.loops.size() == 1);
+  CHECK(m.loops[0].name == "ABCD");
+  const Model model = kinema::make_model(m);
+  const MotionTable t = kinema::analyse(model, {40 * M_PI / 180});
+  REQUIRE(t.status(0) == kinema::Status::ok);
+  CHECK(t.qd(0)[0] == doctest::Approx(-1.64836577).epsilon(1e-8));
+  CHECK(t.qdd(0)[1] == doctest::Approx(74.5495583).epsilon(1e-8));
+  // Every moving joint is a point.
+  CHECK(model.system.points.size() == 2);
+}
+
+TEST_CASE("loops/linkage_loops: Problem 4.4 as drawn reproduces the seed's numbers") {
+  const Model model = kinema::load_model(sample("problem_4_4_joints.toml"));
+  const MotionTable t = kinema::analyse(model, {M_PI / 6});
+  REQUIRE(t.status(0) == kinema::Status::ok);
+  CHECK_PRINTED(coordinate_value(model, t, 0, "phi2", 1), "-1.1307");
+  CHECK_PRINTED(coordinate_value(model, t, 0, "phi3", 1), "-2.82169");
+  CHECK_PRINTED(coordinate_value(model, t, 0, "phi4", 1), "0.58475");
+  CHECK_PRINTED(coordinate_value(model, t, 0, "yF", 1), "1.64625");
+  CHECK_PRINTED(coordinate_value(model, t, 0, "phi2", 2), "-22.33");
+  CHECK_PRINTED(coordinate_value(model, t, 0, "phi3", 2), "-2.20443");
+  CHECK_PRINTED(coordinate_value(model, t, 0, "phi4", 2), "-21.453");
+  CHECK_PRINTED(coordinate_value(model, t, 0, "yF", 2), "3.29262");
+  const kinema::PointMotion c = t.point(0, point_index(model, "C")), e = t.point(0, point_index(model, "E"));
+  CHECK_PRINTED(c.position[0], "-0.0689445");
+  CHECK_PRINTED(c.position[1], "0.422073");
+  CHECK_PRINTED(e.position[0], "-0.298288");
+  CHECK_PRINTED(e.position[1], "0.404712");
+  CHECK_PRINTED(c.velocity[0], "-0.0788027");
+  CHECK_PRINTED(c.velocity[1], "1.04105");
+  CHECK_PRINTED(e.acceleration[0], "4.66371");
+  CHECK_PRINTED(e.acceleration[1], "1.67947");
+}
+
+TEST_CASE("loops/linkage_loops: structural mistakes are refused with file:line, the names and what to do") {
+  SUBCASE("a pin used by one link only") {
+    const std::string message = error_of(edited(R"(4 = { joints = ["D", "C"], length = "c" })", R"(4 = { joints = ["D", "E"] }
+E = { joints = ["C"] })", edited(R"(D = { ground)", R"(E = { at = ["1 mm", "1 mm"] }
+D = { ground)")));
+    CHECK(message.find("lk.toml:") == 0);
+    CHECK(message.find("is used by link") != std::string::npos);
+  }
+  SUBCASE("a joint on no link") {
+    const std::string message = error_of(edited(R"(D = { ground)", R"(Q = { at = ["1 mm", "1 mm"] }
+D = { ground)"));
+    CHECK(message.find("lk.toml:10:") == 0);
+    CHECK(message.find("\"Q\" is on no link") != std::string::npos);
+  }
+  SUBCASE("a joint a link lists that does not exist") {
+    CHECK(error_of(edited(R"(["B", "C"], length = "b")", R"(["B", "X"], length = "b")"))
+              .find("lists joint \"X\", which is not in [joints]") != std::string::npos);
+  }
+  SUBCASE("links that share no joint with the rest") {
+    const std::string message = error_of(edited("[driver]", R"(5 = { joints = ["E", "F"] }
+6 = { joints = ["F", "E"] }
+[driver])", edited(R"(D = { ground)", R"(E = { at = ["1 mm", "1 mm"] }
+F = { at = ["2 mm", "1 mm"] }
+D = { ground)")));
+    CHECK(message.find("lk.toml:") == 0);
+    CHECK(message.find("links 5, 6 share no joint with the rest") != std::string::npos);
+  }
+  SUBCASE("mobility 2: a five-bar with one driver") {
+    const std::string message = error_of(edited(R"(4 = { joints = ["D", "C"], length = "c" })",
+                                                R"(4 = { joints = ["E", "C"] }
+5 = { joints = ["D", "E"] })", edited(R"(D = { ground)", R"(E = { at = ["120 mm", "40 mm"] }
+D = { ground)")));
+    CHECK(message.find("lk.toml:") == 0);
+    CHECK(message.find("mobility is 2") != std::string::npos);
+    CHECK(message.find("3*4 - 2*5 = 2") != std::string::npos);
+    CHECK(message.find("add 1 constraint") != std::string::npos);
+  }
+  SUBCASE("mobility 0: a triangle of links") {
+    const std::string message = error_of(edited(R"(3 = { joints = ["B", "C"], length = "b" })",
+                                                R"(3 = { joints = ["B", "C", "D"] })"));
+    // D now joins ground, 3 and 4: two joints by Grübler's count.
+    CHECK(message.find("mobility is -1") != std::string::npos);
+    CHECK(message.find("it is a structure: remove 2 binary link(s)") != std::string::npos);
+  }
+  SUBCASE("a length that contradicts the sketch: both numbers") {
+    const std::string message = error_of(edited(R"(b = "120 mm")", R"(b = "150 mm")"));
+    CHECK(message.find("lk.toml:") == 0);
+    CHECK(message.find("link \"3\": the length B-C = \"b\" is 0.15 m, but the sketch puts B and C 0.12 m apart") !=
+          std::string::npos);
+  }
+  SUBCASE("a driver that is not attached to ground") {
+    const std::string message = error_of(edited(R"(link = "2")", R"(link = "3")"));
+    CHECK(message.find("lk.toml:15:") == 0);
+    CHECK(message.find("the driver, link \"3\", is not attached to ground") != std::string::npos);
+  }
+  SUBCASE("a driver that is no link") {
+    CHECK(error_of(edited(R"(link = "2")", R"(link = "9")")).find("[driver] link = \"9\" is not a link") !=
+          std::string::npos);
+  }
+  SUBCASE("a crank driven with a length") {
+    CHECK(error_of(edited(R"(value = "40 deg")", R"(value = "40 mm")")).find("its values are angles") != std::string::npos);
+  }
+  SUBCASE("reserved and duplicate names") {
+    CHECK(error_of(edited(R"(B = { at)", R"(sin = { at)")).find("joint name \"sin\" is reserved") != std::string::npos);
+    CHECK(error_of(edited(R"(length = "b" })", R"(length = "b", angle = "a" })"))
+              .find("duplicate name \"a\"") != std::string::npos);
+  }
+  SUBCASE("vector loops and joints in one file") {
+    CHECK(error_of(edited("[driver]", "[loops]\nX = \"a\"\n[driver]"))
+              .find("unknown key \"loops\" in the top level of a joints-and-links file") != std::string::npos);
+  }
+  SUBCASE("a slider off its line, a slider on no link, a slider on a missing guide") {
+    // A slider-crank: the rocker 4 and its pivot D replaced by a block on a fixed line.
+    const std::string slider_crank = edited(R"(4 = { joints = ["D", "C"], length = "c" })", R"(5 = { joints = ["C", "S"] })",
+                                            edited(R"(D = { ground = true, at = ["100 mm", "0 mm"] })",
+                                                   R"(S = { slider = "ground", at = ["143.189988 mm", "67.3396237 mm"], angle = "0 deg", through = ["0 mm", "67.3396237 mm"] })"));
+    CHECK(error_of(slider_crank).empty());
+    const std::string off = edited(R"(through = ["0 mm", "67.3396237 mm"])", R"(through = ["0 mm", "60 mm"])", slider_crank);
+    const std::string message = error_of(off);
+    CHECK(message.find("lk.toml:10:") == 0);
+    CHECK(message.find("slider \"S\": its place in the sketch is 0.00733962 m off its line") != std::string::npos);
+    CHECK(error_of(edited(R"(slider = "ground")", R"(slider = "7")", slider_crank)).find("slides on \"7\", which is not a link") !=
+          std::string::npos);
+    CHECK(error_of(edited(R"(5 = { joints = ["C", "S"] })", R"(5 = { joints = ["C"] })", slider_crank))
+              .find("slider \"S\" is on no link") != std::string::npos);
+  }
+}
