@@ -1,6 +1,7 @@
 #include <kinema/loops/linkage_loops.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <complex>
 #include <functional>
