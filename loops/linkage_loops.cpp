@@ -226,7 +226,7 @@ class LinkageWriter {
           fail(link.where, "link \"" + link.name + "\" lists joint \"" + name + "\", which is not in [joints]");
         }
         body.joints.push_back(it->second);
-        if (linkage_.joints[it->second].kind == Joint::Kind::slider) {
+        if (linkage_.joints[it->second].kind == Joint::Kind::slider && linkage_.joints[it->second].guide != link.name) {
           if (body.slider >= 0) {
             fail(link.where, "link \"" + link.name + "\" is the block of two sliders (" +
                                  linkage_.joints[std::size_t(body.slider)].name + ", " + name +
@@ -256,6 +256,8 @@ class LinkageWriter {
         if (std::find(bodies_[b].joints.begin(), bodies_[b].joints.end(), j) != bodies_[b].joints.end()) on.push_back(b);
       }
       if (joint.kind == Joint::Kind::slider) {
+        // Its guide may list it too (it slides along that link's line); the block is the other.
+        on.erase(std::remove_if(on.begin(), on.end(), [&](std::size_t b) { return bodies_[b].name == joint.guide; }), on.end());
         if (on.size() != 1) {
           fail(joint.where, on.empty() ? "slider \"" + joint.name + "\" is on no link: list it in the joints of its block"
                                        : "slider \"" + joint.name + "\" is listed by links " + body_list(on) +
@@ -411,9 +413,25 @@ class LinkageWriter {
     for (std::size_t b = 1; b < bodies_.size(); ++b) orient(b, 0);
   }
 
+  // The guide link, when it lists the slider (then the slider runs along the line from
+  // the guide's first joint), else nullptr.
+  const Body* listing_guide(std::size_t j) const {
+    const auto it = body_index_.find(linkage_.joints[j].guide);
+    if (it == body_index_.end() || it->second == 0) return nullptr;
+    const Body& guide = bodies_[it->second];
+    return std::find(guide.joints.begin(), guide.joints.end(), j) != guide.joints.end() ? &guide : nullptr;
+  }
+
   double slider_direction(std::size_t j) {
     const Joint& joint = linkage_.joints[j];
-    return value_of(joint.angle, Dimension::angle, joint.where, "slider " + joint.name + " angle");
+    if (!joint.angle.empty()) return value_of(joint.angle, Dimension::angle, joint.where, "slider " + joint.name + " angle");
+    const Body* guide = listing_guide(j);
+    if (guide == nullptr || guide->joints[0] == j || std::abs(at_[j] - at_[guide->joints[0]]) < 1e-12) {
+      fail(joint.where, "slider \"" + joint.name + "\" needs angle = \"...\", the direction of its line in the sketch "
+                        "(e.g. \"90 deg\"); or list it in the joints of its guide link, after the first: it then "
+                        "slides along the line from that joint");
+    }
+    return std::arg(at_[j] - at_[guide->joints[0]]);
   }
 
   void orient(std::size_t b, int depth) {
@@ -515,7 +533,10 @@ class LinkageWriter {
   // The point a slider's coordinate is measured from, in the sketch.
   Point2 through0(std::size_t j) {
     const Joint& joint = linkage_.joints[j];
-    if (joint.through_x.empty()) return at_[j];
+    if (joint.through_x.empty()) {
+      const Body* guide = listing_guide(j);
+      return guide != nullptr ? at_[guide->joints[0]] : at_[j];
+    }
     return {value_of(joint.through_x, Dimension::length, joint.where, "slider " + joint.name + " through x"),
             value_of(joint.through_y, Dimension::length, joint.where, "slider " + joint.name + " through y")};
   }
@@ -568,6 +589,19 @@ class LinkageWriter {
     const std::size_t first = body.joints[0];
     const Point2 v = at_[j] - at_[first];
     double beta = wrapped(std::arg(v) - body.angle0);
+    if (body.link != nullptr) {
+      for (const auto& [joint, text] : body.link->angles) {
+        if (joint != linkage_.joints[j].name) continue;
+        const double given = value_of(text, Dimension::angle, body.link->where, "link " + body.name + " angle at " + joint);
+        if (std::fabs(wrapped(given - beta)) > kSketchTolerance) {
+          fail(body.link->where, "link \"" + body.name + "\": the angle at " + linkage_.joints[first].name + " to " + joint +
+                                     " = \"" + text + "\" is " + format_significant(to_degrees(given)) +
+                                     " deg, but the sketch has " + format_significant(to_degrees(beta)) +
+                                     " deg; correct the sketch or the angle");
+        }
+        return wrapped(given);
+      }
+    }
     if (body.slider < 0 && body.joints.size() >= 2 && j != body.joints[1]) {
       const std::size_t second = body.joints[1];
       const std::string& f = linkage_.joints[first].name;
@@ -591,13 +625,17 @@ class LinkageWriter {
   }
 
   // factor * e^{i(angle + beta)} as a term of a loop.
+  // An angle written as a formula (`beta`) stays that formula in the loop.
   Term rotated(const std::string& factor, const std::string& angle, double beta, const std::string& beta_name,
-               const SourceLocation& where) {
+               const SourceLocation& where, const std::string& written = "") {
     const double tolerance = 1e-12;
     bool negative = false;
     std::string unit;  // "" = 1, or "I"
     std::string argument = angle;
-    if (std::fabs(beta) < tolerance) {
+    if (!written.empty()) {
+      const std::string term = is_identifier(written) ? written : "(" + written + ")";
+      argument = angle == "0" ? term : angle + " + " + term;
+    } else if (std::fabs(beta) < tolerance) {
     } else if (std::fabs(std::fabs(beta) - kPi) < tolerance) {
       negative = true;
     } else if (std::fabs(beta - kPi / 2) < tolerance) {
@@ -621,8 +659,13 @@ class LinkageWriter {
     const std::size_t first = body.joints[0];
     if (j == first || std::abs(at_[j] - at_[first]) <= 1e-12 * (1 + std::abs(at_[first]))) return {};
     const double beta = offset(body, j, length_value(body, first, j));
+    std::string written;  // the angle as the file writes it, when a formula (and the body no block)
+    if (body.link != nullptr && body.offset == 0) {
+      for (const auto& [joint, text] : body.link->angles)
+        if (joint == linkage_.joints[j].name && !looks_like_quantity(text)) written = text;
+    }
     return {rotated(length_factor(body, first, j), body.angle, wrapped(beta + body.offset),
-                    "beta_" + body.name + "_" + linkage_.joints[j].name, body.link->where)};
+                    "beta_" + body.name + "_" + linkage_.joints[j].name, body.link->where, written)};
   }
 
   // A point of ground as written: x + I*y.
@@ -764,7 +807,8 @@ class LinkageWriter {
       // From the body nearest ground: the shortest sum (a slider's point from its guide).
       std::size_t body = 0;
       for (std::size_t b = 1; b < bodies_.size(); ++b) {
-        const bool on = std::find(bodies_[b].joints.begin(), bodies_[b].joints.end(), j) != bodies_[b].joints.end();
+        const bool on = std::find(bodies_[b].joints.begin(), bodies_[b].joints.end(), j) != bodies_[b].joints.end() &&
+                        !(joint.kind == Joint::Kind::slider && bodies_[b].name == joint.guide);
         if (on && (body == 0 || bodies_[b].depth < bodies_[body].depth)) body = b;
       }
       // A slider where a pin of its block is: the pin names the point.

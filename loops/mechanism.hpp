@@ -77,8 +77,12 @@ struct Joint {
   bool ground = false;              ///< A pin of ground (a fixed pivot).
   std::string x, y;                 ///< Sketch position: quantities or formulas of parameters.
   std::string guide;                ///< Slider: the link whose line it slides on ("ground", a link name).
-  std::string angle;                ///< Slider: direction of the line in the sketch (quantity or formula).
-  std::string through_x, through_y; ///< Slider: the point of the line its coordinate is measured from (default: x, y).
+  /// Slider: direction of the line in the sketch (quantity or formula); default, for a
+  /// guide link that lists the slider: from the guide's first joint to the slider.
+  std::string angle;
+  /// Slider: the point of the line its coordinate is measured from (default: the guide's
+  /// first joint when the guide lists the slider, else the slider's own place).
+  std::string through_x, through_y;
   std::string coordinate;           ///< Slider: name of its coordinate along the line (default s_<joint>).
   std::string rate_name, second_rate_name;
   SourceLocation where;
@@ -93,6 +97,8 @@ struct Link {
   std::string rate_name, second_rate_name;
   /// Distances between its joints as written ("C-D" = "CD"); the others come from the sketch.
   std::vector<std::pair<std::pair<std::string, std::string>, std::string>> lengths;
+  /// Angles at its first joint from its second to another joint as written (D = "180 deg").
+  std::vector<std::pair<std::string, std::string>> angles;
   SourceLocation where;
 };
 

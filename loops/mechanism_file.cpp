@@ -448,11 +448,7 @@ class FileReader {
           fail(*value, "joint \"" + name + "\" is a slider and a ground pivot; a slider on a fixed guide is written "
                            "slider = \"ground\" (without ground = true)");
         }
-        if (!has(*value, "angle")) {
-          fail(*value, "slider \"" + name + "\" needs angle = \"...\", the direction of its line in the sketch "
-                           "(e.g. \"90 deg\")");
-        }
-        joint.angle = string_value(at(*value, "angle"), "angle");
+        if (has(*value, "angle")) joint.angle = string_value(at(*value, "angle"), "angle");
         if (has(*value, "through")) read_position(at(*value, "through"), "through", joint.through_x, joint.through_y);
         if (has(*value, "coordinate")) {
           joint.coordinate = string_value(at(*value, "coordinate"), "coordinate");
@@ -489,7 +485,7 @@ class FileReader {
       link.where = where(*value);
       const Node* joints = value;
       if (value->is_table()) {
-        check_keys(*value, {"joints", "length", "lengths", "angle", "rate_name", "second_rate_name"},
+        check_keys(*value, {"joints", "length", "lengths", "angles", "angle", "rate_name", "second_rate_name"},
                    "link \"" + name + "\"");
         if (!has(*value, "joints")) fail(*value, "link \"" + name + "\" needs joints = [\"B\", \"C\", ...]");
         joints = &at(*value, "joints");
@@ -531,6 +527,17 @@ class FileReader {
                               (link.joints.size() > 1 ? link.joints[1] : std::string("B")) + "\")");
           }
           link.lengths.push_back({{a, b}, string_value(*length, pair)});
+        }
+      }
+      if (value->is_table() && has(*value, "angles")) {
+        const Node& angles = at(*value, "angles");
+        if (!angles.is_table()) fail(angles, "angles must be a table such as { D = \"180 deg\" }");
+        for (const auto& [joint, angle] : ordered(angles)) {
+          if (link.joints.size() < 3 || std::find(link.joints.begin() + 2, link.joints.end(), joint) == link.joints.end()) {
+            fail(*angle, "angles of link \"" + name + "\" are given for its joints after the second (the angle at its "
+                         "first joint from its second to that joint); \"" + printable(joint) + "\" is not one");
+          }
+          link.angles.push_back({joint, string_value(*angle, joint)});
         }
       }
       linkage.links.push_back(link);

@@ -8,7 +8,8 @@
 #include "test_support.hpp"
 
 TEST_CASE("kinema loops: the vector loops of a joints-and-links sample evaluate to the same CSV") {
-  for (const char* name : {"problem_4_4_joints.toml", "example_4_1_joints.toml"}) {
+  for (const char* name : {"problem_4_4_joints.toml", "example_4_1_joints.toml", "example_4_2_joints.toml",
+                           "problem_3_22_joints.toml"}) {
     CAPTURE(name);
     const std::string directory = kinema_test::fresh_directory("linkage_loops_cli");
     const std::string loops = directory + "/loops.toml";

@@ -133,8 +133,47 @@ TEST_CASE("loops/linkage_loops: Example 4.1 as drawn (a slider on the moving cra
   check_same_motion(drawn, hand, degrees(20, 160, 5));
 }
 
+TEST_CASE("loops/linkage_loops: Example 4.2 as drawn (a slider on the turning link 3) moves as its loops") {
+  const Model drawn = kinema::load_model(sample("example_4_2_joints.toml"));
+  const Model hand = kinema::load_model(sample("example_4_2_r_rtr_rrt.toml"));
+  check_same_motion(drawn, hand, degrees(0, 360, 10));
+  const MotionTable t = kinema::analyse(drawn, {M_PI / 4});
+  CHECK_PRINTED(coordinate_value(drawn, t, 0, "phi3", 1), "1.807");
+  CHECK_PRINTED(coordinate_value(drawn, t, 0, "phi3", 2), "1.020");
+  CHECK_PRINTED(coordinate_value(drawn, t, 0, "phi4", 1), "0.221");
+  CHECK_PRINTED(coordinate_value(drawn, t, 0, "phi4", 2), "-1.105");
+  CHECK_PRINTED(coordinate_value(drawn, t, 0, "xE", 0), "0.164");
+  CHECK_PRINTED(coordinate_value(drawn, t, 0, "xE", 1), "0.113");
+  CHECK_PRINTED(coordinate_value(drawn, t, 0, "xE", 2), "0.217");
+  const kinema::PointMotion d = t.point(0, point_index(drawn, "D"));
+  CHECK_PRINTED(d.velocity[0], "0.129");
+  CHECK_PRINTED(d.velocity[1], "-0.041");
+  CHECK_PRINTED(d.acceleration[0], "0.147");
+  CHECK_PRINTED(d.acceleration[1], "0.210");
+}
+
+TEST_CASE("loops/linkage_loops: Problem 3.22 as drawn (a triangle coupler, two sliders, inches) moves as its loops") {
+  const Model drawn = kinema::load_model(sample("problem_3_22_joints.toml"));
+  const Model hand = kinema::load_model(sample("problem_3_22_six_bar_sliders.toml"));
+  // The angle beta stays the file's formula in the loop it writes.
+  CHECK(drawn.system.groups.at(1).name == "O2ACDD6");
+  const auto loops = kinema::vector_loop_file(kinema::read_mechanism_file(sample("problem_3_22_joints.toml")));
+  CHECK(loops.find("a*exp(I*(theta3 + beta))") != std::string::npos);
+  check_same_motion(drawn, hand, degrees(-180, 180, 15));
+  const MotionTable t = kinema::analyse(drawn, {-120 * M_PI / 180});
+  const double inch = 0.0254;
+  CHECK_PRINTED(coordinate_value(drawn, t, 0, "theta3", 1), "-4.26");
+  CHECK_PRINTED(coordinate_value(drawn, t, 0, "r1", 1) / inch, "-65.3");
+  CHECK_PRINTED(coordinate_value(drawn, t, 0, "theta5", 1), "-7.67");
+  CHECK_PRINTED(coordinate_value(drawn, t, 0, "r6", 1) / inch, "22.25");
+  const kinema::PointMotion c = t.point(0, point_index(drawn, "C"));
+  CHECK_PRINTED(c.velocity[0] / inch, "-60.89");
+  CHECK_PRINTED(c.velocity[1] / inch, "29.73");
+}
+
 TEST_CASE("loops/linkage_loops: the vector-loop file kinema writes reads back to the same numbers") {
-  for (const char* name : {"problem_4_4_joints.toml", "example_4_1_joints.toml"}) {
+  for (const char* name : {"problem_4_4_joints.toml", "example_4_1_joints.toml", "example_4_2_joints.toml",
+                           "problem_3_22_joints.toml"}) {
     CAPTURE(name);
     const kinema::Mechanism drawn = kinema::read_mechanism_file(sample(name));
     const std::string loops = kinema::vector_loop_file(drawn);
