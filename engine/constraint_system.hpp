@@ -91,6 +91,8 @@ struct ConstraintSystem {
   std::vector<PointObservable> points;
   std::vector<FrameObservable> frames;
   OutputUnits output;
+  /// The mechanism as drawn, for a joints-and-links file (structure, joints, links).
+  std::optional<Linkage> linkage;
   /// Typical length (largest length parameter, else 1 m): tolerances and scaling.
   double length_scale = 1.0;
 

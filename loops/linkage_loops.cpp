@@ -73,6 +73,7 @@ class LinkageWriter {
     name_coordinates();
     write_loops();
     write_points();
+    decompose();
   }
 
  private:
@@ -845,6 +846,83 @@ class LinkageWriter {
       point.where = p.where;
       m_.points.push_back(point);
     }
+  }
+
+  // ---- structure -------------------------------------------------------------------
+
+  // The driver, then dyads in solving order: two links not yet placed that share one
+  // joint and each have one joint to what is placed. Links left over form no dyad.
+  void decompose() {
+    linkage_.body_count = static_cast<int>(bodies_.size());
+    linkage_.joint_count = static_cast<int>(edges_.size());
+    std::vector<int> known(bodies_.size(), -1);  // step at which the body became known
+    known[0] = 0;
+    StructureGroup driver;
+    driver.kind = "driver";
+    std::size_t driver_body = driver_body_;
+    if (driver_slider_ >= 0) {
+      for (const Edge& e : edges_)
+        if (e.slider && static_cast<int>(e.joint) == driver_slider_) driver_body = e.b;
+      driver.joints.push_back(linkage_.joints[std::size_t(driver_slider_)].name);
+    } else {
+      for (const Edge& e : edges_)
+        if (!e.slider && e.a == 0 && e.b == driver_body && driver.joints.empty()) driver.joints.push_back(linkage_.joints[e.joint].name);
+    }
+    driver.links.push_back(bodies_[driver_body].name);
+    known[driver_body] = 1;
+    linkage_.structure.push_back(driver);
+    const auto letter = [](const Edge& e) { return e.slider ? "T" : "R"; };
+    for (int step = 2;; ++step) {
+      bool found = false;
+      for (std::size_t l1 = 1; l1 < bodies_.size() && !found; ++l1) {
+        for (std::size_t l2 = l1 + 1; l2 < bodies_.size() && !found; ++l2) {
+          if (known[l1] >= 0 || known[l2] >= 0) continue;
+          int inner = -1, outer1 = -1, outer2 = -1, count_inner = 0, count1 = 0, count2 = 0;
+          for (std::size_t k = 0; k < edges_.size(); ++k) {
+            const Edge& e = edges_[k];
+            const auto touches = [&](std::size_t b) { return e.a == b || e.b == b; };
+            if (touches(l1) && touches(l2)) {
+              ++count_inner;
+              inner = static_cast<int>(k);
+            } else if (touches(l1) && known[e.a == l1 ? e.b : e.a] >= 0) {
+              ++count1;
+              outer1 = static_cast<int>(k);
+            } else if (touches(l2) && known[e.a == l2 ? e.b : e.a] >= 0) {
+              ++count2;
+              outer2 = static_cast<int>(k);
+            }
+          }
+          if (count_inner != 1 || count1 != 1 || count2 != 1) continue;
+          // Read from the side of the body placed last (the moving one), pins first on a tie.
+          const auto other = [&](int k, std::size_t b) {
+            const Edge& e = edges_[std::size_t(k)];
+            return e.a == b ? e.b : e.a;
+          };
+          std::size_t first = l1, second = l2;
+          const int k1 = known[other(outer1, l1)], k2 = known[other(outer2, l2)];
+          if (k2 > k1 || (k2 == k1 && edges_[std::size_t(outer1)].slider && !edges_[std::size_t(outer2)].slider)) {
+            std::swap(first, second);
+            std::swap(outer1, outer2);
+          }
+          StructureGroup dyad;
+          dyad.kind = std::string(letter(edges_[std::size_t(outer1)])) + letter(edges_[std::size_t(inner)]) +
+                      letter(edges_[std::size_t(outer2)]);
+          dyad.links = {bodies_[first].name, bodies_[second].name};
+          dyad.joints = {linkage_.joints[edges_[std::size_t(outer1)].joint].name,
+                         linkage_.joints[edges_[std::size_t(inner)].joint].name,
+                         linkage_.joints[edges_[std::size_t(outer2)].joint].name};
+          linkage_.structure.push_back(dyad);
+          known[l1] = known[l2] = step;
+          found = true;
+        }
+      }
+      if (!found) break;
+    }
+    StructureGroup rest;
+    rest.kind = "group";
+    for (std::size_t b = 1; b < bodies_.size(); ++b)
+      if (known[b] < 0) rest.links.push_back(bodies_[b].name);
+    if (!rest.links.empty()) linkage_.structure.push_back(rest);
   }
 };
 

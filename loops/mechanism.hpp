@@ -110,6 +110,16 @@ struct LinkPoint {
   SourceLocation where;
 };
 
+/// One step of the solving order of a joints-and-links mechanism (Assur groups): the
+/// driver, then dyads each joined to what is known by two outer joints.
+struct StructureGroup {
+  /// "driver"; a dyad's joint kinds in order ("RRR", "RRT", "RTR", "TRR", "TRT", ...);
+  /// "group" for links that form no dyad (solved together by Newton on their loops).
+  std::string kind;
+  std::vector<std::string> links;
+  std::vector<std::string> joints;  ///< A dyad: outer, inner, outer; the driver: its ground joint.
+};
+
 /// The joints-and-links form; loops/linkage_loops.hpp turns it into vector loops.
 struct Linkage {
   std::vector<Joint> joints;
@@ -118,6 +128,10 @@ struct Linkage {
   std::string driver_link;    ///< A crank: its angle is the input (one of driver_link, driver_slider).
   std::string driver_slider;  ///< A slider joint: its coordinate is the input.
   SourceLocation driver_where;
+  // Found by linkage_loops:
+  std::vector<StructureGroup> structure;  ///< Solving order.
+  int body_count = 0;   ///< Ground and the links (Grübler's n).
+  int joint_count = 0;  ///< One-degree-of-freedom joints (Grübler's j).
 };
 
 struct OutputUnits {

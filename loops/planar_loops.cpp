@@ -138,6 +138,7 @@ class Builder {
     system.description = mechanism_.description;
     system.source_file = mechanism_.source_file;
     system.output = mechanism_.output;
+    system.linkage = mechanism_.linkage;
     add_parameters(system);
     add_coordinates(system);
     const LengthPower units(powers_);

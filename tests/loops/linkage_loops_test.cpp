@@ -6,11 +6,13 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include <kinema/engine/errors.hpp>
 #include <kinema/engine/model.hpp>
+#include <kinema/engine/printers/printer.hpp>
 #include <kinema/loops/linkage_loops.hpp>
 #include <kinema/loops/mechanism_file.hpp>
 #include "../test_support.hpp"
@@ -313,4 +315,44 @@ D = { ground)")));
     CHECK(error_of(edited(R"(5 = { joints = ["C", "S"] })", R"(5 = { joints = ["C"] })", slider_crank))
               .find("slider \"S\" is on no link") != std::string::npos);
   }
+}
+
+TEST_CASE("loops/linkage_loops: the solving order is the seeds': driver, then dyads named by their joints") {
+  struct Expected {
+    const char* sample;
+    std::vector<std::string> kinds;
+    std::vector<std::vector<std::string>> joints;
+  };
+  const std::vector<Expected> cases = {
+      {"problem_4_4_joints.toml", {"driver", "RRR", "RRT"}, {{"A"}, {"B", "C", "D"}, {"E", "F", "F5"}}},  // R-RRR-RRT
+      {"example_4_1_joints.toml", {"driver", "TRR"}, {{"A"}, {"B2", "B", "C"}}},                           // R-TRR
+      {"example_4_2_joints.toml", {"driver", "RTR", "RRT"}, {{"A"}, {"B", "B2", "C"}, {"D", "E", "E5"}}},  // R-RTR-RRT
+      {"problem_3_22_joints.toml", {"driver", "RRT", "RRT"}, {{"O2"}, {"A", "B", "B4"}, {"C", "D", "D6"}}},
+  };
+  for (const Expected& expected : cases) {
+    CAPTURE(expected.sample);
+    const kinema::Mechanism m = kinema::read_mechanism_file(sample(expected.sample));
+    REQUIRE(m.linkage);
+    REQUIRE(m.linkage->structure.size() == expected.kinds.size());
+    for (std::size_t k = 0; k < expected.kinds.size(); ++k) {
+      CHECK(m.linkage->structure[k].kind == expected.kinds[k]);
+      CHECK(m.linkage->structure[k].joints == expected.joints[k]);
+    }
+    CHECK(3 * (m.linkage->body_count - 1) - 2 * m.linkage->joint_count == 1);
+  }
+  // derive prints it, in text and LaTeX.
+  const Model model = kinema::load_model(sample("problem_4_4_joints.toml"));
+  std::ostringstream text, latex;
+  kinema::find_printer(kinema::PrintKind::derivation, "text")->print(text, {model});
+  kinema::find_printer(kinema::PrintKind::derivation, "latex")->print(latex, {model});
+  CHECK(text.str().find("dyad 1, RRR: links 2, 3; joints B, C, D") != std::string::npos);
+  CHECK(text.str().find("dyad 2, RRT: links 4, 5; joints E, F, F5") != std::string::npos);
+  CHECK(text.str().find("3(n - 1) - 2j = 3*5 - 2*7 = 1") != std::string::npos);
+  CHECK(text.str().find("independent loops (one per joint outside a spanning tree from ground): ABCD, DEFF5") !=
+        std::string::npos);
+  CHECK(latex.str().find("\\text{dyad 2, RRT: links 4, 5; joints E, F, F5}") != std::string::npos);
+  // A vector-loop file has no structure section.
+  std::ostringstream loops_text;
+  kinema::find_printer(kinema::PrintKind::derivation, "text")->print(loops_text, {kinema::load_model(sample("problem_4_4_six_bar.toml"))});
+  CHECK(loops_text.str().find("Structure") == std::string::npos);
 }

@@ -3,6 +3,7 @@
 // GiNaC syntax, so a reader (or a test) can take the formula back exactly.
 #include <kinema/engine/printers/latex/latex_format.hpp>
 #include <kinema/engine/printers/printer.hpp>
+#include <kinema/engine/report/structure.hpp>
 #include <kinema/engine/symbolic/expression_parts.hpp>
 
 namespace kinema {
@@ -32,6 +33,12 @@ class DerivationLatexPrinter : public Printer {
       std::string text, comment;
     };
     std::vector<Row> rows;
+    if (system.linkage) {  // joints and links: the solving order the loops come from
+      rows.push_back({"\\text{structure:}\\quad & \\text{" + latex_escape_text("mobility " + mobility_text(*system.linkage)) + "}",
+                      "structure"});
+      for (const std::string& line : structure_lines(*system.linkage))
+        rows.push_back({"& \\text{" + latex_escape_text(line) + "}", ""});
+    }
     for (const EquationGroup& group : system.groups) {
       const std::string name = latex_escape_text(group.name);
       rows.push_back({"\\text{" + name + ":}\\quad & " + latex_vector_loop(group) + " = 0", group.kind + " " + name});

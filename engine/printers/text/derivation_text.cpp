@@ -1,5 +1,6 @@
 // The derivation in readable text (GiNaC's default print context).
 #include <kinema/engine/printers/printer.hpp>
+#include <kinema/engine/report/structure.hpp>
 #include <kinema/engine/symbolic/expression_parts.hpp>
 
 namespace kinema {
@@ -48,6 +49,16 @@ std::string joined(const std::vector<std::string>& items) {
   return result;
 }
 
+// The solving order of a joints-and-links file: mobility, driver, dyads, the loops found.
+void print_structure(std::ostream& out, const ConstraintSystem& system) {
+  out << "\n0. Structure (joints and links)\n";
+  out << "  mobility (Gruebler): " << mobility_text(*system.linkage) << "\n";
+  for (const std::string& line : structure_lines(*system.linkage)) out << "  " << line << "\n";
+  std::vector<std::string> loops;
+  for (const EquationGroup& group : system.groups) loops.push_back(group.name);
+  out << "  independent loops (one per joint outside a spanning tree from ground): " << joined(loops) << "\n";
+}
+
 class DerivationTextPrinter : public Printer {
  public:
   PrintKind kind() const override { return PrintKind::derivation; }
@@ -71,6 +82,8 @@ class DerivationTextPrinter : public Printer {
         << input.second_rate.get_name() << ")\n";
     out << "unknowns: q = [" << joined(unknowns) << "]\n";
     out << "rates:    qd = [" << joined(rates) << "], qdd = [" << joined(second_rates) << "]\n";
+
+    if (system.linkage) print_structure(out, system);
 
     out << "\n1. Loop-closure equations Phi(q, " << input.name << ") = 0\n";
     for (const EquationGroup& group : system.groups) {
