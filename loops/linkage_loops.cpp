@@ -1,6 +1,7 @@
 #include <kinema/loops/linkage_loops.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <complex>
@@ -11,6 +12,7 @@
 
 #include <kinema/engine/errors.hpp>
 #include <kinema/engine/report/number_format.hpp>
+#include <kinema/loops/dyad_positions.hpp>
 #include <kinema/loops/formula_reader.hpp>
 
 namespace kinema {
@@ -74,6 +76,7 @@ class LinkageWriter {
     write_loops();
     write_points();
     decompose();
+    export_frames();
   }
 
  private:
@@ -109,6 +112,7 @@ class LinkageWriter {
   std::map<std::string, std::size_t> body_index_;
   std::map<std::string, std::size_t> joint_index_;
   std::vector<Edge> edges_;
+  std::vector<std::array<std::size_t, 5>> dyad_edges_;  // first, second, outer edges and inner edge
   std::vector<std::string> slider_coordinate_;  // per joint (sliders)
   std::vector<double> slider_value0_;
   std::size_t driver_body_ = 0;
@@ -912,6 +916,7 @@ class LinkageWriter {
                          linkage_.joints[edges_[std::size_t(inner)].joint].name,
                          linkage_.joints[edges_[std::size_t(outer2)].joint].name};
           linkage_.structure.push_back(dyad);
+          dyad_edges_.push_back({first, second, std::size_t(outer1), std::size_t(inner), std::size_t(outer2)});
           known[l1] = known[l2] = step;
           found = true;
         }
@@ -923,6 +928,83 @@ class LinkageWriter {
     for (std::size_t b = 1; b < bodies_.size(); ++b)
       if (known[b] < 0) rest.links.push_back(bodies_[b].name);
     if (!rest.links.empty()) linkage_.structure.push_back(rest);
+  }
+
+  // The numbers the closed-form solution needs (loops/dyad_positions), the same lengths
+  // and angles as the loops', and each dyad's sign in the sketch.
+  void export_frames() {
+    LinkageFrames& f = linkage_.frames;
+    const auto unknown_index = [&](const std::string& name) {
+      for (std::size_t i = 0; i < m_.unknowns.size(); ++i)
+        if (m_.unknowns[i].name == name) return static_cast<int>(i);
+      return -1;
+    };
+    f.bodies.assign(bodies_.size(), {});
+    for (std::size_t j = 0; j < linkage_.joints.size(); ++j)
+      if (linkage_.joints[j].ground) f.bodies[0].points.push_back({j, at_[j]});
+    for (std::size_t b = 1; b < bodies_.size(); ++b) {
+      const Body& body = bodies_[b];
+      LinkageFrames::Body& frame = f.bodies[b];
+      for (std::size_t j : body.joints) {
+        Point2 v;
+        if (j != body.joints[0] && std::abs(at_[j] - at_[body.joints[0]]) > 1e-12 * (1 + std::abs(at_[body.joints[0]]))) {
+          const double d = length_value(body, body.joints[0], j);
+          v = std::polar(d, offset(body, j, d));
+        }
+        frame.points.push_back({j, v});
+      }
+      if (body.slider >= 0) {
+        frame.guide = static_cast<int>(body_index_.at(linkage_.joints[std::size_t(body.slider)].guide));
+        frame.offset = wrapped(body.angle0 - bodies_[std::size_t(frame.guide)].angle0);
+      } else if (b != driver_body_ || driver_slider_ >= 0) {
+        frame.unknown = unknown_index(body.angle);
+      }
+    }
+    std::vector<int> edge_ref(edges_.size());
+    for (std::size_t k = 0; k < edges_.size(); ++k) {
+      const Edge& e = edges_[k];
+      if (!e.slider) {
+        edge_ref[k] = static_cast<int>(f.pins.size());
+        f.pins.push_back({e.joint, e.a, e.b});
+        continue;
+      }
+      LinkageFrames::Slider s;
+      s.joint = e.joint;
+      s.guide = e.a;
+      s.block = e.b;
+      const Body& guide = bodies_[e.a];
+      const Point2 t = through0(e.joint);
+      s.through = e.a == 0 ? t : (t - at_[guide.joints[0]]) * std::polar(1.0, -guide.angle0);
+      s.direction = wrapped(slider_direction(e.joint) - guide.angle0);
+      s.unknown = static_cast<int>(e.joint) == driver_slider_ ? -1 : unknown_index(slider_coordinate_[e.joint]);
+      if (static_cast<int>(e.joint) == driver_slider_) f.driver_slider = static_cast<int>(f.sliders.size());
+      edge_ref[k] = -1 - static_cast<int>(f.sliders.size());
+      f.sliders.push_back(s);
+    }
+    f.driver_body = driver_body_;
+    f.closed_form = true;
+    for (const StructureGroup& group : linkage_.structure) f.closed_form = f.closed_form && group.kind != "group";
+    for (const auto& [first, second, outer1, inner, outer2] : dyad_edges_) {
+      LinkageFrames::Dyad d;
+      d.first = first;
+      d.second = second;
+      d.outer_first = edge_ref[outer1];
+      d.inner = edge_ref[inner];
+      d.outer_second = edge_ref[outer2];
+      // A slider inside a dyad is solved here only between two pins (RTR).
+      if (d.inner < 0 && (d.outer_first < 0 || d.outer_second < 0)) f.closed_form = false;
+      f.dyads.push_back(d);
+    }
+    if (!f.closed_form) return;
+    std::vector<BodyPose> sketch(bodies_.size());
+    sketch[0].placed = true;
+    for (std::size_t b = 1; b < bodies_.size(); ++b) {
+      sketch[b].origin = at_[bodies_[b].joints[0]];
+      sketch[b].angle = bodies_[b].angle0;
+      sketch[b].placed = true;
+    }
+    const std::vector<int> signs = dyad_signs(f, sketch);
+    for (std::size_t k = 0; k < f.dyads.size(); ++k) f.dyads[k].sign = signs[k];
   }
 };
 

@@ -4,6 +4,7 @@
 // (linkage_loops.hpp first writes a joints-and-links file as vector loops).
 #pragma once
 
+#include <complex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -120,6 +121,44 @@ struct StructureGroup {
   std::vector<std::string> joints;  ///< A dyad: outer, inner, outer; the driver: its ground joint.
 };
 
+/// The numbers of a joints-and-links mechanism that its closed-form position solution
+/// needs (engine/numeric/dyad_positions), SI, from the lengths and angles of its loops.
+/// Bodies are numbered 0 (ground), then the links in file order; joints in file order.
+struct LinkageFrames {
+  struct Body {
+    /// Each joint on it: where it is in the body's frame (origin at the body's first
+    /// joint, x along the body's angle); ground's are world positions.
+    std::vector<std::pair<std::size_t, std::complex<double>>> points;
+    int guide = -1;       ///< A slider block: its guide's body (its angle is the guide's + offset).
+    double offset = 0.0;
+    int unknown = -1;     ///< Index of its angle among the unknowns (-1: ground, driver, block).
+  };
+  struct Slider {
+    std::size_t joint = 0, guide = 0, block = 0;
+    std::complex<double> through;  ///< On the guide, in its frame: where the coordinate is 0.
+    double direction = 0.0;        ///< The line's angle to the guide's angle.
+    int unknown = -1;              ///< Index of its coordinate among the unknowns (-1: the driver).
+  };
+  struct Pin {
+    std::size_t joint = 0, a = 0, b = 0;  ///< The two bodies it joins.
+  };
+  std::vector<Body> bodies;
+  std::vector<Slider> sliders;
+  std::vector<Pin> pins;
+  std::size_t driver_body = 0;
+  int driver_slider = -1;  ///< Index into sliders when the driver is a slider.
+  /// Per dyad of the structure (in order): its links (bodies), its three joints' edges
+  /// (pins: index into pins; sliders: -1 - index into sliders), and its assembly sign in
+  /// the sketch.
+  struct Dyad {
+    std::size_t first = 0, second = 0;
+    int outer_first = 0, inner = 0, outer_second = 0;
+    int sign = 1;
+  };
+  std::vector<Dyad> dyads;
+  bool closed_form = false;  ///< Every link is in a dyad (else Newton alone).
+};
+
 /// The joints-and-links form; loops/linkage_loops.hpp turns it into vector loops.
 struct Linkage {
   std::vector<Joint> joints;
@@ -132,6 +171,7 @@ struct Linkage {
   std::vector<StructureGroup> structure;  ///< Solving order.
   int body_count = 0;   ///< Ground and the links (Grübler's n).
   int joint_count = 0;  ///< One-degree-of-freedom joints (Grübler's j).
+  LinkageFrames frames;
 };
 
 struct OutputUnits {
