@@ -6,6 +6,7 @@
 
 #include <Eigen/Dense>
 
+#include <optional>
 #include <vector>
 
 #include <kinema/engine/constraint_system.hpp>
@@ -39,6 +40,9 @@ class Kinematics {
   const Eigen::VectorXd& guess() const { return guess_; }
   /// The equation group of each row of Phi (for "which loop stays open").
   std::size_t equation_group(std::size_t row) const { return equation_group_[row]; }
+  /// A joints-and-links mechanism whose every link is in a dyad: its positions in
+  /// closed form (loops/dyad_positions), else nullptr (Newton alone).
+  const LinkageFrames* closed_form() const { return closed_form_ ? &*closed_form_ : nullptr; }
 
  private:
   TapeLayout layout_;
@@ -48,6 +52,7 @@ class Kinematics {
   std::vector<double> column_scale_;
   Eigen::VectorXd guess_;
   std::vector<std::size_t> equation_group_;
+  std::optional<LinkageFrames> closed_form_;
 };
 
 }  // namespace kinema

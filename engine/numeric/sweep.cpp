@@ -8,6 +8,7 @@
 #include <kinema/engine/numeric/batch_workspace.hpp>
 #include <kinema/engine/numeric/solver.hpp>
 #include <kinema/engine/numeric/workspace.hpp>
+#include <kinema/loops/dyad_positions.hpp>
 
 namespace kinema {
 
@@ -23,6 +24,19 @@ struct RunCursor {
   std::size_t next_batch_try = 0;   ///< Run row: after a refused SIMD block, one by one until here.
   std::size_t batch_rows = 0;       ///< Rows solved in SIMD blocks.
 };
+
+// Joints and links: the position dyad by dyad in closed form, on the sketch's signs
+// (false, with the dyad, where one cannot close).
+bool closed_form_position(const LinkageFrames& frames, double input, Eigen::VectorXd& q, std::uint32_t& dyad) {
+  std::vector<BodyPose> poses;
+  const std::size_t placed = place_dyads(frames, input, poses);
+  if (placed < frames.dyads.size()) {
+    dyad = static_cast<std::uint32_t>(placed);
+    return false;
+  }
+  unknowns_from_poses(frames, poses, q.data());
+  return true;
+}
 
 struct Solvers {
   explicit Solvers(const Kinematics& kinematics, bool batch, double rate) : scalar(kinematics) {
@@ -41,6 +55,7 @@ std::size_t solve_rows(const Kinematics& kinematics, Solvers& solvers, MotionTab
                        std::size_t stop, std::size_t limit, std::size_t history_begin, std::size_t offset,
                        RunCursor& at) {
   const double rate = table.input_rate(), second_rate = table.input_second_rate();
+  const LinkageFrames* closed_form = kinematics.closed_form();
   MotionState state;
   Eigen::VectorXd trial, predicted(at.q.size());
   std::size_t row = first;
@@ -73,21 +88,47 @@ std::size_t solve_rows(const Kinematics& kinematics, Solvers& solvers, MotionTab
       }
       double stuck_at = previous_input;
       bool too_far = false;
-      if (!solved) solved = solvers.scalar.continue_to(previous_input, input, trial, &stuck_at, &too_far);
-      if (!solved) {
-        why.kind = too_far ? Failure::Kind::too_far : Failure::Kind::branch_stops;
-        why.from = previous_input;
-        why.stopped_at = stuck_at;
+      if (!solved && closed_form != nullptr && std::fabs(h) > kinematics.max_continuation_step()) {
+        // A value far from the last (a list, a periodic angle): no path to follow, the
+        // dyads' signs say the branch.
+        std::uint32_t dyad = 0;
+        if (closed_form_position(*closed_form, input, trial, dyad)) {
+          std::size_t worst_group = 0;
+          double residual = 0;
+          solved = solvers.scalar.solve_position(input, trial, &worst_group, &residual);
+          if (!solved) {
+            why.kind = Failure::Kind::group_open;
+            why.group = static_cast<std::uint32_t>(worst_group);
+            why.residual = residual;
+            why.from_guesses = false;
+          }
+        } else {
+          why.kind = Failure::Kind::dyad_open;
+          why.group = dyad;
+        }
+      } else if (!solved) {
+        solved = solvers.scalar.continue_to(previous_input, input, trial, &stuck_at, &too_far);
+        if (!solved) {
+          why.kind = too_far ? Failure::Kind::too_far : Failure::Kind::branch_stops;
+          why.from = previous_input;
+          why.stopped_at = stuck_at;
+        }
       }
     } else {
       std::size_t worst_group = 0;
       double residual = 0;
-      solved = solvers.scalar.solve_position(input, trial, &worst_group, &residual);
-      if (!solved) {
-        why.kind = Failure::Kind::group_open;
-        why.group = static_cast<std::uint32_t>(worst_group);
-        why.residual = residual;
-        why.from_guesses = !at.after_gap;
+      std::uint32_t dyad = 0;
+      if (closed_form != nullptr && !closed_form_position(*closed_form, input, trial, dyad)) {
+        why.kind = Failure::Kind::dyad_open;
+        why.group = dyad;
+      } else {
+        solved = solvers.scalar.solve_position(input, trial, &worst_group, &residual);
+        if (!solved) {
+          why.kind = Failure::Kind::group_open;
+          why.group = static_cast<std::uint32_t>(worst_group);
+          why.residual = residual;
+          why.from_guesses = !at.after_gap;
+        }
       }
     }
     if (!solved) {

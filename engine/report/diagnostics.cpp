@@ -3,6 +3,7 @@
 #include <kinema/engine/report/number_format.hpp>
 #include <kinema/engine/numeric/solver.hpp>
 #include <kinema/engine/report/output_scale.hpp>
+#include <kinema/engine/report/structure.hpp>
 
 namespace kinema {
 
@@ -47,6 +48,10 @@ std::string describe_failure(const ConstraintSystem& system, double input, const
       return "singular position at " + describe_input(system, input) +
              ": the Jacobian Phi_q is rank-deficient (toggle or dead-centre position), so "
              "velocities and accelerations are not defined there; choose a nearby value";
+    case Kind::dyad_open:
+      return (system.linkage ? describe_dyad(*system.linkage, failure.group) : "a dyad") + " cannot close at " +
+             describe_input(system, input) +
+             ": its links do not reach on the assembly of the sketch; choose another input value, or check the lengths";
     case Kind::nonfinite_rates:
       return "non-finite rates at " + describe_input(system, input) +
              " (a formula divides by zero there); choose a nearby value";

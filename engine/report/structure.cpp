@@ -34,4 +34,16 @@ std::vector<std::string> structure_lines(const Linkage& linkage) {
   return lines;
 }
 
+std::string describe_dyad(const Linkage& linkage, std::size_t k) {
+  std::size_t dyads = 0;
+  for (const StructureGroup& group : linkage.structure) {
+    if (group.kind == "driver" || group.kind == "group") continue;
+    if (dyads++ == k) {
+      return "dyad " + std::to_string(k + 1) + " (" + group.kind + ": links " + joined(group.links) + "; joints " +
+             joined(group.joints) + ")";
+    }
+  }
+  return "dyad " + std::to_string(k + 1);
+}
+
 }  // namespace kinema

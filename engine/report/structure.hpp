@@ -16,4 +16,7 @@ std::string mobility_text(const Linkage& linkage);
 /// "not a dyad: links 5, 6, 7, solved together by Newton on their loops".
 std::vector<std::string> structure_lines(const Linkage& linkage);
 
+/// "dyad 1 (RRR: links 2, 3; joints B, C, D)": the k-th dyad in solving order.
+std::string describe_dyad(const Linkage& linkage, std::size_t k);
+
 }  // namespace kinema

@@ -5,9 +5,12 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include <kinema/engine/model.hpp>
+#include <kinema/engine/report/diagnostics.hpp>
+#include <kinema/loops/linkage_loops.hpp>
 #include <kinema/loops/dyad_positions.hpp>
 #include <kinema/loops/mechanism_file.hpp>
 #include "../test_support.hpp"
@@ -51,4 +54,89 @@ TEST_CASE("loops/dyad_positions: the dyads' closed forms are the loops' solution
       }
     }
   }
+}
+
+namespace {
+
+// A triple rocker (non-Grashof: 30 + 70 > 40 + 38): the crank rocks between about
+// -70.4 and 70.4 deg; C is drawn above the line BD.
+const std::string kTripleRocker = R"(title = "triple rocker"
+[parameters]
+a = "40 mm"
+b = "30 mm"
+c = "38 mm"
+[joints]
+A = { ground = true, at = ["0 mm", "0 mm"] }
+B = { at = ["40 mm", "0 mm"] }
+C = { at = ["45.9333 mm", "29.4071 mm"] }
+D = { ground = true, at = ["70 mm", "0 mm"] }
+[links]
+2 = { joints = ["A", "B"], length = "a" }
+3 = { joints = ["B", "C"], length = "b" }
+4 = { joints = ["D", "C"], length = "c" }
+[driver]
+link = "2"
+value = "0 deg"
+rate = "1 rad/s"
+)";
+
+double degrees(double d) { return d * M_PI / 180; }
+
+// Which side of the line BD the joint C is on (the RRR dyad's assembly).
+int side_of_c(const kinema::MotionTable& table, std::size_t row) {
+  const auto b = table.point(row, 0).position, c = table.point(row, 1).position;
+  const double dx = 0.070 - b[0], dy = -b[1];
+  return (c[0] - b[0]) * dy - (c[1] - b[1]) * dx < 0 ? 1 : -1;
+}
+
+}  // namespace
+
+TEST_CASE("loops/dyad_positions: a list goes the short way round, and a value where the dyad cannot close names it") {
+  const kinema::Model model = kinema::make_model(kinema::read_mechanism_text(kTripleRocker, "rocker.toml"));
+  REQUIRE(model.kinematics.closed_form() != nullptr);
+  REQUIRE(model.system.points.at(0).name == "B");
+  // 300 deg is -60 deg: reached directly (continuation from 0 would run into the toggle at 70.4 deg).
+  const kinema::MotionTable list = kinema::analyse(model, {0, degrees(300), degrees(-60), degrees(60)});
+  for (std::size_t row = 0; row < 4; ++row) {
+    CAPTURE(row);
+    REQUIRE(list.status(row) == kinema::Status::ok);
+    CHECK(side_of_c(list, row) == side_of_c(list, 0));
+  }
+  for (int k = 0; k < 2; ++k) CHECK(list.q(1)[k] == doctest::Approx(list.q(2)[k]).epsilon(1e-12));
+  // The same mechanism as hand-written loops cannot get from 0 to 300 deg.
+  const kinema::Mechanism drawn = kinema::read_mechanism_text(kTripleRocker, "rocker.toml");
+  const kinema::Model loops = kinema::make_model(kinema::read_mechanism_text(kinema::vector_loop_file(drawn), "loops.toml"));
+  CHECK(kinema::analyse(loops, {0, degrees(300)}).status(1) == kinema::Status::unassembled);
+
+  const kinema::MotionTable beyond = kinema::analyse(model, {0, degrees(100)});
+  REQUIRE(beyond.status(1) == kinema::Status::unassembled);
+  CHECK(beyond.failure(1).kind == kinema::Failure::Kind::dyad_open);
+  CHECK(kinema::describe_failure(model.system, degrees(100), beyond.failure(1)) ==
+        "dyad 1 (RRR: links 3, 4; joints B, C, D) cannot close at theta2 = 100 deg: its links do not reach on the "
+        "assembly of the sketch; choose another input value, or check the lengths");
+}
+
+TEST_CASE("loops/dyad_positions: across a gap the motion resumes on the sketch's assembly, and no ok row changes it") {
+  const kinema::Model model = kinema::make_model(kinema::read_mechanism_text(kTripleRocker, "rocker.toml"));
+  std::vector<double> inputs;
+  for (double d = -90; d <= 90; d += 0.5) inputs.push_back(degrees(d));
+  // Twice over: out of range at both ends, then back in.
+  std::vector<double> there_and_back = inputs;
+  there_and_back.insert(there_and_back.end(), inputs.rbegin(), inputs.rend());
+  const kinema::MotionTable table = kinema::analyse(model, there_and_back);
+  std::size_t ok = 0, unassembled = 0;
+  for (std::size_t row = 0; row < there_and_back.size(); ++row) {
+    CAPTURE(there_and_back[row] * 180 / M_PI);
+    const bool outside = std::fabs(there_and_back[row]) > degrees(71);
+    if (outside) CHECK(table.status(row) == kinema::Status::unassembled);
+    if (table.status(row) != kinema::Status::ok) {
+      unassembled += table.status(row) == kinema::Status::unassembled;
+      continue;
+    }
+    CHECK_FALSE(outside);
+    ++ok;
+    CHECK(side_of_c(table, row) == 1);  // C above BD, as drawn
+  }
+  CHECK(ok > 500);
+  CHECK(unassembled > 70);
 }
