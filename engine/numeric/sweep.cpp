@@ -26,7 +26,8 @@ struct RunCursor {
 };
 
 // Joints and links: the position dyad by dyad in closed form, on the sketch's signs
-// (false, with the dyad, where one cannot close).
+// (false, with the dyad, where one cannot close). Link angles are taken the whole turns
+// nearest q's (the last position known): the serial run's angles, not their wrapped values.
 bool closed_form_position(const LinkageFrames& frames, double input, Eigen::VectorXd& q, std::uint32_t& dyad) {
   std::vector<BodyPose> poses;
   const std::size_t placed = place_dyads(frames, input, poses);
@@ -34,7 +35,13 @@ bool closed_form_position(const LinkageFrames& frames, double input, Eigen::Vect
     dyad = static_cast<std::uint32_t>(placed);
     return false;
   }
+  const Eigen::VectorXd near = q;
   unknowns_from_poses(frames, poses, q.data());
+  for (const LinkageFrames::Body& body : frames.bodies) {
+    if (body.unknown < 0) continue;
+    double& angle = q[body.unknown];
+    angle += 2 * M_PI * std::round((near[body.unknown] - angle) / (2 * M_PI));
+  }
   return true;
 }
 

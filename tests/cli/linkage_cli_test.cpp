@@ -1,13 +1,17 @@
 // The joints-and-links form through the kinema program: `kinema loops` writes the
-// vector-loop file kinema found, which evaluates to the same bytes; a structural
+// vector-loop file kinema found, which evaluates to the same numbers; a structural
 // mistake is an input error (status, file:line, no output file).
 #include <doctest/doctest.h>
 
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "test_support.hpp"
 
-TEST_CASE("kinema loops: the vector loops of a joints-and-links sample evaluate to the same CSV") {
+TEST_CASE("kinema loops: the vector loops of a joints-and-links sample evaluate to the same numbers") {
   for (const char* name : {"problem_4_4_joints.toml", "example_4_1_joints.toml", "example_4_2_joints.toml",
                            "problem_3_22_joints.toml"}) {
     CAPTURE(name);
@@ -23,7 +27,32 @@ TEST_CASE("kinema loops: the vector loops of a joints-and-links sample evaluate 
     const auto by_loops = kinema_test::run_kinema({"eval", loops, "--sweep", "20:160:10", "--format", "csv"});
     REQUIRE(drawn.exit_status == 0);
     REQUIRE(by_loops.exit_status == 0);
-    CHECK(drawn.out == by_loops.out);
+    // The same numbers; the last digits may differ (the drawn file's first row is placed
+    // in closed form, the loops' by Newton from the guesses).
+    const auto cells = [](const std::string& csv) {
+      std::vector<std::string> all;
+      std::string cell;
+      for (char c : csv) {
+        if (c == ',' || c == '\n') {
+          all.push_back(cell);
+          cell.clear();
+        } else {
+          cell += c;
+        }
+      }
+      return all;
+    };
+    const std::vector<std::string> a = cells(drawn.out), b = cells(by_loops.out);
+    REQUIRE(a.size() == b.size());
+    for (std::size_t k = 0; k < a.size(); ++k) {
+      char* end = nullptr;
+      const double x = std::strtod(a[k].c_str(), &end);
+      if (a[k].empty() || *end != '\0') {
+        CHECK(a[k] == b[k]);  // headers, status, notes
+      } else {
+        CHECK(std::fabs(x - std::strtod(b[k].c_str(), nullptr)) <= 1e-9 * (1 + std::fabs(x)));
+      }
+    }
   }
 }
 
