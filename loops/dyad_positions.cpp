@@ -191,6 +191,49 @@ void unknowns_from_poses(const LinkageFrames& frames, const std::vector<BodyPose
   }
 }
 
+std::vector<int> signs_nearest(const LinkageFrames& frames, double input, const double* q, double length_scale) {
+  std::vector<int> signs;
+  std::vector<BodyPose> poses;
+  place_driver(frames, input, poses);
+  for (const LinkageFrames::Dyad& d : frames.dyads) {
+    double best = INFINITY;
+    int chosen = d.sign;
+    std::vector<BodyPose> kept;
+    for (int sign : {d.sign, -d.sign}) {
+      std::vector<BodyPose> trial = poses;
+      if (!place_dyad(frames, trial, d, sign)) continue;
+      // The unknowns this dyad placed: its links' angles and the coordinates of sliders
+      // now between placed bodies.
+      double miss = 0;
+      for (std::size_t b : {d.first, d.second}) {
+        const int u = frames.bodies[b].unknown;
+        if (u >= 0) miss += std::fabs(std::remainder(trial[b].angle - q[u], 2 * M_PI));
+      }
+      for (const LinkageFrames::Slider& s : frames.sliders) {
+        if (s.unknown < 0 || !trial[s.guide].placed || !trial[s.block].placed) continue;
+        if (s.guide != d.first && s.guide != d.second && s.block != d.first && s.block != d.second) continue;
+        const BodyPose& g = trial[s.guide];
+        const Complex through = g.origin + s.through * turn(g.angle);
+        const double travel =
+            std::real((world(frames, trial, s.block, s.joint) - through) * std::conj(turn(g.angle + s.direction)));
+        miss += std::fabs(travel - q[s.unknown]) / length_scale;
+      }
+      if (miss < best) {
+        best = miss;
+        chosen = sign;
+        kept = trial;
+      }
+    }
+    signs.push_back(chosen);
+    if (kept.empty()) {  // cannot close here: the rest as they were
+      for (std::size_t k = signs.size(); k < frames.dyads.size(); ++k) signs.push_back(frames.dyads[k].sign);
+      return signs;
+    }
+    poses = kept;
+  }
+  return signs;
+}
+
 std::vector<int> dyad_signs(const LinkageFrames& frames, const std::vector<BodyPose>& configuration) {
   std::vector<int> signs;
   for (const LinkageFrames::Dyad& d : frames.dyads) {

@@ -31,6 +31,11 @@ std::size_t place_dyads(const LinkageFrames& frames, double input, std::vector<B
 /// The unknowns (link angles, slider coordinates, in the order of the loops) of placed bodies.
 void unknowns_from_poses(const LinkageFrames& frames, const std::vector<BodyPose>& poses, double* q);
 
+/// The signs of the dyads whose positions at `input` are nearest the unknowns q (link
+/// angles to whole turns, slider coordinates relative to `length_scale`): the signs of a
+/// solved position, or of a predicted one. Dyads that cannot close keep frames' signs.
+std::vector<int> signs_nearest(const LinkageFrames& frames, double input, const double* q, double length_scale);
+
 /// The sign of each dyad in a configuration (the sketch's): the one of the two
 /// solutions that lies nearer its links' poses.
 std::vector<int> dyad_signs(const LinkageFrames& frames, const std::vector<BodyPose>& configuration);

@@ -23,14 +23,21 @@ struct RunCursor {
   bool any_solved = false;
   std::size_t next_batch_try = 0;   ///< Run row: after a refused SIMD block, one by one until here.
   std::size_t batch_rows = 0;       ///< Rows solved in SIMD blocks.
+  // Joints and links (rows placed in closed form):
+  std::vector<int> signs;           ///< The dyads' signs to place with (empty: the sketch's).
+  bool after_singular = false;      ///< The last row was singular (a toggle or a change point).
+  bool have_last_ok = false;        ///< The last ok row, to keep its assembly or run on smoothly from it.
+  double last_ok_input = 0;
+  Eigen::VectorXd last_ok_q, last_ok_qd, last_ok_qdd;
 };
 
 // Joints and links: the position dyad by dyad in closed form, on the sketch's signs
 // (false, with the dyad, where one cannot close). Link angles are taken the whole turns
 // nearest q's (the last position known): the serial run's angles, not their wrapped values.
-bool closed_form_position(const LinkageFrames& frames, double input, Eigen::VectorXd& q, std::uint32_t& dyad) {
+bool closed_form_position(const LinkageFrames& frames, double input, const std::vector<int>& signs, Eigen::VectorXd& q,
+                          std::uint32_t& dyad) {
   std::vector<BodyPose> poses;
-  const std::size_t placed = place_dyads(frames, input, poses);
+  const std::size_t placed = place_dyads(frames, input, poses, signs.empty() ? nullptr : &signs);
   if (placed < frames.dyads.size()) {
     dyad = static_cast<std::uint32_t>(placed);
     return false;
@@ -43,6 +50,50 @@ bool closed_form_position(const LinkageFrames& frames, double input, Eigen::Vect
     angle += 2 * M_PI * std::round((near[body.unknown] - angle) / (2 * M_PI));
   }
   return true;
+}
+
+// The dyads' signs for a row placed in closed form. After a singular row (a change
+// point, where two assemblies meet: the parallelogram) the assembly the motion runs on
+// smoothly: marched from the last ok row in small steps, each placed on the signs
+// nearest the position extrapolated from the steps before (the first from the last ok
+// row's rates). Else (after a gap, in a list) the last ok row's assembly; before any,
+// the sketch's.
+void choose_signs(const Kinematics& kinematics, const LinkageFrames& frames, double input, double rate,
+                  double second_rate, RunCursor& at) {
+  if (!at.have_last_ok) {
+    at.signs.clear();
+    return;
+  }
+  const double scale = kinematics.length_scale();
+  at.signs = signs_nearest(frames, at.last_ok_input, at.last_ok_q.data(), scale);
+  if (!at.after_singular || rate == 0) return;
+  const double total = input - at.last_ok_input;
+  const int steps = static_cast<int>(std::ceil(std::fabs(total) / (0.5 * kinematics.max_continuation_step())));
+  if (steps > 100000) return;
+  const double h = total / std::max(steps, 1);
+  std::vector<Eigen::VectorXd> q{at.last_ok_q};  // positions marched so far
+  std::vector<BodyPose> poses;
+  std::vector<int> signs = at.signs;
+  for (int k = 1; k <= steps; ++k) {
+    const double x = at.last_ok_input + k * h;
+    Eigen::VectorXd predicted(q.back().size());
+    for (Eigen::Index i = 0; i < predicted.size(); ++i) {
+      const std::size_t m = q.size();
+      predicted[i] = m >= 3 ? 3 * q[m - 1][i] - 3 * q[m - 2][i] + q[m - 3][i]
+                            : solver::predict_second_order(at.last_ok_q[i], at.last_ok_qd[i], at.last_ok_qdd[i], rate,
+                                                           second_rate, k * h);
+    }
+    signs = signs_nearest(frames, x, predicted.data(), scale);
+    if (place_dyads(frames, x, poses, &signs) < frames.dyads.size()) return;  // a gap: keep the last ok row's
+    Eigen::VectorXd placed = predicted;
+    unknowns_from_poses(frames, poses, placed.data());
+    for (const LinkageFrames::Body& body : frames.bodies)
+      if (body.unknown >= 0)
+        placed[body.unknown] += 2 * M_PI * std::round((predicted[body.unknown] - placed[body.unknown]) / (2 * M_PI));
+    q.push_back(placed);
+    if (q.size() > 3) q.erase(q.begin());
+  }
+  at.signs = signs;
 }
 
 struct Solvers {
@@ -74,6 +125,14 @@ std::size_t solve_rows(const Kinematics& kinematics, Solvers& solvers, MotionTab
         at.batch_rows += BatchWorkspace::kLanes;
         row += BatchWorkspace::kLanes - 1;
         at.q = table.q(row);
+        if (closed_form != nullptr) {
+          at.have_last_ok = true;
+          at.after_singular = false;
+          at.last_ok_input = table.input(row);
+          at.last_ok_q = at.q;
+          at.last_ok_qd = table.qd(row);
+          at.last_ok_qdd = table.qdd(row);
+        }
         continue;
       }
       at.next_batch_try = offset + row + BatchWorkspace::kLanes;
@@ -99,7 +158,8 @@ std::size_t solve_rows(const Kinematics& kinematics, Solvers& solvers, MotionTab
         // A value far from the last (a list, a periodic angle): no path to follow, the
         // dyads' signs say the branch.
         std::uint32_t dyad = 0;
-        if (closed_form_position(*closed_form, input, trial, dyad)) {
+        choose_signs(kinematics, *closed_form, input, rate, second_rate, at);
+        if (closed_form_position(*closed_form, input, at.signs, trial, dyad)) {
           std::size_t worst_group = 0;
           double residual = 0;
           solved = solvers.scalar.solve_position(input, trial, &worst_group, &residual);
@@ -125,7 +185,8 @@ std::size_t solve_rows(const Kinematics& kinematics, Solvers& solvers, MotionTab
       std::size_t worst_group = 0;
       double residual = 0;
       std::uint32_t dyad = 0;
-      if (closed_form != nullptr && !closed_form_position(*closed_form, input, trial, dyad)) {
+      if (closed_form != nullptr) choose_signs(kinematics, *closed_form, input, rate, second_rate, at);
+      if (closed_form != nullptr && !closed_form_position(*closed_form, input, at.signs, trial, dyad)) {
         why.kind = Failure::Kind::dyad_open;
         why.group = dyad;
       } else {
@@ -146,6 +207,7 @@ std::size_t solve_rows(const Kinematics& kinematics, Solvers& solvers, MotionTab
       table.set(row, failed);
       at.after_gap = at.any_solved;
       at.have_previous = false;  // resume from the last good q; the branch may differ after a gap
+      at.after_singular = false;
       continue;
     }
     at.q = trial;
@@ -155,6 +217,16 @@ std::size_t solve_rows(const Kinematics& kinematics, Solvers& solvers, MotionTab
     // Past a singular position the branch may change: treat it like a gap.
     at.after_gap = state.status != Status::ok;
     at.have_previous = state.status == Status::ok;
+    if (closed_form != nullptr) {
+      at.after_singular = state.status == Status::singular;
+      if (state.status == Status::ok) {
+        at.have_last_ok = true;
+        at.last_ok_input = input;
+        at.last_ok_q = state.q;
+        at.last_ok_qd = state.qd;
+        at.last_ok_qdd = state.qdd;
+      }
+    }
     table.set(row, state);
   }
   return row;
