@@ -25,7 +25,6 @@ struct RunCursor {
   std::size_t batch_rows = 0;       ///< Rows solved in SIMD blocks.
   // Joints and links (rows placed in closed form):
   std::vector<int> signs;           ///< The dyads' signs to place with (empty: the sketch's).
-  bool after_singular = false;      ///< The last row was singular (a toggle or a change point).
   bool have_last_ok = false;        ///< The last ok row, to keep its assembly or run on smoothly from it.
   double last_ok_input = 0;
   Eigen::VectorXd last_ok_q, last_ok_qd, last_ok_qdd;
@@ -52,26 +51,27 @@ bool closed_form_position(const LinkageFrames& frames, double input, const std::
   return true;
 }
 
-// The dyads' signs for a row placed in closed form. After a singular row (a change
-// point, where two assemblies meet: the parallelogram) the assembly the motion runs on
-// smoothly: marched from the last ok row in small steps, each placed on the signs
-// nearest the position extrapolated from the steps before (the first from the last ok
-// row's rates). Else (after a gap, in a list) the last ok row's assembly; before any,
+// The dyads' signs for a row placed in closed form: the assembly the motion runs on
+// from the last ok row, marched there in small steps (the short way round for an angle),
+// each step placed on the signs nearest the position extrapolated from the steps before
+// (the first from the last ok row's rates). A dyad's sign may change on the way without
+// a jump — through a change point, where two assemblies meet (the parallelogram at 180
+// deg). Where the march cannot pass (a gap), the last ok row's signs; before any ok row,
 // the sketch's.
 void choose_signs(const Kinematics& kinematics, const LinkageFrames& frames, double input, double rate,
-                  double second_rate, RunCursor& at) {
+                  double second_rate, bool angle_input, RunCursor& at) {
   if (!at.have_last_ok) {
     at.signs.clear();
     return;
   }
   const double scale = kinematics.length_scale();
   at.signs = signs_nearest(frames, at.last_ok_input, at.last_ok_q.data(), scale);
-  if (!at.after_singular || rate == 0) return;
-  const double total = input - at.last_ok_input;
+  double total = input - at.last_ok_input;
+  if (angle_input) total = std::remainder(total, 2 * M_PI);  // the same position, the short way
   const int steps = static_cast<int>(std::ceil(std::fabs(total) / (0.5 * kinematics.max_continuation_step())));
   if (steps > 100000) return;
   const double h = total / std::max(steps, 1);
-  std::vector<Eigen::VectorXd> q{at.last_ok_q};  // positions marched so far
+  std::vector<Eigen::VectorXd> q{at.last_ok_q};  // the last three positions marched
   std::vector<BodyPose> poses;
   std::vector<int> signs = at.signs;
   for (int k = 1; k <= steps; ++k) {
@@ -79,12 +79,13 @@ void choose_signs(const Kinematics& kinematics, const LinkageFrames& frames, dou
     Eigen::VectorXd predicted(q.back().size());
     for (Eigen::Index i = 0; i < predicted.size(); ++i) {
       const std::size_t m = q.size();
-      predicted[i] = m >= 3 ? 3 * q[m - 1][i] - 3 * q[m - 2][i] + q[m - 3][i]
-                            : solver::predict_second_order(at.last_ok_q[i], at.last_ok_qd[i], at.last_ok_qdd[i], rate,
-                                                           second_rate, k * h);
+      predicted[i] = m >= 3   ? 3 * q[m - 1][i] - 3 * q[m - 2][i] + q[m - 3][i]
+                     : rate != 0 ? solver::predict_second_order(at.last_ok_q[i], at.last_ok_qd[i], at.last_ok_qdd[i],
+                                                                rate, second_rate, k * h)
+                                 : q.back()[i];
     }
     signs = signs_nearest(frames, x, predicted.data(), scale);
-    if (place_dyads(frames, x, poses, &signs) < frames.dyads.size()) return;  // a gap: keep the last ok row's
+    if (place_dyads(frames, x, poses, &signs) < frames.dyads.size()) return;  // a gap: the last ok row's signs
     Eigen::VectorXd placed = predicted;
     unknowns_from_poses(frames, poses, placed.data());
     for (const LinkageFrames::Body& body : frames.bodies)
@@ -114,6 +115,7 @@ std::size_t solve_rows(const Kinematics& kinematics, Solvers& solvers, MotionTab
                        RunCursor& at) {
   const double rate = table.input_rate(), second_rate = table.input_second_rate();
   const LinkageFrames* closed_form = kinematics.closed_form();
+  const bool angle_input = closed_form != nullptr && closed_form->driver_slider < 0;
   MotionState state;
   Eigen::VectorXd trial, predicted(at.q.size());
   std::size_t row = first;
@@ -127,7 +129,6 @@ std::size_t solve_rows(const Kinematics& kinematics, Solvers& solvers, MotionTab
         at.q = table.q(row);
         if (closed_form != nullptr) {
           at.have_last_ok = true;
-          at.after_singular = false;
           at.last_ok_input = table.input(row);
           at.last_ok_q = at.q;
           at.last_ok_qd = table.qd(row);
@@ -158,7 +159,7 @@ std::size_t solve_rows(const Kinematics& kinematics, Solvers& solvers, MotionTab
         // A value far from the last (a list, a periodic angle): no path to follow, the
         // dyads' signs say the branch.
         std::uint32_t dyad = 0;
-        choose_signs(kinematics, *closed_form, input, rate, second_rate, at);
+        choose_signs(kinematics, *closed_form, input, rate, second_rate, angle_input, at);
         if (closed_form_position(*closed_form, input, at.signs, trial, dyad)) {
           std::size_t worst_group = 0;
           double residual = 0;
@@ -185,7 +186,7 @@ std::size_t solve_rows(const Kinematics& kinematics, Solvers& solvers, MotionTab
       std::size_t worst_group = 0;
       double residual = 0;
       std::uint32_t dyad = 0;
-      if (closed_form != nullptr) choose_signs(kinematics, *closed_form, input, rate, second_rate, at);
+      if (closed_form != nullptr) choose_signs(kinematics, *closed_form, input, rate, second_rate, angle_input, at);
       if (closed_form != nullptr && !closed_form_position(*closed_form, input, at.signs, trial, dyad)) {
         why.kind = Failure::Kind::dyad_open;
         why.group = dyad;
@@ -207,7 +208,6 @@ std::size_t solve_rows(const Kinematics& kinematics, Solvers& solvers, MotionTab
       table.set(row, failed);
       at.after_gap = at.any_solved;
       at.have_previous = false;  // resume from the last good q; the branch may differ after a gap
-      at.after_singular = false;
       continue;
     }
     at.q = trial;
@@ -217,15 +217,12 @@ std::size_t solve_rows(const Kinematics& kinematics, Solvers& solvers, MotionTab
     // Past a singular position the branch may change: treat it like a gap.
     at.after_gap = state.status != Status::ok;
     at.have_previous = state.status == Status::ok;
-    if (closed_form != nullptr) {
-      at.after_singular = state.status == Status::singular;
-      if (state.status == Status::ok) {
-        at.have_last_ok = true;
-        at.last_ok_input = input;
-        at.last_ok_q = state.q;
-        at.last_ok_qd = state.qd;
-        at.last_ok_qdd = state.qdd;
-      }
+    if (closed_form != nullptr && state.status == Status::ok) {
+      at.have_last_ok = true;
+      at.last_ok_input = input;
+      at.last_ok_q = state.q;
+      at.last_ok_qd = state.qd;
+      at.last_ok_qdd = state.qdd;
     }
     table.set(row, state);
   }
@@ -240,8 +237,11 @@ MotionTable solve_sweep(const Kinematics& kinematics, const std::vector<double>&
                     settings.second_rate);
   unsigned threads = settings.threads;
   if (n == 0) return table;
-  // Short runs are not worth a thread.
+  // Short runs are not worth a thread. A joints-and-links run stays serial: its
+  // assembly is carried along the run (through change points, where a dyad's sign
+  // changes without a jump), which chunk starts reached by Newton continuation may miss.
   threads = std::max(1u, std::min<unsigned>(threads, static_cast<unsigned>(n / 256)));
+  if (kinematics.closed_form() != nullptr) threads = 1;
   std::vector<std::size_t> begin(threads + 1);
   for (unsigned t = 0; t <= threads; ++t) begin[t] = n * t / threads;
   std::vector<Eigen::VectorXd> start(threads, kinematics.guess());

@@ -140,3 +140,50 @@ TEST_CASE("loops/dyad_positions: across a gap the motion resumes on the sketch's
   CHECK(ok > 500);
   CHECK(unassembled > 70);
 }
+
+TEST_CASE("loops/dyad_positions: Problem 4.1's parallelogram stays a parallelogram through its change points") {
+  const kinema::Model parallelogram = kinema::load_model(kinema_test::sample("problem_4_1_parallelogram.toml"));
+  const kinema::Model crossed = kinema::load_model(kinema_test::sample("problem_4_1_antiparallelogram.toml"));
+  const double omega1 = 4 * M_PI;  // 120 rpm
+  const kinema::MotionTable at30 = kinema::analyse(parallelogram, {degrees(30)});
+  REQUIRE(at30.status(0) == kinema::Status::ok);
+  CHECK(std::fabs(at30.qd(0)[0]) < 1e-9);               // the coupler does not turn
+  CHECK(at30.qd(0)[1] == doctest::Approx(omega1));      // the rocker turns with the crank
+  CHECK(std::fabs(at30.qdd(0)[1]) < 1e-9);
+  std::vector<std::vector<double>> runs;
+  for (double step : {1.0, 7.0, 30.0, 45.0}) {
+    std::vector<double> inputs;
+    for (double d = 0; d <= 720 + 1e-9; d += step) inputs.push_back(degrees(d));
+    runs.push_back(inputs);
+  }
+  runs.push_back({degrees(30), degrees(200), degrees(100), degrees(300), degrees(-30), degrees(185)});
+  for (const auto& inputs : runs) {
+    CAPTURE(inputs.size());
+    for (const kinema::Model* model : {&parallelogram, &crossed}) {
+      const bool is_parallelogram = model == &parallelogram;
+      CAPTURE(is_parallelogram);
+      const kinema::MotionTable table = kinema::analyse(*model, inputs);
+      std::size_t ok = 0;
+      for (std::size_t row = 0; row < inputs.size(); ++row) {
+        CAPTURE(inputs[row] * 180 / M_PI);
+        const double off_line = std::fabs(std::remainder(inputs[row], M_PI));
+        if (off_line < 1e-9) {  // the change points: all joints on one line
+          CHECK(table.status(row) == kinema::Status::singular);
+          continue;
+        }
+        REQUIRE(table.status(row) == kinema::Status::ok);
+        ++ok;
+        // The coupler BC is parallel to AD (theta2 = 0) on the parallelogram, never on the crossed one.
+        const double coupler = std::fabs(std::sin(table.q(row)[0]));
+        if (is_parallelogram) {
+          CHECK(coupler < 1e-9);
+          CHECK(std::fabs(table.qd(row)[0]) < 1e-9);
+          CHECK(table.qd(row)[1] == doctest::Approx(omega1));
+        } else {
+          CHECK(coupler > 1e-3);
+        }
+      }
+      CHECK(ok > 0);
+    }
+  }
+}
