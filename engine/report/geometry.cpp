@@ -1,5 +1,7 @@
 #include <kinema/engine/report/geometry.hpp>
 
+#include <kinema/loops/dyad_positions.hpp>
+
 namespace kinema {
 
 MechanismGeometry::MechanismGeometry(const ConstraintSystem& system) {
@@ -50,6 +52,29 @@ std::vector<DrawingSegment> MechanismGeometry::segments(const MotionState& state
     }
   }
   return segments;
+}
+
+std::optional<LinkageDrawing> linkage_drawing(const ConstraintSystem& system, const MotionState& state) {
+  if (!system.linkage || !system.linkage->frames.closed_form || state.status == Status::unassembled) return std::nullopt;
+  const Linkage& linkage = *system.linkage;
+  const LinkageFrames& frames = linkage.frames;
+  // The poses of this position: placed on the signs nearest its unknowns.
+  const std::vector<int> signs = signs_nearest(frames, state.input, state.q.data(), system.length_scale);
+  std::vector<BodyPose> poses;
+  if (place_dyads(frames, state.input, poses, &signs) < frames.dyads.size()) return std::nullopt;
+  LinkageDrawing drawing;
+  for (const auto& [joint, at] : frames.bodies[0].points) drawing.ground_pivots.push_back({linkage.joints[joint].name, at});
+  for (const LinkageFrames::Slider& s : frames.sliders)
+    if (s.guide == 0) drawing.guides.push_back({s.through, std::polar(1.0, s.direction)});
+  for (std::size_t b = 1; b < frames.bodies.size(); ++b) {
+    LinkageDrawing::Link link;
+    link.block = frames.bodies[b].guide >= 0;
+    link.angle = poses[b].angle;
+    for (const auto& [joint, v] : frames.bodies[b].points)
+      link.joints.push_back({linkage.joints[joint].name, poses[b].origin + v * std::polar(1.0, poses[b].angle)});
+    drawing.links.push_back(link);
+  }
+  return drawing;
 }
 
 }  // namespace kinema

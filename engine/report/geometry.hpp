@@ -4,6 +4,8 @@
 #pragma once
 
 #include <complex>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include <kinema/engine/constraint_system.hpp>
@@ -17,6 +19,30 @@ struct DrawingSegment {
   std::complex<double> from, to;  ///< SI.
   Kind kind = Kind::link;
 };
+
+/// A joints-and-links mechanism as drawn: its links with their joints where they are,
+/// ground pivots and fixed guides (SI, world positions).
+struct LinkageDrawing {
+  struct Joint {
+    std::string name;
+    std::complex<double> at;
+  };
+  struct Link {
+    std::vector<Joint> joints;
+    bool block = false;  ///< A slider block (drawn as a block turned by `angle`).
+    double angle = 0;
+  };
+  struct Guide {
+    std::complex<double> through, along;  ///< A point of a fixed guide line and its unit direction.
+  };
+  std::vector<Link> links;
+  std::vector<Joint> ground_pivots;
+  std::vector<Guide> guides;
+};
+
+/// The drawing at a state whose position is known, for a joints-and-links mechanism
+/// placed in closed form; nullopt for anything else.
+std::optional<LinkageDrawing> linkage_drawing(const ConstraintSystem& system, const MotionState& state);
 
 class MechanismGeometry {
  public:

@@ -3,20 +3,79 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <optional>
+#include <string>
 
 #include <kinema/engine/printers/latex/latex_format.hpp>
+#include <kinema/engine/report/geometry.hpp>
 #include <kinema/engine/report/number_format.hpp>
 #include <kinema/engine/report/output_scale.hpp>
 
 namespace kinema {
 
+namespace {
+
+// A fixed pivot: a triangle on hatched ground.
+void write_pivot(std::ostream& out, const std::string& at) {
+  out << "\\fill[pattern=north east lines] " << at << " ++(-0.3,-0.35) rectangle ++(0.6,0.15);\n"
+      << "\\draw " << at << " ++(-0.3,-0.2) -- ++(0.6,0);\n"
+      << "\\draw " << at << " -- ++(-0.15,-0.2) -- ++(0.3,0) -- cycle;\n";
+}
+
+// Joints and links as drawn: fixed guides hatched, binary links as bars, links with
+// more joints as plates, slider blocks as blocks on their lines, fixed pivots on ground.
+template <typename Xy>
+void write_links(std::ostream& out, const LinkageDrawing& drawing, const Xy& xy, std::complex<double> centre, double size,
+                 double cm) {
+  for (const LinkageDrawing::Guide& g : drawing.guides) {
+    // The line across the drawing, hatched on one side: centred where the drawing's
+    // centre projects onto it.
+    const std::complex<double> middle = g.through + g.along * std::real((centre - g.through) * std::conj(g.along));
+    const std::complex<double> a = middle - g.along * (0.6 * size), b = middle + g.along * (0.6 * size);
+    const std::string angle = format_fixed(to_degrees(std::arg(g.along)));
+    out << "\\draw[gray] " << xy(a) << " -- " << xy(b) << ";\n"
+        << "\\fill[pattern=north east lines, rotate around={" << angle << ":" << xy(a) << "}] " << xy(a)
+        << " rectangle ++(" << format_fixed(1.2 * size * cm) << ",-0.15);\n";
+  }
+  for (const LinkageDrawing::Link& link : drawing.links) {
+    if (link.block) {
+      const std::string at = xy(link.joints.front().at);
+      out << "\\draw[thick, fill=white, rotate around={" << format_fixed(to_degrees(link.angle)) << ":" << at << "}] "
+          << at << " ++(-0.35,-0.2) rectangle ++(0.7,0.4);\n";
+      continue;
+    }
+    std::string path;
+    for (const auto& joint : link.joints) path += (path.empty() ? "" : " -- ") + xy(joint.at);
+    if (link.joints.size() >= 3) {
+      out << "\\filldraw[fill=blue!10, draw=blue!70!black, very thick, line join=round] " << path << " -- cycle;\n";
+    } else {
+      out << "\\draw[very thick, blue!70!black] " << path << ";\n";
+    }
+  }
+  for (const auto& pivot : drawing.ground_pivots) {
+    write_pivot(out, xy(pivot.at));
+    out << "\\node[below right, font=\\small] at " << xy(pivot.at) << " {" << latex_escape_text(pivot.name) << "};\n";
+  }
+  for (const LinkageDrawing::Link& link : drawing.links)
+    for (const auto& joint : link.joints) out << "\\filldraw[fill=white] " << xy(joint.at) << " circle (0.07);\n";
+}
+
+}  // namespace
+
 void write_tikz_mechanism(std::ostream& out, const ConstraintSystem& system, const MechanismGeometry& geometry,
                         const MotionState& s) {
   const OutputScale scale(system);
   using Segment = DrawingSegment;
-  const std::vector<Segment> segments = geometry.segments(s);
+  // Joints and links: the links as bodies (bars, plates, blocks); vector loops: their terms.
+  const std::optional<LinkageDrawing> drawing = linkage_drawing(system, s);
+  const std::vector<Segment> segments = drawing ? std::vector<Segment>{} : geometry.segments(s);
   std::vector<std::complex<double>> extent = {{0, 0}};
   for (const Segment& segment : segments) extent.push_back(segment.to);
+  if (drawing) {
+    for (const auto& link : drawing->links)
+      for (const auto& joint : link.joints) extent.push_back(joint.at);
+    for (const auto& pivot : drawing->ground_pivots) extent.push_back(pivot.at);
+  }
   std::vector<std::complex<double>> points, velocities;
   double fastest = 0;
   if (s.status == Status::ok) {
@@ -42,14 +101,11 @@ void write_tikz_mechanism(std::ostream& out, const ConstraintSystem& system, con
     return "(" + format_fixed(p.real() * cm) + "," + format_fixed(p.imag() * cm) + ")";
   };
   out << "\\begin{center}\n\\begin{tikzpicture}[line cap=round]\n";
+  if (drawing) write_links(out, *drawing, xy, {(min_x + max_x) / 2, (min_y + max_y) / 2}, size, cm);
   for (const Segment& g : segments) {
     if (g.kind == Segment::Kind::ground) {
       out << "\\draw[gray, dashed] " << xy(g.from) << " -- " << xy(g.to) << ";\n";
-      for (const auto& end : {g.from, g.to}) {
-        out << "\\fill[pattern=north east lines] " << xy(end) << " ++(-0.3,-0.35) rectangle ++(0.6,0.15);\n"
-             << "\\draw " << xy(end) << " ++(-0.3,-0.2) -- ++(0.6,0);\n"
-             << "\\draw " << xy(end) << " -- ++(-0.15,-0.2) -- ++(0.3,0) -- cycle;\n";
-      }
+      for (const auto& end : {g.from, g.to}) write_pivot(out, xy(end));
     } else if (g.kind == Segment::Kind::slider) {
       // The block sits at the moving end: not on the ground (origin or a ground vector's end).
       bool to_is_ground = std::abs(g.to) < 1e-9 * size;

@@ -188,3 +188,21 @@ TEST_CASE("engine/printers/worked_solution: sliding links, failures in words, us
   CHECK(has(escaped, "\\$x\\$ \\#1 \\textasciitilde{}"));
   CHECK_FALSE(has(escaped, "\\input{evil}"));
 }
+
+TEST_CASE("engine/printers/worked_solution: a joints-and-links drawing follows the links") {
+  // Problem 3.22 as drawn: the triangle coupler 3 as a plate, two slider blocks on two
+  // hatched fixed guides, the crank as a bar, the fixed pivot O2; its loops are not drawn.
+  const kinema::Model model = kinema::load_model(kinema_test::sample("problem_3_22_joints.toml"));
+  const MotionTable values = kinema::analyse(model, model.system.input.values);
+  const std::string tex = document(model, &values, nullptr);
+  CHECK(count(tex, "\\filldraw[fill=blue!10") == 1);                 // link 3: A, B, C
+  CHECK(count(tex, "\\draw[thick, fill=white, rotate around=") == 2);  // blocks 4 and 6
+  CHECK(count(tex, "\\fill[pattern=north east lines, rotate around=") == 2);  // guides x = 0 line and x = d
+  CHECK(count(tex, "\\draw[very thick, blue!70!black]") == 2);       // bars 2 and 5
+  CHECK(has(tex, "{O2};"));
+  CHECK_FALSE(has(tex, "\\draw[gray, dashed]"));                     // no loop segments
+  // A vector-loop file is drawn from its loops as before.
+  const kinema::Model loops = kinema::load_model(kinema_test::sample("problem_3_22_six_bar_sliders.toml"));
+  const MotionTable loop_values = kinema::analyse(loops, loops.system.input.values);
+  CHECK(count(document(loops, &loop_values, nullptr), "\\filldraw[fill=blue!10") == 0);
+}
