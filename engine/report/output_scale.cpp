@@ -1,7 +1,11 @@
 #include <kinema/engine/report/output_scale.hpp>
 
 #include <algorithm>
+#include <cctype>
+#include <complex>
 #include <limits>
+
+#include <kinema/engine/symbolic/naming.hpp>
 
 #include <cmath>
 
@@ -61,8 +65,65 @@ std::vector<ResultColumn> result_columns(const ConstraintSystem& system, const O
     for (const auto& c : p.components) columns.push_back({p.name + "_a" + c, l + "/s^2"});
     columns.push_back({p.name + "_acceleration", l + "/s^2"});
   }
+  for (const auto& [body, angle] : block_links(system)) {
+    columns.push_back({angle, "deg"});
+    columns.push_back({default_rate_name(angle, 1), "rad/s"});
+    columns.push_back({default_rate_name(angle, 2), "rad/s^2"});
+  }
+  if (system.linkage) {
+    for (const LinkageFrames::Slider& slider : system.linkage->frames.sliders) {
+      const std::string& j = system.linkage->joints[slider.joint].name;
+      for (const char* part : {"_vrel_x", "_vrel_y"}) columns.push_back({j + part, l + "/s"});
+      for (const char* part : {"_arel_x", "_arel_y", "_coriolis_x", "_coriolis_y"}) columns.push_back({j + part, l + "/s^2"});
+    }
+  }
   return columns;
 }
+
+std::size_t linkage_columns_begin(const ConstraintSystem& system) {
+  std::size_t columns = kInputColumns + 3 * system.unknowns.size();
+  for (const PointObservable& p : system.points) columns += 3 * p.components.size() + 2;
+  return columns;
+}
+
+std::vector<std::pair<std::size_t, std::string>> block_links(const ConstraintSystem& system) {
+  std::vector<std::pair<std::size_t, std::string>> blocks;
+  if (!system.linkage) return blocks;
+  const Linkage& linkage = *system.linkage;
+  for (std::size_t b = 1; b < linkage.frames.bodies.size(); ++b) {
+    if (linkage.frames.bodies[b].guide < 0) continue;
+    const Link& link = linkage.links[b - 1];
+    const bool numbered = !link.name.empty() && std::isdigit(static_cast<unsigned char>(link.name[0]));
+    blocks.push_back({b, !link.angle_name.empty() ? link.angle_name : (numbered ? "theta" : "theta_") + link.name});
+  }
+  return blocks;
+}
+
+namespace {
+
+struct Turning {
+  double angle = 0, rate = 0, second_rate = 0;
+};
+
+// A body's angle and rates at a row: ground's are 0, an unknown's or the driver's are
+// the row's, a slider block turns with its guide.
+Turning turning(const LinkageFrames& frames, const MotionTable& table, std::size_t row, std::size_t body) {
+  const LinkageFrames::Body& b = frames.bodies[body];
+  if (b.unknown >= 0) {
+    const auto i = Eigen::Index(b.unknown);
+    return {table.q(row)[i], table.qd(row)[i], table.qdd(row)[i]};
+  }
+  if (b.guide >= 0) {
+    Turning t = turning(frames, table, row, std::size_t(b.guide));
+    t.angle += b.offset;
+    return t;
+  }
+  if (body != 0 && body == frames.driver_body && frames.driver_slider < 0)
+    return {table.input(row), table.input_rate(), table.input_second_rate()};
+  return {};
+}
+
+}  // namespace
 
 void result_values(const ConstraintSystem& system, const OutputScale& scale, const MotionTable& table,
                    std::size_t row, double* values) {
@@ -92,6 +153,34 @@ void result_values(const ConstraintSystem& system, const OutputScale& scale, con
     *values++ = m.speed() / f;
     for (std::size_t c = 0; c < dimension; ++c) *values++ = m.acceleration[c] / f;
     *values++ = m.acceleration_magnitude() / f;
+  }
+  if (!system.linkage) return;
+  const LinkageFrames& frames = system.linkage->frames;
+  for (const auto& [body, name] : block_links(system)) {
+    const Turning t = status == Status::ok ? turning(frames, table, row, body) : Turning{};
+    *values++ = status == Status::ok ? scale.coordinate(Dimension::angle, t.angle) : undefined;
+    *values++ = status == Status::ok ? t.rate : undefined;
+    *values++ = status == Status::ok ? t.second_rate : undefined;
+  }
+  for (const LinkageFrames::Slider& slider : frames.sliders) {
+    if (status != Status::ok) {
+      values = std::fill_n(values, 6, undefined);
+      continue;
+    }
+    // Along the line (u, turning with the guide): v_rel = s' u, a_rel = s'' u, and the
+    // Coriolis acceleration 2 omega_guide x v_rel.
+    const Turning guide = turning(frames, table, row, slider.guide);
+    const std::complex<double> u = std::polar(1.0, guide.angle + slider.direction);
+    double s1 = table.input_rate(), s2 = table.input_second_rate();
+    if (slider.unknown >= 0) {
+      s1 = table.qd(row)[Eigen::Index(slider.unknown)];
+      s2 = table.qdd(row)[Eigen::Index(slider.unknown)];
+    }
+    const std::complex<double> v = s1 * u, a = s2 * u, coriolis = 2 * guide.rate * std::complex<double>(0, 1) * v;
+    for (const std::complex<double>& c : {v, a, coriolis}) {
+      *values++ = c.real() / f;
+      *values++ = c.imag() / f;
+    }
   }
 }
 

@@ -33,7 +33,9 @@ struct ResultColumn {
 
 /// The value columns of one row, in order: input, its rate and second rate; each
 /// unknown with its rate and second rate; each point's position, velocity, speed,
-/// acceleration and its magnitude. The first kInputColumns are the input's.
+/// acceleration and its magnitude; for joints and links, each slider block's angle and
+/// rates (its guide's turning), then each slider's relative velocity, relative
+/// acceleration and Coriolis acceleration (x, y). The first kInputColumns are the input's.
 std::vector<ResultColumn> result_columns(const ConstraintSystem& system, const OutputScale& scale);
 constexpr std::size_t kInputColumns = 3;
 
@@ -42,5 +44,12 @@ constexpr std::size_t kInputColumns = 3;
 /// undefined (no position when unassembled, no rates or points unless ok).
 void result_values(const ConstraintSystem& system, const OutputScale& scale, const MotionTable& table,
                    std::size_t row, double* values);
+
+/// Where the joints-and-links columns (blocks, then sliders) begin in result_columns.
+std::size_t linkage_columns_begin(const ConstraintSystem& system);
+
+/// Joints and links: the links that are slider blocks (bodies of LinkageFrames) and the
+/// name of each one's angle, in the order of their columns.
+std::vector<std::pair<std::size_t, std::string>> block_links(const ConstraintSystem& system);
 
 }  // namespace kinema

@@ -3,6 +3,7 @@
 // mistake is an input error (status, file:line, no output file).
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -27,30 +28,38 @@ TEST_CASE("kinema loops: the vector loops of a joints-and-links sample evaluate 
     const auto by_loops = kinema_test::run_kinema({"eval", loops, "--sweep", "20:160:10", "--format", "csv"});
     REQUIRE(drawn.exit_status == 0);
     REQUIRE(by_loops.exit_status == 0);
-    // The same numbers; the last digits may differ (the drawn file's first row is placed
-    // in closed form, the loops' by Newton from the guesses).
-    const auto cells = [](const std::string& csv) {
-      std::vector<std::string> all;
+    // The same numbers in every column of the loops' output (the drawn file has more:
+    // its slider blocks and sliders); the last digits may differ (the drawn file's first
+    // row is placed in closed form, the loops' by Newton from the guesses).
+    const auto table = [](const std::string& csv) {
+      std::vector<std::vector<std::string>> rows(1);
       std::string cell;
       for (char c : csv) {
         if (c == ',' || c == '\n') {
-          all.push_back(cell);
+          rows.back().push_back(cell);
           cell.clear();
+          if (c == '\n') rows.emplace_back();
         } else {
           cell += c;
         }
       }
-      return all;
+      rows.pop_back();
+      return rows;
     };
-    const std::vector<std::string> a = cells(drawn.out), b = cells(by_loops.out);
+    const auto a = table(drawn.out), b = table(by_loops.out);
     REQUIRE(a.size() == b.size());
-    for (std::size_t k = 0; k < a.size(); ++k) {
-      char* end = nullptr;
-      const double x = std::strtod(a[k].c_str(), &end);
-      if (a[k].empty() || *end != '\0') {
-        CHECK(a[k] == b[k]);  // headers, status, notes
-      } else {
-        CHECK(std::fabs(x - std::strtod(b[k].c_str(), nullptr)) <= 1e-9 * (1 + std::fabs(x)));
+    for (std::size_t column = 0; column < b[0].size(); ++column) {
+      const auto at = std::find(a[0].begin(), a[0].end(), b[0][column]);
+      REQUIRE_MESSAGE(at != a[0].end(), b[0][column]);
+      const std::size_t k = static_cast<std::size_t>(at - a[0].begin());
+      for (std::size_t row = 1; row < a.size(); ++row) {
+        char* end = nullptr;
+        const double x = std::strtod(a[row][k].c_str(), &end);
+        if (a[row][k].empty() || *end != '\0') {
+          CHECK(a[row][k] == b[row][column]);  // status, notes
+        } else {
+          CHECK(std::fabs(x - std::strtod(b[row][column].c_str(), nullptr)) <= 1e-9 * (1 + std::fabs(x)));
+        }
       }
     }
   }

@@ -356,3 +356,47 @@ TEST_CASE("loops/linkage_loops: the solving order is the seeds': driver, then dy
   kinema::find_printer(kinema::PrintKind::derivation, "text")->print(loops_text, {kinema::load_model(sample("problem_4_4_six_bar.toml"))});
   CHECK(loops_text.str().find("Structure") == std::string::npos);
 }
+
+TEST_CASE("loops/linkage_loops: at each slider the relative velocity, relative and Coriolis accelerations, as the seeds print them") {
+  // Example 4.1: B2 slides on the crank 1.
+  const nlohmann::json e41 = kinema_test::eval_json("example_4_1_joints.toml").at("results").at(0);
+  const nlohmann::json& b2 = e41.at("sliders").at("B2");
+  CHECK_PRINTED(b2.at("relative_velocity")[0].get<double>(), "-0.195");
+  CHECK_PRINTED(b2.at("relative_velocity")[1].get<double>(), "-0.195");
+  CHECK_PRINTED(b2.at("relative_acceleration")[0].get<double>(), "-0.5");
+  CHECK_PRINTED(b2.at("relative_acceleration")[1].get<double>(), "-0.5");
+  CHECK_PRINTED(b2.at("coriolis")[0].get<double>(), "1.226");
+  CHECK_PRINTED(b2.at("coriolis")[1].get<double>(), "-1.226");
+  // The block 2 turns with the crank; omega23 = omega2 - omega3, alpha23 = alpha2 - alpha3.
+  const nlohmann::json& block2 = e41.at("blocks").at("2");
+  CHECK(block2.at("rate").get<double>() == doctest::Approx(3.141));
+  const nlohmann::json& link3 = e41.at("coordinates").at("phi3");
+  CHECK_PRINTED(block2.at("rate").get<double>() - link3.at("rate").get<double>(), "-0.762");
+  CHECK_PRINTED(block2.at("second_rate").get<double>() - link3.at("second_rate").get<double>(), "2.252");
+
+  // Example 4.2: B2 slides on link 3.
+  const nlohmann::json e42 = kinema_test::eval_json("example_4_2_joints.toml").at("results").at(0);
+  const nlohmann::json& s = e42.at("sliders").at("B2");
+  CHECK_PRINTED(s.at("relative_velocity")[0].get<double>(), "0.065");
+  CHECK_PRINTED(s.at("relative_velocity")[1].get<double>(), "0.205");
+  CHECK_PRINTED(s.at("coriolis")[0].get<double>(), "-0.742");
+  CHECK_PRINTED(s.at("coriolis")[1].get<double>(), "0.237");
+  // The seed ends a_B23 = -1.569i - 1.569j - (-0.456i - 0.649j) - (-0.742i + 0.237j) with
+  // "= -0.5i - 0.5j" (Example 4.1's numbers); its own terms give -0.371i - 1.157j, as
+  // the finite differences of CB do (sample comments): that is asserted — to the
+  // seed's terms' rounding in x, and against CB'' (finite differences) along link 3.
+  CHECK_PRINTED(s.at("relative_acceleration")[0].get<double>(), "-0.371");
+  const Model model = kinema::load_model(sample("example_4_2_joints.toml"));
+  const double h = 1e-3, omega1 = 4.712;
+  const MotionTable t = kinema::analyse(model, {M_PI / 4 - h, M_PI / 4, M_PI / 4 + h});
+  const double cb_second = (coordinate_value(model, t, 2, "CB", 0) - 2 * coordinate_value(model, t, 1, "CB", 0) +
+                            coordinate_value(model, t, 0, "CB", 0)) / (h * h) * omega1 * omega1;
+  const double phi3 = coordinate_value(model, t, 1, "phi3", 0);
+  CHECK(s.at("relative_acceleration")[0].get<double>() == doctest::Approx(cb_second * std::cos(phi3)).epsilon(1e-5));
+  CHECK(s.at("relative_acceleration")[1].get<double>() == doctest::Approx(cb_second * std::sin(phi3)).epsilon(1e-5));
+  CHECK(s.at("relative_acceleration")[1].get<double>() == doctest::Approx(-1.157).epsilon(0.002));
+  // omega21 = omega2 - omega1 (the block 2 turns with link 3).
+  CHECK_PRINTED(e42.at("blocks").at("2").at("rate").get<double>() - 4.712, "-2.905");
+  // A slider on a fixed guide has no Coriolis term.
+  CHECK(e42.at("sliders").at("E5").at("coriolis")[0].get<double>() == 0);
+}

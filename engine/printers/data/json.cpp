@@ -134,7 +134,29 @@ class JsonPrinter : public ResultsPrinter {
         }
         v += 3 * d + 2;
       }
-      out += "}}";
+      out += '}';
+      if (system.linkage && status == Status::ok) {  // joints and links: blocks, then sliders
+        out += ", \"blocks\": {";
+        const auto blocks = block_links(system);
+        for (std::size_t k = 0; k < blocks.size(); ++k, v += 3) {
+          out += (k > 0 ? ", " : "") + quoted(system.linkage->links[blocks[k].first - 1].name) + ": {\"angle\": ";
+          number(v[0]);
+          member(", \"rate\": ", v[1]);
+          member(", \"second_rate\": ", v[2]);
+          out += '}';
+        }
+        out += "}, \"sliders\": {";
+        const auto& sliders = system.linkage->frames.sliders;
+        for (std::size_t k = 0; k < sliders.size(); ++k, v += 6) {
+          out += (k > 0 ? ", " : "") + quoted(system.linkage->joints[sliders[k].joint].name) + ": ";
+          member_vector("{\"relative_velocity\": ", v, 2);
+          member_vector(", \"relative_acceleration\": ", v + 2, 2);
+          member_vector(", \"coriolis\": ", v + 4, 2);
+          out += '}';
+        }
+        out += '}';
+      }
+      out += '}';
     }
   }
 

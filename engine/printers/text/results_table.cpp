@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include <kinema/engine/printers/printer.hpp>
+#include <kinema/engine/symbolic/naming.hpp>
 #include <kinema/engine/report/diagnostics.hpp>
 #include <kinema/engine/report/number_format.hpp>
 #include <kinema/engine/report/output_scale.hpp>
@@ -67,13 +68,43 @@ class ResultsTablePrinter : public ResultsPrinter {
         }
         out << "\n";
       }
-      if (s.status != Status::ok || system.points.empty()) continue;
-      print_points(out, system, scale, s, digits);
+      if (s.status != Status::ok) continue;
+      if (!system.points.empty()) print_points(out, system, scale, s, digits);
+      if (system.linkage) print_sliders(out, system, scale, table, row, digits);
     }
     text += out.str();
   }
 
  private:
+  // Joints and links: slider blocks (turning with their guides), and at each slider its
+  // relative velocity and acceleration along the line and the Coriolis acceleration.
+  static void print_sliders(std::ostream& out, const ConstraintSystem& system, const OutputScale& scale,
+                            const MotionTable& table, std::size_t row, int digits) {
+    const auto number = [&](double value) { return format_significant(value, digits); };
+    std::vector<double> values(result_columns(system, scale).size());
+    result_values(system, scale, table, row, values.data());
+    const double* v = values.data() + linkage_columns_begin(system);
+    const auto blocks = block_links(system);
+    if (!blocks.empty()) out << "  " << pad("block", 8) << pad("angle", 26) << pad("rate", 26) << "second rate\n";
+    for (const auto& [body, angle] : blocks) {
+      out << "  " << pad(system.linkage->links[body - 1].name, 8) << pad(angle + " = " + number(v[0]) + " deg", 26)
+          << pad(default_rate_name(angle, 1) + " = " + number(v[1]) + " rad/s", 26) << default_rate_name(angle, 2)
+          << " = " << number(v[2]) << " rad/s^2\n";
+      v += 3;
+    }
+    const auto& sliders = system.linkage->frames.sliders;
+    if (sliders.empty()) return;
+    const std::string& l = scale.length_unit;
+    out << "  " << pad("slider", 8) << pad("v_rel (" + l + "/s)", 26) << pad("a_rel (" + l + "/s^2)", 26)
+        << "Coriolis 2 w x v_rel (" << l << "/s^2)\n";
+    for (const LinkageFrames::Slider& slider : sliders) {
+      const auto pair = [&](const double* c) { return "(" + number(c[0]) + ", " + number(c[1]) + ")"; };
+      out << "  " << pad(system.linkage->joints[slider.joint].name, 8) << pad(pair(v), 26) << pad(pair(v + 2), 26)
+          << pair(v + 4) << "\n";
+      v += 6;
+    }
+  }
+
   // One header per run of points with the same components.
   static void print_points(std::ostream& out, const ConstraintSystem& system, const OutputScale& scale,
                            const MotionState& s, int digits) {

