@@ -612,7 +612,7 @@ class LinkageWriter {
       const std::string& f = linkage_.joints[first].name;
       const std::string& s = linkage_.joints[second].name;
       const std::string& n = linkage_.joints[j].name;
-      if (given_length(body, f, n) && given_length(body, s, n)) {
+      if (given_length(body, f, n) && given_length(body, s, n) && d_first_j > 0 && length_value(body, first, second) > 0) {
         const double a = length_value(body, first, second), c = length_value(body, second, j);
         double cosine = (a * a + d_first_j * d_first_j - c * c) / (2 * a * d_first_j);
         if (std::fabs(cosine) > 1 + kSketchTolerance) {
@@ -878,48 +878,52 @@ class LinkageWriter {
     const auto letter = [](const Edge& e) { return e.slider ? "T" : "R"; };
     for (int step = 2;; ++step) {
       bool found = false;
-      for (std::size_t l1 = 1; l1 < bodies_.size() && !found; ++l1) {
-        for (std::size_t l2 = l1 + 1; l2 < bodies_.size() && !found; ++l2) {
-          if (known[l1] >= 0 || known[l2] >= 0) continue;
-          int inner = -1, outer1 = -1, outer2 = -1, count_inner = 0, count1 = 0, count2 = 0;
-          for (std::size_t k = 0; k < edges_.size(); ++k) {
-            const Edge& e = edges_[k];
-            const auto touches = [&](std::size_t b) { return e.a == b || e.b == b; };
-            if (touches(l1) && touches(l2)) {
-              ++count_inner;
-              inner = static_cast<int>(k);
-            } else if (touches(l1) && known[e.a == l1 ? e.b : e.a] >= 0) {
-              ++count1;
-              outer1 = static_cast<int>(k);
-            } else if (touches(l2) && known[e.a == l2 ? e.b : e.a] >= 0) {
-              ++count2;
-              outer2 = static_cast<int>(k);
-            }
-          }
-          if (count_inner != 1 || count1 != 1 || count2 != 1) continue;
-          // Read from the side of the body placed last (the moving one), pins first on a tie.
-          const auto other = [&](int k, std::size_t b) {
-            const Edge& e = edges_[std::size_t(k)];
-            return e.a == b ? e.b : e.a;
-          };
-          std::size_t first = l1, second = l2;
-          const int k1 = known[other(outer1, l1)], k2 = known[other(outer2, l2)];
-          if (k2 > k1 || (k2 == k1 && edges_[std::size_t(outer1)].slider && !edges_[std::size_t(outer2)].slider)) {
-            std::swap(first, second);
-            std::swap(outer1, outer2);
-          }
-          StructureGroup dyad;
-          dyad.kind = std::string(letter(edges_[std::size_t(outer1)])) + letter(edges_[std::size_t(inner)]) +
-                      letter(edges_[std::size_t(outer2)]);
-          dyad.links = {bodies_[first].name, bodies_[second].name};
-          dyad.joints = {linkage_.joints[edges_[std::size_t(outer1)].joint].name,
-                         linkage_.joints[edges_[std::size_t(inner)].joint].name,
-                         linkage_.joints[edges_[std::size_t(outer2)].joint].name};
-          linkage_.structure.push_back(dyad);
-          dyad_edges_.push_back({first, second, std::size_t(outer1), std::size_t(inner), std::size_t(outer2)});
-          known[l1] = known[l2] = step;
-          found = true;
+      // One pass over the joints: each unplaced link's joints to what is placed, and the
+      // joints between two unplaced links; then the first pair (in link order) that is a dyad.
+      std::vector<int> to_known(bodies_.size(), 0), known_edge(bodies_.size(), -1);
+      std::map<std::pair<std::size_t, std::size_t>, std::pair<int, int>> between;  // count, edge
+      for (std::size_t k = 0; k < edges_.size(); ++k) {
+        const std::size_t a = edges_[k].a, b = edges_[k].b;
+        if (known[a] >= 0 && known[b] < 0) {
+          ++to_known[b];
+          known_edge[b] = static_cast<int>(k);
+        } else if (known[b] >= 0 && known[a] < 0) {
+          ++to_known[a];
+          known_edge[a] = static_cast<int>(k);
+        } else if (known[a] < 0 && known[b] < 0) {
+          auto& [count, edge] = between[{std::min(a, b), std::max(a, b)}];
+          ++count;
+          edge = static_cast<int>(k);
         }
+      }
+      for (const auto& [pair, link] : between) {
+        const auto [l1, l2] = pair;
+        if (link.first != 1 || to_known[l1] != 1 || to_known[l2] != 1) continue;
+        int outer1 = known_edge[l1], outer2 = known_edge[l2];
+        const int inner = link.second;
+        // Read from the side of the body placed last (the moving one), pins first on a tie.
+        const auto other = [&](int k, std::size_t b) {
+          const Edge& e = edges_[std::size_t(k)];
+          return e.a == b ? e.b : e.a;
+        };
+        std::size_t first = l1, second = l2;
+        const int k1 = known[other(outer1, l1)], k2 = known[other(outer2, l2)];
+        if (k2 > k1 || (k2 == k1 && edges_[std::size_t(outer1)].slider && !edges_[std::size_t(outer2)].slider)) {
+          std::swap(first, second);
+          std::swap(outer1, outer2);
+        }
+        StructureGroup dyad;
+        dyad.kind = std::string(letter(edges_[std::size_t(outer1)])) + letter(edges_[std::size_t(inner)]) +
+                    letter(edges_[std::size_t(outer2)]);
+        dyad.links = {bodies_[first].name, bodies_[second].name};
+        dyad.joints = {linkage_.joints[edges_[std::size_t(outer1)].joint].name,
+                       linkage_.joints[edges_[std::size_t(inner)].joint].name,
+                       linkage_.joints[edges_[std::size_t(outer2)].joint].name};
+        linkage_.structure.push_back(dyad);
+        dyad_edges_.push_back({first, second, std::size_t(outer1), std::size_t(inner), std::size_t(outer2)});
+        known[l1] = known[l2] = step;
+        found = true;
+        break;
       }
       if (!found) break;
     }

@@ -423,6 +423,10 @@ class FileReader {
 
   void read_joints(const Node& root, Linkage& linkage) const {
     const Node& table = required_table(root, "joints");
+    if (table.as_table()->size() > kMaxJoints) {
+      fail(table, "[joints] has " + std::to_string(table.as_table()->size()) + " joints; kinema takes up to " +
+                      std::to_string(kMaxJoints) + " (a mechanism has tens)");
+    }
     for (const auto& [name, value] : ordered(table)) {
       check_identifier(*value, name, "joint");
       if (!value->is_table()) {
@@ -478,6 +482,10 @@ class FileReader {
 
   void read_links(const Node& root, Linkage& linkage) const {
     const Node& table = required_table(root, "links");
+    if (table.as_table()->size() > kMaxLinks) {
+      fail(table, "[links] has " + std::to_string(table.as_table()->size()) + " links; kinema takes up to " +
+                      std::to_string(kMaxLinks) + " (a mechanism has tens)");
+    }
     for (const auto& [name, value] : ordered(table)) {
       check_link_name(*value, name);
       Link link;

@@ -24,6 +24,11 @@ constexpr std::size_t kMaxValuesPerRun = 10'000'000;
 /// an output of petabytes.
 constexpr std::size_t kMaxSweepValues = 1'000'000'000;
 
+/// Most joints and links of a joints-and-links file: a mechanism has tens; the structure
+/// search and the loops it writes grow with the square of the count.
+constexpr std::size_t kMaxJoints = 128;
+constexpr std::size_t kMaxLinks = 64;
+
 /// Reads and checks a mechanism file; throws InputError / UnitError.
 Mechanism read_mechanism_file(const std::string& path);
 

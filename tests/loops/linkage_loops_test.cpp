@@ -296,6 +296,15 @@ D = { ground)")));
     CHECK(error_of(edited(R"(length = "b" })", R"(length = "b", angle = "a" })"))
               .find("duplicate name \"a\"") != std::string::npos);
   }
+  SUBCASE("more joints or links than a mechanism has") {
+    std::string joints, links;
+    for (int k = 0; k < 129; ++k) joints += "J" + std::to_string(k) + " = { at = [\"0 mm\", \"0 mm\"] }\n";
+    CHECK(error_of(edited("[links]", joints + "[links]")).find("[joints] has 133 joints; kinema takes up to 128") !=
+          std::string::npos);
+    for (int k = 0; k < 62; ++k) links += "L" + std::to_string(k) + " = { joints = [\"B\", \"C\"] }\n";
+    CHECK(error_of(edited("[driver]", links + "[driver]")).find("[links] has 65 links; kinema takes up to 64") !=
+          std::string::npos);
+  }
   SUBCASE("vector loops and joints in one file") {
     CHECK(error_of(edited("[driver]", "[loops]\nX = \"a\"\n[driver]"))
               .find("unknown key \"loops\" in the top level of a joints-and-links file") != std::string::npos);
