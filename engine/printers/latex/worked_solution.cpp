@@ -181,7 +181,13 @@ class DocumentWriter {
   // The solved formulas with the numbers put in, as a worked solution shows them:
   // lengths in the output unit, angles in degrees, rates as computed.
   void substitution(const MotionState& s) {
-    auto shown = [](double value, const std::string& suffix) { return "(" + latex_number(value, 5) + suffix + ")"; };
+    // Braced, so that a suffix (the degree sign) never follows another superscript
+    // (a number in powers of ten: 10^{-15}).
+    auto shown = [](double value, const std::string& suffix) {
+      const std::string number = latex_number(value, 5);
+      const bool power = !suffix.empty() && number.find('^') != std::string::npos;
+      return "(" + (power ? "{" + number + "}" : number) + suffix + ")";
+    };
     auto coordinate = [&](Dimension dimension, double si) {
       return dimension == Dimension::angle ? shown(to_degrees(si), "^{\\circ}") : shown(si / scale_.length, "");
     };

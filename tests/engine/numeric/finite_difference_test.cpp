@@ -94,3 +94,13 @@ TEST_CASE("finite differences: Problem 4.4 six-bar over a revolution") {
 TEST_CASE("finite differences: Problem 3.22 over a revolution") {
   check_against_finite_differences({"problem_3_22_six_bar_sliders.toml", -180 * deg, 180 * deg, 5 * deg});
 }
+
+// Joints and links (positions placed dyad by dyad): every link's angle and every joint.
+TEST_CASE("finite differences: every joints-and-links sample over a revolution") {
+  for (const char* sample : {"problem_4_4_joints.toml", "example_4_1_joints.toml", "example_4_2_joints.toml",
+                             "problem_3_22_joints.toml", "problem_4_1_parallelogram.toml",
+                             "problem_4_1_antiparallelogram.toml"}) {
+    CAPTURE(sample);
+    check_against_finite_differences({sample, 0, 360 * deg, 5 * deg});
+  }
+}

@@ -18,9 +18,7 @@
 
 namespace {
 
-const char* kSamples[] = {"four_bar.toml", "slider_crank.toml", "piston_driven_crank.toml",
-                          "example_4_1_r_trr.toml", "example_4_2_r_rtr_rrt.toml",
-                          "problem_4_4_six_bar.toml", "problem_3_22_six_bar_sliders.toml"};
+using kinema_test::kSamples;  // every bundled sample
 
 using kinema_test::read_file;
 
