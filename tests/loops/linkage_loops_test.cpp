@@ -409,3 +409,46 @@ TEST_CASE("loops/linkage_loops: at each slider the relative velocity, relative a
   // A slider on a fixed guide has no Coriolis term.
   CHECK(e42.at("sliders").at("E5").at("coriolis")[0].get<double>() == 0);
 }
+
+TEST_CASE("loops/linkage_loops: links that form no dyad (a triad) are named and solved by Newton on their loops") {
+  // A ternary link X, Y, Z held by three binary links (from the crank, and two from
+  // ground): no two of the unplaced links make a dyad. Lengths are the sketch's.
+  const std::string triad = R"(title = "a triad"
+[joints]
+A = { ground = true, at = ["0 m", "0 m"] }
+B = { at = ["1 m", "1 m"] }
+X = { at = ["2 m", "2 m"] }
+Y = { at = ["3 m", "1.5 m"] }
+Z = { at = ["2.5 m", "3 m"] }
+P = { ground = true, at = ["4 m", "0 m"] }
+Q = { ground = true, at = ["1 m", "4 m"] }
+[links]
+2 = { joints = ["A", "B"] }
+3 = { joints = ["B", "X"] }
+4 = { joints = ["X", "Y", "Z"] }
+5 = { joints = ["P", "Y"] }
+6 = { joints = ["Q", "Z"] }
+[driver]
+link = "2"
+value = "45 deg"
+rate = "1 rad/s"
+)";
+  const Model model = model_of(triad);
+  REQUIRE(model.system.linkage);
+  const auto& structure = model.system.linkage->structure;
+  REQUIRE(structure.size() == 2);
+  CHECK(structure[1].kind == "group");
+  CHECK(structure[1].links == std::vector<std::string>{"3", "4", "5", "6"});
+  CHECK_FALSE(model.system.linkage->frames.closed_form);
+  CHECK(model.kinematics.closed_form() == nullptr);
+  std::ostringstream text;
+  kinema::find_printer(kinema::PrintKind::derivation, "text")->print(text, {model});
+  CHECK(text.str().find("not a dyad: links 3, 4, 5, 6, solved together by Newton on their loops") != std::string::npos);
+  // At the sketch's input the sketch is the solution; nearby, the loops close.
+  const MotionTable t = kinema::analyse(model, {M_PI / 4, 50 * M_PI / 180});
+  REQUIRE(t.status(0) == kinema::Status::ok);
+  REQUIRE(t.status(1) == kinema::Status::ok);
+  CHECK(coordinate_value(model, t, 0, "theta3", 0) == doctest::Approx(M_PI / 4));
+  CHECK(t.loop_residual(1) < 1e-12);
+}
+
