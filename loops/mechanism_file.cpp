@@ -421,12 +421,18 @@ class FileReader {
     y = string_value(*list->get(1), what + " y");
   }
 
-  void read_joints(const Node& root, Linkage& linkage) const {
-    const Node& table = required_table(root, "joints");
-    if (table.as_table()->size() > kMaxJoints) {
-      fail(table, "[joints] has " + std::to_string(table.as_table()->size()) + " joints; kinema takes up to " +
-                      std::to_string(kMaxJoints) + " (a mechanism has tens)");
+  // [joints] or [links], refused past its limit.
+  const Node& bounded_table(const Node& root, const std::string& key, std::size_t limit) const {
+    const Node& table = required_table(root, key);
+    if (table.as_table()->size() > limit) {
+      fail(table, "[" + key + "] has " + std::to_string(table.as_table()->size()) + " " + key + "; kinema takes up to " +
+                      std::to_string(limit) + " (a mechanism has tens)");
     }
+    return table;
+  }
+
+  void read_joints(const Node& root, Linkage& linkage) const {
+    const Node& table = bounded_table(root, "joints", kMaxJoints);
     for (const auto& [name, value] : ordered(table)) {
       check_identifier(*value, name, "joint");
       if (!value->is_table()) {
@@ -481,11 +487,7 @@ class FileReader {
   }
 
   void read_links(const Node& root, Linkage& linkage) const {
-    const Node& table = required_table(root, "links");
-    if (table.as_table()->size() > kMaxLinks) {
-      fail(table, "[links] has " + std::to_string(table.as_table()->size()) + " links; kinema takes up to " +
-                      std::to_string(kMaxLinks) + " (a mechanism has tens)");
-    }
+    const Node& table = bounded_table(root, "links", kMaxLinks);
     for (const auto& [name, value] : ordered(table)) {
       check_link_name(*value, name);
       Link link;
