@@ -105,25 +105,69 @@ struct Turning {
   double angle = 0, rate = 0, second_rate = 0;
 };
 
-// A body's angle and rates at a row: ground's are 0, an unknown's or the driver's are
-// the row's, a slider block turns with its guide.
-Turning turning(const LinkageFrames& frames, const MotionTable& table, std::size_t row, std::size_t body) {
+// The unknowns and the input of one position (a table row, or a MotionState).
+template <typename Vector>
+struct Position {
+  const Vector &q, &qd, &qdd;
+  double input, rate, second_rate;
+};
+
+// A body's angle and rates: ground's are 0, an unknown's or the driver's are the
+// position's, a slider block turns with its guide.
+template <typename Vector>
+Turning turning(const LinkageFrames& frames, const Position<Vector>& at, std::size_t body) {
   const LinkageFrames::Body& b = frames.bodies[body];
   if (b.unknown >= 0) {
     const auto i = Eigen::Index(b.unknown);
-    return {table.q(row)[i], table.qd(row)[i], table.qdd(row)[i]};
+    return {at.q[i], at.qd[i], at.qdd[i]};
   }
   if (b.guide >= 0) {
-    Turning t = turning(frames, table, row, std::size_t(b.guide));
+    Turning t = turning(frames, at, std::size_t(b.guide));
     t.angle += b.offset;
     return t;
   }
-  if (body != 0 && body == frames.driver_body && frames.driver_slider < 0)
-    return {table.input(row), table.input_rate(), table.input_second_rate()};
+  if (body != 0 && body == frames.driver_body && frames.driver_slider < 0) return {at.input, at.rate, at.second_rate};
   return {};
 }
 
+// The joints-and-links values of an ok position (see result_columns), from `values` on.
+template <typename Vector>
+double* linkage_values(const ConstraintSystem& system, const OutputScale& scale, const Position<Vector>& at,
+                       double* values) {
+  const LinkageFrames& frames = system.linkage->frames;
+  for (const auto& [body, name] : block_links(system)) {
+    const Turning t = turning(frames, at, body);
+    *values++ = scale.coordinate(Dimension::angle, t.angle);
+    *values++ = t.rate;
+    *values++ = t.second_rate;
+  }
+  for (const LinkageFrames::Slider& slider : frames.sliders) {
+    // Along the line (u, turning with the guide): v_rel = s' u, a_rel = s'' u, and the
+    // Coriolis acceleration 2 omega_guide x v_rel.
+    const Turning guide = turning(frames, at, slider.guide);
+    const std::complex<double> u = std::polar(1.0, guide.angle + slider.direction);
+    double s1 = at.rate, s2 = at.second_rate;
+    if (slider.unknown >= 0) {
+      s1 = at.qd[Eigen::Index(slider.unknown)];
+      s2 = at.qdd[Eigen::Index(slider.unknown)];
+    }
+    const std::complex<double> v = s1 * u, a = s2 * u, coriolis = 2 * guide.rate * std::complex<double>(0, 1) * v;
+    for (const std::complex<double>& c : {v, a, coriolis}) {
+      *values++ = c.real() / scale.length;
+      *values++ = c.imag() / scale.length;
+    }
+  }
+  return values;
+}
+
 }  // namespace
+
+void linkage_values(const ConstraintSystem& system, const OutputScale& scale, const MotionState& state, double* values) {
+  linkage_values(system, scale,
+                 Position<Eigen::VectorXd>{state.q, state.qd, state.qdd, state.input, state.input_rate,
+                                           state.input_second_rate},
+                 values);
+}
 
 void result_values(const ConstraintSystem& system, const OutputScale& scale, const MotionTable& table,
                    std::size_t row, double* values) {
@@ -155,33 +199,16 @@ void result_values(const ConstraintSystem& system, const OutputScale& scale, con
     *values++ = m.acceleration_magnitude() / f;
   }
   if (!system.linkage) return;
-  const LinkageFrames& frames = system.linkage->frames;
-  for (const auto& [body, name] : block_links(system)) {
-    const Turning t = status == Status::ok ? turning(frames, table, row, body) : Turning{};
-    *values++ = status == Status::ok ? scale.coordinate(Dimension::angle, t.angle) : undefined;
-    *values++ = status == Status::ok ? t.rate : undefined;
-    *values++ = status == Status::ok ? t.second_rate : undefined;
+  if (status != Status::ok) {  // 3 per slider block, 6 per slider
+    const LinkageFrames& frames = system.linkage->frames;
+    std::size_t count = 6 * frames.sliders.size();
+    for (const LinkageFrames::Body& body : frames.bodies) count += body.guide >= 0 ? 3 : 0;
+    std::fill_n(values, count, undefined);
+    return;
   }
-  for (const LinkageFrames::Slider& slider : frames.sliders) {
-    if (status != Status::ok) {
-      values = std::fill_n(values, 6, undefined);
-      continue;
-    }
-    // Along the line (u, turning with the guide): v_rel = s' u, a_rel = s'' u, and the
-    // Coriolis acceleration 2 omega_guide x v_rel.
-    const Turning guide = turning(frames, table, row, slider.guide);
-    const std::complex<double> u = std::polar(1.0, guide.angle + slider.direction);
-    double s1 = table.input_rate(), s2 = table.input_second_rate();
-    if (slider.unknown >= 0) {
-      s1 = table.qd(row)[Eigen::Index(slider.unknown)];
-      s2 = table.qdd(row)[Eigen::Index(slider.unknown)];
-    }
-    const std::complex<double> v = s1 * u, a = s2 * u, coriolis = 2 * guide.rate * std::complex<double>(0, 1) * v;
-    for (const std::complex<double>& c : {v, a, coriolis}) {
-      *values++ = c.real() / f;
-      *values++ = c.imag() / f;
-    }
-  }
+  linkage_values(system, scale,
+                 Position<MotionTable::Column>{q, qd, qdd, table.input(row), table.input_rate(), table.input_second_rate()},
+                 values);
 }
 
 }  // namespace kinema

@@ -48,6 +48,10 @@ void result_values(const ConstraintSystem& system, const OutputScale& scale, con
 /// Where the joints-and-links columns (blocks, then sliders) begin in result_columns.
 std::size_t linkage_columns_begin(const ConstraintSystem& system);
 
+/// The joints-and-links values of an ok state (blocks, then sliders), from result_columns'
+/// linkage_columns_begin on.
+void linkage_values(const ConstraintSystem& system, const OutputScale& scale, const MotionState& state, double* values);
+
 /// Joints and links: the links that are slider blocks (bodies of LinkageFrames) and the
 /// name of each one's angle, in the order of their columns.
 std::vector<std::pair<std::size_t, std::string>> block_links(const ConstraintSystem& system);

@@ -131,6 +131,7 @@ class DocumentWriter {
     }
     out_ << "\\bottomrule\n\\end{tabular}\n\n";
     if (s.status == Status::ok && !system_.points.empty()) point_table(s);
+    if (s.status == Status::ok && system_.linkage) linkage_table(s);
     if (s.status == Status::ok) substitution(s);
     write_tikz_mechanism(out_, system_, geometry_, s);
   }
@@ -157,6 +158,36 @@ class DocumentWriter {
                        to_text(formula));
       }
     }
+  }
+
+  // Joints and links: slider blocks turning with their guides, and at each slider the
+  // relative velocity and acceleration along its line and the Coriolis acceleration.
+  void linkage_table(const MotionState& s) {
+    std::vector<double> values(result_columns(system_, scale_).size() - linkage_columns_begin(system_));
+    linkage_values(system_, scale_, s, values.data());
+    const double* v = values.data();
+    const std::string l = scale_.length_unit;
+    const auto blocks = block_links(system_);
+    if (!blocks.empty()) {
+      out_ << "\\medskip\n\\begin{tabular}{lrrr}\n\\toprule\nslider block & angle & $\\omega$ & $\\alpha$ \\\\\n"
+              " & $\\mathrm{deg}$ & $\\mathrm{rad/s}$ & $\\mathrm{rad/s^2}$ \\\\\n\\midrule\n";
+      for (const auto& block : blocks) {
+        out_ << latex_escape_text(system_.linkage->links[block.first - 1].name) << " & $" << latex_number(v[0], 5)
+             << "$ & $" << latex_number(v[1], 5) << "$ & $" << latex_number(v[2], 5) << "$ \\\\\n";
+        v += 3;
+      }
+      out_ << "\\bottomrule\n\\end{tabular}\n\n";
+    }
+    const auto pair = [](const double* c) { return "$(" + latex_number(c[0], 5) + ",\\ " + latex_number(c[1], 5) + ")$"; };
+    out_ << "\\medskip\n\\begin{tabular}{lccc}\n\\toprule\nslider & relative velocity $\\mathbf{v}^r$ & relative "
+            "acceleration $\\mathbf{a}^r$ & Coriolis $2\\boldsymbol{\\omega}\\times\\mathbf{v}^r$ \\\\\n & $\\mathrm{"
+         << l << "/s}$ & $\\mathrm{" << l << "/s^2}$ & $\\mathrm{" << l << "/s^2}$ \\\\\n\\midrule\n";
+    for (const LinkageFrames::Slider& slider : system_.linkage->frames.sliders) {
+      out_ << latex_escape_text(system_.linkage->joints[slider.joint].name) << " & " << pair(v) << " & " << pair(v + 2)
+           << " & " << pair(v + 4) << " \\\\\n";
+      v += 6;
+    }
+    out_ << "\\bottomrule\n\\end{tabular}\n\n";
   }
 
   void point_table(const MotionState& s) {

@@ -206,3 +206,13 @@ TEST_CASE("engine/printers/worked_solution: a joints-and-links drawing follows t
   const MotionTable loop_values = kinema::analyse(loops, loops.system.input.values);
   CHECK(count(document(loops, &loop_values, nullptr), "\\filldraw[fill=blue!10") == 0);
 }
+
+TEST_CASE("engine/printers/worked_solution: a joints-and-links document gives the slider blocks and the relative terms") {
+  const kinema::Model model = kinema::load_model(kinema_test::sample("example_4_1_joints.toml"));
+  const MotionTable values = kinema::analyse(model, model.system.input.values);
+  const std::string tex = document(model, &values, nullptr);
+  CHECK(has(tex, "slider block & angle & $\\omega$ & $\\alpha$"));
+  CHECK(has(tex, "2 & $45$ & $3.141$ & $0$"));  // block 2 turns with the crank
+  // Example 4.1's relative velocity, relative acceleration and Coriolis term at B2.
+  CHECK(has(tex, "B2 & $(-0.19514,\\ -0.19514)$ & $(-0.50033,\\ -0.50033)$ & $(1.2259,\\ -1.2259)$"));
+}
