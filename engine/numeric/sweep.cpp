@@ -30,8 +30,8 @@ struct RunCursor {
   Eigen::VectorXd last_ok_q, last_ok_qd, last_ok_qdd;
 };
 
-// Joints and links: the position dyad by dyad in closed form, on the sketch's signs
-// (false, with the dyad, where one cannot close). Link angles are taken the whole turns
+// Joints and links: the position dyad by dyad in closed form, on `signs` (empty: the
+// sketch's; false, with the dyad, where one cannot close). Link angles are taken the whole turns
 // nearest q's (the last position known): the serial run's angles, not their wrapped values.
 bool closed_form_position(const LinkageFrames& frames, double input, const std::vector<int>& signs, Eigen::VectorXd& q,
                           std::uint32_t& dyad) {
