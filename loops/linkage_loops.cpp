@@ -106,7 +106,6 @@ class LinkageWriter {
   std::set<std::string> taken_;           // symbol names
   std::map<std::string, std::string> generated_;  // parameters made here, by the name wanted
   FormulaReader reader_;
-  std::map<std::string, GiNaC::ex> symbols_;
   std::vector<Point2> at_;                // joints in the sketch
   std::vector<Body> bodies_;              // 0 = ground
   std::map<std::string, std::size_t> body_index_;
@@ -134,17 +133,25 @@ class LinkageWriter {
         value = evaluate(p.formula, p.where, "parameter \"" + p.name + "\"");
       }
       values_[p.name] = value;
-      GiNaC::realsymbol symbol(p.name);
-      reader_.define(p.name, symbol);
-      symbols_[p.name] = symbol;
+      reader_.define(p.name, GiNaC::realsymbol(p.name));
     }
   }
 
   double evaluate(const std::string& formula, const SourceLocation& where, const std::string& what) {
     const GiNaC::ex e = reader_.read(formula, where.str() + ": " + what);
-    GiNaC::exmap values;
-    for (const auto& [name, symbol] : symbols_) values[symbol] = values_.at(name);
-    const GiNaC::ex number = GiNaC::evalf(e.subs(values));
+    GiNaC::ex number;
+    try {
+      // Only the symbols it uses (subs walks its whole map: many parameters, quadratic).
+      GiNaC::exmap values;
+      for (auto it = e.preorder_begin(); it != e.preorder_end(); ++it) {
+        if (!GiNaC::is_a<GiNaC::symbol>(*it)) continue;
+        const auto found = values_.find(GiNaC::ex_to<GiNaC::symbol>(*it).get_name());
+        if (found != values_.end()) values[*it] = found->second;
+      }
+      number = GiNaC::evalf(e.subs(values, GiNaC::subs_options::no_pattern));
+    } catch (const std::exception& error) {  // CLN's float overflow, GiNaC's poles (a length of 0 under a division)
+      fail(where, what + " = \"" + formula + "\" cannot be evaluated (" + error.what() + ")");
+    }
     if (!GiNaC::is_a<GiNaC::numeric>(number) || !GiNaC::ex_to<GiNaC::numeric>(number).is_real()) {
       fail(where, what + " = \"" + formula + "\" is not a number once the parameters are put in");
     }

@@ -296,6 +296,11 @@ D = { ground)")));
     CHECK(error_of(edited(R"(length = "b" })", R"(length = "b", angle = "a" })"))
               .find("duplicate name \"a\"") != std::string::npos);
   }
+  SUBCASE("a parameter formula that cannot be evaluated (fuzzing: a length that underflows to 0 under a division)") {
+    const std::string message = error_of(edited(R"(c = "80 mm")", R"x(c = "1e-30010 mm"
+k = "asin(a/c)")x"));
+    CHECK(message.find("lk.toml:6: parameter \"k\" = \"asin(a/c)\" cannot be evaluated") == 0);
+  }
   SUBCASE("more joints or links than a mechanism has") {
     std::string joints, links;
     for (int k = 0; k < 129; ++k) joints += "J" + std::to_string(k) + " = { at = [\"0 mm\", \"0 mm\"] }\n";
