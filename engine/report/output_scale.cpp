@@ -135,7 +135,9 @@ template <typename Vector>
 double* linkage_values(const ConstraintSystem& system, const OutputScale& scale, const Position<Vector>& at,
                        double* values) {
   const LinkageFrames& frames = system.linkage->frames;
-  for (const auto& [body, name] : block_links(system)) {
+  // The blocks in the order of block_links (body order), without its names: this runs per row.
+  for (std::size_t body = 1; body < frames.bodies.size(); ++body) {
+    if (frames.bodies[body].guide < 0) continue;
     const Turning t = turning(frames, at, body);
     *values++ = scale.coordinate(Dimension::angle, t.angle);
     *values++ = t.rate;

@@ -64,6 +64,7 @@ class JsonPrinter : public ResultsPrinter {
     std::vector<std::string> coordinate_keys, point_keys;
     for (const Coordinate& q : system.unknowns) coordinate_keys.push_back(quoted(q.name) + ": {\"value\": ");
     for (const PointObservable& p : system.points) point_keys.push_back(quoted(p.name) + ": {\"position\": ");
+    const auto blocks = block_links(system);  // joints and links: once, not per row
     char buffer[kMaxNumberChars];
     // Every double so that it reads back exactly, or rounded to --precision digits;
     // never NaN or infinity (not JSON): null.
@@ -137,7 +138,6 @@ class JsonPrinter : public ResultsPrinter {
       out += '}';
       if (system.linkage && status == Status::ok) {  // joints and links: blocks, then sliders
         out += ", \"blocks\": {";
-        const auto blocks = block_links(system);
         for (std::size_t k = 0; k < blocks.size(); ++k, v += 3) {
           out += (k > 0 ? ", " : "") + quoted(system.linkage->links[blocks[k].first - 1].name) + ": {\"angle\": ";
           number(v[0]);
