@@ -12,11 +12,13 @@
 
 #include <kinema/engine/errors.hpp>
 #include <kinema/engine/model.hpp>
+#include <kinema/engine/numeric/circuit.hpp>
 #include <kinema/engine/printers/code/cpp_header.hpp>
 #include <kinema/engine/printers/printer.hpp>
 #include <kinema/engine/printers/results_stream.hpp>
 #include <kinema/engine/report/diagnostics.hpp>
 #include <kinema/engine/report/plot_range.hpp>
+#include <kinema/engine/report/structure.hpp>
 #include <kinema/loops/linkage_loops.hpp>
 #include <kinema/loops/mechanism_file.hpp>
 
@@ -55,6 +57,54 @@ const Printer& printer(PrintKind kind, const std::string& name) {
   return *found;
 }
 
+// kinema eval --circuit: the whole circuit solved, then printed (it is held in memory).
+std::string circuit_results(const Model& model, const std::string& step_text, const std::vector<double>& inputs,
+                            const std::string& format, int precision) {
+  const ConstraintSystem& m = model.system;
+  const LinkageFrames* frames = model.kinematics.closed_form();
+  if (frames == nullptr) {
+    throw InputError(m.source_file + ": --circuit follows a mechanism described by joints and links whose links "
+                     "all form dyads (solved in closed form); " +
+                     (m.linkage ? std::string("this one has a group that is not a dyad")
+                                : std::string("this file is written as vector loops")));
+  }
+  CircuitSettings settings;
+  settings.step = parse_input_value(m, step_text);
+  if (!(settings.step > 0) || !std::isfinite(settings.step)) {
+    throw InputError("--circuit " + step_text + ": the step must be a positive number, e.g. --circuit 1");
+  }
+  if (inputs.size() > 1) throw InputError("--circuit starts at one value: give one --angle (or none: the file's)");
+  if (inputs.empty() && m.input.values.empty()) {
+    throw InputError(m.source_file + ": no input value to start the circuit at: give --angle VALUE or value = "
+                     "\"...\" under [input]");
+  }
+  settings.start = inputs.empty() ? m.input.values.front() : inputs.front();
+  settings.rate = m.input.rate_value;
+  settings.second_rate = m.input.second_rate_value;
+  settings.max_rows = kMaxValuesPerRun;
+  const Circuit circuit = solve_circuit(model.kinematics, settings);
+  switch (circuit.stop) {
+    case Circuit::Stop::closed: break;
+    case Circuit::Stop::start_open:
+      throw AssemblyError(m.source_file + ": the circuit cannot start at " + describe_input(m, settings.start) + ": " +
+                          describe_dyad(*m.linkage, circuit.dyad) +
+                          " cannot close there on the assembly of the sketch; give another --angle");
+    case Circuit::Stop::locked:
+      throw AssemblyError(m.source_file + ": the circuit cannot move from " + describe_input(m, settings.start) +
+                          ": " + describe_dyad(*m.linkage, circuit.dyad) +
+                          " is at a toggle on both sides (the mechanism is locked); check the lengths");
+    case Circuit::Stop::too_many_rows:
+      throw InputError(m.source_file + ": the circuit does not close within " + std::to_string(settings.max_rows) +
+                       " rows of --circuit " + step_text + "; give a larger step");
+  }
+  PrintJob job{model, &circuit.table};
+  job.circuit = true;
+  job.precision = precision;
+  std::ostringstream out;
+  printer(PrintKind::results, format).print(out, job);
+  return out.str();
+}
+
 int run(int argc, char** argv) {
   CLI::App app{"kinema: velocity and acceleration analysis of mechanisms (vector loops, or joints and links)", "kinema"};
   app.require_subcommand(1);
@@ -88,6 +138,13 @@ int run(int argc, char** argv) {
                        "threads formatting the output of long runs (default: one per core); the solve stays "
                        "serial, so the output is the same bytes whatever the count")
       ->check(CLI::Range(1u, 256u));
+  std::string circuit_step;
+  eval_cmd->add_option("--circuit", circuit_step,
+                       "joints and links: follow the motion through its toggles, where the input reverses and a "
+                       "dyad changes assembly, from the file's value (or one --angle) until it closes; rows every "
+                       "STEP of the input (as --angle: deg or the length unit), e.g. --circuit 1")
+      ->option_text("STEP")
+      ->excludes(eval_cmd->get_option("--sweep"));
   bool quiet = false;
   eval_cmd->add_flag("-q,--quiet", quiet, "no progress line and no warnings on stderr (errors still)");
 
@@ -168,6 +225,10 @@ int run(int argc, char** argv) {
     job.fragment = fragment;
     printer(PrintKind::document, "latex").print(out, job);
     write_output(out.str(), output_path);
+    return 0;
+  }
+  if (!circuit_step.empty()) {
+    write_output(circuit_results(model, circuit_step, inputs, format, precision), output_path);
     return 0;
   }
   // A --sweep alone is computed value by value (a run of 10^9 holds none of them).

@@ -37,6 +37,8 @@ MotionTable::MotionTable(const std::vector<double>& inputs, std::size_t unknowns
 
 void MotionTable::assign_inputs(const InputValues& inputs, std::size_t first, std::size_t count) {
   batch_rows_ = 0;
+  direction_.clear();
+  assembly_.clear();
   input_.resize(count);
   for (std::size_t row = 0; row < count; ++row) input_[row] = inputs[first + row];
   // Values are left as they are (a row's status says which are valid, and the solver
@@ -53,7 +55,8 @@ void MotionTable::assign_inputs(const InputValues& inputs, std::size_t first, st
 std::size_t MotionTable::bytes() const {
   return sizeof(double) * (input_.capacity() + q_.capacity() + qd_.capacity() + qdd_.capacity() +
                            loop_residual_.capacity() + reciprocal_condition_.capacity() + points_.capacity()) +
-         sizeof(Status) * status_.capacity() + sizeof(Failure) * failure_.capacity();
+         sizeof(Status) * status_.capacity() + sizeof(Failure) * failure_.capacity() + direction_.capacity() +
+         sizeof(std::uint64_t) * assembly_.capacity();
 }
 
 PointMotion MotionTable::point(std::size_t row, std::size_t p) const {
@@ -72,8 +75,8 @@ PointMotion MotionTable::point(std::size_t row, std::size_t p) const {
 MotionState MotionTable::operator[](std::size_t row) const {
   MotionState s;
   s.input = input_[row];
-  s.input_rate = rate_;
-  s.input_second_rate = second_rate_;
+  s.input_rate = input_rate(row);
+  s.input_second_rate = input_second_rate(row);
   s.status = status_[row];
   s.failure = failure_[row];
   s.loop_residual = loop_residual_[row];

@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <iterator>
 #include <vector>
 
@@ -55,6 +56,28 @@ class MotionTable {
   std::size_t point_count() const { return point_dimensions_.size(); }
   double input_rate() const { return rate_; }
   double input_second_rate() const { return second_rate_; }
+  /// A row's input rate and second rate: the run's, times the row's direction along a circuit.
+  double input_rate(std::size_t row) const { return direction_.empty() ? rate_ : rate_ * direction_[row]; }
+  double input_second_rate(std::size_t row) const {
+    return direction_.empty() ? second_rate_ : second_rate_ * direction_[row];
+  }
+
+  /// Rows along a circuit (engine/numeric/circuit.hpp) carry the direction the input
+  /// moves in (+1, or -1 after a toggle) and each dyad's assembly sign (bit k set: dyad
+  /// k on its -1 solution).
+  void make_circuit() {
+    direction_.assign(size(), 1);
+    assembly_.assign(size(), 0);
+  }
+  bool is_circuit() const { return !direction_.empty(); }
+  int direction(std::size_t row) const { return direction_.empty() ? 1 : direction_[row]; }
+  int assembly_sign(std::size_t row, std::size_t dyad) const {
+    return assembly_.empty() || ((assembly_[row] >> dyad) & 1u) == 0 ? 1 : -1;
+  }
+  void set_circuit_row(std::size_t row, int direction, std::uint64_t assembly) {
+    direction_[row] = static_cast<signed char>(direction);
+    assembly_[row] = assembly;
+  }
   /// How many rows were solved in SIMD blocks (the rest one by one): a diagnostic.
   std::size_t batch_rows() const { return batch_rows_; }
   void add_batch_rows(std::size_t rows) { batch_rows_ += rows; }
@@ -117,6 +140,8 @@ class MotionTable {
   std::vector<Failure> failure_;
   std::vector<double> points_;
   std::vector<std::size_t> point_offset_;  ///< First column of each point in points_.
+  std::vector<signed char> direction_;      ///< Along a circuit only.
+  std::vector<std::uint64_t> assembly_;     ///< Along a circuit only.
   Column column_view(const std::vector<double>& values, std::size_t row) const {
     return Column(values.data() + row, Eigen::Index(n_), Eigen::InnerStride<>(Eigen::Index(size())));
   }

@@ -6,6 +6,7 @@
 #include <thread>
 
 #include <kinema/engine/numeric/batch_workspace.hpp>
+#include <kinema/engine/numeric/closed_form.hpp>
 #include <kinema/engine/numeric/solver.hpp>
 #include <kinema/engine/numeric/workspace.hpp>
 #include <kinema/loops/dyad_positions.hpp>
@@ -29,27 +30,6 @@ struct RunCursor {
   double last_ok_input = 0;
   Eigen::VectorXd last_ok_q, last_ok_qd, last_ok_qdd;
 };
-
-// Joints and links: the position dyad by dyad in closed form, on `signs` (empty: the
-// sketch's; false, with the dyad, where one cannot close). Link angles are taken the whole turns
-// nearest q's (the last position known): the serial run's angles, not their wrapped values.
-bool closed_form_position(const LinkageFrames& frames, double input, const std::vector<int>& signs, Eigen::VectorXd& q,
-                          std::uint32_t& dyad) {
-  std::vector<BodyPose> poses;
-  const std::size_t placed = place_dyads(frames, input, poses, signs.empty() ? nullptr : &signs);
-  if (placed < frames.dyads.size()) {
-    dyad = static_cast<std::uint32_t>(placed);
-    return false;
-  }
-  const Eigen::VectorXd near = q;
-  unknowns_from_poses(frames, poses, q.data());
-  for (const LinkageFrames::Body& body : frames.bodies) {
-    if (body.unknown < 0) continue;
-    double& angle = q[body.unknown];
-    angle += 2 * M_PI * std::round((near[body.unknown] - angle) / (2 * M_PI));
-  }
-  return true;
-}
 
 // The dyads' signs for a row placed in closed form: the assembly the motion runs on
 // from the last ok row, marched there in small steps (the short way round for an angle),

@@ -21,6 +21,7 @@ struct PrintJob {
   const MotionTable* sweep = nullptr;   ///< A run over the input's range (plots).
   bool fragment = false;                ///< Documents: no preamble, for \input into notes.
   int precision = 0;                    ///< Results: significant digits in text formats (0: the format's default).
+  bool circuit = false;                 ///< Results: rows along a circuit (a direction and dyad signs each).
   std::string code_namespace;           ///< Code: the namespace of the generated code.
 };
 

@@ -52,6 +52,11 @@ std::string describe_failure(const ConstraintSystem& system, double input, const
       return (system.linkage ? describe_dyad(*system.linkage, failure.group) : "a dyad") + " cannot close at " +
              describe_input(system, input) +
              ": its links do not reach on the assembly of the sketch; choose another input value, or check the lengths";
+    case Kind::circuit_toggle:
+      return (system.linkage ? describe_dyad(*system.linkage, failure.group) : "a dyad") + " is at a toggle at " +
+             describe_input(system, input) +
+             " (its links in line): the input reverses here and the dyad changes assembly; velocities and "
+             "accelerations are not defined at the toggle itself";
     case Kind::nonfinite_rates:
       return "non-finite rates at " + describe_input(system, input) +
              " (a formula divides by zero there); choose a nearby value";

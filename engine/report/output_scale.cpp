@@ -47,7 +47,7 @@ std::string OutputScale::second_rate_unit(Dimension dimension) const {
   return dimension == Dimension::angle ? "rad/s^2" : length_unit + "/s^2";
 }
 
-std::vector<ResultColumn> result_columns(const ConstraintSystem& system, const OutputScale& scale) {
+std::vector<ResultColumn> result_columns(const ConstraintSystem& system, const OutputScale& scale, bool circuit) {
   const Driver& input = system.input;
   std::vector<ResultColumn> columns = {{input.name, scale.coordinate_unit(input.dimension)},
                                        {input.rate.get_name(), scale.rate_unit(input.dimension)},
@@ -76,6 +76,9 @@ std::vector<ResultColumn> result_columns(const ConstraintSystem& system, const O
       for (const char* part : {"_vrel_x", "_vrel_y"}) columns.push_back({j + part, l + "/s"});
       for (const char* part : {"_arel_x", "_arel_y", "_coriolis_x", "_coriolis_y"}) columns.push_back({j + part, l + "/s^2"});
     }
+  }
+  if (circuit) {
+    for (const std::string& joint : dyad_inner_joints(system)) columns.push_back({"branch_" + joint, "sign"});
   }
   return columns;
 }
@@ -177,8 +180,8 @@ void result_values(const ConstraintSystem& system, const OutputScale& scale, con
   const Status status = table.status(row);
   const Dimension input_kind = system.input.dimension;
   *values++ = scale.input(table.input(row));
-  *values++ = scale.rate(input_kind, table.input_rate());
-  *values++ = scale.rate(input_kind, table.input_second_rate());
+  *values++ = scale.rate(input_kind, table.input_rate(row));
+  *values++ = scale.rate(input_kind, table.input_second_rate(row));
   const auto q = table.q(row), qd = table.qd(row), qdd = table.qdd(row);
   for (std::size_t i = 0; i < system.unknowns.size(); ++i) {
     const Dimension kind = system.unknowns[i].dimension;
@@ -205,12 +208,27 @@ void result_values(const ConstraintSystem& system, const OutputScale& scale, con
     const LinkageFrames& frames = system.linkage->frames;
     std::size_t count = 6 * frames.sliders.size();
     for (const LinkageFrames::Body& body : frames.bodies) count += body.guide >= 0 ? 3 : 0;
-    std::fill_n(values, count, undefined);
-    return;
+    values = std::fill_n(values, count, undefined);
+  } else {
+    values = linkage_values(system, scale,
+                            Position<MotionTable::Column>{q, qd, qdd, table.input(row), table.input_rate(row),
+                                                          table.input_second_rate(row)},
+                            values);
   }
-  linkage_values(system, scale,
-                 Position<MotionTable::Column>{q, qd, qdd, table.input(row), table.input_rate(), table.input_second_rate()},
-                 values);
+  if (!table.is_circuit()) return;
+  for (std::size_t k = 0; k < system.linkage->frames.dyads.size(); ++k) {
+    *values++ = status != Status::unassembled ? table.assembly_sign(row, k) : undefined;
+  }
+}
+
+std::vector<std::string> dyad_inner_joints(const ConstraintSystem& system) {
+  std::vector<std::string> names;
+  if (!system.linkage) return names;
+  for (const StructureGroup& group : system.linkage->structure) {
+    if (group.kind != "driver" && group.joints.size() == 3) names.push_back(group.joints[1]);
+  }
+  if (names.size() != system.linkage->frames.dyads.size()) names.clear();  // not all in closed form
+  return names;
 }
 
 }  // namespace kinema

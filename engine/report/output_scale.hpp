@@ -35,15 +35,22 @@ struct ResultColumn {
 /// unknown with its rate and second rate; each point's position, velocity, speed,
 /// acceleration and its magnitude; for joints and links, each slider block's angle and
 /// rates (its guide's turning), then each slider's relative velocity, relative
-/// acceleration and Coriolis acceleration (x, y). The first kInputColumns are the input's.
-std::vector<ResultColumn> result_columns(const ConstraintSystem& system, const OutputScale& scale);
+/// acceleration and Coriolis acceleration (x, y); along a circuit, each dyad's assembly
+/// sign (+1 or -1, "branch_" and its inner joint). The first kInputColumns are the input's.
+std::vector<ResultColumn> result_columns(const ConstraintSystem& system, const OutputScale& scale,
+                                         bool circuit = false);
 constexpr std::size_t kInputColumns = 3;
 
 /// Row `row` of a table in the order and units of result_columns, written to values
 /// (result_columns(...).size() of them); NaN where the row's status leaves a value
-/// undefined (no position when unassembled, no rates or points unless ok).
+/// undefined (no position when unassembled, no rates or points unless ok). A circuit's
+/// table (MotionTable::is_circuit) gives the columns of result_columns(..., true).
 void result_values(const ConstraintSystem& system, const OutputScale& scale, const MotionTable& table,
                    std::size_t row, double* values);
+
+/// Joints and links solved in closed form: the inner joint of each dyad, in solving
+/// order (what names its assembly sign); else empty.
+std::vector<std::string> dyad_inner_joints(const ConstraintSystem& system);
 
 /// Where the joints-and-links columns (blocks, then sliders) begin in result_columns.
 std::size_t linkage_columns_begin(const ConstraintSystem& system);

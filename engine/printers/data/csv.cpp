@@ -17,7 +17,7 @@ class CsvPrinter : public ResultsPrinter {
 
   void head(std::string& out, const PrintJob& job, std::size_t) const override {
     const ConstraintSystem& system = job.model.system;
-    const std::vector<ResultColumn> columns = result_columns(system, OutputScale(system));
+    const std::vector<ResultColumn> columns = result_columns(system, OutputScale(system), job.circuit);
     for (std::size_t k = 0; k < columns.size(); ++k) {
       out += (k == 0 ? "" : ",") + columns[k].name + " [" + columns[k].unit + "]";
       if (k + 1 == kInputColumns) out += ",status";
@@ -32,7 +32,7 @@ class CsvPrinter : public ResultsPrinter {
     const ConstraintSystem& system = job.model.system;
     const OutputScale scale(system);
     const int digits = job.precision > 0 ? job.precision : 12;
-    std::vector<double> values(result_columns(system, scale).size());
+    std::vector<double> values(result_columns(system, scale, job.circuit).size());
     std::vector<char> line((kMaxNumberChars + 1) * values.size() + 64);
     // Room for a typical block at once: growing by doubling copies the text and, in
     // fresh pages, costs more than formatting it.

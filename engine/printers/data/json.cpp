@@ -60,11 +60,14 @@ class JsonPrinter : public ResultsPrinter {
             std::size_t run_row) const override {
     const ConstraintSystem& system = job.model.system;
     const OutputScale scale(system);
-    std::vector<double> values(result_columns(system, scale).size());
+    std::vector<double> values(result_columns(system, scale, job.circuit).size());
     std::vector<std::string> coordinate_keys, point_keys;
     for (const Coordinate& q : system.unknowns) coordinate_keys.push_back(quoted(q.name) + ": {\"value\": ");
     for (const PointObservable& p : system.points) point_keys.push_back(quoted(p.name) + ": {\"position\": ");
     const auto blocks = block_links(system);  // joints and links: once, not per row
+    std::vector<std::string> branch_keys;
+    if (job.circuit)
+      for (const std::string& joint : dyad_inner_joints(system)) branch_keys.push_back(quoted(joint) + ": ");
     char buffer[kMaxNumberChars];
     // Every double so that it reads back exactly, or rounded to --precision digits;
     // never NaN or infinity (not JSON): null.
@@ -153,6 +156,15 @@ class JsonPrinter : public ResultsPrinter {
           member_vector(", \"relative_acceleration\": ", v + 2, 2);
           member_vector(", \"coriolis\": ", v + 4, 2);
           out += '}';
+        }
+        out += '}';
+      }
+      if (job.circuit && status != Status::unassembled) {  // each dyad's assembly sign, by its inner joint
+        const double* signs = values.data() + values.size() - branch_keys.size();
+        out += ", \"branch\": {";
+        for (std::size_t k = 0; k < branch_keys.size(); ++k) {
+          out += (k > 0 ? ", " : "") + branch_keys[k];
+          number(signs[k]);
         }
         out += '}';
       }

@@ -47,7 +47,7 @@ class NpyPrinter : public ResultsPrinter {
   void head(std::string& out, const PrintJob& job, std::size_t rows) const override {
     const ConstraintSystem& system = job.model.system;
     std::vector<std::string> names;  // the CSV's column names without their units
-    for (const ResultColumn& column : result_columns(system, OutputScale(system))) names.push_back(column.name);
+    for (const ResultColumn& column : result_columns(system, OutputScale(system), job.circuit)) names.push_back(column.name);
     out += npy_header(names, rows);
   }
 
@@ -55,7 +55,7 @@ class NpyPrinter : public ResultsPrinter {
             std::size_t) const override {
     const ConstraintSystem& system = job.model.system;
     const OutputScale scale(system);
-    std::vector<double> values(result_columns(system, scale).size());
+    std::vector<double> values(result_columns(system, scale, job.circuit).size());
     const std::size_t bytes = values.size() * sizeof(double);
     std::vector<char> record(bytes + 2);
     out.reserve(out.size() + (last - first) * record.size());  // one allocation a block

@@ -52,6 +52,13 @@ class ResultsTablePrinter : public ResultsPrinter {
       }
       if (s.status == Status::singular) out << "  SINGULAR: " << message << "\n";
       else if (!message.empty()) out << "  note: " << message << "\n";
+      if (table.is_circuit()) {
+        out << "  branch:";
+        const std::vector<std::string> joints = dyad_inner_joints(system);
+        for (std::size_t k = 0; k < joints.size(); ++k)
+          out << " " << joints[k] << (table.assembly_sign(row, k) > 0 ? " +1" : " -1");
+        out << " (each dyad's assembly sign, by its inner joint)\n";
+      }
       out << "  " << pad("coordinate", 12) << pad("value", 16) << pad("rate", 26) << "second rate\n";
       for (std::size_t i = 0; i < system.unknowns.size(); ++i) {
         const Coordinate& q = system.unknowns[i];
@@ -81,7 +88,7 @@ class ResultsTablePrinter : public ResultsPrinter {
   static void print_sliders(std::ostream& out, const ConstraintSystem& system, const OutputScale& scale,
                             const MotionTable& table, std::size_t row, int digits) {
     const auto number = [&](double value) { return format_significant(value, digits); };
-    std::vector<double> values(result_columns(system, scale).size());
+    std::vector<double> values(result_columns(system, scale, table.is_circuit()).size());
     result_values(system, scale, table, row, values.data());
     const double* v = values.data() + linkage_columns_begin(system);
     const auto blocks = block_links(system);

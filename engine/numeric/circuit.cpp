@@ -1,0 +1,162 @@
+#include <kinema/engine/numeric/circuit.hpp>
+
+#include <cmath>
+#include <vector>
+
+#include <kinema/engine/numeric/closed_form.hpp>
+#include <kinema/engine/numeric/workspace.hpp>
+#include <kinema/loops/dyad_positions.hpp>
+
+namespace kinema {
+
+namespace {
+
+struct CircuitRow {
+  double input = 0;
+  int direction = 1;
+  std::vector<int> signs;
+  bool toggle = false;
+  std::uint32_t dyad = 0;  ///< toggle: the dyad at its toggle.
+};
+
+std::uint64_t assembly_bits(const std::vector<int>& signs) {
+  std::uint64_t bits = 0;
+  for (std::size_t k = 0; k < signs.size() && k < 64; ++k)
+    if (signs[k] < 0) bits |= std::uint64_t{1} << k;
+  return bits;
+}
+
+// Where the rows go: along the grid in the input's direction until a dyad cannot close;
+// there the toggle, found by bisection, then back on the grid with that dyad's sign
+// changed. Elsewhere each row's signs are those nearest the position extrapolated along
+// the path (so a change point, where two assemblies cross, is passed as in a sweep).
+Circuit::Stop walk(const Kinematics& kinematics, const CircuitSettings& settings, std::vector<CircuitRow>& rows,
+                   std::uint32_t& stuck_dyad) {
+  const LinkageFrames& frames = *kinematics.closed_form();
+  const double scale = kinematics.length_scale();
+  const bool angle_input = frames.driver_slider < 0;
+  std::vector<BodyPose> poses;
+  std::size_t failing = 0;
+  const auto closes = [&](double x, const std::vector<int>& signs) {
+    failing = place_dyads(frames, x, poses, &signs);
+    return failing == frames.dyads.size();
+  };
+  std::vector<int> signs;
+  for (const LinkageFrames::Dyad& d : frames.dyads) signs.push_back(d.sign);
+  const std::vector<int> start_signs = signs;
+  const double start = settings.start, step = settings.step;
+  if (!closes(start, signs)) {
+    stuck_dyad = static_cast<std::uint32_t>(failing);
+    return Circuit::Stop::start_open;
+  }
+  int direction = settings.rate < 0 ? -1 : 1;
+  const int start_direction = direction;
+  Eigen::VectorXd q = kinematics.guess(), previous_q;
+  std::uint32_t unused = 0;
+  closed_form_position(frames, start, signs, q, unused);
+  double previous_x = start;
+  rows.push_back({start, direction, signs});
+  long grid = 0;  // the grid index the next row steps from
+  bool just_turned = false;
+  for (;;) {
+    if (rows.size() >= settings.max_rows) return Circuit::Stop::too_many_rows;
+    const long next = grid + direction;
+    double x = start + static_cast<double>(next) * step;
+    bool last = false;
+    if (angle_input && std::fabs(x - start) >= 2 * M_PI) {  // a whole turn without a toggle
+      x = start + direction * 2 * M_PI;
+      last = true;
+    }
+    std::vector<int> trial = signs;
+    if (!just_turned && rows.size() >= 2) {
+      const double x_last = rows.back().input, span = std::fabs(x_last - previous_x);
+      if (span > 0) {
+        Eigen::VectorXd predicted = q + (q - previous_q) * (std::fabs(x - x_last) / span);
+        trial = signs_nearest(frames, x, predicted.data(), scale);
+        if (!closes(x, trial)) trial = signs;
+      }
+    }
+    if (closes(x, trial)) {
+      signs = trial;
+      previous_q = q;
+      previous_x = rows.back().input;
+      closed_form_position(frames, x, signs, q, unused);
+      rows.push_back({x, direction, signs});
+      grid = next;
+      just_turned = false;
+      if (last || (rows.size() > 2 && next == 0 && direction == start_direction && signs == start_signs))
+        return Circuit::Stop::closed;
+      continue;
+    }
+    // A toggle between the last row and x: the last value where the dyads still close.
+    double a = rows.back().input, b = x;
+    std::size_t toggle_dyad = failing;
+    for (int i = 0; i < 200 && a != b; ++i) {
+      const double middle = 0.5 * (a + b);
+      if (middle == a || middle == b) break;
+      if (closes(middle, signs)) a = middle;
+      else {
+        b = middle;
+        toggle_dyad = failing;
+      }
+    }
+    if (rows.back().toggle && std::fabs(a - rows.back().input) <= 1e-12 * (std::fabs(a) + step)) {
+      stuck_dyad = static_cast<std::uint32_t>(toggle_dyad);
+      return Circuit::Stop::locked;
+    }
+    previous_q = q;
+    previous_x = rows.back().input;
+    closed_form_position(frames, a, signs, q, unused);
+    rows.push_back({a, direction, signs, true, static_cast<std::uint32_t>(toggle_dyad)});
+    signs[toggle_dyad] = -signs[toggle_dyad];
+    direction = -direction;
+    rows.back().direction = direction;  // the toggle row moves on the way out of it
+    just_turned = true;
+    // The grid value next to the toggle in the new direction.
+    const double r = (a - start) / step;
+    grid = direction > 0 ? static_cast<long>(std::floor(r + 1e-9)) : static_cast<long>(std::ceil(r - 1e-9));
+  }
+}
+
+}  // namespace
+
+Circuit solve_circuit(const Kinematics& kinematics, const CircuitSettings& settings) {
+  Circuit circuit;
+  std::vector<CircuitRow> rows;
+  circuit.stop = walk(kinematics, settings, rows, circuit.dyad);
+  if (circuit.stop != Circuit::Stop::closed) return circuit;
+  std::vector<double> inputs;
+  for (const CircuitRow& row : rows) inputs.push_back(row.input);
+  MotionTable& table = circuit.table;
+  table = MotionTable(inputs, kinematics.unknown_count(), kinematics.layout().point_dimensions, settings.rate,
+                      settings.second_rate);
+  table.make_circuit();
+  const LinkageFrames& frames = *kinematics.closed_form();
+  Workspace workspace(kinematics);
+  Eigen::VectorXd q = kinematics.guess();
+  MotionState state;
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    const CircuitRow& row = rows[r];
+    std::uint32_t dyad = 0;
+    closed_form_position(frames, row.input, row.signs, q, dyad);
+    Eigen::VectorXd polished = q;
+    // Newton only polishes the closed form; at a toggle (Phi_q singular) the closed form stands.
+    if (workspace.solve_position(row.input, polished) && (polished - q).norm() < 1e-6 * (1 + q.norm())) q = polished;
+    workspace.motion_into(row.input, row.direction * settings.rate, row.direction * settings.second_rate, q, state);
+    if (row.toggle) {
+      ++circuit.toggles;
+      state.status = Status::singular;
+      state.failure = Failure{};
+      state.failure.kind = Failure::Kind::circuit_toggle;
+      state.failure.group = row.dyad;
+      state.qd.resize(0);
+      state.qdd.resize(0);
+      state.points.clear();
+    }
+    table.set(r, state);
+    table.set_circuit_row(r, row.direction, assembly_bits(row.signs));
+  }
+  return circuit;
+}
+
+}  // namespace kinema
