@@ -57,9 +57,10 @@ const Printer& printer(PrintKind kind, const std::string& name) {
   return *found;
 }
 
-// kinema eval --circuit: the whole circuit solved, then printed (it is held in memory).
-std::string circuit_results(const Model& model, const std::string& step_text, const std::vector<double>& inputs,
-                            const std::string& format, int precision) {
+// kinema eval --circuit: the whole circuit solved (it is held in memory), then printed
+// a block of rows at a time.
+void write_circuit(const Model& model, const std::string& step_text, const std::vector<double>& inputs,
+                   const std::string& format, int precision, const std::string& output_path) {
   const ConstraintSystem& m = model.system;
   const LinkageFrames* frames = model.kinematics.closed_form();
   if (frames == nullptr) {
@@ -69,7 +70,11 @@ std::string circuit_results(const Model& model, const std::string& step_text, co
                                 : std::string("this file is written as vector loops")));
   }
   CircuitSettings settings;
-  settings.step = parse_input_value(m, step_text);
+  try {
+    settings.step = parse_input_value(m, step_text);
+  } catch (const Error& error) {
+    throw InputError("--circuit " + step_text + ": " + error.what());
+  }
   if (!(settings.step > 0) || !std::isfinite(settings.step)) {
     throw InputError("--circuit " + step_text + ": the step must be a positive number, e.g. --circuit 1");
   }
@@ -81,7 +86,7 @@ std::string circuit_results(const Model& model, const std::string& step_text, co
   settings.start = inputs.empty() ? m.input.values.front() : inputs.front();
   settings.rate = m.input.rate_value;
   settings.second_rate = m.input.second_rate_value;
-  settings.max_rows = kMaxValuesPerRun;
+  settings.max_rows = kMaxCircuitRows;
   const Circuit circuit = solve_circuit(model.kinematics, settings);
   switch (circuit.stop) {
     case Circuit::Stop::closed: break;
@@ -97,12 +102,23 @@ std::string circuit_results(const Model& model, const std::string& step_text, co
       throw InputError(m.source_file + ": the circuit does not close within " + std::to_string(settings.max_rows) +
                        " rows of --circuit " + step_text + "; give a larger step");
   }
+  const ResultsPrinter* results = find_results_printer(format);
+  if (!results) throw InputError("no output format \"" + format + "\"");
   PrintJob job{model, &circuit.table};
   job.circuit = true;
   job.precision = precision;
-  std::ostringstream out;
-  printer(PrintKind::results, format).print(out, job);
-  return out.str();
+  kinema_cli::Output output(output_path);
+  const std::size_t rows = circuit.table.size();
+  std::string text;
+  results->head(text, job, rows);
+  for (std::size_t first = 0; first < rows; first += 1024) {
+    results->rows(text, job, circuit.table, first, std::min(rows, first + 1024), first);
+    output.write(text);
+    text.clear();
+  }
+  results->tail(text, job, rows);
+  output.write(text);
+  output.commit();
 }
 
 int run(int argc, char** argv) {
@@ -228,7 +244,7 @@ int run(int argc, char** argv) {
     return 0;
   }
   if (!circuit_step.empty()) {
-    write_output(circuit_results(model, circuit_step, inputs, format, precision), output_path);
+    write_circuit(model, circuit_step, inputs, format, precision, output_path);
     return 0;
   }
   // A --sweep alone is computed value by value (a run of 10^9 holds none of them).

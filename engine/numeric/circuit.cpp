@@ -11,20 +11,29 @@ namespace kinema {
 
 namespace {
 
-struct CircuitRow {
-  double input = 0;
-  int direction = 1;
-  std::vector<int> signs;
-  bool toggle = false;
-  std::uint32_t dyad = 0;  ///< toggle: the dyad at its toggle.
-};
-
 std::uint64_t assembly_bits(const std::vector<int>& signs) {
   std::uint64_t bits = 0;
   for (std::size_t k = 0; k < signs.size() && k < 64; ++k)
     if (signs[k] < 0) bits |= std::uint64_t{1} << k;
   return bits;
 }
+
+std::vector<int> assembly_signs(std::uint64_t bits, std::size_t dyads) {
+  std::vector<int> signs(dyads);
+  for (std::size_t k = 0; k < dyads; ++k) signs[k] = ((bits >> k) & 1u) != 0 ? -1 : 1;
+  return signs;
+}
+
+struct CircuitRow {
+  CircuitRow(double x, int d, const std::vector<int>& signs, bool at_toggle = false, std::uint32_t toggle_dyad = 0)
+      : input(x), assembly(assembly_bits(signs)), dyad(toggle_dyad), direction(static_cast<signed char>(d)),
+        toggle(at_toggle) {}
+  double input;
+  std::uint64_t assembly;
+  std::uint32_t dyad;  ///< toggle: the dyad at its toggle.
+  signed char direction;
+  bool toggle;
+};
 
 // Where the rows go: along the grid in the input's direction until a dyad cannot close;
 // there the toggle, found by bisection, then back on the grid with that dyad's sign
@@ -138,7 +147,7 @@ Circuit solve_circuit(const Kinematics& kinematics, const CircuitSettings& setti
   for (std::size_t r = 0; r < rows.size(); ++r) {
     const CircuitRow& row = rows[r];
     std::uint32_t dyad = 0;
-    closed_form_position(frames, row.input, row.signs, q, dyad);
+    closed_form_position(frames, row.input, assembly_signs(row.assembly, frames.dyads.size()), q, dyad);
     Eigen::VectorXd polished = q;
     // Newton only polishes the closed form; at a toggle (Phi_q singular) the closed form stands.
     if (workspace.solve_position(row.input, polished) && (polished - q).norm() < 1e-6 * (1 + q.norm())) q = polished;
@@ -154,7 +163,7 @@ Circuit solve_circuit(const Kinematics& kinematics, const CircuitSettings& setti
       state.points.clear();
     }
     table.set(r, state);
-    table.set_circuit_row(r, row.direction, assembly_bits(row.signs));
+    table.set_circuit_row(r, row.direction, row.assembly);
   }
   return circuit;
 }

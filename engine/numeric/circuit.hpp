@@ -13,6 +13,10 @@
 
 namespace kinema {
 
+/// Rows a circuit may have (it is held in memory, like a list of values): a million rows
+/// draw any coupler curve finer than a plotter can.
+constexpr std::size_t kMaxCircuitRows = 1'000'000;
+
 struct CircuitSettings {
   double start = 0;        ///< Input value the circuit starts and ends at (SI), on the sketch's assembly.
   double step = 0;         ///< Input step between rows (SI, > 0).

@@ -81,3 +81,72 @@ TEST_CASE("kinema loops and eval: a joints-and-links file with a mistake writes 
     CHECK(result.err.find("joint \"E\" is used by link 3 only") != std::string::npos);
   }
 }
+
+TEST_CASE("kinema eval --circuit: one closed motion through the toggles, in every format, each row with its branch") {
+  const std::string sample = kinema_test::sample("triple_rocker_circuit.toml");
+  const auto csv = kinema_test::run_kinema({"eval", sample, "--circuit", "1", "--format", "csv"});
+  REQUIRE(csv.exit_status == 0);
+  CHECK(csv.err.empty());
+  std::vector<std::string> lines;
+  for (std::size_t at = 0, end; (end = csv.out.find('\n', at)) != std::string::npos; at = end + 1)
+    lines.push_back(csv.out.substr(at, end - at));
+  REQUIRE(lines.size() == 1 + 625);
+  CHECK(lines[0].find(",branch_C [sign],note") != std::string::npos);
+  CHECK(lines[1].rfind("90,10,0,ok,", 0) == 0);
+  CHECK(lines.back().rfind("90,10,0,ok,", 0) == 0);
+  int singular = 0;
+  for (const std::string& line : lines) singular += line.find(",singular,") != std::string::npos;
+  CHECK(singular == 2);
+
+  const nlohmann::json doc = kinema_test::eval_json("triple_rocker_circuit.toml", {"--circuit", "1"});
+  const nlohmann::json& rows = doc["results"];
+  REQUIRE(rows.size() == 625);
+  int reversals = 0, changes = 0;
+  for (std::size_t r = 1; r < rows.size(); ++r) {
+    reversals += rows[r]["input_rate"].get<double>() != rows[r - 1]["input_rate"].get<double>();
+    changes += rows[r]["branch"]["C"].get<int>() != rows[r - 1]["branch"]["C"].get<int>();
+    if (rows[r]["status"] == "singular") {
+      CHECK(rows[r]["message"].get<std::string>().find("dyad 1 (RRR: links 2, 3; joints B, C, D) is at a toggle at phi = ") == 0);
+    }
+  }
+  CHECK(reversals == 2);
+  CHECK(changes == 2);
+
+  const auto table = kinema_test::run_kinema({"eval", sample, "--circuit", "1 deg"});
+  REQUIRE(table.exit_status == 0);
+  CHECK(table.out.find("  branch: C -1 (each dyad's assembly sign, by its inner joint)\n") != std::string::npos);
+  const auto npy = kinema_test::run_kinema({"eval", sample, "--circuit", "1", "--format", "npy"});
+  REQUIRE(npy.exit_status == 0);
+  CHECK(npy.out.find("('branch_C', '<f8')") != std::string::npos);
+}
+
+TEST_CASE("kinema eval --circuit: what it cannot follow is said, with a usage or input status and no output") {
+  const std::string directory = kinema_test::fresh_directory("circuit_errors");
+  const std::string output = directory + "/out.csv";
+  const std::string rocker = kinema_test::sample("triple_rocker_circuit.toml");
+  struct Case {
+    std::vector<std::string> arguments;
+    int status;
+    std::string message;
+  };
+  const std::vector<Case> cases = {
+      {{"eval", kinema_test::sample("four_bar.toml"), "--circuit", "1"}, 2, "four_bar.toml: --circuit follows a mechanism described by joints and links"},
+      {{"eval", rocker, "--circuit", "0"}, 2, "--circuit 0: the step must be a positive number"},
+      {{"eval", rocker, "--circuit", "x"}, 2, "--circuit x: "},
+      {{"eval", rocker, "--circuit", "1", "--sweep", "0:10:1"}, 2, "--sweep excludes --circuit"},
+      {{"eval", rocker, "--circuit", "1", "--angle", "100", "--angle", "120"}, 2, "--circuit starts at one value"},
+      {{"eval", rocker, "--circuit", "1", "--angle", "0"}, 3,
+       "triple_rocker_circuit.toml: the circuit cannot start at phi = 0 deg: dyad 1 (RRR: links 2, 3; joints B, C, D) "
+       "cannot close there"},
+      {{"eval", rocker, "--circuit", "0.0001"}, 2, "the circuit does not close within 1000000 rows of --circuit 0.0001"},
+  };
+  for (const Case& c : cases) {
+    std::vector<std::string> arguments = c.arguments;
+    arguments.insert(arguments.end(), {"-o", output});
+    CAPTURE(c.message);
+    const auto result = kinema_test::run_kinema(arguments);
+    CHECK(result.exit_status == c.status);
+    CHECK(result.err.find(c.message) != std::string::npos);
+    CHECK_FALSE(std::filesystem::exists(output));
+  }
+}
