@@ -180,6 +180,19 @@ std::size_t place_dyads(const LinkageFrames& frames, double input, std::vector<B
   return frames.dyads.size();
 }
 
+bool joint_position(const LinkageFrames& frames, const std::vector<BodyPose>& poses, std::size_t joint,
+                    std::complex<double>& at) {
+  for (std::size_t b = 0; b < frames.bodies.size(); ++b) {
+    if (!poses[b].placed) continue;
+    for (const auto& [j, v] : frames.bodies[b].points) {
+      if (j != joint) continue;
+      at = poses[b].origin + v * turn(poses[b].angle);
+      return true;
+    }
+  }
+  return false;
+}
+
 void unknowns_from_poses(const LinkageFrames& frames, const std::vector<BodyPose>& poses, double* q) {
   for (std::size_t b = 0; b < frames.bodies.size(); ++b)
     if (frames.bodies[b].unknown >= 0) q[frames.bodies[b].unknown] = poses[b].angle;

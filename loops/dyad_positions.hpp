@@ -28,6 +28,10 @@ struct BodyPose {
 std::size_t place_dyads(const LinkageFrames& frames, double input, std::vector<BodyPose>& poses,
                         const std::vector<int>* signs = nullptr);
 
+/// Where a joint is: on the first placed body that carries it (false when none is placed).
+bool joint_position(const LinkageFrames& frames, const std::vector<BodyPose>& poses, std::size_t joint,
+                    std::complex<double>& at);
+
 /// The unknowns (link angles, slider coordinates, in the order of the loops) of placed bodies.
 void unknowns_from_poses(const LinkageFrames& frames, const std::vector<BodyPose>& poses, double* q);
 

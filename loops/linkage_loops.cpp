@@ -1006,6 +1006,7 @@ class LinkageWriter {
       if (d.inner < 0 && (d.outer_first < 0 || d.outer_second < 0)) f.closed_form = false;
       f.dyads.push_back(d);
     }
+    check_assembly_joints();
     if (!f.closed_form) return;
     std::vector<BodyPose> sketch(bodies_.size());
     sketch[0].placed = true;
@@ -1016,6 +1017,105 @@ class LinkageWriter {
     }
     const std::vector<int> signs = dyad_signs(f, sketch);
     for (std::size_t k = 0; k < f.dyads.size(); ++k) f.dyads[k].sign = signs[k];
+    state_assemblies();
+  }
+
+  // A joint may state its dyad's assembly only if it is a dyad's middle joint.
+  void check_assembly_joints() const {
+    for (std::size_t j = 0; j < linkage_.joints.size(); ++j) {
+      const Joint& joint = linkage_.joints[j];
+      if (joint.assembly.empty()) continue;
+      bool inner = false;
+      for (const auto& edges : dyad_edges_) inner = inner || edges_[edges[3]].joint == j;
+      if (!inner) {
+        std::string middles;
+        for (const auto& edges : dyad_edges_) middles += (middles.empty() ? "" : ", ") + linkage_.joints[edges_[edges[3]].joint].name;
+        fail(joint.where, "joint \"" + joint.name + "\" states an assembly, but it is not the middle joint of a dyad" +
+                              (middles.empty() ? std::string(" (this mechanism has no dyads)")
+                                               : " (the middle joints: " + middles + ")") +
+                              "; state it on the middle joint of the dyad it chooses");
+      }
+      if (!linkage_.frames.closed_form) {
+        fail(joint.where, "joint \"" + joint.name + "\" states an assembly, but its links are solved by Newton with the "
+                          "others (not dyad by dyad); draw the sketch on the assembly wanted instead");
+      }
+    }
+  }
+
+  // Dyads whose middle joint states "left of X-Y" or "right of X-Y": of the two
+  // assemblies at the driver's sketch value, the one that puts the joint on that side of
+  // the line from X to Y. The unknowns' guesses follow (the loops written out agree).
+  void state_assemblies() {
+    LinkageFrames& f = linkage_.frames;
+    const double input0 = driver_slider_ >= 0 ? slider_value0_[std::size_t(driver_slider_)] : bodies_[driver_body_].angle0;
+    std::vector<int> signs;
+    for (const LinkageFrames::Dyad& d : f.dyads) signs.push_back(d.sign);
+    bool changed = false;
+    for (std::size_t k = 0; k < f.dyads.size(); ++k) {
+      const std::size_t j = edges_[dyad_edges_[k][3]].joint;
+      const Joint& joint = linkage_.joints[j];
+      if (joint.assembly.empty()) continue;
+      const std::string& text = joint.assembly;
+      const std::string what = "joint \"" + joint.name + "\": assembly = \"" + text + "\"";
+      const std::size_t of = text.find(" of ");
+      const std::size_t dash = text.find('-', of == std::string::npos ? 0 : of);
+      const std::string side = of == std::string::npos ? "" : text.substr(0, of);
+      if ((side != "left" && side != "right") || dash == std::string::npos) {
+        fail(joint.where, what + " is not a side: write \"left of B-D\" or \"right of B-D\" (the side of the line "
+                          "from joint B to joint D that " + joint.name + " is on, as the driver is sketched)");
+      }
+      const std::string from = text.substr(of + 4, dash - of - 4), to = text.substr(dash + 1);
+      for (const std::string& name : {from, to}) {
+        if (joint_index_.count(name) == 0) fail(joint.where, what + ": there is no joint \"" + name + "\"");
+      }
+      if (from == to) fail(joint.where, what + ": a line needs two different joints");
+      int chosen = 0, choices = 0;
+      for (int sign : {1, -1}) {
+        std::vector<int> trial = signs;
+        trial[k] = sign;
+        std::vector<BodyPose> poses;
+        if (place_dyads(f, input0, poses, &trial) <= k) continue;
+        Point2 a, b, c;
+        if (!joint_position(f, poses, joint_index_.at(from), a) || !joint_position(f, poses, joint_index_.at(to), b)) {
+          fail(joint.where, what + ": " + from + " and " + to + " must be placed with or before this dyad (" +
+                                linkage_.structure[k + 1].kind + ": " + linkage_.structure[k + 1].joints[0] + ", " +
+                                joint.name + ", " + linkage_.structure[k + 1].joints[2] + ")");
+        }
+        joint_position(f, poses, j, c);
+        const double cross = std::imag(std::conj(b - a) * (c - a));
+        if (std::fabs(cross) <= 1e-9 * std::norm(b - a)) continue;  // on the line: that assembly says neither side
+        if ((cross > 0) == (side == "left")) {
+          chosen = sign;
+          ++choices;
+        }
+      }
+      if (choices != 1) {
+        fail(joint.where, what + ": " + (choices == 0 ? std::string("neither") : std::string("each")) +
+                              " assembly of the dyad puts " + joint.name + " " + side + " of " + from + "-" + to +
+                              ", so it does not choose one; name two joints the two assemblies put " + joint.name +
+                              " on either side of (such as the dyad's outer joints " +
+                              linkage_.structure[k + 1].joints[0] + "-" + linkage_.structure[k + 1].joints[2] + ")");
+      }
+      linkage_.structure[k + 1].assembly = joint.name + " " + text;
+      changed = changed || chosen != signs[k];
+      signs[k] = chosen;
+      f.dyads[k].sign = chosen;
+    }
+    if (!changed) return;
+    std::vector<BodyPose> poses;
+    if (place_dyads(f, input0, poses, &signs) < f.dyads.size()) {
+      const std::size_t k = place_dyads(f, input0, poses, &signs);
+      fail(linkage_.joints[edges_[dyad_edges_[k][3]].joint].where,
+           "with the assemblies stated, dyad " + std::to_string(k + 1) + " cannot close at the driver's sketch value; "
+           "state another assembly or correct the sketch");
+    }
+    std::vector<double> q(m_.unknowns.size());
+    for (std::size_t i = 0; i < q.size(); ++i) q[i] = m_.unknowns[i].guess;
+    unknowns_from_poses(f, poses, q.data());
+    for (std::size_t i = 0; i < q.size(); ++i) {
+      const bool angle = m_.unknowns[i].dimension == Dimension::angle;
+      m_.unknowns[i].guess = angle ? m_.unknowns[i].guess + std::remainder(q[i] - m_.unknowns[i].guess, 2 * M_PI) : q[i];
+    }
   }
 };
 

@@ -86,6 +86,10 @@ struct Joint {
   std::string through_x, through_y;
   std::string coordinate;           ///< Slider: name of its coordinate along the line (default s_<joint>).
   std::string rate_name, second_rate_name;
+  /// The middle joint of a dyad may state its assembly: "left of B-D" or "right of B-D"
+  /// (the side of the line from joint B to joint D it is on at the driver's sketch value);
+  /// empty: the sketch's side.
+  std::string assembly;
   SourceLocation where;
 };
 
@@ -119,6 +123,7 @@ struct StructureGroup {
   std::string kind;
   std::vector<std::string> links;
   std::vector<std::string> joints;  ///< A dyad: outer, inner, outer; the driver: its ground joint.
+  std::string assembly;  ///< A dyad whose inner joint states its assembly: "C left of B-D"; empty: the sketch's.
 };
 
 /// The numbers of a joints-and-links mechanism that its closed-form position solution

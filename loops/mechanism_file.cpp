@@ -439,7 +439,8 @@ class FileReader {
         fail(*value, "joint \"" + name + "\" must be a table, e.g. " + name +
                          " = { at = [\"0.1 m\", \"0.2 m\"] } (add ground = true for a fixed pivot)");
       }
-      check_keys(*value, {"at", "ground", "slider", "angle", "through", "coordinate", "rate_name", "second_rate_name"},
+      check_keys(*value,
+                 {"at", "ground", "slider", "angle", "through", "coordinate", "rate_name", "second_rate_name", "assembly"},
                  "joint \"" + name + "\"");
       Joint joint;
       joint.name = name;
@@ -451,6 +452,7 @@ class FileReader {
         if (!ground.is_boolean()) fail(ground, "ground must be true or false");
         joint.ground = ground.as_boolean()->get();
       }
+      if (has(*value, "assembly")) joint.assembly = string_value(at(*value, "assembly"), "assembly");
       if (has(*value, "slider")) {
         joint.kind = Joint::Kind::slider;
         joint.guide = string_value(at(*value, "slider"), "slider");

@@ -28,7 +28,8 @@ std::vector<std::string> structure_lines(const Linkage& linkage) {
       lines.push_back("not a dyad: links " + joined(group.links) + ", solved together by Newton on their loops");
     } else {
       lines.push_back("dyad " + std::to_string(++dyads) + ", " + group.kind + ": links " + joined(group.links) +
-                      "; joints " + joined(group.joints));
+                      "; joints " + joined(group.joints) +
+                      (group.assembly.empty() ? "" : "; assembly " + group.assembly + " (stated in the file)"));
     }
   }
   return lines;

@@ -457,3 +457,53 @@ rate = "1 rad/s"
   CHECK(t.loop_residual(1) < 1e-12);
 }
 
+
+TEST_CASE("loops/linkage_loops: an assembly stated on a dyad's middle joint overrides the sketch's") {
+  // The parallelogram of Problem 4.1 sketched as a parallelogram (C left of B-D), with
+  // C stated right of B-D: the anti-parallelogram, the other sample's numbers.
+  const std::string parallelogram = kinema_test::read_file(sample("problem_4_1_parallelogram.toml"));
+  const std::string sketched_c = R"(C = { at = ["0.1246410 m", "0.02 m"] })";
+  const auto stated = [&](const std::string& assembly) {
+    return edited(sketched_c, R"(C = { at = ["0.1246410 m", "0.02 m"], assembly = ")" + assembly + R"(" })",
+                  parallelogram);
+  };
+  const Model crossed = model_of(stated("right of B-D"));
+  const Model anti = kinema::load_model(sample("problem_4_1_antiparallelogram.toml"));
+  check_same_motion(crossed, anti, degrees(10, 170, 20));
+  check_same_motion(crossed, anti, degrees(190, 350, 20));
+  // The unknowns' guesses follow, so the loops kinema writes out are the crossed ones too.
+  const Model written = kinema::make_model(
+      kinema::read_mechanism_text(kinema::vector_loop_file(kinema::read_mechanism_text(stated("right of B-D"), "s.toml")),
+                                  "written.toml"));
+  check_same_motion(written, anti, degrees(10, 170, 20));
+  // The side the sketch already has changes nothing; derive says what was stated.
+  const Model same = model_of(stated("left of B-D"));
+  check_same_motion(same, kinema::load_model(sample("problem_4_1_parallelogram.toml")), degrees(10, 170, 40));
+  std::ostringstream derivation;
+  kinema::find_printer(kinema::PrintKind::derivation, "text")->print(derivation, {crossed});
+  CHECK(derivation.str().find("dyad 1, RRR: links 2, 3; joints B, C, D; assembly C right of B-D (stated in the file)") !=
+        std::string::npos);
+
+  SUBCASE("a side that both assemblies, or neither, are on") {
+    for (const char* assembly : {"right of A-B", "left of A-B"}) {
+      const std::string message = error_of(stated(assembly));
+      CAPTURE(message);
+      CHECK(message.find("lk.toml:") == 0);
+      CHECK(message.find("assembly of the dyad puts C") != std::string::npos);
+      CHECK(message.find("such as the dyad's outer joints B-D") != std::string::npos);
+    }
+  }
+  SUBCASE("not a side, an unknown joint, one joint twice") {
+    CHECK(error_of(stated("above B-D")).find("is not a side: write \"left of B-D\" or \"right of B-D\"") != std::string::npos);
+    CHECK(error_of(stated("left of B-Z")).find("there is no joint \"Z\"") != std::string::npos);
+    CHECK(error_of(stated("left of B-B")).find("a line needs two different joints") != std::string::npos);
+  }
+  SUBCASE("a joint that is not a dyad's middle joint") {
+    const std::string message = error_of(edited(R"(B = { at = ["0.0346410 m", "0.02 m"] })",
+                                                R"(B = { at = ["0.0346410 m", "0.02 m"], assembly = "left of A-D" })",
+                                                parallelogram));
+    CHECK(message.find("lk.toml:") == 0);
+    CHECK(message.find("joint \"B\" states an assembly, but it is not the middle joint of a dyad (the middle joints: C)") !=
+          std::string::npos);
+  }
+}
