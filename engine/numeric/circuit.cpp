@@ -3,6 +3,7 @@
 #include <cmath>
 #include <vector>
 
+#include <kinema/engine/errors.hpp>
 #include <kinema/engine/numeric/closed_form.hpp>
 #include <kinema/engine/numeric/workspace.hpp>
 #include <kinema/loops/dyad_positions.hpp>
@@ -130,6 +131,9 @@ Circuit::Stop walk(const Kinematics& kinematics, const CircuitSettings& settings
 }  // namespace
 
 Circuit solve_circuit(const Kinematics& kinematics, const CircuitSettings& settings) {
+  if (!(settings.step > 0) || !std::isfinite(settings.step)) {
+    throw InputError("the circuit's step must be a positive number");
+  }
   Circuit circuit;
   std::vector<CircuitRow> rows;
   circuit.stop = walk(kinematics, settings, rows, circuit.dyad);

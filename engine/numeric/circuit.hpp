@@ -40,7 +40,8 @@ struct Circuit {
   MotionTable table;
 };
 
-/// The circuit of a mechanism solved in closed form (kinematics.closed_form() != nullptr).
+/// The circuit of a mechanism solved in closed form (kinematics.closed_form() != nullptr);
+/// InputError for a step that is not a positive number.
 Circuit solve_circuit(const Kinematics& kinematics, const CircuitSettings& settings);
 
 }  // namespace kinema

@@ -15,6 +15,7 @@
 
 #include <kinema/engine/errors.hpp>
 #include <kinema/engine/model.hpp>
+#include <kinema/engine/numeric/circuit.hpp>
 #include <kinema/engine/printers/printer.hpp>
 #include <kinema/engine/printers/results_stream.hpp>
 #include <kinema/engine/report/plot_range.hpp>
@@ -63,6 +64,21 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       std::size_t bytes = 0;
       settings.write = [&](std::string_view text) { bytes += text.size(); };
       stream_results(model, InputValues(range), {}, settings);
+    }
+    // Joints and links: the circuit through the toggles (kinema eval --circuit), coarse.
+    if (model.kinematics.closed_form() != nullptr) {
+      CircuitSettings circuit_settings;
+      circuit_settings.start = inputs.front();
+      circuit_settings.step = model.system.input.dimension == Dimension::angle ? 0.1 : 0.05 * model.system.length_scale;
+      circuit_settings.rate = model.system.input.rate_value;
+      circuit_settings.max_rows = 2000;
+      const Circuit circuit = solve_circuit(model.kinematics, circuit_settings);
+      for (const std::string& name : printer_names(PrintKind::results)) {
+        PrintJob job{model, &circuit.table};
+        job.circuit = circuit.stop == Circuit::Stop::closed;
+        std::ostringstream out;
+        find_printer(PrintKind::results, name)->print(out, job);
+      }
     }
   } catch (const kinema::Error&) {
     // Refused or reported: what should happen to a bad file or an unassemblable value.
