@@ -260,6 +260,27 @@ GiNaC::ex FormulaReader::read(const std::string& formula, const std::string& con
 
 bool is_compiled_function(const std::string& name) { return compiled_functions().count(name) > 0; }
 
+double formula_value(const GiNaC::ex& formula, const GiNaC::exmap& values, const std::string& context,
+                     const std::string& text, const std::string& hint) {
+  GiNaC::ex number;
+  try {
+    GiNaC::exmap used;
+    for (auto it = formula.preorder_begin(); it != formula.preorder_end(); ++it) {
+      const auto found = GiNaC::is_a<GiNaC::symbol>(*it) ? values.find(*it) : values.end();
+      if (found != values.end()) used.insert(*found);
+    }
+    number = GiNaC::evalf(formula.subs(used, GiNaC::subs_options::no_pattern));
+  } catch (const std::exception& error) {
+    throw InputError(context + " = \"" + text + "\" cannot be evaluated (" + error.what() + ")");
+  }
+  if (!GiNaC::is_a<GiNaC::numeric>(number) || !GiNaC::ex_to<GiNaC::numeric>(number).is_real()) {
+    throw InputError(context + " = \"" + text + "\" does not evaluate to a real number" + hint);
+  }
+  const double value = GiNaC::ex_to<GiNaC::numeric>(number).to_double();
+  if (!std::isfinite(value)) throw InputError(context + " = \"" + text + "\" is not a finite number");
+  return value;
+}
+
 const char* understood_functions() {
   return "sin, cos, tan, exp, log, sqrt, abs, asin, acos, atan, atan2 and powers (^)";
 }

@@ -28,6 +28,14 @@ class FormulaReader {
   GiNaC::parser parser_;
 };
 
+/// The value of `formula` (written `text`) with the numbers of `values` put in for its
+/// symbols (only those it uses: subs walks its whole map, quadratic in the parameters).
+/// InputError(context + " = \"text\" ...") when GiNaC cannot evaluate it (CLN's float
+/// overflow, a pole such as a length of 0 under a division), or it is not a real,
+/// finite number (`hint` says why that may be).
+double formula_value(const GiNaC::ex& formula, const GiNaC::exmap& values, const std::string& context,
+                     const std::string& text, const std::string& hint = "");
+
 /// Functions a formula may use (the compiled evaluator runs each of them).
 const char* understood_functions();
 /// True for a function the compiled evaluator runs ("sin", "atan2", ...).

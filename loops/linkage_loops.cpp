@@ -103,6 +103,7 @@ class LinkageWriter {
   Mechanism& m_;
   Linkage& linkage_;
   std::map<std::string, double> values_;  // parameters, SI
+  GiNaC::exmap symbol_values_;            // the file's parameters by their symbols in reader_
   std::set<std::string> taken_;           // symbol names
   std::map<std::string, std::string> generated_;  // parameters made here, by the name wanted
   FormulaReader reader_;
@@ -133,31 +134,16 @@ class LinkageWriter {
         value = evaluate(p.formula, p.where, "parameter \"" + p.name + "\"");
       }
       values_[p.name] = value;
-      reader_.define(p.name, GiNaC::realsymbol(p.name));
+      const GiNaC::realsymbol symbol(p.name);
+      reader_.define(p.name, symbol);
+      symbol_values_[symbol] = value;
     }
   }
 
   double evaluate(const std::string& formula, const SourceLocation& where, const std::string& what) {
-    const GiNaC::ex e = reader_.read(formula, where.str() + ": " + what);
-    GiNaC::ex number;
-    try {
-      // Only the symbols it uses (subs walks its whole map: many parameters, quadratic).
-      GiNaC::exmap values;
-      for (auto it = e.preorder_begin(); it != e.preorder_end(); ++it) {
-        if (!GiNaC::is_a<GiNaC::symbol>(*it)) continue;
-        const auto found = values_.find(GiNaC::ex_to<GiNaC::symbol>(*it).get_name());
-        if (found != values_.end()) values[*it] = found->second;
-      }
-      number = GiNaC::evalf(e.subs(values, GiNaC::subs_options::no_pattern));
-    } catch (const std::exception& error) {  // CLN's float overflow, GiNaC's poles (a length of 0 under a division)
-      fail(where, what + " = \"" + formula + "\" cannot be evaluated (" + error.what() + ")");
-    }
-    if (!GiNaC::is_a<GiNaC::numeric>(number) || !GiNaC::ex_to<GiNaC::numeric>(number).is_real()) {
-      fail(where, what + " = \"" + formula + "\" is not a number once the parameters are put in");
-    }
-    const double value = GiNaC::ex_to<GiNaC::numeric>(number).to_double();
-    if (!std::isfinite(value)) fail(where, what + " = \"" + formula + "\" is not finite");
-    return value;
+    const std::string context = where.str() + ": " + what;
+    return formula_value(reader_.read(formula, context), symbol_values_, context, formula,
+                         " once the parameters are put in");
   }
 
   // A length or angle as written: a quantity ("0.3 m") or a formula of the parameters.

@@ -367,23 +367,7 @@ class Builder {
       } else {
         // Parsed before its own symbol exists, so only earlier parameters can be used.
         formula = parse(parameter.formula, context);
-        ex numeric;
-        try {
-          // Only the symbols it uses: subs walks its whole map (10,000 parameters: quadratic).
-          GiNaC::exmap used;
-          for (auto it = formula.preorder_begin(); it != formula.preorder_end(); ++it) {
-            const auto found = GiNaC::is_a<GiNaC::symbol>(*it) ? values.find(*it) : values.end();
-            if (found != values.end()) used.insert(*found);
-          }
-          numeric = GiNaC::evalf(formula.subs(used, GiNaC::subs_options::no_pattern));
-        } catch (const std::exception& error) {  // CLN's float overflow, GiNaC's poles (log(0))
-          throw InputError(context + " = \"" + parameter.formula + "\" cannot be evaluated (" + error.what() + ")");
-        }
-        if (!GiNaC::is_a<GiNaC::numeric>(numeric) || !GiNaC::ex_to<GiNaC::numeric>(numeric).is_real()) {
-          throw InputError(context + " = \"" + parameter.formula + "\" does not evaluate to a real "
-                           "number (only earlier parameters can be used)");
-        }
-        value = GiNaC::ex_to<GiNaC::numeric>(numeric).to_double();
+        value = formula_value(formula, values, context, parameter.formula, " (only earlier parameters can be used)");
         power = LengthPower(powers_).of(formula.expand(), context);
       }
       if (!std::isfinite(value)) {
