@@ -1,0 +1,588 @@
+#include <kinema/engine/symbolic/dyad_method.hpp>
+
+#include <cmath>
+#include <set>
+
+#include <kinema/engine/errors.hpp>
+#include <kinema/engine/report/structure.hpp>
+
+namespace kinema {
+
+const char* method_name(DerivationMethod method) {
+  switch (method) {
+    case DerivationMethod::loops: return "loops";
+    case DerivationMethod::relative_velocity: return "relative-velocity";
+    case DerivationMethod::joint_coordinates: return "joint-coordinates";
+  }
+  return "?";
+}
+
+std::optional<DerivationMethod> find_method(std::string_view name) {
+  for (DerivationMethod m : {DerivationMethod::loops, DerivationMethod::relative_velocity,
+                             DerivationMethod::joint_coordinates}) {
+    if (name == method_name(m)) return m;
+  }
+  return std::nullopt;
+}
+
+std::vector<std::string> method_names() {
+  return {method_name(DerivationMethod::loops), method_name(DerivationMethod::relative_velocity),
+          method_name(DerivationMethod::joint_coordinates)};
+}
+
+namespace {
+
+using GiNaC::ex;
+
+struct Vec {
+  ex x = 0, y = 0;
+};
+Vec operator+(const Vec& a, const Vec& b) { return {a.x + b.x, a.y + b.y}; }
+Vec operator-(const Vec& a, const Vec& b) { return {a.x - b.x, a.y - b.y}; }
+Vec operator*(const ex& k, const Vec& a) { return {k * a.x, k * a.y}; }
+Vec cross(const ex& w, const Vec& r) { return {-w * r.y, w * r.x}; }  // w k x r
+
+// A relation as written, in text and LaTeX at once.
+struct Words {
+  std::string text, latex;
+  void add(const std::string& t, const std::string& l) {
+    text += t;
+    latex += l;
+  }
+};
+
+class Writer {
+ public:
+  Writer(const ConstraintSystem& system, DerivationMethod method)
+      : system_(system), linkage_(*system.linkage), frames_(linkage_.frames), method_(method) {
+    known_.assign(frames_.bodies.size(), false);
+    known_[0] = true;
+  }
+
+  DyadDerivation run() {
+    result_.method = method_;
+    driver();
+    for (std::size_t k = 0; k < frames_.dyads.size(); ++k) dyad(k);
+    return result_;
+  }
+
+ private:
+  const ConstraintSystem& system_;
+  const Linkage& linkage_;
+  const LinkageFrames& frames_;
+  DerivationMethod method_;
+  DyadDerivation result_;
+  std::vector<bool> known_;                       // bodies solved so far
+  std::map<std::pair<std::size_t, std::size_t>, bool> defined_;  // (joint, body): its velocity has symbols
+
+  // ---- names and symbols ----------------------------------------------------------
+
+  const std::string& joint(std::size_t j) const { return linkage_.joints[j].name; }
+  std::string body(std::size_t b) const { return b == 0 ? "ground" : linkage_.links[b - 1].name; }
+
+  ex symbol(const std::string& name, const std::string& latex) {
+    auto found = result_.symbols.find(name);
+    if (found == result_.symbols.end()) found = result_.symbols.emplace(name, GiNaC::realsymbol(name, latex)).first;
+    return found->second;
+  }
+  Vec position(std::size_t j) {
+    return {symbol("x_" + joint(j), "x_{" + joint(j) + "}"), symbol("y_" + joint(j), "y_{" + joint(j) + "}")};
+  }
+  ex length(std::size_t a, std::size_t b) {
+    return symbol("L_" + joint(a) + joint(b), "L_{" + joint(a) + joint(b) + "}");
+  }
+
+  bool is_slider_joint(std::size_t j) const {
+    for (const auto& s : frames_.sliders)
+      if (s.joint == j) return true;
+    return false;
+  }
+  const LinkageFrames::Slider* slider_of(std::size_t j) const {
+    for (const auto& s : frames_.sliders)
+      if (s.joint == j) return &s;
+    return nullptr;
+  }
+  // A slider joint's point on its guide is named after the guide: B_3 (seed 002's B3).
+  std::string point_name(std::size_t j, std::size_t b) const {
+    const LinkageFrames::Slider* s = slider_of(j);
+    return s != nullptr && s->guide == b ? joint(j) + "_" + body(b) : joint(j);
+  }
+  std::string point_latex(std::size_t j, std::size_t b) const {
+    const LinkageFrames::Slider* s = slider_of(j);
+    return s != nullptr && s->guide == b ? joint(j) + "_{" + body(b) + "}" : joint(j);
+  }
+  Vec velocity_symbols(std::size_t j, std::size_t b) {
+    const std::string n = point_name(j, b), l = point_latex(j, b);
+    return {symbol("v_" + n + "x", "v_{" + l + "x}"), symbol("v_" + n + "y", "v_{" + l + "y}")};
+  }
+  Vec acceleration_symbols(std::size_t j, std::size_t b) {
+    const std::string n = point_name(j, b), l = point_latex(j, b);
+    return {symbol("a_" + n + "x", "a_{" + l + "x}"), symbol("a_" + n + "y", "a_{" + l + "y}")};
+  }
+  std::pair<std::size_t, std::size_t> key(std::size_t j, std::size_t b) const {
+    return {j, is_slider_joint(j) ? b : 0};
+  }
+
+  // ---- bodies: angle and rates ---------------------------------------------------
+
+  ex angle(std::size_t b) const {
+    const LinkageFrames::Body& f = frames_.bodies[b];
+    if (f.unknown >= 0) return system_.unknowns[std::size_t(f.unknown)].symbol;
+    if (f.guide >= 0) return angle(std::size_t(f.guide)) + exact_angle(f.offset);
+    if (b != 0 && b == frames_.driver_body && frames_.driver_slider < 0) return system_.input.symbol;
+    return 0;
+  }
+  ex omega(std::size_t b) const {
+    const LinkageFrames::Body& f = frames_.bodies[b];
+    if (f.unknown >= 0) return system_.unknowns[std::size_t(f.unknown)].rate;
+    if (f.guide >= 0) return omega(std::size_t(f.guide));
+    if (b != 0 && b == frames_.driver_body && frames_.driver_slider < 0) return system_.input.rate;
+    return 0;
+  }
+  ex alpha(std::size_t b) const {
+    const LinkageFrames::Body& f = frames_.bodies[b];
+    if (f.unknown >= 0) return system_.unknowns[std::size_t(f.unknown)].second_rate;
+    if (f.guide >= 0) return alpha(std::size_t(f.guide));
+    if (b != 0 && b == frames_.driver_body && frames_.driver_slider < 0) return system_.input.second_rate;
+    return 0;
+  }
+  // Multiples of 15 deg exactly (cos(theta + Pi/2) prints as -sin(theta)).
+  static ex exact_angle(double radians) {
+    const double twelfths = radians / (M_PI / 12);
+    if (std::fabs(twelfths - std::round(twelfths)) < 1e-9) return GiNaC::Pi * GiNaC::numeric(long(std::lround(twelfths)), 12);
+    return radians;
+  }
+  Vec direction(const LinkageFrames::Slider& s) const {
+    const ex a = angle(s.guide) + exact_angle(s.direction);
+    return {GiNaC::cos(a), GiNaC::sin(a)};
+  }
+  ex slide_rate(const LinkageFrames::Slider& s) const {
+    return s.unknown >= 0 ? ex(system_.unknowns[std::size_t(s.unknown)].rate) : ex(system_.input.rate);
+  }
+  ex slide_second_rate(const LinkageFrames::Slider& s) const {
+    return s.unknown >= 0 ? ex(system_.unknowns[std::size_t(s.unknown)].second_rate) : ex(system_.input.second_rate);
+  }
+  std::string name_of(const ex& e) const { return GiNaC::ex_to<GiNaC::symbol>(e).get_name(); }
+  std::string latex_of(const ex& e) const {
+    std::ostringstream out;
+    out << GiNaC::latex << e;
+    return out.str();
+  }
+
+  // ---- known velocities ------------------------------------------------------------
+
+  bool on_body(std::size_t j, std::size_t b) const {
+    for (const auto& [joint_index, at] : frames_.bodies[b].points)
+      if (joint_index == j) return true;
+    return false;
+  }
+  // A fixed pivot (a joint of ground) is at rest on every body.
+  bool at_rest(std::size_t j) const { return on_body(j, 0); }
+  Vec velocity(std::size_t j, std::size_t b) {
+    if (b == 0 || at_rest(j)) return {};
+    return velocity_symbols(j, b);
+  }
+  Vec acceleration(std::size_t j, std::size_t b) {
+    if (b == 0 || at_rest(j)) return {};
+    return acceleration_symbols(j, b);
+  }
+
+  // "v_D + omega3 x r_DC" in words (terms that are zero left out).
+  void words_transfer(Words& w, std::size_t from_joint, std::size_t from_body, const ex& w_body, std::size_t to_joint,
+                      bool acceleration_order, const ex& a_body, bool leading) {
+    bool first = leading;
+    const auto plus = [&] {
+      if (!first) w.add(" + ", " + ");
+      first = false;
+    };
+    const std::string n = point_name(from_joint, from_body), l = point_latex(from_joint, from_body);
+    const char* v = acceleration_order ? "a" : "v";
+    if (from_body != 0 && !at_rest(from_joint)) {
+      plus();
+      w.add(std::string(v) + "_" + n, std::string("\\mathbf{") + v + "}_{" + l + "}");
+    }
+    if (from_joint == to_joint) {
+      if (first) w.add("0", "\\mathbf{0}");
+      return;
+    }
+    const std::string r = joint(from_joint) + joint(to_joint);
+    if (acceleration_order) {
+      if (!a_body.is_zero()) {
+        plus();
+        w.add(name_of(a_body) + " x r_" + r, "\\boldsymbol{" + latex_of(a_body) + "} \\times \\mathbf{r}_{" + r + "}");
+      }
+      if (!w_body.is_zero()) {
+        w.add(first ? "-" : " - ", first ? "-" : " - ");
+        first = false;
+        w.add(name_of(w_body) + "^2 r_" + r, latex_of(w_body) + "^{2}\\,\\mathbf{r}_{" + r + "}");
+      }
+    } else if (!w_body.is_zero()) {
+      plus();
+      w.add(name_of(w_body) + " x r_" + r, "\\boldsymbol{" + latex_of(w_body) + "} \\times \\mathbf{r}_{" + r + "}");
+    }
+    if (first) w.add("0", "\\mathbf{0}");
+  }
+
+  // The velocity (or acceleration) of joint `to` on body b from joint `from` on b.
+  Vec transfer(std::size_t from, std::size_t b, std::size_t to, bool second) {
+    const Vec r = position(to) - position(from);
+    const bool from_rest = at_rest(from);
+    if (!second) return (from_rest ? Vec{} : velocity(from, b)) + cross(omega(b), r);
+    return (from_rest ? Vec{} : acceleration(from, b)) + cross(alpha(b), r) - GiNaC::pow(omega(b), 2) * r;
+  }
+
+  // Defines every joint on body b not yet defined, from joint `from` (defined on b).
+  void define_rest(MethodStep& step, std::size_t b, std::size_t from) {
+    // Its joints, and the points of sliders it guides without listing them.
+    std::vector<std::size_t> joints;
+    for (const auto& [j, at] : frames_.bodies[b].points) joints.push_back(j);
+    for (const LinkageFrames::Slider& s : frames_.sliders)
+      if (s.guide == b && !on_body(s.joint, b)) joints.push_back(s.joint);
+    const bool from_rest = at_rest(from);
+    for (std::size_t j : joints) {
+      if (defined_.count(key(j, b)) != 0 || at_rest(j)) continue;
+      for (bool second : {false, true}) {
+        Words w;
+        const std::string n = point_name(j, b), l = point_latex(j, b);
+        w.add(std::string(second ? "a_" : "v_") + n + " = ", std::string("\\mathbf{") + (second ? "a" : "v") + "}_{" + l + "} = ");
+        words_transfer(w, from, from_rest ? 0 : b, omega(b), j, second, alpha(b), true);
+        const Vec value = transfer(from, b, j, second);
+        const Vec named = second ? acceleration_symbols(j, b) : velocity_symbols(j, b);
+        auto& list = second ? step.acceleration : step.velocity;
+        list.push_back({MethodRelation::Kind::statement, w.text, w.latex, 0, 0});
+        list.push_back({MethodRelation::Kind::solution, "", "", named.x, value.x});
+        list.push_back({MethodRelation::Kind::solution, "", "", named.y, value.y});
+      }
+      defined_[key(j, b)] = true;
+    }
+  }
+
+  // ---- the driver --------------------------------------------------------------------
+
+  void driver() {
+    MethodStep step;
+    step.heading = structure_lines(linkage_).front();
+    const std::size_t b = frames_.driver_body;
+    std::size_t from = 0;
+    if (frames_.driver_slider >= 0) {
+      // The block slides on a fixed guide: v_S = sdot u, a_S = sddot u.
+      const LinkageFrames::Slider& s = frames_.sliders[std::size_t(frames_.driver_slider)];
+      from = s.joint;
+      const Vec u = direction(s);
+      for (bool second : {false, true}) {
+        const ex rate = second ? slide_second_rate(s) : slide_rate(s);
+        const Vec named = second ? acceleration_symbols(s.joint, s.block) : velocity_symbols(s.joint, s.block);
+        auto& list = second ? step.acceleration : step.velocity;
+        const std::string v = second ? "a" : "v";
+        list.push_back({MethodRelation::Kind::statement, v + "_" + joint(s.joint) + " = " + name_of(rate) + " u",
+                        "\\mathbf{" + v + "}_{" + joint(s.joint) + "} = " + latex_of(rate) + "\\,\\mathbf{u}", 0, 0});
+        list.push_back({MethodRelation::Kind::solution, "", "", named.x, rate * u.x});
+        list.push_back({MethodRelation::Kind::solution, "", "", named.y, rate * u.y});
+      }
+      defined_[key(s.joint, s.block)] = true;
+    } else {
+      for (const LinkageFrames::Pin& pin : frames_.pins)
+        if ((pin.a == 0 && pin.b == b) || (pin.b == 0 && pin.a == b)) from = pin.joint;
+      defined_[key(from, b)] = true;  // the fixed pivot: at rest
+    }
+    known_[b] = true;
+    define_rest(step, b, from);
+    result_.steps.push_back(step);
+  }
+
+  // ---- dyads -------------------------------------------------------------------------
+
+  struct Side {
+    std::size_t link = 0;
+    int edge = 0;
+  };
+
+  // The velocity (second: acceleration) of the middle joint J as a point of the side's
+  // link, reached from its outer joint; in words too.
+  Vec side_motion(const Side& side, std::size_t j, bool second, Words& w) {
+    const std::size_t L = side.link;
+    if (side.edge >= 0) {
+      const LinkageFrames::Pin& pin = frames_.pins[std::size_t(side.edge)];
+      const std::size_t known = pin.a == L ? pin.b : pin.a;
+      const ex zero = 0;
+      words_transfer(w, pin.joint, known == 0 ? 0 : known, omega(L), j, second, alpha(L), true);
+      const Vec r = position(j) - position(pin.joint);
+      const Vec start = at_rest(pin.joint) ? Vec{} : (second ? acceleration(pin.joint, known) : velocity(pin.joint, known));
+      return second ? start + cross(alpha(L), r) - GiNaC::pow(omega(L), 2) * r : start + cross(omega(L), r);
+    }
+    const LinkageFrames::Slider& s = frames_.sliders[std::size_t(-1 - side.edge)];
+    const bool block = s.block == L;
+    const std::size_t known = block ? s.guide : s.block;
+    const Vec u = direction(s);
+    const ex rate = slide_rate(s), second_rate = slide_second_rate(s);
+    // The slider's point on L: its point on the known body, and the slide (with the
+    // Coriolis term 2 omega_guide x sdot u in accelerations).
+    Vec start = second ? acceleration(s.joint, known) : velocity(s.joint, known);
+    const ex sign = block ? 1 : -1;
+    const char* v = second ? "a" : "v";
+    bool first = true;
+    if (known != 0) {
+      w.add(std::string(v) + "_" + point_name(s.joint, known), std::string("\\mathbf{") + v + "}_{" + point_latex(s.joint, known) + "}");
+      first = false;
+    }
+    w.add(std::string(first ? (block ? "" : "-") : (block ? " + " : " - ")), std::string(first ? (block ? "" : "-") : (block ? " + " : " - ")));
+    first = false;
+    if (!second) {
+      start = start + sign * rate * u;
+      w.add(name_of(rate) + " u_" + joint(s.joint), latex_of(rate) + "\\,\\mathbf{u}_{" + joint(s.joint) + "}");
+    } else {
+      const ex w_guide = omega(s.guide);
+      start = start + sign * (second_rate * u + 2 * cross(w_guide, rate * u));
+      w.add(name_of(second_rate) + " u_" + joint(s.joint), latex_of(second_rate) + "\\,\\mathbf{u}_{" + joint(s.joint) + "}");
+      if (!w_guide.is_zero()) {
+        w.add(block ? " + 2 " : " - 2 ", block ? " + 2\\," : " - 2\\,");
+        w.add(name_of(w_guide) + " x " + name_of(rate) + " u_" + joint(s.joint),
+              "\\boldsymbol{" + latex_of(w_guide) + "} \\times " + latex_of(rate) + "\\,\\mathbf{u}_{" + joint(s.joint) + "}");
+      }
+    }
+    if (s.joint != j) {
+      Words rest;
+      words_transfer(rest, s.joint, 0, omega(L), j, second, alpha(L), false);
+      if (rest.text != "0") {
+        w.add(" + ", " + ");
+        w.add(rest.text, rest.latex);
+      }
+    }
+    const Vec r = position(j) - position(s.joint);
+    return second ? start + cross(alpha(L), r) - GiNaC::pow(omega(L), 2) * r : start + cross(omega(L), r);
+  }
+
+  void dyad(std::size_t k) {
+    const LinkageFrames::Dyad& d = frames_.dyads[k];
+    MethodStep step;
+    step.heading = describe_dyad(linkage_, k);
+    const std::size_t j = d.inner >= 0 ? frames_.pins[std::size_t(d.inner)].joint
+                                       : frames_.sliders[std::size_t(-1 - d.inner)].joint;
+    const Side first{d.first, d.outer_first}, second_side{d.second, d.outer_second};
+    bool coordinates = method_ == DerivationMethod::joint_coordinates && d.inner >= 0;
+    for (const Side& side : {first, second_side}) {
+      if (side.edge < 0 && frames_.sliders[std::size_t(-1 - side.edge)].block != side.link) coordinates = false;
+    }
+    if (method_ == DerivationMethod::joint_coordinates && !coordinates) {
+      step.note = "joint coordinates need the middle joint on two circles or guide lines; this dyad's " +
+                  std::string(d.inner < 0 ? "middle joint is a slider" : "guide turns with one of its links") +
+                  ", so it is written as relative velocities";
+    }
+    // Unknown rates of the dyad: its links' own angles, its sliders' coordinates.
+    std::vector<ex> rates, second_rates;
+    for (std::size_t b : {d.first, d.second}) {
+      const int u = frames_.bodies[b].unknown;
+      if (u >= 0) {
+        rates.push_back(system_.unknowns[std::size_t(u)].rate);
+        second_rates.push_back(system_.unknowns[std::size_t(u)].second_rate);
+      }
+    }
+    for (int edge : {d.outer_first, d.inner, d.outer_second}) {
+      if (edge >= 0) continue;
+      const LinkageFrames::Slider& s = frames_.sliders[std::size_t(-1 - edge)];
+      if (s.unknown < 0) continue;
+      rates.push_back(system_.unknowns[std::size_t(s.unknown)].rate);
+      second_rates.push_back(system_.unknowns[std::size_t(s.unknown)].second_rate);
+    }
+    if (coordinates) {
+      joint_coordinates(step, d, j, first, second_side, rates, second_rates);
+    } else {
+      for (bool second : {false, true}) relative(step, d, j, first, second_side, second ? second_rates : rates, second);
+    }
+    known_[d.first] = known_[d.second] = true;
+    // The other joints of its links, from the middle joint (a slider: each link's outer pin).
+    if (d.inner >= 0) {
+      defined_[key(j, d.first)] = defined_[key(j, d.second)] = true;
+      define_rest(step, d.first, j);
+      define_rest(step, d.second, j);
+    } else {
+      for (const Side& side : {first, second_side}) define_rest(step, side.link, frames_.pins[std::size_t(side.edge)].joint);
+    }
+    result_.steps.push_back(step);
+  }
+
+  // v_J from one side = v_J from the other (+ the slide of a middle slider), in components, solved.
+  void relative(MethodStep& step, const LinkageFrames::Dyad& d, std::size_t j, const Side& first, const Side& second_side,
+                const std::vector<ex>& unknowns, bool second) {
+    auto& list = second ? step.acceleration : step.velocity;
+    Words left, right;
+    const char* v = second ? "a" : "v";
+    left.add(std::string(v) + "_" + joint(j) + " = ", std::string("\\mathbf{") + v + "}_{" + joint(j) + "} = ");
+    Vec a = side_motion(first, j, second, left);
+    Vec b = side_motion(second_side, j, second, right);
+    if (d.inner < 0) {  // J on the block = J on the guide + the slide
+      const LinkageFrames::Slider& s = frames_.sliders[std::size_t(-1 - d.inner)];
+      const Vec u = direction(s);
+      const ex rate = slide_rate(s), second_rate = slide_second_rate(s);
+      const Vec slide = second ? second_rate * u + 2 * cross(omega(s.guide), rate * u) : rate * u;
+      const bool first_is_block = s.block == first.link;
+      if (first_is_block) b = b + slide;
+      else a = a + slide;
+      Words& w = first_is_block ? right : left;
+      w.add(" + " + name_of(second ? second_rate : rate) + " u_" + joint(j),
+            " + " + latex_of(second ? second_rate : rate) + "\\,\\mathbf{u}_{" + joint(j) + "}");
+      if (second && !omega(s.guide).is_zero()) {
+        w.add(" + 2 " + name_of(omega(s.guide)) + " x " + name_of(rate) + " u_" + joint(j),
+              " + 2\\,\\boldsymbol{" + latex_of(omega(s.guide)) + "} \\times " + latex_of(rate) + "\\,\\mathbf{u}_{" + joint(j) + "}");
+      }
+    }
+    list.push_back({MethodRelation::Kind::statement, left.text + " = " + right.text, left.latex + " = " + right.latex, 0, 0});
+    list.push_back({MethodRelation::Kind::component, "x", "x", a.x, b.x});
+    list.push_back({MethodRelation::Kind::component, "y", "y", a.y, b.y});
+    solve(list, {a.x - b.x, a.y - b.y}, unknowns);
+    if (d.inner >= 0) {  // then the middle joint itself, from the first side
+      const Vec named = second ? acceleration_symbols(j, first.link) : velocity_symbols(j, first.link);
+      list.push_back({MethodRelation::Kind::solution, "", "", named.x, a.x});
+      list.push_back({MethodRelation::Kind::solution, "", "", named.y, a.y});
+    }
+  }
+
+  void solve(std::vector<MethodRelation>& list, const std::vector<ex>& equations, const std::vector<ex>& unknowns) {
+    GiNaC::lst eqs, vars;
+    for (const ex& e : equations) eqs.append(e == 0);
+    for (const ex& u : unknowns) vars.append(u);
+    const ex solution = GiNaC::lsolve(eqs, vars);
+    for (const ex& s : solution) list.push_back({MethodRelation::Kind::solution, "", "", s.lhs(), s.rhs().normal()});
+  }
+
+  // Seed 002's form: J on a circle about each pin (a link's length) or on a line of a
+  // guide (at a fixed distance), differentiated in time; then each link's rates.
+  void joint_coordinates(MethodStep& step, const LinkageFrames::Dyad& d, std::size_t j, const Side& first,
+                         const Side& second_side, const std::vector<ex>& rates, const std::vector<ex>& second_rates) {
+    // Time derivatives of the symbols a side's relation uses: d/dt x_O = v_Ox, d/dt theta = omega.
+    GiNaC::exmap once, twice;
+    const auto derivative = [&](const ex& e, const GiNaC::exmap& map) {
+      ex total = 0;
+      for (const auto& [s, rate] : map) total += e.diff(GiNaC::ex_to<GiNaC::symbol>(s)) * rate;
+      return total;
+    };
+    const Vec r_j = position(j), v_j = velocity_symbols(j, d.first), a_j = acceleration_symbols(j, d.first);
+    once[r_j.x] = v_j.x;
+    once[r_j.y] = v_j.y;
+    twice[v_j.x] = a_j.x;
+    twice[v_j.y] = a_j.y;
+    std::vector<ex> constraints;
+    for (const Side& side : {first, second_side}) {
+      Words w;
+      ex c;
+      if (side.edge >= 0) {
+        const std::size_t o = frames_.pins[std::size_t(side.edge)].joint;
+        const std::size_t known = frames_.pins[std::size_t(side.edge)].a == side.link ? frames_.pins[std::size_t(side.edge)].b
+                                                                                     : frames_.pins[std::size_t(side.edge)].a;
+        const Vec r = r_j - position(o);
+        c = (GiNaC::pow(r.x, 2) + GiNaC::pow(r.y, 2) - GiNaC::pow(length(o, j), 2)) / 2;
+        const Vec ro = position(o);
+        if (known != 0 && !at_rest(o)) {
+          const Vec vo = velocity(o, known), ao = acceleration(o, known);
+          once[ro.x] = vo.x;
+          once[ro.y] = vo.y;
+          twice[vo.x] = ao.x;
+          twice[vo.y] = ao.y;
+        }
+        step.velocity.push_back({MethodRelation::Kind::statement,
+                                 "(x_" + joint(j) + " - x_" + joint(o) + ")^2 + (y_" + joint(j) + " - y_" + joint(o) +
+                                     ")^2 = L_" + joint(o) + joint(j) + "^2",
+                                 "(x_{" + joint(j) + "} - x_{" + joint(o) + "})^{2} + (y_{" + joint(j) + "} - y_{" + joint(o) +
+                                     "})^{2} = L_{" + joint(o) + joint(j) + "}^{2}",
+                                 0, 0});
+      } else {
+        const LinkageFrames::Slider& s = frames_.sliders[std::size_t(-1 - side.edge)];
+        const Vec u = direction(s), r = r_j - position(s.joint);
+        const ex h = symbol("h_" + joint(j) + joint(s.joint), "h_{" + joint(j) + joint(s.joint) + "}");
+        c = r.x * u.y - r.y * u.x - h;  // J's distance from the guide's line through S
+        const Vec rs = position(s.joint);
+        if (s.guide != 0) {
+          const Vec vs = velocity(s.joint, s.guide), as = acceleration(s.joint, s.guide);
+          once[rs.x] = vs.x;
+          once[rs.y] = vs.y;
+          twice[vs.x] = as.x;
+          twice[vs.y] = as.y;
+        }
+        add_angle_rates(angle(s.guide), once, twice);
+        step.velocity.push_back({MethodRelation::Kind::statement,
+                                 "(r_" + joint(j) + " - r_" + joint(s.joint) + ") x u_" + joint(s.joint) + " = h_" + joint(j) + joint(s.joint),
+                                 "(\\mathbf{r}_{" + joint(j) + "} - \\mathbf{r}_{" + joint(s.joint) + "}) \\times \\mathbf{u}_{" +
+                                     joint(s.joint) + "} = h_{" + joint(j) + joint(s.joint) + "}",
+                                 0, 0});
+      }
+      step.velocity.push_back({MethodRelation::Kind::component, "position", "position", c, 0});
+      constraints.push_back(c);
+    }
+    // Velocity: d/dt of each relation, linear in v_J; acceleration: d/dt again, linear in a_J.
+    std::vector<ex> velocity_equations, acceleration_equations;
+    for (const ex& c : constraints) {
+      const ex dc = derivative(c, once).expand();
+      velocity_equations.push_back(dc);
+      GiNaC::exmap both = once;
+      for (const auto& [s, rate] : twice) both[s] = rate;
+      acceleration_equations.push_back(derivative(dc, both).expand());
+    }
+    for (const ex& e : velocity_equations) step.velocity.push_back({MethodRelation::Kind::component, "d/dt", "\\tfrac{d}{dt}", e, 0});
+    solve(step.velocity, velocity_equations, {v_j.x, v_j.y});
+    for (const ex& e : acceleration_equations)
+      step.acceleration.push_back({MethodRelation::Kind::component, "d2/dt2", "\\tfrac{d^{2}}{dt^{2}}", e, 0});
+    solve(step.acceleration, acceleration_equations, {a_j.x, a_j.y});
+    // Each link's rates from its joints: omega = (r_OJ x v_OJ) / L^2 about a pin, the
+    // guide's about a slider; a slider's rate along its line.
+    for (const Side& side : {first, second_side}) {
+      if (side.edge >= 0) {
+        const std::size_t o = frames_.pins[std::size_t(side.edge)].joint;
+        const std::size_t known = frames_.pins[std::size_t(side.edge)].a == side.link ? frames_.pins[std::size_t(side.edge)].b
+                                                                                     : frames_.pins[std::size_t(side.edge)].a;
+        const bool from_rest = known == 0 || at_rest(o);
+        const Vec r = r_j - position(o);
+        const Vec rel_v = v_j - (from_rest ? Vec{} : velocity(o, known)), rel_a = a_j - (from_rest ? Vec{} : acceleration(o, known));
+        const ex l2 = GiNaC::pow(length(o, j), 2);
+        const int u = frames_.bodies[side.link].unknown;
+        if (u < 0) continue;
+        step.velocity.push_back({MethodRelation::Kind::solution, "", "", system_.unknowns[std::size_t(u)].rate,
+                                 (r.x * rel_v.y - r.y * rel_v.x) / l2});
+        step.acceleration.push_back({MethodRelation::Kind::solution, "", "", system_.unknowns[std::size_t(u)].second_rate,
+                                     (r.x * rel_a.y - r.y * rel_a.x) / l2});
+      } else {
+        const LinkageFrames::Slider& s = frames_.sliders[std::size_t(-1 - side.edge)];
+        if (s.unknown < 0) continue;
+        const Vec u = direction(s), r = position(j) - position(s.joint);
+        const ex w = omega(side.link), al = alpha(side.link);
+        const Vec vs = s.guide == 0 ? Vec{} : velocity(s.joint, s.guide), as = s.guide == 0 ? Vec{} : acceleration(s.joint, s.guide);
+        const Vec slide_v = v_j - vs - cross(w, r);
+        const Vec slide_a = a_j - as - cross(al, r) + GiNaC::pow(w, 2) * r;
+        step.velocity.push_back({MethodRelation::Kind::solution, "", "", system_.unknowns[std::size_t(s.unknown)].rate,
+                                 slide_v.x * u.x + slide_v.y * u.y});
+        step.acceleration.push_back({MethodRelation::Kind::solution, "", "", system_.unknowns[std::size_t(s.unknown)].second_rate,
+                                     slide_a.x * u.x + slide_a.y * u.y});
+      }
+    }
+    (void)rates;
+    (void)second_rates;
+  }
+
+  // d/dt theta = omega, d/dt omega = alpha for the angle symbols in theta.
+  void add_angle_rates(const ex& theta, GiNaC::exmap& once, GiNaC::exmap& twice) const {
+    for (std::size_t i = 0; i < system_.unknowns.size(); ++i) {
+      const Coordinate& q = system_.unknowns[i];
+      if (theta.has(q.symbol)) {
+        once[q.symbol] = q.rate;
+        twice[q.rate] = q.second_rate;
+      }
+    }
+    if (theta.has(system_.input.symbol)) {
+      once[system_.input.symbol] = system_.input.rate;
+      twice[system_.input.rate] = system_.input.second_rate;
+    }
+  }
+};
+
+}  // namespace
+
+DyadDerivation derive_by_dyads(const ConstraintSystem& system, DerivationMethod method) {
+  if (!system.linkage || !system.linkage->frames.closed_form) {
+    throw InputError(system.source_file + ": --method " + method_name(method) +
+                     " works dyad by dyad: it needs a mechanism written as joints and links whose links all form "
+                     "dyads" + (system.linkage ? " (this one has links solved together by Newton)" : " (this file is vector loops)") +
+                     "; --method loops works for every file");
+  }
+  return Writer(system, method).run();
+}
+
+}  // namespace kinema

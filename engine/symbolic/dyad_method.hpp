@@ -1,0 +1,64 @@
+// Velocities and accelerations of a joints-and-links mechanism written the way the
+// seeds work them out, group by group in solving order (driver, then each dyad):
+//  - relative velocity (seed 004): the middle joint's velocity from each side,
+//    v_C = v_B + omega2 x r_BC = v_D + omega3 x r_DC (a slider adds its relative
+//    velocity, and in accelerations its Coriolis term 2 omega x v_rel), the two
+//    components solved for the dyad's two rates;
+//  - joint coordinates (seed 002, sections 4.2-4.6): the middle joint's coordinates
+//    bound by each side (a circle about a pin, (4.42); a line of a guide, (4.51)),
+//    differentiated in time ((4.43), (4.45)) and solved for its velocity and
+//    acceleration, then each link's omega and alpha from its joints.
+// Every relation is a GiNaC equation in symbols named after the joints (x_C, v_Cx,
+// a_Cx) and the rates of the loops' coordinates, so that it can be checked by meaning.
+#pragma once
+
+#include <ginac/ginac.h>
+
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <kinema/engine/constraint_system.hpp>
+
+namespace kinema {
+
+enum class DerivationMethod { loops, relative_velocity, joint_coordinates };
+
+/// "loops", "relative-velocity", "joint-coordinates" (as --method takes them).
+const char* method_name(DerivationMethod method);
+std::optional<DerivationMethod> find_method(std::string_view name);
+std::vector<std::string> method_names();
+
+struct MethodRelation {
+  enum class Kind {
+    statement,  ///< A relation as the method writes it (text, latex), before components.
+    component,  ///< left = right, one scalar equation (text: "x" or "y", or what it is).
+    solution,   ///< left (a symbol) = right: a rate solved, or a joint's velocity defined.
+  };
+  Kind kind = Kind::statement;
+  std::string text, latex;
+  GiNaC::ex left, right;
+};
+
+struct MethodStep {
+  std::string heading;  ///< "driver: link 1 (A)", "dyad 1, RRR: links 2, 3; joints B, C, D".
+  std::string note;     ///< Why the step is written in another form (empty if not).
+  std::vector<MethodRelation> velocity, acceleration;
+};
+
+struct DyadDerivation {
+  DerivationMethod method = DerivationMethod::relative_velocity;
+  std::vector<MethodStep> steps;
+  /// The symbols a relation may use besides the system's (joint coordinates x_B, y_B,
+  /// velocities v_Bx, v_By, accelerations a_Bx, a_By; a slider joint's point on its
+  /// guide v_B_3x ...), by name.
+  std::map<std::string, GiNaC::realsymbol> symbols;
+};
+
+/// The relations of every group of a joints-and-links system solved in closed form;
+/// InputError for any other system (vector loops, or links that form no dyad).
+DyadDerivation derive_by_dyads(const ConstraintSystem& system, DerivationMethod method);
+
+}  // namespace kinema

@@ -1,0 +1,136 @@
+// engine/symbolic/dyad_method: the seeds' ways of working out velocities and
+// accelerations (relative velocity, joint coordinates), checked by meaning: the
+// relations of every group, evaluated in order at a solved position (each solved rate
+// and each joint's velocity taken from the lines before it), give the rates eval gives,
+// the joints' velocities and accelerations eval gives, and every component equation
+// and position relation holds.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <string>
+
+#include <kinema/engine/symbolic/dyad_method.hpp>
+#include <kinema/loops/dyad_positions.hpp>
+
+#include "test_support.hpp"
+
+namespace {
+
+using GiNaC::ex;
+using kinema::DerivationMethod;
+using kinema::MethodRelation;
+
+double number(const ex& e, const GiNaC::exmap& values) {
+  const ex v = GiNaC::evalf(e.subs(values, GiNaC::subs_options::no_pattern));
+  REQUIRE_MESSAGE(GiNaC::is_a<GiNaC::numeric>(v), "not a number: " << e << " -> " << v);
+  return GiNaC::ex_to<GiNaC::numeric>(v).to_double();
+}
+
+// Checks every relation of `method` for a sample at its file value; returns how many
+// solutions and components were checked.
+std::size_t check_method(const std::string& name, DerivationMethod method) {
+  CAPTURE(name);
+  CAPTURE(kinema::method_name(method));
+  const kinema::Model model = kinema::load_model(kinema_test::sample(name));
+  const kinema::ConstraintSystem& system = model.system;
+  const kinema::DyadDerivation derivation = kinema::derive_by_dyads(system, method);
+  const double x = system.input.values.front();
+  const kinema::MotionTable table = kinema::analyse(model, {x});
+  REQUIRE(table.status(0) == kinema::Status::ok);
+  const kinema::MotionState state = table[0];
+  const kinema::LinkageFrames& frames = system.linkage->frames;
+  std::vector<kinema::BodyPose> poses;
+  REQUIRE(kinema::place_dyads(frames, x, poses) == frames.dyads.size());
+
+  GiNaC::exmap values;
+  for (const auto& parameter : system.parameters) values[parameter.symbol] = parameter.value;
+  values[system.input.symbol] = x;
+  values[system.input.rate] = state.input_rate;
+  values[system.input.second_rate] = state.input_second_rate;
+  for (std::size_t i = 0; i < system.unknowns.size(); ++i) values[system.unknowns[i].symbol] = state.q[Eigen::Index(i)];
+  // Joint coordinates where the closed form places them; link lengths between joints
+  // as the links are drawn (the frames), offsets from guide lines as placed.
+  std::map<std::string, std::complex<double>> at;
+  for (std::size_t j = 0; j < system.linkage->joints.size(); ++j) {
+    std::complex<double> p;
+    REQUIRE(kinema::joint_position(frames, poses, j, p));
+    at[system.linkage->joints[j].name] = p;
+  }
+  for (const auto& [symbol_name, symbol] : derivation.symbols) {
+    const std::string rest = symbol_name.substr(2);
+    if (symbol_name.rfind("x_", 0) == 0) values[symbol] = at.at(rest).real();
+    if (symbol_name.rfind("y_", 0) == 0) values[symbol] = at.at(rest).imag();
+    if (symbol_name.rfind("L_", 0) == 0) {
+      // Two joint names run together: the split that names two joints.
+      for (std::size_t cut = 1; cut < rest.size(); ++cut)
+        if (at.count(rest.substr(0, cut)) && at.count(rest.substr(cut)))
+          values[symbol] = std::abs(at.at(rest.substr(0, cut)) - at.at(rest.substr(cut)));
+    }
+  }
+  std::size_t checked = 0;
+  std::vector<std::pair<ex, ex>> components;
+  for (const kinema::MethodStep& step : derivation.steps) {
+    CAPTURE(step.heading);
+    for (const auto* list : {&step.velocity, &step.acceleration}) {
+      for (const MethodRelation& r : *list) {
+        if (r.kind == MethodRelation::Kind::solution) {
+          values[r.left] = number(r.right, values);
+          ++checked;
+        } else if (r.kind == MethodRelation::Kind::component) {
+          if (r.text == "position") {
+            // A guide line's offset h is whatever the placed position gives.
+            for (const auto& [symbol_name, symbol] : derivation.symbols)
+              if (symbol_name.rfind("h_", 0) == 0 && r.left.has(symbol) && values.count(symbol) == 0)
+                values[symbol] = number(r.left + symbol, values);
+          }
+          components.push_back({r.left, r.right});
+        }
+      }
+    }
+  }
+  for (const auto& [left, right] : components) {
+    CAPTURE(left);
+    const double a = number(left, values), b = number(right, values);
+    CHECK(std::fabs(a - b) <= 1e-9 * (1 + std::fabs(a) + std::fabs(b)));
+    ++checked;
+  }
+  // The rates solved group by group are eval's.
+  for (std::size_t i = 0; i < system.unknowns.size(); ++i) {
+    CAPTURE(system.unknowns[i].name);
+    REQUIRE(values.count(system.unknowns[i].rate) == 1);
+    REQUIRE(values.count(system.unknowns[i].second_rate) == 1);
+    CHECK(GiNaC::ex_to<GiNaC::numeric>(values[system.unknowns[i].rate]).to_double() ==
+          doctest::Approx(state.qd[Eigen::Index(i)]).epsilon(1e-9).scale(1));
+    CHECK(GiNaC::ex_to<GiNaC::numeric>(values[system.unknowns[i].second_rate]).to_double() ==
+          doctest::Approx(state.qdd[Eigen::Index(i)]).epsilon(1e-9).scale(1));
+  }
+  // The joints' velocities and accelerations are eval's (its points of the same names).
+  for (std::size_t p = 0; p < system.points.size(); ++p) {
+    const std::string& point = system.points[p].name;
+    const auto vx = derivation.symbols.find("v_" + point + "x");
+    if (vx == derivation.symbols.end()) continue;
+    CAPTURE(point);
+    const auto& m = state.points[p];
+    const auto component = [&](const std::string& symbol_name) {
+      return GiNaC::ex_to<GiNaC::numeric>(values.at(derivation.symbols.at(symbol_name))).to_double();
+    };
+    CHECK(component("v_" + point + "x") == doctest::Approx(m.velocity[0]).epsilon(1e-9).scale(1));
+    CHECK(component("v_" + point + "y") == doctest::Approx(m.velocity[1]).epsilon(1e-9).scale(1));
+    CHECK(component("a_" + point + "x") == doctest::Approx(m.acceleration[0]).epsilon(1e-9).scale(1));
+    CHECK(component("a_" + point + "y") == doctest::Approx(m.acceleration[1]).epsilon(1e-9).scale(1));
+    checked += 4;
+  }
+  return checked;
+}
+
+}  // namespace
+
+TEST_CASE("dyad_method: relative velocities and joint coordinates of every joints-and-links sample mean eval's numbers") {
+  for (const char* name : {"problem_4_4_joints.toml", "example_4_1_joints.toml", "example_4_2_joints.toml",
+                           "problem_3_22_joints.toml", "problem_4_1_parallelogram.toml",
+                           "problem_4_1_antiparallelogram.toml", "triple_rocker_circuit.toml"}) {
+    for (DerivationMethod method : {DerivationMethod::relative_velocity, DerivationMethod::joint_coordinates}) {
+      CHECK(check_method(name, method) > 10);
+    }
+  }
+}
