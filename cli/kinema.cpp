@@ -134,6 +134,12 @@ int run(int argc, char** argv) {
   std::string derive_format = "text";
   derive_cmd->add_option("--format", derive_format, "text, or latex (an align* block for notes)")
       ->check(CLI::IsMember(printer_names(PrintKind::derivation)));
+  std::string method = "loops";
+  const std::string method_help =
+      "loops (the loop equations in matrix form), or for joints and links dyad by dyad as the seeds work "
+      "them out: relative-velocity (v_C = v_B + omega x r_BC = ...) or joint-coordinates (the joints on "
+      "circles and guide lines, differentiated)";
+  derive_cmd->add_option("--method", method, method_help)->check(CLI::IsMember(method_names()));
 
   auto* eval_cmd = app.add_subcommand("eval", "evaluate positions, velocities and accelerations");
   eval_cmd->add_option("FILE", file, "mechanism file (TOML)")->required();
@@ -170,6 +176,7 @@ int run(int argc, char** argv) {
   latex_cmd->add_option("--angle,--at", angles, "input value(s) to work out, as for eval");
   latex_cmd->add_option("-o,--output", output_path, "write to this file instead of stdout");
   latex_cmd->add_flag("--fragment", fragment, "no preamble, for \\input into existing notes");
+  latex_cmd->add_option("--method", method, method_help)->check(CLI::IsMember(method_names()));
 
   std::string namespace_name;
   auto* codegen_cmd = app.add_subcommand("codegen", "write a standalone C++ header (position, velocity, acceleration)");
@@ -204,7 +211,9 @@ int run(int argc, char** argv) {
   }
 
   if (derive_cmd->parsed()) {
-    printer(PrintKind::derivation, derive_format).print(out, {model});
+    PrintJob job{model};
+    job.method = *find_method(method);
+    printer(PrintKind::derivation, derive_format).print(out, job);
     write_output(out.str(), output_path);
     return 0;
   }
@@ -239,6 +248,7 @@ int run(int argc, char** argv) {
     const MotionTable sweep_table = analyse(model, plot_range(m, inputs.front()));
     PrintJob job{model, &at_values, &sweep_table};
     job.fragment = fragment;
+    job.method = *find_method(method);
     printer(PrintKind::document, "latex").print(out, job);
     write_output(out.str(), output_path);
     return 0;

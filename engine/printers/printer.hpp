@@ -9,6 +9,7 @@
 #include <vector>
 
 #include <kinema/engine/model.hpp>
+#include <kinema/engine/symbolic/dyad_method.hpp>
 
 namespace kinema {
 
@@ -22,6 +23,9 @@ struct PrintJob {
   bool fragment = false;                ///< Documents: no preamble, for \input into notes.
   int precision = 0;                    ///< Results: significant digits in text formats (0: the format's default).
   bool circuit = false;                 ///< Results: rows along a circuit (a direction and dyad signs each).
+  /// Derivations and documents: the loops' equations, or the seeds' methods dyad by dyad
+  /// (joints and links; engine/symbolic/dyad_method).
+  DerivationMethod method = DerivationMethod::loops;
   std::string code_namespace;           ///< Code: the namespace of the generated code.
 };
 

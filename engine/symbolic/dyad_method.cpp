@@ -343,7 +343,7 @@ class Writer {
     if (s.joint != j) {
       Words rest;
       words_transfer(rest, s.joint, 0, omega(L), j, second, alpha(L), false);
-      if (rest.text != "0") {
+      if (!rest.text.empty() && rest.text != "0") {
         w.add(" + ", " + ");
         w.add(rest.text, rest.latex);
       }

@@ -2,6 +2,7 @@
 // Each solved formula is followed by a `% kinema: name = formula` comment in
 // GiNaC syntax, so a reader (or a test) can take the formula back exactly.
 #include <kinema/engine/printers/latex/latex_format.hpp>
+#include <kinema/engine/printers/latex/method_latex.hpp>
 #include <kinema/engine/printers/printer.hpp>
 #include <kinema/engine/report/structure.hpp>
 #include <kinema/engine/symbolic/expression_parts.hpp>
@@ -10,6 +11,36 @@ namespace kinema {
 namespace {
 
 using GiNaC::ex;
+
+// Rows of the align* block; a comment may follow a row's text.
+struct Row {
+  std::string text, comment;
+};
+
+// The loops' equations, the velocity and acceleration equations in matrix form, and
+// the solved rates.
+void loop_rows(std::vector<Row>& rows, const ConstraintSystem& system, const Derivation& d, const std::string& jacobian,
+               const std::vector<ex>& rates, const std::vector<ex>& second_rates, const std::vector<ex>& velocity_rhs) {
+  for (const EquationGroup& group : system.groups) {
+    const std::string name = latex_escape_text(group.name);
+    rows.push_back({"\\text{" + name + ":}\\quad & " + latex_vector_loop(group) + " = 0", group.kind + " " + name});
+    for (std::size_t row : group.equations) rows.push_back({"& " + to_latex(system.equations[row].expression) + " = 0", ""});
+  }
+  rows.push_back({"& " + jacobian + latex_column(rates) + " = " + latex_column(velocity_rhs),
+                  "velocity: Phi_q qd = -Phi_theta thetad"});
+  rows.push_back({"& " + jacobian + latex_column(second_rates) + " = " + latex_column(d.acceleration_rhs_combined),
+                  "acceleration: Phi_q qdd = gamma"});
+  for (int order = 1; order <= 2; ++order) {
+    for (const SolvingBlock& block : d.blocks) {
+      for (std::size_t j : block.unknowns) {
+        const GiNaC::realsymbol& symbol = order == 1 ? system.unknowns[j].rate : system.unknowns[j].second_rate;
+        const ex& solved = order == 1 ? d.solved_rates[j] : d.solved_second_rates[j];
+        rows.push_back({to_latex(symbol) + " &= " + to_latex(solved),
+                        "kinema: " + symbol.get_name() + " = " + to_text(solved)});
+      }
+    }
+  }
+}
 
 class DerivationLatexPrinter : public Printer {
  public:
@@ -28,10 +59,6 @@ class DerivationLatexPrinter : public Printer {
     for (std::size_t i = 0; i < n; ++i) velocity_rhs.push_back(-d.input_jacobian(i, 0) * system.input.rate);
     const std::string jacobian = latex_matrix(d.jacobian);
 
-    // Rows of the align* block; a comment may follow a row's text.
-    struct Row {
-      std::string text, comment;
-    };
     std::vector<Row> rows;
     if (system.linkage) {  // joints and links: the solving order the loops come from
       rows.push_back({"\\text{structure:}\\quad & \\text{" + latex_escape_text("mobility " + mobility_text(*system.linkage)) + "}",
@@ -39,25 +66,17 @@ class DerivationLatexPrinter : public Printer {
       for (const std::string& line : structure_lines(*system.linkage))
         rows.push_back({"& \\text{" + latex_escape_text(line) + "}", ""});
     }
-    for (const EquationGroup& group : system.groups) {
-      const std::string name = latex_escape_text(group.name);
-      rows.push_back({"\\text{" + name + ":}\\quad & " + latex_vector_loop(group) + " = 0", group.kind + " " + name});
-      for (std::size_t row : group.equations) rows.push_back({"& " + to_latex(system.equations[row].expression) + " = 0", ""});
-    }
-    rows.push_back({"& " + jacobian + latex_column(rates) + " = " + latex_column(velocity_rhs),
-                    "velocity: Phi_q qd = -Phi_theta thetad"});
-    rows.push_back({"& " + jacobian + latex_column(second_rates) + " = " + latex_column(d.acceleration_rhs_combined),
-                    "acceleration: Phi_q qdd = gamma"});
-    for (int order = 1; order <= 2; ++order) {
-      for (const SolvingBlock& block : d.blocks) {
-        for (std::size_t j : block.unknowns) {
-          const GiNaC::realsymbol& symbol = order == 1 ? system.unknowns[j].rate : system.unknowns[j].second_rate;
-          const ex& solved = order == 1 ? d.solved_rates[j] : d.solved_second_rates[j];
-          rows.push_back({to_latex(symbol) + " &= " + to_latex(solved),
-                          "kinema: " + symbol.get_name() + " = " + to_text(solved)});
-        }
+    if (job.method != DerivationMethod::loops) {  // the seeds' methods, group by group
+      const DyadDerivation derivation = derive_by_dyads(system, job.method);
+      for (const bool acceleration : {false, true}) {
+        rows.push_back({"\\text{" + std::string(acceleration ? "accelerations" : "velocities") + " by " +
+                            method_title(job.method) + ":}\\quad",
+                        std::string(acceleration ? "acceleration" : "velocity") + ": " + method_name(job.method)});
+        for (const MethodStep& step : derivation.steps)
+          for (const LatexRow& row : method_rows(step, acceleration)) rows.push_back({row.text, row.comment});
       }
     }
+    if (job.method == DerivationMethod::loops) loop_rows(rows, system, d, jacobian, rates, second_rates, velocity_rhs);
     out << "% kinema derive --format latex: " << latex_escape_text(system.title) << "\n";
     out << "% needs \\usepackage{amsmath}\n";
     out << "\\begin{align*}\n";

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include <kinema/engine/printers/latex/latex_format.hpp>
+#include <kinema/engine/printers/latex/method_latex.hpp>
 #include <kinema/engine/printers/latex/pgfplots.hpp>
 #include <kinema/engine/printers/latex/tikz_mechanism.hpp>
 #include <kinema/engine/printers/printer.hpp>
@@ -103,6 +104,33 @@ class DocumentWriter {
     solved_rows(rows, 2);
     align_rows(rows);
     sliding_link_terms();
+  }
+
+  // The velocity and acceleration analysis group by group, as the seeds work it out.
+  void by_method(DerivationMethod method) {
+    const DyadDerivation derivation = derive_by_dyads(system_, method);
+    for (const bool acceleration : {false, true}) {
+      out_ << "\\subsection*{" << (acceleration ? "Acceleration" : "Velocity") << " analysis by "
+           << method_title(method) << "}\n"
+           << (method == DerivationMethod::relative_velocity
+                   ? (acceleration ? "Each dyad's middle joint from both sides, with $-\\omega^2\\mathbf{r}$ and, "
+                                     "where a joint slides on a turning link, the Coriolis term $2\\boldsymbol{\\omega}"
+                                     "\\times\\mathbf{v}^r$; the components solved for the dyad's two unknowns.\n"
+                                   : "Each dyad's middle joint from both sides; the components solved for the dyad's "
+                                     "two unknowns.\n")
+                   : (acceleration ? "The velocity relations differentiated once more, solved for the middle "
+                                     "joint's acceleration; then each link's $\\alpha$.\n"
+                                   : "Each dyad's middle joint on a circle about a pin or on a guide line, "
+                                     "differentiated in time and solved for its velocity; then each link's "
+                                     "$\\omega$.\n"))
+           << "\\begin{align*}\n";
+      std::vector<std::string> rows;
+      for (const MethodStep& step : derivation.steps) {
+        for (const LatexRow& row : method_rows(step, acceleration))
+          rows.push_back(row.comment.empty() ? row.text : row.text + " %% " + row.comment);
+      }
+      align_rows(rows);
+    }
   }
 
   void results(const MotionState& s) {
@@ -290,8 +318,12 @@ class WorkedSolutionPrinter : public Printer {
     if (!job.fragment) writer.preamble();
     writer.data();
     writer.loops();
-    writer.velocity();
-    writer.acceleration();
+    if (job.method == DerivationMethod::loops) {
+      writer.velocity();
+      writer.acceleration();
+    } else {
+      writer.by_method(job.method);
+    }
     if (job.values)
       for (const MotionState& s : *job.values) writer.results(s);
     if (job.sweep) writer.plots(*job.sweep);

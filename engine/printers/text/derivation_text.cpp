@@ -59,6 +59,28 @@ void print_structure(std::ostream& out, const ConstraintSystem& system) {
   out << "  independent loops (one per joint outside a spanning tree from ground): " << joined(loops) << "\n";
 }
 
+// The velocities and accelerations group by group, in the method asked for.
+void print_method(std::ostream& out, const ConstraintSystem& system, DerivationMethod method) {
+  const DyadDerivation derivation = derive_by_dyads(system, method);
+  out << "\n1. Velocities and accelerations, group by group (" << method_name(method) << ")\n";
+  for (const MethodStep& step : derivation.steps) {
+    out << "\n  " << step.heading << "\n";
+    if (!step.note.empty()) out << "    (" << step.note << ")\n";
+    for (const bool acceleration : {false, true}) {
+      out << "    " << (acceleration ? "acceleration" : "velocity") << ":\n";
+      for (const MethodRelation& r : acceleration ? step.acceleration : step.velocity) {
+        switch (r.kind) {
+          case MethodRelation::Kind::statement: out << "      " << r.text << "\n"; break;
+          case MethodRelation::Kind::component:
+            if (r.text != "position") out << "        " << r.text << ":  " << to_text(r.left) << " = " << to_text(r.right) << "\n";
+            break;
+          case MethodRelation::Kind::solution: out << "        " << to_text(r.left) << " = " << fraction(r.right) << "\n"; break;
+        }
+      }
+    }
+  }
+}
+
 class DerivationTextPrinter : public Printer {
  public:
   PrintKind kind() const override { return PrintKind::derivation; }
@@ -84,6 +106,10 @@ class DerivationTextPrinter : public Printer {
     out << "rates:    qd = [" << joined(rates) << "], qdd = [" << joined(second_rates) << "]\n";
 
     if (system.linkage) print_structure(out, system);
+    if (job.method != DerivationMethod::loops) {
+      print_method(out, system, job.method);
+      return;
+    }
 
     out << "\n1. Loop-closure equations Phi(q, " << input.name << ") = 0\n";
     for (const EquationGroup& group : system.groups) {

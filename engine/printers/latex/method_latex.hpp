@@ -1,0 +1,24 @@
+// The seeds' methods (engine/symbolic/dyad_method) as rows of an amsmath align*, shared by
+// `derive --format latex --method ...` and the worked solution of `kinema latex --method ...`.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <kinema/engine/symbolic/dyad_method.hpp>
+
+namespace kinema {
+
+struct LatexRow {
+  std::string text;     ///< The row (an & aligns it).
+  std::string comment;  ///< After the row as a % comment (a solved formula in GiNaC syntax), or empty.
+};
+
+/// The velocity (or acceleration) relations of one step: its heading, each relation as
+/// the method writes it, its scalar equations, and what they solve for.
+std::vector<LatexRow> method_rows(const MethodStep& step, bool acceleration);
+
+/// "relative velocities" or "joint coordinates": how a document names the method.
+std::string method_title(DerivationMethod method);
+
+}  // namespace kinema

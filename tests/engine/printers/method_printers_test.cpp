@@ -1,0 +1,126 @@
+// `derive --method` and `kinema latex --method`: the seeds' relative-velocity and
+// joint-coordinate forms printed for every joints-and-links sample; the LaTeX compiles,
+// and every formula it carries in a "% kinema:" comment reads back to the relation the
+// engine derived (engine/symbolic/dyad_method, checked there by meaning).
+#include <doctest/doctest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <kinema/engine/symbolic/dyad_method.hpp>
+#include <kinema/engine/symbolic/expression_parts.hpp>
+
+#include "test_support.hpp"
+
+namespace {
+
+const char* const kJointSamples[] = {"problem_4_4_joints.toml",      "example_4_1_joints.toml",
+                                     "example_4_2_joints.toml",      "problem_3_22_joints.toml",
+                                     "problem_4_1_parallelogram.toml", "triple_rocker_circuit.toml"};
+
+// pdflatex on a document; its page count, 0 when it does not compile cleanly.
+int pages_of(const std::string& tex, const std::string& name) {
+  const auto directory = std::filesystem::temp_directory_path() / "kinema_tests" / "method_latex";
+  std::filesystem::create_directories(directory);
+  std::ofstream(directory / (name + ".tex")) << tex;
+  std::filesystem::remove(directory / (name + ".pdf"));
+  const std::string in = "cd '" + directory.string() + "' && ";
+  if (std::system((in + "pdflatex -interaction=batchmode -halt-on-error '" + name + ".tex' > /dev/null 2>&1").c_str()) != 0)
+    return 0;
+  const std::string log = kinema_test::read_file((directory / (name + ".log")).string());
+  if (log.find("Undefined control sequence") != std::string::npos) return 0;
+  std::system((in + "pdfinfo '" + name + ".pdf' > '" + name + ".info' 2>/dev/null").c_str());
+  const std::string info = kinema_test::read_file((directory / (name + ".info")).string());
+  const auto at = info.find("Pages:");
+  return at == std::string::npos ? 0 : std::stoi(info.substr(at + 6));
+}
+
+// Every "% kinema: name = formula" comment read back equals a solution the engine
+// derived for that name (by meaning); returns how many were read.
+std::size_t comments_read_back(const std::string& output, const kinema::Model& model, const kinema::DyadDerivation& d) {
+  GiNaC::symtab table;
+  const auto& system = model.system;
+  for (const auto& p : system.parameters) table[p.symbol.get_name()] = p.symbol;
+  for (const GiNaC::realsymbol& s : {system.input.symbol, system.input.rate, system.input.second_rate}) table[s.get_name()] = s;
+  for (const auto& q : system.unknowns)
+    for (const GiNaC::realsymbol& s : {q.symbol, q.rate, q.second_rate}) table[s.get_name()] = s;
+  for (const auto& [name, symbol] : d.symbols) table[name] = symbol;
+  std::multimap<std::string, GiNaC::ex> solutions;
+  for (const auto& step : d.steps)
+    for (const auto* list : {&step.velocity, &step.acceleration})
+      for (const auto& r : *list)
+        if (r.kind == kinema::MethodRelation::Kind::solution) solutions.insert({kinema::to_text(r.left), r.right});
+  GiNaC::parser reader(table, true);
+  std::istringstream lines(output);
+  std::string line;
+  std::size_t read = 0;
+  while (std::getline(lines, line)) {
+    const auto at = line.find("% kinema: ");
+    if (at == std::string::npos) continue;
+    const std::string formula = line.substr(at + 10);
+    const auto equals = formula.find(" = ");
+    const std::string name = formula.substr(0, equals);
+    CAPTURE(line);
+    const GiNaC::ex value = reader(formula.substr(equals + 3));
+    bool found = false;
+    const auto [first, last] = solutions.equal_range(name);
+    for (auto it = first; it != last; ++it) found = found || GiNaC::normal(value - it->second).is_zero();
+    CHECK(found);
+    ++read;
+  }
+  return read;
+}
+
+}  // namespace
+
+TEST_CASE("derive --method: the seeds' forms in text and LaTeX, for every joints-and-links sample") {
+  for (const char* sample : kJointSamples) {
+    for (const char* method : {"relative-velocity", "joint-coordinates"}) {
+      CAPTURE(sample);
+      CAPTURE(method);
+      const kinema::Model model = kinema::load_model(kinema_test::sample(sample));
+      const kinema::DyadDerivation d = kinema::derive_by_dyads(model.system, *kinema::find_method(method));
+      const auto text = kinema_test::run_kinema({"derive", kinema_test::sample(sample), "--method", method});
+      REQUIRE(text.exit_status == 0);
+      CHECK(text.out.find(std::string("1. Velocities and accelerations, group by group (") + method + ")") != std::string::npos);
+      CHECK(text.out.find("Jacobian") == std::string::npos);  // the loops' form is not repeated
+      for (const auto& step : d.steps) CHECK(text.out.find("\n  " + step.heading + "\n") != std::string::npos);
+      const auto latex = kinema_test::run_kinema({"derive", "--format", "latex", kinema_test::sample(sample), "--method", method});
+      REQUIRE(latex.exit_status == 0);
+      CHECK(comments_read_back(latex.out, model, d) >= 2 * model.system.unknowns.size());
+      const std::string name = std::string(sample).substr(0, std::string(sample).find('.')) + "_" + method;
+      CHECK(pages_of("\\documentclass{article}\n\\usepackage{amsmath}\n\\begin{document}\n" + latex.out + "\\end{document}\n",
+                     "derive_" + name) >= 1);
+      const auto document = kinema_test::run_kinema({"latex", kinema_test::sample(sample), "--method", method});
+      REQUIRE(document.exit_status == 0);
+      const std::string title = std::string(method) == "relative-velocity" ? "relative velocities" : "joint coordinates";
+      CHECK(document.out.find("\\subsection*{Velocity analysis by " + title + "}") != std::string::npos);
+      CHECK(document.out.find("\\subsection*{Acceleration analysis by " + title + "}") != std::string::npos);
+      CHECK(comments_read_back(document.out, model, d) >= 2 * model.system.unknowns.size());
+      CHECK(pages_of(document.out, "document_" + name) >= 3);
+    }
+  }
+}
+
+TEST_CASE("derive --method: Problem 4.4's relative velocities are seed 004's equations") {
+  const auto text = kinema_test::run_kinema({"derive", kinema_test::sample("problem_4_4_joints.toml"), "--method", "relative-velocity"});
+  REQUIRE(text.exit_status == 0);
+  for (const char* line : {"      v_B = omega1 x r_AB\n", "      v_C = v_B + omega2 x r_BC = omega3 x r_DC\n",
+                           "      v_E = v_C + omega3 x r_CE\n", "      v_F = v_E + omega4 x r_EF = vF u_F5\n",
+                           "      a_C = a_B + alpha2 x r_BC - omega2^2 r_BC = alpha3 x r_DC - omega3^2 r_DC\n"}) {
+    CAPTURE(line);
+    CHECK(text.out.find(line) != std::string::npos);
+  }
+}
+
+TEST_CASE("derive --method on vector loops, or an unknown method, is refused") {
+  const auto loops = kinema_test::run_kinema({"derive", kinema_test::sample("four_bar.toml"), "--method", "relative-velocity"});
+  CHECK(loops.exit_status == 2);
+  CHECK(loops.err.find("four_bar.toml: --method relative-velocity works dyad by dyad") != std::string::npos);
+  CHECK(loops.out.empty());
+  const auto unknown = kinema_test::run_kinema({"derive", kinema_test::sample("problem_4_4_joints.toml"), "--method", "graphs"});
+  CHECK(unknown.exit_status == 2);
+  CHECK(unknown.err.find("--method") != std::string::npos);
+}
