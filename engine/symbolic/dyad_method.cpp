@@ -437,7 +437,23 @@ class Writer {
     }
   }
 
+  // Two equations linear in two unknowns, by Cramer's rule with the known parts kept as
+  // they are written (expanding them into one fraction triples a formula's length).
   void solve(std::vector<MethodRelation>& list, const std::vector<ex>& equations, const std::vector<ex>& unknowns) {
+    if (equations.size() == 2 && unknowns.size() == 2) {
+      GiNaC::exmap none;
+      for (const ex& u : unknowns) none[u] = 0;
+      ex m[2][2], r[2];
+      for (int i = 0; i < 2; ++i) {
+        const ex e = equations[std::size_t(i)];
+        r[i] = -e.subs(none);
+        for (int k = 0; k < 2; ++k) m[i][k] = e.expand().coeff(unknowns[std::size_t(k)], 1);
+      }
+      const ex det = (m[0][0] * m[1][1] - m[0][1] * m[1][0]).expand();
+      list.push_back({MethodRelation::Kind::solution, "", "", unknowns[0], (r[0] * m[1][1] - r[1] * m[0][1]) / det});
+      list.push_back({MethodRelation::Kind::solution, "", "", unknowns[1], (m[0][0] * r[1] - m[1][0] * r[0]) / det});
+      return;
+    }
     GiNaC::lst eqs, vars;
     for (const ex& e : equations) eqs.append(e == 0);
     for (const ex& u : unknowns) vars.append(u);

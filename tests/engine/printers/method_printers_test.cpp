@@ -18,7 +18,8 @@ namespace {
 
 const char* const kJointSamples[] = {"problem_4_4_joints.toml",      "example_4_1_joints.toml",
                                      "example_4_2_joints.toml",      "problem_3_22_joints.toml",
-                                     "problem_4_1_parallelogram.toml", "triple_rocker_circuit.toml"};
+                                     "problem_4_1_parallelogram.toml", "problem_4_1_antiparallelogram.toml",
+                                     "triple_rocker_circuit.toml"};
 
 // pdflatex on a document; its page count, 0 when it does not compile cleanly.
 int pages_of(const std::string& tex, const std::string& name) {
