@@ -7,6 +7,11 @@
 namespace kinema {
 
 Model make_model(const Mechanism& mechanism) {
+  if (mechanism.chain) {
+    throw InputError(mechanism.source_file + ": a spatial chain of frames: kinema reads it and the library derives "
+                     "it (loops/spatial_chain.hpp), but derive, eval, latex and codegen do not take frames yet "
+                     "(README, \"Spatial chains\")");
+  }
   Model model;
   model.system = build_planar_loops(mechanism);
   model.derivation = derive(model.system);

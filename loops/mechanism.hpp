@@ -4,6 +4,7 @@
 // (linkage_loops.hpp first writes a joints-and-links file as vector loops).
 #pragma once
 
+#include <array>
 #include <complex>
 #include <optional>
 #include <string>
@@ -179,6 +180,48 @@ struct Linkage {
   LinkageFrames frames;
 };
 
+/// A joint variable of a spatial chain (a frame's turning, a point's travel): a function
+/// of time with the value, rate and constant second rate it has at t = 0 (SI).
+struct ChainVariable {
+  std::string name;
+  Dimension dimension = Dimension::angle;  ///< angle or length
+  double value = 0.0, rate = 0.0, second_rate = 0.0;
+  std::string rate_name, second_rate_name;  ///< Empty: omega/alpha (angles) or v/a (lengths) and the name's digits.
+  SourceLocation where;
+};
+
+/// A turn of a frame relative to its parent, applied in order, each about an axis of
+/// the frame as turned so far (the first: the parent's): "x", "y", "z" or "-x", ...
+struct FrameTurn {
+  std::string axis;
+  std::string angle;  ///< A quantity or a formula of parameters and variables.
+  SourceLocation where;
+};
+
+/// A frame of a spatial chain: its origin in its parent's axes, and its turns.
+struct ChainFrame {
+  std::string name, parent;
+  std::array<std::string, 3> origin{"0", "0", "0"};
+  std::vector<FrameTurn> turns;
+  SourceLocation where;
+};
+
+/// A point at `at` in a frame's axes (a formula of variables: a point that moves in its frame).
+struct ChainPoint {
+  std::string name, frame;
+  std::array<std::string, 3> at{"0", "0", "0"};
+  SourceLocation where;
+};
+
+/// A spatial chain of rotating frames (README "Spatial chains"); the observer is the frame
+/// the first frame's parent names, which no entry defines.
+struct SpatialChain {
+  std::string observer;
+  std::vector<ChainVariable> variables;
+  std::vector<ChainFrame> frames;
+  std::vector<ChainPoint> points;
+};
+
 struct OutputUnits {
   std::string length = "m";  ///< Lengths in this unit, velocities in unit/s, ...
   double length_factor = 1.0;  ///< SI metres per output unit.
@@ -197,6 +240,8 @@ struct Mechanism {
   /// Set for a file written as joints and links (then parameters, input, unknowns, loops
   /// and points are what linkage_loops derived from it).
   std::optional<Linkage> linkage;
+  /// Set for a file written as a spatial chain of frames (then input, unknowns and loops are empty).
+  std::optional<SpatialChain> chain;
 };
 
 }  // namespace kinema

@@ -54,6 +54,7 @@ class FileReader {
     }
     Mechanism mechanism;
     mechanism.source_file = file_;
+    if (has(root, "frames") || has(root, "variables")) return read_chain(root, mechanism);
     if (has(root, "joints") || has(root, "links") || has(root, "driver")) return read_linkage(root, mechanism);
     check_keys(root, {"title", "description", "parameters", "input", "unknowns", "loops",
                       "points", "output"},
@@ -411,6 +412,104 @@ class FileReader {
     return mechanism;
   }
 
+  // A file written as a spatial chain of frames (README, "Spatial chains").
+  Mechanism read_chain(const Node& root, Mechanism& mechanism) const {
+    check_keys(root, {"title", "description", "parameters", "variables", "frames", "points", "output"},
+               "the top level of a spatial chain (a file of frames; vector loops and joints and links are other forms)");
+    mechanism.title = optional_string(root, "title", "Untitled mechanism");
+    mechanism.description = optional_string(root, "description", "");
+    read_output(root, mechanism);
+    read_parameters(root, mechanism);
+    SpatialChain& chain = mechanism.chain.emplace();
+    if (has(root, "variables")) {
+      const Node& table = at(root, "variables");
+      if (!table.is_table()) fail(table, "[variables] must be a table of name = { value = \"0 deg\", rate = \"1 rad/s\" }");
+      for (const auto& [name, value] : ordered(table)) {
+        check_identifier(*value, name, "variable");
+        if (!value->is_table()) fail(*value, "variable \"" + name + "\" must be a table { value = \"0 deg\", rate = \"1 rad/s\" }");
+        check_keys(*value, {"value", "rate", "second_rate", "rate_name", "second_rate_name"}, "variable \"" + name + "\"");
+        ChainVariable variable;
+        variable.name = name;
+        variable.where = where(*value);
+        if (!has(*value, "value")) fail(*value, "variable \"" + name + "\" needs value = \"...\" (at t = 0: an angle or a length)");
+        const Quantity q = quantity(at(*value, "value"), "value");
+        if (q.dimension != Dimension::angle && q.dimension != Dimension::length) {
+          fail(at(*value, "value"), "variable \"" + name + "\": value must be an angle (\"30 deg\") or a length (\"0.1 m\")");
+        }
+        variable.dimension = q.dimension;
+        variable.value = q.si_value;
+        const Dimension rate = rate_dimension(variable.dimension);
+        if (has(*value, "rate")) variable.rate = bounded_rate(at(*value, "rate"), "rate", rate);
+        if (has(*value, "second_rate")) {
+          variable.second_rate = bounded_rate(at(*value, "second_rate"), "second_rate", rate_dimension(rate));
+        }
+        variable.rate_name = optional_name(*value, "rate_name");
+        variable.second_rate_name = optional_name(*value, "second_rate_name");
+        chain.variables.push_back(variable);
+      }
+    }
+    const Node& frames = required_table(root, "frames");
+    for (const auto& [name, value] : ordered(frames)) {
+      check_name(*value, name, "frame");
+      if (!value->is_table() || !has(*value, "parent")) {
+        fail(*value, "frame \"" + name + "\" must be a table with its parent: { parent = \"E0\", origin = [\"x\", \"y\", "
+                                           "\"z\"], turns = [[\"z\", \"theta1\"]] }");
+      }
+      check_keys(*value, {"parent", "origin", "turns"}, "frame \"" + name + "\"");
+      ChainFrame frame;
+      frame.name = name;
+      frame.where = where(*value);
+      frame.parent = string_value(at(*value, "parent"), "parent");
+      if (has(*value, "origin")) read_vector(at(*value, "origin"), "origin", frame.origin);
+      if (has(*value, "turns")) {
+        const Node& turns = at(*value, "turns");
+        if (!turns.is_array()) fail(turns, "turns must be a list of [axis, angle] pairs, e.g. [[\"z\", \"theta1\"]]");
+        for (const auto& turn : *turns.as_array()) {
+          const auto* pair = turn.as_array();
+          if (pair == nullptr || pair->size() != 2) {
+            fail(turn, "a turn is [axis, angle], e.g. [\"x\", \"-theta4\"] (axis x, y, z or -x, -y, -z)");
+          }
+          FrameTurn t;
+          t.where = where(turn);
+          t.axis = string_value(*pair->get(0), "axis");
+          t.angle = string_value(*pair->get(1), "angle");
+          frame.turns.push_back(t);
+        }
+      }
+      chain.frames.push_back(frame);
+    }
+    if (chain.frames.empty()) fail(frames, "[frames] is empty: name each frame with its parent");
+    if (has(root, "points")) {
+      const Node& table = at(root, "points");
+      if (!table.is_table()) fail(table, "[points] must be a table of name = { frame = \"E3\", at = [\"x\", \"y\", \"z\"] }");
+      for (const auto& [name, value] : ordered(table)) {
+        check_name(*value, name, "point");
+        if (!value->is_table() || !has(*value, "frame")) {
+          fail(*value, "point \"" + name + "\" must be written { frame = \"E3\", at = [\"x\", \"y\", \"z\"] }");
+        }
+        check_keys(*value, {"frame", "at"}, "point \"" + name + "\"");
+        ChainPoint point;
+        point.name = name;
+        point.where = where(*value);
+        point.frame = string_value(at(*value, "frame"), "frame");
+        if (has(*value, "at")) read_vector(at(*value, "at"), "at", point.at);
+        chain.points.push_back(point);
+      }
+    }
+    check_names(mechanism);
+    return mechanism;
+  }
+
+  // A vector in a frame's axes ["x", "y", "z"]: quantities or formulas.
+  void read_vector(const Node& value, const std::string& what, std::array<std::string, 3>& out) const {
+    const auto* list = value.as_array();
+    if (list == nullptr || list->size() != 3) {
+      fail(value, what + " must be three components [\"x\", \"y\", \"z\"] in the frame's axes, e.g. "
+                         "[\"0 m\", \"L2\", \"0 m\"]");
+    }
+    for (std::size_t c = 0; c < 3; ++c) out[c] = string_value(*list->get(c), what);
+  }
+
   // A sketch position ["x", "y"]: two quantities or formulas of the parameters.
   void read_position(const Node& value, const std::string& what, std::string& x, std::string& y) const {
     const auto* list = value.as_array();
@@ -629,6 +728,14 @@ class FileReader {
       }
     };
     for (const auto& p : mechanism.parameters) add(p.name, p.where, "parameter");
+    if (mechanism.chain) {
+      for (const auto& v : mechanism.chain->variables) {
+        add(v.name, v.where, "variable");
+        if (!v.rate_name.empty()) add(v.rate_name, v.where, "rate name");
+        if (!v.second_rate_name.empty()) add(v.second_rate_name, v.where, "second rate name");
+      }
+      return;
+    }
     add(mechanism.input.name, mechanism.input.where, "input");
     for (const auto& u : mechanism.unknowns) add(u.name, u.where, "unknown");
   }

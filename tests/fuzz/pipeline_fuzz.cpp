@@ -20,6 +20,7 @@
 #include <kinema/engine/printers/results_stream.hpp>
 #include <kinema/engine/report/plot_range.hpp>
 #include <kinema/loops/mechanism_file.hpp>
+#include <kinema/loops/spatial_chain.hpp>
 
 namespace {
 
@@ -44,7 +45,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (size > 16 * 1024) return -1;  // a mechanism is a few hundred bytes; keep runs short
   const std::string text(reinterpret_cast<const char*>(data), size);
   try {
-    const Model model = make_model(read_mechanism_text(text, "fuzz.toml"));
+    const Mechanism mechanism = read_mechanism_text(text, "fuzz.toml");
+    if (mechanism.chain) {  // a spatial chain: the library's front end, every point at the instant
+      const SpatialKinematics chain = build_spatial_chain(mechanism);
+      const GiNaC::exmap instant = chain.instant();
+      for (const ChainPointMotion& point : chain.points)
+        for (const auto* vector : {&point.position, &point.velocity, &point.acceleration})
+          for (const GiNaC::ex& component : *vector) (void)GiNaC::evalf(component.subs(instant));
+      return 0;
+    }
+    const Model model = make_model(mechanism);
     std::vector<double> inputs = model.system.input.values;
     if (inputs.size() > 4) inputs.resize(4);
     if (inputs.empty()) inputs = {0.5};

@@ -1,0 +1,294 @@
+#include <kinema/loops/spatial_chain.hpp>
+
+#include <set>
+#include <sstream>
+
+#include <kinema/engine/errors.hpp>
+#include <kinema/engine/symbolic/naming.hpp>
+#include <kinema/loops/formula_reader.hpp>
+
+namespace kinema {
+
+GiNaC::exmap SpatialKinematics::instant() const {
+  GiNaC::exmap values;
+  for (const SystemParameter& p : parameters) values[p.symbol] = p.value;
+  for (std::size_t i = 0; i < variables.size(); ++i) {
+    values[variables[i].symbol] = this->values[i];
+    values[variables[i].rate] = rates[i];
+    values[variables[i].second_rate] = second_rates[i];
+  }
+  return values;
+}
+
+GiNaC::ex SpatialKinematics::time_derivative(const GiNaC::ex& e) const {
+  GiNaC::ex total = 0;
+  for (const Coordinate& v : variables) total += e.diff(v.symbol) * v.rate + e.diff(v.rate) * v.second_rate;
+  return total;
+}
+
+namespace {
+
+using GiNaC::ex;
+
+Vector3 operator+(const Vector3& a, const Vector3& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
+Vector3 operator*(const ex& k, const Vector3& a) { return {k * a[0], k * a[1], k * a[2]}; }
+Vector3 cross(const Vector3& a, const Vector3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+Vector3 times(const GiNaC::matrix& m, const Vector3& v) {
+  Vector3 r{0, 0, 0};
+  for (unsigned i = 0; i < 3; ++i)
+    for (unsigned k = 0; k < 3; ++k) r[i] += m(i, k) * v[k];
+  return r;
+}
+Vector3 column(const GiNaC::matrix& m, unsigned c) { return {m(0, c), m(1, c), m(2, c)}; }
+
+// The rotation by `angle` about a coordinate axis (0, 1, 2).
+GiNaC::matrix turn(unsigned axis, const ex& angle) {
+  const ex c = GiNaC::cos(angle), s = GiNaC::sin(angle);
+  GiNaC::matrix r(3, 3);
+  const unsigned a = (axis + 1) % 3, b = (axis + 2) % 3;
+  r(axis, axis) = 1;
+  r(a, a) = c;
+  r(a, b) = -s;
+  r(b, a) = s;
+  r(b, b) = c;
+  return r;
+}
+
+class ChainBuilder {
+ public:
+  explicit ChainBuilder(const Mechanism& m) : m_(m), chain_(*m.chain) {}
+
+  SpatialKinematics build() {
+    parameters();
+    variables();
+    frames();
+    points();
+    return k_;
+  }
+
+ private:
+  const Mechanism& m_;
+  const SpatialChain& chain_;
+  SpatialKinematics k_;
+  FormulaReader reader_;
+  GiNaC::exmap values_;  // parameters, for evaluating their formulas
+  std::set<std::string> symbol_names_;
+  std::map<std::string, std::size_t> frame_index_;
+
+  [[noreturn]] static void fail(const SourceLocation& where, const std::string& message) {
+    throw InputError(where.str() + ": " + message);
+  }
+
+  GiNaC::realsymbol symbol(const std::string& name) {
+    GiNaC::realsymbol s(name, latex_symbol_name(name));
+    reader_.define(name, s);
+    symbol_names_.insert(name);
+    return s;
+  }
+
+  void parameters() {
+    for (const Parameter& p : m_.parameters) {
+      SystemParameter entry;
+      entry.text = p.text;
+      entry.where = p.where;
+      const std::string context = p.where.str() + ": parameter \"" + p.name + "\"";
+      if (p.quantity) {
+        entry.value = p.quantity->si_value;
+        entry.dimension = p.quantity->dimension == Dimension::length || p.quantity->dimension == Dimension::angle
+                              ? p.quantity->dimension
+                              : Dimension::number;
+      } else {
+        const ex formula = reader_.read(p.formula, context);
+        entry.formula = formula;
+        entry.value = formula_value(formula, values_, context, p.formula, " (only earlier parameters can be used)");
+      }
+      entry.symbol = symbol(p.name);
+      values_[entry.symbol] = entry.value;
+      k_.parameters.push_back(entry);
+    }
+  }
+
+  void variables() {
+    for (const ChainVariable& v : chain_.variables) {
+      Coordinate c;
+      c.name = v.name;
+      c.dimension = v.dimension;
+      c.where = v.where;
+      c.symbol = symbol(v.name);
+      const auto rate_name = [&](const std::string& given, int order) {
+        if (!given.empty()) return given;
+        return default_rate_name(v.name, order);
+      };
+      c.rate = symbol(rate_name(v.rate_name, 1));
+      c.second_rate = symbol(rate_name(v.second_rate_name, 2));
+      k_.variables.push_back(c);
+      k_.values.push_back(v.value);
+      k_.rates.push_back(v.rate);
+      k_.second_rates.push_back(v.second_rate);
+    }
+  }
+
+  // A component or an angle as written: a quantity, or a formula of parameters and variables.
+  ex value_of(const std::string& text, const SourceLocation& where, const std::string& what, Dimension dimension) {
+    if (looks_like_quantity(text)) {
+      Quantity q;
+      try {
+        q = parse_quantity(text);
+      } catch (const UnitError& error) {
+        throw UnitError(where.str() + ": " + what + ": " + error.what());
+      }
+      if (q.dimension != dimension && q.dimension != Dimension::number) {
+        throw UnitError(where.str() + ": " + what + " = \"" + text + "\" is a " + dimension_name(q.dimension) +
+                        ", but a " + dimension_name(dimension) + " is needed here");
+      }
+      return q.si_value;
+    }
+    try {
+      return reader_.read(text, where.str() + ": " + what);
+    } catch (const Error&) {
+      throw;
+    } catch (const std::exception& error) {  // GiNaC's poles and overflows while it simplifies
+      fail(where, what + " = \"" + text + "\" cannot be evaluated (" + error.what() + ")");
+    }
+  }
+
+  void frames() {
+    k_.observer = chain_.frames.front().parent;
+    for (const ChainFrame& f : chain_.frames) {
+      if (f.name == k_.observer) {
+        fail(f.where, "frame \"" + f.name + "\" is the observer (the first frame's parent), which is not moved or "
+                      "placed; give the moving frames only");
+      }
+      if (frame_index_.count(f.name)) fail(f.where, "duplicate frame \"" + f.name + "\"");
+      frame_index_[f.name] = k_.frames.size();
+      k_.frames.emplace_back();
+    }
+    std::vector<int> state(chain_.frames.size(), 0);  // 0 new, 1 in progress, 2 done
+    for (std::size_t i = 0; i < chain_.frames.size(); ++i) place(i, state);
+  }
+
+  // A frame after its parent (a parent defined later in the file is placed first).
+  void place(std::size_t i, std::vector<int>& state) {
+    if (state[i] == 2) return;
+    const ChainFrame& f = chain_.frames[i];
+    if (state[i] == 1) fail(f.where, "frame \"" + f.name + "\" is its own ancestor (a cycle of parents)");
+    state[i] = 1;
+    ChainFrameMotion& motion = k_.frames[i];
+    motion.name = f.name;
+    motion.parent = f.parent;
+    GiNaC::matrix rotation = GiNaC::ex_to<GiNaC::matrix>(GiNaC::unit_matrix(3));
+    Vector3 origin{0, 0, 0}, omega{0, 0, 0};
+    if (f.parent != k_.observer) {
+      const auto parent = frame_index_.find(f.parent);
+      if (parent == frame_index_.end()) {
+        fail(f.where, "frame \"" + f.name + "\": its parent \"" + f.parent + "\" is not a frame of the file (the "
+                      "observer is \"" + k_.observer + "\", the first frame's parent)");
+      }
+      place(parent->second, state);
+      const ChainFrameMotion& p = k_.frames[parent->second];
+      rotation = p.rotation;
+      origin = p.origin;
+      omega = p.angular_velocity;
+      motion.angular_velocity_terms = p.angular_velocity_terms;
+    }
+    Vector3 local;
+    for (std::size_t c = 0; c < 3; ++c) {
+      local[c] = value_of(f.origin[c], f.where, "frame \"" + f.name + "\" origin " + "xyz"[c], Dimension::length);
+    }
+    motion.origin = origin + times(rotation, local);
+    for (const FrameTurn& t : f.turns) {
+      std::string axis = t.axis;
+      int sign = 1;
+      if (!axis.empty() && (axis[0] == '-' || axis[0] == '+')) {
+        sign = axis[0] == '-' ? -1 : 1;
+        axis = axis.substr(1);
+      }
+      if (axis != "x" && axis != "y" && axis != "z") {
+        fail(t.where, "frame \"" + f.name + "\": axis \"" + t.axis + "\" is not one of the frame's axes x, y, z "
+                      "(or -x, -y, -z)");
+      }
+      const unsigned a = static_cast<unsigned>(axis[0] - 'x');
+      const ex angle = sign * value_of(t.angle, t.where, "frame \"" + f.name + "\" turn angle", Dimension::angle);
+      const Vector3 direction = column(rotation, a);  // the axis, as turned so far
+      const ex rate = k_.time_derivative(angle);
+      if (!rate.is_zero()) {
+        const Vector3 term = rate * direction;
+        omega = omega + term;
+        std::ostringstream label;  // "omega5 y of E3": the rate about the frame's axis
+        label << rate << " " << axis << " of " << f.name;
+        motion.angular_velocity_terms.push_back({label.str(), term});
+      }
+      rotation = rotation.mul(turn(a, angle));
+    }
+    motion.rotation = rotation;
+    motion.angular_velocity = omega;
+    for (std::size_t c = 0; c < 3; ++c) motion.angular_acceleration[c] = k_.time_derivative(omega[c]);
+    state[i] = 2;
+  }
+
+  void points() {
+    for (const ChainPoint& p : chain_.points) {
+      const auto frame = frame_index_.find(p.frame);
+      if (frame == frame_index_.end() && p.frame != k_.observer) {
+        fail(p.where, "point \"" + p.name + "\": frame \"" + p.frame + "\" does not exist (frames: " + frame_list() + ")");
+      }
+      ChainPointMotion m;
+      m.name = p.name;
+      m.frame = p.frame;
+      GiNaC::matrix rotation = GiNaC::ex_to<GiNaC::matrix>(GiNaC::unit_matrix(3));
+      Vector3 origin{0, 0, 0}, omega{0, 0, 0}, alpha{0, 0, 0};
+      if (frame != frame_index_.end()) {
+        const ChainFrameMotion& f = k_.frames[frame->second];
+        rotation = f.rotation;
+        origin = f.origin;
+        omega = f.angular_velocity;
+        alpha = f.angular_acceleration;
+      }
+      Vector3 local, local_rate, local_second_rate;
+      for (std::size_t c = 0; c < 3; ++c) {
+        local[c] = value_of(p.at[c], p.where, "point \"" + p.name + "\" " + "xyz"[c], Dimension::length);
+        local_rate[c] = k_.time_derivative(local[c]);
+        local_second_rate[c] = k_.time_derivative(local_rate[c]);
+      }
+      const Vector3 r = times(rotation, local);
+      m.position = origin + r;
+      for (std::size_t c = 0; c < 3; ++c) {
+        m.frame_velocity[c] = k_.time_derivative(origin[c]);
+        m.frame_acceleration[c] = k_.time_derivative(m.frame_velocity[c]);
+      }
+      m.transport = cross(omega, r);
+      m.relative_velocity = times(rotation, local_rate);
+      m.tangential = cross(alpha, r);
+      m.centripetal = cross(omega, cross(omega, r));
+      m.coriolis = ex(2) * cross(omega, m.relative_velocity);
+      m.relative_acceleration = times(rotation, local_second_rate);
+      m.velocity = m.frame_velocity + m.transport + m.relative_velocity;
+      m.acceleration = m.frame_acceleration + m.tangential + m.centripetal + m.coriolis + m.relative_acceleration;
+      k_.points.push_back(m);
+    }
+  }
+
+  std::string frame_list() const {
+    std::string list = k_.observer;
+    for (const ChainFrame& f : chain_.frames) list += ", " + f.name;
+    return list;
+  }
+};
+
+}  // namespace
+
+SpatialKinematics build_spatial_chain(const Mechanism& mechanism) {
+  if (!mechanism.chain) throw InputError(mechanism.source_file + ": not a spatial chain (no [frames])");
+  try {
+    return ChainBuilder(mechanism).build();
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& error) {  // GiNaC on a product of turns: a pole, an overflow
+    throw InputError(mechanism.source_file + ": the chain's kinematics cannot be formed (" + error.what() +
+                     "); check the frames' angles and origins");
+  }
+}
+
+}  // namespace kinema

@@ -1,0 +1,190 @@
+// loops/spatial_chain: seed 000's robot arm as a chain of rotating frames — the angular
+// velocity composed along the chain, the angular acceleration, and the velocities and
+// accelerations of O2, A and B at the instant, as the seed prints them (and as finite
+// differences of the positions in time give them, which corrects the seed's a_B); the
+// seed's boxed v_B by meaning; a point sliding along the arm (Coriolis); bad input.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <string>
+
+#include <kinema/engine/errors.hpp>
+#include <kinema/loops/mechanism_file.hpp>
+#include <kinema/loops/spatial_chain.hpp>
+
+#include "test_support.hpp"
+
+namespace {
+
+using GiNaC::ex;
+
+const std::string kArm = std::string(KINEMA_SAMPLES_DIR) + "/../tests/loops/data/robot_arm_seed000.toml";
+
+double at(const ex& e, const GiNaC::exmap& values) {
+  const ex v = GiNaC::evalf(e.subs(values, GiNaC::subs_options::no_pattern));
+  REQUIRE_MESSAGE(GiNaC::is_a<GiNaC::numeric>(v), e << " -> " << v);
+  return GiNaC::ex_to<GiNaC::numeric>(v).to_double();
+}
+
+// Each component against the seed's printed number (one unit of its last digit or 0.1 %).
+void check_vector(const kinema::Vector3& v, const GiNaC::exmap& values, const std::vector<std::string>& printed) {
+  for (std::size_t c = 0; c < 3; ++c) {
+    CAPTURE(c);
+    if (printed[c] == "0") CHECK(std::fabs(at(v[c], values)) < 1e-12);  // zero: exactly, not within one unit
+    else CHECK_PRINTED(at(v[c], values), printed[c]);
+  }
+}
+
+const kinema::ChainPointMotion& point(const kinema::SpatialKinematics& k, const std::string& name) {
+  for (const auto& p : k.points)
+    if (p.name == name) return p;
+  FAIL("no point " << name);
+  return k.points.front();
+}
+
+// Zero as a function of its symbols (trigonometric identities included, which normal()
+// does not apply): at three sets of arbitrary values.
+bool vanishes(const ex& e) {
+  std::vector<ex> names;
+  for (auto it = e.preorder_begin(); it != e.preorder_end(); ++it)
+    if (GiNaC::is_a<GiNaC::symbol>(*it)) names.push_back(*it);
+  for (int trial = 1; trial <= 3; ++trial) {
+    GiNaC::exmap values;
+    for (std::size_t i = 0; i < names.size(); ++i) values[names[i]] = 0.3 + 0.7 * std::sin(1.7 * trial + 2.9 * double(i));
+    const ex v = GiNaC::evalf(e.subs(values, GiNaC::subs_options::no_pattern));
+    if (!GiNaC::is_a<GiNaC::numeric>(v) || std::fabs(GiNaC::ex_to<GiNaC::numeric>(v).to_double()) > 1e-9) return false;
+  }
+  return true;
+}
+
+// The chain at time t: every variable at value + rate t + second_rate t^2 / 2.
+GiNaC::exmap at_time(const kinema::SpatialKinematics& k, double t) {
+  GiNaC::exmap values = k.instant();
+  for (std::size_t i = 0; i < k.variables.size(); ++i) {
+    values[k.variables[i].symbol] = k.values[i] + k.rates[i] * t + 0.5 * k.second_rates[i] * t * t;
+    values[k.variables[i].rate] = k.rates[i] + k.second_rates[i] * t;
+  }
+  return values;
+}
+
+// Velocities and accelerations of every point against central differences of its
+// position in time, and the five named terms against the direct time derivatives.
+void check_by_finite_differences(const kinema::SpatialKinematics& k) {
+  const double h = 1e-4;
+  const GiNaC::exmap now = at_time(k, 0), before = at_time(k, -h), after = at_time(k, h);
+  for (const auto& p : k.points) {
+    CAPTURE(p.name);
+    for (std::size_t c = 0; c < 3; ++c) {
+      CAPTURE(c);
+      const double x0 = at(p.position[c], now), xm = at(p.position[c], before), xp = at(p.position[c], after);
+      CHECK(at(p.velocity[c], now) == doctest::Approx((xp - xm) / (2 * h)).epsilon(1e-6).scale(1));
+      CHECK(at(p.acceleration[c], now) == doctest::Approx((xp - 2 * x0 + xm) / (h * h)).epsilon(1e-5).scale(1));
+      CHECK(vanishes(p.velocity[c] - k.time_derivative(p.position[c])));
+      CHECK(vanishes(p.acceleration[c] - k.time_derivative(k.time_derivative(p.position[c]))));
+    }
+  }
+}
+
+}  // namespace
+
+TEST_CASE("spatial_chain: seed 000's arm at the instant of the figure") {
+  const kinema::SpatialKinematics k = kinema::build_spatial_chain(kinema::read_mechanism_file(kArm));
+  const GiNaC::exmap values = k.instant();
+  REQUIRE(k.frames.size() == 3);
+  CHECK(k.observer == "E0");
+  const kinema::ChainFrameMotion& arm = k.frames[2];
+  // w_E3/E0 = omega5 e2'' - omega4 e1' + omega1 E3^: one term per turning joint along the chain.
+  CHECK(arm.angular_velocity_terms.size() == 3);
+  check_vector(arm.angular_velocity, values, {"-1", "0.866025", "0.5"});
+  check_vector(arm.angular_acceleration, values, {"-0.866025", "-1.5", "-0.866025"});
+  check_vector(k.frames[1].angular_velocity, values, {"-1", "0", "1"});  // w_E2/E0 = -omega4 E1^ + omega1 E3^
+  check_vector(k.frames[1].angular_acceleration, values, {"0", "-1", "0"});  // -omega1 omega4 E2^
+  check_vector(point(k, "O2").velocity, values, {"-0.6", "0", "0"});
+  check_vector(point(k, "A").velocity, values, {"-1.119615", "-0.3", "-0.519615"});
+  check_vector(point(k, "B").velocity, values, {"-1.119615", "-0.2", "-0.69282"});
+  check_vector(point(k, "O2").acceleration, values, {"0", "-0.6", "0"});
+  check_vector(point(k, "A").acceleration, values, {"0.6", "-1.63923", "0.3"});
+  // The seed leaves a_B as a formula whose last line carries omega1^2 L3 cos(alpha) where
+  // a_O2 brings omega1^2 L1 cos(alpha): substituted as printed it gives -1.485641 for E2^.
+  // Finite differences of B's position in time (below) give -1.985641.
+  check_vector(point(k, "B").acceleration, values, {"0.4", "-1.985641", "0.5"});
+  CHECK(std::fabs(at(point(k, "B").acceleration[1], values) - -1.485641) > 0.4);
+  // The seed prints v_B = -1.12 E1^ - 0.2 E2^ - 0.69 E3^ m/s.
+  check_vector(point(k, "B").velocity, values, {"-1.12", "-0.2", "-0.69"});
+  check_by_finite_differences(k);
+}
+
+TEST_CASE("spatial_chain: v_B is the seed's boxed formula, by meaning") {
+  const kinema::SpatialKinematics k = kinema::build_spatial_chain(kinema::read_mechanism_file(kArm));
+  GiNaC::symtab names;
+  for (const auto& p : k.parameters) names[p.symbol.get_name()] = p.symbol;
+  for (const auto& v : k.variables) {
+    names[v.symbol.get_name()] = v.symbol;
+    names[v.rate.get_name()] = v.rate;
+  }
+  GiNaC::parser read(names);
+  // -omega1 (L2 sin a + L1 cos a) E1^ + [(omega1 - omega5 cos a) L3 - omega4 L2 cos a] E2^
+  //   - [omega5 L3 sin a + omega4 L2 sin a] E3^, at the instant (every joint angle 0, beta = 90 deg).
+  const ex seed[3] = {read("-omega1*(L2*sin(alpha) + L1*cos(alpha))"),
+                      read("(omega1 - omega5*cos(alpha))*L3 - omega4*L2*cos(alpha)"),
+                      read("-(omega5*L3*sin(alpha) + omega4*L2*sin(alpha))")};
+  GiNaC::exmap instant;
+  for (const auto& v : k.variables) instant[v.symbol] = 0;
+  instant[names["beta"]] = GiNaC::Pi / 2;
+  const auto& b = point(k, "B");
+  for (std::size_t c = 0; c < 3; ++c) {
+    CAPTURE(c);
+    CHECK(vanishes(b.velocity[c].subs(instant) - seed[c]));
+  }
+  // And it is not the same as a wrong sign on one term (the comparison can fail).
+  CHECK_FALSE(vanishes(b.velocity[1].subs(instant) - read("(omega1 + omega5*cos(alpha))*L3 - omega4*L2*cos(alpha)")));
+}
+
+TEST_CASE("spatial_chain: a point sliding along the arm has its Coriolis and relative terms") {
+  std::string text = kinema_test::read_file(kArm);
+  text += "\n";
+  const auto put = [&](const std::string& after, const std::string& line) {
+    const auto at_line = text.find(after);
+    REQUIRE(at_line != std::string::npos);
+    text.insert(text.find('\n', at_line) + 1, line + "\n");
+  };
+  put("theta5 = {", R"(s = { value = "0.1 m", rate = "0.5 m/s", second_rate = "0.2 m/s^2", rate_name = "v_s", second_rate_name = "a_s" })");
+  put("B = {", R"(C = { frame = "E3", at = ["s", "0 m", "0 m"] })");
+  const kinema::SpatialKinematics k = kinema::build_spatial_chain(kinema::read_mechanism_text(text, "slider.toml"));
+  const GiNaC::exmap values = k.instant();
+  const auto& c = point(k, "C");
+  // v_rel = 0.5 e1 = 0.5 E1^ at the instant; Coriolis 2 w x v_rel = 2 (-1, 0.866, 0.5) x (0.5, 0, 0).
+  check_vector(c.relative_velocity, values, {"0.5", "0", "0"});
+  check_vector(c.relative_acceleration, values, {"0.2", "0", "0"});
+  check_vector(c.coriolis, values, {"0", "0.5", "-0.866025"});
+  check_by_finite_differences(k);
+}
+
+TEST_CASE("spatial_chain: bad frames, axes, points and formulas are refused with file:line") {
+  const std::string arm = kinema_test::read_file(kArm);
+  const auto error_of = [](const std::string& text) -> std::string {
+    try {
+      kinema::build_spatial_chain(kinema::read_mechanism_text(text, "arm.toml"));
+    } catch (const kinema::InputError& error) {
+      return error.what();
+    }
+    return "";
+  };
+  CHECK(error_of(kinema_test::replaced(R"(["y", "theta5"])", R"(["w", "theta5"])", arm))
+            .find("axis \"w\" is not one of the frame's axes x, y, z") != std::string::npos);
+  CHECK(error_of(kinema_test::replaced(R"(E3 = { parent = "E2")", R"(E3 = { parent = "E7")", arm))
+            .find("its parent \"E7\" is not a frame of the file") != std::string::npos);
+  CHECK(error_of(kinema_test::replaced(R"(E2 = { parent = "E1")", R"(E2 = { parent = "E3")", arm))
+            .find("a cycle of parents") != std::string::npos);
+  CHECK(error_of(kinema_test::replaced(R"(A = { frame = "E3" })", R"(A = { frame = "E9" })", arm))
+            .find("point \"A\": frame \"E9\" does not exist") != std::string::npos);
+  const std::string unknown = error_of(kinema_test::replaced("\"L3*sin(beta)\"", "\"L4*sin(beta)\"", arm));
+  CHECK(unknown.find("arm.toml:") == 0);
+  CHECK(unknown.find("L4") != std::string::npos);
+  CHECK(error_of(kinema_test::replaced("[points]", "[links]\n[points]", arm))
+            .find("unknown key \"links\" in the top level of a spatial chain") != std::string::npos);
+  // The commands say they do not take frames yet, with the file's name.
+  const auto result = kinema_test::run_kinema({"eval", kArm});
+  CHECK(result.exit_status == 2);
+  CHECK(result.err.find("robot_arm_seed000.toml: a spatial chain of frames") != std::string::npos);
+}
