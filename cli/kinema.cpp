@@ -41,6 +41,7 @@ using kinema_cli::write_output;  // output is built in memory and written at the
 double parse_input_value(const ConstraintSystem& m, const std::string& text) {
   const Quantity q = parse_quantity(text);
   if (q.dimension == Dimension::number) {
+    if (m.input.dimension == Dimension::time) return q.si_value;  // seconds
     return m.input.dimension == Dimension::angle ? from_degrees(q.si_value) : q.si_value * m.output.length_factor;
   }
   if (q.dimension != m.input.dimension) {
@@ -261,7 +262,9 @@ int run(int argc, char** argv) {
   const bool is_sweep = !sweep.empty() || (inputs.empty() && m.input.values.size() > 1);
   InputValues run_inputs;
   if (!sweep.empty()) {
-    const double unit = m.input.dimension == Dimension::angle ? kRadiansPerDegree : m.output.length_factor;
+    const double unit = m.input.dimension == Dimension::angle  ? kRadiansPerDegree
+                        : m.input.dimension == Dimension::time ? 1.0
+                                                               : m.output.length_factor;
     run_inputs = parse_sweep(sweep, unit, kMaxSweepValues);
     if (!inputs.empty()) {
       if (run_inputs.size() > kMaxValuesPerRun) {

@@ -3,17 +3,13 @@
 #include <kinema/engine/numeric/sweep.hpp>
 #include <kinema/loops/mechanism_file.hpp>
 #include <kinema/loops/planar_loops.hpp>
+#include <kinema/loops/spatial_chain.hpp>
 
 namespace kinema {
 
 Model make_model(const Mechanism& mechanism) {
-  if (mechanism.chain) {
-    throw InputError(mechanism.source_file + ": a spatial chain of frames: kinema reads it and the library derives "
-                     "it (loops/spatial_chain.hpp), but derive, eval, latex and codegen do not take frames yet "
-                     "(README, \"Spatial chains\")");
-  }
   Model model;
-  model.system = build_planar_loops(mechanism);
+  model.system = mechanism.chain ? build_spatial_system(mechanism) : build_planar_loops(mechanism);
   model.derivation = derive(model.system);
   model.kinematics = Kinematics(model.system, model.derivation);
   return model;

@@ -5,6 +5,7 @@
 
 #include <kinema/engine/errors.hpp>
 #include <kinema/engine/symbolic/naming.hpp>
+#include <kinema/engine/report/number_format.hpp>
 #include <kinema/loops/formula_reader.hpp>
 
 namespace kinema {
@@ -289,6 +290,74 @@ SpatialKinematics build_spatial_chain(const Mechanism& mechanism) {
     throw InputError(mechanism.source_file + ": the chain's kinematics cannot be formed (" + error.what() +
                      "); check the frames' angles and origins");
   }
+}
+
+ConstraintSystem build_spatial_system(const Mechanism& mechanism) {
+  const SpatialKinematics k = build_spatial_chain(mechanism);
+  ConstraintSystem system;
+  system.title = mechanism.title;
+  system.description = mechanism.description;
+  system.source_file = mechanism.source_file;
+  system.output = mechanism.output;
+  system.parameters = k.parameters;
+  double largest = 0;
+  for (const SystemParameter& p : system.parameters)
+    if (p.dimension == Dimension::length) largest = std::max(largest, std::fabs(p.value));
+  system.length_scale = largest > 0 ? largest : 1.0;
+  Driver& t = system.input;
+  t.name = "t";
+  t.dimension = Dimension::time;
+  t.symbol = GiNaC::realsymbol("t", "t");
+  t.rate = GiNaC::realsymbol("t_rate", "\\dot{t}");
+  t.second_rate = GiNaC::realsymbol("t_second_rate", "\\ddot{t}");
+  t.values = {0.0};
+  t.rate_value = 1.0;
+  t.second_rate_value = 0.0;
+  const auto parameter = [&](const std::string& name, double value, Dimension dimension, const SourceLocation& where) {
+    SystemParameter p;
+    p.symbol = GiNaC::realsymbol(name, latex_symbol_name(name));
+    p.value = value;
+    p.dimension = dimension;
+    p.text = format_round_trip(value);
+    p.where = where;
+    system.parameters.push_back(p);
+    return p.symbol;
+  };
+  for (std::size_t i = 0; i < k.variables.size(); ++i) {
+    Coordinate q = k.variables[i];
+    q.guess = k.values[i];
+    const ex start = parameter(q.name + "_0", k.values[i], q.dimension, q.where);
+    const ex rate = parameter(q.rate.get_name() + "_0", k.rates[i], Dimension::number, q.where);
+    const ex second = parameter(q.second_rate.get_name() + "_0", k.second_rates[i], Dimension::number, q.where);
+    EquationGroup group;
+    group.kind = "motion";
+    group.name = q.name;
+    group.where = q.where;
+    group.equations = {system.equations.size()};
+    system.groups.push_back(group);
+    Equation e;
+    e.expression = q.symbol - (start + rate * t.symbol + second * GiNaC::pow(t.symbol, 2) / 2);
+    e.group = system.groups.size() - 1;
+    e.component = "value";
+    system.equations.push_back(e);
+    system.unknowns.push_back(q);
+  }
+  for (const ChainPointMotion& p : k.points) {
+    PointObservable point;
+    point.name = p.name;
+    for (const auto& spot : mechanism.chain->points)
+      if (spot.name == p.name) point.where = spot.where;
+    point.components = {"x", "y", "z"};
+    point.position.assign(p.position.begin(), p.position.end());
+    system.points.push_back(point);
+  }
+  for (const ChainFrameMotion& f : k.frames) {
+    FrameObservable frame;
+    frame.name = f.name;
+    frame.angular_velocity.assign(f.angular_velocity.begin(), f.angular_velocity.end());
+    system.frames.push_back(frame);
+  }
+  return system;
 }
 
 }  // namespace kinema

@@ -62,4 +62,11 @@ struct SpatialKinematics {
 /// a frame that does not exist, a formula with an unknown symbol.
 SpatialKinematics build_spatial_chain(const Mechanism& mechanism);
 
+/// The chain as a constraint system the engine solves and prints: the input is time t
+/// (rate 1), each joint variable an unknown whose "motion" equation is
+/// theta - (theta_0 + omega_0 t + alpha_0 t^2 / 2) = 0 (its value, rate and second rate
+/// at t = 0 as the parameters <name>_0, <rate>_0, <second rate>_0), and the points in 3-D.
+/// The values are t = 0 (the instant).
+ConstraintSystem build_spatial_system(const Mechanism& mechanism);
+
 }  // namespace kinema

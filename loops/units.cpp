@@ -21,7 +21,8 @@ const std::map<std::string, BaseUnit>& base_units() {
       {"m", {1.0, Dimension::length}},       {"mm", {1e-3, Dimension::length}},
       {"cm", {1e-2, Dimension::length}},     {"in", {0.0254, Dimension::length}},
       {"ft", {0.3048, Dimension::length}},   {"rad", {1.0, Dimension::angle}},
-      {"deg", {kRadiansPerDegree, Dimension::angle}},
+      {"deg", {kRadiansPerDegree, Dimension::angle}}, {"s", {1.0, Dimension::time}},
+      {"ms", {1e-3, Dimension::time}},
   };
   return units;
 }
@@ -54,6 +55,7 @@ const char* dimension_name(Dimension dimension) {
     case Dimension::angular_acceleration: return "angular acceleration";
     case Dimension::velocity: return "velocity";
     case Dimension::acceleration: return "acceleration";
+    case Dimension::time: return "time";
   }
   return "?";
 }
@@ -61,7 +63,7 @@ const char* dimension_name(Dimension dimension) {
 Dimension rate_dimension(Dimension dimension) { return per_second(dimension); }
 
 const char* understood_units() {
-  return "m, mm, cm, in, ft, rad, deg, rpm, and any of these followed by /s or /s^2 "
+  return "m, mm, cm, in, ft, rad, deg, rpm, s, ms, and any of the lengths and angles followed by /s or /s^2 "
          "(e.g. rad/s, in/s, m/s^2)";
 }
 

@@ -15,6 +15,7 @@ enum class Dimension {
   angular_acceleration,  // rad/s^2
   velocity,              // m/s
   acceleration,          // m/s^2
+  time,                  // s (the input of a spatial chain)
 };
 
 /// Degrees and radians, converted here and nowhere else.

@@ -11,7 +11,9 @@ Kinematics::Kinematics(const ConstraintSystem& system, const Derivation& d)
   layout_.unknown_count = n;
   for (const PointObservable& point : system.points) layout_.point_dimensions.push_back(point.position.size());
   for (const SystemParameter& parameter : system.parameters) parameter_values_.push_back(parameter.value);
-  max_continuation_step_ = system.input.dimension == Dimension::angle ? from_degrees(2.0) : 0.01 * length_scale_;
+  max_continuation_step_ = system.input.dimension == Dimension::angle  ? from_degrees(2.0)
+                           : system.input.dimension == Dimension::time ? 0.01
+                                                                       : 0.01 * length_scale_;
   guess_.resize(static_cast<Eigen::Index>(n));
   for (std::size_t i = 0; i < n; ++i) {
     const Coordinate& q = system.unknowns[i];

@@ -18,6 +18,7 @@ namespace {
 // The largest continuation step in words (as Kinematics sets it).
 std::string describe_step(const ConstraintSystem& system) {
   if (system.input.dimension == Dimension::angle) return "2 deg";
+  if (system.input.dimension == Dimension::time) return "0.01 s";
   return format_significant(0.01 * system.length_scale / system.output.length_factor) + " " + system.output.length;
 }
 

@@ -17,6 +17,7 @@ OutputScale::OutputScale(const ConstraintSystem& system)
       input_dimension(system.input.dimension) {}
 
 double OutputScale::coordinate(Dimension dimension, double si) const {
+  if (dimension == Dimension::time) return si;
   if (dimension == Dimension::angle) {
     double degrees = to_degrees(si);
     if (degrees > -180.0 && degrees <= 180.0) return degrees;  // the common case, and exact
@@ -28,22 +29,26 @@ double OutputScale::coordinate(Dimension dimension, double si) const {
 }
 
 double OutputScale::unwrapped(Dimension dimension, double si) const {
+  if (dimension == Dimension::time) return si;
   return dimension == Dimension::angle ? to_degrees(si) : si / length;
 }
 
 double OutputScale::rate(Dimension dimension, double si) const {
-  return dimension == Dimension::angle ? si : si / length;
+  return dimension == Dimension::angle || dimension == Dimension::time ? si : si / length;
 }
 
 std::string OutputScale::coordinate_unit(Dimension dimension) const {
+  if (dimension == Dimension::time) return "s";
   return dimension == Dimension::angle ? "deg" : length_unit;
 }
 
 std::string OutputScale::rate_unit(Dimension dimension) const {
+  if (dimension == Dimension::time) return "s/s";  // time's rate: 1
   return dimension == Dimension::angle ? "rad/s" : length_unit + "/s";
 }
 
 std::string OutputScale::second_rate_unit(Dimension dimension) const {
+  if (dimension == Dimension::time) return "1/s";
   return dimension == Dimension::angle ? "rad/s^2" : length_unit + "/s^2";
 }
 

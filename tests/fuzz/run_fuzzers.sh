@@ -32,7 +32,7 @@ if [ -n "${FUZZ_SEED:-}" ]; then common+=(-seed="$FUZZ_SEED"); fi
 for target in reader pipeline; do
   corpus=build-fuzz/corpus/$target
   mkdir -p "$corpus"
-  cp samples/*.toml tests/loops/data/*.toml tests/fuzz/regressions/* "$corpus"/ 2>/dev/null || true
+  cp samples/*.toml tests/fuzz/regressions/* "$corpus"/ 2>/dev/null || true
   # The pipeline runs in fork mode: inputs run in child processes that are replaced as
   # they go, so the hour measures each input's memory, not what ASan and libFuzzer
   # accumulate over 10^5 executions (a single process grew past 1.5 GB in 25 minutes);

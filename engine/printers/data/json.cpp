@@ -27,7 +27,7 @@ class JsonPrinter : public ResultsPrinter {
     const ConstraintSystem& system = job.model.system;
     const OutputScale scale(system);
     const Driver& input = system.input;
-    auto kind_name = [](Dimension d) { return d == Dimension::angle ? "angle" : "length"; };
+    auto kind_name = [](Dimension d) { return d == Dimension::angle ? "angle" : d == Dimension::time ? "time" : "length"; };
     json doc;
     doc["title"] = system.title;
     doc["units"] = {{"angle", "deg"},

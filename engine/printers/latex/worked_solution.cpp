@@ -51,7 +51,7 @@ class DocumentWriter {
     const Driver& input = system_.input;
     const Dimension kind = input.dimension;
     out_ << "\\bottomrule\n\\end{tabular}\n\n"
-         << "Input: $" << to_latex(input.symbol) << "$ (" << (kind == Dimension::angle ? "crank angle" : "slider position")
+         << "Input: $" << to_latex(input.symbol) << "$ (" << (kind == Dimension::angle ? "crank angle" : kind == Dimension::time ? "time" : "slider position")
          << "), $" << to_latex(input.rate) << " = " << latex_number(scale_.rate(kind, input.rate_value))
          << "\\,\\mathrm{" << scale_.rate_unit(kind) << "}$ (negative: "
          << (kind == Dimension::angle ? "clockwise" : "decreasing") << "), $" << to_latex(input.second_rate) << " = "
