@@ -63,6 +63,16 @@ struct Equation {
   std::string component;  ///< "x", "y" (later "axis 2", ...).
 };
 
+/// A point of a spatial chain in its frame F: the terms of its velocity and
+/// acceleration as the seed writes them (observer basis), derived once by the front end:
+/// v = v_F + w x r + v_rel, a = a_F + alpha x r + w x (w x r) + 2 w x v_rel + a_rel.
+struct RelativeMotionTerms {
+  std::string frame;
+  std::vector<GiNaC::ex> relative_position;  ///< r, from the frame's origin.
+  std::vector<GiNaC::ex> frame_velocity, transport, relative_velocity;
+  std::vector<GiNaC::ex> frame_acceleration, tangential, centripetal, coriolis, relative_acceleration;
+};
+
 /// A named point whose position the system determines (2-D or 3-D).
 struct PointObservable {
   std::string name;
@@ -70,13 +80,17 @@ struct PointObservable {
   std::vector<std::string> components;  ///< "x", "y" (and "z").
   std::vector<GiNaC::ex> position;      ///< One expression per component.
   std::optional<GiNaC::ex> written;     ///< Planar: x + I*y as written.
+  std::optional<RelativeMotionTerms> terms;  ///< Spatial chains.
 };
 
-/// A frame whose angular velocity is reported (spatial chains).
+/// A frame of a spatial chain: its angular velocity relative to the observer, each
+/// relative term along the chain, and its angular acceleration (observer basis).
 struct FrameObservable {
-  std::string name;
+  std::string name, parent;
   SourceLocation where;
-  std::vector<GiNaC::ex> angular_velocity;  ///< Components in the observer's basis.
+  std::vector<GiNaC::ex> angular_velocity;
+  std::vector<std::pair<std::string, std::vector<GiNaC::ex>>> angular_velocity_terms;  ///< Label, vector.
+  std::vector<GiNaC::ex> angular_acceleration;
 };
 
 struct ConstraintSystem {

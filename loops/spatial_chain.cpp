@@ -44,9 +44,29 @@ Vector3 times(const GiNaC::matrix& m, const Vector3& v) {
 }
 Vector3 column(const GiNaC::matrix& m, unsigned c) { return {m(0, c), m(1, c), m(2, c)}; }
 
+// cos and sin of x + k Pi/2 as those of x (the seed writes e2'' = sin(alpha) E2 - cos(alpha) E3,
+// not cos(alpha - Pi/2) E2 + ...).
+std::pair<ex, ex> cos_sin(const ex& angle) {
+  const ex expanded = angle.expand();
+  const ex quarter_turns = expanded.coeff(GiNaC::Pi, 1) * 2;
+  if (expanded.degree(GiNaC::Pi) == 1 && GiNaC::is_a<GiNaC::numeric>(quarter_turns) &&
+      GiNaC::ex_to<GiNaC::numeric>(quarter_turns).is_integer()) {
+    const ex x = expanded - quarter_turns * GiNaC::Pi / 2;
+    const long k = ((GiNaC::ex_to<GiNaC::numeric>(quarter_turns).to_long() % 4) + 4) % 4;
+    const ex c = GiNaC::cos(x), s = GiNaC::sin(x);
+    switch (k) {
+      case 1: return {-s, c};
+      case 2: return {-c, -s};
+      case 3: return {s, -c};
+      default: return {c, s};
+    }
+  }
+  return {GiNaC::cos(angle), GiNaC::sin(angle)};
+}
+
 // The rotation by `angle` about a coordinate axis (0, 1, 2).
 GiNaC::matrix turn(unsigned axis, const ex& angle) {
-  const ex c = GiNaC::cos(angle), s = GiNaC::sin(angle);
+  const auto [c, s] = cos_sin(angle);
   GiNaC::matrix r(3, 3);
   const unsigned a = (axis + 1) % 3, b = (axis + 2) % 3;
   r(axis, axis) = 1;
@@ -217,8 +237,10 @@ class ChainBuilder {
       if (!rate.is_zero()) {
         const Vector3 term = rate * direction;
         omega = omega + term;
-        std::ostringstream label;  // "omega5 y of E3": the rate about the frame's axis
-        label << rate << " " << axis << " of " << f.name;
+        // "omega5 y_E2": the rate about the axis it turns about (the parent's, for a
+        // frame's first turn; after that the frame's own, as turned so far).
+        std::ostringstream label;
+        label << rate << " " << axis << "_" << (&t == &f.turns.front() ? f.parent : f.name);
         motion.angular_velocity_terms.push_back({label.str(), term});
       }
       rotation = rotation.mul(turn(a, angle));
@@ -348,13 +370,35 @@ ConstraintSystem build_spatial_system(const Mechanism& mechanism) {
     for (const auto& spot : mechanism.chain->points)
       if (spot.name == p.name) point.where = spot.where;
     point.components = {"x", "y", "z"};
-    point.position.assign(p.position.begin(), p.position.end());
+    const auto list = [](const Vector3& v) { return std::vector<ex>(v.begin(), v.end()); };
+    point.position = list(p.position);
+    RelativeMotionTerms terms;
+    terms.frame = p.frame;
+    Vector3 origin{0, 0, 0};
+    for (const ChainFrameMotion& f : k.frames)
+      if (f.name == p.frame) origin = f.origin;
+    terms.relative_position = {p.position[0] - origin[0], p.position[1] - origin[1], p.position[2] - origin[2]};
+    terms.frame_velocity = list(p.frame_velocity);
+    terms.transport = list(p.transport);
+    terms.relative_velocity = list(p.relative_velocity);
+    terms.frame_acceleration = list(p.frame_acceleration);
+    terms.tangential = list(p.tangential);
+    terms.centripetal = list(p.centripetal);
+    terms.coriolis = list(p.coriolis);
+    terms.relative_acceleration = list(p.relative_acceleration);
+    point.terms = terms;
     system.points.push_back(point);
   }
   for (const ChainFrameMotion& f : k.frames) {
     FrameObservable frame;
     frame.name = f.name;
+    frame.parent = f.parent;
+    for (const auto& source : mechanism.chain->frames)
+      if (source.name == f.name) frame.where = source.where;
     frame.angular_velocity.assign(f.angular_velocity.begin(), f.angular_velocity.end());
+    for (const auto& [label, term] : f.angular_velocity_terms)
+      frame.angular_velocity_terms.push_back({label, std::vector<ex>(term.begin(), term.end())});
+    frame.angular_acceleration.assign(f.angular_acceleration.begin(), f.angular_acceleration.end());
     system.frames.push_back(frame);
   }
   return system;

@@ -184,3 +184,27 @@ TEST_CASE("spatial_chain: bad frames, axes, points and formulas are refused with
   CHECK(error_of(kinema_test::replaced("[points]", "[links]\n[points]", arm))
             .find("unknown key \"links\" in the top level of a spatial chain") != std::string::npos);
 }
+
+TEST_CASE("spatial_chain: derive prints the composition of angular velocities and each term of v and a, as seed 000") {
+  const auto result = kinema_test::run_kinema({"derive", kArm});
+  REQUIRE(result.exit_status == 0);
+  // The terms by their labels; the formulas' term order is GiNaC's (their meaning is
+  // tested on the library above), the numbers at the instant the seed's.
+  CHECK(result.out.find("    w_E3/E0 = omega1 z_E0 + -omega4 x_E2 + omega5 y_E2\n      = [") != std::string::npos);
+  CHECK(result.out.find("] = (-1, 0.866025, 0.5)\n    alpha_E3/E0 = d/dt w = [") != std::string::npos);
+  CHECK(result.out.find("] = (-0.866025, -1.5, -0.866025)\n") != std::string::npos);
+  const auto v_e2 = result.out.find("    v_E2 (its origin) = [");
+  REQUIRE(v_e2 != std::string::npos);
+  CHECK(result.out.substr(v_e2, result.out.find('\n', v_e2) - v_e2).find("] = (-0.6, 0, 0)") != std::string::npos);
+  // Each of the five terms of a_B on its own line, and the sum: seed 000's numbers.
+  for (const char* term : {"    alpha x r = ", "    w x (w x r) = ", "    2 w x v_rel = ", "    a_rel = "})
+    CHECK(result.out.find(term) != std::string::npos);
+  const auto b = result.out.find("    a_B = ");
+  REQUIRE(b != std::string::npos);
+  CHECK(result.out.substr(b, result.out.find('\n', b) - b).find("= (0.4, -1.98564, 0.5)") != std::string::npos);
+  // eval gives the same at t = 0, and another instant on request.
+  const auto csv = kinema_test::run_kinema({"eval", kArm, "--format", "csv", "--at", "0", "--at", "0.5"});
+  REQUIRE(csv.exit_status == 0);
+  CHECK(csv.out.find("\n0,1,0,ok,") != std::string::npos);
+  CHECK(csv.out.find("\n0.5,1,0,ok,") != std::string::npos);
+}
