@@ -187,6 +187,16 @@ struct ChainVariable {
   Dimension dimension = Dimension::angle;  ///< angle or length
   double value = 0.0, rate = 0.0, second_rate = 0.0;
   std::string rate_name, second_rate_name;  ///< Empty: omega/alpha (angles) or v/a (lengths) and the name's digits.
+  /// Found by the closures (a closed loop): value is only its guess (the assembly branch); no rates given.
+  bool unknown = false;
+  SourceLocation where;
+};
+
+/// A closed spatial loop: two points of the chain a fixed distance apart (a coupler
+/// with a spherical joint at each end), one equation.
+struct ChainClosure {
+  std::string name, from, to;
+  std::string length;  ///< A quantity or a formula of parameters.
   SourceLocation where;
 };
 
@@ -220,6 +230,7 @@ struct SpatialChain {
   std::vector<ChainVariable> variables;
   std::vector<ChainFrame> frames;
   std::vector<ChainPoint> points;
+  std::vector<ChainClosure> closures;
 };
 
 struct OutputUnits {

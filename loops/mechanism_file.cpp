@@ -414,7 +414,7 @@ class FileReader {
 
   // A file written as a spatial chain of frames (README, "Spatial chains").
   Mechanism read_chain(const Node& root, Mechanism& mechanism) const {
-    check_keys(root, {"title", "description", "parameters", "variables", "frames", "points", "output"},
+    check_keys(root, {"title", "description", "parameters", "variables", "frames", "points", "closures", "output"},
                "the top level of a spatial chain (a file of frames; vector loops and joints and links are other forms)");
     mechanism.title = optional_string(root, "title", "Untitled mechanism");
     mechanism.description = optional_string(root, "description", "");
@@ -427,12 +427,22 @@ class FileReader {
       for (const auto& [name, value] : ordered(table)) {
         check_identifier(*value, name, "variable");
         if (!value->is_table()) fail(*value, "variable \"" + name + "\" must be a table { value = \"0 deg\", rate = \"1 rad/s\" }");
-        check_keys(*value, {"value", "rate", "second_rate", "rate_name", "second_rate_name"}, "variable \"" + name + "\"");
+        check_keys(*value, {"value", "guess", "rate", "second_rate", "rate_name", "second_rate_name"},
+                   "variable \"" + name + "\"");
         ChainVariable variable;
         variable.name = name;
         variable.where = where(*value);
-        if (!has(*value, "value")) fail(*value, "variable \"" + name + "\" needs value = \"...\" (at t = 0: an angle or a length)");
-        const Quantity q = quantity(at(*value, "value"), "value");
+        variable.unknown = has(*value, "guess");
+        if (variable.unknown && (has(*value, "value") || has(*value, "rate") || has(*value, "second_rate"))) {
+          fail(*value, "variable \"" + name + "\" has a guess, so the closures find it: it takes no value, rate or "
+                       "second_rate (those are for a variable that drives the chain)");
+        }
+        const char* given = variable.unknown ? "guess" : "value";
+        if (!has(*value, given)) {
+          fail(*value, "variable \"" + name + "\" needs value = \"...\" (at t = 0: an angle or a length), or guess = "
+                       "\"...\" for one the closures find");
+        }
+        const Quantity q = quantity(at(*value, given), given);
         if (q.dimension != Dimension::angle && q.dimension != Dimension::length) {
           fail(at(*value, "value"), "variable \"" + name + "\": value must be an angle (\"30 deg\") or a length (\"0.1 m\")");
         }
@@ -494,6 +504,27 @@ class FileReader {
         point.frame = string_value(at(*value, "frame"), "frame");
         if (has(*value, "at")) read_vector(at(*value, "at"), "at", point.at);
         chain.points.push_back(point);
+      }
+    }
+    if (has(root, "closures")) {
+      const Node& table = at(root, "closures");
+      if (!table.is_table()) fail(table, "[closures] must be a table of name = { between = [\"B\", \"C\"], length = \"L3\" }");
+      for (const auto& [name, value] : ordered(table)) {
+        check_name(*value, name, "closure");
+        if (!value->is_table() || !has(*value, "between") || !has(*value, "length")) {
+          fail(*value, "closure \"" + name + "\" must be written { between = [\"B\", \"C\"], length = \"L3\" } (two points "
+                       "a fixed distance apart)");
+        }
+        check_keys(*value, {"between", "length"}, "closure \"" + name + "\"");
+        const auto* pair = at(*value, "between").as_array();
+        if (pair == nullptr || pair->size() != 2) fail(at(*value, "between"), "between must name two points, e.g. [\"B\", \"C\"]");
+        ChainClosure closure;
+        closure.name = name;
+        closure.where = where(*value);
+        closure.from = string_value(*pair->get(0), "between");
+        closure.to = string_value(*pair->get(1), "between");
+        closure.length = string_value(at(*value, "length"), "length");
+        chain.closures.push_back(closure);
       }
     }
     check_names(mechanism);

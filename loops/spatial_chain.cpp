@@ -86,6 +86,7 @@ class ChainBuilder {
     variables();
     frames();
     points();
+    closures();
     return k_;
   }
 
@@ -145,6 +146,7 @@ class ChainBuilder {
       c.rate = symbol(rate_name(v.rate_name, 1));
       c.second_rate = symbol(rate_name(v.second_rate_name, 2));
       k_.variables.push_back(c);
+      k_.unknown.push_back(v.unknown);
       k_.values.push_back(v.value);
       k_.rates.push_back(v.rate);
       k_.second_rates.push_back(v.second_rate);
@@ -293,6 +295,34 @@ class ChainBuilder {
     }
   }
 
+  void closures() {
+    std::size_t unknowns = 0;
+    for (const ChainVariable& v : chain_.variables) unknowns += v.unknown ? 1 : 0;
+    if (unknowns != chain_.closures.size()) {
+      const SourceLocation& where = chain_.closures.empty() ? chain_.variables.front().where : chain_.closures.front().where;
+      fail(where, std::to_string(unknowns) + " variable(s) with a guess (found by the closures) but " +
+                      std::to_string(chain_.closures.size()) + " closure(s): each closure finds one variable; give "
+                      "as many of each");
+    }
+    const auto find = [&](const std::string& name, const ChainClosure& c) -> const ChainPointMotion& {
+      for (const ChainPointMotion& p : k_.points)
+        if (p.name == name) return p;
+      fail(c.where, "closure \"" + c.name + "\": there is no point \"" + name + "\" in [points]");
+    };
+    for (const ChainClosure& c : chain_.closures) {
+      const ChainPointMotion &a = find(c.from, c), &b = find(c.to, c);
+      if (c.from == c.to) fail(c.where, "closure \"" + c.name + "\" needs two different points");
+      const ex length = value_of(c.length, c.where, "closure \"" + c.name + "\" length", Dimension::length);
+      const double value = formula_value(length, values_, c.where.str() + ": closure \"" + c.name + "\" length", c.length);
+      if (!(value > 0)) fail(c.where, "closure \"" + c.name + "\": the length must be positive (it is " + format_significant(value) + " m)");
+      // (|d|^2 - L^2) / 2L: a length, about |d| - L near the solution, so that its row of
+      // Phi_q is on the scale of the others (the solvers' tolerances are lengths).
+      ex residual = -GiNaC::pow(length, 2);
+      for (std::size_t i = 0; i < 3; ++i) residual += GiNaC::pow(a.position[i] - b.position[i], 2);
+      k_.closures.push_back({c.name, residual / (2 * length)});
+    }
+  }
+
   std::string frame_list() const {
     std::string list = k_.observer;
     for (const ChainFrame& f : chain_.frames) list += ", " + f.name;
@@ -348,6 +378,10 @@ ConstraintSystem build_spatial_system(const Mechanism& mechanism) {
   for (std::size_t i = 0; i < k.variables.size(); ++i) {
     Coordinate q = k.variables[i];
     q.guess = k.values[i];
+    if (k.unknown[i]) {  // found by a closure
+      system.unknowns.push_back(q);
+      continue;
+    }
     const ex start = parameter(q.name + "_0", k.values[i], q.dimension, q.where);
     const ex rate = parameter(q.rate.get_name() + "_0", k.rates[i], Dimension::number, q.where);
     const ex second = parameter(q.second_rate.get_name() + "_0", k.second_rates[i], Dimension::number, q.where);
@@ -358,11 +392,26 @@ ConstraintSystem build_spatial_system(const Mechanism& mechanism) {
     group.equations = {system.equations.size()};
     system.groups.push_back(group);
     Equation e;
-    e.expression = q.symbol - (start + rate * t.symbol + second * GiNaC::pow(t.symbol, 2) / 2);
+    // Times the length scale: a length, like a closure's row (the solvers scale by lengths).
+    e.expression = system.length_scale * (q.symbol - (start + rate * t.symbol + second * GiNaC::pow(t.symbol, 2) / 2));
     e.group = system.groups.size() - 1;
     e.component = "value";
     system.equations.push_back(e);
     system.unknowns.push_back(q);
+  }
+  for (const auto& [name, residual] : k.closures) {
+    EquationGroup group;
+    group.kind = "closure";
+    group.name = name;
+    for (const ChainClosure& c : mechanism.chain->closures)
+      if (c.name == name) group.where = c.where;
+    group.equations = {system.equations.size()};
+    system.groups.push_back(group);
+    Equation e;
+    e.expression = residual;
+    e.group = system.groups.size() - 1;
+    e.component = "distance";
+    system.equations.push_back(e);
   }
   for (const ChainPointMotion& p : k.points) {
     PointObservable point;

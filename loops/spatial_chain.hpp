@@ -46,10 +46,13 @@ struct ChainPointMotion {
 struct SpatialKinematics {
   std::vector<SystemParameter> parameters;
   std::vector<Coordinate> variables;  ///< Joint variables with rate and second-rate symbols.
+  std::vector<bool> unknown;          ///< Of each variable: found by the closures (its value a guess).
   std::vector<double> values, rates, second_rates;  ///< Of each variable at t = 0 (SI).
   std::string observer;
   std::vector<ChainFrameMotion> frames;  ///< In file order, parents first.
   std::vector<ChainPointMotion> points;
+  /// Closed loops: each closure's residual (|p_from - p_to|^2 - length^2) / (2 length) (= 0).
+  std::vector<std::pair<std::string, GiNaC::ex>> closures;
 
   /// Every symbol (parameters, variables, rates, second rates) at t = 0.
   GiNaC::exmap instant() const;

@@ -69,8 +69,10 @@ TEST_CASE("kinema eval: streamed output is the printer over the whole table, on 
     CAPTURE(name);
     const kinema::Model model = kinema::load_model(kinema_test::sample(sample));
     const std::string sweep = sweep_for(model);
-    const double unit = model.system.input.dimension == kinema::Dimension::angle ? M_PI / 180
-                                                                                : model.system.output.length_factor;
+    const auto dimension = model.system.input.dimension;
+    const double unit = dimension == kinema::Dimension::angle  ? M_PI / 180
+                        : dimension == kinema::Dimension::time ? 1.0
+                                                               : model.system.output.length_factor;
     const kinema::MotionTable whole = kinema::analyse(model, kinema::parse_sweep(sweep, unit).to_vector());
     REQUIRE(whole.size() > 3000);
     for (const std::string format : {"table", "csv", "json", "npy"}) {

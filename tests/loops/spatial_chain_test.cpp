@@ -208,3 +208,57 @@ TEST_CASE("spatial_chain: derive prints the composition of angular velocities an
   CHECK(csv.out.find("\n0,1,0,ok,") != std::string::npos);
   CHECK(csv.out.find("\n0.5,1,0,ok,") != std::string::npos);
 }
+
+TEST_CASE("spatial_chain: the RSSR four-bar closes its loop over a turn; rates by finite differences in time") {
+  const kinema::Model model = kinema::load_model(kinema_test::sample("rssr_spatial_four_bar.toml"));
+  REQUIRE(model.system.unknowns.size() == 2);
+  CHECK(model.system.groups.back().kind == "closure");
+  std::vector<double> times;
+  const double h = 1e-3;
+  for (int k = 0; k <= 6283; ++k) times.push_back(k * h);
+  const kinema::MotionTable t = kinema::analyse(model, times);
+  const double scale = model.kinematics.length_scale();
+  for (std::size_t r = 1; r + 1 < t.size(); r += 37) {
+    CAPTURE(times[r]);
+    REQUIRE(t.status(r) == kinema::Status::ok);
+    REQUIRE(t.status(r - 1) == kinema::Status::ok);
+    REQUIRE(t.status(r + 1) == kinema::Status::ok);
+    CHECK(t.loop_residual(r) < 1e-9 * scale);
+    for (Eigen::Index i = 0; i < t.q(r).size(); ++i) {
+      const double slope = (t.q(r + 1)[i] - t.q(r - 1)[i]) / (2 * h);
+      const double curvature = (t.q(r + 1)[i] - 2 * t.q(r)[i] + t.q(r - 1)[i]) / (h * h);
+      CHECK(t.qd(r)[i] == doctest::Approx(slope).epsilon(1e-5).scale(1));
+      CHECK(t.qdd(r)[i] == doctest::Approx(curvature).epsilon(1e-3).scale(1));
+    }
+    for (std::size_t p = 0; p < t.point_count(); ++p) {
+      const auto a = t.point(r - 1, p), m = t.point(r, p), b = t.point(r + 1, p);
+      for (std::size_t c = 0; c < 3; ++c) {
+        CHECK(m.velocity[c] == doctest::Approx((b.position[c] - a.position[c]) / (2 * h)).epsilon(1e-5).scale(scale));
+        CHECK(m.acceleration[c] ==
+              doctest::Approx((b.position[c] - 2 * m.position[c] + a.position[c]) / (h * h)).epsilon(1e-3).scale(scale));
+      }
+    }
+    // The coupler keeps its length: |B - C| = 80 mm.
+    const auto b = t.point(r, 0), c = t.point(r, 1);
+    CHECK(std::hypot(b.position[0] - c.position[0], b.position[1] - c.position[1], b.position[2] - c.position[2]) ==
+          doctest::Approx(0.080).epsilon(1e-10));
+  }
+}
+
+TEST_CASE("spatial_chain: closures and their variables are counted and named") {
+  const std::string rssr = kinema_test::read_file(kinema_test::sample("rssr_spatial_four_bar.toml"));
+  const auto error_of = [](const std::string& text) -> std::string {
+    try {
+      kinema::make_model(kinema::read_mechanism_text(text, "rssr.toml"));
+    } catch (const kinema::InputError& error) {
+      return error.what();
+    }
+    return "";
+  };
+  CHECK(error_of(kinema_test::replaced(R"(BC = { between = ["B", "C"], length = "BC" })", "", rssr))
+            .find("1 variable(s) with a guess (found by the closures) but 0 closure(s)") != std::string::npos);
+  CHECK(error_of(kinema_test::replaced(R"(between = ["B", "C"])", R"(between = ["B", "X"])", rssr))
+            .find("rssr.toml:29: closure \"BC\": there is no point \"X\" in [points]") != std::string::npos);
+  CHECK(error_of(kinema_test::replaced(R"(guess = "47 deg")", R"(guess = "47 deg", rate = "1 rad/s")", rssr))
+            .find("has a guess, so the closures find it") != std::string::npos);
+}

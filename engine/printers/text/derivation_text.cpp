@@ -202,7 +202,10 @@ class DerivationTextPrinter : public Printer {
     out << "unknowns: q = [" << joined(unknowns) << "]\n";
     out << "rates:    qd = [" << joined(rates) << "], qdd = [" << joined(second_rates) << "]\n";
 
-    if (!system.frames.empty()) {
+    // A spatial chain driven by its joints alone in the seed's form; a closed loop as loops.
+    bool driven = !system.frames.empty();
+    for (const EquationGroup& group : system.groups) driven = driven && group.kind == "motion";
+    if (driven) {
       print_chain(out, system);
       return;
     }
