@@ -149,17 +149,7 @@ class LinkageWriter {
   // A length or angle as written: a quantity ("0.3 m") or a formula of the parameters.
   double value_of(const std::string& text, Dimension dimension, const SourceLocation& where, const std::string& what) {
     if (!looks_like_quantity(text)) return evaluate(text, where, what);
-    Quantity q;
-    try {
-      q = parse_quantity(text);
-    } catch (const UnitError& error) {
-      throw UnitError(where.str() + ": " + what + ": " + error.what());
-    }
-    if (q.dimension != dimension && q.dimension != Dimension::number) {
-      throw UnitError(where.str() + ": " + what + " = \"" + text + "\" is a " + dimension_name(q.dimension) + ", but a " +
-                      dimension_name(dimension) + " is needed here");
-    }
-    return q.si_value;
+    return quantity_of_dimension(text, dimension, where.str() + ": " + what);
   }
 
   std::string fresh_name(const std::string& wanted) {

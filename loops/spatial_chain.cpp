@@ -155,19 +155,7 @@ class ChainBuilder {
 
   // A component or an angle as written: a quantity, or a formula of parameters and variables.
   ex value_of(const std::string& text, const SourceLocation& where, const std::string& what, Dimension dimension) {
-    if (looks_like_quantity(text)) {
-      Quantity q;
-      try {
-        q = parse_quantity(text);
-      } catch (const UnitError& error) {
-        throw UnitError(where.str() + ": " + what + ": " + error.what());
-      }
-      if (q.dimension != dimension && q.dimension != Dimension::number) {
-        throw UnitError(where.str() + ": " + what + " = \"" + text + "\" is a " + dimension_name(q.dimension) +
-                        ", but a " + dimension_name(dimension) + " is needed here");
-      }
-      return q.si_value;
-    }
+    if (looks_like_quantity(text)) return quantity_of_dimension(text, dimension, where.str() + ": " + what);
     try {
       return reader_.read(text, where.str() + ": " + what);
     } catch (const Error&) {

@@ -122,6 +122,20 @@ Quantity parse_quantity(const std::string& text) {
   return {number * found->second.factor, dimension};
 }
 
+double quantity_of_dimension(const std::string& text, Dimension dimension, const std::string& context) {
+  Quantity q;
+  try {
+    q = parse_quantity(text);
+  } catch (const UnitError& error) {
+    throw UnitError(context + ": " + error.what());
+  }
+  if (q.dimension != dimension && q.dimension != Dimension::number) {
+    throw UnitError(context + " = \"" + text + "\" is a " + dimension_name(q.dimension) + ", but a " +
+                    dimension_name(dimension) + " is needed here");
+  }
+  return q.si_value;
+}
+
 double length_unit_factor(const std::string& unit) {
   const auto found = base_units().find(unit);
   if (found == base_units().end() || found->second.dimension != Dimension::length) {

@@ -38,6 +38,10 @@ struct Quantity {
 /// when the unit is unknown or the number does not parse.
 Quantity parse_quantity(const std::string& text);
 
+/// A quantity that must measure `dimension` (a bare number is taken as SI of it), in SI;
+/// UnitError naming `context` ("file:line: what") and, for a mismatch, both dimensions.
+double quantity_of_dimension(const std::string& text, Dimension dimension, const std::string& context);
+
 /// True when text starts like a number (so it is a quantity, not a formula).
 bool looks_like_quantity(const std::string& text);
 
