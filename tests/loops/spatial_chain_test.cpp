@@ -6,6 +6,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <string>
 
 #include <kinema/engine/errors.hpp>
@@ -261,4 +262,29 @@ TEST_CASE("spatial_chain: closures and their variables are counted and named") {
             .find("rssr.toml:29: closure \"BC\": there is no point \"X\" in [points]") != std::string::npos);
   CHECK(error_of(kinema_test::replaced(R"(guess = "47 deg")", R"(guess = "47 deg", rate = "1 rad/s")", rssr))
             .find("has a guess, so the closures find it") != std::string::npos);
+}
+
+TEST_CASE("spatial_chain: through the commands, a bad chain is bad input with file:line, and nothing is written") {
+  const std::string arm = kinema_test::read_file(kArm);
+  const std::string directory = kinema_test::fresh_directory("spatial_bad");
+  const std::string output = directory + "/out.csv";
+  struct Case {
+    std::string from, to, message;
+  };
+  for (const Case& c : std::vector<Case>{
+           {R"(["y", "theta5"])", R"(["w", "theta5"])", "axis \"w\" is not one of the frame's axes x, y, z"},
+           {R"(E3 = { parent = "E2")", R"(E3 = { parent = "E7")", "its parent \"E7\" is not a frame of the file"},
+           {R"(A = { frame = "E3" })", R"(A = { frame = "E9" })", "point \"A\": frame \"E9\" does not exist"},
+           {"[points]", "[links]\n[points]", "unknown key \"links\" in the top level of a spatial chain"},
+           {"\"L3*sin(beta)\"", "\"L4*sin(beta)\"", "L4"}}) {
+    CAPTURE(c.message);
+    const std::string file = kinema_test::write_temporary("spatial_bad.toml", kinema_test::replaced(c.from, c.to, arm));
+    for (const char* command : {"eval", "derive"}) {
+      const auto result = kinema_test::run_kinema({command, file, "-o", output});
+      CHECK(result.exit_status == 2);
+      CHECK(result.err.find("spatial_bad.toml:") != std::string::npos);
+      CHECK(result.err.find(c.message) != std::string::npos);
+      CHECK_FALSE(std::filesystem::exists(output));
+    }
+  }
 }
