@@ -1,7 +1,6 @@
 #include <kinema/engine/symbolic/dyad_method.hpp>
 
 #include <cmath>
-#include <set>
 
 #include <kinema/engine/errors.hpp>
 #include <kinema/engine/report/structure.hpp>
@@ -55,8 +54,6 @@ class Writer {
  public:
   Writer(const ConstraintSystem& system, DerivationMethod method)
       : system_(system), linkage_(*system.linkage), frames_(linkage_.frames), method_(method) {
-    known_.assign(frames_.bodies.size(), false);
-    known_[0] = true;
   }
 
   DyadDerivation run() {
@@ -72,7 +69,6 @@ class Writer {
   const LinkageFrames& frames_;
   DerivationMethod method_;
   DyadDerivation result_;
-  std::vector<bool> known_;                       // bodies solved so far
   std::map<std::pair<std::size_t, std::size_t>, bool> defined_;  // (joint, body): its velocity has symbols
 
   // ---- names and symbols ----------------------------------------------------------
@@ -285,7 +281,6 @@ class Writer {
         if ((pin.a == 0 && pin.b == b) || (pin.b == 0 && pin.a == b)) from = pin.joint;
       defined_[key(from, b)] = true;  // the fixed pivot: at rest
     }
-    known_[b] = true;
     define_rest(step, b, from);
     result_.steps.push_back(step);
   }
@@ -304,7 +299,6 @@ class Writer {
     if (side.edge >= 0) {
       const LinkageFrames::Pin& pin = frames_.pins[std::size_t(side.edge)];
       const std::size_t known = pin.a == L ? pin.b : pin.a;
-      const ex zero = 0;
       words_transfer(w, pin.joint, known == 0 ? 0 : known, omega(L), j, second, alpha(L), true);
       const Vec r = position(j) - position(pin.joint);
       const Vec start = at_rest(pin.joint) ? Vec{} : (second ? acceleration(pin.joint, known) : velocity(pin.joint, known));
@@ -385,11 +379,10 @@ class Writer {
       second_rates.push_back(system_.unknowns[std::size_t(s.unknown)].second_rate);
     }
     if (coordinates) {
-      joint_coordinates(step, d, j, first, second_side, rates, second_rates);
+      joint_coordinates(step, d, j, first, second_side);
     } else {
       for (bool second : {false, true}) relative(step, d, j, first, second_side, second ? second_rates : rates, second);
     }
-    known_[d.first] = known_[d.second] = true;
     // The other joints of its links, from the middle joint (a slider: each link's outer pin).
     if (d.inner >= 0) {
       defined_[key(j, d.first)] = defined_[key(j, d.second)] = true;
@@ -464,7 +457,7 @@ class Writer {
   // Seed 002's form: J on a circle about each pin (a link's length) or on a line of a
   // guide (at a fixed distance), differentiated in time; then each link's rates.
   void joint_coordinates(MethodStep& step, const LinkageFrames::Dyad& d, std::size_t j, const Side& first,
-                         const Side& second_side, const std::vector<ex>& rates, const std::vector<ex>& second_rates) {
+                         const Side& second_side) {
     // Time derivatives of the symbols a side's relation uses: d/dt x_O = v_Ox, d/dt theta = omega.
     GiNaC::exmap once, twice;
     const auto derivative = [&](const ex& e, const GiNaC::exmap& map) {
@@ -569,8 +562,6 @@ class Writer {
                                      slide_a.x * u.x + slide_a.y * u.y});
       }
     }
-    (void)rates;
-    (void)second_rates;
   }
 
   // d/dt theta = omega, d/dt omega = alpha for the angle symbols in theta.

@@ -168,7 +168,7 @@ void print_chain(std::ostream& out, const ConstraintSystem& system) {
     line("v_" + t.frame + " (its origin)", t.frame_velocity);
     line("w x r", t.transport);
     line("v_rel", t.relative_velocity);
-    line("v_" + point.name, point.position.empty() ? t.transport : sum_of({&t.frame_velocity, &t.transport, &t.relative_velocity}));
+    line("v_" + point.name, sum_of({&t.frame_velocity, &t.transport, &t.relative_velocity}));
     line("a_" + t.frame + " (its origin)", t.frame_acceleration);
     line("alpha x r", t.tangential);
     line("w x (w x r)", t.centripetal);
