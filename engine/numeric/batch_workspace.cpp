@@ -281,7 +281,7 @@ bool BatchWorkspace::solve_lanes(MotionTable& table, std::size_t first, std::siz
     for (std::size_t l = 0; l < kLanes; ++l) qdd[l] = x_[i * kLanes + l] * column_scale[i];
   }
   e.evaluate_stage_batch_from(TapeLayout::kPointStage, TapeLayout::kInputLevel, registers_.data());
-  const std::size_t point_values = layout_.point_output_count();
+  const std::size_t point_values = layout_.observable_output_count();
   // x * 0 is 0 for finite x and NaN otherwise: one sum per lane says whether all are finite.
   double nonfinite[kLanes] = {};
   auto accumulate = [&](const double* v) {
@@ -306,7 +306,7 @@ bool BatchWorkspace::solve_lanes(MotionTable& table, std::size_t first, std::siz
     std::copy_n(lanes(layout_.qd(i)), kLanes, table.qd_values() + i * rows + first);
     std::copy_n(lanes(layout_.qdd(i)), kLanes, table.qdd_values() + i * rows + first);
   }
-  // The point stage's outputs are in the table's point column order.
+  // The point stage's outputs (points, then frames) are in the table's point column order.
   for (std::size_t k = 0; k < point_values; ++k)
     std::copy_n(output(TapeLayout::kPointStage, k), kLanes, table.point_values() + k * rows + first);
   return true;

@@ -142,7 +142,7 @@ Circuit solve_circuit(const Kinematics& kinematics, const CircuitSettings& setti
   for (const CircuitRow& row : rows) inputs.push_back(row.input);
   MotionTable& table = circuit.table;
   table = MotionTable(inputs, kinematics.unknown_count(), kinematics.layout().point_dimensions, settings.rate,
-                      settings.second_rate);
+                      settings.second_rate, kinematics.frame_count());
   table.make_circuit();
   const LinkageFrames& frames = *kinematics.closed_form();
   Workspace workspace(kinematics);

@@ -10,6 +10,7 @@ Kinematics::Kinematics(const ConstraintSystem& system, const Derivation& d)
   layout_.parameter_count = system.parameters.size();
   layout_.unknown_count = n;
   for (const PointObservable& point : system.points) layout_.point_dimensions.push_back(point.position.size());
+  layout_.frame_count = system.frames.size();
   for (const SystemParameter& parameter : system.parameters) parameter_values_.push_back(parameter.value);
   max_continuation_step_ = system.input.dimension == Dimension::angle  ? from_degrees(2.0)
                            : system.input.dimension == Dimension::time ? 0.01
@@ -43,6 +44,10 @@ Kinematics::Kinematics(const ConstraintSystem& system, const Derivation& d)
   for (std::size_t p = 0; p < system.points.size(); ++p) {
     for (const auto* part : {&system.points[p].position, &d.points[p].velocity, &d.points[p].acceleration})
       points.insert(points.end(), part->begin(), part->end());
+  }
+  for (const FrameObservable& frame : system.frames) {
+    points.insert(points.end(), frame.angular_velocity.begin(), frame.angular_velocity.end());
+    points.insert(points.end(), frame.angular_acceleration.begin(), frame.angular_acceleration.end());
   }
   evaluator_ = CompiledExpressions(inputs, layout_.input_levels(), {position, d.acceleration_rhs, points});
 }

@@ -23,6 +23,7 @@ class Kinematics {
 
   std::size_t unknown_count() const { return layout_.unknown_count; }
   std::size_t point_count() const { return layout_.point_dimensions.size(); }
+  std::size_t frame_count() const { return layout_.frame_count; }
   const TapeLayout& layout() const { return layout_; }
   /// One tape for position, acceleration and points (stages as in TapeLayout):
   /// sin/cos and every other subexpression computed once per input value.

@@ -14,8 +14,10 @@ const char* status_name(Status status) {
 }
 
 MotionTable::MotionTable(const std::vector<double>& inputs, std::size_t unknowns,
-                         const std::vector<std::size_t>& point_dimensions, double rate, double second_rate)
+                         const std::vector<std::size_t>& point_dimensions, double rate, double second_rate,
+                         std::size_t frames)
     : n_(unknowns),
+      frame_count_(frames),
       point_dimensions_(point_dimensions),
       rate_(rate),
       second_rate_(second_rate),
@@ -32,7 +34,8 @@ MotionTable::MotionTable(const std::vector<double>& inputs, std::size_t unknowns
     point_offset_.push_back(columns);
     columns += 3 * dimension;
   }
-  points_.resize(inputs.size() * columns);
+  frame_offset_ = columns;
+  points_.resize(inputs.size() * (columns + 6 * frames));
 }
 
 void MotionTable::assign_inputs(const InputValues& inputs, std::size_t first, std::size_t count) {
@@ -48,8 +51,7 @@ void MotionTable::assign_inputs(const InputValues& inputs, std::size_t first, st
   reciprocal_condition_.resize(count);
   status_.assign(count, Status::unassembled);
   failure_.assign(count, Failure{});
-  const std::size_t columns = point_offset_.empty() ? 0 : point_offset_.back() + 3 * point_dimensions_.back();
-  points_.resize(count * columns);
+  points_.resize(count * (frame_offset_ + 6 * frame_count_));
 }
 
 std::size_t MotionTable::bytes() const {
@@ -72,6 +74,17 @@ PointMotion MotionTable::point(std::size_t row, std::size_t p) const {
   return motion;
 }
 
+FrameMotion MotionTable::frame(std::size_t row, std::size_t f) const {
+  FrameMotion motion;
+  const std::size_t rows = size();
+  const double* v = points_.data() + (frame_offset_ + 6 * f) * rows + row;
+  for (std::size_t c = 0; c < 3; ++c) {
+    motion.angular_velocity[c] = v[c * rows];
+    motion.angular_acceleration[c] = v[(3 + c) * rows];
+  }
+  return motion;
+}
+
 MotionState MotionTable::operator[](std::size_t row) const {
   MotionState s;
   s.input = input_[row];
@@ -87,6 +100,8 @@ MotionState MotionTable::operator[](std::size_t row) const {
     s.qdd = qdd(row);
     s.points.resize(point_count());
     for (std::size_t p = 0; p < point_count(); ++p) s.points[p] = point(row, p);
+    s.frames.resize(frame_count_);
+    for (std::size_t f = 0; f < frame_count_; ++f) s.frames[f] = frame(row, f);
   }
   return s;
 }
@@ -114,6 +129,15 @@ void MotionTable::set(std::size_t row, const MotionState& s) {
         v[c * rows] = m.position[c];
         v[(d + c) * rows] = m.velocity[c];
         v[(2 * d + c) * rows] = m.acceleration[c];
+      }
+    }
+  }
+  if (s.frames.size() == frame_count_) {
+    for (std::size_t f = 0; f < frame_count_; ++f) {
+      double* v = points_.data() + (frame_offset_ + 6 * f) * rows + row;
+      for (std::size_t c = 0; c < 3; ++c) {
+        v[c * rows] = s.frames[f].angular_velocity[c];
+        v[(3 + c) * rows] = s.frames[f].angular_acceleration[c];
       }
     }
   }

@@ -28,6 +28,12 @@ struct PointMotion {
   }
 };
 
+/// Angular velocity and angular acceleration of a frame of a spatial chain relative to
+/// the observer, in the observer's basis (rad/s, rad/s^2).
+struct FrameMotion {
+  std::array<double, 3> angular_velocity{}, angular_acceleration{};
+};
+
 /// Everything known at one input value (SI).
 struct MotionState {
   double input = 0, input_rate = 0, input_second_rate = 0;
@@ -35,6 +41,7 @@ struct MotionState {
   Failure failure;             ///< Why, when status is not ok (or a note when it is).
   Eigen::VectorXd q, qd, qdd;  ///< q empty when unassembled; qd, qdd empty unless ok.
   std::vector<PointMotion> points;  ///< Empty unless ok.
+  std::vector<FrameMotion> frames;  ///< Empty unless ok.
   double loop_residual = 0;         ///< max |Phi| at the solution (m).
   double reciprocal_condition = 0;  ///< of the length-scaled Phi_q; ~0 at a toggle.
 };
@@ -42,9 +49,10 @@ struct MotionState {
 class MotionTable {
  public:
   MotionTable() = default;
-  /// Rows for `inputs`, all unassembled until set; points of the given dimensions.
+  /// Rows for `inputs`, all unassembled until set; points of the given dimensions, and
+  /// `frames` frames (spatial chains).
   MotionTable(const std::vector<double>& inputs, std::size_t unknowns, const std::vector<std::size_t>& point_dimensions,
-              double rate, double second_rate);
+              double rate, double second_rate, std::size_t frames = 0);
 
   /// Makes the table rows for values [first, first + count) of `inputs`, all unassembled
   /// until set (what a streamed run reuses block after block; keeps its capacity).
@@ -54,6 +62,7 @@ class MotionTable {
   bool empty() const { return input_.empty(); }
   std::size_t unknown_count() const { return n_; }
   std::size_t point_count() const { return point_dimensions_.size(); }
+  std::size_t frame_count() const { return frame_count_; }
   double input_rate() const { return rate_; }
   double input_second_rate() const { return second_rate_; }
   /// A row's input rate and second rate: the run's, times the row's direction along a circuit.
@@ -93,6 +102,7 @@ class MotionTable {
   Column qd(std::size_t row) const { return column_view(qd_, row); }
   Column qdd(std::size_t row) const { return column_view(qdd_, row); }
   PointMotion point(std::size_t row, std::size_t p) const;
+  FrameMotion frame(std::size_t row, std::size_t f) const;
   double loop_residual(std::size_t row) const { return loop_residual_[row]; }
   double reciprocal_condition(std::size_t row) const { return reciprocal_condition_[row]; }
 
@@ -102,7 +112,8 @@ class MotionTable {
   void set(std::size_t row, const MotionState& state);
 
   /// Column storage for solvers that fill blocks of rows: value i of row r at
-  /// [i * size() + r]; points: the 3 * dimension values of each point in turn.
+  /// [i * size() + r]; points: the 3 * dimension values of each point in turn, then the
+  /// 6 of each frame (angular velocity, angular acceleration): the point stage's outputs.
   double* q_values() { return q_.data(); }
   double* qd_values() { return qd_.data(); }
   double* qdd_values() { return qdd_.data(); }
@@ -132,7 +143,7 @@ class MotionTable {
   const_iterator end() const { return {this, size()}; }
 
  private:
-  std::size_t n_ = 0, batch_rows_ = 0;
+  std::size_t n_ = 0, batch_rows_ = 0, frame_count_ = 0;
   std::vector<std::size_t> point_dimensions_;
   double rate_ = 0, second_rate_ = 0;
   std::vector<double> input_, q_, qd_, qdd_, loop_residual_, reciprocal_condition_;
@@ -140,6 +151,7 @@ class MotionTable {
   std::vector<Failure> failure_;
   std::vector<double> points_;
   std::vector<std::size_t> point_offset_;  ///< First column of each point in points_.
+  std::size_t frame_offset_ = 0;            ///< First column of the frames in points_.
   std::vector<signed char> direction_;      ///< Along a circuit only.
   std::vector<std::uint64_t> assembly_;     ///< Along a circuit only.
   Column column_view(const std::vector<double>& values, std::size_t row) const {

@@ -214,7 +214,7 @@ std::size_t solve_rows(const Kinematics& kinematics, Solvers& solvers, MotionTab
 MotionTable solve_sweep(const Kinematics& kinematics, const std::vector<double>& inputs, const SweepSettings& settings) {
   const std::size_t n = inputs.size();
   MotionTable table(inputs, kinematics.unknown_count(), kinematics.layout().point_dimensions, settings.rate,
-                    settings.second_rate);
+                    settings.second_rate, kinematics.frame_count());
   unsigned threads = settings.threads;
   if (n == 0) return table;
   // Short runs are not worth a thread. A joints-and-links run stays serial: its
@@ -268,7 +268,8 @@ struct SweepSolver::State {
         inputs(std::move(values)),
         settings(s),
         solvers(k, s.simd, s.rate),
-        history(std::vector<double>{}, k.unknown_count(), k.layout().point_dimensions, s.rate, s.second_rate) {
+        history(std::vector<double>{}, k.unknown_count(), k.layout().point_dimensions, s.rate, s.second_rate,
+                k.frame_count()) {
     at.q = k.guess();
   }
   static constexpr std::size_t kHistory = BatchWorkspace::kLanes + 1;
@@ -297,7 +298,8 @@ void SweepSolver::solve_next(SweepBlock& block, std::size_t rows) {
   if (block.table.unknown_count() != s.kinematics.unknown_count() || block.table.input_rate() != s.settings.rate ||
       block.table.input_second_rate() != s.settings.second_rate) {
     block.table = MotionTable(std::vector<double>{}, s.kinematics.unknown_count(),
-                              s.kinematics.layout().point_dimensions, s.settings.rate, s.settings.second_rate);
+                              s.kinematics.layout().point_dimensions, s.settings.rate, s.settings.second_rate,
+                              s.kinematics.frame_count());
   }
   MotionTable& table = block.table;
   table.assign_inputs(s.inputs, start - history, history + ahead);

@@ -12,6 +12,7 @@ struct TapeLayout {
   std::size_t parameter_count = 0;
   std::size_t unknown_count = 0;
   std::vector<std::size_t> point_dimensions;  ///< 2 or 3 per point.
+  std::size_t frame_count = 0;                ///< Frames of a spatial chain (angular velocity and acceleration).
 
   // Input registers: [parameters, theta, thetad, thetadd, q, qd, qdd].
   std::size_t parameter(std::size_t p) const { return p; }
@@ -26,7 +27,9 @@ struct TapeLayout {
   // Stages, run in this order: each may use what the earlier ones computed.
   static constexpr std::size_t kPositionStage = 0;      ///< Phi, Phi_q (column-major), Phi_theta.
   static constexpr std::size_t kAccelerationStage = 1;  ///< gamma.
-  static constexpr std::size_t kPointStage = 2;         ///< Each point: position, velocity, acceleration.
+  /// Each point: position, velocity, acceleration; then each frame: angular velocity and
+  /// angular acceleration (3 + 3, observer basis).
+  static constexpr std::size_t kPointStage = 2;
   static constexpr std::size_t kStageCount = 3;
 
   // Outputs of the position stage.
@@ -43,6 +46,9 @@ struct TapeLayout {
     return offset;
   }
   std::size_t point_output_count() const { return point_output(point_dimensions.size()); }
+  std::size_t frame_output(std::size_t f) const { return point_output_count() + 6 * f; }
+  /// Everything the point stage computes: points, then frames.
+  std::size_t observable_output_count() const { return frame_output(frame_count); }
 
   // Input levels (how often an input changes): work on level-0 inputs runs once,
   // on the input and its rates once per value, on q once per Newton iterate.

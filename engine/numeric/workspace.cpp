@@ -267,6 +267,15 @@ void Workspace::motion_into(double input, double rate, double second_rate, const
     }
     for (std::size_t c = 0; c < 3 * d; ++c) finite = finite && std::isfinite(v[c]);
   }
+  state.frames.resize(k_.frame_count());
+  for (std::size_t f = 0; f < k_.frame_count(); ++f) {
+    const double* v = point_out_.data() + layout_.frame_output(f);
+    for (std::size_t c = 0; c < 3; ++c) {
+      state.frames[f].angular_velocity[c] = v[c];
+      state.frames[f].angular_acceleration[c] = v[3 + c];
+    }
+    for (std::size_t c = 0; c < 6; ++c) finite = finite && std::isfinite(v[c]);
+  }
   if (!finite) {
     state.status = Status::singular;
     state.failure.kind = Failure::Kind::nonfinite_rates;

@@ -70,6 +70,10 @@ std::vector<ResultColumn> result_columns(const ConstraintSystem& system, const O
     for (const auto& c : p.components) columns.push_back({p.name + "_a" + c, l + "/s^2"});
     columns.push_back({p.name + "_acceleration", l + "/s^2"});
   }
+  for (const FrameObservable& f : system.frames) {
+    for (const char* c : {"x", "y", "z"}) columns.push_back({f.name + "_omega_" + c, "rad/s"});
+    for (const char* c : {"x", "y", "z"}) columns.push_back({f.name + "_alpha_" + c, "rad/s^2"});
+  }
   for (const auto& [body, angle] : block_links(system)) {
     columns.push_back({angle, "deg"});
     columns.push_back({default_rate_name(angle, 1), "rad/s"});
@@ -91,7 +95,7 @@ std::vector<ResultColumn> result_columns(const ConstraintSystem& system, const O
 std::size_t linkage_columns_begin(const ConstraintSystem& system) {
   std::size_t columns = kInputColumns + 3 * system.unknowns.size();
   for (const PointObservable& p : system.points) columns += 3 * p.components.size() + 2;
-  return columns;
+  return columns + 6 * system.frames.size();
 }
 
 std::vector<std::pair<std::size_t, std::string>> block_links(const ConstraintSystem& system) {
@@ -207,6 +211,15 @@ void result_values(const ConstraintSystem& system, const OutputScale& scale, con
     *values++ = m.speed() / f;
     for (std::size_t c = 0; c < dimension; ++c) *values++ = m.acceleration[c] / f;
     *values++ = m.acceleration_magnitude() / f;
+  }
+  for (std::size_t k = 0; k < system.frames.size(); ++k) {
+    if (status != Status::ok) {
+      values = std::fill_n(values, 6, undefined);
+      continue;
+    }
+    const FrameMotion m = table.frame(row, k);
+    values = std::copy(m.angular_velocity.begin(), m.angular_velocity.end(), values);
+    values = std::copy(m.angular_acceleration.begin(), m.angular_acceleration.end(), values);
   }
   if (!system.linkage) return;
   if (status != Status::ok) {  // 3 per slider block, 6 per slider

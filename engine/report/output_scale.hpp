@@ -33,7 +33,8 @@ struct ResultColumn {
 
 /// The value columns of one row, in order: input, its rate and second rate; each
 /// unknown with its rate and second rate; each point's position, velocity, speed,
-/// acceleration and its magnitude; for joints and links, each slider block's angle and
+/// acceleration and its magnitude; for spatial chains, each frame's angular velocity and
+/// angular acceleration (x, y, z in the observer's basis); for joints and links, each slider block's angle and
 /// rates (its guide's turning), then each slider's relative velocity, relative
 /// acceleration and Coriolis acceleration (x, y); along a circuit, each dyad's assembly
 /// sign (+1 or -1, "branch_" and its inner joint). The first kInputColumns are the input's.
@@ -52,7 +53,8 @@ void result_values(const ConstraintSystem& system, const OutputScale& scale, con
 /// order (what names its assembly sign); else empty.
 std::vector<std::string> dyad_inner_joints(const ConstraintSystem& system);
 
-/// Where the joints-and-links columns (blocks, then sliders) begin in result_columns.
+/// Where the joints-and-links columns (blocks, then sliders) begin in result_columns (after
+/// the points and frames).
 std::size_t linkage_columns_begin(const ConstraintSystem& system);
 
 /// The joints-and-links values of an ok state (blocks, then sliders), from result_columns'

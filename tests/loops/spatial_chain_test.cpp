@@ -142,16 +142,8 @@ TEST_CASE("spatial_chain: v_B is the seed's boxed formula, by meaning") {
 }
 
 TEST_CASE("spatial_chain: a point sliding along the arm has its Coriolis and relative terms") {
-  std::string text = kinema_test::read_file(kArm);
-  text += "\n";
-  const auto put = [&](const std::string& after, const std::string& line) {
-    const auto at_line = text.find(after);
-    REQUIRE(at_line != std::string::npos);
-    text.insert(text.find('\n', at_line) + 1, line + "\n");
-  };
-  put("theta5 = {", R"(s = { value = "0.1 m", rate = "0.5 m/s", second_rate = "0.2 m/s^2", rate_name = "v_s", second_rate_name = "a_s" })");
-  put("B = {", R"(C = { frame = "E3", at = ["s", "0 m", "0 m"] })");
-  const kinema::SpatialKinematics k = kinema::build_spatial_chain(kinema::read_mechanism_text(text, "slider.toml"));
+  const kinema::SpatialKinematics k =
+      kinema::build_spatial_chain(kinema::read_mechanism_file(kinema_test::sample("robot_arm_slider.toml")));
   const GiNaC::exmap values = k.instant();
   const auto& c = point(k, "C");
   // v_rel = 0.5 e1 = 0.5 E1^ at the instant; Coriolis 2 w x v_rel = 2 (-1, 0.866, 0.5) x (0.5, 0, 0).
@@ -285,6 +277,55 @@ TEST_CASE("spatial_chain: through the commands, a bad chain is bad input with fi
       CHECK(result.err.find("spatial_bad.toml:") != std::string::npos);
       CHECK(result.err.find(c.message) != std::string::npos);
       CHECK_FALSE(std::filesystem::exists(output));
+    }
+  }
+}
+
+TEST_CASE("spatial_chain: each frame's angular velocity and acceleration are eval columns (CSV, JSON, table)") {
+  // Seed 000's w_E3/E0 and alpha_E3/E0 at the instant, in every format.
+  const nlohmann::json doc = kinema_test::eval_json("robot_arm_seed000.toml");
+  REQUIRE(doc["frames"] == nlohmann::json({"E1", "E2", "E3"}));
+  const auto& e3 = doc["results"][0]["frames"]["E3"];
+  const char* w[] = {"-1", "0.866025", "0.5"};
+  const char* alpha[] = {"-0.866025", "-1.5", "-0.866025"};
+  for (std::size_t c = 0; c < 3; ++c) {
+    CHECK_PRINTED(e3["angular_velocity"][c].get<double>(), w[c]);
+    CHECK_PRINTED(e3["angular_acceleration"][c].get<double>(), alpha[c]);
+  }
+  CHECK(doc["results"][0]["frames"]["E2"]["angular_acceleration"] == nlohmann::json({0.0, -1.0, 0.0}));
+  const auto csv = kinema_test::run_kinema({"eval", kArm, "--format", "csv"});
+  REQUIRE(csv.exit_status == 0);
+  CHECK(csv.out.find(",E3_omega_x [rad/s],E3_omega_y [rad/s],E3_omega_z [rad/s],E3_alpha_x [rad/s^2],") !=
+        std::string::npos);
+  CHECK(csv.out.find(",-1,0.866025403784,0.5,-0.866025403784,-1.5,-0.866025403784,\n") != std::string::npos);
+  const auto table = kinema_test::run_kinema({"eval", kArm});
+  REQUIRE(table.exit_status == 0);
+  CHECK(table.out.find("  E3      (-1, 0.866025, 0.5)                     (-0.866025, -1.5, -0.866025)\n") !=
+        std::string::npos);
+
+  // Over the RSSR's turn, in SIMD blocks and one by one alike: the rocker turns about
+  // its y axis (w = omega4 y), and alpha is the derivative of w in time.
+  const kinema::Model model = kinema::load_model(kinema_test::sample("rssr_spatial_four_bar.toml"));
+  REQUIRE(model.system.frames.size() == 2);
+  std::vector<double> times;
+  const double h = 1e-3;
+  for (int k = 0; k <= 3000; ++k) times.push_back(k * h);
+  for (bool simd : {true, false}) {
+    CAPTURE(simd);
+    const kinema::MotionTable t = kinema::analyse(model, times, kinema_test::with_rates(1, 0, 1, simd));
+    if (simd) CHECK(t.batch_rows() > 0);
+    REQUIRE(t.frame_count() == 2);
+    for (std::size_t r = 1; r + 1 < t.size(); r += 101) {
+      CAPTURE(times[r]);
+      REQUIRE(t.status(r) == kinema::Status::ok);
+      const kinema::FrameMotion rocker = t.frame(r, 1), before = t.frame(r - 1, 1), after = t.frame(r + 1, 1);
+      CHECK(rocker.angular_velocity[0] == 0);
+      CHECK(rocker.angular_velocity[2] == 0);
+      CHECK(rocker.angular_velocity[1] == doctest::Approx(t.qd(r)[1]).epsilon(1e-12));
+      CHECK(rocker.angular_acceleration[1] ==
+            doctest::Approx((after.angular_velocity[1] - before.angular_velocity[1]) / (2 * h)).epsilon(1e-5).scale(1));
+      CHECK(t[r].frames.size() == 2);
+      CHECK(t[r].frames[1].angular_velocity[1] == rocker.angular_velocity[1]);
     }
   }
 }

@@ -86,7 +86,7 @@ void write_cpp_header(std::ostream& out, const Model& model, const std::string& 
   const ConstraintSystem& m = model.system;
   const Kinematics& k = model.kinematics;
   const TapeLayout& layout = k.layout();
-  const std::size_t n = k.unknown_count(), points = k.point_count();
+  const std::size_t n = k.unknown_count(), points = k.point_count(), frames = k.frame_count();
   const std::size_t parameters = m.parameters.size();
   const std::size_t point_values = layout.point_output_count();
   const CompiledExpressions& tape = k.evaluator();
@@ -127,6 +127,10 @@ void write_cpp_header(std::ostream& out, const Model& model, const std::string& 
   for (const Coordinate& u : m.unknowns) out << " " << u.name;
   out << ".\n// Points (" << point_components << " each):";
   for (const PointObservable& p : m.points) out << " " << p.name;
+  if (frames > 0) {
+    out << ".\n// Frames (wx, wy, wz, alphax, alphay, alphaz each, relative to the observer in its\n// basis):";
+    for (const FrameObservable& f : m.frames) out << " " << f.name;
+  }
   out << ".\n//\n"
       << "// The numeric rules are kinema's own code: namespace " << name << "::solver below is\n"
       << "// kinema's engine/numeric/solver.hpp (its constants, LU, singular values and\n"
@@ -140,6 +144,7 @@ void write_cpp_header(std::ostream& out, const Model& model, const std::string& 
       << solver.body << "}  // namespace solver\n\n"
       << "constexpr int unknown_count = " << n << ";\n"
       << "constexpr int point_count = " << points << ";\n"
+      << "constexpr int frame_count = " << frames << ";\n"
       << "/// Typical length of the mechanism (m): Newton's tolerances are relative to it.\n"
       << "constexpr double length_scale = " << literal(k.length_scale()) << ";\n"
       << "/// Scale of each column of Phi_q (length_scale for a length unknown, 1 for an\n"
@@ -180,16 +185,19 @@ void write_cpp_header(std::ostream& out, const Model& model, const std::string& 
   unused_guard("  ");
   write_tape_stage_cpp(out, tape, inputs, TapeLayout::kAccelerationStage, targets("out", n), "  ");
   out << "}\n\n"
-      << "// " << point_components << " of each point.\n"
+      << "// " << point_components << " of each point, then wx, wy, wz, alphax, alphay, alphaz of\n"
+      << "// each frame.\n"
       << "inline void point_motion(const Parameters& p, double theta, double theta_rate,\n"
       << "                         double theta_second_rate, const double* q, const double* qd,\n"
       << "                         const double* qdd, double* out) {\n";
   unused_guard("  ");
-  write_tape_stage_cpp(out, tape, inputs, TapeLayout::kPointStage, targets("out", point_values), "  ");
+  write_tape_stage_cpp(out, tape, inputs, TapeLayout::kPointStage, targets("out", layout.observable_output_count()),
+                       "  ");
   out << "}\n\n"
       << "constexpr std::size_t n = " << n << ";\n"
       << "constexpr std::size_t system_size = n + n * n + n;  ///< position_system's output.\n"
-      << "constexpr std::size_t point_values = " << point_values << ";  ///< point_motion's output.\n";
+      << "constexpr std::size_t point_values = " << point_values << ";  ///< point_motion's output: points,\n"
+      << "constexpr std::size_t frame_values = " << 6 * frames << ";  ///< then frames.\n";
   // From here on the text is the same for every mechanism: what Workspace
   // (engine/numeric/workspace.cpp) does, written against the pasted solver.
   out << R"(
@@ -301,6 +309,7 @@ struct Motion {
 )";
   out << "  double points[" << (points ? points : 1) << "][" << 3 * point_dimension << "];  ///< "
       << point_components << "\n";
+  out << "  double frames[" << (frames ? frames : 1) << "][6];  ///< wx, wy, wz, alphax, alphay, alphaz\n";
   out << R"(  /// Of Phi_q with its columns scaled; below solver::kSingularThreshold: singular.
   double reciprocal_condition;
 };
@@ -315,6 +324,8 @@ inline Status evaluate(const Parameters& p, double theta, double theta_rate, dou
   for (std::size_t i = 0; i < n; ++i) motion.q[i] = motion.qd[i] = motion.qdd[i] = NAN;
   for (auto& point : motion.points)
     for (double& value : point) value = NAN;
+  for (auto& frame : motion.frames)
+    for (double& value : frame) value = NAN;
   motion.reciprocal_condition = NAN;
   if (!solve_position(p, theta, q)) return Status::unassembled;
   for (std::size_t i = 0; i < n; ++i) motion.q[i] = q[i];
@@ -334,16 +345,26 @@ inline Status evaluate(const Parameters& p, double theta, double theta_rate, dou
   detail::acceleration_rhs(p, theta, theta_rate, theta_second_rate, q, motion.qd, motion.qdd);
   detail::solve(f, motion.qdd);
 )";
-  if (points > 0) {
+  if (points > 0 && frames == 0) {
     out << "  detail::point_motion(p, theta, theta_rate, theta_second_rate, q, motion.qd, motion.qdd,\n"
         << "                       &motion.points[0][0]);\n";
+  } else if (frames > 0) {  // one output, points then frames
+    out << "  double observed[detail::point_values + detail::frame_values];\n"
+        << "  detail::point_motion(p, theta, theta_rate, theta_second_rate, q, motion.qd, motion.qdd, observed);\n";
+    if (points > 0)
+      out << "  for (std::size_t k = 0; k < detail::point_values; ++k) (&motion.points[0][0])[k] = observed[k];\n";
+    out << "  for (std::size_t k = 0; k < detail::frame_values; ++k)\n"
+        << "    (&motion.frames[0][0])[k] = observed[detail::point_values + k];\n";
   }
   out << R"(  // Rates that overflow are a singular position all the same.
   if (!detail::all_finite(motion.qd, n) || !detail::all_finite(motion.qdd, n) ||
-      !detail::all_finite(&motion.points[0][0], detail::point_values)) {
+      !detail::all_finite(&motion.points[0][0], detail::point_values) ||
+      !detail::all_finite(&motion.frames[0][0], detail::frame_values)) {
     for (std::size_t i = 0; i < n; ++i) motion.qd[i] = motion.qdd[i] = NAN;
     for (auto& point : motion.points)
       for (double& value : point) value = NAN;
+    for (auto& frame : motion.frames)
+      for (double& value : frame) value = NAN;
     return Status::singular;
   }
   return Status::ok;

@@ -51,6 +51,11 @@ class JsonPrinter : public ResultsPrinter {
     json points = json::array();
     for (const PointObservable& p : system.points) points.push_back(p.name);
     doc["points"] = points;
+    if (!system.frames.empty()) {
+      json frames = json::array();
+      for (const FrameObservable& f : system.frames) frames.push_back(f.name);
+      doc["frames"] = frames;
+    }
     std::string text = doc.dump(2);  // ends with "\n}": the results go before it
     text.resize(text.size() - 2);
     out += text + ",\n  \"results\": [";
@@ -61,9 +66,10 @@ class JsonPrinter : public ResultsPrinter {
     const ConstraintSystem& system = job.model.system;
     const OutputScale scale(system);
     std::vector<double> values(result_columns(system, scale, job.circuit).size());
-    std::vector<std::string> coordinate_keys, point_keys;
+    std::vector<std::string> coordinate_keys, point_keys, frame_keys;
     for (const Coordinate& q : system.unknowns) coordinate_keys.push_back(quoted(q.name) + ": {\"value\": ");
     for (const PointObservable& p : system.points) point_keys.push_back(quoted(p.name) + ": {\"position\": ");
+    for (const FrameObservable& f : system.frames) frame_keys.push_back(quoted(f.name) + ": {\"angular_velocity\": ");
     const auto blocks = block_links(system);  // joints and links: once, not per row
     std::vector<std::string> branch_keys;
     if (job.circuit)
@@ -139,6 +145,17 @@ class JsonPrinter : public ResultsPrinter {
         v += 3 * d + 2;
       }
       out += '}';
+      if (!system.frames.empty()) {  // spatial chains: each frame's w and alpha
+        out += ", \"frames\": {";
+        for (std::size_t f = 0; f < system.frames.size(); ++f, v += 6) {
+          if (status != Status::ok) continue;
+          out += (f > 0 ? ", " : "") + frame_keys[f];
+          vector(v, 3);
+          member_vector(", \"angular_acceleration\": ", v + 3, 3);
+          out += '}';
+        }
+        out += '}';
+      }
       if (system.linkage && status == Status::ok) {  // joints and links: blocks, then sliders
         out += ", \"blocks\": {";
         for (std::size_t k = 0; k < blocks.size(); ++k, v += 3) {

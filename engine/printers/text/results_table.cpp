@@ -1,5 +1,6 @@
 // Results for people: one block per input value (coordinates with rates and
 // second rates, points with components and magnitudes).
+#include <algorithm>
 #include <sstream>
 
 #include <kinema/engine/printers/printer.hpp>
@@ -77,6 +78,7 @@ class ResultsTablePrinter : public ResultsPrinter {
       }
       if (s.status != Status::ok) continue;
       if (!system.points.empty()) print_points(out, system, scale, s, digits);
+      if (!system.frames.empty()) print_frames(out, system, s, digits);
       if (system.linkage) print_sliders(out, system, scale, table, row, digits);
     }
     text += out.str();
@@ -110,6 +112,23 @@ class ResultsTablePrinter : public ResultsPrinter {
           << pair(v + 4) << "\n";
       v += 6;
     }
+  }
+
+  // Spatial chains: each frame's angular velocity and acceleration relative to the observer.
+  static void print_frames(std::ostream& out, const ConstraintSystem& system, const MotionState& s, int digits) {
+    const auto triple = [&](const std::array<double, 3>& v) {
+      return "(" + format_significant(v[0], digits) + ", " + format_significant(v[1], digits) + ", " +
+             format_significant(v[2], digits) + ")";
+    };
+    std::string observer = system.frames.front().parent;  // the parent that is not a frame
+    for (const FrameObservable& f : system.frames)
+      if (std::none_of(system.frames.begin(), system.frames.end(), [&](const auto& g) { return g.name == f.parent; }))
+        observer = f.parent;
+    out << "  " << pad("frame", 8) << pad("w relative to " + observer + " (rad/s)", 40)
+        << "alpha (rad/s^2)\n";
+    for (std::size_t f = 0; f < system.frames.size(); ++f)
+      out << "  " << pad(system.frames[f].name, 8) << pad(triple(s.frames[f].angular_velocity), 40)
+          << triple(s.frames[f].angular_acceleration) << "\n";
   }
 
   // One header per run of points with the same components.

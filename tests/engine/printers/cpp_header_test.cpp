@@ -45,7 +45,7 @@ std::vector<double> sweep_of(const kinema::Model& model) {
 /// values, walked from initial_guess with each warm-started from the last (as a
 /// user would); then a count and that many rows "theta q...", each evaluated
 /// from that q. Per value it prints the status (0 ok, 1 singular, 2 unassembled),
-/// the reciprocal condition, q, qd, qdd and the points' values.
+/// the reciprocal condition, q, qd, qdd, the points' values and the frames'.
 std::string driver_source(const std::string& header, const std::string& name) {
   std::ostringstream d;
   d << "#include \"" << header << "\"\n#include <cstdio>\n"
@@ -56,6 +56,8 @@ std::string driver_source(const std::string& header, const std::string& name) {
     << "    std::printf(\" %.17g %.17g %.17g\", m.q[i], m.qd[i], m.qdd[i]);\n"
     << "  for (int k = 0; k < " << name << "::point_count; ++k)\n"
     << "    for (double value : m.points[k]) std::printf(\" %.17g\", value);\n"
+    << "  for (int k = 0; k < " << name << "::frame_count; ++k)\n"
+    << "    for (double value : m.frames[k]) std::printf(\" %.17g\", value);\n"
     << "  std::printf(\"\\n\");\n"
     << "}\n"
     << "}  // namespace\n"
@@ -136,6 +138,14 @@ void check_numbers(const HeaderResult& header, const kinema::MotionState& s) {
         CHECK(close(header.points.at(k), (*part)[c]));
       }
   }
+  for (const auto& frame : s.frames) {
+    for (const auto* part : {&frame.angular_velocity, &frame.angular_acceleration})
+      for (std::size_t c = 0; c < 3; ++c, ++k) {
+        INFO("frame value " << k << ": header " << header.points.at(k) << ", engine " << (*part)[c]);
+        CHECK(close(header.points.at(k), (*part)[c]));
+      }
+  }
+  CHECK(k == header.points.size());
 }
 
 const char* status_name(int status) {
@@ -159,7 +169,7 @@ TEST_CASE("kinema codegen: the header's numbers and singular positions are the e
     const kinema::Model model = kinema::load_model(kinema_test::sample(sample));
     const auto& input = model.system.input;
     const std::size_t n = model.kinematics.unknown_count();
-    const std::size_t point_values = model.kinematics.layout().point_output_count();
+    const std::size_t point_values = model.kinematics.layout().observable_output_count();  // points, frames
     const auto options = kinema_test::with_rates(input.rate_value, input.second_rate_value);
 
     // The first five values 1 deg (1 mm) apart, walked from the guesses.
