@@ -185,6 +185,13 @@ int run(int argc, char** argv) {
   codegen_cmd->add_option("-o,--output", output_path, "header to write, e.g. four_bar.hpp")->required();
   codegen_cmd->add_option("--namespace", namespace_name, "namespace of the generated code (default: the header's name)");
 
+  std::string chain_input;
+  const std::string input_help =
+      "spatial chains: a driven variable of [variables] as the input instead of time (--at and --sweep in its "
+      "units; the other driven variables follow it), e.g. --input theta1";
+  for (auto* command : {derive_cmd, eval_cmd, latex_cmd, codegen_cmd})
+    command->add_option("--input", chain_input, input_help)->option_text("VARIABLE");
+
   auto* loops_cmd = app.add_subcommand(
       "loops", "write the mechanism as a vector-loop file (for joints and links: the loops kinema found)");
   loops_cmd->add_option("FILE", file, "mechanism file (TOML)")->required();
@@ -201,7 +208,15 @@ int run(int argc, char** argv) {
   if (!output_path.empty() && output_path != "-" && std::filesystem::equivalent(file, output_path, same_error)) {
     throw InputError("-o " + output_path + " is the mechanism file itself; write the output to another file");
   }
-  const Mechanism mechanism = read_mechanism_file(file);
+  Mechanism mechanism = read_mechanism_file(file);
+  if (!chain_input.empty()) {
+    if (!mechanism.chain) {
+      throw InputError(file + ": --input " + chain_input + " is for spatial chains (a file of [frames] and "
+                       "[variables]); this file's input is set in the file");
+    }
+    mechanism.chain->input = chain_input;
+    mechanism.chain->input_where = {};
+  }
   const Model model = make_model(mechanism);  // a file kinema cannot analyse is not written as loops either
   const ConstraintSystem& m = model.system;
   std::ostringstream out;

@@ -227,6 +227,10 @@ struct ChainPoint {
 /// the first frame's parent names, which no entry defines.
 struct SpatialChain {
   std::string observer;
+  /// The driven variable that is the input of the commands (eval's --sweep in its units);
+  /// empty: time. The other driven variables follow it (README, "Spatial chains").
+  std::string input;
+  SourceLocation input_where;  ///< Of the file's `input = "..."`; no line: given on the command line.
   std::vector<ChainVariable> variables;
   std::vector<ChainFrame> frames;
   std::vector<ChainPoint> points;

@@ -414,13 +414,20 @@ class FileReader {
 
   // A file written as a spatial chain of frames (README, "Spatial chains").
   Mechanism read_chain(const Node& root, Mechanism& mechanism) const {
-    check_keys(root, {"title", "description", "parameters", "variables", "frames", "points", "closures", "output"},
+    check_keys(root, {"title", "description", "parameters", "input", "variables", "frames", "points", "closures",
+                      "output"},
                "the top level of a spatial chain (a file of frames; vector loops and joints and links are other forms)");
     mechanism.title = optional_string(root, "title", "Untitled mechanism");
     mechanism.description = optional_string(root, "description", "");
     read_output(root, mechanism);
     read_parameters(root, mechanism);
     SpatialChain& chain = mechanism.chain.emplace();
+    if (has(root, "input")) {
+      const Node& input = at(root, "input");
+      if (!input.is_string()) fail(input, "input must name a driven variable of [variables], e.g. input = \"theta1\"");
+      chain.input = input.value<std::string>().value_or("");
+      chain.input_where = where(input);
+    }
     if (has(root, "variables")) {
       const Node& table = at(root, "variables");
       if (!table.is_table()) fail(table, "[variables] must be a table of name = { value = \"0 deg\", rate = \"1 rad/s\" }");

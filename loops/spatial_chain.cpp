@@ -332,6 +332,38 @@ SpatialKinematics build_spatial_chain(const Mechanism& mechanism) {
   }
 }
 
+namespace {
+
+// The index of the chain's input variable (SpatialChain::input), or variables.size() for time.
+std::size_t chain_input(const Mechanism& mechanism, const SpatialKinematics& k) {
+  const SpatialChain& chain = *mechanism.chain;
+  if (chain.input.empty()) return k.variables.size();
+  const std::string where = chain.input_where.line > 0 ? chain.input_where.str() + ": input \"" + chain.input + "\""
+                                                       : mechanism.source_file + ": --input " + chain.input;
+  std::string driven;
+  for (std::size_t i = 0; i < k.variables.size(); ++i)
+    if (!k.unknown[i]) driven += (driven.empty() ? "" : ", ") + k.variables[i].name;
+  for (std::size_t i = 0; i < k.variables.size(); ++i) {
+    if (k.variables[i].name != chain.input) continue;
+    if (k.unknown[i]) {
+      throw InputError(where + ": this variable is found by the closures (it has a guess); the input is a variable "
+                               "that drives the chain (" + (driven.empty() ? "none here" : driven) + "), or time");
+    }
+    bool moving = false;
+    for (std::size_t j = 0; j < k.variables.size(); ++j)
+      moving = moving || (j != i && !k.unknown[j] && (k.rates[j] != 0 || k.second_rates[j] != 0));
+    if (k.rates[i] == 0 && moving) {
+      throw InputError(where + ": it has no rate, so the other driven variables cannot follow it (they move at the "
+                               "time it reaches each value at its rate); give it a rate, or keep time as the input");
+    }
+    return i;
+  }
+  throw InputError(where + ": no such variable; the input is one of the driven variables of [variables] (" +
+                   (driven.empty() ? "none here" : driven) + "), or time (no input)");
+}
+
+}  // namespace
+
 ConstraintSystem build_spatial_system(const Mechanism& mechanism) {
   const SpatialKinematics k = build_spatial_chain(mechanism);
   ConstraintSystem system;
@@ -344,15 +376,23 @@ ConstraintSystem build_spatial_system(const Mechanism& mechanism) {
   for (const SystemParameter& p : system.parameters)
     if (p.dimension == Dimension::length) largest = std::max(largest, std::fabs(p.value));
   system.length_scale = largest > 0 ? largest : 1.0;
+  const std::size_t input = chain_input(mechanism, k);
   Driver& t = system.input;
-  t.name = "t";
-  t.dimension = Dimension::time;
-  t.symbol = GiNaC::realsymbol("t", "t");
-  t.rate = GiNaC::realsymbol("t_rate", "\\dot{t}");
-  t.second_rate = GiNaC::realsymbol("t_second_rate", "\\ddot{t}");
-  t.values = {0.0};
-  t.rate_value = 1.0;
-  t.second_rate_value = 0.0;
+  if (input == k.variables.size()) {
+    t.name = "t";
+    t.dimension = Dimension::time;
+    t.symbol = GiNaC::realsymbol("t", "t");
+    t.rate = GiNaC::realsymbol("t_rate", "\\dot{t}");
+    t.second_rate = GiNaC::realsymbol("t_second_rate", "\\ddot{t}");
+    t.values = {0.0};
+    t.rate_value = 1.0;
+    t.second_rate_value = 0.0;
+  } else {
+    static_cast<Coordinate&>(t) = k.variables[input];
+    t.values = {k.values[input]};
+    t.rate_value = k.rates[input];
+    t.second_rate_value = k.second_rates[input];
+  }
   const auto parameter = [&](const std::string& name, double value, Dimension dimension, const SourceLocation& where) {
     SystemParameter p;
     p.symbol = GiNaC::realsymbol(name, latex_symbol_name(name));
@@ -363,7 +403,21 @@ ConstraintSystem build_spatial_system(const Mechanism& mechanism) {
     system.parameters.push_back(p);
     return p.symbol;
   };
+  // The time since the instant: t itself, or for a variable as the input the time at
+  // which it reaches its value at its rate of the file, tau = (theta - theta_0) / omega_0.
+  ex tau = t.symbol;
+  if (input < k.variables.size()) {
+    bool followers = false;
+    for (std::size_t i = 0; i < k.variables.size(); ++i) followers = followers || (i != input && !k.unknown[i]);
+    tau = 0;
+    if (followers && k.rates[input] != 0) {
+      const Coordinate& q = k.variables[input];
+      tau = (t.symbol - parameter(q.name + "_0", k.values[input], q.dimension, q.where)) /
+            parameter(q.rate.get_name() + "_0", k.rates[input], Dimension::number, q.where);
+    }
+  }
   for (std::size_t i = 0; i < k.variables.size(); ++i) {
+    if (i == input) continue;
     Coordinate q = k.variables[i];
     q.guess = k.values[i];
     if (k.unknown[i]) {  // found by a closure
@@ -381,7 +435,7 @@ ConstraintSystem build_spatial_system(const Mechanism& mechanism) {
     system.groups.push_back(group);
     Equation e;
     // Times the length scale: a length, like a closure's row (the solvers scale by lengths).
-    e.expression = system.length_scale * (q.symbol - (start + rate * t.symbol + second * GiNaC::pow(t.symbol, 2) / 2));
+    e.expression = system.length_scale * (q.symbol - (start + rate * tau + second * GiNaC::pow(tau, 2) / 2));
     e.group = system.groups.size() - 1;
     e.component = "value";
     system.equations.push_back(e);

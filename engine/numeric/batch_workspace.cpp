@@ -131,7 +131,7 @@ void BatchWorkspace::pivot_ratios(double* ratio) const {
   double smallest[kLanes], largest[kLanes];
   for (std::size_t l = 0; l < kLanes; ++l) {
     smallest[l] = INFINITY;
-    largest[l] = 0;
+    largest[l] = n_ == 1 ? k_.length_scale() : 0;  // as solver::pivot_ratio
   }
   for (std::size_t c = 0; c < n_; ++c) {
     const double* pivot = lu_.data() + (c * n_ + c) * kLanes;

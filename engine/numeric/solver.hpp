@@ -76,9 +76,12 @@ inline void lu_solve(const double* a, const double* inverse_pivots, const std::s
   }
 }
 
-/// min/max |pivot| of an lu_factor result; 0 when not finite.
-inline double pivot_ratio(const double* a, std::size_t n) {
-  double smallest = INFINITY, largest = 0;
+/// min/max |pivot| of an lu_factor result; 0 when not finite. The column-scaled Phi_q's
+/// rows are lengths; a 1 x 1 one (one closure, one unknown) has no other pivot to be
+/// compared with, so its pivot is compared with `length_scale` (at most 1): it still
+/// falls to 0 at a limit position.
+inline double pivot_ratio(const double* a, std::size_t n, double length_scale) {
+  double smallest = INFINITY, largest = n == 1 ? length_scale : 0;
   for (std::size_t c = 0; c < n; ++c) {
     const double pivot = std::fabs(a[c * n + c]);
     smallest = pivot < smallest ? pivot : smallest;
@@ -163,18 +166,19 @@ inline double singular_value_ratio(double* a, std::size_t n) {
 /// (>= kClearlyRegularPivotRatio), else the ratio of its singular values; 0 when
 /// not finite. `matrix()` gives a row-major copy of the factorised matrix, which is
 /// overwritten; it is called only when the singular values are needed (near a
-/// toggle), so a caller may build the copy only then.
+/// toggle), so a caller may build the copy only then. A 1 x 1 matrix: its pivot
+/// against the length scale (pivot_ratio).
 template <class MatrixCopy>
-inline double reciprocal_condition(const double* lu, std::size_t n, MatrixCopy&& matrix) {
-  const double ratio = pivot_ratio(lu, n);
+inline double reciprocal_condition(const double* lu, std::size_t n, double length_scale, MatrixCopy&& matrix) {
+  const double ratio = pivot_ratio(lu, n, length_scale);
   if (ratio == 0.0) return 0.0;
-  if (ratio >= kClearlyRegularPivotRatio) return ratio;
+  if (ratio >= kClearlyRegularPivotRatio || n == 1) return ratio;
   return singular_value_ratio(matrix(), n);
 }
 
 /// The same with the copy at hand (row-major n x n; overwritten when read).
-inline double reciprocal_condition(const double* lu, double* matrix, std::size_t n) {
-  return reciprocal_condition(lu, n, [matrix] { return matrix; });
+inline double reciprocal_condition(const double* lu, double* matrix, std::size_t n, double length_scale) {
+  return reciprocal_condition(lu, n, length_scale, [matrix] { return matrix; });
 }
 
 /// Minimum-norm least-squares solution of a x = b (a row-major n x n, overwritten;

@@ -69,7 +69,7 @@ double Workspace::reciprocal_condition() const {
   // same code). It reads the scaled Phi_q only near a toggle, so the copy (which
   // allocates) is made only then: row-major, as factorise() wrote it before the LU.
   std::vector<double> scaled;
-  return solver::reciprocal_condition(lu_.data(), n_, [&] {
+  return solver::reciprocal_condition(lu_.data(), n_, k_.length_scale(), [&] {
     const auto& column_scale = k_.column_scale();
     scaled.resize(n_ * n_);
     for (std::size_t i = 0; i < n_; ++i)
@@ -96,7 +96,7 @@ bool Workspace::solve_position(double input, Eigen::VectorXd& q, std::size_t* wo
       break;
     }
     factorise();
-    if (solver::pivot_ratio(lu_.data(), n_) > solver::kLeastSquaresPivotRatio) {
+    if (solver::pivot_ratio(lu_.data(), n_, k_.length_scale()) > solver::kLeastSquaresPivotRatio) {
       for (std::size_t i = 0; i < n_; ++i) rhs_[i] = -phi(i);
       solve_rhs(step_.data());
     } else {

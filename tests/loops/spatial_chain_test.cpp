@@ -202,9 +202,10 @@ TEST_CASE("spatial_chain: derive prints the composition of angular velocities an
   CHECK(csv.out.find("\n0.5,1,0,ok,") != std::string::npos);
 }
 
-TEST_CASE("spatial_chain: the RSSR four-bar closes its loop over a turn; rates by finite differences in time") {
+TEST_CASE("spatial_chain: the RSSR four-bar closes its loop over a turn; rates by finite differences") {
+  // Its input is the crank angle at 1 rad/s: finite differences in the angle (rad) are in time (s).
   const kinema::Model model = kinema::load_model(kinema_test::sample("rssr_spatial_four_bar.toml"));
-  REQUIRE(model.system.unknowns.size() == 2);
+  REQUIRE(model.system.unknowns.size() == 1);  // theta4: theta2 is the input
   CHECK(model.system.groups.back().kind == "closure");
   std::vector<double> times;
   const double h = 1e-3;
@@ -251,7 +252,7 @@ TEST_CASE("spatial_chain: closures and their variables are counted and named") {
   CHECK(error_of(kinema_test::replaced(R"(BC = { between = ["B", "C"], length = "BC" })", "", rssr))
             .find("1 variable(s) with a guess (found by the closures) but 0 closure(s)") != std::string::npos);
   CHECK(error_of(kinema_test::replaced(R"(between = ["B", "C"])", R"(between = ["B", "X"])", rssr))
-            .find("rssr.toml:29: closure \"BC\": there is no point \"X\" in [points]") != std::string::npos);
+            .find("rssr.toml:31: closure \"BC\": there is no point \"X\" in [points]") != std::string::npos);
   CHECK(error_of(kinema_test::replaced(R"(guess = "47 deg")", R"(guess = "47 deg", rate = "1 rad/s")", rssr))
             .find("has a guess, so the closures find it") != std::string::npos);
 }
@@ -321,11 +322,137 @@ TEST_CASE("spatial_chain: each frame's angular velocity and acceleration are eva
       const kinema::FrameMotion rocker = t.frame(r, 1), before = t.frame(r - 1, 1), after = t.frame(r + 1, 1);
       CHECK(rocker.angular_velocity[0] == 0);
       CHECK(rocker.angular_velocity[2] == 0);
-      CHECK(rocker.angular_velocity[1] == doctest::Approx(t.qd(r)[1]).epsilon(1e-12));
+      CHECK(rocker.angular_velocity[1] == doctest::Approx(t.qd(r)[0]).epsilon(1e-12));
       CHECK(rocker.angular_acceleration[1] ==
             doctest::Approx((after.angular_velocity[1] - before.angular_velocity[1]) / (2 * h)).epsilon(1e-5).scale(1));
       CHECK(t[r].frames.size() == 2);
       CHECK(t[r].frames[1].angular_velocity[1] == rocker.angular_velocity[1]);
     }
   }
+}
+
+TEST_CASE("spatial_chain: a driven variable as the input (--input, or input = in the file); the others follow it") {
+  // theta1 at 30 deg with omega1 = 1 rad/s is the arm at t = pi/6 s: the same positions,
+  // velocities, accelerations and angular velocities.
+  const nlohmann::json by_angle = kinema_test::eval_json("robot_arm_seed000.toml", {"--input", "theta1", "--at", "30"});
+  char sixth[32];
+  std::snprintf(sixth, sizeof sixth, "%.17g", M_PI / 6);
+  const nlohmann::json by_time = kinema_test::eval_json("robot_arm_seed000.toml", {"--at", sixth});
+  REQUIRE(by_angle["input"]["name"] == "theta1");
+  REQUIRE(by_angle["input"]["kind"] == "angle");
+  const auto& a = by_angle["results"][0];
+  const auto& t = by_time["results"][0];
+  REQUIRE(a["status"] == "ok");
+  CHECK(a["input"].get<double>() == doctest::Approx(30));
+  for (const char* name : {"theta4", "theta5"}) {
+    CAPTURE(name);
+    CHECK(a["coordinates"][name]["value"].get<double>() == doctest::Approx(30).epsilon(1e-12));
+    CHECK(a["coordinates"][name]["rate"].get<double>() == doctest::Approx(1).epsilon(1e-12));
+  }
+  for (const char* p : {"O2", "A", "B"})
+    for (const char* part : {"position", "velocity", "acceleration"})
+      for (std::size_t c = 0; c < 3; ++c) {
+        CAPTURE(p);
+        CAPTURE(part);
+        CHECK(a["points"][p][part][c].get<double>() ==
+              doctest::Approx(t["points"][p][part][c].get<double>()).epsilon(1e-9).scale(1));
+      }
+  for (const char* part : {"angular_velocity", "angular_acceleration"})
+    for (std::size_t c = 0; c < 3; ++c)
+      CHECK(a["frames"]["E3"][part][c].get<double>() ==
+            doctest::Approx(t["frames"]["E3"][part][c].get<double>()).epsilon(1e-9).scale(1));
+  // Twice the input's rate: the whole chain twice as fast (rates x2, second rates x4).
+  kinema::Mechanism arm = kinema::read_mechanism_file(kArm);
+  arm.chain->input = "theta1";
+  const kinema::Model model = kinema::make_model(arm);
+  const kinema::MotionTable fast = kinema::analyse(model, {0.0}, kinema_test::with_rates(2, 0));
+  REQUIRE(fast.status(0) == kinema::Status::ok);
+  CHECK(fast.qd(0)[1] == doctest::Approx(2));
+  CHECK(fast.point(0, 2).acceleration[1] == doctest::Approx(4 * -1.98564064606));
+
+  // derive at the input's value, with the seed's numbers.
+  const auto derived = kinema_test::run_kinema({"derive", kArm, "--input", "theta1"});
+  REQUIRE(derived.exit_status == 0);
+  CHECK(derived.out.find("At the instant (theta1 = 0 deg, theta4 = 0 deg, theta5 = 0 deg)") != std::string::npos);
+  CHECK(derived.out.find("] = (-0.866025, -1.5, -0.866025)\n") != std::string::npos);
+
+  // The RSSR's file makes its crank angle the input: a turn is --sweep 0:360:1 in degrees.
+  const nlohmann::json rssr = kinema_test::eval_json("rssr_spatial_four_bar.toml", {"--sweep", "0:360:90"});
+  CHECK(rssr["input"]["name"] == "theta2");
+  REQUIRE(rssr["results"].size() == 5);
+  CHECK(rssr["results"][4]["coordinates"]["theta4"]["value"].get<double>() ==
+        doctest::Approx(rssr["results"][0]["coordinates"]["theta4"]["value"].get<double>()).epsilon(1e-9));
+
+  // Bad inputs, on the command line and in the file.
+  struct Case {
+    std::vector<std::string> arguments;
+    std::string message;
+  };
+  const std::string rssr_file = kinema_test::sample("rssr_spatial_four_bar.toml");
+  for (const Case& c : std::vector<Case>{
+           {{"eval", kArm, "--input", "theta9"},
+            ": --input theta9: no such variable; the input is one of the driven variables of [variables] (theta1, "
+            "theta4, theta5)"},
+           {{"eval", rssr_file, "--input", "theta4"}, ": --input theta4: this variable is found by the closures"},
+           {{"derive", kinema_test::sample("four_bar.toml"), "--input", "theta3"}, "--input theta3 is for spatial chains"},
+           {{"eval", kinema_test::write_temporary("still.toml", kinema_test::replaced(R"(theta1 = { value = "0 deg", rate = "1 rad/s")",
+                                                                                    R"(theta1 = { value = "0 deg", rate = "0 rad/s")",
+                                                                                    kinema_test::read_file(kArm))),
+             "--input", "theta1"},
+            "it has no rate, so the other driven variables cannot follow it"},
+           {{"eval", kinema_test::write_temporary("input_number.toml", kinema_test::replaced("title =", "input = 42\ntitle =",
+                                                                                         kinema_test::read_file(kArm)))},
+            "input_number.toml:14: input must name a driven variable of [variables]"},
+           {{"eval", kinema_test::write_temporary("input_unknown.toml", kinema_test::replaced("title =", "input = \"phi\"\ntitle =",
+                                                                                          kinema_test::read_file(kArm)))},
+            "input_unknown.toml:14: input \"phi\": no such variable"}}) {
+    CAPTURE(c.message);
+    const auto result = kinema_test::run_kinema(c.arguments);
+    CHECK(result.exit_status == 2);
+    CHECK(result.err.find(c.message) != std::string::npos);
+  }
+}
+
+TEST_CASE("spatial_chain: an RSSR that cannot turn fully reports its limit positions where the closed form puts them") {
+  // With a 45 mm crank the coupler cannot reach between theta2 = 228.987 and 256.837 deg:
+  // there |B - C|^2 = u^2 + dy^2 + 4100 - sqrt((100 u)^2 + 4000^2) (its least value over the
+  // rocker angle, u = 45 cos theta2 - 60, dy = 45 sin theta2 - 30, in mm) exceeds 80^2.
+  const auto least_squared_distance = [](double degrees) {
+    const double t = degrees * M_PI / 180, u = 45 * std::cos(t) - 60, dy = 45 * std::sin(t) - 30;
+    return u * u + dy * dy + 4100 - std::hypot(100 * u, 4000.0) - 6400;
+  };
+  double low = 220, high = 235;
+  for (int k = 0; k < 60; ++k) (least_squared_distance(0.5 * (low + high)) < 0 ? low : high) = 0.5 * (low + high);
+  const double limit = low;
+  CHECK(limit == doctest::Approx(228.987).epsilon(1e-5));
+  const std::string file = kinema_test::write_temporary(
+      "rssr45.toml", kinema_test::replaced(R"(AB = "20 mm")", R"(AB = "45 mm")",
+                                           kinema_test::read_file(kinema_test::sample("rssr_spatial_four_bar.toml"))));
+  const auto result = kinema_test::run_kinema({"eval", file, "--sweep", "0:360:10", "--format", "csv"});
+  REQUIRE(result.exit_status == 0);
+  CHECK(result.out.find("\n220,1,0,ok,") != std::string::npos);
+  for (const char* row : {"\n230,1,0,unassembled,", "\n240,1,0,unassembled,", "\n250,1,0,unassembled,"})
+    CHECK(result.out.find(row) != std::string::npos);
+  char near[64];
+  std::snprintf(near, sizeof near, "the motion stops near theta2 = %.6g deg", limit);
+  CHECK(result.err.find(near) != std::string::npos);
+  // Approaching the limit Phi_q vanishes like the square root of the distance to it (the
+  // coupler's length is extreme in theta4 there): omega4 grows as 1/sqrt, tenfold for a
+  // hundredth of the distance, and the reciprocal condition falls with it.
+  const kinema::Model model = kinema::load_model(file);
+  const double degree = M_PI / 180;
+  const kinema::MotionTable at = kinema::analyse(model, {(limit - 1) * degree, (limit - 1e-2) * degree, (limit - 1e-4) * degree});
+  for (std::size_t r = 0; r < 3; ++r) REQUIRE(at.status(r) == kinema::Status::ok);
+  CHECK(std::fabs(at.qd(2)[0] / at.qd(1)[0]) == doctest::Approx(10).epsilon(0.02));
+  CHECK(at.reciprocal_condition(2) < at.reciprocal_condition(1) / 5);
+  CHECK(at.reciprocal_condition(1) < at.reciprocal_condition(0) / 5);
+  // At the limit itself (to the rounding of the closed form) the position is singular:
+  // one equation, one unknown, its Phi_q against the length scale.
+  const kinema::MotionTable there = kinema::analyse(model, {(limit - 1e-2) * degree, limit * degree});
+  CHECK(there.status(1) == kinema::Status::singular);
+  char exact[32];
+  std::snprintf(exact, sizeof exact, "%.17g", limit);
+  const auto table = kinema_test::run_kinema({"eval", file, "--at", "228.9", "--at", exact});
+  CHECK(table.exit_status == 4);  // a requested value is singular
+  CHECK(table.err.find("singular position at theta2 = 228.987 deg") != std::string::npos);
 }

@@ -241,7 +241,7 @@ inline void solve(const Factorisation& f, double* x) {
 inline void newton_step(const double* system, double* step) {
   Factorisation f;
   factorise(system, f);
-  if (solver::pivot_ratio(f.lu, n) > solver::kLeastSquaresPivotRatio) {
+  if (solver::pivot_ratio(f.lu, n, length_scale) > solver::kLeastSquaresPivotRatio) {
     for (std::size_t i = 0; i < n; ++i) step[i] = -system[i];
     solve(f, step);
   } else {
@@ -335,7 +335,7 @@ inline Status evaluate(const Parameters& p, double theta, double theta_rate, dou
   detail::Factorisation f;
   detail::factorise(system, f);
   double scaled[n * n];
-  motion.reciprocal_condition = solver::reciprocal_condition(f.lu, n, [&] {
+  motion.reciprocal_condition = solver::reciprocal_condition(f.lu, n, length_scale, [&] {
     detail::scaled_phi_q(system, scaled);
     return &scaled[0];
   });

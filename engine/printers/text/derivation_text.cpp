@@ -93,12 +93,19 @@ std::vector<ex> sum_of(std::initializer_list<const std::vector<ex>*> parts) {
   return total;
 }
 
-// A spatial chain: each joint variable at the instant (t = 0) and, for the numbers,
-// every parameter and rate too.
+// A spatial chain: each joint variable at the instant (t = 0, or the input variable's
+// value in the file) and, for the numbers, every parameter and rate too.
 struct Instant {
   GiNaC::exmap angles, numbers;
   explicit Instant(const ConstraintSystem& system) {
     for (const SystemParameter& p : system.parameters) numbers[p.symbol] = p.value;
+    const Driver& input = system.input;
+    if (input.dimension != Dimension::time) {  // a joint variable as the input
+      angles[input.symbol] = input.values.front() == 0 ? ex(0) : ex(input.values.front());
+      numbers[input.symbol] = input.values.front();
+      numbers[input.rate] = input.rate_value;
+      numbers[input.second_rate] = input.second_rate_value;
+    }
     const auto value_of = [&](const std::string& name) {
       for (const SystemParameter& p : system.parameters)
         if (p.symbol.get_name() == name) return p.value;
@@ -138,12 +145,17 @@ struct Instant {
 // instant (the joint variables at t = 0) as formulas and as numbers.
 void print_chain(std::ostream& out, const ConstraintSystem& system) {
   const Instant at(system);
+  const OutputScale scale(system);
   std::string angles;
-  for (const Coordinate& q : system.unknowns)
-    angles += (angles.empty() ? "" : ", ") + q.name + " = " + format_significant(OutputScale(system).coordinate(q.dimension, q.guess)) +
-              (q.dimension == Dimension::angle ? " deg" : " " + system.output.length);
+  const auto value = [&](const Coordinate& q, double si) {
+    angles += (angles.empty() ? "" : ", ") + q.name + " = " + format_significant(scale.coordinate(q.dimension, si)) +
+              " " + scale.coordinate_unit(q.dimension);
+  };
+  if (system.input.dimension != Dimension::time) value(system.input, system.input.values.front());
+  for (const Coordinate& q : system.unknowns) value(q, q.guess);
   const std::string observer = system.frames.empty() ? "" : system.frames.front().parent;
-  out << "\nAt the instant t = 0 (" << angles << "); vectors in the basis of " << observer
+  out << "\nAt the instant" << (system.input.dimension == Dimension::time ? " t = 0" : "") << " (" << angles
+      << "); vectors in the basis of " << observer
       << " (SI: rad/s, m/s and their per-second rates)\n";
   out << "\n1. Angular velocities (the relative turnings summed along the chain) and accelerations\n";
   for (const FrameObservable& f : system.frames) {

@@ -273,7 +273,7 @@ TEST_CASE("kinema codegen: the header's numbers and singular positions are the e
   CHECK(piston_singular >= 2);
 }
 
-TEST_CASE("solver::reciprocal_condition: the pivot ratio where clearly regular, else the singular values") {
+TEST_CASE("solver::reciprocal_condition: the pivot ratio where clearly regular, else the singular values; 1 x 1 against the length scale") {
   std::mt19937 random(7);
   std::normal_distribution<double> normal;
   for (int trial = 0; trial < 300; ++trial) {
@@ -296,15 +296,18 @@ TEST_CASE("solver::reciprocal_condition: the pivot ratio where clearly regular, 
         row_major[i * n + j] = m(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j));
     lu = row_major;
     kinema::solver::lu_factor(lu.data(), pivots.data(), n);
-    const double pivots_say = kinema::solver::pivot_ratio(lu.data(), n);
+    const double length_scale = 0.5;  // what a 1 x 1 pivot is compared with
+    const double pivots_say = kinema::solver::pivot_ratio(lu.data(), n, length_scale);
     const Eigen::JacobiSVD<Eigen::MatrixXd> svd(m);
     const Eigen::VectorXd& s = svd.singularValues();
     const double singular_values_say = s[size - 1] / s[0];
     std::vector<double> scratch = row_major;
     CHECK(std::fabs(kinema::solver::singular_value_ratio(scratch.data(), n) - singular_values_say) <= 1e-14);
     scratch = row_major;
-    const double measure = kinema::solver::reciprocal_condition(lu.data(), scratch.data(), n);
-    if (pivots_say >= kinema::solver::kClearlyRegularPivotRatio) {
+    const double measure = kinema::solver::reciprocal_condition(lu.data(), scratch.data(), n, length_scale);
+    if (n == 1) {  // no other pivot: |a| against the length scale, at most 1
+      CHECK(measure == std::min(1.0, std::fabs(m(0, 0)) / length_scale));
+    } else if (pivots_say >= kinema::solver::kClearlyRegularPivotRatio) {
       CHECK(measure == pivots_say);
     } else {
       CHECK(std::fabs(measure - singular_values_say) <= 1e-14);
