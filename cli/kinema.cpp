@@ -16,6 +16,7 @@
 #include <kinema/engine/printers/code/cpp_header.hpp>
 #include <kinema/engine/printers/printer.hpp>
 #include <kinema/engine/printers/results_stream.hpp>
+#include <kinema/engine/report/chain_instant.hpp>
 #include <kinema/engine/report/diagnostics.hpp>
 #include <kinema/engine/report/plot_range.hpp>
 #include <kinema/engine/report/structure.hpp>
@@ -191,6 +192,13 @@ int run(int argc, char** argv) {
       "units; the other driven variables follow it), e.g. --input theta1";
   for (auto* command : {derive_cmd, eval_cmd, latex_cmd, codegen_cmd})
     command->add_option("--input", chain_input, input_help)->option_text("VARIABLE");
+  std::string basis;
+  for (auto* command : {derive_cmd, latex_cmd}) {
+    command->add_option("--basis", basis,
+                        "spatial chains: give the worked-out vectors along this frame's axes (default: the "
+                        "observer's), e.g. --basis E2")
+        ->option_text("FRAME");
+  }
 
   auto* loops_cmd = app.add_subcommand(
       "loops", "write the mechanism as a vector-loop file (for joints and links: the loops kinema found)");
@@ -219,6 +227,14 @@ int run(int argc, char** argv) {
   }
   const Model model = make_model(mechanism);  // a file kinema cannot analyse is not written as loops either
   const ConstraintSystem& m = model.system;
+  if (!basis.empty()) {
+    if (!is_driven_chain(m)) {
+      throw InputError(file + ": --basis " + basis + " is for spatial chains driven by their joints (worked out at " +
+                       "the instant, vector by vector); " +
+                       (m.frames.empty() ? "this file is not a chain of frames" : "this chain closes a loop and is printed as its equations"));
+    }
+    chain_at_instant(m, basis);  // a basis that is not a frame: refused before anything is written
+  }
   std::ostringstream out;
 
   if (loops_cmd->parsed()) {
@@ -229,6 +245,7 @@ int run(int argc, char** argv) {
   if (derive_cmd->parsed()) {
     PrintJob job{model};
     job.method = *find_method(method);
+    job.basis = basis;
     printer(PrintKind::derivation, derive_format).print(out, job);
     write_output(out.str(), output_path);
     return 0;
@@ -265,6 +282,7 @@ int run(int argc, char** argv) {
     PrintJob job{model, &at_values, &sweep_table};
     job.fragment = fragment;
     job.method = *find_method(method);
+    job.basis = basis;
     printer(PrintKind::document, "latex").print(out, job);
     write_output(out.str(), output_path);
     return 0;

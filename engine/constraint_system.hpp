@@ -83,13 +83,25 @@ struct PointObservable {
   std::optional<RelativeMotionTerms> terms;  ///< Spatial chains.
 };
 
-/// A frame of a spatial chain: its angular velocity relative to the observer, each
-/// relative term along the chain, and its angular acceleration (observer basis).
+/// One relative turning summed into a frame's angular velocity: a rate times the unit
+/// axis it turns about ("omega5 y_E2": axis y of frame E2, as turned so far).
+struct AngularVelocityTerm {
+  GiNaC::ex rate;
+  std::string axis;             ///< "x", "y" or "z"
+  std::string frame;            ///< Whose axis it is.
+  std::vector<GiNaC::ex> vector;  ///< rate times the axis, observer basis.
+};
+
+/// A frame of a spatial chain: where it is and how it turns relative to the observer
+/// (observer basis): its origin, its rotation, its angular velocity with each relative
+/// term along the chain, and its angular acceleration.
 struct FrameObservable {
   std::string name, parent;
   SourceLocation where;
+  std::vector<GiNaC::ex> origin;    ///< 3 components.
+  std::vector<GiNaC::ex> rotation;  ///< 3 x 3 row-major; its columns are the frame's axes.
   std::vector<GiNaC::ex> angular_velocity;
-  std::vector<std::pair<std::string, std::vector<GiNaC::ex>>> angular_velocity_terms;  ///< Label, vector.
+  std::vector<AngularVelocityTerm> angular_velocity_terms;
   std::vector<GiNaC::ex> angular_acceleration;
 };
 

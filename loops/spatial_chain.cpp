@@ -1,7 +1,6 @@
 #include <kinema/loops/spatial_chain.hpp>
 
 #include <set>
-#include <sstream>
 
 #include <kinema/engine/errors.hpp>
 #include <kinema/engine/symbolic/naming.hpp>
@@ -227,11 +226,10 @@ class ChainBuilder {
       if (!rate.is_zero()) {
         const Vector3 term = rate * direction;
         omega = omega + term;
-        // "omega5 y_E2": the rate about the axis it turns about (the parent's, for a
-        // frame's first turn; after that the frame's own, as turned so far).
-        std::ostringstream label;
-        label << rate << " " << axis << "_" << (&t == &f.turns.front() ? f.parent : f.name);
-        motion.angular_velocity_terms.push_back({label.str(), term});
+        // The rate about the axis it turns about: the parent's, for a frame's first
+        // turn; after that the frame's own, as turned so far.
+        motion.angular_velocity_terms.push_back(
+            {rate, axis, &t == &f.turns.front() ? f.parent : f.name, std::vector<ex>(term.begin(), term.end())});
       }
       rotation = rotation.mul(turn(a, angle));
     }
@@ -486,9 +484,11 @@ ConstraintSystem build_spatial_system(const Mechanism& mechanism) {
     frame.parent = f.parent;
     for (const auto& source : mechanism.chain->frames)
       if (source.name == f.name) frame.where = source.where;
+    frame.origin.assign(f.origin.begin(), f.origin.end());
+    for (unsigned r = 0; r < 3; ++r)
+      for (unsigned c = 0; c < 3; ++c) frame.rotation.push_back(f.rotation(r, c));
     frame.angular_velocity.assign(f.angular_velocity.begin(), f.angular_velocity.end());
-    for (const auto& [label, term] : f.angular_velocity_terms)
-      frame.angular_velocity_terms.push_back({label, std::vector<ex>(term.begin(), term.end())});
+    frame.angular_velocity_terms = f.angular_velocity_terms;
     frame.angular_acceleration.assign(f.angular_acceleration.begin(), f.angular_acceleration.end());
     system.frames.push_back(frame);
   }

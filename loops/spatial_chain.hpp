@@ -29,8 +29,8 @@ struct ChainFrameMotion {
   GiNaC::matrix rotation{3, 3};  ///< Columns: the frame's axes in the observer basis.
   Vector3 origin;                ///< Position of the frame's origin.
   /// The relative angular velocities summed into w: each turn of each frame along the chain
-  /// from the observer, with its label ("omega5 e2 of E2").
-  std::vector<std::pair<std::string, Vector3>> angular_velocity_terms;
+  /// from the observer ("omega5 y_E2").
+  std::vector<AngularVelocityTerm> angular_velocity_terms;
   Vector3 angular_velocity, angular_acceleration;
 };
 

@@ -27,6 +27,9 @@ struct PrintJob {
   /// (joints and links; engine/symbolic/dyad_method).
   DerivationMethod method = DerivationMethod::loops;
   std::string code_namespace;           ///< Code: the namespace of the generated code.
+  /// Derivations and documents of a spatial chain: the frame whose axes vectors are given
+  /// along (empty: the observer's).
+  std::string basis;
 };
 
 /// What a printer shows.

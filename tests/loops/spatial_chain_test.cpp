@@ -11,6 +11,7 @@
 
 #include <kinema/engine/errors.hpp>
 #include <kinema/loops/mechanism_file.hpp>
+#include <kinema/engine/report/chain_instant.hpp>
 #include <kinema/loops/spatial_chain.hpp>
 
 #include "test_support.hpp"
@@ -183,7 +184,7 @@ TEST_CASE("spatial_chain: derive prints the composition of angular velocities an
   REQUIRE(result.exit_status == 0);
   // The terms by their labels; the formulas' term order is GiNaC's (their meaning is
   // tested on the library above), the numbers at the instant the seed's.
-  CHECK(result.out.find("    w_E3/E0 = omega1 z_E0 + -omega4 x_E2 + omega5 y_E2\n      = [") != std::string::npos);
+  CHECK(result.out.find("    w_E3/E0 = omega1 z_E0 - omega4 x_E2 + omega5 y_E2\n      = [") != std::string::npos);
   CHECK(result.out.find("] = (-1, 0.866025, 0.5)\n    alpha_E3/E0 = d/dt w = [") != std::string::npos);
   CHECK(result.out.find("] = (-0.866025, -1.5, -0.866025)\n") != std::string::npos);
   const auto v_e2 = result.out.find("    v_E2 (its origin) = [");
@@ -455,4 +456,80 @@ TEST_CASE("spatial_chain: an RSSR that cannot turn fully reports its limit posit
   const auto table = kinema_test::run_kinema({"eval", file, "--at", "228.9", "--at", exact});
   CHECK(table.exit_status == 4);  // a requested value is singular
   CHECK(table.err.find("singular position at theta2 = 228.987 deg") != std::string::npos);
+}
+
+TEST_CASE("spatial_chain: derive --basis gives the vectors along a frame's axes; the LaTeX form carries them exactly") {
+  const kinema::Model model = kinema::load_model(kArm);
+  const kinema::ChainAtInstant observer = kinema::chain_at_instant(model.system);
+  const kinema::ChainAtInstant arm = kinema::chain_at_instant(model.system, "E3");
+  CHECK(observer.basis == "E0");
+  CHECK(arm.basis == "E3");
+  // w_E3/E0 along E3's axes: E3 = E2 at the instant, y_E2 = (0, sin a, -cos a), z_E2 =
+  // (0, cos a, sin a): (-1, 0.866 sin a - 0.5 cos a, 0.866 cos a + 0.5 sin a) = (-1, 0.5, 0.866).
+  const auto& w = arm.frames[2].angular_velocity.value;
+  CHECK(w[0] == doctest::Approx(-1));
+  CHECK_PRINTED(w[1], "0.5");
+  CHECK_PRINTED(w[2], "0.866025");
+  // B is fixed in E3 at (L3 sin beta, L3 cos beta, 0) = (0.2, 0, 0): so it reads in E3's basis.
+  const auto& b = arm.points[2];
+  REQUIRE(b.name == "B");
+  CHECK(b.velocity[0].term == kinema::ChainTerm::position);
+  CHECK(b.velocity[0].value[0] == doctest::Approx(0.2));
+  CHECK(std::fabs(b.velocity[0].value[1]) < 1e-12);
+  // A change of basis keeps every vector's length (and is not the identity here).
+  for (std::size_t p = 0; p < arm.points.size(); ++p)
+    for (auto part : {&kinema::ChainPointAtInstant::velocity, &kinema::ChainPointAtInstant::acceleration})
+      for (std::size_t k = 0; k < (arm.points[p].*part).size(); ++k) {
+        const auto& u = (arm.points[p].*part)[k].value;
+        const auto& v = (observer.points[p].*part)[k].value;
+        CHECK(std::hypot(u[0], u[1], u[2]) == doctest::Approx(std::hypot(v[0], v[1], v[2])).epsilon(1e-12).scale(1));
+      }
+  CHECK(std::fabs(arm.points[2].velocity.back().value[1] - observer.points[2].velocity.back().value[1]) > 0.1);
+
+  const auto text = kinema_test::run_kinema({"derive", kArm, "--basis", "E3"});
+  REQUIRE(text.exit_status == 0);
+  CHECK(text.out.find("vectors in the basis of E3 (components along its axes x_E3, y_E3, z_E3)") != std::string::npos);
+  CHECK(text.out.find("] = (-1, 0.5, 0.866025)\n") != std::string::npos);
+  for (const auto& [arguments, message] : std::vector<std::pair<std::vector<std::string>, std::string>>{
+           {{"derive", kArm, "--basis", "E7"}, "--basis E7: there is no frame \"E7\" in the chain; the frames are E0, E1, E2, E3"},
+           {{"latex", kinema_test::sample("four_bar.toml"), "--basis", "E1"}, "this file is not a chain of frames"},
+           {{"derive", kinema_test::sample("rssr_spatial_four_bar.toml"), "--basis", "crank"},
+            "this chain closes a loop and is printed as its equations"}}) {
+    CAPTURE(message);
+    const auto result = kinema_test::run_kinema(arguments);
+    CHECK(result.exit_status == 2);
+    CHECK(result.err.find(message) != std::string::npos);
+  }
+
+  // derive --format latex: w and alpha as sums of turnings about unit axes, each point's
+  // terms, results boxed; the "% kinema vector:" comment of v_B read back is the seed's
+  // boxed formula (beta = 90 deg put in, as the seed does).
+  const auto latex = kinema_test::run_kinema({"derive", "--format", "latex", kArm});
+  REQUIRE(latex.exit_status == 0);
+  CHECK(latex.out.find("\\boldsymbol{\\omega}_{\\text{E3/E0}} &= \\omega_{1}\\,\\hat{\\mathbf{z}}_{\\text{E0}} - "
+                       "\\omega_{4}\\,\\hat{\\mathbf{x}}_{\\text{E2}} + \\omega_{5}\\,\\hat{\\mathbf{y}}_{\\text{E2}}") !=
+        std::string::npos);
+  CHECK(latex.out.find("\\boxed{(-1.11962,\\ -0.2,\\ -0.69282)\\,\\mathrm{m/s}}") != std::string::npos);
+  CHECK(latex.out.find("\\boxed{(0.4,\\ -1.98564,\\ 0.5)\\,\\mathrm{m/s^2}}") != std::string::npos);
+  const auto at = latex.out.find("% kinema vector: v_B = [");
+  REQUIRE(at != std::string::npos);
+  const std::string list = latex.out.substr(at + 24, latex.out.find("]\n", at) - at - 24);
+  GiNaC::symtab names;
+  for (const auto& p : model.system.parameters) names[p.symbol.get_name()] = p.symbol;
+  for (const auto& q : model.system.unknowns) names[q.rate.get_name()] = q.rate;
+  GiNaC::parser read(names, true);
+  std::vector<ex> components;
+  for (std::size_t from = 0, comma; from < list.size(); from = comma + 2) {
+    comma = list.find(", ", from);
+    if (comma == std::string::npos) comma = list.size();
+    components.push_back(read(list.substr(from, comma - from)));
+  }
+  REQUIRE(components.size() == 3);
+  const ex seed[3] = {read("-omega1*(L2*sin(alpha) + L1*cos(alpha))"),
+                      read("(omega1 - omega5*cos(alpha))*L3 - omega4*L2*cos(alpha)"),
+                      read("-(omega5*L3*sin(alpha) + omega4*L2*sin(alpha))")};
+  for (std::size_t c = 0; c < 3; ++c) {
+    CAPTURE(c);
+    CHECK(vanishes(components[c] - seed[c]));
+  }
 }

@@ -1,6 +1,7 @@
 // The derivation as a LaTeX align* block (amsmath) for pasting into notes.
 // Each solved formula is followed by a `% kinema: name = formula` comment in
 // GiNaC syntax, so a reader (or a test) can take the formula back exactly.
+#include <kinema/engine/printers/latex/chain_latex.hpp>
 #include <kinema/engine/printers/latex/latex_format.hpp>
 #include <kinema/engine/printers/latex/method_latex.hpp>
 #include <kinema/engine/printers/printer.hpp>
@@ -12,14 +13,9 @@ namespace {
 
 using GiNaC::ex;
 
-// Rows of the align* block; a comment may follow a row's text.
-struct Row {
-  std::string text, comment;
-};
-
 // The loops' equations, the velocity and acceleration equations in matrix form, and
 // the solved rates.
-void loop_rows(std::vector<Row>& rows, const ConstraintSystem& system, const Derivation& d, const std::string& jacobian,
+void loop_rows(std::vector<LatexRow>& rows, const ConstraintSystem& system, const Derivation& d, const std::string& jacobian,
                const std::vector<ex>& rates, const std::vector<ex>& second_rates, const std::vector<ex>& velocity_rhs) {
   for (const EquationGroup& group : system.groups) {
     const std::string name = latex_escape_text(group.name);
@@ -59,7 +55,7 @@ class DerivationLatexPrinter : public Printer {
     for (std::size_t i = 0; i < n; ++i) velocity_rhs.push_back(-d.input_jacobian(i, 0) * system.input.rate);
     const std::string jacobian = latex_matrix(d.jacobian);
 
-    std::vector<Row> rows;
+    std::vector<LatexRow> rows;
     if (system.linkage) {  // joints and links: the solving order the loops come from
       rows.push_back({"\\text{structure:}\\quad & \\text{" + latex_escape_text("mobility " + mobility_text(*system.linkage)) + "}",
                       "structure"});
@@ -73,10 +69,16 @@ class DerivationLatexPrinter : public Printer {
                             method_title(job.method) + ":}\\quad",
                         std::string(acceleration ? "acceleration" : "velocity") + ": " + method_name(job.method)});
         for (const MethodStep& step : derivation.steps)
-          for (const LatexRow& row : method_rows(step, acceleration)) rows.push_back({row.text, row.comment});
+          for (const LatexRow& row : method_rows(step, acceleration)) rows.push_back(row);
       }
     }
-    if (job.method == DerivationMethod::loops) loop_rows(rows, system, d, jacobian, rates, second_rates, velocity_rhs);
+    if (is_driven_chain(system)) {  // a chain of frames worked out at the instant, as seed 000
+      const ChainAtInstant chain = chain_at_instant(system, job.basis);
+      rows.push_back({"&\\text{" + chain_instant_latex(system, chain) + "}", "spatial chain"});
+      for (const auto& part : {chain_frame_rows(chain), chain_point_rows(chain)}) rows.insert(rows.end(), part.begin(), part.end());
+    } else if (job.method == DerivationMethod::loops) {
+      loop_rows(rows, system, d, jacobian, rates, second_rates, velocity_rhs);
+    }
     out << "% kinema derive --format latex: " << latex_escape_text(system.title) << "\n";
     out << "% needs \\usepackage{amsmath}\n";
     out << "\\begin{align*}\n";

@@ -14,6 +14,12 @@
 
 namespace kinema {
 
+/// A row of an amsmath align*.
+struct LatexRow {
+  std::string text;     ///< The row (an & aligns it).
+  std::string comment;  ///< After the row as a % comment (a solved formula in GiNaC syntax), or empty.
+};
+
 /// User text (titles, descriptions) for LaTeX text mode: every special character
 /// is printed as itself, so a file cannot inject commands (\input{...} prints as text).
 std::string latex_escape_text(const std::string& text);

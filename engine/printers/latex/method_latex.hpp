@@ -5,14 +5,10 @@
 #include <string>
 #include <vector>
 
+#include <kinema/engine/printers/latex/latex_format.hpp>
 #include <kinema/engine/symbolic/dyad_method.hpp>
 
 namespace kinema {
-
-struct LatexRow {
-  std::string text;     ///< The row (an & aligns it).
-  std::string comment;  ///< After the row as a % comment (a solved formula in GiNaC syntax), or empty.
-};
 
 /// The velocity (or acceleration) relations of one step: its heading, each relation as
 /// the method writes it, its scalar equations, and what they solve for.

@@ -5,9 +5,11 @@
 // range (pgfplots.cpp).
 #include <cmath>
 
+#include <kinema/engine/printers/latex/chain_latex.hpp>
 #include <kinema/engine/printers/latex/latex_format.hpp>
 #include <kinema/engine/printers/latex/method_latex.hpp>
 #include <kinema/engine/printers/latex/pgfplots.hpp>
+#include <kinema/engine/printers/latex/tikz_chain.hpp>
 #include <kinema/engine/printers/latex/tikz_mechanism.hpp>
 #include <kinema/engine/printers/printer.hpp>
 #include <kinema/engine/report/diagnostics.hpp>
@@ -30,9 +32,29 @@ class DocumentWriter {
          << "\\usepackage[margin=2cm]{geometry}\n"
          << "\\usepackage{amsmath,booktabs}\n"
          << "\\usepackage{tikz}\n\\usetikzlibrary{patterns}\n"
+         << (system_.frames.empty() ? "" : "\\usepackage{tikz-3dplot}\n")
          << "\\usepackage{pgfplots}\n\\pgfplotsset{compat=1.16}\n"
          << "\\allowdisplaybreaks\n"
          << "\\begin{document}\n";
+  }
+
+  // A chain of frames driven by its joints, worked out at the instant as seed 000 does:
+  // the frames, their angular velocities and accelerations, each point's v and a.
+  void chain(const std::string& basis) {
+    const ChainAtInstant chain = chain_at_instant(system_, basis);
+    out_ << "\\subsection*{The chain}\nEach frame turns relative to its parent about the axes of the parent or "
+            "its own (right-hand rule); a frame's angular velocity relative to the observer "
+         << latex_escape_text(chain.observer)
+         << " is the sum of the relative ones along the chain, and a point $P$ at $\\mathbf{r}$ from the origin "
+            "of its frame $F$ moves with $\\mathbf{v}_P = \\mathbf{v}_F + \\boldsymbol{\\omega}\\times\\mathbf{r} + "
+            "\\mathbf{v}^{\\mathrm{rel}}$ and $\\mathbf{a}_P = \\mathbf{a}_F + \\boldsymbol{\\alpha}\\times\\mathbf{r} + "
+            "\\boldsymbol{\\omega}\\times(\\boldsymbol{\\omega}\\times\\mathbf{r}) + 2\\boldsymbol{\\omega}\\times"
+            "\\mathbf{v}^{\\mathrm{rel}} + \\mathbf{a}^{\\mathrm{rel}}$. "
+         << chain_instant_latex(system_, chain) << ".\n";
+    out_ << "\\subsection*{Angular velocities and accelerations}\n\\begin{align*}\n";
+    align_rows(chain_frame_rows(chain));
+    out_ << "\\subsection*{Velocities and accelerations of the points}\n\\begin{align*}\n";
+    align_rows(chain_point_rows(chain));
   }
 
   void data() {
@@ -59,7 +81,8 @@ class DocumentWriter {
          << scale_.second_rate_unit(kind) << "}$. Unknowns: ";
     for (std::size_t j = 0; j < system_.unknowns.size(); ++j)
       out_ << (j ? ", " : "") << "$" << to_latex(system_.unknowns[j].symbol) << "$";
-    out_ << ". Angles are measured counter-clockwise from the $x$ axis.\n\n";
+    out_ << (system_.frames.empty() ? ". Angles are measured counter-clockwise from the $x$ axis.\n\n"
+                                    : ". Angles turn frames by the right-hand rule about their axes.\n\n");
   }
 
   void loops() {
@@ -158,6 +181,12 @@ class DocumentWriter {
       out_ << " \\\\\n";
     }
     out_ << "\\bottomrule\n\\end{tabular}\n\n";
+    if (!system_.frames.empty()) {  // a spatial chain: 3-D points, the frames, a 3-D sketch
+      if (s.status == Status::ok) spatial_tables(s);
+      if (s.status == Status::ok && !is_driven_chain(system_)) substitution(s);
+      write_tikz_chain(out_, system_, s);
+      return;
+    }
     if (s.status == Status::ok && !system_.points.empty()) point_table(s);
     if (s.status == Status::ok && system_.linkage) linkage_table(s);
     if (s.status == Status::ok) substitution(s);
@@ -214,6 +243,34 @@ class DocumentWriter {
       out_ << latex_escape_text(system_.linkage->joints[slider.joint].name) << " & " << pair(v) << " & " << pair(v + 2)
            << " & " << pair(v + 4) << " \\\\\n";
       v += 6;
+    }
+    out_ << "\\bottomrule\n\\end{tabular}\n\n";
+  }
+
+  // Spatial chains: each point's position, velocity and acceleration as vectors, and
+  // each frame's angular velocity and acceleration (observer basis).
+  void spatial_tables(const MotionState& s) {
+    const std::string l = latex_escape_text(scale_.length_unit);
+    const auto triple = [&](const std::array<double, 3>& v, double f) {
+      return "$(" + latex_number(v[0] / f, 5) + ",\\ " + latex_number(v[1] / f, 5) + ",\\ " + latex_number(v[2] / f, 5) + ")$";
+    };
+    if (!system_.points.empty()) {
+      out_ << "\\medskip\n\\begin{tabular}{lccc}\n\\toprule\npoint & position ($\\mathrm{" << l
+           << "}$) & velocity ($\\mathrm{" << l << "/s}$) & acceleration ($\\mathrm{" << l
+           << "/s^2}$) \\\\\n\\midrule\n";
+      for (std::size_t p = 0; p < system_.points.size(); ++p) {
+        const PointMotion& m = s.points[p];
+        out_ << latex_escape_text(system_.points[p].name) << " & " << triple(m.position, scale_.length) << " & "
+             << triple(m.velocity, scale_.length) << " & " << triple(m.acceleration, scale_.length) << " \\\\\n";
+      }
+      out_ << "\\bottomrule\n\\end{tabular}\n\n";
+    }
+    out_ << "\\medskip\n\\begin{tabular}{lcc}\n\\toprule\nframe & $\\boldsymbol{\\omega}$ relative to "
+         << latex_escape_text(chain_observer(system_)) << " ($\\mathrm{rad/s}$) & $\\boldsymbol{\\alpha}$ "
+         << "($\\mathrm{rad/s^2}$) \\\\\n\\midrule\n";
+    for (std::size_t f = 0; f < system_.frames.size(); ++f) {
+      out_ << latex_escape_text(system_.frames[f].name) << " & " << triple(s.frames[f].angular_velocity, 1) << " & "
+           << triple(s.frames[f].angular_acceleration, 1) << " \\\\\n";
     }
     out_ << "\\bottomrule\n\\end{tabular}\n\n";
   }
@@ -282,6 +339,12 @@ class DocumentWriter {
     align_rows(rows);
   }
 
+  void align_rows(const std::vector<LatexRow>& rows) {
+    std::vector<std::string> texts;
+    for (const LatexRow& row : rows) texts.push_back(row.comment.empty() ? row.text : row.text + " %% " + row.comment);
+    align_rows(texts);
+  }
+
   // Rows of an align*; text after " %% " in a row becomes a comment after the row's end.
   void align_rows(const std::vector<std::string>& rows) {
     for (std::size_t r = 0; r < rows.size(); ++r) {
@@ -317,11 +380,14 @@ class WorkedSolutionPrinter : public Printer {
     DocumentWriter writer(out, job.model);
     if (!job.fragment) writer.preamble();
     writer.data();
-    writer.loops();
-    if (job.method == DerivationMethod::loops) {
+    if (is_driven_chain(job.model.system)) {  // worked out at the instant, as seed 000
+      writer.chain(job.basis);
+    } else if (job.method == DerivationMethod::loops) {
+      writer.loops();
       writer.velocity();
       writer.acceleration();
     } else {
+      writer.loops();
       writer.by_method(job.method);
     }
     if (job.values)

@@ -1,5 +1,6 @@
 // The derivation in readable text (GiNaC's default print context).
 #include <kinema/engine/printers/printer.hpp>
+#include <kinema/engine/report/chain_instant.hpp>
 #include <kinema/engine/report/number_format.hpp>
 #include <kinema/engine/report/output_scale.hpp>
 #include <kinema/engine/report/structure.hpp>
@@ -86,107 +87,65 @@ void print_method(std::ostream& out, const ConstraintSystem& system, DerivationM
   }
 }
 
-std::vector<ex> sum_of(std::initializer_list<const std::vector<ex>*> parts) {
-  std::vector<ex> total((*parts.begin())->size(), 0);
-  for (const auto* part : parts)
-    for (std::size_t c = 0; c < total.size(); ++c) total[c] += (*part)[c];
-  return total;
-}
-
-// A spatial chain: each joint variable at the instant (t = 0, or the input variable's
-// value in the file) and, for the numbers, every parameter and rate too.
-struct Instant {
-  GiNaC::exmap angles, numbers;
-  explicit Instant(const ConstraintSystem& system) {
-    for (const SystemParameter& p : system.parameters) numbers[p.symbol] = p.value;
-    const Driver& input = system.input;
-    if (input.dimension != Dimension::time) {  // a joint variable as the input
-      angles[input.symbol] = input.values.front() == 0 ? ex(0) : ex(input.values.front());
-      numbers[input.symbol] = input.values.front();
-      numbers[input.rate] = input.rate_value;
-      numbers[input.second_rate] = input.second_rate_value;
-    }
-    const auto value_of = [&](const std::string& name) {
-      for (const SystemParameter& p : system.parameters)
-        if (p.symbol.get_name() == name) return p.value;
-      return 0.0;
-    };
-    for (const Coordinate& q : system.unknowns) {
-      angles[q.symbol] = q.guess == 0 ? ex(0) : ex(q.guess);
-      numbers[q.symbol] = q.guess;
-      numbers[q.rate] = value_of(q.rate.get_name() + "_0");
-      numbers[q.second_rate] = value_of(q.second_rate.get_name() + "_0");
-    }
-  }
-  std::string formula(const std::vector<ex>& v) const {
-    std::string text = "[";
-    for (std::size_t c = 0; c < v.size(); ++c) {
-      // Products of sines and cosines combined only where that is shorter (sin^2 + cos^2 = 1).
-      const std::string plain = to_text(v[c].subs(angles).expand());
-      const std::string combined = to_text(combine_trig_products(v[c].subs(angles).expand()));
-      text += (c ? ", " : "") + (combined.size() < plain.size() ? combined : plain);
-    }
-    return text + "]";
-  }
-  std::string number(const std::vector<ex>& v) const {
-    std::string text = "(";
-    for (std::size_t c = 0; c < v.size(); ++c) {
-      const ex value = GiNaC::evalf(v[c].subs(numbers));
-      double x = GiNaC::is_a<GiNaC::numeric>(value) ? GiNaC::ex_to<GiNaC::numeric>(value).to_double() : NAN;
-      if (std::fabs(x) < 1e-12) x = 0;
-      text += (c ? ", " : "") + format_significant(x);
-    }
-    return text + ")";
-  }
-};
-
-// A spatial chain as seed 000 works it out: angular velocities composed along the chain,
-// angular accelerations, and each point's velocity and acceleration term by term, at the
-// instant (the joint variables at t = 0) as formulas and as numbers.
-void print_chain(std::ostream& out, const ConstraintSystem& system) {
-  const Instant at(system);
+// A spatial chain as seed 000 works it out (engine/report/chain_instant): angular
+// velocities composed along the chain, angular accelerations, and each point's velocity
+// and acceleration term by term, at the instant, as formulas and as numbers.
+void print_chain(std::ostream& out, const ConstraintSystem& system, const std::string& basis) {
+  const ChainAtInstant chain = chain_at_instant(system, basis);
   const OutputScale scale(system);
-  std::string angles;
-  const auto value = [&](const Coordinate& q, double si) {
-    angles += (angles.empty() ? "" : ", ") + q.name + " = " + format_significant(scale.coordinate(q.dimension, si)) +
+  std::string values;
+  for (const auto& [q, value] : chain.values)
+    values += (values.empty() ? "" : ", ") + q.name + " = " + format_significant(scale.coordinate(q.dimension, value)) +
               " " + scale.coordinate_unit(q.dimension);
+  const auto vector = [](const ChainVector& v) {
+    std::string formula = "[", number = "(";
+    for (std::size_t c = 0; c < 3; ++c) {
+      formula += (c ? ", " : "") + to_text(v.formula[c]);
+      number += (c ? ", " : "") + format_significant(v.value[c]);
+    }
+    return formula + "] = " + number + ")";
   };
-  if (system.input.dimension != Dimension::time) value(system.input, system.input.values.front());
-  for (const Coordinate& q : system.unknowns) value(q, q.guess);
-  const std::string observer = system.frames.empty() ? "" : system.frames.front().parent;
-  out << "\nAt the instant" << (system.input.dimension == Dimension::time ? " t = 0" : "") << " (" << angles
-      << "); vectors in the basis of " << observer
+  const std::string& o = chain.observer;
+  out << "\nAt the instant" << (system.input.dimension == Dimension::time ? " t = 0" : "") << " (" << values
+      << "); vectors in the basis of " << chain.basis
+      << (chain.basis == o ? "" : " (components along its axes x_" + chain.basis + ", y_" + chain.basis + ", z_" + chain.basis + ")")
       << " (SI: rad/s, m/s and their per-second rates)\n";
   out << "\n1. Angular velocities (the relative turnings summed along the chain) and accelerations\n";
-  for (const FrameObservable& f : system.frames) {
+  for (const ChainFrameAtInstant& f : chain.frames) {
     std::string sum;
-    for (const auto& [label, term] : f.angular_velocity_terms) sum += (sum.empty() ? "" : " + ") + label;
+    for (const AngularVelocityTerm& t : f.terms) {
+      const bool minus = is_negative_term(t.rate);
+      sum += (sum.empty() ? (minus ? "-" : "") : (minus ? " - " : " + ")) + to_text(minus ? -t.rate : t.rate) + " " +
+             t.axis + "_" + t.frame;
+    }
     out << "\n  " << f.name << " (parent " << f.parent << ")\n";
-    out << "    w_" << f.name << "/" << observer << " = " << (sum.empty() ? "0" : sum) << "\n";
-    out << "      = " << at.formula(f.angular_velocity) << " = " << at.number(f.angular_velocity) << "\n";
-    out << "    alpha_" << f.name << "/" << observer << " = d/dt w = " << at.formula(f.angular_acceleration) << " = "
-        << at.number(f.angular_acceleration) << "\n";
+    out << "    w_" << f.name << "/" << o << " = " << (sum.empty() ? "0" : sum) << "\n";
+    out << "      = " << vector(f.angular_velocity) << "\n";
+    out << "    alpha_" << f.name << "/" << o << " = d/dt w = " << vector(f.angular_acceleration) << "\n";
   }
   out << "\n2. Points: v = v_F + w x r + v_rel;  a = a_F + alpha x r + w x (w x r) + 2 w x v_rel + a_rel\n";
-  for (std::size_t p = 0; p < system.points.size(); ++p) {
-    const PointObservable& point = system.points[p];
-    if (!point.terms) continue;
-    const RelativeMotionTerms& t = *point.terms;
-    const auto line = [&](const std::string& name, const std::vector<ex>& v) {
-      out << "    " << name << " = " << at.formula(v) << " = " << at.number(v) << "\n";
-    };
-    out << "\n  " << point.name << " (in " << t.frame << ")\n";
-    line("r_" + point.name + "/" + t.frame, t.relative_position);
-    line("v_" + t.frame + " (its origin)", t.frame_velocity);
-    line("w x r", t.transport);
-    line("v_rel", t.relative_velocity);
-    line("v_" + point.name, sum_of({&t.frame_velocity, &t.transport, &t.relative_velocity}));
-    line("a_" + t.frame + " (its origin)", t.frame_acceleration);
-    line("alpha x r", t.tangential);
-    line("w x (w x r)", t.centripetal);
-    line("2 w x v_rel", t.coriolis);
-    line("a_rel", t.relative_acceleration);
-    line("a_" + point.name, sum_of({&t.frame_acceleration, &t.tangential, &t.centripetal, &t.coriolis, &t.relative_acceleration}));
+  for (const ChainPointAtInstant& p : chain.points) {
+    out << "\n  " << p.name << " (in " << p.frame << ")\n";
+    for (const auto* part : {&p.velocity, &p.acceleration}) {
+      for (const ChainVector& v : *part) {
+        std::string name;
+        switch (v.term) {
+          case ChainTerm::position: name = "r_" + p.name + "/" + p.frame; break;
+          case ChainTerm::frame_velocity: name = "v_" + p.frame + " (its origin)"; break;
+          case ChainTerm::transport: name = "w x r"; break;
+          case ChainTerm::relative_velocity: name = "v_rel"; break;
+          case ChainTerm::velocity: name = "v_" + p.name; break;
+          case ChainTerm::frame_acceleration: name = "a_" + p.frame + " (its origin)"; break;
+          case ChainTerm::tangential: name = "alpha x r"; break;
+          case ChainTerm::centripetal: name = "w x (w x r)"; break;
+          case ChainTerm::coriolis: name = "2 w x v_rel"; break;
+          case ChainTerm::relative_acceleration: name = "a_rel"; break;
+          case ChainTerm::acceleration: name = "a_" + p.name; break;
+          default: break;
+        }
+        out << "    " << name << " = " << vector(v) << "\n";
+      }
+    }
   }
 }
 
@@ -215,10 +174,8 @@ class DerivationTextPrinter : public Printer {
     out << "rates:    qd = [" << joined(rates) << "], qdd = [" << joined(second_rates) << "]\n";
 
     // A spatial chain driven by its joints alone in the seed's form; a closed loop as loops.
-    bool driven = !system.frames.empty();
-    for (const EquationGroup& group : system.groups) driven = driven && group.kind == "motion";
-    if (driven) {
-      print_chain(out, system);
+    if (is_driven_chain(system)) {
+      print_chain(out, system, job.basis);
       return;
     }
     if (system.linkage) print_structure(out, system);

@@ -1,0 +1,153 @@
+#include <kinema/engine/printers/latex/chain_latex.hpp>
+
+#include <algorithm>
+
+#include <kinema/engine/report/output_scale.hpp>
+#include <kinema/engine/symbolic/expression_parts.hpp>
+
+namespace kinema {
+namespace {
+
+using GiNaC::ex;
+
+// A frame or point name as a subscript: text, escaped (names are identifiers, but _ is special).
+std::string named(const std::string& name) { return "\\text{" + latex_escape_text(name) + "}"; }
+
+
+bool is_zero(const ChainVector& v) {
+  for (const ex& c : v.formula)
+    if (!c.is_zero()) return false;
+  return true;
+}
+
+// LaTeX source per line of a long formula: about the text width of a page at 11 pt.
+constexpr std::size_t kLineBudget = 190;
+
+// A formula's terms, as lines of at most about kLineBudget characters of LaTeX each.
+std::vector<std::string> formula_lines(const ex& e) {
+  if (!GiNaC::is_a<GiNaC::add>(e)) return {to_latex(e)};
+  std::vector<std::string> lines = {""};
+  for (const ex& term : e) {
+    const bool minus = is_negative_term(term);
+    const std::string text = to_latex(minus ? -term : term);
+    std::string& line = lines.back();
+    if (!line.empty() && line.size() + text.size() > kLineBudget) lines.push_back("");
+    std::string& current = lines.back();
+    current += (current.empty() && lines.size() == 1 ? (minus ? "-" : "") : (minus ? " - " : " + ")) + text;
+  }
+  return lines;
+}
+
+// name = [column] = (numbers) unit, or for a long vector the numbers first, then each
+// component's formula broken over lines; a zero vector as 0.
+void vector_rows(std::vector<LatexRow>& rows, const std::string& name, const ChainVector& v, const std::string& unit,
+                 const std::string& basis, bool boxed, const std::string& comment) {
+  if (is_zero(v)) {
+    rows.push_back({name + " &= \\mathbf{0}", comment});
+    return;
+  }
+  std::string numbers = "(";
+  for (std::size_t c = 0; c < 3; ++c) numbers += (c ? ",\\ " : "") + latex_number(v.value[c]);
+  numbers += ")\\,\\mathrm{" + unit + "}";
+  if (boxed) numbers = "\\boxed{" + numbers + "}";
+  std::size_t longest = 0;
+  for (const ex& c : v.formula) longest = std::max(longest, to_latex(c).size());
+  if (name.size() + longest + numbers.size() < kLineBudget) {
+    rows.push_back({name + " &= " + latex_column(v.formula) + " = " + numbers, comment});
+    return;
+  }
+  rows.push_back({name + " &= " + numbers, comment});
+  static const char* const axes[3] = {"x", "y", "z"};
+  for (std::size_t c = 0; c < 3; ++c) {
+    const std::vector<std::string> lines = formula_lines(v.formula[c]);
+    for (std::size_t k = 0; k < lines.size(); ++k) {
+      rows.push_back({k == 0 ? "&\\quad \\text{along } \\hat{\\mathbf{" + std::string(axes[c]) + "}}_{" + basis + "}:\\ " + lines[k]
+                             : "&\\qquad " + lines[k],
+                      ""});
+    }
+  }
+}
+
+std::string vector_comment(const std::string& name, const ChainVector& v) {
+  return "kinema vector: " + name + " = [" + to_text(v.formula[0]) + ", " + to_text(v.formula[1]) + ", " +
+         to_text(v.formula[2]) + "]";
+}
+
+}  // namespace
+
+std::string chain_instant_latex(const ConstraintSystem& system, const ChainAtInstant& chain) {
+  const OutputScale scale(system);
+  std::string text = system.input.dimension == Dimension::time ? "At the instant $t = 0$ (" : "At the instant (";
+  for (std::size_t i = 0; i < chain.values.size(); ++i) {
+    const auto& [q, value] = chain.values[i];
+    text += (i ? ", $" : "$") + to_latex(q.symbol) + " = " + latex_number(scale.coordinate(q.dimension, value)) +
+            (q.dimension == Dimension::angle ? "^{\\circ}" : "\\,\\mathrm{" + latex_escape_text(scale.length_unit) + "}") +
+            "$";
+  }
+  return text + "), vectors along the axes of " + latex_escape_text(chain.basis) +
+         (chain.basis == chain.observer ? " (the observer)" : "") + ", in SI units";
+}
+
+std::vector<LatexRow> chain_frame_rows(const ChainAtInstant& chain) {
+  std::vector<LatexRow> rows;
+  const std::string& o = chain.observer;
+  for (const ChainFrameAtInstant& f : chain.frames) {
+    std::string sum;
+    for (const AngularVelocityTerm& t : f.terms) {
+      const bool minus = is_negative_term(t.rate);
+      sum += (sum.empty() ? (minus ? "-" : "") : (minus ? " - " : " + ")) + to_latex(minus ? -t.rate : t.rate) +
+             "\\,\\hat{\\mathbf{" + t.axis + "}}_{" + named(t.frame) + "}";
+    }
+    const std::string w = "\\boldsymbol{\\omega}_{" + named(f.name + "/" + o) + "}";
+    rows.push_back({w + " &= " + (sum.empty() ? "\\mathbf{0}" : sum), "frame " + f.name});
+    vector_rows(rows, "", f.angular_velocity, "rad/s", named(chain.basis), false,
+                vector_comment("w_" + f.name, f.angular_velocity));
+    vector_rows(rows, "\\boldsymbol{\\alpha}_{" + named(f.name + "/" + o) + "} = \\frac{d}{dt}" + w,
+                f.angular_acceleration, "rad/s^2", named(chain.basis), false,
+                vector_comment("alpha_" + f.name, f.angular_acceleration));
+  }
+  return rows;
+}
+
+std::vector<LatexRow> chain_point_rows(const ChainAtInstant& chain) {
+  std::vector<LatexRow> rows;
+  for (const ChainPointAtInstant& p : chain.points) {
+    const std::string F = named(p.frame), P = named(p.name);
+    for (const auto* part : {&p.velocity, &p.acceleration}) {
+      for (const ChainVector& v : *part) {
+        std::string name, unit = part == &p.velocity ? "m/s" : "m/s^2", comment;
+        bool result = false;
+        switch (v.term) {
+          case ChainTerm::position: name = "\\mathbf{r}_{" + named(p.name + "/" + p.frame) + "}"; unit = "m"; break;
+          case ChainTerm::frame_velocity: name = "\\mathbf{v}_{" + F + "}"; break;
+          case ChainTerm::transport: name = "\\boldsymbol{\\omega}\\times\\mathbf{r}"; break;
+          case ChainTerm::relative_velocity: name = "\\mathbf{v}^{\\mathrm{rel}}"; break;
+          case ChainTerm::velocity:
+            name = "\\mathbf{v}_{" + P + "} = \\mathbf{v}_{" + F + "} + \\boldsymbol{\\omega}\\times\\mathbf{r} + "
+                   "\\mathbf{v}^{\\mathrm{rel}}";
+            result = true;
+            comment = vector_comment("v_" + p.name, v);
+            break;
+          case ChainTerm::frame_acceleration: name = "\\mathbf{a}_{" + F + "}"; break;
+          case ChainTerm::tangential: name = "\\boldsymbol{\\alpha}\\times\\mathbf{r}"; break;
+          case ChainTerm::centripetal:
+            name = "\\boldsymbol{\\omega}\\times(\\boldsymbol{\\omega}\\times\\mathbf{r})";
+            break;
+          case ChainTerm::coriolis: name = "2\\boldsymbol{\\omega}\\times\\mathbf{v}^{\\mathrm{rel}}"; break;
+          case ChainTerm::relative_acceleration: name = "\\mathbf{a}^{\\mathrm{rel}}"; break;
+          case ChainTerm::acceleration:
+            name = "\\mathbf{a}_{" + P + "}";
+            result = true;
+            comment = vector_comment("a_" + p.name, v);
+            break;
+          default: break;
+        }
+        if (v.term == ChainTerm::position) comment = "point " + p.name + " in " + p.frame;
+        vector_rows(rows, name, v, unit, named(chain.basis), result, comment);
+      }
+    }
+  }
+  return rows;
+}
+
+}  // namespace kinema

@@ -1,0 +1,136 @@
+#include <kinema/engine/printers/latex/tikz_chain.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+
+#include <kinema/engine/printers/latex/latex_format.hpp>
+#include <kinema/engine/report/chain_instant.hpp>
+#include <kinema/engine/report/number_format.hpp>
+#include <kinema/engine/report/output_scale.hpp>
+
+namespace kinema {
+namespace {
+
+using Point3 = std::array<double, 3>;
+
+// A frame where the state puts it: origin and axes (observer basis, SI).
+struct PlacedFrame {
+  std::string name, parent;
+  Point3 origin{};
+  std::array<Point3, 3> axes{};
+};
+
+double number(const GiNaC::ex& e, const GiNaC::exmap& values) {
+  const GiNaC::ex v = GiNaC::evalf(e.subs(values, GiNaC::subs_options::no_pattern));
+  return GiNaC::is_a<GiNaC::numeric>(v) ? GiNaC::ex_to<GiNaC::numeric>(v).to_double() : 0.0;
+}
+
+}  // namespace
+
+void write_tikz_chain(std::ostream& out, const ConstraintSystem& system, const MotionState& s) {
+  GiNaC::exmap values;
+  for (const SystemParameter& p : system.parameters) values[p.symbol] = p.value;
+  values[system.input.symbol] = s.input;
+  for (std::size_t i = 0; i < system.unknowns.size(); ++i) values[system.unknowns[i].symbol] = s.q[Eigen::Index(i)];
+  std::vector<PlacedFrame> frames;
+  for (const FrameObservable& f : system.frames) {
+    PlacedFrame placed{f.name, f.parent, {}, {}};
+    for (std::size_t r = 0; r < 3; ++r) {
+      placed.origin[r] = number(f.origin[r], values);
+      for (std::size_t c = 0; c < 3; ++c) placed.axes[c][r] = number(f.rotation[3 * r + c], values);
+    }
+    frames.push_back(placed);
+  }
+  const std::string observer = chain_observer(system);
+  const auto origin_of = [&](const std::string& name) {
+    for (const PlacedFrame& f : frames)
+      if (f.name == name) return f.origin;
+    return Point3{0, 0, 0};
+  };
+
+  double size = 0;  // the drawing's extent from the observer's origin
+  for (const PlacedFrame& f : frames)
+    for (double x : f.origin) size = std::max(size, std::fabs(x));
+  double fastest = 0;
+  if (s.status == Status::ok) {
+    for (const PointMotion& p : s.points) {
+      for (double x : p.position) size = std::max(size, std::fabs(x));
+      fastest = std::max(fastest, p.speed());
+    }
+  }
+  size = std::max(size, 1e-9);
+  const double cm = 5.0 / size;    // drawing units per metre
+  const double axis_cm = 1.0;      // each frame's triad
+  const double velocity_scale = fastest > 0 ? 2.0 / fastest : 0;  // cm per (m/s)
+  // One text per place (-0 and rounding noise as 0): places that coincide share a label.
+  const auto coordinate = [](double x) {
+    const double rounded = std::round(x * 1e4) / 1e4;
+    return format_fixed(rounded == 0 ? 0.0 : rounded, 4);
+  };
+  const auto at = [&](const Point3& p) {
+    return "(" + coordinate(p[0] * cm) + "," + coordinate(p[1] * cm) + "," + coordinate(p[2] * cm) + ")";
+  };
+  const auto plus = [](const Point3& d, double cm_along) {
+    return "(" + format_fixed(d[0] * cm_along) + "," + format_fixed(d[1] * cm_along) + "," +
+           format_fixed(d[2] * cm_along) + ")";
+  };
+
+  out << "\\begin{center}\n\\tdplotsetmaincoords{65}{120}\n"
+      << "\\begin{tikzpicture}[tdplot_main_coords, line cap=round, >=latex]\n";
+  const std::string o = latex_escape_text(observer);
+  const double reach = 5.0 + 0.8;
+  out << "\\draw[->, gray] (0,0,0) -- (" << format_fixed(reach) << ",0,0) node[anchor=north east] {$x_{\\text{" << o
+      << "}}$};\n"
+      << "\\draw[->, gray] (0,0,0) -- (0," << format_fixed(reach) << ",0) node[anchor=north west] {$y_{\\text{" << o
+      << "}}$};\n"
+      << "\\draw[->, gray] (0,0,0) -- (0,0," << format_fixed(reach) << ") node[anchor=south] {$z_{\\text{" << o
+      << "}}$};\n";
+  // Links: each frame's origin joined to its parent's (where they differ).
+  for (const PlacedFrame& f : frames)
+    out << "\\draw[very thick, blue!70!black] " << at(origin_of(f.parent)) << " -- " << at(f.origin) << ";\n";
+  // Each frame's triad; the names of the frames and points at each place, once.
+  std::map<std::string, std::string> names_at;
+  const auto name_at = [&](const std::string& where, const std::string& name) {
+    std::string& names = names_at[where];
+    names += (names.empty() ? "" : ", ") + latex_escape_text(name);
+  };
+  name_at(at({0, 0, 0}), observer);
+  for (const PlacedFrame& f : frames) {
+    static const char* const axis_names[3] = {"x", "y", "z"};
+    for (std::size_t c = 0; c < 3; ++c) {
+      out << "\\draw[->, thin] " << at(f.origin) << " -- ++" << plus(f.axes[c], axis_cm)
+          << " node[font=\\tiny, anchor=west] {$" << axis_names[c] << "$};\n";
+    }
+    name_at(at(f.origin), f.name);
+    out << "\\filldraw[fill=white] " << at(f.origin) << " circle (1.5pt);\n";
+  }
+  if (s.status == Status::ok) {
+    for (std::size_t p = 0; p < s.points.size(); ++p) {
+      const PointMotion& m = s.points[p];
+      const Point3 position{m.position[0], m.position[1], m.position[2]};
+      const std::string frame = system.points[p].terms ? system.points[p].terms->frame : observer;
+      out << "\\draw[thick] " << at(origin_of(frame)) << " -- " << at(position) << ";\n"
+          << "\\fill " << at(position) << " circle (1.5pt);\n";
+      name_at(at(position), system.points[p].name);
+      if (velocity_scale > 0 && m.speed() > 0) {
+        out << "\\draw[->, red, thick] " << at(position) << " -- ++"
+            << plus({m.velocity[0], m.velocity[1], m.velocity[2]}, velocity_scale) << ";\n";
+      }
+    }
+  }
+  for (const auto& [where, names] : names_at)
+    out << "\\node[anchor=north east, font=\\small, inner sep=2pt] at " << where << " {" << names << "};\n";
+  out << "\\end{tikzpicture}\n\\end{center}\n";
+  const OutputScale scale(system);
+  out << "Drawing scale: 1\\,cm = $" << latex_number(1.0 / cm / scale.length, 3) << "$\\,"
+      << latex_escape_text(scale.length_unit) << "; each frame's axes drawn 1\\,cm long";
+  if (velocity_scale > 0) {
+    out << "; velocity vectors (red): 1\\,cm = $" << latex_number(1.0 / velocity_scale / scale.length, 3) << "$\\,"
+        << latex_escape_text(scale.length_unit) << "/s";
+  }
+  out << ".\n\n";
+}
+
+}  // namespace kinema

@@ -1,0 +1,16 @@
+// A spatial chain drawn in 3-D with tikz-3dplot (Debian's texlive-pictures): the
+// observer's axes, each frame's origin joined to its parent's and its axes as a small
+// triad, the points joined to their frames' origins, and the points' velocities as red
+// arrows, all at one solved position, to a stated scale. Needs \usepackage{tikz-3dplot}.
+#pragma once
+
+#include <ostream>
+
+#include <kinema/engine/constraint_system.hpp>
+#include <kinema/engine/numeric/motion_table.hpp>
+
+namespace kinema {
+
+void write_tikz_chain(std::ostream& out, const ConstraintSystem& system, const MotionState& state);
+
+}  // namespace kinema

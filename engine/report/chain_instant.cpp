@@ -1,0 +1,149 @@
+#include <kinema/engine/report/chain_instant.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+#include <kinema/engine/errors.hpp>
+#include <kinema/engine/symbolic/expression_parts.hpp>
+#include <kinema/engine/symbolic/trig_simplify.hpp>
+
+namespace kinema {
+
+using GiNaC::ex;
+
+bool is_driven_chain(const ConstraintSystem& system) {
+  if (system.frames.empty()) return false;
+  return std::all_of(system.groups.begin(), system.groups.end(),
+                     [](const EquationGroup& group) { return group.kind == "motion"; });
+}
+
+bool is_negative_term(const ex& e) {
+  if (GiNaC::is_a<GiNaC::numeric>(e)) return GiNaC::ex_to<GiNaC::numeric>(e).is_negative();
+  if (!GiNaC::is_a<GiNaC::mul>(e)) return false;
+  const ex last = e.op(e.nops() - 1);  // GiNaC keeps a product's number last
+  return GiNaC::is_a<GiNaC::numeric>(last) && GiNaC::ex_to<GiNaC::numeric>(last).is_negative();
+}
+
+std::string chain_observer(const ConstraintSystem& system) {
+  for (const FrameObservable& f : system.frames) {
+    const bool is_frame = std::any_of(system.frames.begin(), system.frames.end(),
+                                      [&](const FrameObservable& g) { return g.name == f.parent; });
+    if (!is_frame) return f.parent;
+  }
+  return "";
+}
+
+namespace {
+
+// The symbols at the instant: joint variables (as exact as they are: 0 stays 0, so
+// that sin and cos of it simplify) and constant angles of a quarter turn (beta = 90 deg
+// is put in, as seed 000 does: sin and cos of it are 0 and 1); for the numbers every
+// parameter and rate too.
+struct Instant {
+  GiNaC::exmap angles, numbers;
+  std::vector<std::pair<Coordinate, double>> values;
+
+  explicit Instant(const ConstraintSystem& system) {
+    for (const SystemParameter& p : system.parameters) {
+      numbers[p.symbol] = p.value;
+      const double quarters = p.value / (M_PI / 2);
+      if (p.dimension == Dimension::angle && !p.formula && std::fabs(quarters - std::round(quarters)) < 1e-12)
+        angles[p.symbol] = GiNaC::numeric(static_cast<long>(std::round(quarters))) * GiNaC::Pi / 2;
+    }
+    const auto parameter_value = [&](const std::string& name) {
+      for (const SystemParameter& p : system.parameters)
+        if (p.symbol.get_name() == name) return p.value;
+      return 0.0;
+    };
+    const auto put = [&](const Coordinate& q, double value, double rate, double second_rate) {
+      angles[q.symbol] = value == 0 ? ex(0) : ex(value);
+      numbers[q.symbol] = value;
+      numbers[q.rate] = rate;
+      numbers[q.second_rate] = second_rate;
+      values.push_back({q, value});
+    };
+    const Driver& input = system.input;
+    if (input.dimension != Dimension::time) put(input, input.values.front(), input.rate_value, input.second_rate_value);
+    for (const Coordinate& q : system.unknowns) {
+      put(q, q.guess, parameter_value(q.rate.get_name() + "_0"), parameter_value(q.second_rate.get_name() + "_0"));
+    }
+  }
+
+  // The shorter of the expanded formula and the one with products of sin/cos combined.
+  ex formula(const ex& e) const {
+    const ex plain = e.subs(angles, GiNaC::subs_options::no_pattern).expand();
+    const ex combined = combine_trig_products(plain);
+    return to_text(combined).size() < to_text(plain).size() ? combined : plain;
+  }
+
+  double number(const ex& e) const {
+    const ex value = GiNaC::evalf(e.subs(numbers, GiNaC::subs_options::no_pattern));
+    double x = GiNaC::is_a<GiNaC::numeric>(value) ? GiNaC::ex_to<GiNaC::numeric>(value).to_double() : NAN;
+    return std::fabs(x) < 1e-12 ? 0.0 : x;  // rounding of an exact zero
+  }
+};
+
+}  // namespace
+
+ChainAtInstant chain_at_instant(const ConstraintSystem& system, const std::string& basis) {
+  ChainAtInstant chain;
+  chain.observer = chain_observer(system);
+  chain.basis = basis.empty() ? chain.observer : basis;
+  const Instant at(system);
+  chain.values = at.values;
+
+  // Components along the basis frame's axes: R^T v (R's columns are its axes).
+  std::vector<ex> rotation;
+  if (chain.basis != chain.observer) {
+    std::string names = chain.observer;
+    for (const FrameObservable& f : system.frames) {
+      names += ", " + f.name;
+      if (f.name == chain.basis) rotation = f.rotation;
+    }
+    if (rotation.empty()) {
+      throw InputError(system.source_file + ": --basis " + basis + ": there is no frame \"" + basis +
+                       "\" in the chain; the frames are " + names);
+    }
+  }
+  const auto vector = [&](ChainTerm term, const std::vector<ex>& v) {
+    ChainVector result{term, {}, {}};
+    for (std::size_t c = 0; c < 3; ++c) {
+      ex component = v[c];
+      if (!rotation.empty()) component = rotation[0 * 3 + c] * v[0] + rotation[1 * 3 + c] * v[1] + rotation[2 * 3 + c] * v[2];
+      result.formula.push_back(at.formula(component));
+      result.value[c] = at.number(component);
+    }
+    return result;
+  };
+  const auto sum = [](std::initializer_list<const std::vector<ex>*> parts) {
+    std::vector<ex> total(3, 0);
+    for (const auto* part : parts)
+      for (std::size_t c = 0; c < 3; ++c) total[c] += (*part)[c];
+    return total;
+  };
+
+  for (const FrameObservable& f : system.frames) {
+    chain.frames.push_back({f.name, f.parent, f.angular_velocity_terms,
+                            vector(ChainTerm::angular_velocity, f.angular_velocity),
+                            vector(ChainTerm::angular_acceleration, f.angular_acceleration)});
+  }
+  for (const PointObservable& p : system.points) {
+    if (!p.terms) continue;
+    const RelativeMotionTerms& t = *p.terms;
+    ChainPointAtInstant point{p.name, t.frame, {}, {}};
+    point.velocity = {vector(ChainTerm::position, t.relative_position),
+                      vector(ChainTerm::frame_velocity, t.frame_velocity), vector(ChainTerm::transport, t.transport),
+                      vector(ChainTerm::relative_velocity, t.relative_velocity),
+                      vector(ChainTerm::velocity, sum({&t.frame_velocity, &t.transport, &t.relative_velocity}))};
+    point.acceleration = {
+        vector(ChainTerm::frame_acceleration, t.frame_acceleration), vector(ChainTerm::tangential, t.tangential),
+        vector(ChainTerm::centripetal, t.centripetal), vector(ChainTerm::coriolis, t.coriolis),
+        vector(ChainTerm::relative_acceleration, t.relative_acceleration),
+        vector(ChainTerm::acceleration, sum({&t.frame_acceleration, &t.tangential, &t.centripetal, &t.coriolis,
+                                             &t.relative_acceleration}))};
+    chain.points.push_back(point);
+  }
+  return chain;
+}
+
+}  // namespace kinema
