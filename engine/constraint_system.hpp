@@ -90,6 +90,10 @@ struct AngularVelocityTerm {
   std::string axis;             ///< "x", "y" or "z"
   std::string frame;            ///< Whose axis it is.
   std::vector<GiNaC::ex> vector;  ///< rate times the axis, observer basis.
+  /// Its time derivative in the observer, in two parts (their sums over the terms are the
+  /// frame's angular acceleration): d(rate)/dt times the axis, and w_frame x (rate axis),
+  /// the axis carried round by the frame it belongs to.
+  std::vector<GiNaC::ex> rate_change, carried;
 };
 
 /// A frame of a spatial chain: where it is and how it turns relative to the observer

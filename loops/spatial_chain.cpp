@@ -225,11 +225,16 @@ class ChainBuilder {
       const ex rate = k_.time_derivative(angle);
       if (!rate.is_zero()) {
         const Vector3 term = rate * direction;
+        // Its derivative in the observer: the rate's own change along the axis, and the
+        // axis carried round by the frame it is fixed in, whose angular velocity so far is
+        // omega (w x term is the same with this term added: term x term = 0).
+        const Vector3 rate_change = k_.time_derivative(rate) * direction, carried = cross(omega, term);
         omega = omega + term;
         // The rate about the axis it turns about: the parent's, for a frame's first
         // turn; after that the frame's own, as turned so far.
+        const auto list = [](const Vector3& v) { return std::vector<ex>(v.begin(), v.end()); };
         motion.angular_velocity_terms.push_back(
-            {rate, axis, &t == &f.turns.front() ? f.parent : f.name, std::vector<ex>(term.begin(), term.end())});
+            {rate, axis, &t == &f.turns.front() ? f.parent : f.name, list(term), list(rate_change), list(carried)});
       }
       rotation = rotation.mul(turn(a, angle));
     }

@@ -123,9 +123,12 @@ ChainAtInstant chain_at_instant(const ConstraintSystem& system, const std::strin
   };
 
   for (const FrameObservable& f : system.frames) {
-    chain.frames.push_back({f.name, f.parent, f.angular_velocity_terms,
-                            vector(ChainTerm::angular_velocity, f.angular_velocity),
-                            vector(ChainTerm::angular_acceleration, f.angular_acceleration)});
+    ChainFrameAtInstant frame{f.name, f.parent, f.angular_velocity_terms,
+                              vector(ChainTerm::angular_velocity, f.angular_velocity),
+                              vector(ChainTerm::angular_acceleration, f.angular_acceleration), {}};
+    for (const AngularVelocityTerm& t : f.angular_velocity_terms)
+      frame.acceleration_parts.push_back({vector(ChainTerm::rate_change, t.rate_change), vector(ChainTerm::carried, t.carried)});
+    chain.frames.push_back(frame);
   }
   for (const PointObservable& p : system.points) {
     if (!p.terms) continue;

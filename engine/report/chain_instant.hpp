@@ -18,6 +18,7 @@ namespace kinema {
 /// What a vector of the worked chain is.
 enum class ChainTerm {
   angular_velocity, angular_acceleration,
+  rate_change, carried,  ///< of a term of w: d(rate)/dt axis, w_frame x (rate axis)
   position,  ///< r, from the point's frame's origin
   frame_velocity, transport, relative_velocity, velocity,  ///< v = v_F + w x r + v_rel
   frame_acceleration, tangential, centripetal, coriolis, relative_acceleration, acceleration,
@@ -33,6 +34,8 @@ struct ChainFrameAtInstant {
   std::string name, parent;
   std::vector<AngularVelocityTerm> terms;  ///< As summed into w (observer basis).
   ChainVector angular_velocity, angular_acceleration;
+  /// The parts of alpha, per term of w: its rate_change and carried parts (in the basis).
+  std::vector<std::pair<ChainVector, ChainVector>> acceleration_parts;
 };
 
 struct ChainPointAtInstant {

@@ -99,6 +99,22 @@ TEST_CASE("spatial_chain: seed 000's arm at the instant of the figure") {
   CHECK(arm.angular_velocity_terms.size() == 3);
   check_vector(arm.angular_velocity, values, {"-1", "0.866025", "0.5"});
   check_vector(arm.angular_acceleration, values, {"-0.866025", "-1.5", "-0.866025"});
+  // alpha term by term: each rate's change along its axis plus the axis carried round by
+  // its frame; the parts sum to d/dt w for every frame.
+  for (const kinema::ChainFrameMotion& f : k.frames) {
+    CAPTURE(f.name);
+    for (std::size_t c = 0; c < 3; ++c) {
+      ex sum = 0;
+      for (const auto& t : f.angular_velocity_terms) sum += t.rate_change[c] + t.carried[c];
+      CHECK(vanishes(sum - f.angular_acceleration[c]));
+      CHECK(vanishes(f.angular_acceleration[c] - k.time_derivative(f.angular_velocity[c])));
+    }
+  }
+  const auto& spin = arm.angular_velocity_terms.back();  // omega5 y_E2, carried by E2
+  CHECK(spin.frame == "E2");
+  kinema::Vector3 carried;
+  std::copy(spin.carried.begin(), spin.carried.end(), carried.begin());
+  check_vector(carried, values, {"-0.866025", "-0.5", "-0.866025"});
   check_vector(k.frames[1].angular_velocity, values, {"-1", "0", "1"});  // w_E2/E0 = -omega4 E1^ + omega1 E3^
   check_vector(k.frames[1].angular_acceleration, values, {"0", "-1", "0"});  // -omega1 omega4 E2^
   check_vector(point(k, "O2").velocity, values, {"-0.6", "0", "0"});
@@ -185,7 +201,12 @@ TEST_CASE("spatial_chain: derive prints the composition of angular velocities an
   // The terms by their labels; the formulas' term order is GiNaC's (their meaning is
   // tested on the library above), the numbers at the instant the seed's.
   CHECK(result.out.find("    w_E3/E0 = omega1 z_E0 - omega4 x_E2 + omega5 y_E2\n      = [") != std::string::npos);
-  CHECK(result.out.find("] = (-1, 0.866025, 0.5)\n    alpha_E3/E0 = d/dt w = [") != std::string::npos);
+  CHECK(result.out.find("] = (-1, 0.866025, 0.5)\n    alpha_E3/E0 = d/dt w, term by term: d/dt(rate) axis + w_frame x "
+                        "(rate axis)\n") != std::string::npos);
+  // The axes carried round by E2: w_E2/E0 x (-omega4 x_E2) and w_E2/E0 x (omega5 y_E2), as the seed names them.
+  CHECK(result.out.find("      w_E2/E0 x (-omega4 x_E2) = [0, -omega4*omega1, 0] = (0, -1, 0)\n") != std::string::npos);
+  CHECK(result.out.find("      w_E2/E0 x (omega5 y_E2) = [") != std::string::npos);
+  CHECK(result.out.find("] = (-0.866025, -0.5, -0.866025)\n") != std::string::npos);
   CHECK(result.out.find("] = (-0.866025, -1.5, -0.866025)\n") != std::string::npos);
   const auto v_e2 = result.out.find("    v_E2 (its origin) = [");
   REQUIRE(v_e2 != std::string::npos);

@@ -102,8 +102,19 @@ std::vector<LatexRow> chain_frame_rows(const ChainAtInstant& chain) {
     rows.push_back({w + " &= " + (sum.empty() ? "\\mathbf{0}" : sum), "frame " + f.name});
     vector_rows(rows, "", f.angular_velocity, "rad/s", named(chain.basis), false,
                 vector_comment("w_" + f.name, f.angular_velocity));
-    vector_rows(rows, "\\boldsymbol{\\alpha}_{" + named(f.name + "/" + o) + "} = \\frac{d}{dt}" + w,
-                f.angular_acceleration, "rad/s^2", named(chain.basis), false,
+    // alpha term by term: each rate's change along its axis, and the axis carried round
+    // by the frame it belongs to.
+    std::string parts;
+    for (const AngularVelocityTerm& t : f.terms) {
+      const std::string axis = "\\hat{\\mathbf{" + t.axis + "}}_{" + named(t.frame) + "}";
+      parts += (parts.empty() ? "" : " + ") + std::string("\\tfrac{d}{dt}(") + to_latex(t.rate) + ")\\," + axis;
+      if (t.frame != o)
+        parts += " + \\boldsymbol{\\omega}_{" + named(t.frame + "/" + o) + "}\\times(" + to_latex(t.rate) + "\\," + axis + ")";
+    }
+    rows.push_back({"\\boldsymbol{\\alpha}_{" + named(f.name + "/" + o) + "} = \\frac{d}{dt}" + w + " &= " +
+                        (parts.empty() ? "\\mathbf{0}" : parts),
+                    ""});
+    vector_rows(rows, "", f.angular_acceleration, "rad/s^2", named(chain.basis), false,
                 vector_comment("alpha_" + f.name, f.angular_acceleration));
   }
   return rows;

@@ -121,7 +121,17 @@ void print_chain(std::ostream& out, const ConstraintSystem& system, const std::s
     out << "\n  " << f.name << " (parent " << f.parent << ")\n";
     out << "    w_" << f.name << "/" << o << " = " << (sum.empty() ? "0" : sum) << "\n";
     out << "      = " << vector(f.angular_velocity) << "\n";
-    out << "    alpha_" << f.name << "/" << o << " = d/dt w = " << vector(f.angular_acceleration) << "\n";
+    out << "    alpha_" << f.name << "/" << o << " = d/dt w, term by term: d/dt(rate) axis + w_frame x (rate axis)\n";
+    for (std::size_t k = 0; k < f.terms.size(); ++k) {
+      const AngularVelocityTerm& t = f.terms[k];
+      const std::string axis = t.axis + "_" + t.frame, rate = to_text(t.rate);
+      out << "      d/dt(" << rate << ") " << axis << " = " << vector(f.acceleration_parts[k].first) << "\n";
+      if (t.frame != o) {
+        out << "      w_" << t.frame << "/" << o << " x (" << rate << " " << axis
+            << ") = " << vector(f.acceleration_parts[k].second) << "\n";
+      }
+    }
+    out << "      = " << vector(f.angular_acceleration) << "\n";
   }
   out << "\n2. Points: v = v_F + w x r + v_rel;  a = a_F + alpha x r + w x (w x r) + 2 w x v_rel + a_rel\n";
   for (const ChainPointAtInstant& p : chain.points) {
