@@ -488,6 +488,12 @@ class FileReader {
           }
           FrameTurn t;
           t.where = where(turn);
+          if (!pair->get(0)->is_string()) {  // e.g. a direction vector, [0, 0, 0] among them
+            fail(*pair->get(0), "frame \"" + name + "\": a turn's axis is named, \"x\", \"y\" or \"z\" (or \"-x\", ...): "
+                                "one of the axes of the frame as turned so far (the parent's for the first turn), "
+                                "not a direction vector; a frame whose axis is skew gets a turn first that lines an "
+                                "axis up with it");
+          }
           t.axis = string_value(*pair->get(0), "axis");
           t.angle = string_value(*pair->get(1), "angle");
           frame.turns.push_back(t);

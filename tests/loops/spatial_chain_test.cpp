@@ -182,6 +182,9 @@ TEST_CASE("spatial_chain: bad frames, axes, points and formulas are refused with
   };
   CHECK(error_of(kinema_test::replaced(R"(["y", "theta5"])", R"(["w", "theta5"])", arm))
             .find("axis \"w\" is not one of the frame's axes x, y, z") != std::string::npos);
+  // A direction vector (the zero vector among them) is not an axis: axes are named.
+  CHECK(error_of(kinema_test::replaced(R"(["y", "theta5"])", R"([[0, 0, 0], "theta5"])", arm))
+            .find("arm.toml:31: frame \"E3\": a turn's axis is named") != std::string::npos);
   CHECK(error_of(kinema_test::replaced(R"(E3 = { parent = "E2")", R"(E3 = { parent = "E7")", arm))
             .find("its parent \"E7\" is not a frame of the file") != std::string::npos);
   CHECK(error_of(kinema_test::replaced(R"(E2 = { parent = "E1")", R"(E2 = { parent = "E3")", arm))
@@ -288,6 +291,7 @@ TEST_CASE("spatial_chain: through the commands, a bad chain is bad input with fi
   };
   for (const Case& c : std::vector<Case>{
            {R"(["y", "theta5"])", R"(["w", "theta5"])", "axis \"w\" is not one of the frame's axes x, y, z"},
+           {R"(["y", "theta5"])", R"([[0, 0, 0], "theta5"])", "a turn's axis is named, \"x\", \"y\" or \"z\""},
            {R"(E3 = { parent = "E2")", R"(E3 = { parent = "E7")", "its parent \"E7\" is not a frame of the file"},
            {R"(A = { frame = "E3" })", R"(A = { frame = "E9" })", "point \"A\": frame \"E9\" does not exist"},
            {"[points]", "[links]\n[points]", "unknown key \"links\" in the top level of a spatial chain"},
