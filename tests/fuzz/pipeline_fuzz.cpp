@@ -18,6 +18,7 @@
 #include <kinema/engine/numeric/circuit.hpp>
 #include <kinema/engine/printers/printer.hpp>
 #include <kinema/engine/printers/results_stream.hpp>
+#include <kinema/engine/report/chain_instant.hpp>
 #include <kinema/engine/report/plot_range.hpp>
 #include <kinema/loops/mechanism_file.hpp>
 #include <kinema/loops/spatial_chain.hpp>
@@ -54,6 +55,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
           for (const GiNaC::ex& component : *vector) (void)GiNaC::evalf(component.subs(instant));
     }
     const Model model = make_model(mechanism);
+    // A chain worked out at the instant along its last frame's axes (derive --basis).
+    if (is_driven_chain(model.system)) (void)chain_at_instant(model.system, model.system.frames.back().name);
     std::vector<double> inputs = model.system.input.values;
     if (inputs.size() > 4) inputs.resize(4);
     if (inputs.empty()) inputs = {0.5};
