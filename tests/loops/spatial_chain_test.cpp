@@ -558,3 +558,39 @@ TEST_CASE("spatial_chain: derive --basis gives the vectors along a frame's axes;
     CHECK(vanishes(components[c] - seed[c]));
   }
 }
+
+TEST_CASE("spatial_chain: every spatial sample through the engine: v, a and alpha are finite differences of p and w") {
+  for (const char* sample : kinema_test::kSamples) {
+    const kinema::Model model = kinema::load_model(kinema_test::sample(sample));
+    if (model.system.frames.empty()) continue;
+    CAPTURE(sample);
+    // Three instants h apart in time: the input moves at its rate (time at 1 s/s).
+    const auto& input = model.system.input;
+    const double rate = input.rate_value, h = 1e-4;
+    REQUIRE(rate != 0);
+    const double start = input.values.front();
+    for (double t : {0.0, 0.3, 1.1}) {
+      CAPTURE(t);
+      const kinema::MotionTable s =
+          kinema::analyse(model, {start + rate * (t - h), start + rate * t, start + rate * (t + h)},
+                          kinema_test::with_rates(rate, 0));
+      for (std::size_t r = 0; r < 3; ++r) REQUIRE(s.status(r) == kinema::Status::ok);
+      const double scale = model.kinematics.length_scale();
+      for (std::size_t p = 0; p < s.point_count(); ++p) {
+        const auto a = s.point(0, p), m = s.point(1, p), b = s.point(2, p);
+        for (std::size_t c = 0; c < 3; ++c) {
+          CHECK(m.velocity[c] == doctest::Approx((b.position[c] - a.position[c]) / (2 * h)).epsilon(1e-6).scale(scale));
+          CHECK(m.acceleration[c] ==
+                doctest::Approx((b.position[c] - 2 * m.position[c] + a.position[c]) / (h * h)).epsilon(1e-4).scale(scale));
+        }
+      }
+      for (std::size_t f = 0; f < s.frame_count(); ++f) {
+        const auto a = s.frame(0, f), m = s.frame(1, f), b = s.frame(2, f);
+        for (std::size_t c = 0; c < 3; ++c) {
+          CHECK(m.angular_acceleration[c] ==
+                doctest::Approx((b.angular_velocity[c] - a.angular_velocity[c]) / (2 * h)).epsilon(1e-6).scale(1));
+        }
+      }
+    }
+  }
+}
