@@ -17,21 +17,23 @@ using GiNaC::ex;
 // the solved rates.
 void loop_rows(std::vector<LatexRow>& rows, const ConstraintSystem& system, const Derivation& d, const std::string& jacobian,
                const std::vector<ex>& rates, const std::vector<ex>& second_rates, const std::vector<ex>& velocity_rhs) {
+  const TextbookForm textbook(system);
+  constexpr auto latex = TextbookForm::Style::latex;
   for (const EquationGroup& group : system.groups) {
     const std::string name = latex_escape_text(group.name);
     rows.push_back({"\\text{" + name + ":}\\quad & " + latex_vector_loop(group) + " = 0", group.kind + " " + name});
-    for (std::size_t row : group.equations) rows.push_back({"& " + to_latex(system.equations[row].expression) + " = 0", ""});
+    for (std::size_t row : group.equations) rows.push_back({"& " + textbook.equation(system, row, latex) + " = 0", ""});
   }
-  rows.push_back({"& " + jacobian + latex_column(rates) + " = " + latex_column(velocity_rhs),
+  rows.push_back({"& " + jacobian + latex_column(rates) + " = " + latex_column(velocity_rhs, textbook),
                   "velocity: Phi_q qd = -Phi_theta thetad"});
-  rows.push_back({"& " + jacobian + latex_column(second_rates) + " = " + latex_column(d.acceleration_rhs_combined),
+  rows.push_back({"& " + jacobian + latex_column(second_rates) + " = " + latex_column(d.acceleration_rhs_combined, textbook),
                   "acceleration: Phi_q qdd = gamma"});
   for (int order = 1; order <= 2; ++order) {
     for (const SolvingBlock& block : d.blocks) {
       for (std::size_t j : block.unknowns) {
         const GiNaC::realsymbol& symbol = order == 1 ? system.unknowns[j].rate : system.unknowns[j].second_rate;
         const ex& solved = order == 1 ? d.solved_rates[j] : d.solved_second_rates[j];
-        rows.push_back({to_latex(symbol) + " &= " + to_latex(solved),
+        rows.push_back({to_latex(symbol) + " &= " + textbook.solved(solved, system.unknowns[j].symbol, latex),
                         "kinema: " + symbol.get_name() + " = " + to_text(solved)});
       }
     }
@@ -53,7 +55,7 @@ class DerivationLatexPrinter : public Printer {
       second_rates.push_back(q.second_rate);
     }
     for (std::size_t i = 0; i < n; ++i) velocity_rhs.push_back(-d.input_jacobian(i, 0) * system.input.rate);
-    const std::string jacobian = latex_matrix(d.jacobian);
+    const std::string jacobian = latex_matrix(d.jacobian, TextbookForm(system));
 
     std::vector<LatexRow> rows;
     if (system.linkage) {  // joints and links: the solving order the loops come from

@@ -122,19 +122,41 @@ std::string latex_exp(const GiNaC::ex& angle) {
   return "e^{i" + (GiNaC::is_a<GiNaC::add>(angle) ? "(" + a + ")" : a) + "}";
 }
 
-std::string latex_column(const std::vector<GiNaC::ex>& entries) {
+namespace {
+
+template <class Entry>
+std::string column_text(const std::vector<GiNaC::ex>& entries, Entry entry) {
   std::string text = "\\begin{bmatrix}";
-  for (std::size_t i = 0; i < entries.size(); ++i) text += (i ? " \\\\ " : " ") + to_latex(entries[i]);
+  for (std::size_t i = 0; i < entries.size(); ++i) text += (i ? " \\\\ " : " ") + entry(entries[i]);
   return text + " \\end{bmatrix}";
 }
 
-std::string latex_matrix(const GiNaC::matrix& matrix) {
+template <class Entry>
+std::string matrix_text(const GiNaC::matrix& matrix, Entry entry) {
   std::string text = "\\begin{bmatrix}";
   for (unsigned i = 0; i < matrix.rows(); ++i) {
-    for (unsigned j = 0; j < matrix.cols(); ++j) text += (j ? " & " : " ") + to_latex(matrix(i, j));
+    for (unsigned j = 0; j < matrix.cols(); ++j) text += (j ? " & " : " ") + entry(matrix(i, j));
     text += i + 1 < matrix.rows() ? " \\\\" : " ";
   }
   return text + "\\end{bmatrix}";
+}
+
+}  // namespace
+
+std::string latex_column(const std::vector<GiNaC::ex>& entries) {
+  return column_text(entries, [](const GiNaC::ex& e) { return to_latex(e); });
+}
+
+std::string latex_column(const std::vector<GiNaC::ex>& entries, const TextbookForm& form) {
+  return column_text(entries, [&](const GiNaC::ex& e) { return form(e, TextbookForm::Style::latex); });
+}
+
+std::string latex_matrix(const GiNaC::matrix& matrix, const TextbookForm& form) {
+  return matrix_text(matrix, [&](const GiNaC::ex& e) { return form(e, TextbookForm::Style::latex); });
+}
+
+std::string latex_matrix(const GiNaC::matrix& matrix) {
+  return matrix_text(matrix, [](const GiNaC::ex& e) { return to_latex(e); });
 }
 
 std::string latex_vector_loop(const EquationGroup& loop) {

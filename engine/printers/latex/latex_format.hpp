@@ -11,6 +11,7 @@
 #include <vector>
 
 #include <kinema/engine/constraint_system.hpp>
+#include <kinema/engine/printers/textbook_form.hpp>
 
 namespace kinema {
 
@@ -40,6 +41,9 @@ std::string latex_exp(const GiNaC::ex& angle);
 /// A column vector and a matrix as amsmath bmatrix.
 std::string latex_column(const std::vector<GiNaC::ex>& entries);
 std::string latex_matrix(const GiNaC::matrix& matrix);
+/// The same, each entry in textbook form.
+std::string latex_column(const std::vector<GiNaC::ex>& entries, const TextbookForm& form);
+std::string latex_matrix(const GiNaC::matrix& matrix, const TextbookForm& form);
 
 /// A planar loop as course notes write it, its terms in the order written:
 /// a\,e^{i\theta_{2}} + b\,e^{i\theta_{3}} - ...

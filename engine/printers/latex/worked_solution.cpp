@@ -25,7 +25,12 @@ using GiNaC::ex;
 class DocumentWriter {
  public:
   DocumentWriter(std::ostream& out, const Model& model)
-      : out_(out), system_(model.system), d_(model.derivation), scale_(model.system), geometry_(model.system) {}
+      : out_(out),
+        system_(model.system),
+        d_(model.derivation),
+        scale_(model.system),
+        geometry_(model.system),
+        textbook_(model.system) {}
 
   void preamble() {
     out_ << "\\documentclass[11pt]{article}\n"
@@ -92,7 +97,8 @@ class DocumentWriter {
     std::vector<std::string> rows;
     for (const EquationGroup& group : system_.groups) {
       rows.push_back("\\text{" + latex_escape_text(group.name) + ":}\\quad & " + latex_vector_loop(group) + " = 0");
-      for (std::size_t row : group.equations) rows.push_back("& " + to_latex(system_.equations[row].expression) + " = 0");
+      for (std::size_t row : group.equations)
+        rows.push_back("& " + textbook_.equation(system_, row, TextbookForm::Style::latex) + " = 0");
     }
     align_rows(rows);
   }
@@ -107,7 +113,8 @@ class DocumentWriter {
       rates.push_back(system_.unknowns[i].rate);
       rhs.push_back(-d_.input_jacobian(i, 0) * input.rate);
     }
-    std::vector<std::string> rows = {"& " + latex_matrix(d_.jacobian) + latex_column(rates) + " = " + latex_column(rhs)};
+    std::vector<std::string> rows = {"& " + latex_matrix(d_.jacobian, textbook_) + latex_column(rates) + " = " +
+                                     latex_column(rhs, textbook_)};
     solved_rows(rows, 1);
     align_rows(rows);
   }
@@ -120,10 +127,11 @@ class DocumentWriter {
     std::string gamma = "\\begin{bmatrix}";
     for (std::size_t i = 0; i < second.size(); ++i) gamma += (i ? " \\\\ " : " ") + std::string("\\gamma_{") + std::to_string(i + 1) + "}";
     gamma += " \\end{bmatrix}";
-    std::vector<std::string> rows = {"& " + latex_matrix(d_.jacobian) + latex_column(second) + " = " + gamma};
+    std::vector<std::string> rows = {"& " + latex_matrix(d_.jacobian, textbook_) + latex_column(second) + " = " + gamma};
     // The right-hand side one row at a time: a column of it would not fit the page.
     for (std::size_t i = 0; i < d_.acceleration_rhs_combined.size(); ++i)
-      rows.push_back("\\gamma_{" + std::to_string(i + 1) + "} &= " + to_latex(d_.acceleration_rhs_combined[i]));
+      rows.push_back("\\gamma_{" + std::to_string(i + 1) + "} &= " +
+                     textbook_(d_.acceleration_rhs_combined[i], TextbookForm::Style::latex));
     solved_rows(rows, 2);
     align_rows(rows);
     sliding_link_terms();
@@ -203,6 +211,7 @@ class DocumentWriter {
   const Derivation& d_;
   OutputScale scale_;
   MechanismGeometry geometry_;
+  TextbookForm textbook_;
 
   // The solved rates (order 1) or second rates (order 2), block by block, each with
   // a "% kinema: name = formula" comment in GiNaC syntax for reading it back.
@@ -211,7 +220,9 @@ class DocumentWriter {
       for (std::size_t j : block.unknowns) {
         const GiNaC::realsymbol& symbol = order == 1 ? system_.unknowns[j].rate : system_.unknowns[j].second_rate;
         const ex& formula = order == 1 ? d_.solved_rates[j] : d_.solved_second_rates[j];
-        rows.push_back(to_latex(symbol) + " &= " + to_latex(formula) + " %% kinema: " + symbol.get_name() + " = " +
+        rows.push_back(to_latex(symbol) + " &= " +
+                       textbook_.solved(formula, system_.unknowns[j].symbol, TextbookForm::Style::latex) +
+                       " %% kinema: " + symbol.get_name() + " = " +
                        to_text(formula));
       }
     }
@@ -330,7 +341,8 @@ class DocumentWriter {
           const Coordinate& q = system_.unknowns[j];
           const double value = scale_.rate(q.dimension, order == 1 ? s.qd[j] : s.qdd[j]);
           const ex& formula = order == 1 ? d_.solved_rates[j] : d_.solved_second_rates[j];
-          rows.push_back(to_latex(order == 1 ? q.rate : q.second_rate) + " &= " + to_latex(formula, numbers) + " = " +
+          rows.push_back(to_latex(order == 1 ? q.rate : q.second_rate) + " &= " +
+                         textbook_.solved(formula, q.symbol, TextbookForm::Style::latex, &numbers) + " = " +
                          latex_number(value) + "\\,\\mathrm{" +
                          (order == 1 ? scale_.rate_unit(q.dimension) : scale_.second_rate_unit(q.dimension)) + "}");
         }

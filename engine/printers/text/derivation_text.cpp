@@ -1,5 +1,6 @@
 // The derivation in readable text (GiNaC's default print context).
 #include <kinema/engine/printers/printer.hpp>
+#include <kinema/engine/printers/textbook_form.hpp>
 #include <kinema/engine/report/chain_instant.hpp>
 #include <kinema/engine/report/number_format.hpp>
 #include <kinema/engine/report/output_scale.hpp>
@@ -194,25 +195,30 @@ class DerivationTextPrinter : public Printer {
       return;
     }
 
+    const TextbookForm textbook(system);
+    const auto text = [&](const ex& e) { return textbook(e, TextbookForm::Style::text); };
     out << "\n1. Loop-closure equations Phi(q, " << input.name << ") = 0\n";
     for (const EquationGroup& group : system.groups) {
       out << "\n  " << group.kind << " " << group.name << ":";
-      if (group.vector) out << "  " << to_text(*group.vector) << " = 0";
+      if (group.vector) {
+        const std::string written = textbook.loop_vector(group, TextbookForm::Style::text);
+        out << "  " << (written.empty() ? text(*group.vector) : written) << " = 0";
+      }
       out << "\n";
       for (std::size_t row : group.equations) {
-        out << "    " << system.equations[row].component << ":  " << to_text(system.equations[row].expression)
-            << " = 0\n";
+        out << "    " << system.equations[row].component << ":  "
+            << textbook.equation(system, row, TextbookForm::Style::text) << " = 0\n";
       }
     }
 
     out << "\n2. Jacobian Phi_q (rows " << joined(rows) << "; columns " << joined(unknowns) << ")\n\n";
     for (std::size_t i = 0; i < n; ++i) {
       out << "  " << rows[i] << ":  [ ";
-      for (std::size_t j = 0; j < n; ++j) out << (j ? ",  " : "") << to_text(d.jacobian(i, j));
+      for (std::size_t j = 0; j < n; ++j) out << (j ? ",  " : "") << text(d.jacobian(i, j));
       out << " ]\n";
     }
     out << "\n  Phi_" << input.name << " = [ ";
-    for (std::size_t i = 0; i < n; ++i) out << (i ? ",  " : "") << to_text(d.input_jacobian(i, 0));
+    for (std::size_t i = 0; i < n; ++i) out << (i ? ",  " : "") << text(d.input_jacobian(i, 0));
     out << " ]\n";
 
     out << "\n3. Velocity equations  Phi_q * [" << joined(rates) << "] = -Phi_" << input.name << " * "
@@ -220,8 +226,7 @@ class DerivationTextPrinter : public Printer {
     for (std::size_t i = 0; i < n; ++i) {
       ex left = 0;
       for (std::size_t j = 0; j < n; ++j) left += d.jacobian(i, j) * system.unknowns[j].rate;
-      out << "  " << rows[i] << ":  " << to_text(left) << " = " << to_text(-d.input_jacobian(i, 0) * input.rate)
-          << "\n";
+      out << "  " << rows[i] << ":  " << text(left) << " = " << text(-d.input_jacobian(i, 0) * input.rate) << "\n";
     }
 
     out << "\n4. Acceleration equations  Phi_q * [" << joined(second_rates)
@@ -231,7 +236,7 @@ class DerivationTextPrinter : public Printer {
     for (std::size_t i = 0; i < n; ++i) {
       ex left = 0;
       for (std::size_t j = 0; j < n; ++j) left += d.jacobian(i, j) * system.unknowns[j].second_rate;
-      out << "  " << rows[i] << ":  " << to_text(left) << " = " << to_text(d.acceleration_rhs_combined[i]) << "\n";
+      out << "  " << rows[i] << ":  " << text(left) << " = " << text(d.acceleration_rhs_combined[i]) << "\n";
     }
 
     out << "\n5. Solved rates (Cramer's rule, block by block)\n";
@@ -239,9 +244,13 @@ class DerivationTextPrinter : public Printer {
       std::vector<std::string> groups;
       for (std::size_t k : block.groups) groups.push_back(system.groups[k].name);
       out << "\n  from " << system.groups[block.groups.front()].kind << " " << joined(groups) << ":\n";
-      for (std::size_t j : block.unknowns) out << "    " << rates[j] << " = " << fraction(d.solved_rates[j]) << "\n";
+      for (std::size_t j : block.unknowns) {
+        out << "    " << rates[j] << " = "
+            << textbook.solved(d.solved_rates[j], system.unknowns[j].symbol, TextbookForm::Style::text) << "\n";
+      }
       for (std::size_t j : block.unknowns)
-        out << "    " << second_rates[j] << " = " << fraction(d.solved_second_rates[j]) << "\n";
+        out << "    " << second_rates[j] << " = "
+            << textbook.solved(d.solved_second_rates[j], system.unknowns[j].symbol, TextbookForm::Style::text) << "\n";
     }
 
     if (!system.points.empty()) {

@@ -1,0 +1,448 @@
+#include <kinema/engine/printers/textbook_form.hpp>
+
+#include <algorithm>
+#include <climits>
+#include <sstream>
+#include <vector>
+
+#include <kinema/engine/report/number_format.hpp>
+#include <kinema/engine/symbolic/expression_parts.hpp>
+
+namespace kinema {
+
+using GiNaC::ex;
+
+namespace {
+
+constexpr int kSum = 1, kProduct = 2, kPower = 3;
+
+bool is_odd_function(const ex& e) { return is_function(e, "sin") || is_function(e, "tan"); }
+bool is_trig(const ex& e) { return is_odd_function(e) || is_function(e, "cos"); }
+
+// GiNaC's own printing, as a fallback for what the textbook form does not cover.
+std::string ginac_text(const ex& e, bool latex) {
+  std::ostringstream out;
+  if (latex) out << GiNaC::latex;
+  out << e;
+  return out.str();
+}
+
+}  // namespace
+
+struct TextbookForm::Context {
+  Style style;
+  const SymbolTexts* texts;
+  const ex* preferred = nullptr;  // a difference in a function argument starts with it
+  bool argument = false;          // rendering a function's argument: positive terms first
+  bool latex() const { return style == Style::latex; }
+};
+
+TextbookForm::TextbookForm(const ConstraintSystem& system) {
+  int index = 0;
+  for (const SystemParameter& p : system.parameters) keys_[p.symbol] = {1, index++};
+  std::vector<const Coordinate*> coordinates = {&system.input};
+  for (const Coordinate& q : system.unknowns) coordinates.push_back(&q);
+  for (std::size_t i = 0; i < coordinates.size(); ++i) {
+    const Coordinate& q = *coordinates[i];
+    keys_[q.symbol] = {2, int(i)};
+    keys_[q.rate] = {3, int(2 * i)};
+    keys_[q.second_rate] = {3, int(2 * i + 1)};
+    for (const ex& s : {ex(q.symbol), ex(q.rate), ex(q.second_rate)}) coordinate_of_[s] = int(i);
+  }
+}
+
+TextbookForm::Key TextbookForm::key_of(const ex& factor) const {
+  if (GiNaC::is_a<GiNaC::numeric>(factor)) return {0, GiNaC::ex_to<GiNaC::numeric>(factor).is_real() ? 0 : 1};
+  if (GiNaC::is_a<GiNaC::symbol>(factor)) {
+    const auto known = keys_.find(factor);
+    return known != keys_.end() ? known->second : Key{1, INT_MAX};
+  }
+  if (GiNaC::is_a<GiNaC::power>(factor)) return key_of(factor.op(0));
+  if (GiNaC::is_a<GiNaC::function>(factor)) return {4, coordinate_key(factor)};
+  // A sum of parameters (CD + CE) is a length like the others; other sums go last.
+  if (GiNaC::is_a<GiNaC::add>(factor) && coordinate_key(factor) == INT_MAX) return {1, parameter_key(factor)};
+  return {5, 0};
+}
+
+// The smallest file index among a term's parameters (INT_MAX without parameters).
+int TextbookForm::parameter_key(const ex& term) const {
+  int smallest = INT_MAX;
+  for (auto it = term.preorder_begin(); it != term.preorder_end(); ++it) {
+    if (!GiNaC::is_a<GiNaC::symbol>(*it)) continue;
+    const auto known = keys_.find(*it);
+    if (known != keys_.end() && known->second.rank == 1) smallest = std::min(smallest, known->second.index);
+  }
+  return smallest;
+}
+
+// The smallest coordinate index among a term's symbols (rates count as their
+// coordinate's); INT_MAX for a term without coordinates (it goes last in a sum).
+int TextbookForm::coordinate_key(const ex& term) const {
+  int smallest = INT_MAX;
+  for (auto it = term.preorder_begin(); it != term.preorder_end(); ++it) {
+    if (!GiNaC::is_a<GiNaC::symbol>(*it)) continue;
+    const auto known = coordinate_of_.find(*it);
+    if (known != coordinate_of_.end()) smallest = std::min(smallest, known->second);
+  }
+  return smallest;
+}
+
+std::string TextbookForm::operator()(const ex& e, Style style, const SymbolTexts* texts) const {
+  Context c{style, texts};
+  return render(e, 0, c);
+}
+
+std::string TextbookForm::render_number(const GiNaC::numeric& n, Context& c) const {
+  const auto digits = [](const GiNaC::numeric& k) {
+    std::ostringstream out;
+    out << k;
+    return out.str();
+  };
+  if (n.is_integer()) return digits(n);
+  if (n.is_rational()) {
+    const std::string p = digits(n.numer()), q = digits(n.denom());
+    return c.latex() ? "\\frac{" + p + "}{" + q + "}" : p + "/" + q;
+  }
+  if (n.is_real()) {
+    const std::string text = format_significant(n.to_double());
+    return text;
+  }
+  return ginac_text(n, c.latex());
+}
+
+std::string TextbookForm::render(const ex& e, int precedence, Context& c) const {
+  if (GiNaC::is_a<GiNaC::numeric>(e)) {
+    const GiNaC::numeric& n = GiNaC::ex_to<GiNaC::numeric>(e);
+    if (n.is_real() && n.is_negative()) {
+      const std::string text = "-" + render_number(-n, c);
+      return precedence > kSum ? "(" + text + ")" : text;
+    }
+    if (n.is_real() && !n.is_integer() && precedence >= kPower) return "(" + render_number(n, c) + ")";
+    return render_number(n, c);
+  }
+  if (GiNaC::is_a<GiNaC::symbol>(e)) {
+    if (c.texts) {
+      const auto text = c.texts->find(e);
+      if (text != c.texts->end()) return text->second;
+    }
+    return c.latex() ? GiNaC::ex_to<GiNaC::symbol>(e).get_TeX_name() : GiNaC::ex_to<GiNaC::symbol>(e).get_name();
+  }
+  if (GiNaC::is_a<GiNaC::add>(e)) return render_sum(e, precedence, c);
+  const bool quotient = GiNaC::is_a<GiNaC::power>(e) && GiNaC::is_a<GiNaC::numeric>(e.op(1)) &&
+                        GiNaC::ex_to<GiNaC::numeric>(e.op(1)).is_negative();
+  if (GiNaC::is_a<GiNaC::mul>(e) || quotient) {
+    const auto [negative, text] = render_product(e, c);
+    const bool bare_quotient = !c.latex() && text.find('/') != std::string::npos;
+    if (negative) return precedence > kSum ? "(-" + text + ")" : "-" + text;
+    return precedence >= kPower || (bare_quotient && precedence >= kProduct) ? "(" + text + ")" : text;
+  }
+  if (GiNaC::is_a<GiNaC::power>(e)) return render_power(e.op(0), e.op(1), c);
+  if (GiNaC::is_a<GiNaC::function>(e)) {
+    if (is_trig(e)) {  // alone: its argument oriented, the sign of an odd function in front
+      const ex argument = e.op(0);
+      if (GiNaC::is_a<GiNaC::add>(argument) && leads_negative(argument, c.preferred)) {
+        const std::string text = render_function(e, -argument, c);
+        if (!is_odd_function(e)) return text;
+        return precedence > kSum ? "(-" + text + ")" : "-" + text;
+      }
+    }
+    return render_function(e, e.nops() > 0 ? e.op(0) : ex(0), c);
+  }
+  if (GiNaC::is_a<GiNaC::constant>(e)) return c.latex() ? ginac_text(e, true) : ginac_text(e, false);
+  return ginac_text(e, c.latex());
+}
+
+// True when the term that an oriented difference starts with (the preferred symbol's,
+// else the one of the lowest coordinate) has a negative sign.
+bool TextbookForm::leads_negative(const ex& sum, const ex* first) const {
+  ex lead;  // a copy: GiNaC's iterators give temporaries
+  bool found = false;
+  int best = INT_MAX;
+  for (std::size_t i = 0; i < sum.nops(); ++i) {
+    const ex term = sum.op(i);
+    int key = coordinate_key(term);
+    if (first != nullptr && term.has(*first)) key = -1;
+    if (!found || key < best) {
+      lead = term;
+      best = key;
+      found = true;
+    }
+  }
+  if (!found) return false;
+  if (GiNaC::is_a<GiNaC::numeric>(lead)) return GiNaC::ex_to<GiNaC::numeric>(lead).is_negative();
+  if (GiNaC::is_a<GiNaC::mul>(lead)) {
+    const ex coefficient = lead.op(lead.nops() - 1);
+    return GiNaC::is_a<GiNaC::numeric>(coefficient) && GiNaC::ex_to<GiNaC::numeric>(coefficient).is_negative();
+  }
+  return false;
+}
+
+std::string TextbookForm::render_sum(const ex& e, int precedence, Context& c) const {
+  std::vector<ex> terms(e.begin(), e.end());
+  const auto negative_term = [](const ex& t) {
+    const ex k = GiNaC::is_a<GiNaC::mul>(t) ? t.op(t.nops() - 1) : t;
+    return GiNaC::is_a<GiNaC::numeric>(k) && GiNaC::ex_to<GiNaC::numeric>(k).is_real() &&
+           GiNaC::ex_to<GiNaC::numeric>(k).is_negative();
+  };
+  const bool argument = c.argument;
+  c.argument = false;
+  std::stable_sort(terms.begin(), terms.end(), [&](const ex& a, const ex& b) {
+    if (argument && negative_term(a) != negative_term(b)) return !negative_term(a);  // theta3 - theta4
+    const int ka = coordinate_key(a), kb = coordinate_key(b);
+    return ka != kb ? ka < kb : parameter_key(a) < parameter_key(b);
+  });
+  std::string text;
+  for (const ex& term : terms) {
+    bool negative = false;
+    std::string part;
+    if (GiNaC::is_a<GiNaC::numeric>(term) && GiNaC::ex_to<GiNaC::numeric>(term).is_real()) {
+      const GiNaC::numeric& n = GiNaC::ex_to<GiNaC::numeric>(term);
+      negative = n.is_negative();
+      part = render_number(negative ? -n : n, c);
+    } else if (GiNaC::is_a<GiNaC::mul>(term) || GiNaC::is_a<GiNaC::power>(term)) {
+      std::tie(negative, part) = render_product(term, c);
+      if (!c.latex() && part.find('/') != std::string::npos && terms.size() > 1) part = "(" + part + ")";
+    } else {
+      part = render(term, kSum + 1, c);
+      if (!part.empty() && part[0] == '-') {  // an odd function whose sign came out
+        negative = true;
+        part = part.substr(1);
+      }
+    }
+    if (text.empty()) text = negative ? "-" + part : part;
+    else text += (negative ? " - " : " + ") + part;
+  }
+  return precedence > kSum ? "(" + text + ")" : text;
+}
+
+std::pair<bool, std::string> TextbookForm::render_product(const ex& e, Context& c) const {
+  std::vector<ex> factors;
+  if (GiNaC::is_a<GiNaC::mul>(e)) factors.assign(e.begin(), e.end());
+  else factors.push_back(e);
+  GiNaC::numeric coefficient = 1;
+  struct Factor {
+    ex base, exponent;
+    bool flipped = false;  // a trigonometric function of the negated argument
+  };
+  std::vector<Factor> numerator, denominator;
+  bool imaginary_unit = false;
+  for (const ex& f : factors) {
+    if (GiNaC::is_a<GiNaC::numeric>(f) && GiNaC::ex_to<GiNaC::numeric>(f).is_real()) {
+      coefficient *= GiNaC::ex_to<GiNaC::numeric>(f);
+    } else if (GiNaC::is_a<GiNaC::numeric>(f) && GiNaC::ex_to<GiNaC::numeric>(f).real().is_zero()) {
+      coefficient *= GiNaC::ex_to<GiNaC::numeric>(f).imag();  // -I*Lb: minus, then i Lb
+      imaginary_unit = true;
+    } else if (GiNaC::is_a<GiNaC::power>(f) && GiNaC::is_a<GiNaC::numeric>(f.op(1)) &&
+               GiNaC::ex_to<GiNaC::numeric>(f.op(1)).is_negative()) {
+      denominator.push_back({f.op(0), -f.op(1)});
+    } else if (GiNaC::is_a<GiNaC::power>(f)) {
+      numerator.push_back({f.op(0), f.op(1)});
+    } else {
+      numerator.push_back({f, 1});
+    }
+  }
+  bool negative = coefficient.is_negative();
+  if (negative) coefficient = -coefficient;
+  if (!coefficient.is_integer()) {
+    if (coefficient.numer() != 1) numerator.push_back({coefficient.numer(), 1});
+    denominator.push_back({coefficient.denom(), 1});
+  } else if (coefficient != 1) {
+    numerator.push_back({coefficient, 1});
+  }
+  if (imaginary_unit) numerator.push_back({GiNaC::I, 1});
+  // Differences inside sin, cos and tan: positive term first (the preferred symbol's in
+  // the denominator of a solved rate); an odd function's sign comes out.
+  const auto orient = [&](std::vector<Factor>& list, const ex* preferred) {
+    for (Factor& f : list) {
+      if (!is_trig(f.base) || !GiNaC::is_a<GiNaC::add>(f.base.op(0))) continue;
+      if (!leads_negative(f.base.op(0), preferred)) continue;
+      f.flipped = true;
+      const bool odd_power = GiNaC::is_a<GiNaC::numeric>(f.exponent) && GiNaC::ex_to<GiNaC::numeric>(f.exponent).is_odd();
+      if (is_odd_function(f.base) && odd_power) negative = !negative;
+    }
+  };
+  const ex* preferred = c.preferred;
+  c.preferred = nullptr;
+  orient(numerator, nullptr);
+  orient(denominator, preferred);
+  // A solved rate: its minus sign into a sine difference of the numerator.
+  if (negative && preferred != nullptr) {
+    for (Factor& f : numerator) {
+      if (is_odd_function(f.base) && GiNaC::is_a<GiNaC::add>(f.base.op(0)) && f.exponent.is_equal(1)) {
+        f.flipped = !f.flipped;
+        negative = false;
+        break;
+      }
+    }
+  }
+  // -(A + B)/D reads better as (-A - B)/D.
+  if (negative && numerator.size() == 1 && GiNaC::is_a<GiNaC::add>(numerator.front().base) &&
+      numerator.front().exponent.is_equal(1) && !denominator.empty()) {
+    numerator.front().base = -numerator.front().base;
+    negative = false;
+  }
+  const auto order = [&](std::vector<Factor>& list) {
+    std::stable_sort(list.begin(), list.end(), [&](const Factor& a, const Factor& b) {
+      const Key ka = key_of(a.base), kb = key_of(b.base);
+      return ka.rank != kb.rank ? ka.rank < kb.rank : ka.index < kb.index;
+    });
+  };
+  order(numerator);
+  order(denominator);
+  const auto join = [&](const std::vector<Factor>& list) {
+    std::string text;
+    for (const Factor& f : list) {
+      std::string part;
+      if (is_trig(f.base)) {
+        // Rendered from the parts: sin of a negated sum would be put back by GiNaC.
+        const ex argument = f.flipped ? ex(-f.base.op(0)) : f.base.op(0);
+        part = render_function(f.base, argument, c);
+        if (!f.exponent.is_equal(1)) {
+          const std::string power = render(f.exponent, kPower + 1, c);
+          part = c.latex() ? part.substr(0, 4) + "^{" + power + "}" + part.substr(4) : part + "^" + power;
+        }
+      } else if (f.base.is_equal(GiNaC::I)) {
+        part = c.latex() ? "i" : "I";
+      } else if (f.exponent.is_equal(1)) {
+        // A sum alone over a fraction bar needs no parentheses in LaTeX.
+        part = render(f.base, c.latex() && list.size() == 1 && !denominator.empty() ? 0 : kProduct, c);
+      } else {
+        part = render_power(f.base, f.exponent, c);
+      }
+      if (!text.empty()) text += c.latex() ? " " : "*";
+      text += part;
+    }
+    return text;
+  };
+  std::string top = numerator.empty() ? "1" : join(numerator);
+  if (denominator.empty()) {
+    c.preferred = preferred;
+    return {negative, top};
+  }
+  c.preferred = preferred;
+  std::string bottom = join(denominator);
+  if (c.latex()) return {negative, "\\frac{" + top + "}{" + bottom + "}"};
+  const bool single = denominator.size() == 1 && !GiNaC::is_a<GiNaC::add>(denominator.front().base) &&
+                      denominator.front().exponent.is_equal(1);
+  if (numerator.size() == 1 && GiNaC::is_a<GiNaC::add>(numerator.front().base) && numerator.front().exponent.is_equal(1) &&
+      top[0] != '(')
+    top = "(" + top + ")";
+  return {negative, top + "/" + (single ? bottom : "(" + bottom + ")")};
+}
+
+std::string TextbookForm::render_power(const ex& base, const ex& exponent, Context& c) const {
+  if (exponent.is_equal(GiNaC::numeric(1, 2))) {
+    const std::string inner = render(base, 0, c);
+    return c.latex() ? "\\sqrt{" + inner + "}" : "sqrt(" + inner + ")";
+  }
+  const std::string power = render(exponent, kPower + 1, c);
+  if (c.latex() && is_trig(base)) {  // \sin^{2}\theta_{3}
+    const std::string f = render_function(base, base.op(0), c);
+    return f.substr(0, 4) + "^{" + power + "}" + f.substr(4);
+  }
+  std::string b = render(base, kPower, c);
+  if (GiNaC::is_a<GiNaC::power>(base) || (c.latex() && b.find('^') != std::string::npos)) b = "(" + b + ")";
+  return c.latex() ? b + "^{" + power + "}" : b + "^" + power;
+}
+
+std::string TextbookForm::render_argument(const ex& argument, Context& c) const {
+  c.argument = true;
+  const std::string text = render(argument, 0, c);
+  c.argument = false;
+  return text;
+}
+
+std::string TextbookForm::render_function(const ex& f, const ex& argument, Context& c) const {
+  const std::string name = GiNaC::ex_to<GiNaC::function>(f).get_name();
+  if (!c.latex()) {
+    std::string text = name + "(";
+    for (std::size_t i = 0; i < f.nops(); ++i) text += (i ? ", " : "") + render_argument(i == 0 ? argument : f.op(i), c);
+    return text + ")";
+  }
+  if (name == "exp") return "e^{" + render_argument(argument, c) + "}";
+  if (name == "sin" || name == "cos" || name == "tan") {
+    const std::string inner = render_argument(argument, c);
+    const bool single = GiNaC::is_a<GiNaC::symbol>(argument) && !(c.texts && c.texts->count(argument));
+    return "\\" + name + (single ? inner : "(" + inner + ")");
+  }
+  std::string text = "\\operatorname{" + name + "}(";
+  for (std::size_t i = 0; i < f.nops(); ++i) text += (i ? ", " : "") + render_argument(i == 0 ? argument : f.op(i), c);
+  return text + ")";
+}
+
+std::string TextbookForm::solved(const ex& e, const ex& unknown, Style style, const SymbolTexts* texts) const {
+  Context c{style, texts, &unknown};
+  if (GiNaC::is_a<GiNaC::mul>(e) || GiNaC::is_a<GiNaC::power>(e)) {
+    const auto [negative, text] = render_product(e, c);
+    return negative ? "-" + text : text;
+  }
+  c.preferred = nullptr;
+  return render(e, 0, c);
+}
+
+std::string TextbookForm::equation(const ConstraintSystem& system, std::size_t row, Style style) const {
+  const Equation& equation = system.equations[row];
+  const EquationGroup& group = system.groups[equation.group];
+  if (group.vector && group.equations.size() == 2 && (equation.component == "x" || equation.component == "y")) {
+    const std::string written = loop_component(group, equation.component == "y", style);
+    if (!written.empty()) return written;
+  }
+  return (*this)(equation.expression, style);
+}
+
+std::string TextbookForm::loop_vector(const EquationGroup& group, Style style) const {
+  if (group.terms.empty()) return "";
+  Context c{style, nullptr};
+  std::string text;
+  for (const ex& term : group.terms) {
+    std::string rendered;
+    bool negative = false;
+    if (GiNaC::is_a<GiNaC::add>(term)) {  // -(La + I*Lb): a written constant vector
+      bool all_negative = true;
+      for (std::size_t i = 0; i < term.nops(); ++i) {
+        const ex t = term.op(i);
+        const ex k = GiNaC::is_a<GiNaC::mul>(t) ? t.op(t.nops() - 1) : t;
+        all_negative = all_negative && GiNaC::is_a<GiNaC::numeric>(k) &&
+                       (GiNaC::ex_to<GiNaC::numeric>(k).is_real() ? GiNaC::ex_to<GiNaC::numeric>(k).is_negative()
+                                                                   : GiNaC::ex_to<GiNaC::numeric>(k).imag().is_negative());
+      }
+      negative = all_negative && term.nops() > 1;
+      rendered = render(negative ? ex(-term) : term, kProduct, c);
+    } else {
+      rendered = render(term, 0, c);
+      negative = !rendered.empty() && rendered[0] == '-';
+      if (negative) rendered = rendered.substr(1);
+    }
+    if (text.empty()) text = negative ? "-" + rendered : rendered;
+    else text += (negative ? " - " : " + ") + rendered;
+  }
+  return text;
+}
+
+std::string TextbookForm::loop_component(const EquationGroup& group, bool imaginary, Style style) const {
+  if (group.terms.empty()) return "";
+  Context c{style, nullptr};
+  std::string text;
+  for (const ex& term : group.terms) {
+    // Each written term's part along x (real) or y (imaginary): length*cos or length*sin
+    // of its angle for a link vector, the real or imaginary part of anything else.
+    const LinkVector v = split_link_vector(term);
+    ex part;
+    if (v.polar && GiNaC::imag_part(v.length).is_zero()) {
+      part = v.length * (imaginary ? GiNaC::sin(v.angle) : GiNaC::cos(v.angle));
+    } else {
+      const ex expanded = term.expand();
+      part = (imaginary ? GiNaC::imag_part(expanded) : GiNaC::real_part(expanded)).expand();
+    }
+    if (part.is_zero()) continue;
+    std::string rendered = render(part, 0, c);
+    bool negative = !rendered.empty() && rendered[0] == '-';
+    if (negative) rendered = rendered.substr(1);
+    // A sum whose written sign is minus: -(CD + CE)*cos(phi3) reads better than -CD*cos - CE*cos.
+    if (text.empty()) text = negative ? "-" + rendered : rendered;
+    else text += (negative ? " - " : " + ") + rendered;
+  }
+  return text.empty() ? "0" : text;
+}
+
+}  // namespace kinema

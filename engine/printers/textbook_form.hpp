@@ -1,0 +1,70 @@
+// Formulas as a textbook prints them, in text (GiNaC syntax, so they read back) or
+// LaTeX: in a product numbers, then lengths and other parameters, then coordinates, then
+// rates, then functions (c*omega4*sin(theta4)); a sum's terms by the coordinates they
+// carry (theta2 before theta3); a difference inside sin or cos with its positive term first
+// (sin(theta3 - theta4), never sin(-theta4 + theta3)), the sign moved out of an odd
+// function; in LaTeX \sin\theta_{3} for a single symbol, \frac for quotients. GiNaC's own
+// order is its internal hash order: fine to compute with, not to read.
+#pragma once
+
+#include <ginac/ginac.h>
+
+#include <map>
+#include <string>
+
+#include <kinema/engine/constraint_system.hpp>
+
+namespace kinema {
+
+class TextbookForm {
+ public:
+  enum class Style { text, latex };
+  /// Text to print in place of a symbol (a worked solution's numbers), keyed by the symbol.
+  using SymbolTexts = std::map<GiNaC::ex, std::string, GiNaC::ex_is_less>;
+
+  /// The order of the system's symbols: parameters as in the file, then the input and the
+  /// unknowns, then their rates and second rates.
+  explicit TextbookForm(const ConstraintSystem& system);
+
+  std::string operator()(const GiNaC::ex& e, Style style, const SymbolTexts* texts = nullptr) const;
+
+  /// A solved rate of `unknown` (its angle symbol): a sine difference in the denominator
+  /// starts with the unknown's angle, and a minus sign of the whole quotient goes into a
+  /// sine difference of the numerator, as Norton writes
+  /// omega3 = a*omega2*sin(theta4 - theta2)/(b*sin(theta3 - theta4)).
+  std::string solved(const GiNaC::ex& e, const GiNaC::ex& unknown, Style style,
+                     const SymbolTexts* texts = nullptr) const;
+
+  /// One component (x: real part, y: imaginary part) of a planar loop with its terms in
+  /// the order the file writes them: a*cos(theta2) + b*cos(theta3) - c*cos(theta4) - d.
+  /// Empty for a group without written terms.
+  std::string loop_component(const EquationGroup& group, bool imaginary, Style style) const;
+  /// Equation `row` of the system (= 0 left out): a planar loop's x or y component with
+  /// its terms as written, anything else in textbook form.
+  std::string equation(const ConstraintSystem& system, std::size_t row, Style style) const;
+  /// The loop as a vector sum, its terms as written: AB*exp(I*phi) - BC*exp(I*phi2) - (La + I*Lb).
+  std::string loop_vector(const EquationGroup& group, Style style) const;
+
+ private:
+  struct Key {
+    int rank;   // 0 numbers, 1 parameters, 2 coordinates, 3 rates, 4 functions, 5 other
+    int index;  // order within the rank
+  };
+  std::map<GiNaC::ex, Key, GiNaC::ex_is_less> keys_;
+  std::map<GiNaC::ex, int, GiNaC::ex_is_less> coordinate_of_;  // symbol -> its coordinate's index
+
+  struct Context;
+  Key key_of(const GiNaC::ex& factor) const;
+  int coordinate_key(const GiNaC::ex& term) const;
+  int parameter_key(const GiNaC::ex& term) const;
+  std::string render(const GiNaC::ex& e, int precedence, Context& c) const;
+  std::string render_sum(const GiNaC::ex& e, int precedence, Context& c) const;
+  std::pair<bool, std::string> render_product(const GiNaC::ex& e, Context& c) const;
+  std::string render_power(const GiNaC::ex& base, const GiNaC::ex& exponent, Context& c) const;
+  std::string render_function(const GiNaC::ex& f, const GiNaC::ex& argument, Context& c) const;
+  std::string render_number(const GiNaC::numeric& n, Context& c) const;
+  std::string render_argument(const GiNaC::ex& argument, Context& c) const;
+  bool leads_negative(const GiNaC::ex& sum, const GiNaC::ex* first) const;
+};
+
+}  // namespace kinema
