@@ -1,6 +1,7 @@
 #include <kinema/engine/printers/textbook_form.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <climits>
 #include <sstream>
 #include <vector>
@@ -243,7 +244,7 @@ std::pair<bool, std::string> TextbookForm::render_product(const ex& e, Context& 
   }
   bool negative = coefficient.is_negative();
   if (negative) coefficient = -coefficient;
-  if (!coefficient.is_integer()) {
+  if (coefficient.is_rational() && !coefficient.is_integer()) {
     if (coefficient.numer() != 1) numerator.push_back({coefficient.numer(), 1});
     denominator.push_back({coefficient.denom(), 1});
   } else if (coefficient != 1) {
@@ -368,6 +369,109 @@ std::string TextbookForm::render_function(const ex& f, const ex& argument, Conte
   std::string text = "\\operatorname{" + name + "}(";
   for (std::size_t i = 0; i < f.nops(); ++i) text += (i ? ", " : "") + render_argument(i == 0 ? argument : f.op(i), c);
   return text + ")";
+}
+
+double latex_width(const std::string& text) {
+  double width = 0;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char ch = text[i];
+    if (ch == '\\') {
+      std::size_t end = i + 1;
+      while (end < text.size() && std::isalpha(static_cast<unsigned char>(text[end]))) ++end;
+      const std::string name = text.substr(i + 1, end - i - 1);
+      if (name == "sin" || name == "cos" || name == "tan") width += 2.5;
+      else if (name == "quad") width += 2;
+      else if (name == "qquad") width += 4;
+      else if (name.empty()) width += 0.3;  // \, and the like
+      else if (name != "frac" && name != "mathit" && name != "mathrm" && name != "text" && name != "bigl" &&
+               name != "bigr" && name != "left" && name != "right" && name != "circ" && name != "boxed")
+        width += 1;  // a Greek letter, \times, ...
+      i = end > i + 1 ? end - 1 : i + 1;
+    } else if (ch == '{' || ch == '}' || ch == '^' || ch == '_' || ch == '&') {
+    } else if (ch == '+' || ch == '-' || ch == '=') {
+      width += 2;  // with the spaces math puts around it
+    } else if (ch != ' ') {
+      width += 1;
+    }
+  }
+  return width;
+}
+
+std::vector<std::string> TextbookForm::latex_lines(const ex& e, const ex& unknown, const SymbolTexts* texts,
+                                                   double budget) const {
+  const std::string whole = unknown.is_zero() ? (*this)(e, Style::latex, texts) : solved(e, unknown, Style::latex, texts);
+  if (latex_width(whole) <= budget) return {whole};
+  Context c{Style::latex, texts};
+  // A quotient: its numerator's terms over lines after \frac{K}{D}, K the other factors.
+  ex sum = e, front = 1, denominator = 1;
+  if (GiNaC::is_a<GiNaC::mul>(e)) {
+    int sums = 0;
+    for (std::size_t i = 0; i < e.nops(); ++i) {
+      const ex f = e.op(i);
+      if (GiNaC::is_a<GiNaC::power>(f) && GiNaC::is_a<GiNaC::numeric>(f.op(1)) &&
+          GiNaC::ex_to<GiNaC::numeric>(f.op(1)).is_negative()) {
+        denominator *= GiNaC::pow(f.op(0), -f.op(1));
+      } else if (GiNaC::is_a<GiNaC::add>(f) && sums == 0) {
+        sum = f;
+        ++sums;
+      } else {
+        front *= f;
+      }
+    }
+    if (sums == 0) return {whole};
+  } else if (!GiNaC::is_a<GiNaC::add>(e)) {
+    return {whole};
+  }
+  std::vector<std::string> lines;
+  std::string line;
+  // A long denominator goes on lines of its own after the numerator: (...) / (...).
+  const std::string bottom = render(denominator, 0, c);
+  const bool long_denominator = !denominator.is_equal(1) && latex_width(bottom) > budget / 2;
+  const bool quotient = !denominator.is_equal(1) || !front.is_equal(1);
+  if (long_denominator) {
+    line = (front.is_equal(1) ? "" : render(front, kProduct, c) + " ") + "\\bigl(";
+  } else if (quotient) {
+    line = (denominator.is_equal(1) ? render(front, kProduct, c)
+                                    : "\\frac{" + render(front, 0, c) + "}{" + bottom + "}") +
+           "\\bigl(";
+  }
+  const auto add_terms = [&](const ex& s) {
+  std::vector<ex> terms;
+  if (GiNaC::is_a<GiNaC::add>(s)) terms.assign(s.begin(), s.end());
+  else terms.push_back(s);
+  std::stable_sort(terms.begin(), terms.end(), [&](const ex& a, const ex& b) {
+    const int ka = coordinate_key(a), kb = coordinate_key(b);
+    return ka != kb ? ka < kb : parameter_key(a) < parameter_key(b);
+  });
+  bool first = true;
+  for (const ex& term : terms) {
+    std::string part = render(term, kSum + 1, c);
+    if (part.size() > 2 && part[0] == '(' && part[1] == '-' && part.back() == ')') {  // (-x): a sign, not a group
+      part = "-" + part.substr(2, part.size() - 3);
+    }
+    const bool minus = !part.empty() && part[0] == '-';
+    if (minus) part = part.substr(1);
+    const std::string piece = first ? (minus ? "-" + part : part) : (minus ? " - " : " + ") + part;
+    if (!first && latex_width(line + piece) > budget) {
+      lines.push_back(line);
+      line.clear();
+    }
+    line += piece;
+    first = false;
+  }
+  };
+  add_terms(sum);
+  if (long_denominator) {
+    line += "\\bigr)";
+    lines.push_back(line);
+    line = "\\bigm/ \\bigl(";
+    add_terms(denominator.expand());
+    line += "\\bigr)";
+  } else if (quotient) {
+    line += "\\bigr)";
+  }
+  lines.push_back(line);
+  return lines;
 }
 
 std::string TextbookForm::solved(const ex& e, const ex& unknown, Style style, const SymbolTexts* texts) const {

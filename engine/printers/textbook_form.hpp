@@ -11,10 +11,14 @@
 
 #include <map>
 #include <string>
+#include <vector>
 
 #include <kinema/engine/constraint_system.hpp>
 
 namespace kinema {
+
+/// Roughly how many glyphs wide a LaTeX math formula prints (for breaking lines).
+double latex_width(const std::string& latex);
 
 class TextbookForm {
  public:
@@ -34,6 +38,12 @@ class TextbookForm {
   /// omega3 = a*omega2*sin(theta4 - theta2)/(b*sin(theta3 - theta4)).
   std::string solved(const GiNaC::ex& e, const GiNaC::ex& unknown, Style style,
                      const SymbolTexts* texts = nullptr) const;
+
+  /// LaTeX of a formula (a solved rate of `unknown`, or any formula when it is 0) as
+  /// lines of at most `budget` glyphs or so: a sum's terms over lines, a long quotient as
+  /// \frac{K}{D}\bigl(terms...\bigr); one line when it fits or cannot be broken.
+  std::vector<std::string> latex_lines(const GiNaC::ex& e, const GiNaC::ex& unknown, const SymbolTexts* texts,
+                                       double budget) const;
 
   /// One component (x: real part, y: imaginary part) of a planar loop with its terms in
   /// the order the file writes them: a*cos(theta2) + b*cos(theta3) - c*cos(theta4) - d.

@@ -207,7 +207,7 @@ TEST_CASE("spatial_chain: derive prints the composition of angular velocities an
   CHECK(result.out.find("] = (-1, 0.866025, 0.5)\n    alpha_E3/E0 = d/dt w, term by term: d/dt(rate) axis + w_frame x "
                         "(rate axis)\n") != std::string::npos);
   // The axes carried round by E2: w_E2/E0 x (-omega4 x_E2) and w_E2/E0 x (omega5 y_E2), as the seed names them.
-  CHECK(result.out.find("      w_E2/E0 x (-omega4 x_E2) = [0, -omega4*omega1, 0] = (0, -1, 0)\n") != std::string::npos);
+  CHECK(result.out.find("      w_E2/E0 x (-omega4 x_E2) = [0, -omega1*omega4, 0] = (0, -1, 0)\n") != std::string::npos);
   CHECK(result.out.find("      w_E2/E0 x (omega5 y_E2) = [") != std::string::npos);
   CHECK(result.out.find("] = (-0.866025, -0.5, -0.866025)\n") != std::string::npos);
   CHECK(result.out.find("] = (-0.866025, -1.5, -0.866025)\n") != std::string::npos);

@@ -20,28 +20,10 @@ bool is_zero(const ChainVector& v) {
   return true;
 }
 
-// LaTeX source per line of a long formula: about the text width of a page at 11 pt.
-constexpr std::size_t kLineBudget = 190;
-
-// A formula's terms, as lines of at most about kLineBudget characters of LaTeX each.
-std::vector<std::string> formula_lines(const ex& e) {
-  if (!GiNaC::is_a<GiNaC::add>(e)) return {to_latex(e)};
-  std::vector<std::string> lines = {""};
-  for (const ex& term : e) {
-    const bool minus = is_negative_term(term);
-    const std::string text = to_latex(minus ? -term : term);
-    std::string& line = lines.back();
-    if (!line.empty() && line.size() + text.size() > kLineBudget) lines.push_back("");
-    std::string& current = lines.back();
-    current += (current.empty() && lines.size() == 1 ? (minus ? "-" : "") : (minus ? " - " : " + ")) + text;
-  }
-  return lines;
-}
-
 // name = [column] = (numbers) unit, or for a long vector the numbers first, then each
 // component's formula broken over lines; a zero vector as 0.
-void vector_rows(std::vector<LatexRow>& rows, const std::string& name, const ChainVector& v, const std::string& unit,
-                 const std::string& basis, bool boxed, const std::string& comment) {
+void vector_rows(std::vector<LatexRow>& rows, const TextbookForm& form, const std::string& name, const ChainVector& v,
+                 const std::string& unit, const std::string& basis, bool boxed, const std::string& comment) {
   if (is_zero(v)) {
     rows.push_back({name + " &= \\mathbf{0}", comment});
     return;
@@ -50,16 +32,16 @@ void vector_rows(std::vector<LatexRow>& rows, const std::string& name, const Cha
   for (std::size_t c = 0; c < 3; ++c) numbers += (c ? ",\\ " : "") + latex_number(v.value[c]);
   numbers += ")\\,\\mathrm{" + unit + "}";
   if (boxed) numbers = "\\boxed{" + numbers + "}";
-  std::size_t longest = 0;
-  for (const ex& c : v.formula) longest = std::max(longest, to_latex(c).size());
-  if (name.size() + longest + numbers.size() < kLineBudget) {
-    rows.push_back({name + " &= " + latex_column(v.formula) + " = " + numbers, comment});
+  double longest = 0;
+  for (const ex& c : v.formula) longest = std::max(longest, latex_width(form(c, TextbookForm::Style::latex)));
+  if (latex_width(name) + longest + latex_width(numbers) < kLatexLineBudget - 12) {
+    rows.push_back({name + " &= " + latex_column(v.formula, form) + " = " + numbers, comment});
     return;
   }
   rows.push_back({name + " &= " + numbers, comment});
   static const char* const axes[3] = {"x", "y", "z"};
   for (std::size_t c = 0; c < 3; ++c) {
-    const std::vector<std::string> lines = formula_lines(v.formula[c]);
+    const std::vector<std::string> lines = form.latex_lines(v.formula[c], 0, nullptr, kLatexLineBudget - 22);
     for (std::size_t k = 0; k < lines.size(); ++k) {
       rows.push_back({k == 0 ? "&\\quad \\text{along } \\hat{\\mathbf{" + std::string(axes[c]) + "}}_{" + basis + "}:\\ " + lines[k]
                              : "&\\qquad " + lines[k],
@@ -88,39 +70,46 @@ std::string chain_instant_latex(const ConstraintSystem& system, const ChainAtIns
          (chain.basis == chain.observer ? " (the observer)" : "") + ", in SI units";
 }
 
-std::vector<LatexRow> chain_frame_rows(const ChainAtInstant& chain) {
+std::vector<LatexRow> chain_frame_rows(const ChainAtInstant& chain, const TextbookForm& form) {
   std::vector<LatexRow> rows;
   const std::string& o = chain.observer;
   for (const ChainFrameAtInstant& f : chain.frames) {
     std::string sum;
     for (const AngularVelocityTerm& t : f.terms) {
       const bool minus = is_negative_term(t.rate);
-      sum += (sum.empty() ? (minus ? "-" : "") : (minus ? " - " : " + ")) + to_latex(minus ? -t.rate : t.rate) +
+      sum += (sum.empty() ? (minus ? "-" : "") : (minus ? " - " : " + ")) + form(minus ? -t.rate : t.rate, TextbookForm::Style::latex) +
              "\\,\\hat{\\mathbf{" + t.axis + "}}_{" + named(t.frame) + "}";
     }
     const std::string w = "\\boldsymbol{\\omega}_{" + named(f.name + "/" + o) + "}";
     rows.push_back({w + " &= " + (sum.empty() ? "\\mathbf{0}" : sum), "frame " + f.name});
-    vector_rows(rows, "", f.angular_velocity, "rad/s", named(chain.basis), false,
+    vector_rows(rows, form, "", f.angular_velocity, "rad/s", named(chain.basis), false,
                 vector_comment("w_" + f.name, f.angular_velocity));
     // alpha term by term: each rate's change along its axis, and the axis carried round
     // by the frame it belongs to.
-    std::string parts;
+    std::vector<std::string> parts;
     for (const AngularVelocityTerm& t : f.terms) {
       const std::string axis = "\\hat{\\mathbf{" + t.axis + "}}_{" + named(t.frame) + "}";
-      parts += (parts.empty() ? "" : " + ") + std::string("\\tfrac{d}{dt}(") + to_latex(t.rate) + ")\\," + axis;
-      if (t.frame != o)
-        parts += " + \\boldsymbol{\\omega}_{" + named(t.frame + "/" + o) + "}\\times(" + to_latex(t.rate) + "\\," + axis + ")";
+      const std::string rate = form(t.rate, TextbookForm::Style::latex);
+      parts.push_back("\\tfrac{d}{dt}(" + rate + ")\\," + axis);
+      if (t.frame != o) parts.push_back("\\boldsymbol{\\omega}_{" + named(t.frame + "/" + o) + "}\\times(" + rate + "\\," + axis + ")");
+    }
+    // The parts over as many lines as they need.
+    std::vector<std::string> lines = {""};
+    for (const std::string& part : parts) {
+      if (!lines.back().empty() && latex_width(lines.back() + " + " + part) > kLatexLineBudget - 12) lines.push_back("");
+      lines.back() += (lines.back().empty() ? (lines.size() == 1 ? "" : "+ ") : " + ") + part;
     }
     rows.push_back({"\\boldsymbol{\\alpha}_{" + named(f.name + "/" + o) + "} = \\frac{d}{dt}" + w + " &= " +
-                        (parts.empty() ? "\\mathbf{0}" : parts),
+                        (parts.empty() ? "\\mathbf{0}" : lines.front()),
                     ""});
-    vector_rows(rows, "", f.angular_acceleration, "rad/s^2", named(chain.basis), false,
+    for (std::size_t k = 1; k < lines.size(); ++k) rows.push_back({"&\\quad " + lines[k], ""});
+    vector_rows(rows, form, "", f.angular_acceleration, "rad/s^2", named(chain.basis), false,
                 vector_comment("alpha_" + f.name, f.angular_acceleration));
   }
   return rows;
 }
 
-std::vector<LatexRow> chain_point_rows(const ChainAtInstant& chain) {
+std::vector<LatexRow> chain_point_rows(const ChainAtInstant& chain, const TextbookForm& form) {
   std::vector<LatexRow> rows;
   for (const ChainPointAtInstant& p : chain.points) {
     const std::string F = named(p.frame), P = named(p.name);
@@ -154,7 +143,7 @@ std::vector<LatexRow> chain_point_rows(const ChainAtInstant& chain) {
           default: break;
         }
         if (v.term == ChainTerm::position) comment = "point " + p.name + " in " + p.frame;
-        vector_rows(rows, name, v, unit, named(chain.basis), result, comment);
+        vector_rows(rows, form, name, v, unit, named(chain.basis), result, comment);
       }
     }
   }

@@ -33,8 +33,10 @@ void loop_rows(std::vector<LatexRow>& rows, const ConstraintSystem& system, cons
       for (std::size_t j : block.unknowns) {
         const GiNaC::realsymbol& symbol = order == 1 ? system.unknowns[j].rate : system.unknowns[j].second_rate;
         const ex& solved = order == 1 ? d.solved_rates[j] : d.solved_second_rates[j];
-        rows.push_back({to_latex(symbol) + " &= " + textbook.solved(solved, system.unknowns[j].symbol, latex),
-                        "kinema: " + symbol.get_name() + " = " + to_text(solved)});
+        const auto lines = textbook.latex_lines(solved, system.unknowns[j].symbol, nullptr, kLatexLineBudget);
+        for (const LatexRow& row :
+             latex_broken_rows(to_latex(symbol), lines, "", "kinema: " + symbol.get_name() + " = " + to_text(solved)))
+          rows.push_back(row);
       }
     }
   }
@@ -77,7 +79,7 @@ class DerivationLatexPrinter : public Printer {
     if (is_driven_chain(system)) {  // a chain of frames worked out at the instant, as seed 000
       const ChainAtInstant chain = chain_at_instant(system, job.basis);
       rows.push_back({"&\\text{" + chain_instant_latex(system, chain) + "}", "spatial chain"});
-      for (const auto& part : {chain_frame_rows(chain), chain_point_rows(chain)}) rows.insert(rows.end(), part.begin(), part.end());
+      for (const auto& part : {chain_frame_rows(chain, TextbookForm(system)), chain_point_rows(chain, TextbookForm(system))}) rows.insert(rows.end(), part.begin(), part.end());
     } else if (job.method == DerivationMethod::loops) {
       loop_rows(rows, system, d, jacobian, rates, second_rates, velocity_rhs);
     }

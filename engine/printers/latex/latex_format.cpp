@@ -193,4 +193,15 @@ std::string latex_vector_loop(const EquationGroup& loop) {
   return text;
 }
 
+std::vector<LatexRow> latex_broken_rows(const std::string& lhs, const std::vector<std::string>& lines,
+                                        const std::string& suffix, const std::string& comment) {
+  std::vector<LatexRow> rows;
+  for (std::size_t k = 0; k < lines.size(); ++k)
+    rows.push_back({k == 0 ? lhs + " &= " + lines[k] : "&\\quad " + lines[k], k == 0 ? comment : ""});
+  if (suffix.empty()) return rows;
+  if (lines.size() > 1 && latex_width(lines.back() + suffix) > kLatexLineBudget) rows.push_back({"&" + suffix, ""});
+  else rows.back().text += suffix;
+  return rows;
+}
+
 }  // namespace kinema

@@ -21,6 +21,15 @@ struct LatexRow {
   std::string comment;  ///< After the row as a % comment (a solved formula in GiNaC syntax), or empty.
 };
 
+/// Glyphs a formula of a document's align* may take after its left side (11 pt, 2 cm margins).
+constexpr double kLatexLineBudget = 68;
+
+/// A formula broken over lines (TextbookForm::latex_lines) as align* rows:
+/// "lhs &= line 1", "&\quad line 2", ..., `suffix` (" = 3.2\,rad/s") after the last or
+/// on a row of its own when it does not fit; `comment` on the first row.
+std::vector<LatexRow> latex_broken_rows(const std::string& lhs, const std::vector<std::string>& lines,
+                                        const std::string& suffix = "", const std::string& comment = "");
+
 /// User text (titles, descriptions) for LaTeX text mode: every special character
 /// is printed as itself, so a file cannot inject commands (\input{...} prints as text).
 std::string latex_escape_text(const std::string& text);

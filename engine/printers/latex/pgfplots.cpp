@@ -79,7 +79,7 @@ class PlotWriter {
 
   void begin_axis(const std::string& x_label, const std::string& y_label, int index) {
     out_ << (index % 2 ? "\\hfill" : "\\noindent") << "\\begin{minipage}{0.48\\linewidth}\n"
-         << "\\begin{tikzpicture}\n\\begin{axis}[width=\\linewidth, height=5.5cm, xlabel={" << x_label
+         << "\\begin{tikzpicture}\n\\begin{axis}[width=0.9\\linewidth, height=5.5cm, xlabel={" << x_label
          << "}, ylabel={" << y_label
          << "}, unbounded coords=jump, legend style={font=\\footnotesize, at={(0.5,1.02)}, anchor=south, "
          << "legend columns=-1}]\n";

@@ -57,9 +57,9 @@ class DocumentWriter {
             "\\mathbf{v}^{\\mathrm{rel}} + \\mathbf{a}^{\\mathrm{rel}}$. "
          << chain_instant_latex(system_, chain) << ".\n";
     out_ << "\\subsection*{Angular velocities and accelerations}\n\\begin{align*}\n";
-    align_rows(chain_frame_rows(chain));
+    align_rows(chain_frame_rows(chain, textbook_));
     out_ << "\\subsection*{Velocities and accelerations of the points}\n\\begin{align*}\n";
-    align_rows(chain_point_rows(chain));
+    align_rows(chain_point_rows(chain, textbook_));
   }
 
   void data() {
@@ -97,10 +97,38 @@ class DocumentWriter {
     std::vector<std::string> rows;
     for (const EquationGroup& group : system_.groups) {
       rows.push_back("\\text{" + latex_escape_text(group.name) + ":}\\quad & " + latex_vector_loop(group) + " = 0");
-      for (std::size_t row : group.equations)
-        rows.push_back("& " + textbook_.equation(system_, row, TextbookForm::Style::latex) + " = 0");
+      for (std::size_t row : group.equations) {
+        const std::string written = textbook_.equation(system_, row, TextbookForm::Style::latex);
+        if (latex_width(written) <= kLatexLineBudget) {
+          rows.push_back("& " + written + " = 0");
+        } else {  // a long closure: over lines
+          const auto lines = textbook_.latex_lines(system_.equations[row].expression, 0, nullptr, kLatexLineBudget);
+          for (std::size_t k = 0; k < lines.size(); ++k)
+            rows.push_back((k == 0 ? "& " : "&\\quad ") + lines[k] + (k + 1 == lines.size() ? " = 0" : ""));
+        }
+      }
     }
     align_rows(rows);
+  }
+
+  // Phi_q times a column of rates equal to a column: as matrices when they fit the page,
+  // else row by row, each side over lines.
+  void matrix_equation(std::vector<std::string>& rows, const std::vector<ex>& rates, const std::vector<ex>& rhs,
+                       const std::string& rhs_matrix) const {
+    const std::string whole = "& " + latex_matrix(d_.jacobian, textbook_) + latex_column(rates) + " = " + rhs_matrix;
+    if (latex_width(whole) <= kLatexLineBudget + 10) {
+      rows.push_back(whole);
+      return;
+    }
+    for (std::size_t i = 0; i < rates.size(); ++i) {
+      ex left = 0;
+      for (std::size_t j = 0; j < rates.size(); ++j) left += d_.jacobian(i, j) * rates[j];
+      const auto lhs = textbook_.latex_lines(left, 0, nullptr, kLatexLineBudget);
+      const auto right = textbook_.latex_lines(rhs[i], 0, nullptr, kLatexLineBudget);
+      for (std::size_t k = 0; k < lhs.size(); ++k)
+        rows.push_back((k == 0 ? "\\text{(" + std::to_string(i + 1) + ")}\\quad & " : "&\\quad ") + lhs[k]);
+      for (std::size_t k = 0; k < right.size(); ++k) rows.push_back((k == 0 ? "&= " : "&\\quad ") + right[k]);
+    }
   }
 
   void velocity() {
@@ -113,8 +141,8 @@ class DocumentWriter {
       rates.push_back(system_.unknowns[i].rate);
       rhs.push_back(-d_.input_jacobian(i, 0) * input.rate);
     }
-    std::vector<std::string> rows = {"& " + latex_matrix(d_.jacobian, textbook_) + latex_column(rates) + " = " +
-                                     latex_column(rhs, textbook_)};
+    std::vector<std::string> rows;
+    matrix_equation(rows, rates, rhs, latex_column(rhs, textbook_));
     solved_rows(rows, 1);
     align_rows(rows);
   }
@@ -127,11 +155,16 @@ class DocumentWriter {
     std::string gamma = "\\begin{bmatrix}";
     for (std::size_t i = 0; i < second.size(); ++i) gamma += (i ? " \\\\ " : " ") + std::string("\\gamma_{") + std::to_string(i + 1) + "}";
     gamma += " \\end{bmatrix}";
-    std::vector<std::string> rows = {"& " + latex_matrix(d_.jacobian, textbook_) + latex_column(second) + " = " + gamma};
+    std::vector<std::string> rows;
+    std::vector<ex> gammas;
+    for (std::size_t i = 0; i < second.size(); ++i) gammas.push_back(GiNaC::symbol("\\gamma_{" + std::to_string(i + 1) + "}"));
+    matrix_equation(rows, second, gammas, gamma);
     // The right-hand side one row at a time: a column of it would not fit the page.
     for (std::size_t i = 0; i < d_.acceleration_rhs_combined.size(); ++i)
-      rows.push_back("\\gamma_{" + std::to_string(i + 1) + "} &= " +
-                     textbook_(d_.acceleration_rhs_combined[i], TextbookForm::Style::latex));
+      for (const LatexRow& row :
+           latex_broken_rows("\\gamma_{" + std::to_string(i + 1) + "}",
+                             textbook_.latex_lines(d_.acceleration_rhs_combined[i], 0, nullptr, kLatexLineBudget)))
+        rows.push_back(row.text);
     solved_rows(rows, 2);
     align_rows(rows);
     sliding_link_terms();
@@ -220,10 +253,10 @@ class DocumentWriter {
       for (std::size_t j : block.unknowns) {
         const GiNaC::realsymbol& symbol = order == 1 ? system_.unknowns[j].rate : system_.unknowns[j].second_rate;
         const ex& formula = order == 1 ? d_.solved_rates[j] : d_.solved_second_rates[j];
-        rows.push_back(to_latex(symbol) + " &= " +
-                       textbook_.solved(formula, system_.unknowns[j].symbol, TextbookForm::Style::latex) +
-                       " %% kinema: " + symbol.get_name() + " = " +
-                       to_text(formula));
+        const auto lines = textbook_.latex_lines(formula, system_.unknowns[j].symbol, nullptr, kLatexLineBudget);
+        for (const LatexRow& row :
+             latex_broken_rows(to_latex(symbol), lines, "", "kinema: " + symbol.get_name() + " = " + to_text(formula)))
+          rows.push_back(row.comment.empty() ? row.text : row.text + " %% " + row.comment);
       }
     }
   }
@@ -297,8 +330,11 @@ class DocumentWriter {
       const PointMotion& m = s.points[p];
       const double f = scale_.length;
       out_ << latex_escape_text(system_.points[p].name);
-      for (double v : {m.position[0], m.position[1], m.velocity[0], m.velocity[1], m.speed(), m.acceleration[0],
-                       m.acceleration[1], m.acceleration_magnitude()})
+      // A component that is rounding noise next to its vector's length prints as 0, not 3e-15.
+      const auto shown = [](double v, double size) { return std::fabs(v) <= 1e-12 * size ? 0.0 : v; };
+      const double r = std::hypot(m.position[0], m.position[1]), speed = m.speed(), a = m.acceleration_magnitude();
+      for (double v : {shown(m.position[0], r), shown(m.position[1], r), shown(m.velocity[0], speed),
+                       shown(m.velocity[1], speed), speed, shown(m.acceleration[0], a), shown(m.acceleration[1], a), a})
         out_ << " & $" << latex_number(v / f, 5) << "$";
       out_ << " \\\\\n";
     }
@@ -341,10 +377,11 @@ class DocumentWriter {
           const Coordinate& q = system_.unknowns[j];
           const double value = scale_.rate(q.dimension, order == 1 ? s.qd[j] : s.qdd[j]);
           const ex& formula = order == 1 ? d_.solved_rates[j] : d_.solved_second_rates[j];
-          rows.push_back(to_latex(order == 1 ? q.rate : q.second_rate) + " &= " +
-                         textbook_.solved(formula, q.symbol, TextbookForm::Style::latex, &numbers) + " = " +
-                         latex_number(value) + "\\,\\mathrm{" +
-                         (order == 1 ? scale_.rate_unit(q.dimension) : scale_.second_rate_unit(q.dimension)) + "}");
+          const auto lines = textbook_.latex_lines(formula, q.symbol, &numbers, kLatexLineBudget);
+          const std::string result = " = " + latex_number(value) + "\\,\\mathrm{" +
+                                     (order == 1 ? scale_.rate_unit(q.dimension) : scale_.second_rate_unit(q.dimension)) + "}";
+          for (const LatexRow& row : latex_broken_rows(to_latex(order == 1 ? q.rate : q.second_rate), lines, result))
+            rows.push_back(row.text);
         }
       }
     }

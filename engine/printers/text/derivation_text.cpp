@@ -98,10 +98,12 @@ void print_chain(std::ostream& out, const ConstraintSystem& system, const std::s
   for (const auto& [q, value] : chain.values)
     values += (values.empty() ? "" : ", ") + q.name + " = " + format_significant(scale.coordinate(q.dimension, value)) +
               " " + scale.coordinate_unit(q.dimension);
-  const auto vector = [](const ChainVector& v) {
+  const TextbookForm textbook(system);
+  const auto text = [&](const ex& e) { return textbook(e, TextbookForm::Style::text); };
+  const auto vector = [&](const ChainVector& v) {
     std::string formula = "[", number = "(";
     for (std::size_t c = 0; c < 3; ++c) {
-      formula += (c ? ", " : "") + to_text(v.formula[c]);
+      formula += (c ? ", " : "") + text(v.formula[c]);
       number += (c ? ", " : "") + format_significant(v.value[c]);
     }
     return formula + "] = " + number + ")";
@@ -116,7 +118,7 @@ void print_chain(std::ostream& out, const ConstraintSystem& system, const std::s
     std::string sum;
     for (const AngularVelocityTerm& t : f.terms) {
       const bool minus = is_negative_term(t.rate);
-      sum += (sum.empty() ? (minus ? "-" : "") : (minus ? " - " : " + ")) + to_text(minus ? -t.rate : t.rate) + " " +
+      sum += (sum.empty() ? (minus ? "-" : "") : (minus ? " - " : " + ")) + text(minus ? -t.rate : t.rate) + " " +
              t.axis + "_" + t.frame;
     }
     out << "\n  " << f.name << " (parent " << f.parent << ")\n";
@@ -125,7 +127,7 @@ void print_chain(std::ostream& out, const ConstraintSystem& system, const std::s
     out << "    alpha_" << f.name << "/" << o << " = d/dt w, term by term: d/dt(rate) axis + w_frame x (rate axis)\n";
     for (std::size_t k = 0; k < f.terms.size(); ++k) {
       const AngularVelocityTerm& t = f.terms[k];
-      const std::string axis = t.axis + "_" + t.frame, rate = to_text(t.rate);
+      const std::string axis = t.axis + "_" + t.frame, rate = text(t.rate);
       out << "      d/dt(" << rate << ") " << axis << " = " << vector(f.acceleration_parts[k].first) << "\n";
       if (t.frame != o) {
         out << "      w_" << t.frame << "/" << o << " x (" << rate << " " << axis

@@ -221,6 +221,12 @@ TEST_CASE("kinema latex: every sample's worked solution compiles, with its pages
     INFO(log.substr(log.size() > 3000 ? log.size() - 3000 : 0));
     // Data and equations (one page or more), the results page, the plots page.
     CHECK(pages >= 3);
+    // Nothing runs into the margin: no overfull line wider than 1 pt (issue 13).
+    for (auto at = log.find("Overfull \\hbox ("); at != std::string::npos; at = log.find("Overfull \\hbox (", at + 1)) {
+      const double too_wide = std::stod(log.substr(at + 16));
+      INFO(log.substr(at, log.find('\n', at) - at));
+      CHECK(too_wide <= 1.0);
+    }
   }
 }
 
