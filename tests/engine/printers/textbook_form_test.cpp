@@ -100,3 +100,16 @@ TEST_CASE("textbook form: products, sums and arguments, one rule at a time") {
   CHECK(latex("a*sin(theta2 + delta)") == "a \\sin(\\theta_{2} + \\delta)");
   CHECK(latex("a/b") == "\\frac{a}{b}");
 }
+
+TEST_CASE("course notes: a crank's plots run from 0 to 360 deg whatever the requested value") {
+  const auto document = kinema_test::run_kinema({"latex", kinema_test::sample("four_bar.toml"), "--angle", "40"});
+  REQUIRE(document.exit_status == 0);
+  CHECK(document.out.find("xmin=0, xmax=360, xtick={0,90,180,270,360}") != std::string::npos);
+  // The first plotted point is at the wrap (0 deg, from 360 deg past the file's 40 deg),
+  // and no x beyond 360 is drawn.
+  const auto first = document.out.find("\\addplot+[mark=none, thick] coordinates { (");
+  REQUIRE(first != std::string::npos);
+  CHECK(document.out.substr(first + 42, 10) == "(0.000000,");
+  CHECK(document.out.find("(400.000000,") == std::string::npos);
+  CHECK(document.out.find(" (nan,nan)") != std::string::npos);  // where the two parts of the turn meet
+}
