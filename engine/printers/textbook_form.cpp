@@ -35,6 +35,7 @@ struct TextbookForm::Context {
   const SymbolTexts* texts;
   const ex* preferred = nullptr;  // a difference in a function argument starts with it
   bool argument = false;          // rendering a function's argument: positive terms first
+  bool bare_numbers = false;      // inside a function's argument: (30^\circ) as 30^\circ
   bool latex() const { return style == Style::latex; }
 };
 
@@ -124,7 +125,11 @@ std::string TextbookForm::render(const ex& e, int precedence, Context& c) const 
   if (GiNaC::is_a<GiNaC::symbol>(e)) {
     if (c.texts) {
       const auto text = c.texts->find(e);
-      if (text != c.texts->end()) return text->second;
+      if (text != c.texts->end()) {
+        const std::string& t = text->second;
+        const bool bare = c.bare_numbers && t.size() > 2 && t.front() == '(' && t.back() == ')' && t[1] != '-';
+        return bare ? t.substr(1, t.size() - 2) : t;
+      }
     }
     return c.latex() ? GiNaC::ex_to<GiNaC::symbol>(e).get_TeX_name() : GiNaC::ex_to<GiNaC::symbol>(e).get_name();
   }
@@ -348,8 +353,11 @@ std::string TextbookForm::render_power(const ex& base, const ex& exponent, Conte
 
 std::string TextbookForm::render_argument(const ex& argument, Context& c) const {
   c.argument = true;
+  const bool outer = c.bare_numbers;
+  c.bare_numbers = true;
   const std::string text = render(argument, 0, c);
   c.argument = false;
+  c.bare_numbers = outer;
   return text;
 }
 
@@ -363,6 +371,7 @@ std::string TextbookForm::render_function(const ex& f, const ex& argument, Conte
   if (name == "exp") return "e^{" + render_argument(argument, c) + "}";
   if (name == "sin" || name == "cos" || name == "tan") {
     const std::string inner = render_argument(argument, c);
+    // \sin\theta_{3}; a number put in for the symbol in parentheses: \sin(30^\circ).
     const bool single = GiNaC::is_a<GiNaC::symbol>(argument) && !(c.texts && c.texts->count(argument));
     return "\\" + name + (single ? inner : "(" + inner + ")");
   }
@@ -421,6 +430,12 @@ std::vector<std::string> TextbookForm::latex_lines(const ex& e, const ex& unknow
     if (sums == 0) return {whole};
   } else if (!GiNaC::is_a<GiNaC::add>(e)) {
     return {whole};
+  }
+  // -1/(-D) is 1/D.
+  if (GiNaC::is_a<GiNaC::mul>(denominator) && GiNaC::is_a<GiNaC::numeric>(denominator.op(denominator.nops() - 1)) &&
+      GiNaC::ex_to<GiNaC::numeric>(denominator.op(denominator.nops() - 1)).is_negative()) {
+    denominator = -denominator;
+    front = -front;
   }
   std::vector<std::string> lines;
   std::string line;

@@ -3,6 +3,7 @@
 // the requested input values with the numbers put into the solved formulas, a
 // TikZ drawing at each (tikz_mechanism.cpp), and pgfplots over the input's
 // range (pgfplots.cpp).
+#include <algorithm>
 #include <cmath>
 
 #include <kinema/engine/printers/latex/chain_latex.hpp>
@@ -115,9 +116,20 @@ class DocumentWriter {
   // else row by row, each side over lines.
   void matrix_equation(std::vector<std::string>& rows, const std::vector<ex>& rates, const std::vector<ex>& rhs,
                        const std::string& rhs_matrix) const {
-    const std::string whole = "& " + latex_matrix(d_.jacobian, textbook_) + latex_column(rates) + " = " + rhs_matrix;
-    if (latex_width(whole) <= kLatexLineBudget + 10) {
-      rows.push_back(whole);
+    // As printed: each matrix column as wide as its widest entry.
+    const auto widest = [&](const std::vector<ex>& column) {
+      double w = 0;
+      for (const ex& e : column) w = std::max(w, latex_width(textbook_(e, TextbookForm::Style::latex)));
+      return w + 2;
+    };
+    double width = widest(rates) + widest(rhs);
+    for (unsigned j = 0; j < d_.jacobian.cols(); ++j) {
+      std::vector<ex> column;
+      for (unsigned i = 0; i < d_.jacobian.rows(); ++i) column.push_back(d_.jacobian(i, j));
+      width += widest(column);
+    }
+    if (width <= kLatexLineBudget + 6) {
+      rows.push_back("& " + latex_matrix(d_.jacobian, textbook_) + latex_column(rates) + " = " + rhs_matrix);
       return;
     }
     for (std::size_t i = 0; i < rates.size(); ++i) {
@@ -125,6 +137,11 @@ class DocumentWriter {
       for (std::size_t j = 0; j < rates.size(); ++j) left += d_.jacobian(i, j) * rates[j];
       const auto lhs = textbook_.latex_lines(left, 0, nullptr, kLatexLineBudget);
       const auto right = textbook_.latex_lines(rhs[i], 0, nullptr, kLatexLineBudget);
+      const std::string label = "\\text{(" + std::to_string(i + 1) + ")}\\quad & ";
+      if (lhs.size() == 1 && right.size() == 1 && latex_width(lhs[0] + right[0]) + 2 <= kLatexLineBudget) {
+        rows.push_back(label + lhs[0] + " = " + right[0]);
+        continue;
+      }
       for (std::size_t k = 0; k < lhs.size(); ++k)
         rows.push_back((k == 0 ? "\\text{(" + std::to_string(i + 1) + ")}\\quad & " : "&\\quad ") + lhs[k]);
       for (std::size_t k = 0; k < right.size(); ++k) rows.push_back((k == 0 ? "&= " : "&\\quad ") + right[k]);
