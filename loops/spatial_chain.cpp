@@ -17,13 +17,14 @@ GiNaC::exmap SpatialKinematics::instant() const {
     values[variables[i].rate] = rates[i];
     values[variables[i].second_rate] = second_rates[i];
   }
+  values[time] = 0;
   return values;
 }
 
 GiNaC::ex SpatialKinematics::time_derivative(const GiNaC::ex& e) const {
   GiNaC::ex total = 0;
   for (const Coordinate& v : variables) total += e.diff(v.symbol) * v.rate + e.diff(v.rate) * v.second_rate;
-  return total;
+  return total + e.diff(time);
 }
 
 namespace {
@@ -83,6 +84,8 @@ class ChainBuilder {
   SpatialKinematics build() {
     parameters();
     variables();
+    // Time may be written in the chain's formulas (not in parameters: they are constants).
+    if (symbol_names_.count("t") == 0) reader_.define("t", k_.time);
     frames();
     points();
     closures();
@@ -384,13 +387,25 @@ ConstraintSystem build_spatial_system(const Mechanism& mechanism) {
   if (input == k.variables.size()) {
     t.name = "t";
     t.dimension = Dimension::time;
-    t.symbol = GiNaC::realsymbol("t", "t");
+    t.symbol = k.time;  // the same symbol as in the chain's formulas of time
     t.rate = GiNaC::realsymbol("t_rate", "\\dot{t}");
     t.second_rate = GiNaC::realsymbol("t_second_rate", "\\ddot{t}");
     t.values = {0.0};
     t.rate_value = 1.0;
     t.second_rate_value = 0.0;
   } else {
+    bool timed = false;
+    for (const ChainPointMotion& p : k.points)
+      for (const ex& c : p.position) timed = timed || c.has(k.time);
+    for (const ChainFrameMotion& f : k.frames)
+      for (const ex& c : f.origin) timed = timed || c.has(k.time) || f.rotation.has(k.time);
+    if (timed) {
+      throw InputError(mechanism.chain->input_where.line > 0
+                           ? mechanism.chain->input_where.str() + ": input \"" + mechanism.chain->input +
+                                 "\": the chain has formulas of time t; keep time as its input"
+                           : mechanism.source_file + ": --input " + mechanism.chain->input +
+                                 ": the chain has formulas of time t; keep time as its input");
+    }
     static_cast<Coordinate&>(t) = k.variables[input];
     t.values = {k.values[input]};
     t.rate_value = k.rates[input];

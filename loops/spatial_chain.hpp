@@ -49,14 +49,17 @@ struct SpatialKinematics {
   std::vector<bool> unknown;          ///< Of each variable: found by the closures (its value a guess).
   std::vector<double> values, rates, second_rates;  ///< Of each variable at t = 0 (SI).
   std::string observer;
+  /// Time, for formulas written in it (a point moving in its frame as 0.1*sin(2*t)): "t"
+  /// unless the file names a parameter or variable so.
+  GiNaC::realsymbol time{"t", "t"};
   std::vector<ChainFrameMotion> frames;  ///< In file order, parents first.
   std::vector<ChainPointMotion> points;
   /// Closed loops: each closure's residual (|p_from - p_to|^2 - length^2) / (2 length) (= 0).
   std::vector<std::pair<std::string, GiNaC::ex>> closures;
 
-  /// Every symbol (parameters, variables, rates, second rates) at t = 0.
+  /// Every symbol (parameters, variables, rates, second rates, time) at t = 0.
   GiNaC::exmap instant() const;
-  /// d/dt along the variables: theta -> omega -> alpha -> 0.
+  /// d/dt along the variables (theta -> omega -> alpha -> 0) and time itself.
   GiNaC::ex time_derivative(const GiNaC::ex& e) const;
 };
 

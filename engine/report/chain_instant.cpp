@@ -63,7 +63,12 @@ struct Instant {
       values.push_back({q, value});
     };
     const Driver& input = system.input;
-    if (input.dimension != Dimension::time) put(input, input.values.front(), input.rate_value, input.second_rate_value);
+    if (input.dimension != Dimension::time) {
+      put(input, input.values.front(), input.rate_value, input.second_rate_value);
+    } else {  // formulas of time at the instant t = 0
+      angles[input.symbol] = 0;
+      numbers[input.symbol] = 0;
+    }
     for (const Coordinate& q : system.unknowns) {
       put(q, q.guess, parameter_value(q.rate.get_name() + "_0"), parameter_value(q.second_rate.get_name() + "_0"));
     }

@@ -66,6 +66,7 @@ GiNaC::exmap at_time(const kinema::SpatialKinematics& k, double t) {
     values[k.variables[i].symbol] = k.values[i] + k.rates[i] * t + 0.5 * k.second_rates[i] * t * t;
     values[k.variables[i].rate] = k.rates[i] + k.second_rates[i] * t;
   }
+  values[k.time] = t;
   return values;
 }
 
@@ -593,4 +594,42 @@ TEST_CASE("spatial_chain: every spatial sample through the engine: v, a and alph
       }
     }
   }
+}
+
+TEST_CASE("spatial_chain: a point moving in its frame by a formula of time t") {
+  // The sleeve of robot_arm_slider.toml moved by s(t) = 0.1 + 0.05 sin(2t) m instead of a variable.
+  const std::string text = kinema_test::replaced(R"(C = { frame = "E3", at = ["s", "0 m", "0 m"] })",
+                                                 R"x(C = { frame = "E3", at = ["0.1 + 0.05*sin(2*t)", "0 m", "0 m"] })x",
+                                                 kinema_test::read_file(kinema_test::sample("robot_arm_slider.toml")));
+  const kinema::SpatialKinematics k = kinema::build_spatial_chain(kinema::read_mechanism_text(text, "timed.toml"));
+  const GiNaC::exmap values = k.instant();
+  const auto& c = point(k, "C");
+  // At t = 0: v_rel = 0.05*2*cos(0) e1 = (0.1, 0, 0); a_rel = -0.05*4*sin(0) = 0; Coriolis 2 w x v_rel.
+  check_vector(c.relative_velocity, values, {"0.1", "0", "0"});
+  check_vector(c.relative_acceleration, values, {"0", "0", "0"});
+  check_vector(c.coriolis, values, {"0", "0.1", "-0.173205"});
+  check_by_finite_differences(k);
+  // Through the engine (time is the input): C's v and a are finite differences of its position.
+  const std::string file = kinema_test::write_temporary("timed.toml", text);
+  const kinema::Model model = kinema::load_model(file);
+  const double h = 1e-4;
+  for (double t : {0.0, 0.7}) {
+    const kinema::MotionTable s = kinema::analyse(model, {t - h, t, t + h}, kinema_test::with_rates(1, 0));
+    const std::size_t p = 2;  // A, B, C
+    REQUIRE(model.system.points[p].name == "C");
+    const auto a = s.point(0, p), m = s.point(1, p), b = s.point(2, p);
+    for (std::size_t i = 0; i < 3; ++i) {
+      CHECK(m.velocity[i] == doctest::Approx((b.position[i] - a.position[i]) / (2 * h)).epsilon(1e-6).scale(1));
+      CHECK(m.acceleration[i] == doctest::Approx((b.position[i] - 2 * m.position[i] + a.position[i]) / (h * h)).epsilon(1e-4).scale(1));
+    }
+  }
+  // derive prints it at the instant with numbers (t = 0), not NaN.
+  const auto derived = kinema_test::run_kinema({"derive", file});
+  REQUIRE(derived.exit_status == 0);
+  CHECK(derived.out.find("nan") == std::string::npos);
+  CHECK(derived.out.find("    v_rel = [0.1*cos(2*t)") == std::string::npos);  // t put in: the instant's formula
+  // A joint variable as the input cannot also have formulas of time.
+  const auto refused = kinema_test::run_kinema({"eval", file, "--input", "theta1"});
+  CHECK(refused.exit_status == 2);
+  CHECK(refused.err.find("--input theta1: the chain has formulas of time t; keep time as its input") != std::string::npos);
 }
