@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include <kinema/engine/printers/printer.hpp>
+#include <kinema/engine/report/design_figures.hpp>
 #include <kinema/engine/report/diagnostics.hpp>
 #include <kinema/engine/report/number_format.hpp>
 #include <kinema/engine/report/output_scale.hpp>
@@ -51,6 +52,20 @@ class JsonPrinter : public ResultsPrinter {
     json points = json::array();
     for (const PointObservable& p : system.points) points.push_back(p.name);
     doc["points"] = points;
+    if (const auto f = four_bar_figures(job.model)) {  // design figures of a four-bar
+      const auto finite = [](double x) { return std::isfinite(x) ? json(x) : json(nullptr); };
+      doc["four_bar"] = {{"grashof", f->grashof},
+                         {"inequality", f->inequality},
+                         {"lengths", {{"ground", f->ground / scale.length},
+                                      {"crank", f->crank / scale.length},
+                                      {"coupler", f->coupler / scale.length},
+                                      {"rocker", f->rocker / scale.length}}},
+                         {"transmission_angle", {{"least", finite(f->least_transmission)},
+                                                 {"least_at", finite(f->least_at)},
+                                                 {"greatest", finite(f->greatest_transmission)},
+                                                 {"greatest_at", finite(f->greatest_at)},
+                                                 {"full_turn", f->full_turn}}}};
+    }
     if (!system.frames.empty()) {
       json frames = json::array();
       for (const FrameObservable& f : system.frames) frames.push_back(f.name);

@@ -13,6 +13,7 @@
 #include <kinema/engine/printers/latex/tikz_chain.hpp>
 #include <kinema/engine/printers/latex/tikz_mechanism.hpp>
 #include <kinema/engine/printers/printer.hpp>
+#include <kinema/engine/report/design_figures.hpp>
 #include <kinema/engine/report/diagnostics.hpp>
 #include <kinema/engine/report/geometry.hpp>
 #include <kinema/engine/report/output_scale.hpp>
@@ -31,7 +32,8 @@ class DocumentWriter {
         d_(model.derivation),
         scale_(model.system),
         geometry_(model.system),
-        textbook_(model.system) {}
+        textbook_(model.system),
+        four_bar_(four_bar_figures(model)) {}
 
   void preamble() {
     out_ << "\\documentclass[11pt]{article}\n"
@@ -89,6 +91,10 @@ class DocumentWriter {
       out_ << (j ? ", " : "") << "$" << to_latex(system_.unknowns[j].symbol) << "$";
     out_ << (system_.frames.empty() ? ". Angles are measured counter-clockwise from the $x$ axis.\n\n"
                                     : ". Angles turn frames by the right-hand rule about their axes.\n\n");
+    if (four_bar_) {
+      out_ << "\\subsection*{Design figures}\nA four-bar: "
+           << latex_escape_text(describe_four_bar(*four_bar_, system_.input.name)) << ".\n\n";
+    }
   }
 
   void loops() {
@@ -262,6 +268,7 @@ class DocumentWriter {
   OutputScale scale_;
   MechanismGeometry geometry_;
   TextbookForm textbook_;
+  std::optional<FourBarFigures> four_bar_;
 
   // The solved rates (order 1) or second rates (order 2), block by block, each with
   // a "% kinema: name = formula" comment in GiNaC syntax for reading it back.

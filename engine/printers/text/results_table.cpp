@@ -5,6 +5,7 @@
 
 #include <kinema/engine/printers/printer.hpp>
 #include <kinema/engine/symbolic/naming.hpp>
+#include <kinema/engine/report/design_figures.hpp>
 #include <kinema/engine/report/diagnostics.hpp>
 #include <kinema/engine/report/number_format.hpp>
 #include <kinema/engine/report/output_scale.hpp>
@@ -26,6 +27,8 @@ class ResultsTablePrinter : public ResultsPrinter {
     text += system.title + "\n";
     text += "units: angles deg, angular rates rad/s and rad/s^2, lengths " + scale.length_unit + ", velocities " +
             scale.length_unit + "/s, accelerations " + scale.length_unit + "/s^2\n";
+    if (const auto four_bar = four_bar_figures(job.model))
+      text += "four-bar: " + describe_four_bar(*four_bar, system.input.name) + "\n";
   }
 
   void tail(std::string&, const PrintJob&, std::size_t) const override {}

@@ -1,0 +1,35 @@
+// Design figures of a four-bar (issue 13): Grashof class with its inequality, and the
+// transmission angle over the crank's turn with its least and greatest values and where.
+// A vector-loop file is a four-bar when it has one loop of four link vectors of constant
+// length — the crank (its angle the input), two links whose angles are unknowns, and the
+// ground (a constant vector) — written in the order the loop goes round (crank, coupler,
+// rocker, ground, in any rotation), which tells the coupler (opposite the ground) from the
+// rocker (next to it).
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include <kinema/engine/model.hpp>
+
+namespace kinema {
+
+struct FourBarFigures {
+  double ground = 0, crank = 0, coupler = 0, rocker = 0;  ///< Link lengths (SI).
+  std::string grashof;     ///< "crank-rocker", "double-crank", "rocker-crank", "double-rocker", "change point", "non-Grashof triple rocker"
+  std::string inequality;  ///< "s + l = 40 + 120 = 160 < p + q = 80 + 100 = 180 (mm)"
+  /// The transmission angle (between coupler and rocker, at their joint, 0 to 180 deg) over
+  /// a turn of the input in 1-degree steps: least and greatest, in deg, and the input
+  /// angles (deg, in [0, 360)) where they are; NaN without an assembled value.
+  double least_transmission = 0, least_at = 0, greatest_transmission = 0, greatest_at = 0;
+  bool full_turn = false;  ///< Every value of the turn assembled.
+};
+
+/// The figures of a four-bar driven by its crank; nothing for other mechanisms.
+std::optional<FourBarFigures> four_bar_figures(const Model& model);
+
+/// One line for people: "Grashof crank-rocker (s + l = ... < p + q = ...); transmission
+/// angle from 33.6 deg (theta2 = 0 deg) to 123 deg (theta2 = 180 deg)".
+std::string describe_four_bar(const FourBarFigures& figures, const std::string& input_name);
+
+}  // namespace kinema

@@ -1,0 +1,72 @@
+// Design figures of four-bars (issue 13): Grashof class from the link lengths for the four
+// Grashof cases, a change point and a non-Grashof linkage; the transmission angle's
+// extremes against the closed form cos(mu) = (b^2 + c^2 - a^2 - d^2 + 2 a d cos(theta2)) / 2bc.
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+#include <kinema/engine/model.hpp>
+#include <kinema/engine/report/design_figures.hpp>
+#include <kinema/loops/mechanism_file.hpp>
+
+#include "test_support.hpp"
+
+namespace {
+
+// The bundled four-bar with other lengths (mm).
+std::optional<kinema::FourBarFigures> four_bar_with(const std::string& a, const std::string& b, const std::string& c,
+                                                    const std::string& d) {
+  std::string text = kinema_test::read_file(kinema_test::sample("four_bar.toml"));
+  text = kinema_test::replaced(R"(a = "40 mm")", "a = \"" + a + " mm\"", text);
+  text = kinema_test::replaced(R"(b = "120 mm")", "b = \"" + b + " mm\"", text);
+  text = kinema_test::replaced(R"(c = "80 mm")", "c = \"" + c + " mm\"", text);
+  text = kinema_test::replaced(R"(d = "100 mm")", "d = \"" + d + " mm\"", text);
+  return kinema::four_bar_figures(kinema::make_model(kinema::read_mechanism_text(text, "four_bar.toml")));
+}
+
+}  // namespace
+
+TEST_CASE("design figures: Grashof class of a four-bar from its lengths") {
+  CHECK(four_bar_with("40", "120", "80", "100")->grashof == "crank-rocker");   // s = crank
+  CHECK(four_bar_with("60", "90", "80", "30")->grashof == "double-crank");     // s = ground
+  CHECK(four_bar_with("80", "120", "40", "100")->grashof == "rocker-crank");   // s = rocker
+  CHECK(four_bar_with("100", "40", "80", "120")->grashof == "double-rocker");  // s = coupler
+  CHECK(four_bar_with("40", "100", "40", "100")->grashof == "change point");   // s + l = p + q
+  CHECK(four_bar_with("50", "70", "45", "60")->grashof == "non-Grashof triple rocker");
+  const auto crank_rocker = four_bar_with("40", "120", "80", "100");
+  CHECK(crank_rocker->inequality == "s + l = 40 + 120 = 160 < p + q = 180 (mm)");
+  // The same from files written as joints and links.
+  const auto parallelogram = kinema::four_bar_figures(kinema::load_model(kinema_test::sample("problem_4_1_parallelogram.toml")));
+  REQUIRE(parallelogram);
+  CHECK(parallelogram->grashof == "change point");
+  const auto triple = kinema::four_bar_figures(kinema::load_model(kinema_test::sample("triple_rocker_circuit.toml")));
+  REQUIRE(triple);
+  CHECK(triple->grashof == "non-Grashof triple rocker");
+  CHECK_FALSE(triple->full_turn);
+  // Not four-bars: nothing.
+  CHECK_FALSE(kinema::four_bar_figures(kinema::load_model(kinema_test::sample("problem_4_4_six_bar.toml"))));
+  CHECK_FALSE(kinema::four_bar_figures(kinema::load_model(kinema_test::sample("slider_crank.toml"))));
+}
+
+TEST_CASE("design figures: the transmission angle's extremes are where and what the closed form says") {
+  const auto f = kinema::four_bar_figures(kinema::load_model(kinema_test::sample("four_bar.toml")));
+  REQUIRE(f);
+  CHECK(f->full_turn);
+  const double a = 40, b = 120, c = 80, d = 100;
+  const auto mu = [&](double theta2) {
+    return std::acos((b * b + c * c - a * a - d * d + 2 * a * d * std::cos(theta2)) / (2 * b * c)) * 180 / M_PI;
+  };
+  CHECK(f->least_transmission == doctest::Approx(mu(0)).epsilon(1e-9));  // crank along the ground, inwards
+  CHECK(f->least_at == doctest::Approx(0).scale(1));
+  CHECK(f->greatest_transmission == doctest::Approx(mu(M_PI)).epsilon(1e-9));
+  CHECK(f->greatest_at == doctest::Approx(180));
+  // In eval's table and JSON.
+  const auto table = kinema_test::run_kinema({"eval", kinema_test::sample("four_bar.toml")});
+  CHECK(table.out.find("four-bar: Grashof crank-rocker (s + l = 40 + 120 = 160 < p + q = 180 (mm)); transmission angle "
+                       "from 26.38 deg (theta2 = 0 deg) to 86.42 deg (theta2 = 180 deg)\n") != std::string::npos);
+  const nlohmann::json doc = kinema_test::eval_json("four_bar.toml");
+  CHECK(doc["four_bar"]["grashof"] == "crank-rocker");
+  CHECK(doc["four_bar"]["transmission_angle"]["least"].get<double>() == doctest::Approx(mu(0)).epsilon(1e-9));
+  CHECK(doc["four_bar"]["lengths"]["coupler"].get<double>() == doctest::Approx(120));
+  CHECK_FALSE(kinema_test::eval_json("problem_4_4_six_bar.toml").contains("four_bar"));
+}
