@@ -38,6 +38,20 @@ void Workspace::evaluate_position(double input, const Eigen::VectorXd& q) {
   evaluated_input_ = input;
 }
 
+void Workspace::position_system(double input, const Eigen::VectorXd& q, Eigen::VectorXd& phi, Eigen::MatrixXd& phi_q,
+                                Eigen::VectorXd& phi_theta) {
+  evaluate_position(input, q);
+  const auto n = Eigen::Index(n_);
+  phi.resize(n);
+  phi_q.resize(n, n);
+  phi_theta.resize(n);
+  for (std::size_t i = 0; i < n_; ++i) {
+    phi[Eigen::Index(i)] = this->phi(i);
+    phi_theta[Eigen::Index(i)] = this->phi_theta(i);
+    for (std::size_t j = 0; j < n_; ++j) phi_q(Eigen::Index(i), Eigen::Index(j)) = this->phi_q(i, j);
+  }
+}
+
 bool Workspace::evaluated_at(double input, const Eigen::VectorXd& q) const {
   if (!evaluated_ || evaluated_input_ != input) return false;
   for (std::size_t i = 0; i < n_; ++i)

@@ -32,6 +32,11 @@ class Workspace {
   void motion_into(double input, double rate, double second_rate, const Eigen::VectorXd& q,
                    MotionState& state);
 
+  /// Phi, Phi_q and Phi_theta at (input, q), any q (for solvers of other systems built on
+  /// the loop equations, such as the toggle positions).
+  void position_system(double input, const Eigen::VectorXd& q, Eigen::VectorXd& phi, Eigen::MatrixXd& phi_q,
+                       Eigen::VectorXd& phi_theta);
+
   /// dq/dtheta at a solved position (false when Phi_q is singular).
   bool sensitivity(double input, const Eigen::VectorXd& q, Eigen::VectorXd& dq);
 

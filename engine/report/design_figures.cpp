@@ -6,6 +6,7 @@
 #include <complex>
 #include <limits>
 
+#include <kinema/engine/numeric/toggles.hpp>
 #include <kinema/engine/report/number_format.hpp>
 #include <kinema/engine/report/output_scale.hpp>
 #include <kinema/engine/symbolic/expression_parts.hpp>
@@ -143,8 +144,8 @@ std::optional<FourBarFigures> four_bar_figures(const Model& model) {
     };
     const std::complex<double> back = -edge(sides[coupler]), on = edge(sides[rocker]);
     double mu = std::abs(std::arg(on / back)) * 180 / M_PI;
-    if (mu < 1e-6) mu = 0;  // folded flat (rounding of an exact 0 or 180)
-    if (mu > 180 - 1e-6) mu = 180;
+    if (mu < 1e-3) mu = 0;  // folded flat (a change point solved to sqrt(eps))
+    if (mu > 180 - 1e-3) mu = 180;
     double at = std::fmod(turn.input(row) * 180 / M_PI, 360.0);
     if (at < 0) at += 360;
     if (!(mu >= f.least_transmission)) {
@@ -156,6 +157,7 @@ std::optional<FourBarFigures> four_bar_figures(const Model& model) {
       f.greatest_at = at;
     }
   }
+  for (const Toggle& t : find_toggles(model)) f.toggles.push_back(t.input * 180 / M_PI);
   return f;
 }
 
@@ -168,7 +170,11 @@ std::string describe_four_bar(const FourBarFigures& f, const std::string& input_
             input_name + " = " + format_significant(f.greatest_at, 4) + " deg)" +
             (f.full_turn ? "" : " where it can be assembled");
   }
-  return text;
+  if (f.toggles.empty()) return text + "; no toggle position";
+  text += "; toggle positions at " + input_name + " =";
+  for (std::size_t k = 0; k < f.toggles.size(); ++k)
+    text += (k ? ", " : " ") + format_fixed(f.toggles[k], 4);
+  return text + " deg";
 }
 
 }  // namespace kinema

@@ -9,6 +9,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <kinema/engine/model.hpp>
 
@@ -23,6 +24,9 @@ struct FourBarFigures {
   /// angles (deg, in [0, 360)) where they are; NaN without an assembled value.
   double least_transmission = 0, least_at = 0, greatest_transmission = 0, greatest_at = 0;
   bool full_turn = false;  ///< Every value of the turn assembled.
+  /// Toggle positions (engine/numeric/toggles: det Phi_q = 0, solved): the input angles,
+  /// deg in [0, 360).
+  std::vector<double> toggles;
 };
 
 /// The figures of a four-bar driven by its crank; nothing for other mechanisms.

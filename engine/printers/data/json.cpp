@@ -64,7 +64,8 @@ class JsonPrinter : public ResultsPrinter {
                                                  {"least_at", finite(f->least_at)},
                                                  {"greatest", finite(f->greatest_transmission)},
                                                  {"greatest_at", finite(f->greatest_at)},
-                                                 {"full_turn", f->full_turn}}}};
+                                                 {"full_turn", f->full_turn}}},
+                         {"toggles", f->toggles}};
     }
     if (!system.frames.empty()) {
       json frames = json::array();

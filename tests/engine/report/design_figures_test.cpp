@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include <kinema/engine/model.hpp>
+#include <kinema/engine/numeric/toggles.hpp>
 #include <kinema/engine/report/design_figures.hpp>
 #include <kinema/loops/mechanism_file.hpp>
 
@@ -63,10 +64,32 @@ TEST_CASE("design figures: the transmission angle's extremes are where and what 
   // In eval's table and JSON.
   const auto table = kinema_test::run_kinema({"eval", kinema_test::sample("four_bar.toml")});
   CHECK(table.out.find("four-bar: Grashof crank-rocker (s + l = 40 + 120 = 160 < p + q = 180 (mm)); transmission angle "
-                       "from 26.38 deg (theta2 = 0 deg) to 86.42 deg (theta2 = 180 deg)\n") != std::string::npos);
+                       "from 26.38 deg (theta2 = 0 deg) to 86.42 deg (theta2 = 180 deg); no toggle position\n") != std::string::npos);
   const nlohmann::json doc = kinema_test::eval_json("four_bar.toml");
   CHECK(doc["four_bar"]["grashof"] == "crank-rocker");
   CHECK(doc["four_bar"]["transmission_angle"]["least"].get<double>() == doctest::Approx(mu(0)).epsilon(1e-9));
   CHECK(doc["four_bar"]["lengths"]["coupler"].get<double>() == doctest::Approx(120));
   CHECK_FALSE(kinema_test::eval_json("problem_4_4_six_bar.toml").contains("four_bar"));
+}
+
+TEST_CASE("design figures: toggle positions solved from det Phi_q = 0, where the law of cosines puts them") {
+  // The triple rocker (AB = 50, BC = 70, CD = 45, AD = 60 mm) folds where B, C and D are in
+  // line with BD = BC - CD = 25 mm: cos(phi) = (50^2 + 60^2 - 25^2) / (2 * 50 * 60) = 0.9125.
+  const kinema::Model model = kinema::load_model(kinema_test::sample("triple_rocker_circuit.toml"));
+  const std::vector<kinema::Toggle> toggles = kinema::find_toggles(model);
+  REQUIRE(toggles.size() == 2);
+  const double phi = std::acos(0.9125);
+  CHECK(toggles[0].input == doctest::Approx(phi).epsilon(1e-10));
+  CHECK(toggles[1].input == doctest::Approx(2 * M_PI - phi).epsilon(1e-10));
+  // There, B, C and D are in line: the coupler and the rocker are parallel.
+  for (const kinema::Toggle& t : toggles) CHECK(std::fabs(std::sin(t.q[0] - t.q[1])) < 1e-9);
+  // A crank-rocker never folds; a parallelogram at its change points (0 and 180 deg).
+  CHECK(kinema::find_toggles(kinema::load_model(kinema_test::sample("four_bar.toml"))).empty());
+  const auto change = kinema::find_toggles(kinema::load_model(kinema_test::sample("problem_4_1_parallelogram.toml")));
+  REQUIRE(change.size() == 2);
+  CHECK(change[0].input == doctest::Approx(0).scale(1));
+  CHECK(change[1].input == doctest::Approx(M_PI).epsilon(1e-7));
+  // And in eval's table.
+  const auto table = kinema_test::run_kinema({"eval", kinema_test::sample("triple_rocker_circuit.toml")});
+  CHECK(table.out.find("; toggle positions at phi = 24.1468, 335.8532 deg\n") != std::string::npos);
 }

@@ -1,0 +1,25 @@
+// Toggle positions: where det Phi_q = 0 on the loop equations, the input at its limit
+// (the mechanism folds: its rates are not defined there). Solved as one system in (q,
+// theta) — Phi(q, theta) = 0 and det(Phi_q) = 0 — by Newton from positions spread over the
+// input's range, each refined to machine precision, so that a toggle is where the
+// equations put it, not the nearest value of a sweep.
+#pragma once
+
+#include <Eigen/Dense>
+
+#include <vector>
+
+#include <kinema/engine/model.hpp>
+
+namespace kinema {
+
+struct Toggle {
+  double input = 0;  ///< SI (a crank's angle in [0, 2 pi)).
+  Eigen::VectorXd q;
+};
+
+/// The toggle positions of a crank-driven mechanism over a turn (none for other inputs),
+/// in increasing input angle, each once.
+std::vector<Toggle> find_toggles(const Model& model);
+
+}  // namespace kinema
