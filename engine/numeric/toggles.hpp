@@ -22,4 +22,8 @@ struct Toggle {
 /// in increasing input angle, each once.
 std::vector<Toggle> find_toggles(const Model& model);
 
+/// The limit positions of unknown `j` of a crank-driven mechanism over a turn: where its
+/// rate is 0 (a slider's dead centres), solved the same way from Phi = 0 and dq_j/dtheta = 0.
+std::vector<Toggle> find_limit_positions(const Model& model, std::size_t j);
+
 }  // namespace kinema

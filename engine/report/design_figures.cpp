@@ -177,4 +177,36 @@ std::string describe_four_bar(const FourBarFigures& f, const std::string& input_
   return text + " deg";
 }
 
+std::vector<Strokes> slider_strokes(const Model& model) {
+  std::vector<Strokes> all;
+  const ConstraintSystem& system = model.system;
+  if (system.input.dimension != Dimension::angle || !system.frames.empty()) return all;
+  const OutputScale scale(system);
+  for (std::size_t j = 0; j < system.unknowns.size(); ++j) {
+    if (system.unknowns[j].dimension != Dimension::length) continue;
+    const std::vector<Toggle> limits = find_limit_positions(model, j);
+    if (limits.size() != 2) continue;
+    Strokes s;
+    s.name = system.unknowns[j].name;
+    for (int k = 0; k < 2; ++k) {
+      s.limit_inputs[k] = limits[std::size_t(k)].input * 180 / M_PI;
+      s.limit_values[k] = limits[std::size_t(k)].q[Eigen::Index(j)] / scale.length;
+    }
+    // The crank turns the way its rate says: the stroke from the first limit to the second.
+    const double between = s.limit_inputs[1] - s.limit_inputs[0];
+    s.first_stroke = system.input.rate_value >= 0 ? between : 360 - between;
+    s.second_stroke = 360 - s.first_stroke;
+    s.time_ratio = std::max(s.first_stroke, s.second_stroke) / std::min(s.first_stroke, s.second_stroke);
+    all.push_back(s);
+  }
+  return all;
+}
+
+std::string describe_strokes(const Strokes& s, const std::string& input_name, const std::string& unit) {
+  return s.name + " at its limits at " + input_name + " = " + format_fixed(s.limit_inputs[0], 4) + " deg (" +
+         format_significant(s.limit_values[0]) + " " + unit + ") and " + format_fixed(s.limit_inputs[1], 4) + " deg (" +
+         format_significant(s.limit_values[1]) + " " + unit + "); strokes of " + format_significant(s.first_stroke) +
+         " and " + format_significant(s.second_stroke) + " deg of crank, time ratio " + format_significant(s.time_ratio);
+}
+
 }  // namespace kinema

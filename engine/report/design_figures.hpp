@@ -29,6 +29,22 @@ struct FourBarFigures {
   std::vector<double> toggles;
 };
 
+/// A slider driven by a crank (an offset slider-crank, a shaper): its two limit positions
+/// over a turn and the crank angles of the strokes between them.
+struct Strokes {
+  std::string name;           ///< The slider's coordinate.
+  double limit_inputs[2]{};   ///< Crank angles of the limit positions, deg in [0, 360), increasing.
+  double limit_values[2]{};   ///< The coordinate there (output units).
+  double first_stroke = 0;    ///< Crank angle from the first limit to the second (deg, as the crank turns), ...
+  double second_stroke = 0;   ///< ... and back to the first.
+  double time_ratio = 0;      ///< The longer stroke's crank angle over the shorter's (at a constant crank rate).
+};
+
+/// The strokes of every slider coordinate of a crank-driven mechanism that has exactly two
+/// limit positions over a turn (engine/numeric/toggles: dq/dtheta = 0, solved).
+std::vector<Strokes> slider_strokes(const Model& model);
+std::string describe_strokes(const Strokes& strokes, const std::string& input_name, const std::string& unit);
+
 /// The figures of a four-bar driven by its crank; nothing for other mechanisms.
 std::optional<FourBarFigures> four_bar_figures(const Model& model);
 

@@ -52,6 +52,18 @@ class JsonPrinter : public ResultsPrinter {
     json points = json::array();
     for (const PointObservable& p : system.points) points.push_back(p.name);
     doc["points"] = points;
+    const std::vector<Strokes> strokes = slider_strokes(job.model);
+    if (!strokes.empty()) {  // a crank-driven slider's limits and time ratio
+      json list = json::array();
+      for (const Strokes& s : strokes) {
+        list.push_back({{"coordinate", s.name},
+                        {"limit_inputs", {s.limit_inputs[0], s.limit_inputs[1]}},
+                        {"limit_values", {s.limit_values[0], s.limit_values[1]}},
+                        {"strokes", {s.first_stroke, s.second_stroke}},
+                        {"time_ratio", s.time_ratio}});
+      }
+      doc["strokes"] = list;
+    }
     if (const auto f = four_bar_figures(job.model)) {  // design figures of a four-bar
       const auto finite = [](double x) { return std::isfinite(x) ? json(x) : json(nullptr); };
       doc["four_bar"] = {{"grashof", f->grashof},

@@ -28,6 +28,7 @@ class DocumentWriter {
  public:
   DocumentWriter(std::ostream& out, const Model& model)
       : out_(out),
+        model_(model),
         system_(model.system),
         d_(model.derivation),
         scale_(model.system),
@@ -91,9 +92,12 @@ class DocumentWriter {
       out_ << (j ? ", " : "") << "$" << to_latex(system_.unknowns[j].symbol) << "$";
     out_ << (system_.frames.empty() ? ". Angles are measured counter-clockwise from the $x$ axis.\n\n"
                                     : ". Angles turn frames by the right-hand rule about their axes.\n\n");
-    if (four_bar_) {
-      out_ << "\\subsection*{Design figures}\nA four-bar: "
-           << latex_escape_text(describe_four_bar(*four_bar_, system_.input.name)) << ".\n\n";
+    const std::vector<Strokes> strokes = slider_strokes(model_);
+    if (four_bar_ || !strokes.empty()) {
+      out_ << "\\subsection*{Design figures}\n";
+      if (four_bar_) out_ << "A four-bar: " << latex_escape_text(describe_four_bar(*four_bar_, system_.input.name)) << ".\n\n";
+      for (const Strokes& s : strokes)
+        out_ << "Slider: " << latex_escape_text(describe_strokes(s, system_.input.name, scale_.length_unit)) << ".\n\n";
     }
   }
 
@@ -263,6 +267,7 @@ class DocumentWriter {
 
  private:
   std::ostream& out_;
+  const Model& model_;
   const ConstraintSystem& system_;
   const Derivation& d_;
   OutputScale scale_;

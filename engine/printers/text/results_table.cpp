@@ -29,6 +29,8 @@ class ResultsTablePrinter : public ResultsPrinter {
             scale.length_unit + "/s, accelerations " + scale.length_unit + "/s^2\n";
     if (const auto four_bar = four_bar_figures(job.model))
       text += "four-bar: " + describe_four_bar(*four_bar, system.input.name) + "\n";
+    for (const Strokes& strokes : slider_strokes(job.model))
+      text += "slider: " + describe_strokes(strokes, system.input.name, scale.length_unit) + "\n";
   }
 
   void tail(std::string&, const PrintJob&, std::size_t) const override {}

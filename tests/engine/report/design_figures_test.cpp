@@ -93,3 +93,35 @@ TEST_CASE("design figures: toggle positions solved from det Phi_q = 0, where the
   const auto table = kinema_test::run_kinema({"eval", kinema_test::sample("triple_rocker_circuit.toml")});
   CHECK(table.out.find("; toggle positions at phi = 24.1468, 335.8532 deg\n") != std::string::npos);
 }
+
+TEST_CASE("design figures: an offset slider-crank's limit positions and time ratio against the closed form") {
+  // a = 50, b = 150, e = 10 mm: the piston is farthest with crank and rod in line,
+  // sin(theta) = e / (a + b), nearest with the rod folded over the crank,
+  // theta = 180 deg + asin(e / (b - a)); the strokes are the crank angles between.
+  const auto strokes = kinema::slider_strokes(kinema::load_model(kinema_test::sample("slider_crank.toml")));
+  REQUIRE(strokes.size() == 1);
+  const kinema::Strokes& s = strokes.front();
+  CHECK(s.name == "x");
+  const double degree = 180 / M_PI;
+  const double extended = std::asin(10.0 / 200) * degree, folded = 180 + std::asin(10.0 / 100) * degree;
+  CHECK(s.limit_inputs[0] == doctest::Approx(extended).epsilon(1e-9));
+  CHECK(s.limit_inputs[1] == doctest::Approx(folded).epsilon(1e-9));
+  CHECK(s.limit_values[0] == doctest::Approx(std::sqrt(200.0 * 200 - 100)).epsilon(1e-9));  // x = sqrt((a+b)^2 - e^2)
+  CHECK(s.limit_values[1] == doctest::Approx(std::sqrt(100.0 * 100 - 100)).epsilon(1e-9));
+  CHECK(s.first_stroke == doctest::Approx(folded - extended).epsilon(1e-9));  // the crank turns counter-clockwise
+  CHECK(s.time_ratio == doctest::Approx((folded - extended) / (360 - folded + extended)).epsilon(1e-9));
+  // Problem 4.4's slider F reaches its limits where its velocity changes sign (eval's rows).
+  const auto six = kinema::slider_strokes(kinema::load_model(kinema_test::sample("problem_4_4_six_bar.toml")));
+  REQUIRE(six.size() == 1);
+  const kinema::Model model = kinema::load_model(kinema_test::sample("problem_4_4_six_bar.toml"));
+  for (double at : six.front().limit_inputs) {
+    const kinema::MotionTable t = kinema::analyse(model, {M_PI / 6, at / degree});
+    REQUIRE(t.status(1) == kinema::Status::ok);
+    CHECK(std::fabs(t.qd(1)[3]) < 1e-8);  // vF = 0 there
+  }
+  const auto table = kinema_test::run_kinema({"eval", kinema_test::sample("slider_crank.toml")});
+  CHECK(table.out.find("slider: x at its limits at theta2 = 2.8660 deg (199.75 mm) and 185.7392 deg (99.4987 mm); "
+                       "strokes of 182.873 and 177.127 deg of crank, time ratio 1.03244\n") != std::string::npos);
+  CHECK(kinema_test::eval_json("slider_crank.toml")["strokes"][0]["time_ratio"].get<double>() ==
+        doctest::Approx(s.time_ratio));
+}
