@@ -88,6 +88,18 @@ void check_by_finite_differences(const kinema::SpatialKinematics& k) {
   }
 }
 
+// The sleeve C of robot_arm_slider.toml at the instant: its relative velocity and
+// acceleration and its Coriolis term as printed, and every point by finite differences.
+void check_sleeve(const kinema::SpatialKinematics& k, const std::vector<std::string>& relative_velocity,
+                  const std::vector<std::string>& relative_acceleration, const std::vector<std::string>& coriolis) {
+  const GiNaC::exmap values = k.instant();
+  const auto& c = point(k, "C");
+  check_vector(c.relative_velocity, values, relative_velocity);
+  check_vector(c.relative_acceleration, values, relative_acceleration);
+  check_vector(c.coriolis, values, coriolis);
+  check_by_finite_differences(k);
+}
+
 }  // namespace
 
 TEST_CASE("spatial_chain: seed 000's arm at the instant of the figure") {
@@ -162,13 +174,8 @@ TEST_CASE("spatial_chain: v_B is the seed's boxed formula, by meaning") {
 TEST_CASE("spatial_chain: a point sliding along the arm has its Coriolis and relative terms") {
   const kinema::SpatialKinematics k =
       kinema::build_spatial_chain(kinema::read_mechanism_file(kinema_test::sample("robot_arm_slider.toml")));
-  const GiNaC::exmap values = k.instant();
-  const auto& c = point(k, "C");
   // v_rel = 0.5 e1 = 0.5 E1^ at the instant; Coriolis 2 w x v_rel = 2 (-1, 0.866, 0.5) x (0.5, 0, 0).
-  check_vector(c.relative_velocity, values, {"0.5", "0", "0"});
-  check_vector(c.relative_acceleration, values, {"0.2", "0", "0"});
-  check_vector(c.coriolis, values, {"0", "0.5", "-0.866025"});
-  check_by_finite_differences(k);
+  check_sleeve(k, {"0.5", "0", "0"}, {"0.2", "0", "0"}, {"0", "0.5", "-0.866025"});
 }
 
 TEST_CASE("spatial_chain: bad frames, axes, points and formulas are refused with file:line") {
@@ -602,13 +609,8 @@ TEST_CASE("spatial_chain: a point moving in its frame by a formula of time t") {
                                                  R"x(C = { frame = "E3", at = ["0.1 + 0.05*sin(2*t)", "0 m", "0 m"] })x",
                                                  kinema_test::read_file(kinema_test::sample("robot_arm_slider.toml")));
   const kinema::SpatialKinematics k = kinema::build_spatial_chain(kinema::read_mechanism_text(text, "timed.toml"));
-  const GiNaC::exmap values = k.instant();
-  const auto& c = point(k, "C");
   // At t = 0: v_rel = 0.05*2*cos(0) e1 = (0.1, 0, 0); a_rel = -0.05*4*sin(0) = 0; Coriolis 2 w x v_rel.
-  check_vector(c.relative_velocity, values, {"0.1", "0", "0"});
-  check_vector(c.relative_acceleration, values, {"0", "0", "0"});
-  check_vector(c.coriolis, values, {"0", "0.1", "-0.173205"});
-  check_by_finite_differences(k);
+  check_sleeve(k, {"0.1", "0", "0"}, {"0", "0", "0"}, {"0", "0.1", "-0.173205"});
   // Through the engine (time is the input): C's v and a are finite differences of its position.
   const std::string file = kinema_test::write_temporary("timed.toml", text);
   const kinema::Model model = kinema::load_model(file);
