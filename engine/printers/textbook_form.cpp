@@ -154,7 +154,6 @@ std::string TextbookForm::render(const ex& e, int precedence, Context& c) const 
     }
     return render_function(e, e.nops() > 0 ? e.op(0) : ex(0), c);
   }
-  if (GiNaC::is_a<GiNaC::constant>(e)) return c.latex() ? ginac_text(e, true) : ginac_text(e, false);
   return ginac_text(e, c.latex());
 }
 

@@ -16,8 +16,8 @@ using GiNaC::ex;
 // The loops' equations, the velocity and acceleration equations in matrix form, and
 // the solved rates.
 void loop_rows(std::vector<LatexRow>& rows, const ConstraintSystem& system, const Derivation& d, const std::string& jacobian,
-               const std::vector<ex>& rates, const std::vector<ex>& second_rates, const std::vector<ex>& velocity_rhs) {
-  const TextbookForm textbook(system);
+               const std::vector<ex>& rates, const std::vector<ex>& second_rates, const std::vector<ex>& velocity_rhs,
+               const TextbookForm& textbook) {
   constexpr auto latex = TextbookForm::Style::latex;
   for (const EquationGroup& group : system.groups) {
     const std::string name = latex_escape_text(group.name);
@@ -57,7 +57,8 @@ class DerivationLatexPrinter : public Printer {
       second_rates.push_back(q.second_rate);
     }
     for (std::size_t i = 0; i < n; ++i) velocity_rhs.push_back(-d.input_jacobian(i, 0) * system.input.rate);
-    const std::string jacobian = latex_matrix(d.jacobian, TextbookForm(system));
+    const TextbookForm textbook(system);
+    const std::string jacobian = latex_matrix(d.jacobian, textbook);
 
     std::vector<LatexRow> rows;
     if (system.linkage) {  // joints and links: the solving order the loops come from
@@ -79,9 +80,9 @@ class DerivationLatexPrinter : public Printer {
     if (is_driven_chain(system)) {  // a chain of frames worked out at the instant, as seed 000
       const ChainAtInstant chain = chain_at_instant(system, job.basis);
       rows.push_back({"&\\text{" + chain_instant_latex(system, chain) + "}", "spatial chain"});
-      for (const auto& part : {chain_frame_rows(chain, TextbookForm(system)), chain_point_rows(chain, TextbookForm(system))}) rows.insert(rows.end(), part.begin(), part.end());
+      for (const auto& part : {chain_frame_rows(chain, textbook), chain_point_rows(chain, textbook)}) rows.insert(rows.end(), part.begin(), part.end());
     } else if (job.method == DerivationMethod::loops) {
-      loop_rows(rows, system, d, jacobian, rates, second_rates, velocity_rhs);
+      loop_rows(rows, system, d, jacobian, rates, second_rates, velocity_rhs, textbook);
     }
     out << "% kinema derive --format latex: " << latex_escape_text(system.title) << "\n";
     out << "% needs \\usepackage{amsmath}\n";

@@ -1,10 +1,10 @@
 // Results for people: one block per input value (coordinates with rates and
 // second rates, points with components and magnitudes).
-#include <algorithm>
 #include <sstream>
 
 #include <kinema/engine/printers/printer.hpp>
 #include <kinema/engine/symbolic/naming.hpp>
+#include <kinema/engine/report/chain_instant.hpp>
 #include <kinema/engine/report/design_figures.hpp>
 #include <kinema/engine/report/diagnostics.hpp>
 #include <kinema/engine/report/number_format.hpp>
@@ -125,11 +125,7 @@ class ResultsTablePrinter : public ResultsPrinter {
       return "(" + format_significant(v[0], digits) + ", " + format_significant(v[1], digits) + ", " +
              format_significant(v[2], digits) + ")";
     };
-    std::string observer = system.frames.front().parent;  // the parent that is not a frame
-    for (const FrameObservable& f : system.frames)
-      if (std::none_of(system.frames.begin(), system.frames.end(), [&](const auto& g) { return g.name == f.parent; }))
-        observer = f.parent;
-    out << "  " << pad("frame", 8) << pad("w relative to " + observer + " (rad/s)", 40)
+    out << "  " << pad("frame", 8) << pad("w relative to " + chain_observer(system) + " (rad/s)", 40)
         << "alpha (rad/s^2)\n";
     for (std::size_t f = 0; f < system.frames.size(); ++f)
       out << "  " << pad(system.frames[f].name, 8) << pad(triple(s.frames[f].angular_velocity), 40)
