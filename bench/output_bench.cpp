@@ -133,6 +133,14 @@ int main(int argc, char** argv) {
   }
   const Measured start = best_of(5, {kinema, "eval", four_bar, "--angle", "40"});
   row("  of which a process that solves one value (start, read, derive, compile)", start, none, none);
+  // The floor of this machine: a process that computes nothing and only copies kinema's
+  // finished CSV into a new file. 300x needs kinema within (SymPy / 300) / floor of it.
+  const std::string copy = (directory / "copy.csv").string();
+  const Measured floor = best_of(5, {"/bin/cp", csv, copy}, copy);
+  row("  the floor: /bin/cp of that finished CSV to a new file", floor, none, none);
+  if (floor.ok && s.ok)
+    std::printf("  SymPy / floor = %.0fx: at 300x kinema may take %.2fx the time of copying its own output\n",
+                s.seconds / floor.seconds, s.seconds / 300 / floor.seconds);
   std::filesystem::remove_all(directory);
   return 0;
 }
