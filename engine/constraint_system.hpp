@@ -80,6 +80,7 @@ struct PointObservable {
   std::vector<std::string> components;  ///< "x", "y" (and "z").
   std::vector<GiNaC::ex> position;      ///< One expression per component.
   std::optional<GiNaC::ex> written;     ///< Planar: x + I*y as written.
+  std::vector<GiNaC::ex> written_terms;  ///< Planar: its terms in the order written (sum = written).
   std::optional<RelativeMotionTerms> terms;  ///< Spatial chains.
 };
 

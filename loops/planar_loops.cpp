@@ -215,6 +215,7 @@ class Builder {
       observable.position = {real_part_of(position), imag_part_of(position)};
       check_separated(observable.position[0], observable.position[1], point.formula, context);
       observable.written = position;
+      observable.written_terms = terms_as_written(point.formula, position, context);
       system.points.push_back(observable);
     }
     return system;

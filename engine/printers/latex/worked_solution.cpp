@@ -12,11 +12,13 @@
 #include <kinema/engine/printers/latex/pgfplots.hpp>
 #include <kinema/engine/printers/latex/tikz_chain.hpp>
 #include <kinema/engine/printers/latex/tikz_mechanism.hpp>
+#include <kinema/engine/printers/latex/tikz_polygons.hpp>
 #include <kinema/engine/printers/printer.hpp>
 #include <kinema/engine/report/design_figures.hpp>
 #include <kinema/engine/report/diagnostics.hpp>
 #include <kinema/engine/report/geometry.hpp>
 #include <kinema/engine/report/output_scale.hpp>
+#include <kinema/engine/report/polygons.hpp>
 #include <kinema/engine/symbolic/expression_parts.hpp>
 
 namespace kinema {
@@ -33,6 +35,7 @@ class DocumentWriter {
         d_(model.derivation),
         scale_(model.system),
         geometry_(model.system),
+        polygons_(model.system),
         textbook_(model.system),
         four_bar_(four_bar_figures(model)) {}
 
@@ -259,6 +262,21 @@ class DocumentWriter {
     if (s.status == Status::ok && system_.linkage) linkage_table(s);
     if (s.status == Status::ok) substitution(s);
     write_tikz_mechanism(out_, system_, geometry_, s);
+    if (const auto polygons = polygons_.polygons(s)) {
+      out_ << "\\subsubsection*{Velocity and acceleration polygons}\nEach link vector's velocity, chained from the "
+              "pole $o$ in the order the loops and points are written: a turning link's relative velocity "
+              "$\\omega r$ across it, a sliding point's velocity along its line; accelerations in the parts "
+              "normal ($\\omega^{2} r$, towards the link's start), tangential ($\\alpha r$), Coriolis "
+              "($2\\omega v^{r}$) and relative (along the line).";
+      for (const PolygonVertex& v : polygons->first.vertices)
+        if (v.name.back() == '\'') {
+          out_ << " $B'$ is the point of a turning line under the point $B$ that slides along it.";
+          break;
+        }
+      out_ << "\n\n";
+      write_tikz_polygon(out_, system_, textbook_, polygons->first);
+      write_tikz_polygon(out_, system_, textbook_, polygons->second);
+    }
   }
 
   void plots(const MotionTable& sweep) { write_pgfplots(out_, system_, sweep); }
@@ -272,6 +290,7 @@ class DocumentWriter {
   const Derivation& d_;
   OutputScale scale_;
   MechanismGeometry geometry_;
+  PolygonBuilder polygons_;
   TextbookForm textbook_;
   std::optional<FourBarFigures> four_bar_;
 
