@@ -4,13 +4,17 @@
 // words. (tests/latex_test.cpp runs pdflatex on it; this file does not.)
 #include <doctest/doctest.h>
 
+#include <cmath>
+#include <cstdio>
 #include <sstream>
 #include <string>
 
 #include <kinema/engine/printers/latex/latex_format.hpp>
 #include <kinema/engine/printers/printer.hpp>
 #include <kinema/engine/report/diagnostics.hpp>
+#include <kinema/engine/report/output_scale.hpp>
 #include <kinema/engine/report/plot_range.hpp>
+#include <kinema/engine/report/polygons.hpp>
 #include "../unit_support.hpp"
 #include "../../test_support.hpp"
 
@@ -215,4 +219,75 @@ TEST_CASE("engine/printers/worked_solution: a joints-and-links document gives th
   CHECK(has(tex, "2 & $45$ & $3.141$ & $0$"));  // block 2 turns with the crank
   // Example 4.1's relative velocity, relative acceleration and Coriolis term at B2.
   CHECK(has(tex, "B2 & $(-0.19514,\\ -0.19514)$ & $(-0.50033,\\ -0.50033)$ & $(1.2259,\\ -1.2259)$"));
+}
+
+namespace {
+
+// "5", "2.5", "1\cdot 10^{-3}" as latex_number prints them.
+double latex_value(const std::string& text) {
+  const auto times = text.find("\\cdot 10^{");
+  if (times == std::string::npos) return std::stod(text);
+  return std::stod(text.substr(0, times)) * std::pow(10.0, std::stod(text.substr(times + 10)));
+}
+
+}  // namespace
+
+TEST_CASE("engine/printers/worked_solution: polygons drawn to scale read off the analytic numbers") {
+  for (const char* name : kinema_test::kSamples) {
+    const kinema::Model model = kinema::load_model(kinema_test::sample(name));
+    if (!model.system.frames.empty()) continue;
+    CAPTURE(std::string(name));
+    const std::vector<double> inputs =
+        model.system.input.values.empty() ? std::vector<double>{0.3} : model.system.input.values;
+    const MotionTable values = kinema::analyse(model, inputs);
+    const std::string tex = document(model, &values, nullptr, true);
+    const kinema::PolygonBuilder builder(model.system);
+    const kinema::OutputScale scale(model.system);
+    std::size_t at = 0;
+    int figures = 0;
+    for (const kinema::MotionState& s : values) {
+      const auto polygons = builder.polygons(s);
+      if (!polygons) continue;
+      for (const kinema::Polygon* polygon : {&polygons->first, &polygons->second}) {
+        const std::string caption = polygon->order == 1 ? "Velocity polygon, scale 1\\,cm = $" : "Acceleration polygon, scale 1\\,cm = $";
+        const auto begin = tex.find("\\begin{tikzpicture}[line cap=round, >=latex]", at);
+        const auto stated = tex.find(caption, begin);
+        REQUIRE(begin != std::string::npos);
+        REQUIRE(stated != std::string::npos);
+        at = stated + caption.size();
+        const double per_cm = latex_value(tex.substr(at, tex.find("\\,", at) - at));
+        const std::string figure = tex.substr(begin, stated - begin);
+        ++figures;
+        int labelled = 0;
+        // \draw[->, style] (x1,y1) -- (x2,y2) node[...] {$label$};
+        for (auto draw = figure.find("\\draw[->"); draw != std::string::npos; draw = figure.find("\\draw[->", draw + 1)) {
+          const std::string line = figure.substr(draw, figure.find('\n', draw) - draw);
+          double x1, y1, x2, y2;
+          const auto coordinates = line.find("] (");
+          REQUIRE(std::sscanf(line.c_str() + coordinates, "] (%lf,%lf) -- (%lf,%lf)", &x1, &y1, &x2, &y2) == 4);
+          const auto label_at = line.find("{$");
+          if (label_at == std::string::npos) continue;
+          const std::string label = line.substr(label_at + 2, line.rfind("$}") - label_at - 2);
+          const double read_off = std::hypot(x2 - x1, y2 - y1) * per_cm;  // output units
+          CAPTURE(label);
+          const kinema::PolygonArrow* arrow = nullptr;
+          for (const kinema::PolygonArrow& a : polygon->arrows)
+            if (a.latex == label) arrow = &a;
+          REQUIRE(arrow);
+          CHECK(read_off == doctest::Approx(arrow->formula_value / scale.length).epsilon(0.002 * per_cm / read_off));
+          // An absolute arrow of a named point: its speed or acceleration from eval.
+          for (std::size_t p = 0; p < model.system.points.size(); ++p) {
+            const kinema::PointMotion& m = s.points[p];
+            const std::string& point = model.system.points[p].name;
+            if (label == "v_{" + point + "}") CHECK(read_off == doctest::Approx(m.speed() / scale.length).epsilon(0.002 * per_cm / read_off));
+            if (label == "a_{" + point + "}")
+              CHECK(read_off == doctest::Approx(m.acceleration_magnitude() / scale.length).epsilon(0.002 * per_cm / read_off));
+          }
+          ++labelled;
+        }
+        CHECK(labelled >= 1);
+      }
+    }
+    CHECK(figures >= 2);
+  }
 }
