@@ -1,0 +1,153 @@
+#include <kinema/engine/report/instant_centres.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+
+#include <kinema/loops/dyad_positions.hpp>
+
+namespace kinema {
+
+namespace {
+
+using Complex = std::complex<double>;
+
+double cross(Complex u, Complex v) { return u.real() * v.imag() - u.imag() * v.real(); }
+
+// The line through two centres (a point and a direction); nullopt when both are at
+// infinity or they coincide (no line).
+struct Line {
+  Complex through, along;
+};
+
+std::optional<Line> line_through(const InstantCentre& p, const InstantCentre& q, double length_scale) {
+  if (p.at_infinity && q.at_infinity) return std::nullopt;
+  if (p.at_infinity) return Line{q.at, p.at};
+  if (q.at_infinity) return Line{p.at, q.at};
+  const Complex d = q.at - p.at;
+  if (std::abs(d) <= 1e-9 * length_scale) return std::nullopt;
+  return Line{p.at, d / std::abs(d)};
+}
+
+std::string centre_name(const std::vector<std::string>& bodies, std::size_t a, std::size_t b) {
+  return "I" + bodies[a] + bodies[b];
+}
+
+}  // namespace
+
+const InstantCentre* InstantCentres::find(std::size_t a, std::size_t b) const {
+  if (a > b) std::swap(a, b);
+  for (const InstantCentre& c : centres)
+    if (c.a == a && c.b == b) return &c;
+  return nullptr;
+}
+
+std::optional<InstantCentres> instant_centres(const ConstraintSystem& system, const MotionState& s) {
+  if (!system.linkage || !system.linkage->frames.closed_form || s.status != Status::ok) return std::nullopt;
+  const Linkage& linkage = *system.linkage;
+  const LinkageFrames& frames = linkage.frames;
+  const std::vector<int> signs = signs_nearest(frames, s.input, s.q.data(), system.length_scale);
+  std::vector<BodyPose> poses;
+  if (place_dyads(frames, s.input, poses, &signs) < frames.dyads.size()) return std::nullopt;
+  const std::size_t n = frames.bodies.size();
+
+  InstantCentres result;
+  result.driver = frames.driver_body;
+  bool zero_named = false;
+  for (const Link& link : linkage.links) zero_named = zero_named || link.name == "0";
+  result.bodies.push_back(zero_named ? "g" : "0");
+  for (std::size_t b = 1; b < n; ++b) result.bodies.push_back(linkage.links[b - 1].name);
+  const std::function<double(std::size_t)> omega = [&](std::size_t b) -> double {
+    const LinkageFrames::Body& body = frames.bodies[b];
+    if (b == 0) return 0.0;
+    if (body.unknown >= 0) return s.qd[body.unknown];
+    if (body.guide >= 0) return omega(static_cast<std::size_t>(body.guide));
+    return b == frames.driver_body && frames.driver_slider < 0 ? s.input_rate : 0.0;
+  };
+  for (std::size_t b = 0; b < n; ++b) result.angular_velocities.push_back(omega(b));
+
+  const auto world = [&](std::size_t b, Complex local) {
+    return b == 0 ? local : poses[b].origin + local * std::polar(1.0, poses[b].angle);
+  };
+  const auto add = [&](std::size_t a, std::size_t b, bool infinite, Complex at, const std::string& how) {
+    if (a > b) std::swap(a, b);
+    if (a == b || result.find(a, b)) return;
+    result.centres.push_back({a, b, infinite, at, how});
+  };
+  // Primary centres: pins, then sliders (at infinity across the line).
+  for (const LinkageFrames::Pin& pin : frames.pins) {
+    Complex at = 0;
+    for (const auto& [joint, local] : frames.bodies[pin.a].points)
+      if (joint == pin.joint) at = world(pin.a, local);
+    add(pin.a, pin.b, false, at, "pin " + linkage.joints[pin.joint].name);
+  }
+  for (const LinkageFrames::Slider& slider : frames.sliders) {
+    const double line = (slider.guide == 0 ? 0.0 : poses[slider.guide].angle) + slider.direction;
+    add(slider.block, slider.guide, true, std::polar(1.0, line + M_PI / 2), "slider " + linkage.joints[slider.joint].name);
+  }
+  // Kennedy: I_ac on the line I_ab I_bc and on the line I_ad I_dc; of all such pairs of
+  // lines the one that crosses most squarely.
+  for (bool found = true; found;) {
+    found = false;
+    for (std::size_t a = 0; a < n; ++a) {
+      for (std::size_t c = a + 1; c < n; ++c) {
+        if (result.find(a, c)) continue;
+        std::vector<std::pair<Line, std::size_t>> lines;
+        for (std::size_t b = 0; b < n; ++b) {
+          if (b == a || b == c) continue;
+          const InstantCentre *ab = result.find(a, b), *bc = result.find(b, c);
+          if (!ab || !bc) continue;
+          if (const auto l = line_through(*ab, *bc, system.length_scale)) lines.push_back({*l, b});
+        }
+        double best = 0;
+        std::optional<InstantCentre> chosen;
+        for (std::size_t i = 0; i < lines.size(); ++i) {
+          for (std::size_t j = i + 1; j < lines.size(); ++j) {
+            const Line &p = lines[i].first, &q = lines[j].first;
+            const double sine = std::fabs(cross(p.along, q.along));
+            const std::string how = centre_name(result.bodies, std::min(a, lines[i].second), std::max(a, lines[i].second)) +
+                                    " " + centre_name(result.bodies, std::min(lines[i].second, c), std::max(lines[i].second, c)) +
+                                    ", " + centre_name(result.bodies, std::min(a, lines[j].second), std::max(a, lines[j].second)) +
+                                    " " + centre_name(result.bodies, std::min(lines[j].second, c), std::max(lines[j].second, c));
+            if (sine <= 1e-9) {  // parallel lines: a centre at infinity, unless they are one line
+              if (std::fabs(cross(q.through - p.through, p.along)) > 1e-9 * system.length_scale && !chosen)
+                chosen = InstantCentre{a, c, true, p.along, how};
+              continue;
+            }
+            if (sine <= best) continue;
+            best = sine;
+            const double t = cross(q.through - p.through, q.along) / cross(p.along, q.along);
+            chosen = InstantCentre{a, c, false, p.through + t * p.along, how};
+          }
+        }
+        if (chosen) {
+          result.centres.push_back(*chosen);
+          found = true;
+        }
+      }
+    }
+  }
+  for (std::size_t a = 0; a < n; ++a)
+    for (std::size_t b = a + 1; b < n; ++b)
+      if (!result.find(a, b)) result.not_found.push_back({a, b});
+  std::sort(result.centres.begin(), result.centres.end(),
+            [](const InstantCentre& p, const InstantCentre& q) { return std::pair(p.a, p.b) < std::pair(q.a, q.b); });
+  // omega_j / omega_d = (I_dj - I_0d) / (I_dj - I_0j), from three centres on one line.
+  const double driver_omega = result.angular_velocities[result.driver];
+  const InstantCentre* ground_driver = result.find(0, result.driver);
+  if (std::fabs(driver_omega) > 0 && ground_driver && !ground_driver->at_infinity) {
+    for (std::size_t j = 1; j < n; ++j) {
+      if (j == result.driver) continue;
+      const InstantCentre *dj = result.find(result.driver, j), *ground_j = result.find(0, j);
+      if (!dj || !ground_j || dj->at_infinity) continue;
+      if (!ground_j->at_infinity && std::abs(dj->at - ground_j->at) <= 1e-9 * system.length_scale) continue;
+      // A body whose centre with ground is at infinity translates: omega_j = 0.
+      const double ratio = ground_j->at_infinity ? 0.0
+                                                 : std::real((dj->at - ground_driver->at) / (dj->at - ground_j->at));
+      result.ratios.push_back({j, ratio, result.angular_velocities[j] / driver_omega});
+    }
+  }
+  return result;
+}
+
+}  // namespace kinema

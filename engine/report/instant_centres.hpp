@@ -1,0 +1,48 @@
+// Instant centres of a planar joints-and-links mechanism at one solved position, found
+// as a course does: the primary ones at the joints (a pin's centre; a slider's at
+// infinity, across its line), every other by the Aronhold-Kennedy theorem (the three
+// centres of three bodies lie on one line), each as the meeting point of two such
+// lines. The angular-velocity ratios they give are set beside the analytic ones.
+#pragma once
+
+#include <complex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <kinema/engine/constraint_system.hpp>
+#include <kinema/engine/numeric/motion_table.hpp>
+
+namespace kinema {
+
+struct InstantCentre {
+  std::size_t a = 0, b = 0;  ///< Bodies (0 = ground), a < b.
+  bool at_infinity = false;
+  std::complex<double> at;   ///< SI position, or the unit direction it lies in when at infinity.
+  /// "pin B", "slider B2", or the two Kennedy lines it is on: "I02 I23, I04 I34".
+  std::string found_by;
+};
+
+/// omega_j / omega_driver from the centres (I_0d, I_dj, I_0j on one line:
+/// omega_j / omega_d = (I_dj - I_0d) / (I_dj - I_0j)) and from the solution.
+struct VelocityRatio {
+  std::size_t body = 0;
+  double from_centres = 0, analytic = 0;
+};
+
+struct InstantCentres {
+  std::vector<std::string> bodies;  ///< Names: ground first ("0" or "ground"), then the links.
+  std::vector<double> angular_velocities;  ///< rad/s, per body.
+  std::vector<InstantCentre> centres;  ///< Every pair that was found.
+  std::vector<std::pair<std::size_t, std::size_t>> not_found;  ///< Pairs no two Kennedy lines fix.
+  std::size_t driver = 0;
+  std::vector<VelocityRatio> ratios;
+  /// The centre of bodies a and b, if found.
+  const InstantCentre* find(std::size_t a, std::size_t b) const;
+};
+
+/// The instant centres of a joints-and-links mechanism placed in closed form at a state
+/// that is ok; nullopt for other systems (vector loops, spatial chains) and states.
+std::optional<InstantCentres> instant_centres(const ConstraintSystem& system, const MotionState& state);
+
+}  // namespace kinema
