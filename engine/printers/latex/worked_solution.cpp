@@ -11,12 +11,14 @@
 #include <kinema/engine/printers/latex/method_latex.hpp>
 #include <kinema/engine/printers/latex/pgfplots.hpp>
 #include <kinema/engine/printers/latex/tikz_chain.hpp>
+#include <kinema/engine/printers/latex/tikz_instant_centres.hpp>
 #include <kinema/engine/printers/latex/tikz_mechanism.hpp>
 #include <kinema/engine/printers/latex/tikz_polygons.hpp>
 #include <kinema/engine/printers/printer.hpp>
 #include <kinema/engine/report/design_figures.hpp>
 #include <kinema/engine/report/diagnostics.hpp>
 #include <kinema/engine/report/geometry.hpp>
+#include <kinema/engine/report/instant_centres.hpp>
 #include <kinema/engine/report/output_scale.hpp>
 #include <kinema/engine/report/polygons.hpp>
 #include <kinema/engine/symbolic/expression_parts.hpp>
@@ -276,6 +278,10 @@ class DocumentWriter {
       out_ << "\n\n";
       write_tikz_polygon(out_, system_, textbook_, polygons->first);
       write_tikz_polygon(out_, system_, textbook_, polygons->second);
+    }
+    if (const auto centres = instant_centres(system_, s)) {
+      out_ << "\\subsubsection*{Instant centres}\n";
+      write_tikz_instant_centres(out_, system_, s, *centres);
     }
   }
 

@@ -1,0 +1,125 @@
+#include <kinema/engine/printers/latex/tikz_instant_centres.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <string>
+
+#include <kinema/engine/printers/latex/latex_format.hpp>
+#include <kinema/engine/report/geometry.hpp>
+#include <kinema/engine/report/number_format.hpp>
+#include <kinema/engine/report/output_scale.hpp>
+
+namespace kinema {
+
+namespace {
+
+std::string centre_latex(const InstantCentres& c, const InstantCentre& centre) {
+  return "I_{" + latex_escape_text(c.bodies[centre.a]) + latex_escape_text(c.bodies[centre.b]) + "}";
+}
+
+}  // namespace
+
+void write_tikz_instant_centres(std::ostream& out, const ConstraintSystem& system, const MotionState& s,
+                                const InstantCentres& c) {
+  const OutputScale scale(system);
+  const std::optional<LinkageDrawing> drawing = linkage_drawing(system, s);
+  if (!drawing) return;
+  // The mechanism's extent; centres within twice its size around it are drawn.
+  double min_x = 1e300, max_x = -1e300, min_y = 1e300, max_y = -1e300;
+  const auto grow = [&](std::complex<double> p) {
+    min_x = std::min(min_x, p.real());
+    max_x = std::max(max_x, p.real());
+    min_y = std::min(min_y, p.imag());
+    max_y = std::max(max_y, p.imag());
+  };
+  for (const auto& link : drawing->links)
+    for (const auto& joint : link.joints) grow(joint.at);
+  for (const auto& pivot : drawing->ground_pivots) grow(pivot.at);
+  const double size = std::max({max_x - min_x, max_y - min_y, 1e-9});
+  const std::complex<double> middle((min_x + max_x) / 2, (min_y + max_y) / 2);
+  const auto on_figure = [&](const InstantCentre& centre) {
+    return !centre.at_infinity && std::abs(centre.at.real() - middle.real()) <= 1.5 * size &&
+           std::abs(centre.at.imag() - middle.imag()) <= 1.5 * size;
+  };
+  for (const InstantCentre& centre : c.centres)
+    if (on_figure(centre)) grow(centre.at);
+  const double cm = 11.0 / std::max({max_x - min_x, max_y - min_y, 1e-9});  // figure units per metre
+  const auto xy = [&](std::complex<double> p) {
+    return "(" + format_fixed(p.real() * cm, 3) + "," + format_fixed(p.imag() * cm, 3) + ")";
+  };
+  out << "\\begin{center}\n\\begin{tikzpicture}[line cap=round, >=latex]\n";
+  // The Kennedy lines: each secondary centre on two lines of known centres.
+  for (const InstantCentre& centre : c.centres) {
+    if (!on_figure(centre) || centre.found_by.rfind("pin", 0) == 0 || centre.found_by.rfind("slider", 0) == 0) continue;
+    for (const InstantCentre& other : c.centres) {
+      if (&other == &centre || other.at_infinity || !on_figure(other)) continue;
+      // Lines through this centre and the centres that fixed it (named in found_by).
+      const std::string name = "I" + c.bodies[other.a] + c.bodies[other.b];
+      const auto at = centre.found_by.find(name);
+      if (at == std::string::npos) continue;
+      const char next = at + name.size() < centre.found_by.size() ? centre.found_by[at + name.size()] : ',';
+      if (next != ' ' && next != ',') continue;
+      out << "\\draw[gray!60, dashed] " << xy(other.at) << " -- " << xy(centre.at) << ";\n";
+    }
+  }
+  for (const auto& link : drawing->links) {
+    std::string path;
+    for (const auto& joint : link.joints) path += (path.empty() ? "" : " -- ") + xy(joint.at);
+    if (link.block) {
+      out << "\\draw[thick, fill=white, rotate around={" << format_fixed(to_degrees(link.angle)) << ":"
+          << xy(link.joints.front().at) << "}] " << xy(link.joints.front().at) << " ++(-0.3,-0.15) rectangle ++(0.6,0.3);\n";
+    } else {
+      out << "\\draw[very thick, blue!70!black] " << path << (link.joints.size() >= 3 ? " -- cycle" : "") << ";\n";
+    }
+  }
+  for (const auto& pivot : drawing->ground_pivots)
+    out << "\\draw " << xy(pivot.at) << " -- ++(-0.15,-0.25) -- ++(0.3,0) -- cycle;\n";
+  for (const InstantCentre& centre : c.centres) {
+    if (centre.at_infinity) {  // an arrow from the middle towards it
+      const std::complex<double> tip = middle + centre.at * (0.6 * size);
+      out << "\\draw[->, red!75!black] " << xy(middle + centre.at * (0.45 * size)) << " -- " << xy(tip)
+          << " node[right, font=\\scriptsize, red!75!black] {$" << centre_latex(c, centre) << "\\to\\infty$};\n";
+      continue;
+    }
+    if (!on_figure(centre)) continue;
+    out << "\\filldraw[red!75!black, fill=white] " << xy(centre.at) << " circle (0.07) node[above right, font=\\scriptsize] {$"
+        << centre_latex(c, centre) << "$};\n";
+  }
+  out << "\\end{tikzpicture}\n\\end{center}\n";
+  out << "Instant centres: the primary ones at the pins and, for a slider, at infinity across its line; every "
+         "other by the Aronhold--Kennedy theorem, where two lines of centres it shares a body with cross "
+         "(dashed). Drawing scale 1\\,cm = $"
+      << latex_number(1.0 / cm / scale.length, 3) << "\\,\\mathrm{" << scale.length_unit << "}$.\n\n";
+  const std::string l = scale.length_unit;
+  out << "\\begin{tabular}{lrrl}\n\\toprule\ncentre & $x$ & $y$ & found by \\\\\n & $\\mathrm{" << l << "}$ & $\\mathrm{"
+      << l << "}$ & \\\\\n\\midrule\n";
+  for (const InstantCentre& centre : c.centres) {
+    out << "$" << centre_latex(c, centre) << "$ & ";
+    if (centre.at_infinity) {
+      out << "\\multicolumn{2}{c}{at infinity, $" << latex_number(to_degrees(std::arg(centre.at)), 4) << "^{\\circ}$}";
+    } else {
+      // A coordinate that is rounding noise next to the mechanism's size prints as 0.
+      const auto shown = [&](double v) { return std::fabs(v) <= 1e-12 * size ? 0.0 : v / scale.length; };
+      out << "$" << latex_number(shown(centre.at.real()), 5) << "$ & $" << latex_number(shown(centre.at.imag()), 5) << "$";
+    }
+    std::string how = centre.found_by;
+    // "I02 I23, I04 I34" -> $I_{02} I_{23}$, ... as text; pins and sliders name their joint.
+    if (how.rfind("pin", 0) != 0 && how.rfind("slider", 0) != 0) how = "Kennedy: lines " + how;
+    out << " & " << latex_escape_text(how) << " \\\\\n";
+  }
+  out << "\\bottomrule\n\\end{tabular}\n\n";
+  if (c.ratios.empty()) return;
+  const std::string driver = latex_escape_text(c.bodies[c.driver]);
+  out << "\\begin{tabular}{lrr}\n\\toprule\nratio & from the centres & solved \\\\\n\\midrule\n";
+  for (const VelocityRatio& r : c.ratios) {
+    const std::string j = latex_escape_text(c.bodies[r.body]);
+    const std::string ground = latex_escape_text(c.bodies[0]);
+    out << "$\\omega_{" << j << "}/\\omega_{" << driver << "} = \\overline{I_{" << ground << driver << "}I_{" << driver << j
+        << "}}/\\overline{I_{" << ground << j << "}I_{" << driver << j << "}}$ & $" << latex_number(r.from_centres, 6) << "$ & $"
+        << latex_number(r.analytic, 6) << "$ \\\\\n";
+  }
+  out << "\\bottomrule\n\\end{tabular}\n\n";
+}
+
+}  // namespace kinema
