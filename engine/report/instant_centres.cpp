@@ -139,11 +139,13 @@ std::optional<InstantCentres> instant_centres(const ConstraintSystem& system, co
     for (std::size_t j = 1; j < n; ++j) {
       if (j == result.driver) continue;
       const InstantCentre *dj = result.find(result.driver, j), *ground_j = result.find(0, j);
-      if (!dj || !ground_j || dj->at_infinity) continue;
-      if (!ground_j->at_infinity && std::abs(dj->at - ground_j->at) <= 1e-9 * system.length_scale) continue;
-      // A body whose centre with ground is at infinity translates: omega_j = 0.
-      const double ratio = ground_j->at_infinity ? 0.0
-                                                 : std::real((dj->at - ground_driver->at) / (dj->at - ground_j->at));
+      if (!dj || !ground_j) continue;
+      if (!dj->at_infinity && !ground_j->at_infinity && std::abs(dj->at - ground_j->at) <= 1e-9 * system.length_scale)
+        continue;
+      // A centre with the driver at infinity: they turn alike; with ground: j translates.
+      const double ratio = dj->at_infinity         ? 1.0
+                           : ground_j->at_infinity ? 0.0
+                                                   : std::real((dj->at - ground_driver->at) / (dj->at - ground_j->at));
       result.ratios.push_back({j, ratio, result.angular_velocities[j] / driver_omega});
     }
   }

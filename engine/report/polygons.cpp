@@ -88,6 +88,7 @@ PolygonBuilder::PolygonBuilder(const ConstraintSystem& system) : system_(&system
                2 * GiNaC::I * angle_rate * length_rate * direction, length_second_rate * direction};
       formulas.formulas = {angle_rate * length,     length_rate,          angle_rate * angle_rate * length,
                            angle_second_rate * length, 2 * angle_rate * length_rate, length_second_rate};
+      formulas.turning = angle_rate;
     } else {  // a vector of fixed direction (x + I*e, I*r6) or of no link form: its derivatives whole
       const ex velocity = time_derivative(system, term);
       parts = {0, velocity, 0, 0, 0, time_derivative(system, velocity)};
@@ -218,10 +219,15 @@ std::optional<std::pair<Polygon, Polygon>> PolygonBuilder::polygons(const Motion
       if (v.name == name) return;
     polygon.vertices.push_back({name, at});
   };
+  // Zero arrows are left out, except a link's turning: v_CB = 0 says the link does not turn.
   const auto add_arrow = [&](Polygon& polygon, PolygonArrow arrow, double tolerance) {
-    if (arrow.length() <= tolerance) return;
+    if (arrow.length() <= tolerance && arrow.turning.is_zero()) return;
+    // The same arrow twice is kept once, unless it is another link's turning (v_B = v_C
+    // when the coupler translates: both are read off).
     for (const PolygonArrow& a : polygon.arrows)
-      if (std::abs(a.from - arrow.from) <= tolerance && std::abs(a.to - arrow.to) <= tolerance) return;
+      if (std::abs(a.from - arrow.from) <= tolerance && std::abs(a.to - arrow.to) <= tolerance &&
+          (arrow.turning.is_zero() || a.turning.is_equal(arrow.turning)))
+        return;
     polygon.arrows.push_back(arrow);
   };
   // name_of(kind letter, superscript, point, relative-to): "v_BA", a^{n}_{BA}.
@@ -236,6 +242,12 @@ std::optional<std::pair<Polygon, Polygon>> PolygonBuilder::polygons(const Motion
     a.to = to;
     a.formula = f;
     a.formula_value = std::fabs(value);
+    return a;
+  };
+  // A link's turning: its rate and its vector as drawn (reversed with the arrow).
+  const auto turning = [&](PolygonArrow a, std::size_t vector, double sign) {
+    a.turning = parts_[vector].turning;
+    a.link = sign * position(vector);
     return a;
   };
   for (const Image& image : images) {
@@ -265,8 +277,9 @@ std::optional<std::pair<Polygon, Polygon>> PolygonBuilder::polygons(const Motion
       add_vertex(velocity_polygon, line, v_line);
       add_vertex(acceleration_polygon, line, a_line);
       add_arrow(velocity_polygon,
-                arrow(base_image.fixed ? Kind::absolute : Kind::relative, "v", "", line, base, base_image.velocity,
-                      v_line, f[rotation], formula(v, rotation)),
+                turning(arrow(base_image.fixed ? Kind::absolute : Kind::relative, "v", "", line, base,
+                              base_image.velocity, v_line, f[rotation], formula(v, rotation)),
+                        v, sign),
                 velocity_tolerance);
       add_arrow(velocity_polygon,
                 arrow(Kind::sliding, "v", "", point, line, v_line, point_image.velocity, f[sliding], formula(v, sliding)),
@@ -290,10 +303,9 @@ std::optional<std::pair<Polygon, Polygon>> PolygonBuilder::polygons(const Motion
     const Kind kind = start.fixed || end.fixed ? Kind::absolute : turns ? Kind::relative : Kind::sliding;
     const int velocity_part = turns ? rotation : sliding;
     const Complex v_from = reverse ? end.velocity : start.velocity;
-    add_arrow(velocity_polygon,
-              arrow(kind, "v", "", point, base, v_from, v_from + sign * part(v, velocity_part), f[velocity_part],
-                    formula(v, velocity_part)),
-              velocity_tolerance);
+    PolygonArrow velocity_arrow = arrow(kind, "v", "", point, base, v_from, v_from + sign * part(v, velocity_part),
+                                        f[velocity_part], formula(v, velocity_part));
+    add_arrow(velocity_polygon, turns ? turning(velocity_arrow, v, sign) : velocity_arrow, velocity_tolerance);
     Complex a = reverse ? end.acceleration : start.acceleration;
     if (turns) {
       for (const auto& [p, k, sup] : {std::tuple{normal, Kind::normal, "n"}, std::tuple{tangential, Kind::tangential, "t"}}) {

@@ -30,6 +30,10 @@ struct PolygonArrow {
   /// absolute arrow) and that formula's value from the coordinates and rates.
   GiNaC::ex formula = 0;
   double formula_value = 0;
+  /// For a link's turning (relative or absolute velocity across a link): the angle's rate
+  /// (omega3) and the link vector as drawn, so that to - from = i omega link.
+  GiNaC::ex turning = 0;
+  std::complex<double> link;
   double length() const { return std::abs(to - from); }
 };
 
@@ -63,6 +67,7 @@ class PolygonBuilder {
   /// acceleration (normal, tangential, Coriolis, relative); their lengths' formulas.
   struct LinkVectorParts {
     std::array<GiNaC::ex, 6> formulas;
+    GiNaC::ex turning = 0;  ///< The angle's rate (polar vectors).
   };
   struct Chain {
     std::string point;  ///< The named point at its end (points' chains), or empty (a loop).

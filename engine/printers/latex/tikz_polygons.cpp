@@ -68,31 +68,46 @@ double drawing_scale(double extent, double centimetres) {
   return 10 * decade;
 }
 
+double polygon_units_per_cm(const Polygon& polygon, double metres_per_length_unit) {
+  // Extent of the figure in output units, pole included.
+  double min_x = 0, max_x = 0, min_y = 0, max_y = 0;
+  for (const PolygonVertex& v : polygon.vertices) {
+    const std::complex<double> p = v.at / metres_per_length_unit;
+    min_x = std::min(min_x, p.real());
+    max_x = std::max(max_x, p.real());
+    min_y = std::min(min_y, p.imag());
+    max_y = std::max(max_y, p.imag());
+  }
+  return drawing_scale(std::max(max_x - min_x, max_y - min_y), 7.0);
+}
+
+double polygon_read_off(const PolygonArrow& arrow, double units_per_cm, double metres_per_length_unit) {
+  return std::round(arrow.length() / metres_per_length_unit / units_per_cm * 100) / 100 * units_per_cm;
+}
+
 void write_tikz_polygon(std::ostream& out, const ConstraintSystem& system, const TextbookForm& form,
                         const Polygon& polygon) {
   const OutputScale scale(system);
   const bool velocity = polygon.order == 1;
   const std::string unit = "\\mathrm{" + scale.length_unit + (velocity ? "/s}" : "/s^{2}}");  // math mode
-  // Extent of the figure in output units, pole included.
-  double min_x = 0, max_x = 0, min_y = 0, max_y = 0;
   std::complex<double> centre = 0;
-  for (const PolygonVertex& v : polygon.vertices) {
-    const std::complex<double> p = v.at / scale.length;
-    min_x = std::min(min_x, p.real());
-    max_x = std::max(max_x, p.real());
-    min_y = std::min(min_y, p.imag());
-    max_y = std::max(max_y, p.imag());
-    centre += p;
-  }
+  for (const PolygonVertex& v : polygon.vertices) centre += v.at / scale.length;
   if (!polygon.vertices.empty()) centre /= static_cast<double>(polygon.vertices.size());
-  const double per_cm = drawing_scale(std::max(max_x - min_x, max_y - min_y), 7.0);  // output units per cm
+  const double per_cm = polygon_units_per_cm(polygon, scale.length);
   const auto xy = [&](std::complex<double> si) {
     const std::complex<double> p = si / scale.length / per_cm;
     return "(" + format_fixed(p.real(), 3) + "," + format_fixed(p.imag(), 3) + ")";
   };
   out << "\\begin{center}\n\\begin{tikzpicture}[line cap=round, >=latex]\n";
-  for (const PolygonArrow& a : polygon.arrows) {
+  for (std::size_t k = 0; k < polygon.arrows.size(); ++k) {
+    const PolygonArrow& a = polygon.arrows[k];
     const double cm = a.length() / scale.length / per_cm;
+    if (cm < 0.005) continue;  // a link that does not turn: in the table only
+    bool drawn = false;  // one arrow for two names (v_B = v_C): the first name on the figure
+    for (std::size_t j = 0; j < k; ++j)
+      drawn = drawn || (std::abs(polygon.arrows[j].from - a.from) + std::abs(polygon.arrows[j].to - a.to) <=
+                        1e-9 * std::max(a.length(), 1e-300));
+    if (drawn) continue;
     out << "\\draw[->, " << style(a.kind) << "] " << xy(a.from) << " -- " << xy(a.to);
     // Short arrows keep their names in the table only.
     if (cm >= 0.6) out << " node[midway, fill=white, inner sep=1pt, font=\\scriptsize] {$" << a.latex << "$}";
@@ -112,9 +127,9 @@ void write_tikz_polygon(std::ostream& out, const ConstraintSystem& system, const
       << " & kind & on the figure & read off & formula \\\\\n & & $\\mathrm{cm}$ & $" << unit << "$ & $" << unit
       << "$ \\\\\n\\midrule\n";
   for (const PolygonArrow& a : polygon.arrows) {
-    const double cm = std::round(a.length() / scale.length / per_cm * 100) / 100;
-    out << "$" << a.latex << "$ & " << kind_name(a.kind) << " & $" << format_fixed(cm, 2) << "$ & $"
-        << latex_number(cm * per_cm, 4) << "$ & $";
+    const double read_off = polygon_read_off(a, per_cm, scale.length);
+    out << "$" << a.latex << "$ & " << kind_name(a.kind) << " & $" << format_fixed(read_off / per_cm, 2) << "$ & $"
+        << latex_number(read_off, 4) << "$ & $";
     if (!a.formula.is_zero()) out << form(a.formula, TextbookForm::Style::latex) << " = ";
     out << latex_number(a.formula_value / scale.length, 6) << "$ \\\\\n";
   }

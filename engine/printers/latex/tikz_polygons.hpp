@@ -15,6 +15,12 @@ namespace kinema {
 /// units per centimetre that fits `extent` units into `centimetres`.
 double drawing_scale(double extent, double centimetres);
 
+/// The polygon's drawing scale: output units (length unit/s or /s^2) per centimetre.
+double polygon_units_per_cm(const Polygon& polygon, double metres_per_length_unit);
+
+/// An arrow's length as read off its figure: to 0.01 cm, times the scale (output units).
+double polygon_read_off(const PolygonArrow& arrow, double units_per_cm, double metres_per_length_unit);
+
 void write_tikz_polygon(std::ostream& out, const ConstraintSystem& system, const TextbookForm& form,
                         const Polygon& polygon);
 

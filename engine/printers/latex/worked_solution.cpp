@@ -10,6 +10,7 @@
 #include <kinema/engine/printers/latex/latex_format.hpp>
 #include <kinema/engine/printers/latex/method_latex.hpp>
 #include <kinema/engine/printers/latex/pgfplots.hpp>
+#include <kinema/engine/printers/latex/three_methods.hpp>
 #include <kinema/engine/printers/latex/tikz_chain.hpp>
 #include <kinema/engine/printers/latex/tikz_instant_centres.hpp>
 #include <kinema/engine/printers/latex/tikz_mechanism.hpp>
@@ -264,7 +265,8 @@ class DocumentWriter {
     if (s.status == Status::ok && system_.linkage) linkage_table(s);
     if (s.status == Status::ok) substitution(s);
     write_tikz_mechanism(out_, system_, geometry_, s);
-    if (const auto polygons = polygons_.polygons(s)) {
+    const auto polygons = polygons_.polygons(s);
+    if (polygons) {
       out_ << "\\subsubsection*{Velocity and acceleration polygons}\nEach link vector's velocity, chained from the "
               "pole $o$ in the order the loops and points are written: a turning link's relative velocity "
               "$\\omega r$ across it, a sliding point's velocity along its line; accelerations in the parts "
@@ -282,6 +284,7 @@ class DocumentWriter {
     if (const auto centres = instant_centres(system_, s)) {
       out_ << "\\subsubsection*{Instant centres}\n";
       write_tikz_instant_centres(out_, system_, s, *centres);
+      if (polygons) write_three_methods(out_, system_, three_methods(system_, s, polygons->first, *centres), *centres);
     }
   }
 

@@ -10,8 +10,11 @@
 #include <string>
 
 #include <kinema/engine/printers/latex/latex_format.hpp>
+#include <kinema/engine/printers/latex/three_methods.hpp>
+#include <kinema/engine/printers/latex/tikz_polygons.hpp>
 #include <kinema/engine/printers/printer.hpp>
 #include <kinema/engine/report/diagnostics.hpp>
+#include <kinema/engine/report/instant_centres.hpp>
 #include <kinema/engine/report/output_scale.hpp>
 #include <kinema/engine/report/plot_range.hpp>
 #include <kinema/engine/report/polygons.hpp>
@@ -290,4 +293,45 @@ TEST_CASE("engine/printers/worked_solution: polygons drawn to scale read off the
     }
     CHECK(figures >= 2);
   }
+}
+
+TEST_CASE("engine/printers/worked_solution: three methods, one answer for every joints-and-links sample") {
+  int samples = 0;
+  for (const char* name : kinema_test::kSamples) {
+    const kinema::Model model = kinema::load_model(kinema_test::sample(name));
+    if (!model.system.linkage) continue;
+    CAPTURE(std::string(name));
+    ++samples;
+    const std::vector<double> inputs =
+        model.system.input.values.empty() ? std::vector<double>{0.3} : model.system.input.values;
+    const MotionTable values = kinema::analyse(model, inputs);
+    const kinema::PolygonBuilder builder(model.system);
+    const kinema::OutputScale scale(model.system);
+    const std::string tex = document(model, &values, nullptr, true);
+    CHECK(has(tex, "\\subsubsection*{Instant centres}"));
+    CHECK(has(tex, "\\subsubsection*{Three methods, one answer}"));
+    for (const kinema::MotionState& s : values) {
+      const auto polygons = builder.polygons(s);
+      const auto centres = kinema::instant_centres(model.system, s);
+      REQUIRE(polygons);
+      REQUIRE(centres);
+      const auto rows = kinema::three_methods(model.system, s, polygons->first, *centres);
+      REQUIRE(!rows.empty());
+      const double per_cm = kinema::polygon_units_per_cm(polygons->first, scale.length);
+      for (const kinema::ThreeMethodsRow& row : rows) {
+        CAPTURE(centres->bodies[row.body]);
+        REQUIRE(row.from_centres);
+        CHECK(*row.from_centres == doctest::Approx(row.solved).epsilon(1e-7).scale(1));
+        REQUIRE(row.from_polygon);
+        // Read off to 0.01 cm: within half of that, over the link's length.
+        CHECK(std::fabs(*row.from_polygon - row.solved) <= 0.005 * per_cm / row.lever * (1 + 1e-9));
+      }
+    }
+  }
+  CHECK(samples >= 6);
+  // A vector-loop file has no bodies to number: polygons, no centres.
+  const kinema::Model loops = kinema::load_model(kinema_test::sample("four_bar.toml"));
+  const MotionTable one = kinema::analyse(loops, {40 * kDeg});
+  const std::string tex = document(loops, &one, nullptr, true);
+  CHECK(has(tex, "\\subsubsection*{Velocity and acceleration polygons}"));
 }

@@ -84,6 +84,17 @@ TEST_CASE("polygons: every named point's image is its velocity and acceleration,
           CHECK(absolute->length() == doctest::Approx(std::abs(v)).epsilon(1e-9));
         }
       }
+      // A link's turning: across the link, omega from the rates of the solution.
+      GiNaC::exmap rates{{model.system.input.rate, s.input_rate}};
+      for (std::size_t j = 0; j < model.system.unknowns.size(); ++j) rates[model.system.unknowns[j].rate] = s.qd[j];
+      for (const PolygonArrow& arrow : velocity.arrows) {
+        if (arrow.turning.is_zero()) continue;
+        INFO(arrow.name);
+        const double omega = GiNaC::ex_to<GiNaC::numeric>(arrow.turning.subs(rates).evalf()).to_double();
+        const std::complex<double> ratio = (arrow.to - arrow.from) / arrow.link;  // i omega
+        CHECK(std::fabs(ratio.real()) <= 1e-9 * std::fabs(omega) + 1e-12);
+        CHECK(ratio.imag() == doctest::Approx(omega).epsilon(1e-9));
+      }
       // Every arrow: its formula gives its length.
       for (const auto* polygon : {&velocity, &acceleration})
         for (const PolygonArrow& arrow : polygon->arrows) {
