@@ -4,6 +4,8 @@
 #include <cmath>
 #include <functional>
 
+#include <kinema/engine/symbolic/derivation.hpp>
+#include <kinema/engine/symbolic/expression_parts.hpp>
 #include <kinema/loops/dyad_positions.hpp>
 
 namespace kinema {
@@ -33,6 +35,109 @@ std::string centre_name(const std::vector<std::string>& bodies, std::size_t a, s
   return "I" + bodies[a] + bodies[b];
 }
 
+// omega_j / omega_d = (I_dj - I_0d) / (I_dj - I_0j), from three centres on one line.
+void add_ratios(InstantCentres& result, double length_scale) {
+  const std::size_t n = result.bodies.size();
+  const double driver_omega = result.angular_velocities[result.driver];
+  const InstantCentre* ground_driver = result.find(0, result.driver);
+  if (std::fabs(driver_omega) > 0 && ground_driver && !ground_driver->at_infinity) {
+    for (std::size_t j = 1; j < n; ++j) {
+      if (j == result.driver) continue;
+      const InstantCentre *dj = result.find(result.driver, j), *ground_j = result.find(0, j);
+      if (!dj || !ground_j) continue;
+      if (!dj->at_infinity && !ground_j->at_infinity && std::abs(dj->at - ground_j->at) <= 1e-9 * length_scale)
+        continue;
+      // A centre with the driver at infinity: they turn alike; with ground: j translates.
+      const double ratio = dj->at_infinity         ? 1.0
+                           : ground_j->at_infinity ? 0.0
+                                                   : std::real((dj->at - ground_driver->at) / (dj->at - ground_j->at));
+      result.ratios.push_back({j, ratio, result.angular_velocities[j] / driver_omega});
+    }
+  }
+}
+
+// A vector-loop file names no links: a point whose formula ends in a link vector of fixed
+// length turning with an angle is on that link (README: "points that lie on a link term
+// belong to that link"). Each centre from two such points' velocities:
+// v_a(I) = v_b(I) with v(P) = v_A + i omega (P - A); where the two turn alike, at
+// infinity across their relative velocity.
+std::optional<InstantCentres> centres_from_points(const ConstraintSystem& system, const MotionState& s) {
+  GiNaC::exmap rates{{system.input.rate, s.input_rate}};
+  for (std::size_t j = 0; j < system.unknowns.size(); ++j) rates[system.unknowns[j].rate] = s.qd[j];
+  const auto moves = [&](const GiNaC::ex& e) {
+    if (e.has(system.input.symbol)) return true;
+    for (const Coordinate& q : system.unknowns)
+      if (e.has(q.symbol)) return true;
+    return false;
+  };
+  struct Body {
+    GiNaC::ex rate;
+    std::string name;
+    std::complex<double> point, velocity;
+    std::size_t order = 0;  ///< The driver, then the unknowns in file order.
+  };
+  std::vector<Body> bodies;
+  for (std::size_t p = 0; p < system.points.size(); ++p) {
+    const PointObservable& point = system.points[p];
+    if (point.written_terms.empty()) continue;
+    const LinkVector link = split_link_vector(point.written_terms.back());
+    if (!link.polar || moves(link.length) || !moves(link.angle)) continue;
+    const GiNaC::ex rate = time_derivative(system, link.angle);
+    bool known = false;
+    for (const Body& b : bodies) known = known || b.rate.is_equal(rate);
+    if (known) continue;
+    // The link's number: the digits its angle's name ends in (theta3 -> 3), else that name.
+    std::string name = GiNaC::is_a<GiNaC::symbol>(link.angle) ? GiNaC::ex_to<GiNaC::symbol>(link.angle).get_name() : "";
+    std::size_t order = system.unknowns.size() + 1;
+    for (std::size_t j = system.unknowns.size(); j-- > 0;)
+      if (link.angle.has(system.unknowns[j].symbol)) name = system.unknowns[j].name, order = j + 1;
+    if (link.angle.has(system.input.symbol)) name = system.input.name, order = 0;
+    const auto digits = name.find_last_not_of("0123456789");
+    if (digits != std::string::npos && digits + 1 < name.size()) name = name.substr(digits + 1);
+    const PointMotion& m = s.points[p];
+    bodies.push_back({rate, name, {m.position[0], m.position[1]}, {m.velocity[0], m.velocity[1]}, order});
+  }
+  if (bodies.empty()) return std::nullopt;
+  std::stable_sort(bodies.begin(), bodies.end(), [](const Body& a, const Body& b) { return a.order < b.order; });
+  InstantCentres result;
+  bool one_taken = false;
+  for (const Body& b : bodies) one_taken = one_taken || b.name == "1";
+  result.bodies.push_back(one_taken ? "0" : "1");
+  result.angular_velocities.push_back(0);
+  result.rates.push_back(0);
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    result.bodies.push_back(bodies[b].name);
+    result.rates.push_back(bodies[b].rate);
+    result.angular_velocities.push_back(GiNaC::ex_to<GiNaC::numeric>(bodies[b].rate.subs(rates).evalf()).to_double());
+    if (bodies[b].rate.is_equal(system.input.rate)) result.driver = b + 1;
+  }
+  const std::size_t n = result.bodies.size();
+  const auto point_of = [&](std::size_t b) { return b == 0 ? std::complex<double>() : bodies[b - 1].point; };
+  const auto velocity_of = [&](std::size_t b) { return b == 0 ? std::complex<double>() : bodies[b - 1].velocity; };
+  double fastest = 0;
+  for (const PointMotion& m : s.points) fastest = std::max(fastest, m.speed());
+  for (std::size_t a = 0; a < n; ++a) {
+    for (std::size_t b = a + 1; b < n; ++b) {
+      const double wa = result.angular_velocities[a], wb = result.angular_velocities[b];
+      const std::complex<double> A = point_of(a), B = point_of(b), I(0, 1);
+      const std::string how = "velocities of the points on " + result.bodies[a] + " and " + result.bodies[b];
+      if (std::fabs(wa - wb) <= 1e-12 * (std::fabs(wa) + std::fabs(wb))) {
+        const std::complex<double> relative = velocity_of(b) - velocity_of(a);  // uniform: they turn alike
+        if (std::abs(relative) <= 1e-12 * fastest) continue;  // moving as one: no centre
+        result.centres.push_back({a, b, true, I * relative / std::abs(relative), how});
+        continue;
+      }
+      const std::complex<double> at = (velocity_of(b) - velocity_of(a) + I * (wa * A - wb * B)) / (I * (wa - wb));
+      result.centres.push_back({a, b, false, at, how});
+    }
+  }
+  for (std::size_t a = 0; a < n; ++a)
+    for (std::size_t b = a + 1; b < n; ++b)
+      if (!result.find(a, b)) result.not_found.push_back({a, b});
+  if (result.driver != 0) add_ratios(result, system.length_scale);
+  return result;
+}
+
 }  // namespace
 
 const InstantCentre* InstantCentres::find(std::size_t a, std::size_t b) const {
@@ -43,7 +148,9 @@ const InstantCentre* InstantCentres::find(std::size_t a, std::size_t b) const {
 }
 
 std::optional<InstantCentres> instant_centres(const ConstraintSystem& system, const MotionState& s) {
-  if (!system.linkage || !system.linkage->frames.closed_form || s.status != Status::ok) return std::nullopt;
+  if (s.status != Status::ok || !system.frames.empty()) return std::nullopt;
+  if (!system.linkage) return centres_from_points(system, s);
+  if (!system.linkage->frames.closed_form) return std::nullopt;
   const Linkage& linkage = *system.linkage;
   const LinkageFrames& frames = linkage.frames;
   const std::vector<int> signs = signs_nearest(frames, s.input, s.q.data(), system.length_scale);
@@ -64,7 +171,13 @@ std::optional<InstantCentres> instant_centres(const ConstraintSystem& system, co
     if (body.guide >= 0) return omega(static_cast<std::size_t>(body.guide));
     return b == frames.driver_body && frames.driver_slider < 0 ? s.input_rate : 0.0;
   };
-  for (std::size_t b = 0; b < n; ++b) result.angular_velocities.push_back(omega(b));
+  for (std::size_t b = 0; b < n; ++b) {
+    result.angular_velocities.push_back(omega(b));
+    const LinkageFrames::Body& body = frames.bodies[b];
+    result.rates.push_back(body.unknown >= 0                                      ? GiNaC::ex(system.unknowns[body.unknown].rate)
+                           : b == frames.driver_body && frames.driver_slider < 0 ? GiNaC::ex(system.input.rate)
+                                                                                 : GiNaC::ex(0));
+  }
 
   const auto world = [&](std::size_t b, Complex local) {
     return b == 0 ? local : poses[b].origin + local * std::polar(1.0, poses[b].angle);
@@ -132,23 +245,7 @@ std::optional<InstantCentres> instant_centres(const ConstraintSystem& system, co
       if (!result.find(a, b)) result.not_found.push_back({a, b});
   std::sort(result.centres.begin(), result.centres.end(),
             [](const InstantCentre& p, const InstantCentre& q) { return std::pair(p.a, p.b) < std::pair(q.a, q.b); });
-  // omega_j / omega_d = (I_dj - I_0d) / (I_dj - I_0j), from three centres on one line.
-  const double driver_omega = result.angular_velocities[result.driver];
-  const InstantCentre* ground_driver = result.find(0, result.driver);
-  if (std::fabs(driver_omega) > 0 && ground_driver && !ground_driver->at_infinity) {
-    for (std::size_t j = 1; j < n; ++j) {
-      if (j == result.driver) continue;
-      const InstantCentre *dj = result.find(result.driver, j), *ground_j = result.find(0, j);
-      if (!dj || !ground_j) continue;
-      if (!dj->at_infinity && !ground_j->at_infinity && std::abs(dj->at - ground_j->at) <= 1e-9 * system.length_scale)
-        continue;
-      // A centre with the driver at infinity: they turn alike; with ground: j translates.
-      const double ratio = dj->at_infinity         ? 1.0
-                           : ground_j->at_infinity ? 0.0
-                                                   : std::real((dj->at - ground_driver->at) / (dj->at - ground_j->at));
-      result.ratios.push_back({j, ratio, result.angular_velocities[j] / driver_omega});
-    }
-  }
+  add_ratios(result, system.length_scale);
   return result;
 }
 

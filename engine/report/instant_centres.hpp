@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include <ginac/ginac.h>
+
 #include <kinema/engine/constraint_system.hpp>
 #include <kinema/engine/numeric/motion_table.hpp>
 
@@ -33,6 +35,8 @@ struct VelocityRatio {
 struct InstantCentres {
   std::vector<std::string> bodies;  ///< Names: ground first ("0" or "ground"), then the links.
   std::vector<double> angular_velocities;  ///< rad/s, per body.
+  /// The rate each body turns with (omega3), 0 for ground and for slider blocks.
+  std::vector<GiNaC::ex> rates;
   std::vector<InstantCentre> centres;  ///< Every pair that was found.
   std::vector<std::pair<std::size_t, std::size_t>> not_found;  ///< Pairs no two Kennedy lines fix.
   std::size_t driver = 0;

@@ -8,24 +8,15 @@
 
 namespace kinema {
 
-std::vector<ThreeMethodsRow> three_methods(const ConstraintSystem& system, const MotionState& s, const Polygon& velocity,
+std::vector<ThreeMethodsRow> three_methods(const ConstraintSystem& system, const Polygon& velocity,
                                            const InstantCentres& centres) {
   std::vector<ThreeMethodsRow> rows;
-  if (!system.linkage) return rows;
-  const LinkageFrames& frames = system.linkage->frames;
   const OutputScale scale(system);
   const double per_cm = polygon_units_per_cm(velocity, scale.length);
   const double driver_omega = centres.angular_velocities[centres.driver];
-  for (std::size_t b = 1; b < frames.bodies.size(); ++b) {
-    const LinkageFrames::Body& body = frames.bodies[b];
-    GiNaC::ex rate;
-    if (body.unknown >= 0) {
-      rate = system.unknowns[body.unknown].rate;
-    } else if (b == frames.driver_body && frames.driver_slider < 0) {
-      rate = system.input.rate;
-    } else {
-      continue;  // a slider block turns with its guide
-    }
+  for (std::size_t b = 1; b < centres.bodies.size(); ++b) {
+    const GiNaC::ex& rate = centres.rates[b];
+    if (rate.is_zero()) continue;  // a slider block turns with its guide
     ThreeMethodsRow row;
     row.body = b;
     row.solved = centres.angular_velocities[b];
@@ -40,7 +31,7 @@ std::vector<ThreeMethodsRow> three_methods(const ConstraintSystem& system, const
       row.lever = std::abs(best->link) / scale.length;
       row.from_polygon = std::copysign(row.read_off / row.lever, turning.imag());
     }
-    if (b == centres.driver) {
+    if (b == centres.driver && centres.driver != 0) {
       row.from_centres = driver_omega;
     } else {
       for (const VelocityRatio& r : centres.ratios)

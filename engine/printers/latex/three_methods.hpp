@@ -1,5 +1,4 @@
-// "Three methods, one answer": each turning link's angular velocity of a joints-and-links
-// mechanism as solved, as read off its velocity polygon (a relative velocity across the
+// "Three methods, one answer": each turning link's angular velocity as solved, as read off its velocity polygon (a relative velocity across the
 // link, measured on the figure, over the link's length) and from its instant centres
 // (the ratio to the driver's), side by side.
 #pragma once
@@ -26,10 +25,9 @@ struct ThreeMethodsRow {
   std::optional<double> from_centres;
 };
 
-/// A row per link that turns on its own (not ground, not a slider block); empty when the
-/// system is not a joints-and-links mechanism.
-std::vector<ThreeMethodsRow> three_methods(const ConstraintSystem& system, const MotionState& state,
-                                           const Polygon& velocity, const InstantCentres& centres);
+/// A row per link that turns on its own (not ground, not a slider block).
+std::vector<ThreeMethodsRow> three_methods(const ConstraintSystem& system, const Polygon& velocity,
+                                           const InstantCentres& centres);
 
 void write_three_methods(std::ostream& out, const ConstraintSystem& system, const std::vector<ThreeMethodsRow>& rows,
                          const InstantCentres& centres);

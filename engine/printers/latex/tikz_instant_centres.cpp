@@ -20,11 +20,19 @@ std::string centre_latex(const InstantCentres& c, const InstantCentre& centre) {
 
 }  // namespace
 
-void write_tikz_instant_centres(std::ostream& out, const ConstraintSystem& system, const MotionState& s,
-                                const InstantCentres& c) {
+void write_tikz_instant_centres(std::ostream& out, const ConstraintSystem& system, const MechanismGeometry& geometry,
+                                const MotionState& s, const InstantCentres& c) {
   const OutputScale scale(system);
-  const std::optional<LinkageDrawing> drawing = linkage_drawing(system, s);
-  if (!drawing) return;
+  // Joints and links as placed; a vector-loop file's link vectors as segments.
+  std::optional<LinkageDrawing> drawing = linkage_drawing(system, s);
+  if (!drawing) {
+    drawing.emplace();
+    for (const DrawingSegment& segment : geometry.segments(s)) {
+      if (segment.kind == DrawingSegment::Kind::ground) continue;
+      drawing->links.push_back({{{"", segment.from}, {"", segment.to}}, false, 0});
+    }
+    drawing->ground_pivots.push_back({"", 0});
+  }
   // The mechanism's extent; centres within twice its size around it are drawn.
   double min_x = 1e300, max_x = -1e300, min_y = 1e300, max_y = -1e300;
   const auto grow = [&](std::complex<double> p) {
@@ -87,9 +95,15 @@ void write_tikz_instant_centres(std::ostream& out, const ConstraintSystem& syste
         << centre_latex(c, centre) << "$};\n";
   }
   out << "\\end{tikzpicture}\n\\end{center}\n";
-  out << "Instant centres: the primary ones at the pins and, for a slider, at infinity across its line; every "
-         "other by the Aronhold--Kennedy theorem, where two lines of centres it shares a body with cross "
-         "(dashed). Drawing scale 1\\,cm = $"
+  if (system.linkage) {
+    out << "Instant centres: the primary ones at the pins and, for a slider, at infinity across its line; every "
+           "other by the Aronhold--Kennedy theorem, where two lines of centres it shares a body with cross (dashed).";
+  } else {
+    out << "Instant centres of the links that the file's points lie on (a point whose formula ends in a link vector "
+           "of fixed length is on that link), each where the two links' velocities agree; ground is link "
+        << latex_escape_text(c.bodies[0]) << ".";
+  }
+  out << " Drawing scale 1\\,cm = $"
       << latex_number(1.0 / cm / scale.length, 3) << "\\,\\mathrm{" << scale.length_unit << "}$.\n\n";
   const std::string l = scale.length_unit;
   out << "\\begin{tabular}{lrrl}\n\\toprule\ncentre & $x$ & $y$ & found by \\\\\n & $\\mathrm{" << l << "}$ & $\\mathrm{"
@@ -105,7 +119,7 @@ void write_tikz_instant_centres(std::ostream& out, const ConstraintSystem& syste
     }
     std::string how = centre.found_by;
     // "I02 I23, I04 I34" -> $I_{02} I_{23}$, ... as text; pins and sliders name their joint.
-    if (how.rfind("pin", 0) != 0 && how.rfind("slider", 0) != 0) how = "Kennedy: lines " + how;
+    if (system.linkage && how.rfind("pin", 0) != 0 && how.rfind("slider", 0) != 0) how = "Kennedy: lines " + how;
     out << " & " << latex_escape_text(how) << " \\\\\n";
   }
   out << "\\bottomrule\n\\end{tabular}\n\n";

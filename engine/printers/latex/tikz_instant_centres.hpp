@@ -1,4 +1,4 @@
-// The instant centres of a joints-and-links mechanism drawn over its links in TikZ
+// The instant centres of a planar mechanism drawn over its links in TikZ
 // (the Kennedy lines that fix each secondary centre dashed, centres at infinity as
 // arrows in their direction), with a table of the centres and one of the
 // angular-velocity ratios they give beside the solved ones.
@@ -8,11 +8,12 @@
 
 #include <kinema/engine/constraint_system.hpp>
 #include <kinema/engine/numeric/motion_table.hpp>
+#include <kinema/engine/report/geometry.hpp>
 #include <kinema/engine/report/instant_centres.hpp>
 
 namespace kinema {
 
-void write_tikz_instant_centres(std::ostream& out, const ConstraintSystem& system, const MotionState& state,
-                                const InstantCentres& centres);
+void write_tikz_instant_centres(std::ostream& out, const ConstraintSystem& system, const MechanismGeometry& geometry,
+                                const MotionState& state, const InstantCentres& centres);
 
 }  // namespace kinema

@@ -283,8 +283,8 @@ class DocumentWriter {
     }
     if (const auto centres = instant_centres(system_, s)) {
       out_ << "\\subsubsection*{Instant centres}\n";
-      write_tikz_instant_centres(out_, system_, s, *centres);
-      if (polygons) write_three_methods(out_, system_, three_methods(system_, s, polygons->first, *centres), *centres);
+      write_tikz_instant_centres(out_, system_, geometry_, s, *centres);
+      if (polygons) write_three_methods(out_, system_, three_methods(system_, polygons->first, *centres), *centres);
     }
   }
 

@@ -201,7 +201,9 @@ TEST_CASE("engine/printers/worked_solution: a joints-and-links drawing follows t
   // hatched fixed guides, the crank as a bar, the fixed pivot O2; its loops are not drawn.
   const kinema::Model model = kinema::load_model(kinema_test::sample("problem_3_22_joints.toml"));
   const MotionTable values = kinema::analyse(model, model.system.input.values);
-  const std::string tex = document(model, &values, nullptr);
+  // The mechanism's drawing: what comes before the polygons and instant centres.
+  const std::string whole = document(model, &values, nullptr);
+  const std::string tex = whole.substr(0, whole.find("\\subsubsection*{Velocity and acceleration polygons}"));
   CHECK(count(tex, "\\filldraw[fill=blue!10") == 1);                 // link 3: A, B, C
   CHECK(count(tex, "\\draw[thick, fill=white, rotate around=") == 2);  // blocks 4 and 6
   CHECK(count(tex, "\\fill[pattern=north east lines, rotate around=") == 2);  // guides x = 0 line and x = d
@@ -315,7 +317,7 @@ TEST_CASE("engine/printers/worked_solution: three methods, one answer for every 
       const auto centres = kinema::instant_centres(model.system, s);
       REQUIRE(polygons);
       REQUIRE(centres);
-      const auto rows = kinema::three_methods(model.system, s, polygons->first, *centres);
+      const auto rows = kinema::three_methods(model.system, polygons->first, *centres);
       REQUIRE(!rows.empty());
       const double per_cm = kinema::polygon_units_per_cm(polygons->first, scale.length);
       for (const kinema::ThreeMethodsRow& row : rows) {
@@ -329,9 +331,22 @@ TEST_CASE("engine/printers/worked_solution: three methods, one answer for every 
     }
   }
   CHECK(samples >= 6);
-  // A vector-loop file has no bodies to number: polygons, no centres.
+  // A vector-loop file: its links known by the points on them (the four-bar: 2, 3, 4).
   const kinema::Model loops = kinema::load_model(kinema_test::sample("four_bar.toml"));
   const MotionTable one = kinema::analyse(loops, {40 * kDeg});
   const std::string tex = document(loops, &one, nullptr, true);
-  CHECK(has(tex, "\\subsubsection*{Velocity and acceleration polygons}"));
+  CHECK(has(tex, "\\subsubsection*{Three methods, one answer}"));
+  const auto polygons = kinema::PolygonBuilder(loops.system).polygons(one[0]);
+  const auto centres = kinema::instant_centres(loops.system, one[0]);
+  REQUIRE(polygons);
+  REQUIRE(centres);
+  const auto rows = kinema::three_methods(loops.system, polygons->first, *centres);
+  REQUIRE(rows.size() == 3);
+  const double per_cm = kinema::polygon_units_per_cm(polygons->first, kinema::OutputScale(loops.system).length);
+  for (const kinema::ThreeMethodsRow& row : rows) {
+    REQUIRE(row.from_centres);
+    REQUIRE(row.from_polygon);
+    CHECK(*row.from_centres == doctest::Approx(row.solved).epsilon(1e-9));
+    CHECK(std::fabs(*row.from_polygon - row.solved) <= 0.005 * per_cm / row.lever * (1 + 1e-9));
+  }
 }
