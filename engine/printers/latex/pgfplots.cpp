@@ -1,5 +1,6 @@
 #include <kinema/engine/printers/latex/pgfplots.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -94,9 +95,43 @@ class PlotWriter {
       end_axis();
     }
     out_ << "\n";
+    if (system_.frames.empty()) paths();
   }
 
  private:
+  // Each planar point's path over the run (a coupler curve when it is on the coupler),
+  // to one scale in x and y.
+  void paths() {
+    std::vector<std::size_t> moving;
+    for (std::size_t p = 0; p < system_.points.size(); ++p) {
+      double reach = 0;
+      for (std::size_t row = 0; row < sweep_.size(); ++row)
+        if (sweep_.status(row) == Status::ok) reach = std::max(reach, sweep_.point(row, p).speed());
+      if (reach > 0) moving.push_back(p);
+    }
+    if (moving.empty()) return;
+    const std::string l = "[$\\mathrm{" + scale_.length_unit + "}$]";
+    out_ << "\\medskip\n\\noindent Paths of the points over the run (coupler curves of points on a coupler), "
+            "to one scale in $x$ and $y$:\n\n\\begin{center}\n\\begin{tikzpicture}\n\\begin{axis}[width=0.7\\linewidth, "
+            "axis equal image, xlabel={$x$ "
+         << l << "}, ylabel={$y$ " << l
+         << "}, unbounded coords=jump, legend style={font=\\footnotesize, at={(0.5,1.02)}, anchor=south, "
+            "legend columns=-1}]\n";
+    for (std::size_t p : moving) {
+      out_ << "\\addplot+[mark=none, thick] coordinates {";
+      for (std::size_t row = 0; row < sweep_.size(); ++row) {
+        if (sweep_.status(row) == Status::unassembled) {
+          out_ << " (nan,nan)";
+          continue;
+        }
+        const PointMotion m = sweep_.point(row, p);
+        out_ << " (" << format_fixed(m.position[0] / scale_.length) << "," << format_fixed(m.position[1] / scale_.length) << ")";
+      }
+      out_ << " };\n\\addlegendentry{" << latex_escape_text(system_.points[p].name) << "}\n";
+    }
+    out_ << "\\end{axis}\n\\end{tikzpicture}\n\\end{center}\n\n";
+  }
+
   static constexpr std::size_t kBreak = static_cast<std::size_t>(-1);
   std::ostream& out_;
   const ConstraintSystem& system_;

@@ -350,3 +350,29 @@ TEST_CASE("engine/printers/worked_solution: three methods, one answer for every 
     CHECK(std::fabs(*row.from_polygon - row.solved) <= 0.005 * per_cm / row.lever * (1 + 1e-9));
   }
 }
+
+TEST_CASE("engine/printers/worked_solution: the points' paths (coupler curves) over the run") {
+  const kinema::Model model = kinema::load_model(kinema_test::sample("four_bar.toml"));
+  const MotionTable sweep = kinema::analyse(model, kinema::plot_range(model.system, 40 * kDeg));
+  const std::string tex = document(model, nullptr, &sweep, true);
+  const auto paths = tex.find("Paths of the points over the run");
+  REQUIRE(paths != std::string::npos);
+  CHECK(has(tex.substr(paths), "axis equal image"));
+  // The coupler point P's curve: every row's position, in mm, in order.
+  const auto legend = tex.find("\\addlegendentry{P}", paths);
+  REQUIRE(legend != std::string::npos);
+  const auto begin = tex.rfind("coordinates {", legend);
+  REQUIRE(begin > paths);
+  std::istringstream in(tex.substr(begin + 13, legend - begin - 13));
+  std::size_t row = 0;
+  char open, comma, close;
+  double x, y;
+  const std::size_t p = 2;
+  REQUIRE(model.system.points[p].name == "P");
+  while (in >> open >> x >> comma >> y >> close && row < sweep.size()) {
+    CHECK(x == doctest::Approx(sweep.point(row, p).position[0] * 1000).epsilon(1e-6));
+    CHECK(y == doctest::Approx(sweep.point(row, p).position[1] * 1000).epsilon(1e-6));
+    ++row;
+  }
+  CHECK(row == sweep.size());
+}
