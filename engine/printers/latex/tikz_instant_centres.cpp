@@ -106,7 +106,7 @@ void write_tikz_instant_centres(std::ostream& out, const ConstraintSystem& syste
   out << " Drawing scale 1\\,cm = $"
       << latex_number(1.0 / cm / scale.length, 3) << "\\,\\mathrm{" << scale.length_unit << "}$.\n\n";
   const std::string l = scale.length_unit;
-  out << "\\begin{tabular}{lrrl}\n\\toprule\ncentre & $x$ & $y$ & found by \\\\\n & $\\mathrm{" << l << "}$ & $\\mathrm{"
+  out << "\\medskip\n\\begin{tabular}{lrrl}\n\\toprule\ncentre & $x$ & $y$ & found by \\\\\n & $\\mathrm{" << l << "}$ & $\\mathrm{"
       << l << "}$ & \\\\\n\\midrule\n";
   for (const InstantCentre& centre : c.centres) {
     out << "$" << centre_latex(c, centre) << "$ & ";

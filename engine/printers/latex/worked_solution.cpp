@@ -267,7 +267,7 @@ class DocumentWriter {
     write_tikz_mechanism(out_, system_, geometry_, s);
     const auto polygons = polygons_.polygons(s);
     if (polygons) {
-      out_ << "\\subsubsection*{Velocity and acceleration polygons}\nEach link vector's velocity, chained from the "
+      out_ << "\\clearpage\n\\subsubsection*{Velocity and acceleration polygons}\nEach link vector's velocity, chained from the "
               "pole $o$ in the order the loops and points are written: a turning link's relative velocity "
               "$\\omega r$ across it, a sliding point's velocity along its line; accelerations in the parts "
               "normal ($\\omega^{2} r$, towards the link's start), tangential ($\\alpha r$), Coriolis "
@@ -282,7 +282,7 @@ class DocumentWriter {
       write_tikz_polygon(out_, system_, textbook_, polygons->second);
     }
     if (const auto centres = instant_centres(system_, s)) {
-      out_ << "\\subsubsection*{Instant centres}\n";
+      out_ << "\\clearpage\n\\subsubsection*{Instant centres}\n";
       write_tikz_instant_centres(out_, system_, geometry_, s, *centres);
       if (polygons) write_three_methods(out_, system_, three_methods(system_, polygons->first, *centres), *centres);
     }
