@@ -34,7 +34,8 @@ inline constexpr const char* kSamples[] = {"four_bar.toml", "slider_crank.toml",
                                            "example_4_2_joints.toml", "problem_3_22_joints.toml",
                                            "problem_4_1_parallelogram.toml", "problem_4_1_antiparallelogram.toml",
                                            "triple_rocker_circuit.toml", "robot_arm_seed000.toml",
-                                           "rssr_spatial_four_bar.toml", "robot_arm_slider.toml"};
+                                           "rssr_spatial_four_bar.toml", "robot_arm_slider.toml",
+                                           "crank_shaper.toml"};
 
 /// Runs `kinema eval SAMPLE --format json [extra]` and returns the parsed document.
 nlohmann::json eval_json(const std::string& sample_name, const std::vector<std::string>& extra = {});

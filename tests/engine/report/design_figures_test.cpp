@@ -125,3 +125,18 @@ TEST_CASE("design figures: an offset slider-crank's limit positions and time rat
   CHECK(kinema_test::eval_json("slider_crank.toml")["strokes"][0]["time_ratio"].get<double>() ==
         doctest::Approx(s.time_ratio));
 }
+
+TEST_CASE("design figures: a crank-shaper's time ratio against the closed form") {
+  // The ram's limits are the rocker's: the crank at right angles to the slot,
+  // theta2 = 270 deg -+ acos(a/d) (O2 is d above O4); the return takes 2 acos(a/d) of crank.
+  const auto strokes = kinema::slider_strokes(kinema::load_model(kinema_test::sample("crank_shaper.toml")));
+  const kinema::Strokes* ram = nullptr;
+  for (const kinema::Strokes& s : strokes)
+    if (s.name == "x") ram = &s;
+  REQUIRE(ram);
+  const double degree = 180 / M_PI, phi = std::acos(100.0 / 300) * degree;
+  CHECK(ram->limit_inputs[0] == doctest::Approx(270 - phi).epsilon(1e-9));
+  CHECK(ram->limit_inputs[1] == doctest::Approx(270 + phi).epsilon(1e-9));
+  CHECK(ram->time_ratio == doctest::Approx((360 - 2 * phi) / (2 * phi)).epsilon(1e-9));
+  CHECK(ram->time_ratio == doctest::Approx(1.5521).epsilon(1e-4));  // as the sample's comment says
+}
