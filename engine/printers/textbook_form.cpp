@@ -327,8 +327,8 @@ std::pair<bool, std::string> TextbookForm::render_product(const ex& e, Context& 
   c.preferred = preferred;
   std::string bottom = join(denominator);
   if (c.latex()) return {negative, "\\frac{" + top + "}{" + bottom + "}"};
-  const bool single = denominator.size() == 1 && !GiNaC::is_a<GiNaC::add>(denominator.front().base) &&
-                      denominator.front().exponent.is_equal(1);
+  // One factor needs no parentheses of its own (a lone sum already has them).
+  const bool single = denominator.size() == 1 && denominator.front().exponent.is_equal(1);
   if (numerator.size() == 1 && GiNaC::is_a<GiNaC::add>(numerator.front().base) && numerator.front().exponent.is_equal(1) &&
       top[0] != '(')
     top = "(" + top + ")";

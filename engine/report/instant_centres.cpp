@@ -62,8 +62,13 @@ void add_ratios(InstantCentres& result, double length_scale) {
 // v_a(I) = v_b(I) with v(P) = v_A + i omega (P - A); where the two turn alike, at
 // infinity across their relative velocity.
 std::optional<InstantCentres> centres_from_points(const ConstraintSystem& system, const MotionState& s) {
-  GiNaC::exmap rates{{system.input.rate, s.input_rate}};
-  for (std::size_t j = 0; j < system.unknowns.size(); ++j) rates[system.unknowns[j].rate] = s.qd[j];
+  // Everything an angle's rate may hold (theta3^2 turns at 2 theta3 omega3).
+  GiNaC::exmap values{{system.input.rate, s.input_rate}, {system.input.symbol, s.input}};
+  for (std::size_t j = 0; j < system.unknowns.size(); ++j) {
+    values[system.unknowns[j].rate] = s.qd[j];
+    values[system.unknowns[j].symbol] = s.q[j];
+  }
+  for (const SystemParameter& parameter : system.parameters) values[parameter.symbol] = parameter.value;
   const auto moves = [&](const GiNaC::ex& e) {
     if (e.has(system.input.symbol)) return true;
     for (const Coordinate& q : system.unknowns)
@@ -75,6 +80,7 @@ std::optional<InstantCentres> centres_from_points(const ConstraintSystem& system
     std::string name;
     std::complex<double> point, velocity;
     std::size_t order = 0;  ///< The driver, then the unknowns in file order.
+    double omega = 0;
   };
   std::vector<Body> bodies;
   for (std::size_t p = 0; p < system.points.size(); ++p) {
@@ -95,7 +101,11 @@ std::optional<InstantCentres> centres_from_points(const ConstraintSystem& system
     const auto digits = name.find_last_not_of("0123456789");
     if (digits != std::string::npos && digits + 1 < name.size()) name = name.substr(digits + 1);
     const PointMotion& m = s.points[p];
-    bodies.push_back({rate, name, {m.position[0], m.position[1]}, {m.velocity[0], m.velocity[1]}, order});
+    const GiNaC::ex omega = rate.subs(values).evalf();
+    if (!GiNaC::is_a<GiNaC::numeric>(omega) || !GiNaC::ex_to<GiNaC::numeric>(omega).is_real()) continue;
+    const double w = GiNaC::ex_to<GiNaC::numeric>(omega).to_double();
+    if (!std::isfinite(w)) continue;
+    bodies.push_back({rate, name, {m.position[0], m.position[1]}, {m.velocity[0], m.velocity[1]}, order, w});
   }
   if (bodies.empty()) return std::nullopt;
   std::stable_sort(bodies.begin(), bodies.end(), [](const Body& a, const Body& b) { return a.order < b.order; });
@@ -108,7 +118,7 @@ std::optional<InstantCentres> centres_from_points(const ConstraintSystem& system
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     result.bodies.push_back(bodies[b].name);
     result.rates.push_back(bodies[b].rate);
-    result.angular_velocities.push_back(GiNaC::ex_to<GiNaC::numeric>(bodies[b].rate.subs(rates).evalf()).to_double());
+    result.angular_velocities.push_back(bodies[b].omega);
     if (bodies[b].rate.is_equal(system.input.rate)) result.driver = b + 1;
   }
   const std::size_t n = result.bodies.size();
@@ -134,6 +144,8 @@ std::optional<InstantCentres> centres_from_points(const ConstraintSystem& system
   for (std::size_t a = 0; a < n; ++a)
     for (std::size_t b = a + 1; b < n; ++b)
       if (!result.find(a, b)) result.not_found.push_back({a, b});
+  for (const InstantCentre& c : result.centres)
+    if (!std::isfinite(c.at.real()) || !std::isfinite(c.at.imag())) return std::nullopt;
   if (result.driver != 0) add_ratios(result, system.length_scale);
   return result;
 }
@@ -243,6 +255,8 @@ std::optional<InstantCentres> instant_centres(const ConstraintSystem& system, co
   for (std::size_t a = 0; a < n; ++a)
     for (std::size_t b = a + 1; b < n; ++b)
       if (!result.find(a, b)) result.not_found.push_back({a, b});
+  for (const InstantCentre& c : result.centres)
+    if (!std::isfinite(c.at.real()) || !std::isfinite(c.at.imag())) return std::nullopt;
   std::sort(result.centres.begin(), result.centres.end(),
             [](const InstantCentre& p, const InstantCentre& q) { return std::pair(p.a, p.b) < std::pair(q.a, q.b); });
   add_ratios(result, system.length_scale);

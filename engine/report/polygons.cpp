@@ -141,6 +141,8 @@ std::optional<std::pair<Polygon, Polygon>> PolygonBuilder::polygons(const Motion
   if (inputs.size() != tape_.input_count()) return std::nullopt;
   std::vector<double> values(tape_.output_count()), registers = tape_.make_workspace();
   tape_.evaluate(inputs.data(), values.data(), registers);
+  for (double v : values)
+    if (!std::isfinite(v)) return std::nullopt;  // no figure of a number that is not one
   const auto output = [&](std::size_t vector, std::size_t k) { return values[vector * kOutputsPerVector + k]; };
   const auto position = [&](std::size_t v) { return Complex(output(v, 0), output(v, 1)); };
   const auto part = [&](std::size_t v, int p) { return Complex(output(v, 2 + 2 * p), output(v, 3 + 2 * p)); };

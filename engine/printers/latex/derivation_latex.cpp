@@ -74,7 +74,7 @@ class DerivationLatexPrinter : public Printer {
                             method_title(job.method) + ":}\\quad",
                         std::string(acceleration ? "acceleration" : "velocity") + ": " + method_name(job.method)});
         for (const MethodStep& step : derivation.steps)
-          for (const LatexRow& row : method_rows(step, acceleration)) rows.push_back(row);
+          for (const LatexRow& row : method_rows(step, acceleration, textbook)) rows.push_back(row);
       }
     }
     if (is_driven_chain(system)) {  // a chain of frames worked out at the instant, as seed 000

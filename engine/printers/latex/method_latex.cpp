@@ -5,7 +5,8 @@
 
 namespace kinema {
 
-std::vector<LatexRow> method_rows(const MethodStep& step, bool acceleration) {
+std::vector<LatexRow> method_rows(const MethodStep& step, bool acceleration, const TextbookForm& form) {
+  const auto latex = [&](const GiNaC::ex& e) { return form(e, TextbookForm::Style::latex); };
   std::vector<LatexRow> rows;
   rows.push_back({"\\text{" + latex_escape_text(step.heading) + "}\\quad", ""});
   if (!step.note.empty()) rows.push_back({"& \\text{" + latex_escape_text("(" + step.note + ")") + "}", ""});
@@ -16,11 +17,13 @@ std::vector<LatexRow> method_rows(const MethodStep& step, bool acceleration) {
         break;
       case MethodRelation::Kind::component:
         if (r.text == "position") break;  // the statement says it
-        rows.push_back({"& " + r.latex + ":\\quad " + to_latex(r.left) + " = " + to_latex(r.right), ""});
+        rows.push_back({"& " + r.latex + ":\\quad " + latex(r.left) + " = " + latex(r.right), ""});
         break;
       case MethodRelation::Kind::solution:
-        rows.push_back({to_latex(r.left) + " &= " + to_latex(r.right),
-                        "kinema: " + to_text(r.left) + " = " + to_text(r.right)});
+        // Long solutions broken over lines inside the text width.
+        for (const LatexRow& row : latex_broken_rows(latex(r.left), form.latex_lines(r.right, 0, nullptr, kLatexLineBudget),
+                                                     "", "kinema: " + to_text(r.left) + " = " + to_text(r.right)))
+          rows.push_back(row);
         break;
     }
   }

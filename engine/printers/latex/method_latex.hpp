@@ -11,8 +11,8 @@
 namespace kinema {
 
 /// The velocity (or acceleration) relations of one step: its heading, each relation as
-/// the method writes it, its scalar equations, and what they solve for.
-std::vector<LatexRow> method_rows(const MethodStep& step, bool acceleration);
+/// the method writes it, its scalar equations, and what they solve for, in textbook form.
+std::vector<LatexRow> method_rows(const MethodStep& step, bool acceleration, const TextbookForm& form);
 
 /// "relative velocities" or "joint coordinates": how a document names the method.
 std::string method_title(DerivationMethod method);

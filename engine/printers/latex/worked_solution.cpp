@@ -223,7 +223,7 @@ class DocumentWriter {
            << "\\begin{align*}\n";
       std::vector<std::string> rows;
       for (const MethodStep& step : derivation.steps) {
-        for (const LatexRow& row : method_rows(step, acceleration))
+        for (const LatexRow& row : method_rows(step, acceleration, textbook_))
           rows.push_back(row.comment.empty() ? row.text : row.text + " %% " + row.comment);
       }
       align_rows(rows);

@@ -69,6 +69,8 @@ void print_structure(std::ostream& out, const ConstraintSystem& system) {
 // The velocities and accelerations group by group, in the method asked for.
 void print_method(std::ostream& out, const ConstraintSystem& system, DerivationMethod method) {
   const DyadDerivation derivation = derive_by_dyads(system, method);
+  const TextbookForm textbook(system);
+  const auto text = [&](const ex& e) { return textbook(e, TextbookForm::Style::text); };
   out << "\n1. Velocities and accelerations, group by group (" << method_name(method) << ")\n";
   for (const MethodStep& step : derivation.steps) {
     out << "\n  " << step.heading << "\n";
@@ -79,9 +81,9 @@ void print_method(std::ostream& out, const ConstraintSystem& system, DerivationM
         switch (r.kind) {
           case MethodRelation::Kind::statement: out << "      " << r.text << "\n"; break;
           case MethodRelation::Kind::component:
-            if (r.text != "position") out << "        " << r.text << ":  " << to_text(r.left) << " = " << to_text(r.right) << "\n";
+            if (r.text != "position") out << "        " << r.text << ":  " << text(r.left) << " = " << text(r.right) << "\n";
             break;
-          case MethodRelation::Kind::solution: out << "        " << to_text(r.left) << " = " << fraction(r.right) << "\n"; break;
+          case MethodRelation::Kind::solution: out << "        " << text(r.left) << " = " << text(r.right) << "\n"; break;
         }
       }
     }
