@@ -11,6 +11,8 @@
 
 #include <kinema/engine/model.hpp>
 #include <kinema/engine/report/instant_centres.hpp>
+#include <kinema/engine/symbolic/derivation.hpp>
+#include <kinema/engine/symbolic/expression_parts.hpp>
 
 #include "test_support.hpp"
 
@@ -103,6 +105,55 @@ TEST_CASE("instant centres: a vector-loop file's links known by the points on th
   REQUIRE(centres);
   CHECK(centres->bodies.size() == 3);
   check_kennedy(*centres, slider.system.length_scale);
+}
+
+TEST_CASE("instant centres: every vector-loop sample, each centre where the two links' velocities agree") {
+  int with_centres = 0;
+  for (const char* name : kinema_test::kSamples) {
+    const kinema::Model model = kinema::load_model(kinema_test::sample(name));
+    const kinema::ConstraintSystem& system = model.system;
+    if (system.linkage || !system.frames.empty()) continue;
+    CAPTURE(std::string(name));
+    std::vector<double> inputs = system.input.values;
+    if (inputs.empty()) inputs = {0.3};
+    const kinema::MotionTable table = kinema::analyse(model, inputs);
+    for (const kinema::MotionState& s : table) {
+      if (s.status != kinema::Status::ok) continue;
+      const auto centres = kinema::instant_centres(system, s);
+      if (!centres) continue;  // no point of the file lies on a link
+      ++with_centres;
+      check_kennedy(*centres, system.length_scale);
+      double fastest = 0;
+      for (const kinema::PointMotion& p : s.points) fastest = std::max(fastest, p.speed());
+      // Every point on a link (its formula's last term a link vector of fixed length):
+      // its velocity is omega x (P - I) about the link's centre with ground.
+      for (std::size_t p = 0; p < system.points.size(); ++p) {
+        const GiNaC::ex last = system.points[p].written_terms.back();
+        for (std::size_t b = 1; b < centres->bodies.size(); ++b) {
+          const GiNaC::ex angle_rate = centres->rates[b];
+          // On body b: the last term turns at its rate and has a fixed length.
+          const kinema::LinkVector link = kinema::split_link_vector(last);
+          if (!link.polar || !kinema::time_derivative(system, link.angle).is_equal(angle_rate)) continue;
+          bool fixed = true;
+          for (const kinema::Coordinate& q : system.unknowns) fixed = fixed && !link.length.has(q.symbol);
+          if (!fixed || link.length.has(system.input.symbol)) continue;
+          const kinema::InstantCentre* ground = centres->find(0, b);
+          REQUIRE(ground);
+          const kinema::PointMotion& m = s.points[p];
+          const Complex at(m.position[0], m.position[1]), v(m.velocity[0], m.velocity[1]);
+          CAPTURE(system.points[p].name);
+          if (ground->at_infinity) {
+            CHECK(std::fabs(centres->angular_velocities[b]) <= 1e-12);
+          } else {
+            CHECK(std::abs(v - Complex(0, centres->angular_velocities[b]) * (at - ground->at)) <= 1e-9 * fastest);
+          }
+        }
+      }
+      for (const kinema::VelocityRatio& r : centres->ratios)
+        CHECK(r.from_centres == doctest::Approx(r.analytic).epsilon(1e-7).scale(1));
+    }
+  }
+  CHECK(with_centres >= 6);
 }
 
 TEST_CASE("instant centres: every joints-and-links sample, each centre where the bodies' velocities agree") {
