@@ -1,8 +1,38 @@
 #include <kinema/engine/report/geometry.hpp>
 
+#include <cmath>
+
+#include <kinema/engine/symbolic/derivation.hpp>
+#include <kinema/engine/symbolic/expression_parts.hpp>
 #include <kinema/loops/dyad_positions.hpp>
 
 namespace kinema {
+
+std::string link_label(const ConstraintSystem& system, const GiNaC::ex& angle) {
+  std::string name;
+  for (std::size_t j = system.unknowns.size(); j-- > 0;)
+    if (angle.has(system.unknowns[j].symbol)) name = system.unknowns[j].name;
+  if (angle.has(system.input.symbol)) name = system.input.name;
+  const auto digits = name.find_last_not_of("0123456789");
+  return digits != std::string::npos && digits + 1 < name.size() ? name.substr(digits + 1) : name;
+}
+
+int MechanismGeometry::link_of(const ConstraintSystem& system, const GiNaC::ex& term) {
+  const LinkVector link = split_link_vector(term);
+  if (!link.polar) return -1;
+  const auto moves = [&](const GiNaC::ex& e) {
+    bool moving = e.has(system.input.symbol);
+    for (const Coordinate& q : system.unknowns) moving = moving || e.has(q.symbol);
+    return moving;
+  };
+  if (moves(link.length) || !moves(link.angle)) return -1;
+  const GiNaC::ex rate = time_derivative(system, link.angle);
+  for (std::size_t k = 0; k < link_rates_.size(); ++k)
+    if (link_rates_[k].is_equal(rate)) return static_cast<int>(k);
+  link_rates_.push_back(rate);
+  link_labels_.push_back(link_label(system, link.angle));
+  return static_cast<int>(link_rates_.size() - 1);
+}
 
 MechanismGeometry::MechanismGeometry(const ConstraintSystem& system) {
   std::vector<GiNaC::ex> inputs, outputs;
@@ -28,9 +58,40 @@ MechanismGeometry::MechanismGeometry(const ConstraintSystem& system) {
       }
       kinds_.push_back(!moving ? DrawingSegment::Kind::ground
                                : sliding ? DrawingSegment::Kind::slider : DrawingSegment::Kind::link);
+      term_links_.push_back(link_of(system, term));
+    }
+  }
+  if (system.frames.empty()) {
+    for (std::size_t p = 0; p < system.points.size(); ++p) {
+      if (system.points[p].written_terms.empty()) continue;
+      const GiNaC::ex& last = system.points[p].written_terms.back();
+      const int link = link_of(system, last);
+      if (link < 0) continue;
+      points_.push_back({p, link});
+      outputs.push_back(last.real_part().expand());
+      outputs.push_back(last.imag_part().expand());
     }
   }
   tape_ = CompiledExpressions(inputs, outputs);
+}
+
+std::vector<PointOnLink> MechanismGeometry::points_on_links(const MotionState& state) const {
+  std::vector<PointOnLink> found;
+  if (state.status != Status::ok || points_.empty()) return found;
+  std::vector<double> inputs(parameter_values_);
+  inputs.push_back(state.input);
+  for (Eigen::Index i = 0; i < state.q.size(); ++i) inputs.push_back(state.q[i]);
+  std::vector<double> values(tape_.output_count()), registers = tape_.make_workspace();
+  if (inputs.size() != tape_.input_count()) return found;
+  tape_.evaluate(inputs.data(), values.data(), registers);
+  const double* xy = values.data() + 2 * kinds_.size();  // after the loops' terms
+  for (const auto& [point, link] : points_) {
+    const PointMotion& m = state.points[point];
+    const std::complex<double> at(m.position[0], m.position[1]), term(xy[0], xy[1]);
+    xy += 2;
+    if (std::isfinite(term.real()) && std::isfinite(term.imag())) found.push_back({point, link, at - term, at});
+  }
+  return found;
 }
 
 std::vector<DrawingSegment> MechanismGeometry::segments(const MotionState& state) const {
@@ -47,7 +108,7 @@ std::vector<DrawingSegment> MechanismGeometry::segments(const MotionState& state
     std::complex<double> at = 0;
     for (std::size_t k = 0; k < count; ++k, ++term, xy += 2) {
       const std::complex<double> v(xy[0], xy[1]);
-      segments.push_back({at, at + v, kinds_[term]});
+      segments.push_back({at, at + v, kinds_[term], term_links_[term]});
       at += v;
     }
   }
@@ -70,6 +131,7 @@ std::optional<LinkageDrawing> linkage_drawing(const ConstraintSystem& system, co
     LinkageDrawing::Link link;
     link.block = frames.bodies[b].guide >= 0;
     link.angle = poses[b].angle;
+    link.name = linkage.links[b - 1].name;
     for (const auto& [joint, v] : frames.bodies[b].points)
       link.joints.push_back({linkage.joints[joint].name, poses[b].origin + v * std::polar(1.0, poses[b].angle)});
     drawing.links.push_back(link);

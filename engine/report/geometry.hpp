@@ -18,7 +18,21 @@ struct DrawingSegment {
   enum class Kind { ground, link, slider };
   std::complex<double> from, to;  ///< SI.
   Kind kind = Kind::link;
+  int link = -1;  ///< A link vector of fixed length: its link (MechanismGeometry::link_labels), else -1.
 };
+
+/// A named point on a link: its formula's last term is a link vector of fixed length
+/// turning with that link, drawn from `from` (the point that term starts at) to the point.
+struct PointOnLink {
+  std::size_t point = 0;
+  int link = 0;
+  std::complex<double> from, at;  ///< SI.
+};
+
+/// A link of a vector-loop file known by the angle it turns with: its number, the digits
+/// the angle's coordinate name ends in (theta3 -> "3"), else that name; empty when the
+/// angle is not a coordinate's.
+std::string link_label(const ConstraintSystem& system, const GiNaC::ex& angle);
 
 /// A joints-and-links mechanism as drawn: its links with their joints where they are,
 /// ground pivots and fixed guides (SI, world positions).
@@ -31,6 +45,7 @@ struct LinkageDrawing {
     std::vector<Joint> joints;
     bool block = false;  ///< A slider block (drawn as a block turned by `angle`).
     double angle = 0;
+    std::string name;  ///< As the file names it.
   };
   struct Guide {
     std::complex<double> through, along;  ///< A point of a fixed guide line and its unit direction.
@@ -49,12 +64,22 @@ class MechanismGeometry {
   explicit MechanismGeometry(const ConstraintSystem& system);
   /// The loops' segments at a state whose position is known (status not unassembled).
   std::vector<DrawingSegment> segments(const MotionState& state) const;
+  /// The named points that lie on a link, at a state that is ok.
+  std::vector<PointOnLink> points_on_links(const MotionState& state) const;
+  /// Each link's number, as DrawingSegment::link and PointOnLink::link index them.
+  const std::vector<std::string>& link_labels() const { return link_labels_; }
 
  private:
-  CompiledExpressions tape_;  ///< Inputs: parameters, input, q; outputs: x, y of each term.
+  CompiledExpressions tape_;  ///< Inputs: parameters, input, q; outputs: x, y of each term, then of each point's last.
   std::vector<double> parameter_values_;
   std::vector<std::size_t> loop_term_count_;  ///< Terms of each loop, in order.
   std::vector<DrawingSegment::Kind> kinds_;
+  std::vector<int> term_links_;                      ///< Per term: its link or -1.
+  std::vector<std::pair<std::size_t, int>> points_;  ///< Points on links: the point, its link.
+  std::vector<GiNaC::ex> link_rates_;                ///< Per link: the rate it turns with.
+  std::vector<std::string> link_labels_;
+  /// The link a term of fixed length turning with an angle is on (added when new), or -1.
+  int link_of(const ConstraintSystem& system, const GiNaC::ex& term);
 };
 
 }  // namespace kinema

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <functional>
 
+#include <kinema/engine/report/geometry.hpp>
 #include <kinema/engine/symbolic/derivation.hpp>
 #include <kinema/engine/symbolic/expression_parts.hpp>
 #include <kinema/loops/dyad_positions.hpp>
@@ -92,14 +93,11 @@ std::optional<InstantCentres> centres_from_points(const ConstraintSystem& system
     bool known = false;
     for (const Body& b : bodies) known = known || b.rate.is_equal(rate);
     if (known) continue;
-    // The link's number: the digits its angle's name ends in (theta3 -> 3), else that name.
-    std::string name = GiNaC::is_a<GiNaC::symbol>(link.angle) ? GiNaC::ex_to<GiNaC::symbol>(link.angle).get_name() : "";
-    std::size_t order = system.unknowns.size() + 1;
+    const std::string name = link_label(system, link.angle);
+    std::size_t order = system.unknowns.size() + 1;  // the driver's link first, then the unknowns'
     for (std::size_t j = system.unknowns.size(); j-- > 0;)
-      if (link.angle.has(system.unknowns[j].symbol)) name = system.unknowns[j].name, order = j + 1;
-    if (link.angle.has(system.input.symbol)) name = system.input.name, order = 0;
-    const auto digits = name.find_last_not_of("0123456789");
-    if (digits != std::string::npos && digits + 1 < name.size()) name = name.substr(digits + 1);
+      if (link.angle.has(system.unknowns[j].symbol)) order = j + 1;
+    if (link.angle.has(system.input.symbol)) order = 0;
     const PointMotion& m = s.points[p];
     const GiNaC::ex omega = rate.subs(values).evalf();
     if (!GiNaC::is_a<GiNaC::numeric>(omega) || !GiNaC::ex_to<GiNaC::numeric>(omega).is_real()) continue;

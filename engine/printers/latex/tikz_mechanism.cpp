@@ -76,13 +76,15 @@ void write_tikz_mechanism(std::ostream& out, const ConstraintSystem& system, con
       for (const auto& joint : link.joints) extent.push_back(joint.at);
     for (const auto& pivot : drawing->ground_pivots) extent.push_back(pivot.at);
   }
-  std::vector<std::complex<double>> points, velocities;
-  double fastest = 0;
+  std::vector<std::complex<double>> points, velocities, accelerations;
+  double fastest = 0, largest = 0;
   if (s.status == Status::ok) {
     for (const PointMotion& p : s.points) {
       points.push_back({p.position[0], p.position[1]});
       velocities.push_back({p.velocity[0], p.velocity[1]});
-      fastest = std::max(fastest, std::hypot(p.velocity[0], p.velocity[1]));
+      accelerations.push_back({p.acceleration[0], p.acceleration[1]});
+      fastest = std::max(fastest, std::abs(velocities.back()));
+      largest = std::max(largest, std::abs(accelerations.back()));
       extent.push_back(points.back());
     }
   }
@@ -97,11 +99,24 @@ void write_tikz_mechanism(std::ostream& out, const ConstraintSystem& system, con
   const double cm = 9.0 / size;  // drawing units per metre
   const double arrow_cm = 2.5;   // the fastest point's arrow
   const double velocity_scale = fastest > 0 ? arrow_cm / fastest : 0;  // cm per (m/s)
+  const double acceleration_scale = largest > 0 ? arrow_cm / largest : 0;  // cm per (m/s^2)
   auto xy = [&](std::complex<double> p) {
     return "(" + format_fixed(p.real() * cm) + "," + format_fixed(p.imag() * cm) + ")";
   };
   out << "\\begin{center}\n\\begin{tikzpicture}[line cap=round]\n";
-  if (drawing) write_links(out, *drawing, xy, {(min_x + max_x) / 2, (min_y + max_y) / 2}, size, cm);
+  if (drawing) {
+    write_links(out, *drawing, xy, {(min_x + max_x) / 2, (min_y + max_y) / 2}, size, cm);
+    // Link numbers beside each link (its first two joints), as the file names them.
+    for (std::size_t k = 0; k < drawing->links.size() && system.linkage; ++k) {
+      const auto& joints = drawing->links[k].joints;
+      if (joints.size() < 2 || drawing->links[k].block || std::abs(joints[1].at - joints[0].at) < 1e-9 * size) continue;
+      const std::complex<double> along = joints[1].at - joints[0].at;
+      const std::complex<double> across = along / std::abs(along) * std::complex<double>(0, 1);
+      out << "\\node[circle, draw, inner sep=1pt, font=\\scriptsize] at "
+          << xy((joints[0].at + joints[1].at) / 2.0 + across * (0.35 / cm)) << " {"
+          << latex_escape_text(drawing->links[k].name) << "};\n";
+    }
+  }
   for (const Segment& g : segments) {
     if (g.kind == Segment::Kind::ground) {
       out << "\\draw[gray, dashed] " << xy(g.from) << " -- " << xy(g.to) << ";\n";
@@ -122,6 +137,36 @@ void write_tikz_mechanism(std::ostream& out, const ConstraintSystem& system, con
       out << "\\draw[very thick, blue!70!black] " << xy(g.from) << " -- " << xy(g.to) << ";\n";
     }
   }
+  // A point on a link of a vector-loop file drawn on it: a plate with a segment of the link
+  // from where the point's own link vector starts; nothing more for a joint the loops
+  // already reach; else a bar.
+  for (const PointOnLink& on : drawing ? std::vector<PointOnLink>{} : geometry.points_on_links(s)) {
+    const auto near = [&](std::complex<double> a, std::complex<double> b) { return std::abs(a - b) < 1e-9 * size; };
+    const Segment* base = nullptr;
+    bool joint = false;
+    for (const Segment& g : segments) {
+      if (g.link != on.link) continue;
+      joint = joint || near(g.from, on.at) || near(g.to, on.at);
+      if ((near(g.from, on.from) && !near(g.to, on.at)) || (near(g.to, on.from) && !near(g.from, on.at))) base = &g;
+    }
+    if (joint && !base) continue;
+    if (base) {
+      out << "\\filldraw[fill=blue!10, draw=blue!70!black, thick, line join=round] " << xy(base->from) << " -- "
+          << xy(base->to) << " -- " << xy(on.at) << " -- cycle;\n";
+    } else {
+      out << "\\draw[very thick, blue!70!black] " << xy(on.from) << " -- " << xy(on.at) << ";\n";
+    }
+  }
+  // Link numbers beside each link's first segment.
+  std::vector<bool> numbered(geometry.link_labels().size(), false);
+  for (const Segment& g : segments) {
+    if (g.link < 0 || numbered[g.link] || std::abs(g.to - g.from) < 1e-9 * size) continue;
+    numbered[g.link] = true;
+    const std::complex<double> across = (g.to - g.from) / std::abs(g.to - g.from) * std::complex<double>(0, 1);
+    out << "\\node[circle, draw, inner sep=1pt, font=\\scriptsize] at "
+        << xy((g.from + g.to) / 2.0 + across * (0.35 / cm)) << " {" << latex_escape_text(geometry.link_labels()[g.link])
+        << "};\n";
+  }
   for (const Segment& g : segments) {
     for (const auto& end : {g.from, g.to})
       out << "\\filldraw[fill=white] " << xy(end) << " circle (0.07);\n";
@@ -134,6 +179,11 @@ void write_tikz_mechanism(std::ostream& out, const ConstraintSystem& system, con
       out << "\\draw[-latex, red, thick] " << xy(points[p]) << " -- ++(" << format_fixed(tip.real()) << ","
            << format_fixed(tip.imag()) << ");\n";
     }
+    if (acceleration_scale > 0 && std::abs(accelerations[p]) > 0) {
+      const std::complex<double> tip = accelerations[p] * acceleration_scale;
+      out << "\\draw[-latex, green!50!black, thick, dashed] " << xy(points[p]) << " -- ++(" << format_fixed(tip.real())
+          << "," << format_fixed(tip.imag()) << ");\n";
+    }
   }
   out << "\\end{tikzpicture}\n\\end{center}\n";
   const double length_per_cm = 1.0 / cm / scale.length;
@@ -141,6 +191,10 @@ void write_tikz_mechanism(std::ostream& out, const ConstraintSystem& system, con
   if (velocity_scale > 0) {
     out << "; velocity vectors (red): 1\\,cm = $" << latex_number(1.0 / velocity_scale / scale.length, 3) << "$\\,"
          << latex_escape_text(scale.length_unit) << "/s";
+  }
+  if (acceleration_scale > 0) {
+    out << "; acceleration vectors (green, dashed): 1\\,cm = $" << latex_number(1.0 / acceleration_scale / scale.length, 3)
+        << "\\,\\mathrm{" << scale.length_unit << "/s^{2}}$";
   }
   out << ".\n\n";
 }

@@ -210,10 +210,20 @@ TEST_CASE("engine/printers/worked_solution: a joints-and-links drawing follows t
   CHECK(count(tex, "\\draw[very thick, blue!70!black]") == 2);       // bars 2 and 5
   CHECK(has(tex, "{O2};"));
   CHECK_FALSE(has(tex, "\\draw[gray, dashed]"));                     // no loop segments
-  // A vector-loop file is drawn from its loops as before.
+  CHECK(count(tex, "\\node[circle, draw, inner sep=1pt, font=\\scriptsize]") == 3);  // links 2, 3, 5 numbered
+  // A vector-loop file is drawn from its loops; C, on link 3 by its formula, makes a plate
+  // with link 3's vector from A (to B), its links numbered by their angles.
   const kinema::Model loops = kinema::load_model(kinema_test::sample("problem_3_22_six_bar_sliders.toml"));
   const MotionTable loop_values = kinema::analyse(loops, loops.system.input.values);
-  CHECK(count(document(loops, &loop_values, nullptr), "\\filldraw[fill=blue!10") == 0);
+  const std::string loop_document = document(loops, &loop_values, nullptr);
+  const std::string loop_drawing =
+      loop_document.substr(0, loop_document.find("\\subsubsection*{Velocity and acceleration polygons}"));
+  CHECK(count(loop_drawing, "\\filldraw[fill=blue!10") == 1);
+  for (const char* number : {"{2};", "{3};", "{5};"}) CHECK(has(loop_drawing, number));
+  // Each point's velocity (red) and acceleration (green, dashed) to stated scales.
+  CHECK(count(loop_drawing, "\\draw[-latex, red, thick]") == 4);
+  CHECK(count(loop_drawing, "\\draw[-latex, green!50!black, thick, dashed]") == 4);
+  CHECK(has(loop_drawing, "acceleration vectors (green, dashed): 1\\,cm = $"));
 }
 
 TEST_CASE("engine/printers/worked_solution: a joints-and-links document gives the slider blocks and the relative terms") {
