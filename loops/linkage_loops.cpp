@@ -777,8 +777,12 @@ class LinkageWriter {
       while (common < a.steps.size() && common < b.steps.size() && a.steps[common].first >= 0 &&
              a.steps[common].first == b.steps[common].first)
         ++common;
+      // A walk round the loop: out along a to the closing joint, back along b (its terms
+      // in reverse order, negated), so that every partial sum is a joint (course notes
+      // read the loop so, and its polygon's vertices are the joints).
       std::vector<Term> terms = flatten(a, common);
-      for (const Term& t : negated(flatten(b, common))) terms.push_back(t);
+      const std::vector<Term> back = negated(flatten(b, common));
+      terms.insert(terms.end(), back.rbegin(), back.rend());
       Loop loop;
       loop.name = cycle_name(a, b, common, e.joint);
       while (!loop_names.insert(loop.name).second) loop.name += "_";
