@@ -58,18 +58,28 @@ MechanismGeometry::MechanismGeometry(const ConstraintSystem& system) {
       }
       kinds_.push_back(!moving ? DrawingSegment::Kind::ground
                                : sliding ? DrawingSegment::Kind::slider : DrawingSegment::Kind::link);
-      term_links_.push_back(link_of(system, term));
+      int link = -1;
+      try {  // drawn as a plain segment when GiNaC cannot differentiate the term alone
+        link = link_of(system, term);
+      } catch (const std::exception&) {
+      }
+      term_links_.push_back(link);
     }
   }
   if (system.frames.empty()) {
     for (std::size_t p = 0; p < system.points.size(); ++p) {
       if (system.points[p].written_terms.empty()) continue;
       const GiNaC::ex& last = system.points[p].written_terms.back();
-      const int link = link_of(system, last);
-      if (link < 0) continue;
-      points_.push_back({p, link});
-      outputs.push_back(last.real_part().expand());
-      outputs.push_back(last.imag_part().expand());
+      try {  // a term GiNaC cannot differentiate (a power of 0): the point is just not drawn on a link
+        const int link = link_of(system, last);
+        if (link < 0) continue;
+        const GiNaC::ex x = last.real_part().expand(), y = last.imag_part().expand();
+        points_.push_back({p, link});
+        outputs.push_back(x);
+        outputs.push_back(y);
+      } catch (const std::exception&) {
+        continue;
+      }
     }
   }
   tape_ = CompiledExpressions(inputs, outputs);

@@ -89,7 +89,13 @@ std::optional<InstantCentres> centres_from_points(const ConstraintSystem& system
     if (point.written_terms.empty()) continue;
     const LinkVector link = split_link_vector(point.written_terms.back());
     if (!link.polar || moves(link.length) || !moves(link.angle)) continue;
-    const GiNaC::ex rate = time_derivative(system, link.angle);
+    GiNaC::ex rate, omega;
+    try {  // a formula GiNaC cannot differentiate or evaluate: the point names no link
+      rate = time_derivative(system, link.angle);
+      omega = rate.subs(values).evalf();
+    } catch (const std::exception&) {
+      continue;
+    }
     bool known = false;
     for (const Body& b : bodies) known = known || b.rate.is_equal(rate);
     if (known) continue;
@@ -99,7 +105,6 @@ std::optional<InstantCentres> centres_from_points(const ConstraintSystem& system
       if (link.angle.has(system.unknowns[j].symbol)) order = j + 1;
     if (link.angle.has(system.input.symbol)) order = 0;
     const PointMotion& m = s.points[p];
-    const GiNaC::ex omega = rate.subs(values).evalf();
     if (!GiNaC::is_a<GiNaC::numeric>(omega) || !GiNaC::ex_to<GiNaC::numeric>(omega).is_real()) continue;
     const double w = GiNaC::ex_to<GiNaC::numeric>(omega).to_double();
     if (!std::isfinite(w)) continue;

@@ -107,7 +107,10 @@ PolygonBuilder::PolygonBuilder(const ConstraintSystem& system) : system_(&system
     parts_.push_back(formulas);
     return parts_.size() - 1;
   };
-  // Points first: their chains name the images that the loops then reach.
+  // Points first: their chains name the images that the loops then reach. A formula GiNaC
+  // cannot take apart term by term (a power of 0 in a derivative) leaves the document
+  // without polygons, not without its other pages.
+  try {
   for (const PointObservable& point : system.points) {
     if (point.written_terms.empty()) continue;
     Chain chain{point.name, {}};
@@ -120,11 +123,10 @@ PolygonBuilder::PolygonBuilder(const ConstraintSystem& system) : system_(&system
     for (const ex& term : group.terms) chain.vectors.push_back(add_vector(term));
     chains_.push_back(chain);
   }
-  if (chains_.empty()) return;
-  try {
-    tape_ = CompiledExpressions(inputs, outputs);
-  } catch (const std::invalid_argument&) {  // a term the tape cannot evaluate: no polygons
+  if (!chains_.empty()) tape_ = CompiledExpressions(inputs, outputs);
+  } catch (const std::exception&) {
     chains_.clear();
+    parts_.clear();
   }
 }
 
