@@ -233,19 +233,21 @@ std::optional<InstantCentres> instant_centres(const ConstraintSystem& system, co
           for (std::size_t j = i + 1; j < lines.size(); ++j) {
             const Line &p = lines[i].first, &q = lines[j].first;
             const double sine = std::fabs(cross(p.along, q.along));
-            const std::string how = centre_name(result.bodies, std::min(a, lines[i].second), std::max(a, lines[i].second)) +
-                                    " " + centre_name(result.bodies, std::min(lines[i].second, c), std::max(lines[i].second, c)) +
-                                    ", " + centre_name(result.bodies, std::min(a, lines[j].second), std::max(a, lines[j].second)) +
-                                    " " + centre_name(result.bodies, std::min(lines[j].second, c), std::max(lines[j].second, c));
+            const std::size_t b1 = lines[i].second, b2 = lines[j].second;
+            const std::vector<std::pair<std::size_t, std::size_t>> kennedy = {
+                std::minmax(a, b1), std::minmax(b1, c), std::minmax(a, b2), std::minmax(b2, c)};
+            std::string how;
+            for (std::size_t k = 0; k < 4; ++k)
+              how += (k == 0 ? "" : k == 2 ? ", " : " ") + centre_name(result.bodies, kennedy[k].first, kennedy[k].second);
             if (sine <= 1e-9) {  // parallel lines: a centre at infinity, unless they are one line
               if (std::fabs(cross(q.through - p.through, p.along)) > 1e-9 * system.length_scale && !chosen)
-                chosen = InstantCentre{a, c, true, p.along, how};
+                chosen = InstantCentre{a, c, true, p.along, how, kennedy};
               continue;
             }
             if (sine <= best) continue;
             best = sine;
             const double t = cross(q.through - p.through, q.along) / cross(p.along, q.along);
-            chosen = InstantCentre{a, c, false, p.through + t * p.along, how};
+            chosen = InstantCentre{a, c, false, p.through + t * p.along, how, kennedy};
           }
         }
         if (chosen) {

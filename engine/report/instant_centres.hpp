@@ -23,6 +23,8 @@ struct InstantCentre {
   std::complex<double> at;   ///< SI position, or the unit direction it lies in when at infinity.
   /// "pin B", "slider B2", or the two Kennedy lines it is on: "I02 I23, I04 I34".
   std::string found_by;
+  /// Found by Kennedy: the bodies of the two other centres on each of its two lines.
+  std::vector<std::pair<std::size_t, std::size_t>> kennedy;
 };
 
 /// omega_j / omega_driver from the centres (I_0d, I_dj, I_0j on one line:

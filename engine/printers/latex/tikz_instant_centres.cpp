@@ -59,16 +59,11 @@ void write_tikz_instant_centres(std::ostream& out, const ConstraintSystem& syste
   out << "\\begin{center}\n\\begin{tikzpicture}[line cap=round, >=latex]\n";
   // The Kennedy lines: each secondary centre on two lines of known centres.
   for (const InstantCentre& centre : c.centres) {
-    if (!on_figure(centre) || centre.found_by.rfind("pin", 0) == 0 || centre.found_by.rfind("slider", 0) == 0) continue;
-    for (const InstantCentre& other : c.centres) {
-      if (&other == &centre || other.at_infinity || !on_figure(other)) continue;
-      // Lines through this centre and the centres that fixed it (named in found_by).
-      const std::string name = "I" + c.bodies[other.a] + c.bodies[other.b];
-      const auto at = centre.found_by.find(name);
-      if (at == std::string::npos) continue;
-      const char next = at + name.size() < centre.found_by.size() ? centre.found_by[at + name.size()] : ',';
-      if (next != ' ' && next != ',') continue;
-      out << "\\draw[gray!60, dashed] " << xy(other.at) << " -- " << xy(centre.at) << ";\n";
+    if (!on_figure(centre)) continue;
+    for (const auto& [a, b] : centre.kennedy) {
+      const InstantCentre* other = c.find(a, b);
+      if (other && !other->at_infinity && on_figure(*other))
+        out << "\\draw[gray!60, dashed] " << xy(other->at) << " -- " << xy(centre.at) << ";\n";
     }
   }
   for (const auto& link : drawing->links) {
@@ -118,8 +113,8 @@ void write_tikz_instant_centres(std::ostream& out, const ConstraintSystem& syste
       out << "$" << latex_number(shown(centre.at.real()), 5) << "$ & $" << latex_number(shown(centre.at.imag()), 5) << "$";
     }
     std::string how = centre.found_by;
-    // "I02 I23, I04 I34" -> $I_{02} I_{23}$, ... as text; pins and sliders name their joint.
-    if (system.linkage && how.rfind("pin", 0) != 0 && how.rfind("slider", 0) != 0) how = "Kennedy: lines " + how;
+    // Pins and sliders name their joint; the others the two lines of centres they are on.
+    if (!centre.kennedy.empty()) how = "Kennedy: lines " + how;
     out << " & " << latex_escape_text(how) << " \\\\\n";
   }
   out << "\\bottomrule\n\\end{tabular}\n\n";

@@ -199,6 +199,27 @@ TEST_CASE("instant centres: every joints-and-links sample, each centre where the
         }
       }
       check_kennedy(*centres, model.system.length_scale);
+      // A secondary centre is on both lines it was found on (each through two known centres).
+      for (const kinema::InstantCentre& c : centres->centres) {
+        if (c.kennedy.empty()) {
+          CHECK((c.found_by.rfind("pin ", 0) == 0 || c.found_by.rfind("slider ", 0) == 0));
+          continue;
+        }
+        REQUIRE(c.kennedy.size() == 4);
+        for (std::size_t line = 0; line < 2; ++line) {
+          const kinema::InstantCentre* p = centres->find(c.kennedy[2 * line].first, c.kennedy[2 * line].second);
+          const kinema::InstantCentre* q = centres->find(c.kennedy[2 * line + 1].first, c.kennedy[2 * line + 1].second);
+          REQUIRE(p);
+          REQUIRE(q);
+          if (c.at_infinity || (p->at_infinity && q->at_infinity)) continue;
+          // The direction of the line: p to q, or a centre at infinity's own.
+          const Complex along = p->at_infinity ? p->at : q->at_infinity ? q->at : q->at - p->at;
+          const Complex through = p->at_infinity ? q->at : p->at;
+          const Complex to = c.at - through;
+          CHECK(std::fabs(along.real() * to.imag() - along.imag() * to.real()) <=
+                1e-7 * std::abs(along) * std::max(std::abs(to), model.system.length_scale));
+        }
+      }
       for (const kinema::VelocityRatio& r : centres->ratios) {
         CAPTURE(centres->bodies[r.body]);
         CHECK(r.from_centres == doctest::Approx(r.analytic).epsilon(1e-7).scale(1));
