@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <climits>
+#include <functional>
 #include <sstream>
 #include <vector>
 
@@ -26,6 +27,28 @@ std::string ginac_text(const ex& e, bool latex) {
   if (latex) out << GiNaC::latex;
   out << e;
   return out.str();
+}
+
+// A term's text independent of GiNaC's own order of operands, which follows hashes of
+// addresses and so differs from one build to another: sums and products with their
+// operands sorted by this text. The last tie-break of every order below, so that a
+// formula prints the same from every build.
+std::string canonical_text(const ex& e) {
+  if (GiNaC::is_a<GiNaC::add>(e) || GiNaC::is_a<GiNaC::mul>(e)) {
+    std::vector<std::string> parts;
+    for (std::size_t i = 0; i < e.nops(); ++i) parts.push_back(canonical_text(e.op(i)));
+    std::sort(parts.begin(), parts.end());
+    std::string text = GiNaC::is_a<GiNaC::add>(e) ? "add(" : "mul(";
+    for (const std::string& part : parts) text += part + ",";
+    return text + ")";
+  }
+  if (GiNaC::is_a<GiNaC::power>(e)) return "pow(" + canonical_text(e.op(0)) + "," + canonical_text(e.op(1)) + ")";
+  if (GiNaC::is_a<GiNaC::function>(e)) {
+    std::string text = GiNaC::ex_to<GiNaC::function>(e).get_name() + "(";
+    for (std::size_t i = 0; i < e.nops(); ++i) text += canonical_text(e.op(i)) + ",";
+    return text + ")";
+  }
+  return ginac_text(e, false);
 }
 
 }  // namespace
@@ -157,19 +180,40 @@ std::string TextbookForm::render(const ex& e, int precedence, Context& c) const 
   return ginac_text(e, c.latex());
 }
 
+// A sum's terms in textbook order: `first` (-1, 0, 1 as a < b, no preference, a > b)
+// decides first, then the lowest coordinate, the first parameter, and the canonical text.
+void TextbookForm::sort_terms(std::vector<ex>& terms, const std::function<int(const ex&, const ex&)>& first) const {
+  struct Keyed {
+    ex term;
+    int coordinate, parameter;
+    std::string text;
+  };
+  std::vector<Keyed> keyed;
+  for (const ex& t : terms) keyed.push_back({t, coordinate_key(t), parameter_key(t), canonical_text(t)});
+  std::stable_sort(keyed.begin(), keyed.end(), [&](const Keyed& a, const Keyed& b) {
+    if (const int decided = first(a.term, b.term)) return decided < 0;
+    if (a.coordinate != b.coordinate) return a.coordinate < b.coordinate;
+    if (a.parameter != b.parameter) return a.parameter < b.parameter;
+    return a.text < b.text;
+  });
+  for (std::size_t k = 0; k < terms.size(); ++k) terms[k] = keyed[k].term;
+}
+
 // True when the term that an oriented difference starts with (the preferred symbol's,
 // else the one of the lowest coordinate) has a negative sign.
 bool TextbookForm::leads_negative(const ex& sum, const ex* first) const {
   ex lead;  // a copy: GiNaC's iterators give temporaries
   bool found = false;
   int best = INT_MAX;
+  std::string best_text;
   for (std::size_t i = 0; i < sum.nops(); ++i) {
     const ex term = sum.op(i);
     int key = coordinate_key(term);
     if (first != nullptr && term.has(*first)) key = -1;
-    if (!found || key < best) {
+    if (!found || key < best || (key == best && canonical_text(term) < best_text)) {
       lead = term;
       best = key;
+      best_text = canonical_text(term);
       found = true;
     }
   }
@@ -191,10 +235,9 @@ std::string TextbookForm::render_sum(const ex& e, int precedence, Context& c) co
   };
   const bool argument = c.argument;
   c.argument = false;
-  std::stable_sort(terms.begin(), terms.end(), [&](const ex& a, const ex& b) {
-    if (argument && negative_term(a) != negative_term(b)) return !negative_term(a);  // theta3 - theta4
-    const int ka = coordinate_key(a), kb = coordinate_key(b);
-    return ka != kb ? ka < kb : parameter_key(a) < parameter_key(b);
+  sort_terms(terms, [&](const ex& a, const ex& b) {
+    if (argument && negative_term(a) != negative_term(b)) return !negative_term(a) ? -1 : 1;  // theta3 - theta4
+    return 0;
   });
   std::string text;
   for (const ex& term : terms) {
@@ -287,10 +330,19 @@ std::pair<bool, std::string> TextbookForm::render_product(const ex& e, Context& 
     negative = false;
   }
   const auto order = [&](std::vector<Factor>& list) {
-    std::stable_sort(list.begin(), list.end(), [&](const Factor& a, const Factor& b) {
-      const Key ka = key_of(a.base), kb = key_of(b.base);
-      return ka.rank != kb.rank ? ka.rank < kb.rank : ka.index < kb.index;
+    std::vector<std::string> texts;  // the last tie-break: the same order from every build
+    for (const Factor& f : list) texts.push_back(canonical_text(GiNaC::pow(f.base, f.exponent)));
+    std::vector<std::size_t> order(list.size());
+    for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) {
+      const Key ka = key_of(list[i].base), kb = key_of(list[j].base);
+      if (ka.rank != kb.rank) return ka.rank < kb.rank;
+      if (ka.index != kb.index) return ka.index < kb.index;
+      return texts[i] < texts[j];
     });
+    std::vector<Factor> sorted;
+    for (std::size_t k : order) sorted.push_back(list[k]);
+    list = sorted;
   };
   order(numerator);
   order(denominator);
@@ -453,10 +505,7 @@ std::vector<std::string> TextbookForm::latex_lines(const ex& e, const ex& unknow
   std::vector<ex> terms;
   if (GiNaC::is_a<GiNaC::add>(s)) terms.assign(s.begin(), s.end());
   else terms.push_back(s);
-  std::stable_sort(terms.begin(), terms.end(), [&](const ex& a, const ex& b) {
-    const int ka = coordinate_key(a), kb = coordinate_key(b);
-    return ka != kb ? ka < kb : parameter_key(a) < parameter_key(b);
-  });
+  sort_terms(terms, [](const ex&, const ex&) { return 0; });
   bool first = true;
   for (const ex& term : terms) {
     std::string part = render(term, kSum + 1, c);

