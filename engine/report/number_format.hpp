@@ -14,6 +14,11 @@ std::string format_significant(double value, int significant = 6);
 /// the end. What long result runs use: no allocation per number.
 char* put_significant(char* out, double value, int significant);
 
+/// `count` values as put_significant writes them, `separator` between them, NaN as
+/// nothing (an empty CSV cell); at `out`, (kMaxNumberChars + 1) * count bytes free.
+/// The same characters, faster than one put_significant call a value.
+char* put_significant_list(char* out, const double* values, std::size_t count, int significant, char separator);
+
 /// The shortest text that reads back as the same double ("0.1", "6.283185307179586",
 /// "1e-05"); never "-0". Returns the end.
 char* put_shortest(char* out, double value);

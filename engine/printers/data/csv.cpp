@@ -39,14 +39,13 @@ class CsvPrinter : public ResultsPrinter {
     out.reserve(out.size() + (last - first) * (values.size() * std::size_t(digits + 7) + 24));
     for (std::size_t row = first; row < last; ++row) {
       result_values(system, scale, table, row, values.data());
-      char* p = line.data();
-      for (std::size_t k = 0; k < values.size(); ++k) {
-        if (k > 0) *p++ = ',';
-        if (!std::isnan(values[k])) p = put_significant(p, values[k], digits);  // undefined: empty
-        if (k + 1 == kInputColumns) {
-          *p++ = ',';
-          for (const char* s = status_name(table.status(row)); *s; ++s) *p++ = *s;
-        }
+      // The input's columns, the status, then the rest; undefined values (NaN) empty.
+      char* p = put_significant_list(line.data(), values.data(), kInputColumns, digits, ',');
+      *p++ = ',';
+      for (const char* s = status_name(table.status(row)); *s; ++s) *p++ = *s;
+      if (values.size() > kInputColumns) {
+        *p++ = ',';
+        p = put_significant_list(p, values.data() + kInputColumns, values.size() - kInputColumns, digits, ',');
       }
       out.append(line.data(), p);
       out += table.failure(row).kind == Failure::Kind::resumed_after_gap ? ",resumed_after_gap\n" : ",\n";

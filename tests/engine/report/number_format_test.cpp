@@ -5,10 +5,10 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <random>
-#include <cstdlib>
 #include <limits>
+#include <random>
 #include <string>
+#include <vector>
 
 #include <kinema/engine/report/number_format.hpp>
 
@@ -98,6 +98,50 @@ TEST_CASE("engine/report/number_format: put_significant equals std::to_chars for
     for (int digits = 1; digits <= 17; ++digits) check(value, digits);
   CHECK(mismatches == 0);
   CHECK(checked > 1000000);
+}
+
+TEST_CASE("engine/report/number_format: put_significant_list writes what put_significant writes, NaN empty") {
+  std::mt19937_64 random(20261123);
+  std::uniform_int_distribution<int> decade(-300, 300);
+  std::vector<double> values;
+  for (int i = 0; i < 20000; ++i) {
+    std::uint64_t bits = random();
+    double any;
+    std::memcpy(&any, &bits, sizeof any);  // every kind: NaN, infinities, subnormals too
+    values.push_back(any);
+    values.push_back(std::ldexp(static_cast<double>(random() >> 11), decade(random) / 10));
+    values.push_back(static_cast<double>(random() % 1000000000000ULL) + 0.5);  // ties at 12 digits
+    if (i % 7 == 0) values.push_back(i % 2 ? 0.0 : -0.0);
+    if (i % 11 == 0) values.push_back(std::numeric_limits<double>::quiet_NaN());
+  }
+  std::size_t lists = 0, characters = 0;
+  for (int digits : {1, 6, 8, 9, 12, 13, 15, 17}) {
+    // Lists of every length up to past two chunks of 64, from anywhere in the values.
+    for (std::size_t count : {std::size_t(0), std::size_t(1), std::size_t(3), std::size_t(63), std::size_t(64),
+                              std::size_t(65), std::size_t(130), values.size()}) {
+      for (std::size_t first = 0; first + count <= values.size(); first += count > 1000 ? values.size() : 977) {
+        std::string expected;
+        char one[kinema::kMaxNumberChars];
+        for (std::size_t k = 0; k < count; ++k) {
+          if (k > 0) expected += ';';
+          if (!std::isnan(values[first + k])) expected.append(one, kinema::put_significant(one, values[first + k], digits));
+        }
+        std::vector<char> buffer((kinema::kMaxNumberChars + 1) * count + 1);
+        char* end = kinema::put_significant_list(buffer.data(), values.data() + first, count, digits, ';');
+        const std::string got(buffer.data(), end);
+        ++lists;
+        characters += got.size();
+        if (got != expected) {
+          CAPTURE(digits);
+          CAPTURE(count);
+          CAPTURE(first);
+          REQUIRE(got == expected);
+        }
+      }
+    }
+  }
+  CHECK(lists > 500);
+  CHECK(characters > 1000000);
 }
 
 TEST_CASE("engine/report/number_format: put_shortest reads back as the same double") {
