@@ -225,7 +225,10 @@ int run(int argc, char** argv) {
     mechanism.chain->input = chain_input;
     mechanism.chain->input_where = {};
   }
-  const Model model = make_model(mechanism);  // a file kinema cannot analyse is not written as loops either
+  // A file kinema cannot analyse is not written as loops either. Only derive and latex
+  // print the formulas solved in closed form: the others do without them (faster).
+  const bool prints_formulas = derive_cmd->parsed() || latex_cmd->parsed();
+  const Model model = make_model(mechanism, prints_formulas ? DerivationScope::full : DerivationScope::evaluation);
   const ConstraintSystem& m = model.system;
   if (!basis.empty()) {
     if (!is_driven_chain(m)) {

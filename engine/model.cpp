@@ -7,15 +7,17 @@
 
 namespace kinema {
 
-Model make_model(const Mechanism& mechanism) {
+Model make_model(const Mechanism& mechanism, DerivationScope scope) {
   Model model;
   model.system = mechanism.chain ? build_spatial_system(mechanism) : build_planar_loops(mechanism);
-  model.derivation = derive(model.system);
+  model.derivation = derive(model.system, scope);
   model.kinematics = Kinematics(model.system, model.derivation);
   return model;
 }
 
-Model load_model(const std::filesystem::path& path) { return make_model(read_mechanism_file(path.string())); }
+Model load_model(const std::filesystem::path& path, DerivationScope scope) {
+  return make_model(read_mechanism_file(path.string()), scope);
+}
 
 MotionTable analyse(const Model& model, const std::vector<double>& inputs, const AnalysisOptions& options) {
   SweepSettings settings;

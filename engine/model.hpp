@@ -37,9 +37,11 @@ struct Model {
 };
 
 /// Reads, derives and compiles a mechanism file; throws InputError for a bad file.
-Model load_model(const std::filesystem::path& path);
+/// DerivationScope::evaluation skips the formulas only printers show (about a fifth
+/// of the time of a one-value run); such a model evaluates the same numbers.
+Model load_model(const std::filesystem::path& path, DerivationScope scope = DerivationScope::full);
 /// The same from a description already in memory (loops/mechanism_file.hpp reads one).
-Model make_model(const Mechanism& mechanism);
+Model make_model(const Mechanism& mechanism, DerivationScope scope = DerivationScope::full);
 
 struct AnalysisOptions {
   std::optional<double> rate;         ///< Input rate (SI); default: the model's.

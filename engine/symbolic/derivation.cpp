@@ -1,5 +1,7 @@
 #include <kinema/engine/symbolic/derivation.hpp>
 
+#include <stdexcept>
+
 #include <kinema/engine/errors.hpp>
 #include <kinema/engine/symbolic/expression_parts.hpp>
 #include <kinema/engine/symbolic/trig_simplify.hpp>
@@ -47,6 +49,36 @@ std::vector<ex> solve_block(const GiNaC::matrix& jacobian, const SolvingBlock& b
   return solution;
 }
 
+// The rates and second rates in closed form, block by block in solving order (as a
+// textbook solves them), from the Jacobian, gamma and the rates of earlier blocks.
+void solve_rates(const ConstraintSystem& system, Derivation& d) {
+  const std::size_t n = system.unknowns.size();
+  d.solved_rates.assign(n, 0);
+  d.solved_second_rates.assign(n, 0);
+  std::vector<bool> solved(n, false);
+  for (const SolvingBlock& block : d.blocks) {
+    std::vector<ex> velocity_rhs, acceleration_rhs;
+    for (std::size_t row : block.equations) {
+      ex v = -d.input_jacobian(row, 0) * system.input.rate;
+      ex a = d.acceleration_rhs[row];
+      for (std::size_t j = 0; j < n; ++j) {
+        if (!solved[j]) continue;
+        v -= d.jacobian(row, j) * system.unknowns[j].rate;
+        a -= d.jacobian(row, j) * system.unknowns[j].second_rate;
+      }
+      velocity_rhs.push_back(v);
+      acceleration_rhs.push_back(a);
+    }
+    const auto rates = solve_block(d.jacobian, block, velocity_rhs);
+    const auto second_rates = solve_block(d.jacobian, block, acceleration_rhs);
+    for (std::size_t c = 0; c < block.unknowns.size(); ++c) {
+      d.solved_rates[block.unknowns[c]] = rates[c];
+      d.solved_second_rates[block.unknowns[c]] = second_rates[c];
+      solved[block.unknowns[c]] = true;
+    }
+  }
+}
+
 // Terms r*exp(I*phi) of each loop with r and phi both moving.
 std::vector<SlidingLinkTerms> sliding_links(const ConstraintSystem& system) {
   std::vector<SlidingLinkTerms> found;
@@ -81,8 +113,10 @@ GiNaC::ex time_derivative(const ConstraintSystem& system, const GiNaC::ex& e) {
   return result;
 }
 
-Derivation derive(const ConstraintSystem& system) {
+Derivation derive(const ConstraintSystem& system, DerivationScope scope) {
   Derivation d;
+  d.scope = scope;
+  const bool full = scope == DerivationScope::full;
   const std::size_t n = system.unknowns.size();
   GiNaC::exmap no_second_rates;
   for (const Coordinate& q : system.unknowns) no_second_rates[q.second_rate] = 0;
@@ -96,47 +130,32 @@ Derivation derive(const ConstraintSystem& system) {
     d.velocity_equations.push_back(time_derivative(system, phi));
     d.acceleration_equations.push_back(time_derivative(system, d.velocity_equations.back()).expand());
     d.acceleration_rhs.push_back((-d.acceleration_equations.back().subs(no_second_rates)).expand());
-    d.acceleration_rhs_combined.push_back(combine_trig_products(d.acceleration_rhs.back()));
+    if (full) d.acceleration_rhs_combined.push_back(combine_trig_products(d.acceleration_rhs.back()));
   }
 
   d.blocks = solving_order(system);
-  d.solved_rates.assign(n, 0);
-  d.solved_second_rates.assign(n, 0);
-  std::vector<bool> solved(n, false);
-  for (const SolvingBlock& block : d.blocks) {
-    check_independent(system, d.jacobian, block);
-    std::vector<ex> velocity_rhs, acceleration_rhs;
-    for (std::size_t row : block.equations) {
-      ex v = -d.input_jacobian(row, 0) * system.input.rate;
-      ex a = d.acceleration_rhs[row];
-      for (std::size_t j = 0; j < n; ++j) {
-        if (!solved[j]) continue;
-        v -= d.jacobian(row, j) * system.unknowns[j].rate;
-        a -= d.jacobian(row, j) * system.unknowns[j].second_rate;
-      }
-      velocity_rhs.push_back(v);
-      acceleration_rhs.push_back(a);
-    }
-    const auto rates = solve_block(d.jacobian, block, velocity_rhs);
-    const auto second_rates = solve_block(d.jacobian, block, acceleration_rhs);
-    for (std::size_t c = 0; c < block.unknowns.size(); ++c) {
-      d.solved_rates[block.unknowns[c]] = rates[c];
-      d.solved_second_rates[block.unknowns[c]] = second_rates[c];
-      solved[block.unknowns[c]] = true;
-    }
-  }
+  for (const SolvingBlock& block : d.blocks) check_independent(system, d.jacobian, block);
+  if (full) solve_rates(system, d);
 
   for (const PointObservable& point : system.points) {
     PointMotionFormulas motion;
     for (const ex& component : point.position) {
       motion.velocity.push_back(time_derivative(system, component));
       motion.acceleration.push_back(time_derivative(system, motion.velocity.back()));
-      motion.acceleration_combined.push_back(combine_trig_products(motion.acceleration.back()));
+      if (full) motion.acceleration_combined.push_back(combine_trig_products(motion.acceleration.back()));
     }
     d.points.push_back(motion);
   }
-  d.sliding_links = sliding_links(system);
+  if (full) d.sliding_links = sliding_links(system);
   return d;
+}
+
+const Derivation& full_derivation(const Derivation& derivation) {
+  if (derivation.scope != DerivationScope::full) {
+    throw std::logic_error("formulas printed from a derivation made for evaluation only; load the model with "
+                           "DerivationScope::full");
+  }
+  return derivation;
 }
 
 }  // namespace kinema

@@ -33,7 +33,16 @@ struct PointMotionFormulas {
   std::vector<GiNaC::ex> acceleration_combined;  ///< The same, products of sin/cos combined (for reading).
 };
 
+/// What a derivation is made for: the evaluator needs the Jacobians, gamma and the
+/// points' rates; the printers of formulas also need the rates solved in closed form and
+/// the combined forms, which take most of the time (`kinema eval` does without them).
+enum class DerivationScope { full, evaluation };
+
 struct Derivation {
+  /// evaluation: solved_rates, solved_second_rates, acceleration_rhs_combined,
+  /// points[].acceleration_combined and sliding_links are left empty.
+  DerivationScope scope = DerivationScope::full;
+
   GiNaC::matrix jacobian;        ///< Phi_q (n x n), rows as ConstraintSystem::equations.
   GiNaC::matrix input_jacobian;  ///< Phi_theta (n x 1).
   std::vector<GiNaC::ex> velocity_equations;      ///< dPhi/dt (= 0), linear in qd.
@@ -54,7 +63,12 @@ struct Derivation {
 /// d/dt by the chain rule through q, qd, theta, thetad.
 GiNaC::ex time_derivative(const ConstraintSystem& system, const GiNaC::ex& e);
 
-/// Builds the derivation of a system.
-Derivation derive(const ConstraintSystem& system);
+/// Builds the derivation of a system. Either scope checks the same (a block whose
+/// unknowns are not independent is refused).
+Derivation derive(const ConstraintSystem& system, DerivationScope scope = DerivationScope::full);
+
+/// The derivation a printer of formulas reads; throws std::logic_error for one made for
+/// evaluation only (a programming error: load the model with DerivationScope::full).
+const Derivation& full_derivation(const Derivation& derivation);
 
 }  // namespace kinema

@@ -49,7 +49,7 @@ class DerivationLatexPrinter : public Printer {
 
   void print(std::ostream& out, const PrintJob& job) const override {
     const ConstraintSystem& system = job.model.system;
-    const Derivation& d = job.model.derivation;
+    const Derivation& d = full_derivation(job.model.derivation);
     const std::size_t n = system.unknowns.size();
     std::vector<ex> rates, second_rates, velocity_rhs;
     for (const Coordinate& q : system.unknowns) {

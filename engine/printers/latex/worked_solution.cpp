@@ -35,7 +35,7 @@ class DocumentWriter {
       : out_(out),
         model_(model),
         system_(model.system),
-        d_(model.derivation),
+        d_(full_derivation(model.derivation)),
         scale_(model.system),
         geometry_(model.system),
         polygons_(model.system),

@@ -171,7 +171,7 @@ class DerivationTextPrinter : public Printer {
 
   void print(std::ostream& out, const PrintJob& job) const override {
     const ConstraintSystem& system = job.model.system;
-    const Derivation& d = job.model.derivation;
+    const Derivation& d = full_derivation(job.model.derivation);
     const Driver& input = system.input;
     const std::size_t n = system.unknowns.size();
     std::vector<std::string> unknowns, rates, second_rates, rows;

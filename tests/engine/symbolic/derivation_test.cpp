@@ -183,3 +183,46 @@ TEST_CASE("engine/symbolic/derivation: rates of a later block use the earlier bl
     }
   }
 }
+
+TEST_CASE("engine/symbolic/derivation: the evaluation scope derives what the evaluator needs, the same, and no more") {
+  for (const char* sample : kinema_test::kSamples) {
+    const std::string name = sample;
+    CAPTURE(name);
+    const ConstraintSystem s = sample_system(sample);
+    const Derivation full = kinema::derive(s);
+    const Derivation evaluation = kinema::derive(s, kinema::DerivationScope::evaluation);
+    CHECK(full.scope == kinema::DerivationScope::full);
+    CHECK(evaluation.scope == kinema::DerivationScope::evaluation);
+    const std::size_t n = s.unknowns.size();
+    REQUIRE(evaluation.jacobian.rows() == n);
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t j = 0; j < n; ++j) CHECK(same_meaning(evaluation.jacobian(i, j), full.jacobian(i, j)));
+      CHECK(same_meaning(evaluation.input_jacobian(i, 0), full.input_jacobian(i, 0)));
+      CHECK(same_meaning(evaluation.acceleration_rhs[i], full.acceleration_rhs[i]));
+    }
+    REQUIRE(evaluation.points.size() == full.points.size());
+    for (std::size_t p = 0; p < full.points.size(); ++p) {
+      REQUIRE(evaluation.points[p].acceleration.size() == full.points[p].acceleration.size());
+      for (std::size_t c = 0; c < full.points[p].acceleration.size(); ++c) {
+        CHECK(same_meaning(evaluation.points[p].velocity[c], full.points[p].velocity[c]));
+        CHECK(same_meaning(evaluation.points[p].acceleration[c], full.points[p].acceleration[c]));
+      }
+      CHECK(evaluation.points[p].acceleration_combined.empty());
+    }
+    CHECK(full.solved_rates.size() == n);
+    CHECK(evaluation.solved_rates.empty());
+    CHECK(evaluation.solved_second_rates.empty());
+    CHECK(evaluation.acceleration_rhs_combined.empty());
+    CHECK(evaluation.sliding_links.empty());
+    CHECK(&kinema::full_derivation(full) == &full);
+    CHECK_THROWS_AS(kinema::full_derivation(evaluation), std::logic_error);
+  }
+  // Both scopes refuse unknowns that are not independent (only their sum appears).
+  std::string text = kinema_test::read_file(kinema_test::sample("four_bar.toml"));
+  const std::string written = "b*exp(I*theta3) - c*exp(I*theta4)";
+  REQUIRE(text.find(written) != std::string::npos);
+  text.replace(text.find(written), written.size(), "b*exp(I*(theta3 + theta4))");
+  const ConstraintSystem dependent = kinema_unit::system_from_text(text, "dependent.toml");
+  for (const auto scope : {kinema::DerivationScope::full, kinema::DerivationScope::evaluation})
+    CHECK_THROWS_WITH_AS(kinema::derive(dependent, scope), doctest::Contains("not independent"), kinema::InputError);
+}
