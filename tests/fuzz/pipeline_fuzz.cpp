@@ -54,6 +54,21 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         for (const auto* vector : {&point.position, &point.velocity, &point.acceleration})
           for (const GiNaC::ex& component : *vector) (void)GiNaC::evalf(component.subs(instant));
     }
+    // What kinema eval does: a model derived for evaluation only, its values in every
+    // results format as streamed. Then the full derivation and everything printed from it.
+    {
+      const Model evaluation = make_model(mechanism, DerivationScope::evaluation);
+      std::vector<double> values = evaluation.system.input.values;
+      if (values.size() > 4) values.resize(4);
+      if (values.empty()) values = {0.5};
+      for (const std::string& name : printer_names(PrintKind::results)) {
+        StreamSettings settings;
+        settings.printer = find_results_printer(name);
+        std::size_t bytes = 0;
+        settings.write = [&](std::string_view text) { bytes += text.size(); };
+        stream_results(evaluation, InputValues(values), {}, settings);
+      }
+    }
     const Model model = make_model(mechanism);
     // A chain worked out at the instant along its last frame's axes (derive --basis).
     if (is_driven_chain(model.system)) (void)chain_at_instant(model.system, model.system.frames.back().name);
