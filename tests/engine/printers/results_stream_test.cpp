@@ -66,7 +66,8 @@ TEST_CASE("engine/printers/results_stream: streamed output equals the printer ov
         printer->print(expected, job);
         CHECK(expected.str().size() > 1500 * 50);
         for (const auto& [threads, block_rows] : {std::pair{1u, 37u}, std::pair{1u, 2048u}, std::pair{3u, 1u},
-                                                  std::pair{3u, 100u}, std::pair{2u, 2048u}}) {
+                                                  std::pair{3u, 100u}, std::pair{2u, 2048u},
+                                                  std::pair{2u, 0u}}) {  // 0: sized from the run
           CAPTURE(threads);
           CAPTURE(block_rows);
           CHECK(streamed(model, inputs, *printer, threads, block_rows, precision) == expected.str());
