@@ -29,7 +29,7 @@ void write_tikz_instant_centres(std::ostream& out, const ConstraintSystem& syste
     drawing.emplace();
     for (const DrawingSegment& segment : geometry.segments(s)) {
       if (segment.kind == DrawingSegment::Kind::ground) continue;
-      drawing->links.push_back({{{"", segment.from}, {"", segment.to}}, false, 0});
+      drawing->links.push_back({{{"", segment.from}, {"", segment.to}}, false, 0, ""});
     }
     drawing->ground_pivots.push_back({"", 0});
   }

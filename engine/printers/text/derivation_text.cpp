@@ -15,41 +15,6 @@ namespace {
 
 using GiNaC::ex;
 
-// "numerator/denominator" instead of GiNaC's x^(-1) factors, read off the factors
-// (numer_denom() would bring a formula past the simplification budget to a common
-// denominator: tens of seconds).
-std::pair<ex, ex> numerator_denominator(const ex& e) {
-  ex numerator = 1, denominator = 1;
-  auto take = [&](const ex& factor) {
-    if (GiNaC::is_a<GiNaC::power>(factor) && GiNaC::is_a<GiNaC::numeric>(factor.op(1)) &&
-        GiNaC::ex_to<GiNaC::numeric>(factor.op(1)).is_negative()) {
-      denominator *= GiNaC::pow(factor.op(0), -factor.op(1));
-    } else if (GiNaC::is_a<GiNaC::numeric>(factor) && GiNaC::ex_to<GiNaC::numeric>(factor).is_rational()) {
-      numerator *= GiNaC::ex_to<GiNaC::numeric>(factor).numer();
-      denominator *= GiNaC::ex_to<GiNaC::numeric>(factor).denom();
-    } else {
-      numerator *= factor;
-    }
-  };
-  if (GiNaC::is_a<GiNaC::mul>(e)) {
-    for (const ex& factor : e) take(factor);
-  } else {
-    take(e);
-  }
-  return {numerator, denominator};
-}
-
-std::string fraction(const ex& e) {
-  const auto [numerator, denominator] = numerator_denominator(e);
-  if (denominator.is_equal(1)) return to_text(numerator);
-  auto grouped = [](const ex& part) {
-    const bool simple = GiNaC::is_a<GiNaC::symbol>(part) || GiNaC::is_a<GiNaC::numeric>(part) ||
-                        GiNaC::is_a<GiNaC::function>(part) || GiNaC::is_a<GiNaC::power>(part);
-    return simple ? to_text(part) : "(" + to_text(part) + ")";
-  };
-  return grouped(numerator) + "/" + grouped(denominator);
-}
-
 std::string joined(const std::vector<std::string>& items) {
   std::string result;
   for (const auto& item : items) result += (result.empty() ? "" : ", ") + item;
