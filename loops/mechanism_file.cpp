@@ -306,7 +306,8 @@ class FileReader {
                           " values (a file's values are held in memory); use a larger step, or --sweep on the "
                           "command line (streamed)");
         }
-        for (double v : values.to_vector()) input.values.push_back(v);
+        const std::vector<double> swept = values.to_vector();
+        input.values.insert(input.values.end(), swept.begin(), swept.end());
       } catch (const InputError& error) {
         fail(sweep, error.what());
       }

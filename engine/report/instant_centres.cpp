@@ -137,11 +137,11 @@ std::optional<InstantCentres> centres_from_points(const ConstraintSystem& system
       if (std::fabs(wa - wb) <= 1e-12 * (std::fabs(wa) + std::fabs(wb))) {
         const std::complex<double> relative = velocity_of(b) - velocity_of(a);  // uniform: they turn alike
         if (std::abs(relative) <= 1e-12 * fastest) continue;  // moving as one: no centre
-        result.centres.push_back({a, b, true, I * relative / std::abs(relative), how});
+        result.centres.push_back({a, b, true, I * relative / std::abs(relative), how, {}});
         continue;
       }
       const std::complex<double> at = (velocity_of(b) - velocity_of(a) + I * (wa * A - wb * B)) / (I * (wa - wb));
-      result.centres.push_back({a, b, false, at, how});
+      result.centres.push_back({a, b, false, at, how, {}});
     }
   }
   for (std::size_t a = 0; a < n; ++a)
@@ -200,7 +200,7 @@ std::optional<InstantCentres> instant_centres(const ConstraintSystem& system, co
   const auto add = [&](std::size_t a, std::size_t b, bool infinite, Complex at, const std::string& how) {
     if (a > b) std::swap(a, b);
     if (a == b || result.find(a, b)) return;
-    result.centres.push_back({a, b, infinite, at, how});
+    result.centres.push_back({a, b, infinite, at, how, {}});
   };
   // Primary centres: pins, then sliders (at infinity across the line).
   for (const LinkageFrames::Pin& pin : frames.pins) {
