@@ -40,6 +40,14 @@ void print_everything(const Model& model, const MotionTable& values, const Motio
   }
 }
 
+// The file's first few input values, or one if it gives none.
+std::vector<double> first_values(const ConstraintSystem& system) {
+  std::vector<double> values = system.input.values;
+  if (values.size() > 4) values.resize(4);
+  if (values.empty()) values = {0.5};
+  return values;
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -58,9 +66,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     // results format as streamed. Then the full derivation and everything printed from it.
     {
       const Model evaluation = make_model(mechanism, DerivationScope::evaluation);
-      std::vector<double> values = evaluation.system.input.values;
-      if (values.size() > 4) values.resize(4);
-      if (values.empty()) values = {0.5};
+      const std::vector<double> values = first_values(evaluation.system);
       for (const std::string& name : printer_names(PrintKind::results)) {
         StreamSettings settings;
         settings.printer = find_results_printer(name);
@@ -72,9 +78,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const Model model = make_model(mechanism);
     // A chain worked out at the instant along its last frame's axes (derive --basis).
     if (is_driven_chain(model.system)) (void)chain_at_instant(model.system, model.system.frames.back().name);
-    std::vector<double> inputs = model.system.input.values;
-    if (inputs.size() > 4) inputs.resize(4);
-    if (inputs.empty()) inputs = {0.5};
+    const std::vector<double> inputs = first_values(model.system);
     const MotionTable values = analyse(model, inputs);
     // Every fifth value of the worked solution's plot range: the same code, a fifth of the time.
     std::vector<double> range;
