@@ -29,27 +29,86 @@ std::string ginac_text(const ex& e, bool latex) {
   return out.str();
 }
 
-// A term's text independent of GiNaC's own order of operands, which follows hashes of
-// addresses and so differs from one build to another: sums and products with their
-// operands sorted by this text. The last tie-break of every order below, so that a
-// formula prints the same from every build.
-std::string canonical_text(const ex& e) {
-  if (GiNaC::is_a<GiNaC::add>(e) || GiNaC::is_a<GiNaC::mul>(e)) {
+// A formula's text independent of GiNaC's own order of operands and of the signs it
+// chooses, which follow hashes of addresses and symbol serials and so differ from one
+// build (or one load) to another: sums and products with their operands sorted by this
+// text, and the sign that GiNaC may put either inside or outside a term (sin(x - y) or
+// -sin(y - x), (x - y)*w or -(y - x)*w) taken out as `negated`, so that e and -e have
+// the same text. The last tie-break of every order below: a formula prints the same
+// from every build.
+struct Canonical {
+  std::string text;
+  bool negated = false;
+};
+
+Canonical canonical(const ex& e) {
+  if (GiNaC::is_a<GiNaC::numeric>(e)) {
+    GiNaC::numeric n = GiNaC::ex_to<GiNaC::numeric>(e);
+    const GiNaC::numeric lead = n.real().is_zero() ? n.imag() : n.real();
+    const bool negated = lead.is_negative();
+    return {ginac_text(negated ? ex(-n) : ex(n), false), negated};
+  }
+  if (GiNaC::is_a<GiNaC::mul>(e)) {
+    bool negated = false;
     std::vector<std::string> parts;
-    for (std::size_t i = 0; i < e.nops(); ++i) parts.push_back(canonical_text(e.op(i)));
+    for (std::size_t i = 0; i < e.nops(); ++i) {
+      const Canonical factor = canonical(e.op(i));
+      negated = negated != factor.negated;
+      if (factor.text != "1") parts.push_back(factor.text);
+    }
     std::sort(parts.begin(), parts.end());
-    std::string text = GiNaC::is_a<GiNaC::add>(e) ? "add(" : "mul(";
+    if (parts.size() == 1) return {parts.front(), negated};  // -x: the text of x
+    std::string text = "mul(";
     for (const std::string& part : parts) text += part + ",";
-    return text + ")";
+    return {text + ")", negated};
   }
-  if (GiNaC::is_a<GiNaC::power>(e)) return "pow(" + canonical_text(e.op(0)) + "," + canonical_text(e.op(1)) + ")";
+  if (GiNaC::is_a<GiNaC::add>(e)) {
+    // The terms with their signs, and with the opposite signs: the smaller of the two.
+    std::vector<std::string> plus, minus;
+    for (std::size_t i = 0; i < e.nops(); ++i) {
+      const Canonical term = canonical(e.op(i));
+      plus.push_back((term.negated ? "-" : "+") + term.text);
+      minus.push_back((term.negated ? "+" : "-") + term.text);
+    }
+    std::sort(plus.begin(), plus.end());
+    std::sort(minus.begin(), minus.end());
+    const bool negated = minus < plus;
+    std::string text = "add(";
+    for (const std::string& term : negated ? minus : plus) text += term + ",";
+    return {text + ")", negated};
+  }
+  if (GiNaC::is_a<GiNaC::power>(e)) {
+    const Canonical base = canonical(e.op(0)), exponent = canonical(e.op(1));
+    const std::string power = (exponent.negated ? "-" : "") + exponent.text;
+    const bool integer = GiNaC::is_a<GiNaC::numeric>(e.op(1)) && GiNaC::ex_to<GiNaC::numeric>(e.op(1)).is_integer();
+    if (!integer) return {"pow(" + std::string(base.negated ? "-" : "") + base.text + "," + power + ")", false};
+    return {"pow(" + base.text + "," + power + ")", base.negated && GiNaC::ex_to<GiNaC::numeric>(e.op(1)).is_odd()};
+  }
   if (GiNaC::is_a<GiNaC::function>(e)) {
-    std::string text = GiNaC::ex_to<GiNaC::function>(e).get_name() + "(";
-    for (std::size_t i = 0; i < e.nops(); ++i) text += canonical_text(e.op(i)) + ",";
-    return text + ")";
+    const std::string name = GiNaC::ex_to<GiNaC::function>(e).get_name();
+    if (e.nops() == 1 && (is_trig(e))) {  // sin(-x) = -sin(x), cos(-x) = cos(x)
+      const Canonical argument = canonical(e.op(0));
+      return {name + "(" + argument.text + ")", argument.negated && is_odd_function(e)};
+    }
+    std::string text = name + "(";
+    for (std::size_t i = 0; i < e.nops(); ++i) {
+      const Canonical argument = canonical(e.op(i));
+      text += (argument.negated ? "-" : "") + argument.text + ",";
+    }
+    return {text + ")", false};
   }
-  return ginac_text(e, false);
+  return {ginac_text(e, false), false};
 }
+
+// The tie-break key of a term or factor: its canonical text, then its sign (after a
+// character below every other, so that the text alone decides first).
+std::string canonical_text(const ex& e) {
+  const Canonical c = canonical(e);
+  return c.text + (c.negated ? "\x02" : "\x01");
+}
+
+// The canonical text alone: the same for e and -e (which term of a difference leads).
+std::string unsigned_text(const ex& e) { return canonical(e).text; }
 
 }  // namespace
 
@@ -157,8 +216,10 @@ std::string TextbookForm::render(const ex& e, int precedence, Context& c) const 
     return c.latex() ? GiNaC::ex_to<GiNaC::symbol>(e).get_TeX_name() : GiNaC::ex_to<GiNaC::symbol>(e).get_name();
   }
   if (GiNaC::is_a<GiNaC::add>(e)) return render_sum(e, precedence, c);
+  // A power of a sum goes through render_product too, to take a sign out of the sum.
   const bool quotient = GiNaC::is_a<GiNaC::power>(e) && GiNaC::is_a<GiNaC::numeric>(e.op(1)) &&
-                        GiNaC::ex_to<GiNaC::numeric>(e.op(1)).is_negative();
+                        (GiNaC::ex_to<GiNaC::numeric>(e.op(1)).is_negative() ||
+                         (GiNaC::is_a<GiNaC::add>(e.op(0)) && GiNaC::ex_to<GiNaC::numeric>(e.op(1)).is_integer()));
   if (GiNaC::is_a<GiNaC::mul>(e) || quotient) {
     const auto [negative, text] = render_product(e, c);
     const bool bare_quotient = !c.latex() && text.find('/') != std::string::npos;
@@ -199,6 +260,17 @@ void TextbookForm::sort_terms(std::vector<ex>& terms, const std::function<int(co
   for (std::size_t k = 0; k < terms.size(); ++k) terms[k] = keyed[k].term;
 }
 
+// True when a sum's first term in textbook order (as render_sum prints it outside a
+// function's argument) has a minus sign; the same term leads -sum.
+bool TextbookForm::sum_leads_negative(const ex& sum) const {
+  std::vector<ex> terms(sum.begin(), sum.end());
+  sort_terms(terms, [](const ex&, const ex&) { return 0; });
+  const ex& lead = terms.front();
+  const ex k = GiNaC::is_a<GiNaC::mul>(lead) ? lead.op(lead.nops() - 1) : lead;
+  return GiNaC::is_a<GiNaC::numeric>(k) && GiNaC::ex_to<GiNaC::numeric>(k).is_real() &&
+         GiNaC::ex_to<GiNaC::numeric>(k).is_negative();
+}
+
 // True when the term that an oriented difference starts with (the preferred symbol's,
 // else the one of the lowest coordinate) has a negative sign.
 bool TextbookForm::leads_negative(const ex& sum, const ex* first) const {
@@ -210,10 +282,11 @@ bool TextbookForm::leads_negative(const ex& sum, const ex* first) const {
     const ex term = sum.op(i);
     int key = coordinate_key(term);
     if (first != nullptr && term.has(*first)) key = -1;
-    if (!found || key < best || (key == best && canonical_text(term) < best_text)) {
+    const std::string text = unsigned_text(term);
+    if (!found || key < best || (key == best && text < best_text)) {
       lead = term;
       best = key;
-      best_text = canonical_text(term);
+      best_text = text;
       found = true;
     }
   }
@@ -298,6 +371,17 @@ std::pair<bool, std::string> TextbookForm::render_product(const ex& e, Context& 
     numerator.push_back({coefficient, 1});
   }
   if (imaginary_unit) numerator.push_back({GiNaC::I, 1});
+  // A sum as a factor with its first term positive, its sign outside: GiNaC keeps
+  // -(y_B - y_A)*omega1 or (y_A - y_B)*omega1 as its hash order falls.
+  for (std::vector<Factor>* list : {&numerator, &denominator}) {
+    for (Factor& f : *list) {
+      if (!GiNaC::is_a<GiNaC::add>(f.base) || !GiNaC::is_a<GiNaC::numeric>(f.exponent) ||
+          !GiNaC::ex_to<GiNaC::numeric>(f.exponent).is_integer() || !sum_leads_negative(f.base))
+        continue;
+      f.base = (-f.base).expand();
+      if (GiNaC::ex_to<GiNaC::numeric>(f.exponent).is_odd()) negative = !negative;
+    }
+  }
   // Differences inside sin, cos and tan: positive term first (the preferred symbol's in
   // the denominator of a solved rate); an odd function's sign comes out.
   const auto orient = [&](std::vector<Factor>& list, const ex* preferred) {
@@ -397,7 +481,7 @@ std::string TextbookForm::render_power(const ex& base, const ex& exponent, Conte
     const std::string f = render_function(base, base.op(0), c);
     return f.substr(0, 4) + "^{" + power + "}" + f.substr(4);
   }
-  std::string b = render(base, kPower, c);
+  std::string b = render(base, GiNaC::is_a<GiNaC::power>(base) ? 0 : kPower, c);  // wrapped below
   if (GiNaC::is_a<GiNaC::power>(base) || (c.latex() && b.find('^') != std::string::npos)) b = "(" + b + ")";
   return c.latex() ? b + "^{" + power + "}" : b + "^" + power;
 }
@@ -465,41 +549,52 @@ std::vector<std::string> TextbookForm::latex_lines(const ex& e, const ex& unknow
   // A quotient: its numerator's terms over lines after \frac{K}{D}, K the other factors.
   ex sum = e, front = 1, denominator = 1;
   if (GiNaC::is_a<GiNaC::mul>(e)) {
-    int sums = 0;
+    // The sum over lines: the one of most terms (then the first in canonical order, not
+    // in GiNaC's, which differs from build to build).
+    std::vector<ex> sums;
     for (std::size_t i = 0; i < e.nops(); ++i) {
       const ex f = e.op(i);
       if (GiNaC::is_a<GiNaC::power>(f) && GiNaC::is_a<GiNaC::numeric>(f.op(1)) &&
           GiNaC::ex_to<GiNaC::numeric>(f.op(1)).is_negative()) {
         denominator *= GiNaC::pow(f.op(0), -f.op(1));
-      } else if (GiNaC::is_a<GiNaC::add>(f) && sums == 0) {
-        sum = f;
-        ++sums;
+      } else if (GiNaC::is_a<GiNaC::add>(f)) {
+        sums.push_back(f);
       } else {
         front *= f;
       }
     }
-    if (sums == 0) return {whole};
+    if (sums.empty()) return {whole};
+    const auto chosen = std::min_element(sums.begin(), sums.end(), [](const ex& a, const ex& b) {
+      if (a.nops() != b.nops()) return a.nops() > b.nops();
+      return unsigned_text(a) < unsigned_text(b);
+    });
+    sum = *chosen;
+    for (auto it = sums.begin(); it != sums.end(); ++it)
+      if (it != chosen) front *= *it;
   } else if (!GiNaC::is_a<GiNaC::add>(e)) {
     return {whole};
   }
-  // -1/(-D) is 1/D.
-  if (GiNaC::is_a<GiNaC::mul>(denominator) && GiNaC::is_a<GiNaC::numeric>(denominator.op(denominator.nops() - 1)) &&
-      GiNaC::ex_to<GiNaC::numeric>(denominator.op(denominator.nops() - 1)).is_negative()) {
-    denominator = -denominator;
-    front = -front;
+  // The signs (of the factor in front, of the denominator and of the sum, each as GiNaC
+  // happened to put them) all go into the sum's terms: front and denominator print
+  // without a sign, the sum's first term is positive unless the whole is negative.
+  bool negative = false;
+  if (GiNaC::is_a<GiNaC::add>(sum) && sum_leads_negative(sum)) {
+    sum = (-sum).expand();
+    negative = true;
   }
+  const auto [front_negative, front_text] = render_product(front, c);
+  const bool has_denominator = !denominator.is_equal(1);
+  const auto [bottom_negative, bottom] = has_denominator ? render_product(denominator, c) : std::pair<bool, std::string>{};
+  if (negative != (front_negative != bottom_negative)) sum = (-sum).expand();
   std::vector<std::string> lines;
   std::string line;
   // A long denominator goes on lines of its own after the numerator: (...) / (...).
-  const std::string bottom = render(denominator, 0, c);
-  const bool long_denominator = !denominator.is_equal(1) && latex_width(bottom) > budget / 2;
-  const bool quotient = !denominator.is_equal(1) || !front.is_equal(1);
+  const bool long_denominator = has_denominator && latex_width(bottom) > budget / 2;
+  const bool has_front = front_text != "1";
   if (long_denominator) {
-    line = (front.is_equal(1) ? "" : render(front, kProduct, c) + " ") + "\\bigl(";
-  } else if (quotient) {
-    line = (denominator.is_equal(1) ? render(front, kProduct, c)
-                                    : "\\frac{" + render(front, 0, c) + "}{" + bottom + "}") +
-           "\\bigl(";
+    line = (has_front ? front_text + " " : "") + "\\bigl(";
+  } else if (has_denominator || has_front) {
+    line = (has_denominator ? "\\frac{" + front_text + "}{" + bottom + "}" : front_text) + "\\bigl(";
   }
   const auto add_terms = [&](const ex& s) {
   std::vector<ex> terms;
@@ -528,9 +623,9 @@ std::vector<std::string> TextbookForm::latex_lines(const ex& e, const ex& unknow
     line += "\\bigr)";
     lines.push_back(line);
     line = "\\bigm/ \\bigl(";
-    add_terms(denominator.expand());
+    add_terms((bottom_negative ? -denominator : denominator).expand());  // the denominator without its sign
     line += "\\bigr)";
-  } else if (quotient) {
+  } else if (has_denominator || has_front) {
     line += "\\bigr)";
   }
   lines.push_back(line);

@@ -30,6 +30,8 @@ class TextbookForm {
   /// The order of the system's symbols: parameters as in the file, then the input and the
   /// unknowns, then their rates and second rates.
   explicit TextbookForm(const ConstraintSystem& system);
+  /// Without a system: every symbol ordered as a parameter, by its name.
+  TextbookForm() = default;
 
   std::string operator()(const GiNaC::ex& e, Style style, const SymbolTexts* texts = nullptr) const;
 
@@ -78,6 +80,7 @@ class TextbookForm {
   std::string render_number(const GiNaC::numeric& n, Context& c) const;
   std::string render_argument(const GiNaC::ex& argument, Context& c) const;
   bool leads_negative(const GiNaC::ex& sum, const GiNaC::ex* first) const;
+  bool sum_leads_negative(const GiNaC::ex& sum) const;
 };
 
 }  // namespace kinema

@@ -451,7 +451,12 @@ class Writer {
     for (const ex& e : equations) eqs.append(e == 0);
     for (const ex& u : unknowns) vars.append(u);
     const ex solution = GiNaC::lsolve(eqs, vars);
-    for (const ex& s : solution) list.push_back({MethodRelation::Kind::solution, "", "", s.lhs(), s.rhs().normal()});
+    for (const ex& s : solution) {
+      // normal()'s numerator and denominator come factored in part or not, as GiNaC's
+      // term order (hashes of addresses) falls: expanded, they are the same from every build.
+      const ex quotient = s.rhs().normal().numer_denom();
+      list.push_back({MethodRelation::Kind::solution, "", "", s.lhs(), quotient.op(0).expand() / quotient.op(1).expand()});
+    }
   }
 
   // Seed 002's form: J on a circle about each pin (a link's length) or on a line of a

@@ -50,9 +50,9 @@ void vector_rows(std::vector<LatexRow>& rows, const TextbookForm& form, const st
   }
 }
 
-std::string vector_comment(const std::string& name, const ChainVector& v) {
-  return "kinema vector: " + name + " = [" + to_text(v.formula[0]) + ", " + to_text(v.formula[1]) + ", " +
-         to_text(v.formula[2]) + "]";
+std::string vector_comment(const std::string& name, const ChainVector& v, const TextbookForm& form) {
+  const auto text = [&](const ex& e) { return form(e, TextbookForm::Style::text); };
+  return "kinema vector: " + name + " = [" + text(v.formula[0]) + ", " + text(v.formula[1]) + ", " + text(v.formula[2]) + "]";
 }
 
 }  // namespace
@@ -83,7 +83,7 @@ std::vector<LatexRow> chain_frame_rows(const ChainAtInstant& chain, const Textbo
     const std::string w = "\\boldsymbol{\\omega}_{" + named(f.name + "/" + o) + "}";
     rows.push_back({w + " &= " + (sum.empty() ? "\\mathbf{0}" : sum), "frame " + f.name});
     vector_rows(rows, form, "", f.angular_velocity, "rad/s", named(chain.basis), false,
-                vector_comment("w_" + f.name, f.angular_velocity));
+                vector_comment("w_" + f.name, f.angular_velocity, form));
     // alpha term by term: each rate's change along its axis, and the axis carried round
     // by the frame it belongs to.
     std::vector<std::string> parts;
@@ -104,7 +104,7 @@ std::vector<LatexRow> chain_frame_rows(const ChainAtInstant& chain, const Textbo
                     ""});
     for (std::size_t k = 1; k < lines.size(); ++k) rows.push_back({"&\\quad " + lines[k], ""});
     vector_rows(rows, form, "", f.angular_acceleration, "rad/s^2", named(chain.basis), false,
-                vector_comment("alpha_" + f.name, f.angular_acceleration));
+                vector_comment("alpha_" + f.name, f.angular_acceleration, form));
   }
   return rows;
 }
@@ -126,7 +126,7 @@ std::vector<LatexRow> chain_point_rows(const ChainAtInstant& chain, const Textbo
             name = "\\mathbf{v}_{" + P + "} = \\mathbf{v}_{" + F + "} + \\boldsymbol{\\omega}\\times\\mathbf{r} + "
                    "\\mathbf{v}^{\\mathrm{rel}}";
             result = true;
-            comment = vector_comment("v_" + p.name, v);
+            comment = vector_comment("v_" + p.name, v, form);
             break;
           case ChainTerm::frame_acceleration: name = "\\mathbf{a}_{" + F + "}"; break;
           case ChainTerm::tangential: name = "\\boldsymbol{\\alpha}\\times\\mathbf{r}"; break;
@@ -138,7 +138,7 @@ std::vector<LatexRow> chain_point_rows(const ChainAtInstant& chain, const Textbo
           case ChainTerm::acceleration:
             name = "\\mathbf{a}_{" + P + "}";
             result = true;
-            comment = vector_comment("a_" + p.name, v);
+            comment = vector_comment("a_" + p.name, v, form);
             break;
           default: break;
         }

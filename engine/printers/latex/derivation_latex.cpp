@@ -35,7 +35,8 @@ void loop_rows(std::vector<LatexRow>& rows, const ConstraintSystem& system, cons
         const ex& solved = order == 1 ? d.solved_rates[j] : d.solved_second_rates[j];
         const auto lines = textbook.latex_lines(solved, system.unknowns[j].symbol, nullptr, kLatexLineBudget);
         for (const LatexRow& row :
-             latex_broken_rows(to_latex(symbol), lines, "", "kinema: " + symbol.get_name() + " = " + to_text(solved)))
+             latex_broken_rows(to_latex(symbol), lines, "", "kinema: " + symbol.get_name() + " = " +
+                                   textbook.solved(solved, system.unknowns[j].symbol, TextbookForm::Style::text)))
           rows.push_back(row);
       }
     }

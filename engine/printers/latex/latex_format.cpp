@@ -7,36 +7,6 @@
 #include <kinema/engine/symbolic/expression_parts.hpp>
 
 namespace kinema {
-namespace latex_detail {  // named: GiNaC's registry calls the default constructor
-
-using GiNaC::print_latex;  // the registry knows the parent context by this plain name
-
-// print_latex that prints the symbols of a SymbolTexts map as their text.
-class print_latex_values : public GiNaC::print_latex {
-  GINAC_DECLARE_PRINT_CONTEXT(print_latex_values, GiNaC::print_latex)
- public:
-  print_latex_values(std::ostream& os, const SymbolTexts& texts) : GiNaC::print_latex(os), texts_(&texts) {}
-  const SymbolTexts* texts_ = nullptr;
-};
-
-print_latex_values::print_latex_values() : GiNaC::print_latex(std::cout) {}
-GINAC_IMPLEMENT_PRINT_CONTEXT(print_latex_values, print_latex)
-
-void print_symbol_value(const GiNaC::symbol& s, const print_latex_values& c, unsigned level) {
-  if (c.texts_) {
-    const auto found = c.texts_->find(s);
-    if (found != c.texts_->end()) {
-      c.s << found->second;
-      return;
-    }
-  }
-  GiNaC::print_latex plain(c.s, c.options);
-  s.print(plain, level);
-}
-
-}  // namespace latex_detail
-
-using latex_detail::print_latex_values;
 
 namespace {
 
@@ -99,23 +69,7 @@ std::string latex_number(double value, int digits) {
   return text;
 }
 
-std::string to_latex(const GiNaC::ex& e) {
-  std::ostringstream out;
-  out << GiNaC::latex << e;
-  return out.str();
-}
-
-std::string to_latex(const GiNaC::ex& e, const SymbolTexts& texts) {
-  static const bool registered = [] {
-    GiNaC::set_print_func<GiNaC::symbol, print_latex_values>(latex_detail::print_symbol_value);
-    return true;
-  }();
-  (void)registered;
-  std::ostringstream out;
-  print_latex_values context(out, texts);
-  e.print(context);
-  return out.str();
-}
+std::string to_latex(const GiNaC::ex& e) { return TextbookForm()(e, TextbookForm::Style::latex); }
 
 std::string latex_exp(const GiNaC::ex& angle) {
   const std::string a = to_latex(angle);
@@ -155,10 +109,6 @@ std::string latex_matrix(const GiNaC::matrix& matrix, const TextbookForm& form) 
   return matrix_text(matrix, [&](const GiNaC::ex& e) { return form(e, TextbookForm::Style::latex); });
 }
 
-std::string latex_matrix(const GiNaC::matrix& matrix) {
-  return matrix_text(matrix, [](const GiNaC::ex& e) { return to_latex(e); });
-}
-
 std::string latex_vector_loop(const EquationGroup& loop) {
   using GiNaC::ex;
   // Terms c*exp(I*angle) print as c\,e^{i angle}, as course notes write link vectors.
@@ -186,9 +136,9 @@ std::string latex_vector_loop(const EquationGroup& loop) {
   std::string text;
   for (const ex& term : loop.terms) {
     const std::string t = term_text(term);
-    if (!text.empty() && (t.empty() || t[0] != '-')) text += " + ";
-    else if (!text.empty()) text += " ";
-    text += t;
+    const bool minus = !t.empty() && t[0] == '-';
+    if (text.empty()) text = t;
+    else text += (minus ? " - " : " + ") + t.substr(minus ? 1 : 0);
   }
   return text;
 }

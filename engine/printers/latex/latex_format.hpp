@@ -1,7 +1,6 @@
-// LaTeX helpers shared by the LaTeX printers. Symbols carry their LaTeX
-// names from the front end (GiNaC's TeX names), so an expression prints with
-// GiNaC's latex context as it is; numbers are put in with a print context
-// (print_latex_values) that prints chosen symbols as given text.
+// LaTeX helpers shared by the LaTeX printers. Symbols carry their LaTeX names from
+// the front end (GiNaC's TeX names); formulas print in textbook form, never in
+// GiNaC's own order (which differs from one build to another).
 #pragma once
 
 #include <ginac/ginac.h>
@@ -34,23 +33,16 @@ std::vector<LatexRow> latex_broken_rows(const std::string& lhs, const std::vecto
 /// is printed as itself, so a file cannot inject commands (\input{...} prints as text).
 std::string latex_escape_text(const std::string& text);
 
-/// An expression in LaTeX (the symbols' own LaTeX names).
+/// An expression in LaTeX (the symbols' own LaTeX names), in textbook form without a
+/// system's order of symbols (TextbookForm's default).
 std::string to_latex(const GiNaC::ex& e);
-
-/// Text to print in place of a symbol (keyed by the symbol).
-using SymbolTexts = std::map<GiNaC::ex, std::string, GiNaC::ex_is_less>;
-
-/// An expression in LaTeX with some symbols printed as the given text (a worked
-/// solution's numbers put into a formula), the expression itself unchanged.
-std::string to_latex(const GiNaC::ex& e, const SymbolTexts& texts);
 
 /// e^{i angle} (the angle parenthesised when it is a sum).
 std::string latex_exp(const GiNaC::ex& angle);
 
-/// A column vector and a matrix as amsmath bmatrix.
+/// A column vector as amsmath bmatrix.
 std::string latex_column(const std::vector<GiNaC::ex>& entries);
-std::string latex_matrix(const GiNaC::matrix& matrix);
-/// The same, each entry in textbook form.
+/// A column and a matrix, each entry in the system's textbook form.
 std::string latex_column(const std::vector<GiNaC::ex>& entries, const TextbookForm& form);
 std::string latex_matrix(const GiNaC::matrix& matrix, const TextbookForm& form);
 

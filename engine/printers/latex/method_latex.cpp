@@ -22,7 +22,8 @@ std::vector<LatexRow> method_rows(const MethodStep& step, bool acceleration, con
       case MethodRelation::Kind::solution:
         // Long solutions broken over lines inside the text width.
         for (const LatexRow& row : latex_broken_rows(latex(r.left), form.latex_lines(r.right, 0, nullptr, kLatexLineBudget),
-                                                     "", "kinema: " + to_text(r.left) + " = " + to_text(r.right)))
+                                                     "", "kinema: " + form(r.left, TextbookForm::Style::text) + " = " +
+                                                         form(r.right, TextbookForm::Style::text)))
           rows.push_back(row);
         break;
     }

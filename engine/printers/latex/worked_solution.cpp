@@ -312,7 +312,8 @@ class DocumentWriter {
         const ex& formula = order == 1 ? d_.solved_rates[j] : d_.solved_second_rates[j];
         const auto lines = textbook_.latex_lines(formula, system_.unknowns[j].symbol, nullptr, kLatexLineBudget);
         for (const LatexRow& row :
-             latex_broken_rows(to_latex(symbol), lines, "", "kinema: " + symbol.get_name() + " = " + to_text(formula)))
+             latex_broken_rows(to_latex(symbol), lines, "", "kinema: " + symbol.get_name() + " = " +
+                                   textbook_.solved(formula, system_.unknowns[j].symbol, TextbookForm::Style::text)))
           rows.push_back(row.comment.empty() ? row.text : row.text + " %% " + row.comment);
       }
     }
@@ -411,7 +412,7 @@ class DocumentWriter {
     auto coordinate = [&](Dimension dimension, double si) {
       return dimension == Dimension::angle ? shown(to_degrees(si), "^{\\circ}") : shown(si / scale_.length, "");
     };
-    SymbolTexts numbers;
+    TextbookForm::SymbolTexts numbers;
     for (const SystemParameter& parameter : system_.parameters) {
       numbers[parameter.symbol] = parameter.dimension == Dimension::number ? shown(parameter.value, "")
                                                                            : coordinate(parameter.dimension, parameter.value);

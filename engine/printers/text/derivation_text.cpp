@@ -228,15 +228,15 @@ class DerivationTextPrinter : public Printer {
       for (std::size_t p = 0; p < system.points.size(); ++p) {
         const PointObservable& point = system.points[p];
         out << "\n  " << point.name;
-        if (point.written) out << " = " << to_text(*point.written);
+        if (point.written) out << " = " << text(*point.written);
         out << "\n";
         const auto& components = point.components;
         for (std::size_t c = 0; c < components.size(); ++c)
-          out << "    " << label(components[c]) << "= " << to_text(point.position[c]) << "\n";
+          out << "    " << label(components[c]) << "= " << text(point.position[c]) << "\n";
         for (std::size_t c = 0; c < components.size(); ++c)
-          out << "    " << label("v" + components[c]) << "= " << to_text(d.points[p].velocity[c]) << "\n";
+          out << "    " << label("v" + components[c]) << "= " << text(d.points[p].velocity[c]) << "\n";
         for (std::size_t c = 0; c < components.size(); ++c)
-          out << "    " << label("a" + components[c]) << "= " << to_text(d.points[p].acceleration_combined[c]) << "\n";
+          out << "    " << label("a" + components[c]) << "= " << text(d.points[p].acceleration_combined[c]) << "\n";
       }
     }
   }
