@@ -100,6 +100,13 @@ Canonical canonical(const ex& e) {
   return {ginac_text(e, false), false};
 }
 
+// -sum term by term: expand() would also multiply out the powers of sums among them.
+ex negated_terms(const ex& sum) {
+  ex negated = 0;
+  for (std::size_t i = 0; i < sum.nops(); ++i) negated += -sum.op(i);
+  return negated;
+}
+
 // The tie-break key of a term or factor: its canonical text, then its sign (after a
 // character below every other, so that the text alone decides first).
 std::string canonical_text(const ex& e) {
@@ -261,14 +268,18 @@ void TextbookForm::sort_terms(std::vector<ex>& terms, const std::function<int(co
 }
 
 // True when a sum's first term in textbook order (as render_sum prints it outside a
-// function's argument) has a minus sign; the same term leads -sum.
+// function's argument) prints with a minus sign. The same term leads -sum, with the
+// other sign whatever GiNaC's form of it (a sign in front, or inside a factor).
 bool TextbookForm::sum_leads_negative(const ex& sum) const {
   std::vector<ex> terms(sum.begin(), sum.end());
   sort_terms(terms, [](const ex&, const ex&) { return 0; });
   const ex& lead = terms.front();
-  const ex k = GiNaC::is_a<GiNaC::mul>(lead) ? lead.op(lead.nops() - 1) : lead;
-  return GiNaC::is_a<GiNaC::numeric>(k) && GiNaC::ex_to<GiNaC::numeric>(k).is_real() &&
-         GiNaC::ex_to<GiNaC::numeric>(k).is_negative();
+  Context c{Style::text, nullptr};
+  if (GiNaC::is_a<GiNaC::numeric>(lead))
+    return GiNaC::ex_to<GiNaC::numeric>(lead).is_real() && GiNaC::ex_to<GiNaC::numeric>(lead).is_negative();
+  if (GiNaC::is_a<GiNaC::mul>(lead) || GiNaC::is_a<GiNaC::power>(lead)) return render_product(lead, c).first;
+  const std::string text = render(lead, kSum + 1, c);
+  return text.rfind("-", 0) == 0 || text.rfind("(-", 0) == 0;
 }
 
 // True when the term that an oriented difference starts with (the preferred symbol's,
@@ -378,7 +389,7 @@ std::pair<bool, std::string> TextbookForm::render_product(const ex& e, Context& 
       if (!GiNaC::is_a<GiNaC::add>(f.base) || !GiNaC::is_a<GiNaC::numeric>(f.exponent) ||
           !GiNaC::ex_to<GiNaC::numeric>(f.exponent).is_integer() || !sum_leads_negative(f.base))
         continue;
-      f.base = (-f.base).expand();
+      f.base = negated_terms(f.base);
       if (GiNaC::ex_to<GiNaC::numeric>(f.exponent).is_odd()) negative = !negative;
     }
   }
@@ -579,13 +590,13 @@ std::vector<std::string> TextbookForm::latex_lines(const ex& e, const ex& unknow
   // without a sign, the sum's first term is positive unless the whole is negative.
   bool negative = false;
   if (GiNaC::is_a<GiNaC::add>(sum) && sum_leads_negative(sum)) {
-    sum = (-sum).expand();
+    sum = negated_terms(sum);
     negative = true;
   }
   const auto [front_negative, front_text] = render_product(front, c);
   const bool has_denominator = !denominator.is_equal(1);
   const auto [bottom_negative, bottom] = has_denominator ? render_product(denominator, c) : std::pair<bool, std::string>{};
-  if (negative != (front_negative != bottom_negative)) sum = (-sum).expand();
+  if (negative != (front_negative != bottom_negative)) sum = negated_terms(sum);
   std::vector<std::string> lines;
   std::string line;
   // A long denominator goes on lines of its own after the numerator: (...) / (...).
