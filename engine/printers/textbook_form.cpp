@@ -274,12 +274,13 @@ bool TextbookForm::sum_leads_negative(const ex& sum) const {
   std::vector<ex> terms(sum.begin(), sum.end());
   sort_terms(terms, [](const ex&, const ex&) { return 0; });
   const ex& lead = terms.front();
-  Context c{Style::text, nullptr};
   if (GiNaC::is_a<GiNaC::numeric>(lead))
     return GiNaC::ex_to<GiNaC::numeric>(lead).is_real() && GiNaC::ex_to<GiNaC::numeric>(lead).is_negative();
-  if (GiNaC::is_a<GiNaC::mul>(lead) || GiNaC::is_a<GiNaC::power>(lead)) return render_product(lead, c).first;
-  const std::string text = render(lead, kSum + 1, c);
-  return text.rfind("-", 0) == 0 || text.rfind("(-", 0) == 0;
+  // The sign before the cosmetic rules of render_product (-(A + B)/D as (-A - B)/D), which
+  // would print a term and its negation alike; and only down the first terms, so that
+  // nested sums cost once per level.
+  if (GiNaC::is_a<GiNaC::mul>(lead) || GiNaC::is_a<GiNaC::power>(lead)) return product_parts(lead, nullptr).negative;
+  return is_odd_function(lead) && GiNaC::is_a<GiNaC::add>(lead.op(0)) && leads_negative(lead.op(0), nullptr);
 }
 
 // True when the term that an oriented difference starts with (the preferred symbol's,
@@ -347,16 +348,14 @@ std::string TextbookForm::render_sum(const ex& e, int precedence, Context& c) co
   return precedence > kSum ? "(" + text + ")" : text;
 }
 
-std::pair<bool, std::string> TextbookForm::render_product(const ex& e, Context& c) const {
+TextbookForm::ProductParts TextbookForm::product_parts(const ex& e, const ex* preferred) const {
   std::vector<ex> factors;
   if (GiNaC::is_a<GiNaC::mul>(e)) factors.assign(e.begin(), e.end());
   else factors.push_back(e);
   GiNaC::numeric coefficient = 1;
-  struct Factor {
-    ex base, exponent;
-    bool flipped = false;  // a trigonometric function of the negated argument
-  };
-  std::vector<Factor> numerator, denominator;
+  ProductParts parts;
+  std::vector<Factor>& numerator = parts.numerator;
+  std::vector<Factor>& denominator = parts.denominator;
   bool imaginary_unit = false;
   for (const ex& f : factors) {
     if (GiNaC::is_a<GiNaC::numeric>(f) && GiNaC::ex_to<GiNaC::numeric>(f).is_real()) {
@@ -373,7 +372,8 @@ std::pair<bool, std::string> TextbookForm::render_product(const ex& e, Context& 
       numerator.push_back({f, 1});
     }
   }
-  bool negative = coefficient.is_negative();
+  bool& negative = parts.negative;
+  negative = coefficient.is_negative();
   if (negative) coefficient = -coefficient;
   if (coefficient.is_rational() && !coefficient.is_integer()) {
     if (coefficient.numer() != 1) numerator.push_back({coefficient.numer(), 1});
@@ -395,19 +395,27 @@ std::pair<bool, std::string> TextbookForm::render_product(const ex& e, Context& 
   }
   // Differences inside sin, cos and tan: positive term first (the preferred symbol's in
   // the denominator of a solved rate); an odd function's sign comes out.
-  const auto orient = [&](std::vector<Factor>& list, const ex* preferred) {
+  const auto orient = [&](std::vector<Factor>& list, const ex* first) {
     for (Factor& f : list) {
       if (!is_trig(f.base) || !GiNaC::is_a<GiNaC::add>(f.base.op(0))) continue;
-      if (!leads_negative(f.base.op(0), preferred)) continue;
+      if (!leads_negative(f.base.op(0), first)) continue;
       f.flipped = true;
       const bool odd_power = GiNaC::is_a<GiNaC::numeric>(f.exponent) && GiNaC::ex_to<GiNaC::numeric>(f.exponent).is_odd();
       if (is_odd_function(f.base) && odd_power) negative = !negative;
     }
   };
-  const ex* preferred = c.preferred;
-  c.preferred = nullptr;
   orient(numerator, nullptr);
   orient(denominator, preferred);
+  return parts;
+}
+
+std::pair<bool, std::string> TextbookForm::render_product(const ex& e, Context& c) const {
+  const ex* preferred = c.preferred;
+  c.preferred = nullptr;
+  ProductParts parts = product_parts(e, preferred);
+  std::vector<Factor>& numerator = parts.numerator;
+  std::vector<Factor>& denominator = parts.denominator;
+  bool negative = parts.negative;
   // A solved rate: its minus sign into a sine difference of the numerator.
   if (negative && preferred != nullptr) {
     for (Factor& f : numerator) {

@@ -67,6 +67,17 @@ class TextbookForm {
   std::map<GiNaC::ex, int, GiNaC::ex_is_less> coordinate_of_;  // symbol -> its coordinate's index
 
   struct Context;
+  struct Factor {
+    GiNaC::ex base, exponent;
+    bool flipped = false;  // a trigonometric function of the negated argument
+  };
+  // A product as numerator and denominator factors, each sum's and each trigonometric
+  // difference's sign taken out into `negative`.
+  struct ProductParts {
+    std::vector<Factor> numerator, denominator;
+    bool negative = false;
+  };
+  ProductParts product_parts(const GiNaC::ex& e, const GiNaC::ex* preferred) const;
   Key key_of(const GiNaC::ex& factor) const;
   int coordinate_key(const GiNaC::ex& term) const;
   void sort_terms(std::vector<GiNaC::ex>& terms,

@@ -5,6 +5,7 @@
 // text back.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <string>
 
 #include <kinema/engine/model.hpp>
@@ -112,4 +113,18 @@ TEST_CASE("course notes: a crank's plots run from 0 to 360 deg whatever the requ
   CHECK(document.out.substr(first + 42, 10) == "(0.000000,");
   CHECK(document.out.find("(400.000000,") == std::string::npos);
   CHECK(document.out.find(" (nan,nan)") != std::string::npos);  // where the two parts of the turn meet
+}
+
+TEST_CASE("engine/printers/textbook_form: sums nested in products a hundred deep print (each level's sign judged once)") {
+  // A file may nest parentheses 100 deep (loops/formula_reader). Judging a sum's sign by
+  // printing its first term would print each level twice: 2^100 times the innermost.
+  const GiNaC::symbol a("a"), c("c");
+  ex e = a;
+  for (int k = 0; k < 100; ++k) e = (e - GiNaC::symbol("b" + std::to_string(k))) * c;
+  const kinema::TextbookForm form;
+  for (const Style style : {Style::text, Style::latex}) {
+    const std::string text = form(e, style);
+    CHECK(std::count(text.begin(), text.end(), '(') == 100);
+    CHECK(text.find("b99") != std::string::npos);
+  }
 }
