@@ -3,7 +3,6 @@
 #include <algorithm>
 
 #include <kinema/engine/report/output_scale.hpp>
-#include <kinema/engine/symbolic/expression_parts.hpp>
 
 namespace kinema {
 namespace {

@@ -6,7 +6,6 @@
 #include <kinema/engine/printers/latex/method_latex.hpp>
 #include <kinema/engine/printers/printer.hpp>
 #include <kinema/engine/report/structure.hpp>
-#include <kinema/engine/symbolic/expression_parts.hpp>
 
 namespace kinema {
 namespace {

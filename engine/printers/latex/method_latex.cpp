@@ -1,7 +1,6 @@
 #include <kinema/engine/printers/latex/method_latex.hpp>
 
 #include <kinema/engine/printers/latex/latex_format.hpp>
-#include <kinema/engine/symbolic/expression_parts.hpp>
 
 namespace kinema {
 

@@ -7,7 +7,6 @@
 #include <kinema/engine/report/structure.hpp>
 
 #include <cmath>
-#include <kinema/engine/symbolic/expression_parts.hpp>
 #include <kinema/engine/symbolic/trig_simplify.hpp>
 
 namespace kinema {
