@@ -10,6 +10,10 @@
 #include <cstring>
 #include <string>
 
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#endif
+
 namespace kinema {
 
 namespace {
@@ -87,12 +91,24 @@ bool to_decimal(double magnitude, int digits, Decimal& decimal) {
   return true;
 }
 
+// How many of the `digits` significant digits at the end of text[0..16) are kept: %g
+// drops trailing zeros. The last digit that is not '0', found a word at a time.
+int kept_digits(const char* all_digits, int digits) {
+  std::uint64_t low, high;
+  std::memcpy(&low, all_digits, 8);
+  std::memcpy(&high, all_digits + 8, 8);
+  low ^= 0x3030303030303030ULL;  // '0' bytes become zero bytes
+  high ^= 0x3030303030303030ULL;
+  // Byte i is all_digits[i] (little-endian): the highest non-zero byte is the last digit kept.
+  const int last = high != 0 ? 8 + (63 - __builtin_clzll(high)) / 8 : low != 0 ? (63 - __builtin_clzll(low)) / 8 : 15;
+  return std::max(1, last - (16 - digits) + 1);
+}
+
 // %g at out (kMaxNumberChars - 1 bytes free) of the number whose 16 digits (leading
 // zeros first) are at all_digits, with 16 more bytes readable after them.
 char* put_digits(char* out, const char* all_digits, int exponent, int digits) {
   const char* text = all_digits + 16 - digits;
-  int length = digits;
-  while (length > 1 && text[length - 1] == '0') --length;  // %g drops trailing zeros
+  const int length = kept_digits(all_digits, digits);
   // out has kMaxNumberChars - 1 bytes (a sign may precede): each copy_16 below stays inside.
   if (exponent < -4 || exponent >= digits) {  // scientific: d.ddd e+XX
     out[0] = text[0];
@@ -137,6 +153,172 @@ char* put_significant_fast(char* out, double magnitude, int digits) {
   return put_digits(out, all_digits, decimal.exponent, digits);
 }
 
+// A list is formatted in chunks, in passes: every value of a chunk to its 16 digits and
+// decimal exponent (the arithmetic), then each text. Apart, a pass's work overlaps from
+// one value to the next, and the texts read digits stored long before (reading bytes
+// just stored in pieces stalls).
+enum Kind : unsigned char { kNumber, kZero, kEmpty, kExact };
+constexpr std::size_t kChunk = 64;
+struct ChunkDigits {
+  alignas(64) char texts[kChunk + 1][16];  // 16 digits a value; one more row: room to read past the last
+  int exponents[kChunk];
+  Kind kinds[kChunk];
+};
+
+Kind kind_of(double value) {
+  if (value == 0) return kZero;
+  if (std::isnan(value)) return kEmpty;
+  return kExact;
+}
+
+void chunk_digits_portable(const double* values, std::size_t n, int digits, ChunkDigits& chunk) {
+  Decimal decimals[kChunk];
+  for (std::size_t k = 0; k < n; ++k) {
+    const double value = values[k];
+    decimals[k] = {0, 0};  // the digits pass converts every entry
+    chunk.kinds[k] = std::isfinite(value) && value != 0 && to_decimal(std::fabs(value), digits, decimals[k])
+                         ? kNumber
+                         : kind_of(value);
+  }
+  for (std::size_t k = 0; k < n; ++k) {  // also unused ones: no branch
+    put_16_digits(chunk.texts[k], decimals[k].mantissa);
+    chunk.exponents[k] = decimals[k].exponent;
+  }
+}
+
+#if defined(__x86_64__) && defined(__GNUC__)
+#define KINEMA_VECTOR_NUMBERS 1
+// GCC 12's intrinsics (_mm512_set1_*) trip its own -Wmaybe-uninitialized.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#define KINEMA_AVX512 __attribute__((target("avx512f,avx512dq,avx512bw,avx512vl")))
+
+// The 8 ASCII digits of each 64-bit lane's value < 10^8, as the lane's 8 bytes (the
+// first digit in the lowest byte): split in halves of 4 digits, pairs, digits, all lanes at once.
+KINEMA_AVX512 __m512i eight_digits(__m512i x) {
+  const __m512i high4 = _mm512_srli_epi64(_mm512_mul_epu32(x, _mm512_set1_epi64(109951163)), 40);  // x / 10^4
+  const __m512i low4 = _mm512_sub_epi64(x, _mm512_mul_epu32(high4, _mm512_set1_epi64(10000)));
+  const __m512i halves = _mm512_or_si512(high4, _mm512_slli_epi64(low4, 32));
+  const __m512i pairs_high = _mm512_and_si512(_mm512_srli_epi64(_mm512_mullo_epi64(halves, _mm512_set1_epi64(10486)), 20),
+                                              _mm512_set1_epi64(0x0000007F0000007FLL));  // each half / 100
+  const __m512i pairs_low = _mm512_sub_epi64(halves, _mm512_mullo_epi64(pairs_high, _mm512_set1_epi64(100)));
+  const __m512i pairs = _mm512_add_epi64(_mm512_slli_epi64(pairs_low, 16), pairs_high);
+  __m512i tens = _mm512_and_si512(_mm512_srli_epi64(_mm512_mullo_epi64(pairs, _mm512_set1_epi64(103)), 10),
+                                  _mm512_set1_epi64(0x000F000F000F000FLL));  // each pair / 10
+  const __m512i units = _mm512_sub_epi64(pairs, _mm512_mullo_epi64(tens, _mm512_set1_epi64(10)));
+  tens = _mm512_add_epi64(tens, _mm512_slli_epi64(units, 8));
+  return _mm512_add_epi64(tens, _mm512_set1_epi64(0x3030303030303030LL));
+}
+
+// chunk_digits_portable, eight values at a time: the same decimals (the same window
+// around ties sends the same values to std::to_chars), the same digits.
+KINEMA_AVX512 void chunk_digits_avx512(const double* values, std::size_t n, int digits, ChunkDigits& chunk) {
+  const double* powers = powers_of_ten().data();
+  const __m512d low = _mm512_set1_pd(powers[kPowers + digits - 1]), high = _mm512_set1_pd(powers[kPowers + digits]);
+  const __m512d tie_window = _mm512_set1_pd(powers[kPowers + digits] * 1e-15);
+  const __m512i index_base = _mm512_set1_epi64(kPowers + digits - 1);
+  const __m512i one = _mm512_set1_epi64(1);
+  for (std::size_t k = 0; k < n; k += 8) {
+    const __mmask8 present = n - k >= 8 ? 0xff : static_cast<__mmask8>((1u << (n - k)) - 1);
+    const __m512d value = _mm512_maskz_loadu_pd(present, values + k);
+    const __m512i bits = _mm512_castpd_si512(value);
+    const __m512d magnitude = _mm512_castsi512_pd(_mm512_and_si512(bits, _mm512_set1_epi64(0x7fffffffffffffffLL)));
+    const __mmask8 finite_in_range = _mm512_cmp_pd_mask(magnitude, _mm512_set1_pd(1e-280), _CMP_GE_OQ) &
+                                     _mm512_cmp_pd_mask(magnitude, _mm512_set1_pd(1e280), _CMP_LE_OQ) & present;
+    const __m512i binary_exponent =
+        _mm512_sub_epi64(_mm512_srli_epi64(_mm512_castpd_si512(magnitude), 52), _mm512_set1_epi64(1023));
+    __m512i exponent = _mm512_srai_epi64(_mm512_mullo_epi64(binary_exponent, _mm512_set1_epi64(78913)), 18);
+    const __m512d power = _mm512_mask_i64gather_pd(_mm512_set1_pd(1.0), finite_in_range,
+                                             _mm512_sub_epi64(index_base, exponent), powers, 8);
+    __m512d scaled = _mm512_mul_pd(magnitude, power);
+    const __mmask8 above = _mm512_cmp_pd_mask(scaled, high, _CMP_GE_OQ) & finite_in_range;
+    const __mmask8 below = _mm512_cmp_pd_mask(scaled, low, _CMP_LT_OQ) & finite_in_range;
+    // One decade off: scaled by 10 or 0.1 (a second rounding, well inside the tie window).
+    exponent = _mm512_mask_add_epi64(exponent, above, exponent, one);
+    exponent = _mm512_mask_sub_epi64(exponent, below, exponent, one);
+    scaled = _mm512_mask_mul_pd(scaled, above, scaled, _mm512_set1_pd(0.1));
+    scaled = _mm512_mask_mul_pd(scaled, below, scaled, _mm512_set1_pd(10.0));
+    __m512d mantissa = _mm512_roundscale_pd(scaled, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
+    const __m512d fraction = _mm512_sub_pd(scaled, mantissa);
+    const __m512d from_tie = _mm512_sub_pd(fraction, _mm512_set1_pd(0.5));
+    const __mmask8 near_tie =
+        _mm512_cmp_pd_mask(_mm512_abs_pd(from_tie), tie_window, _CMP_LT_OQ) & finite_in_range;
+    mantissa = _mm512_mask_add_pd(mantissa, _mm512_cmp_pd_mask(fraction, _mm512_set1_pd(0.5), _CMP_GT_OQ), mantissa,
+                                  _mm512_set1_pd(1.0));
+    const __mmask8 rounded_up_a_decade = _mm512_cmp_pd_mask(mantissa, high, _CMP_GE_OQ);  // 9.99...95 -> 10.0...
+    mantissa = _mm512_mask_mov_pd(mantissa, rounded_up_a_decade, low);
+    exponent = _mm512_mask_add_epi64(exponent, rounded_up_a_decade, exponent, one);
+    // mantissa < 10^13: its first and last 8 of 16 digits, exactly in double arithmetic.
+    const __m512d first8 = _mm512_roundscale_pd(
+        _mm512_mul_pd(_mm512_add_pd(mantissa, _mm512_set1_pd(0.5)), _mm512_set1_pd(1e-8)),
+        _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
+    const __m512d last8 = _mm512_fnmadd_pd(first8, _mm512_set1_pd(1e8), mantissa);
+    const __mmask8 number = finite_in_range & ~near_tie;
+    const __m512i first_text = eight_digits(_mm512_maskz_cvttpd_epu64(number, first8));
+    const __m512i last_text = eight_digits(_mm512_maskz_cvttpd_epu64(number, last8));
+    _mm512_store_si512(chunk.texts[k], _mm512_permutex2var_epi64(first_text, _mm512_setr_epi64(0, 8, 1, 9, 2, 10, 3, 11), last_text));
+    _mm512_store_si512(chunk.texts[k + 4], _mm512_permutex2var_epi64(first_text, _mm512_setr_epi64(4, 12, 5, 13, 6, 14, 7, 15), last_text));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(chunk.exponents + k), _mm512_cvtepi64_epi32(exponent));
+    __m128i kinds = _mm_set1_epi8(kExact);
+    kinds = _mm_mask_mov_epi8(kinds, _mm512_cmp_pd_mask(value, _mm512_setzero_pd(), _CMP_EQ_OQ), _mm_set1_epi8(kZero));
+    kinds = _mm_mask_mov_epi8(kinds, _mm512_cmp_pd_mask(value, value, _CMP_UNORD_Q), _mm_set1_epi8(kEmpty));
+    kinds = _mm_mask_mov_epi8(kinds, number, _mm_set1_epi8(kNumber));
+    _mm_storel_epi64(reinterpret_cast<__m128i*>(chunk.kinds + k), kinds);
+  }
+}
+
+bool has_avx512() {
+  static const bool has = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
+                          __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512vl");
+  return has;
+}
+#pragma GCC diagnostic pop
+#endif
+
+char* put_chunk(char* out, const double* values, std::size_t first, std::size_t n, int digits, char separator,
+                const ChunkDigits& chunk) {
+  for (std::size_t k = 0; k < n; ++k) {
+    if (first + k > 0) *out++ = separator;
+    const double value = values[k];
+    switch (chunk.kinds[k]) {
+      case kNumber:
+        *out = '-';  // kept for a negative value only
+        out = put_digits(out + std::signbit(value), chunk.texts[k], chunk.exponents[k], digits);
+        break;
+      case kZero:
+        *out++ = '0';
+        break;
+      case kEmpty:
+        break;
+      case kExact:
+        out = std::to_chars(out, out + kMaxNumberChars, value, std::chars_format::general, digits).ptr;
+        break;
+    }
+  }
+  return out;
+}
+
+char* put_list(char* out, const double* values, std::size_t count, int significant, char separator, bool vector) {
+  if (!(significant >= 1 && significant <= 13)) {
+    for (std::size_t k = 0; k < count; ++k) {
+      if (k > 0) *out++ = separator;
+      if (!std::isnan(values[k])) out = put_significant(out, values[k], significant);
+    }
+    return out;
+  }
+  ChunkDigits chunk;
+  for (std::size_t begin = 0; begin < count; begin += kChunk) {
+    const std::size_t n = std::min(kChunk, count - begin);
+#ifdef KINEMA_VECTOR_NUMBERS
+    if (vector) chunk_digits_avx512(values + begin, n, significant, chunk);
+    else
+#endif
+      chunk_digits_portable(values + begin, n, significant, chunk);
+    out = put_chunk(out, values + begin, begin, n, significant, separator, chunk);
+  }
+  return out;
+}
+
 }  // namespace
 
 // std::to_chars: printf's %.*g digits without its locale and format parsing; for up to
@@ -156,55 +338,26 @@ char* put_significant(char* out, double value, int significant) {
 }
 
 char* put_significant_list(char* out, const double* values, std::size_t count, int significant, char separator) {
-  if (!(significant >= 1 && significant <= 13)) {
-    for (std::size_t k = 0; k < count; ++k) {
-      if (k > 0) *out++ = separator;
-      if (!std::isnan(values[k])) out = put_significant(out, values[k], significant);
-    }
-    return out;
-  }
-  // Three passes over up to 64 values: each value as a Decimal (the floating-point
-  // part), then the digits of each, then each text. Apart, a pass's work overlaps from
-  // one value to the next, and the texts read digits stored long before (reading bytes
-  // just stored in pieces stalls); one value at a time, the processor waits on each
-  // value's chain of steps: 15 ns a value against 20 (Problem 4.4's CSV, this machine).
-  enum Kind : unsigned char { kNumber, kZero, kEmpty, kExact };
-  constexpr std::size_t kChunk = 64;
-  Decimal decimals[kChunk];
-  Kind kinds[kChunk];
-  char texts[kChunk + 1][16];  // each number's 16 digits; one more row: room to read past the last
-  for (std::size_t begin = 0; begin < count; begin += kChunk) {
-    const std::size_t n = std::min(kChunk, count - begin);
-    for (std::size_t k = 0; k < n; ++k) {
-      const double value = values[begin + k];
-      decimals[k] = {0, 0};  // the digits pass converts every entry
-      if (value == 0) kinds[k] = kZero;
-      else if (std::isnan(value)) kinds[k] = kEmpty;
-      else if (std::isfinite(value) && to_decimal(std::fabs(value), significant, decimals[k])) kinds[k] = kNumber;
-      else kinds[k] = kExact;
-    }
-    for (std::size_t k = 0; k < n; ++k) put_16_digits(texts[k], decimals[k].mantissa);  // also unused ones: no branch
-    for (std::size_t k = 0; k < n; ++k) {
-      if (begin + k > 0) *out++ = separator;
-      const double value = values[begin + k];
-      switch (kinds[k]) {
-        case kNumber:
-          *out = '-';  // kept for a negative value only
-          out = put_digits(out + (value < 0), texts[k], decimals[k].exponent, significant);
-          break;
-        case kZero:
-          *out++ = '0';
-          break;
-        case kEmpty:
-          break;
-        case kExact:
-          out = std::to_chars(out, out + kMaxNumberChars, value, std::chars_format::general, significant).ptr;
-          break;
-      }
-    }
-  }
-  return out;
+#ifdef KINEMA_VECTOR_NUMBERS
+  return put_list(out, values, count, significant, separator, has_avx512());
+#else
+  return put_list(out, values, count, significant, separator, false);
+#endif
 }
+
+namespace detail {
+char* put_significant_list_portable(char* out, const double* values, std::size_t count, int significant,
+                                    char separator) {
+  return put_list(out, values, count, significant, separator, false);
+}
+bool vector_number_path() {
+#ifdef KINEMA_VECTOR_NUMBERS
+  return has_avx512();
+#else
+  return false;
+#endif
+}
+}  // namespace detail
 
 char* put_shortest(char* out, double value) {
   return std::to_chars(out, out + kMaxNumberChars, value == 0 ? 0.0 : value).ptr;

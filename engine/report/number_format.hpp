@@ -19,6 +19,15 @@ char* put_significant(char* out, double value, int significant);
 /// The same characters, faster than one put_significant call a value.
 char* put_significant_list(char* out, const double* values, std::size_t count, int significant, char separator);
 
+namespace detail {
+/// put_significant_list without the vector instructions it uses where the processor has
+/// them (AVX-512): what other processors run; for tests that compare the two.
+char* put_significant_list_portable(char* out, const double* values, std::size_t count, int significant,
+                                    char separator);
+/// Whether put_significant_list uses vector instructions on this processor.
+bool vector_number_path();
+}  // namespace detail
+
 /// The shortest text that reads back as the same double ("0.1", "6.283185307179586",
 /// "1e-05"); never "-0". Returns the end.
 char* put_shortest(char* out, double value);

@@ -129,19 +129,23 @@ TEST_CASE("engine/report/number_format: put_significant_list writes what put_sig
         std::vector<char> buffer((kinema::kMaxNumberChars + 1) * count + 1);
         char* end = kinema::put_significant_list(buffer.data(), values.data() + first, count, digits, ';');
         const std::string got(buffer.data(), end);
+        end = kinema::detail::put_significant_list_portable(buffer.data(), values.data() + first, count, digits, ';');
+        const std::string portable(buffer.data(), end);
         ++lists;
         characters += got.size();
-        if (got != expected) {
+        if (got != expected || portable != expected) {
           CAPTURE(digits);
           CAPTURE(count);
           CAPTURE(first);
           REQUIRE(got == expected);
+          REQUIRE(portable == expected);
         }
       }
     }
   }
   CHECK(lists > 500);
   CHECK(characters > 1000000);
+  MESSAGE("put_significant_list with vector instructions: " << (kinema::detail::vector_number_path() ? "yes" : "no"));
 }
 
 TEST_CASE("engine/report/number_format: put_shortest reads back as the same double") {
