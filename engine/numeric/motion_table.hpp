@@ -102,6 +102,15 @@ class MotionTable {
   Column qd(std::size_t row) const { return column_view(qd_, row); }
   Column qdd(std::size_t row) const { return column_view(qdd_, row); }
   PointMotion point(std::size_t row, std::size_t p) const;
+  /// Value k (of 3 * dimension: position, velocity, acceleration components) of point p,
+  /// every row: [row]. What walks a block column by column reads.
+  const double* point_column(std::size_t p, std::size_t k) const { return points_.data() + (point_offset_[p] + k) * size(); }
+  /// Value k (of 6: angular velocity, angular acceleration) of frame f, every row.
+  const double* frame_column(std::size_t f, std::size_t k) const { return points_.data() + (frame_offset_ + 6 * f + k) * size(); }
+  /// Coordinate i (its rate, second rate), every row.
+  const double* q_column(std::size_t i) const { return q_.data() + i * size(); }
+  const double* qd_column(std::size_t i) const { return qd_.data() + i * size(); }
+  const double* qdd_column(std::size_t i) const { return qdd_.data() + i * size(); }
   FrameMotion frame(std::size_t row, std::size_t f) const;
   double loop_residual(std::size_t row) const { return loop_residual_[row]; }
   double reciprocal_condition(std::size_t row) const { return reciprocal_condition_[row]; }

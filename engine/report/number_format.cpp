@@ -158,14 +158,10 @@ char* put_significant_fast(char* out, double magnitude, int digits) {
 // one value to the next, and the texts read digits stored long before (reading bytes
 // just stored in pieces stalls).
 enum Kind : unsigned char { kNumber, kZero, kEmpty, kExact };
-constexpr std::size_t kChunk = 64;
-struct ChunkDigits {
-  alignas(64) char texts[kChunk + 1][16];  // 16 digits a value; one more row: room to read past the last
-  int exponents[kChunk];
-  Kind kinds[kChunk];
-};
+constexpr std::size_t kChunk = SignificantChunk::capacity;
+using ChunkDigits = SignificantChunk::Digits;
 
-Kind kind_of(double value) {
+unsigned char kind_of(double value) {
   if (value == 0) return kZero;
   if (std::isnan(value)) return kEmpty;
   return kExact;
@@ -177,7 +173,7 @@ void chunk_digits_portable(const double* values, std::size_t n, int digits, Chun
     const double value = values[k];
     decimals[k] = {0, 0};  // the digits pass converts every entry
     chunk.kinds[k] = std::isfinite(value) && value != 0 && to_decimal(std::fabs(value), digits, decimals[k])
-                         ? kNumber
+                         ? static_cast<unsigned char>(kNumber)
                          : kind_of(value);
   }
   for (std::size_t k = 0; k < n; ++k) {  // also unused ones: no branch
@@ -275,29 +271,6 @@ bool has_avx512() {
 #pragma GCC diagnostic pop
 #endif
 
-char* put_chunk(char* out, const double* values, std::size_t first, std::size_t n, int digits, char separator,
-                const ChunkDigits& chunk) {
-  for (std::size_t k = 0; k < n; ++k) {
-    if (first + k > 0) *out++ = separator;
-    const double value = values[k];
-    switch (chunk.kinds[k]) {
-      case kNumber:
-        *out = '-';  // kept for a negative value only
-        out = put_digits(out + std::signbit(value), chunk.texts[k], chunk.exponents[k], digits);
-        break;
-      case kZero:
-        *out++ = '0';
-        break;
-      case kEmpty:
-        break;
-      case kExact:
-        out = std::to_chars(out, out + kMaxNumberChars, value, std::chars_format::general, digits).ptr;
-        break;
-    }
-  }
-  return out;
-}
-
 char* put_list(char* out, const double* values, std::size_t count, int significant, char separator, bool vector) {
   if (!(significant >= 1 && significant <= 13)) {
     for (std::size_t k = 0; k < count; ++k) {
@@ -306,15 +279,12 @@ char* put_list(char* out, const double* values, std::size_t count, int significa
     }
     return out;
   }
-  ChunkDigits chunk;
+  SignificantChunk chunk;
   for (std::size_t begin = 0; begin < count; begin += kChunk) {
     const std::size_t n = std::min(kChunk, count - begin);
-#ifdef KINEMA_VECTOR_NUMBERS
-    if (vector) chunk_digits_avx512(values + begin, n, significant, chunk);
-    else
-#endif
-      chunk_digits_portable(values + begin, n, significant, chunk);
-    out = put_chunk(out, values + begin, begin, n, significant, separator, chunk);
+    chunk.convert(values + begin, n, significant, vector);
+    if (begin > 0) *out++ = separator;
+    out = chunk.put(out, 0, n, separator);
   }
   return out;
 }
@@ -337,11 +307,47 @@ char* put_significant(char* out, double value, int significant) {
   return std::to_chars(out, out + kMaxNumberChars, value, std::chars_format::general, significant).ptr;
 }
 
-char* put_significant_list(char* out, const double* values, std::size_t count, int significant, char separator) {
+void SignificantChunk::convert(const double* values, std::size_t count, int significant, bool vector) {
+  values_ = values;
+  significant_ = significant;
 #ifdef KINEMA_VECTOR_NUMBERS
-  return put_list(out, values, count, significant, separator, has_avx512());
+  if (vector) return chunk_digits_avx512(values, count, significant, digits_);
+#endif
+  (void)vector;
+  chunk_digits_portable(values, count, significant, digits_);
+}
+
+char* SignificantChunk::put(char* out, std::size_t first, std::size_t last, char separator) const {
+  for (std::size_t k = first; k < last; ++k) {
+    if (k > first) *out++ = separator;
+    const double value = values_[k];
+    switch (digits_.kinds[k]) {
+      case kNumber:
+        *out = '-';  // kept for a negative value only
+        out = put_digits(out + std::signbit(value), digits_.texts[k], digits_.exponents[k], significant_);
+        break;
+      case kZero:
+        *out++ = '0';
+        break;
+      case kEmpty:
+        break;
+      case kExact:
+        out = std::to_chars(out, out + kMaxNumberChars, value, std::chars_format::general, significant_).ptr;
+        break;
+    }
+  }
+  return out;
+}
+
+char* put_significant_list(char* out, const double* values, std::size_t count, int significant, char separator) {
+  return put_list(out, values, count, significant, separator, vector_number_path());
+}
+
+bool vector_number_path() {
+#ifdef KINEMA_VECTOR_NUMBERS
+  return has_avx512();
 #else
-  return put_list(out, values, count, significant, separator, false);
+  return false;
 #endif
 }
 
@@ -349,13 +355,6 @@ namespace detail {
 char* put_significant_list_portable(char* out, const double* values, std::size_t count, int significant,
                                     char separator) {
   return put_list(out, values, count, significant, separator, false);
-}
-bool vector_number_path() {
-#ifdef KINEMA_VECTOR_NUMBERS
-  return has_avx512();
-#else
-  return false;
-#endif
 }
 }  // namespace detail
 

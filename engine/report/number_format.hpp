@@ -19,21 +19,48 @@ char* put_significant(char* out, double value, int significant);
 /// The same characters, faster than one put_significant call a value.
 char* put_significant_list(char* out, const double* values, std::size_t count, int significant, char separator);
 
+/// Whether put_significant_list and SignificantChunk use vector instructions on this
+/// processor (AVX-512).
+bool vector_number_path();
+
+/// Room put_significant and put_shortest may need.
+constexpr std::size_t kMaxNumberChars = 32;
+
+/// Up to `capacity` numbers written as put_significant writes them (NaN as nothing), for
+/// 1 to 13 significant digits: the arithmetic of all of them first, eight at a time with
+/// vector instructions where the processor has them, then each text. What runs of
+/// numbers that are not one list (rows with other text between) are written with.
+class SignificantChunk {
+ public:
+  static constexpr std::size_t capacity = 64;
+  /// values[0, count) (count <= capacity; they stay readable until the last put).
+  /// `vector` false: without vector instructions (what other processors run; for tests).
+  void convert(const double* values, std::size_t count, int significant, bool vector = vector_number_path());
+  /// Values [first, last) of the chunk, `separator` between them, at out
+  /// ((kMaxNumberChars + 1) * (last - first) bytes free); returns the end.
+  char* put(char* out, std::size_t first, std::size_t last, char separator) const;
+
+  struct Digits {
+    alignas(64) char texts[capacity + 1][16];  // 16 digits a value; one more row: room to read past the last
+    int exponents[capacity];
+    unsigned char kinds[capacity];
+  };
+
+ private:
+  Digits digits_;
+  const double* values_ = nullptr;
+  int significant_ = 0;
+};
+
 namespace detail {
-/// put_significant_list without the vector instructions it uses where the processor has
-/// them (AVX-512): what other processors run; for tests that compare the two.
+/// put_significant_list without vector instructions; for tests that compare the two.
 char* put_significant_list_portable(char* out, const double* values, std::size_t count, int significant,
                                     char separator);
-/// Whether put_significant_list uses vector instructions on this processor.
-bool vector_number_path();
 }  // namespace detail
 
 /// The shortest text that reads back as the same double ("0.1", "6.283185307179586",
 /// "1e-05"); never "-0". Returns the end.
 char* put_shortest(char* out, double value);
-
-/// Room put_significant and put_shortest may need.
-constexpr std::size_t kMaxNumberChars = 32;
 
 /// value rounded to `significant` significant digits (what format_significant prints, as a double).
 double round_significant(double value, int significant);

@@ -183,59 +183,94 @@ void linkage_values(const ConstraintSystem& system, const OutputScale& scale, co
                  values);
 }
 
+std::size_t result_column_count(const ConstraintSystem& system, bool circuit) {
+  std::size_t count = kInputColumns + 3 * system.unknowns.size() + 6 * system.frames.size();
+  for (const PointObservable& p : system.points) count += 3 * p.components.size() + 2;
+  if (system.linkage) {
+    for (const LinkageFrames::Body& body : system.linkage->frames.bodies) count += body.guide >= 0 ? 3 : 0;
+    count += 6 * system.linkage->frames.sliders.size();
+    if (circuit) count += system.linkage->frames.dyads.size();  // an assembly sign each
+  }
+  return count;
+}
+
 void result_values(const ConstraintSystem& system, const OutputScale& scale, const MotionTable& table,
                    std::size_t row, double* values) {
+  result_rows(system, scale, table, row, row + 1, values);
+}
+
+void result_rows(const ConstraintSystem& system, const OutputScale& scale, const MotionTable& table,
+                 std::size_t first, std::size_t last, double* values) {
   constexpr double undefined = std::numeric_limits<double>::quiet_NaN();
-  const Status status = table.status(row);
+  const std::size_t stride = result_column_count(system, table.is_circuit());
+  std::size_t column = 0;
+  // Column `column` of every row from value(row); NaN unless the row is ok (needs ok) or
+  // at least assembled (needs singular).
+  const auto fill = [&](Status needs, auto value) {
+    double* out = values + column++;
+    for (std::size_t row = first; row < last; ++row, out += stride) {
+      const Status status = table.status(row);
+      const bool defined = needs == Status::ok ? status == Status::ok : status != Status::unassembled;
+      *out = defined ? value(row) : undefined;
+    }
+  };
   const Dimension input_kind = system.input.dimension;
-  *values++ = scale.input(table.input(row));
-  *values++ = scale.rate(input_kind, table.input_rate(row));
-  *values++ = scale.rate(input_kind, table.input_second_rate(row));
-  const auto q = table.q(row), qd = table.qd(row), qdd = table.qdd(row);
+  {
+    double* out = values + column;
+    for (std::size_t row = first; row < last; ++row, out += stride) {
+      out[0] = scale.input(table.input(row));
+      out[1] = scale.rate(input_kind, table.input_rate(row));
+      out[2] = scale.rate(input_kind, table.input_second_rate(row));
+    }
+    column += kInputColumns;
+  }
   for (std::size_t i = 0; i < system.unknowns.size(); ++i) {
     const Dimension kind = system.unknowns[i].dimension;
-    *values++ = status != Status::unassembled ? scale.coordinate(kind, q[Eigen::Index(i)]) : undefined;
-    *values++ = status == Status::ok ? scale.rate(kind, qd[Eigen::Index(i)]) : undefined;
-    *values++ = status == Status::ok ? scale.rate(kind, qdd[Eigen::Index(i)]) : undefined;
+    const double *q = table.q_column(i), *qd = table.qd_column(i), *qdd = table.qdd_column(i);
+    fill(Status::singular, [&](std::size_t row) { return scale.coordinate(kind, q[row]); });
+    fill(Status::ok, [&](std::size_t row) { return scale.rate(kind, qd[row]); });
+    fill(Status::ok, [&](std::size_t row) { return scale.rate(kind, qdd[row]); });
   }
   const double f = scale.length;
   for (std::size_t p = 0; p < system.points.size(); ++p) {
     const std::size_t dimension = system.points[p].components.size();
-    if (status != Status::ok) {
-      values = std::fill_n(values, 3 * dimension + 2, undefined);
-      continue;
-    }
-    const PointMotion m = table.point(row, p);
-    for (std::size_t c = 0; c < dimension; ++c) *values++ = m.position[c] / f;
-    for (std::size_t c = 0; c < dimension; ++c) *values++ = m.velocity[c] / f;
-    *values++ = m.speed() / f;
-    for (std::size_t c = 0; c < dimension; ++c) *values++ = m.acceleration[c] / f;
-    *values++ = m.acceleration_magnitude() / f;
+    const auto component = [&](std::size_t k) { return table.point_column(p, k); };
+    const auto magnitude = [&](std::size_t k) {
+      fill(Status::ok, [&, k](std::size_t row) {
+        double sum = 0;
+        for (std::size_t c = 0; c < dimension; ++c) sum += component(k + c)[row] * component(k + c)[row];
+        return std::sqrt(sum) / f;
+      });
+    };
+    for (std::size_t c = 0; c < dimension; ++c) fill(Status::ok, [&, v = component(c)](std::size_t row) { return v[row] / f; });
+    for (std::size_t c = 0; c < dimension; ++c)
+      fill(Status::ok, [&, v = component(dimension + c)](std::size_t row) { return v[row] / f; });
+    magnitude(dimension);
+    for (std::size_t c = 0; c < dimension; ++c)
+      fill(Status::ok, [&, v = component(2 * dimension + c)](std::size_t row) { return v[row] / f; });
+    magnitude(2 * dimension);
   }
   for (std::size_t k = 0; k < system.frames.size(); ++k) {
-    if (status != Status::ok) {
-      values = std::fill_n(values, 6, undefined);
-      continue;
-    }
-    const FrameMotion m = table.frame(row, k);
-    values = std::copy(m.angular_velocity.begin(), m.angular_velocity.end(), values);
-    values = std::copy(m.angular_acceleration.begin(), m.angular_acceleration.end(), values);
+    for (std::size_t c = 0; c < 6; ++c) fill(Status::ok, [v = table.frame_column(k, c)](std::size_t row) { return v[row]; });
   }
   if (!system.linkage) return;
-  if (status != Status::ok) {  // 3 per slider block, 6 per slider
-    const LinkageFrames& frames = system.linkage->frames;
-    std::size_t count = 6 * frames.sliders.size();
-    for (const LinkageFrames::Body& body : frames.bodies) count += body.guide >= 0 ? 3 : 0;
-    values = std::fill_n(values, count, undefined);
-  } else {
-    values = linkage_values(system, scale,
-                            Position<MotionTable::Column>{q, qd, qdd, table.input(row), table.input_rate(row),
-                                                          table.input_second_rate(row)},
-                            values);
+  // Joints and links: the blocks' and sliders' values row by row (angles of their guides).
+  const std::size_t linkage_count = stride - column - (table.is_circuit() ? system.linkage->frames.dyads.size() : 0);
+  for (std::size_t row = first; row < last; ++row) {
+    double* out = values + (row - first) * stride + column;
+    if (table.status(row) != Status::ok) {
+      std::fill_n(out, linkage_count, undefined);
+    } else {
+      linkage_values(system, scale,
+                     Position<MotionTable::Column>{table.q(row), table.qd(row), table.qdd(row), table.input(row),
+                                                   table.input_rate(row), table.input_second_rate(row)},
+                     out);
+    }
   }
+  column += linkage_count;
   if (!table.is_circuit()) return;
   for (std::size_t k = 0; k < system.linkage->frames.dyads.size(); ++k) {
-    *values++ = status != Status::unassembled ? table.assembly_sign(row, k) : undefined;
+    fill(Status::singular, [&](std::size_t row) { return double(table.assembly_sign(row, k)); });
   }
 }
 

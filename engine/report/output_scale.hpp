@@ -42,12 +42,21 @@ std::vector<ResultColumn> result_columns(const ConstraintSystem& system, const O
                                          bool circuit = false);
 constexpr std::size_t kInputColumns = 3;
 
+/// How many columns result_columns gives (without naming them).
+std::size_t result_column_count(const ConstraintSystem& system, bool circuit = false);
+
 /// Row `row` of a table in the order and units of result_columns, written to values
 /// (result_columns(...).size() of them); NaN where the row's status leaves a value
 /// undefined (no position when unassembled, no rates or points unless ok). A circuit's
 /// table (MotionTable::is_circuit) gives the columns of result_columns(..., true).
 void result_values(const ConstraintSystem& system, const OutputScale& scale, const MotionTable& table,
                    std::size_t row, double* values);
+
+/// Rows [first, last) as result_values writes them, one after the other (row r's values
+/// from values + (r - first) * result_column_count(system, table.is_circuit())); worked
+/// out column by column, as the table holds them.
+void result_rows(const ConstraintSystem& system, const OutputScale& scale, const MotionTable& table,
+                 std::size_t first, std::size_t last, double* values);
 
 /// Joints and links solved in closed form: the inner joint of each dyad, in solving
 /// order (what names its assembly sign); else empty.

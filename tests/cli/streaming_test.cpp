@@ -125,13 +125,13 @@ TEST_CASE("kinema eval: a list whose third value cannot be assembled writes noth
 TEST_CASE("kinema eval: a progress line on a terminal for a long run, none with --quiet or when stderr is not one") {
   const std::string checker = std::string(KINEMA_SAMPLES_DIR) + "/../tests/tools/progress_on_terminal.py";
   const std::string run = shell_quote(KINEMA_EXE) + " eval " + shell_quote(kinema_test::sample("problem_4_4_six_bar.toml")) +
-                          " --sweep 0:720:0.0005 --format csv --threads 1 -o /dev/null";
-  // Over a second of work on any machine (1.44 million rows of 49 numbers).
+                          " --sweep 0:1800:0.0005 --format csv --threads 1 -o /dev/null";
+  // Over a second of work on any machine (3.6 million rows of 49 numbers: 2 s here).
   const auto shown = run_shell("/usr/bin/python3 " + shell_quote(checker) + " " + run);
   CAPTURE(shown.err);
   REQUIRE(shown.exit_status == 0);
   CHECK(shown.out.rfind("0\n", 0) == 0);  // kinema's exit status
-  CHECK(shown.out.find("of 1440001 values") != std::string::npos);
+  CHECK(shown.out.find("of 3600001 values") != std::string::npos);
   CHECK(shown.out.find("values/s") != std::string::npos);
   CHECK(shown.out.find("s left") != std::string::npos);
   CHECK(shown.out.find("\\r\\x1b[K'") != std::string::npos);  // the line is cleared at the end

@@ -1,6 +1,7 @@
 // Results for spreadsheets: one row per input value, each column named with
 // its unit in the header ("theta3 [deg]", "P_vx [mm/s]"), a status column,
 // empty cells where a value is undefined, and a note column (resumed_after_gap).
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -30,26 +31,45 @@ class CsvPrinter : public ResultsPrinter {
   void rows(std::string& out, const PrintJob& job, const MotionTable& table, std::size_t first, std::size_t last,
             std::size_t) const override {
     const ConstraintSystem& system = job.model.system;
-    const OutputScale scale(system);
     const int digits = job.precision > 0 ? job.precision : 12;
-    std::vector<double> values(result_columns(system, scale, job.circuit).size());
-    std::vector<char> line((kMaxNumberChars + 1) * values.size() + 64);
-    // Room for a typical block at once: growing by doubling copies the text and, in
-    // fresh pages, costs more than formatting it.
-    out.reserve(out.size() + (last - first) * (values.size() * std::size_t(digits + 7) + 24));
-    for (std::size_t row = first; row < last; ++row) {
-      result_values(system, scale, table, row, values.data());
-      // The input's columns, the status, then the rest; undefined values (NaN) empty.
-      char* p = put_significant_list(line.data(), values.data(), kInputColumns, digits, ',');
-      *p++ = ',';
-      for (const char* s = status_name(table.status(row)); *s; ++s) *p++ = *s;
-      if (values.size() > kInputColumns) {
-        *p++ = ',';
-        p = put_significant_list(p, values.data() + kInputColumns, values.size() - kInputColumns, digits, ',');
+    const std::size_t columns = result_column_count(system, job.circuit), rows = last - first;
+    std::vector<double> values(columns * rows);
+    result_rows(system, OutputScale(system), table, first, last, values.data());
+    // At most kMaxNumberChars + 1 a value, the status and the note a row: written in place.
+    const std::size_t start = out.size();
+    out.resize(start + rows * ((kMaxNumberChars + 1) * columns + 64));
+    char* p = out.data() + start;
+    const auto put_text = [&p](const char* text) {
+      while (*text) *p++ = *text++;
+    };
+    // The values of the block in chunks, whatever the rows: a row's columns are the input's,
+    // the status, the rest (undefined ones empty), then the note.
+    std::size_t row = first, column = 0;
+    SignificantChunk chunk;
+    const bool chunked = digits >= 1 && digits <= 13;
+    for (std::size_t begin = 0; begin < values.size(); begin += SignificantChunk::capacity) {
+      const std::size_t n = std::min(SignificantChunk::capacity, values.size() - begin);
+      if (chunked) chunk.convert(values.data() + begin, n, digits);
+      for (std::size_t k = 0; k < n;) {
+        // The run of values up to the status or the end of the row, within this chunk.
+        const std::size_t run_end = column < kInputColumns ? kInputColumns : columns;
+        const std::size_t count = std::min(run_end - column, n - k);
+        if (column > 0) *p++ = ',';
+        p = chunked ? chunk.put(p, k, k + count, ',') : put_significant_list(p, values.data() + begin + k, count, digits, ',');
+        k += count;
+        column += count;
+        if (column == kInputColumns) {
+          *p++ = ',';
+          put_text(status_name(table.status(row)));
+        }
+        if (column == columns) {
+          put_text(table.failure(row).kind == Failure::Kind::resumed_after_gap ? ",resumed_after_gap\n" : ",\n");
+          ++row;
+          column = 0;
+        }
       }
-      out.append(line.data(), p);
-      out += table.failure(row).kind == Failure::Kind::resumed_after_gap ? ",resumed_after_gap\n" : ",\n";
     }
+    out.resize(static_cast<std::size_t>(p - out.data()));
   }
 
   void tail(std::string&, const PrintJob&, std::size_t) const override {}

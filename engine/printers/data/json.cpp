@@ -93,7 +93,7 @@ class JsonPrinter : public ResultsPrinter {
             std::size_t run_row) const override {
     const ConstraintSystem& system = job.model.system;
     const OutputScale scale(system);
-    std::vector<double> values(result_columns(system, scale, job.circuit).size());
+    std::vector<double> values(result_column_count(system, job.circuit));
     std::vector<std::string> coordinate_keys, point_keys, frame_keys;
     for (const Coordinate& q : system.unknowns) coordinate_keys.push_back(quoted(q.name) + ": {\"value\": ");
     for (const PointObservable& p : system.points) point_keys.push_back(quoted(p.name) + ": {\"position\": ");

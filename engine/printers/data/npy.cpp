@@ -55,7 +55,7 @@ class NpyPrinter : public ResultsPrinter {
             std::size_t) const override {
     const ConstraintSystem& system = job.model.system;
     const OutputScale scale(system);
-    std::vector<double> values(result_columns(system, scale, job.circuit).size());
+    std::vector<double> values(result_column_count(system, job.circuit));
     const std::size_t bytes = values.size() * sizeof(double);
     std::vector<char> record(bytes + 2);
     out.reserve(out.size() + (last - first) * record.size());  // one allocation a block

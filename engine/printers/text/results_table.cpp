@@ -95,7 +95,7 @@ class ResultsTablePrinter : public ResultsPrinter {
   static void print_sliders(std::ostream& out, const ConstraintSystem& system, const OutputScale& scale,
                             const MotionTable& table, std::size_t row, int digits) {
     const auto number = [&](double value) { return format_significant(value, digits); };
-    std::vector<double> values(result_columns(system, scale, table.is_circuit()).size());
+    std::vector<double> values(result_column_count(system, table.is_circuit()));
     result_values(system, scale, table, row, values.data());
     const double* v = values.data() + linkage_columns_begin(system);
     const auto blocks = block_links(system);

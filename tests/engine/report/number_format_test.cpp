@@ -145,7 +145,7 @@ TEST_CASE("engine/report/number_format: put_significant_list writes what put_sig
   }
   CHECK(lists > 500);
   CHECK(characters > 1000000);
-  MESSAGE("put_significant_list with vector instructions: " << (kinema::detail::vector_number_path() ? "yes" : "no"));
+  MESSAGE("put_significant_list with vector instructions: " << (kinema::vector_number_path() ? "yes" : "no"));
 }
 
 TEST_CASE("engine/report/number_format: put_shortest reads back as the same double") {

@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include <kinema/engine/model.hpp>
+#include <kinema/engine/numeric/circuit.hpp>
 #include <kinema/engine/report/output_scale.hpp>
 #include "../unit_support.hpp"
 #include "../../test_support.hpp"
@@ -79,4 +81,57 @@ TEST_CASE("engine/report/output_scale: lengths in the file's unit, velocities pe
   CHECK(piston.input_dimension == Dimension::length);
   CHECK(piston.input(0.17) == doctest::Approx(170).epsilon(1e-14));
   CHECK(piston.coordinate_unit(piston.input_dimension) == "mm");
+}
+
+// The tabular printers work out a block of rows column by column (result_rows) and size
+// their rows by result_column_count: both must agree with result_columns and with
+// result_values row by row, undefined rows (NaN) included.
+TEST_CASE("engine/report/output_scale: result_rows of a block = result_values row by row, for every sample") {
+  const auto same = [](double a, double b) { return (std::isnan(a) && std::isnan(b)) || a == b; };
+  const auto check_table = [&](const kinema::ConstraintSystem& system, const kinema::MotionTable& table) {
+    const OutputScale scale(system);
+    const std::size_t columns = kinema::result_column_count(system, table.is_circuit());
+    REQUIRE(columns == kinema::result_columns(system, scale, table.is_circuit()).size());
+    std::vector<double> block(columns * table.size(), -1.0), row(columns + 1, -1.0);
+    kinema::result_rows(system, scale, table, 0, table.size(), block.data());
+    for (std::size_t r = 0; r < table.size(); ++r) {
+      kinema::result_values(system, scale, table, r, row.data());
+      CHECK(row[columns] == -1.0);  // nothing written past the row
+      for (std::size_t c = 0; c < columns; ++c) {
+        if (!same(block[r * columns + c], row[c])) {
+          CAPTURE(r);
+          CAPTURE(c);
+          CHECK(block[r * columns + c] == row[c]);
+        }
+      }
+    }
+    // A block from inside the table: the same rows.
+    if (table.size() > 3) {
+      std::vector<double> part(columns * 2);
+      kinema::result_rows(system, scale, table, 1, 3, part.data());
+      for (std::size_t k = 0; k < part.size(); ++k) CHECK(same(part[k], block[columns + k]));
+    }
+  };
+  std::size_t undefined_rows = 0;
+  for (const char* name : kinema_test::kSamples) {
+    CAPTURE(name);
+    const kinema::Model model = kinema::load_model(kinema_test::sample(name));
+    std::vector<double> inputs;
+    const double start = model.system.input.values.empty() ? 0.0 : model.system.input.values.front();
+    for (int k = 0; k < 24; ++k) inputs.push_back(start + 0.3 * k);
+    const kinema::MotionTable table = kinema::analyse(model, inputs);
+    for (std::size_t r = 0; r < table.size(); ++r) undefined_rows += table.status(r) != kinema::Status::ok;
+    check_table(model.system, table);
+  }
+  // A table along a circuit: its assembly signs come last.
+  const kinema::Model rocker = kinema::load_model(kinema_test::sample("triple_rocker_circuit.toml"));
+  kinema::CircuitSettings settings;
+  settings.start = rocker.system.input.values.empty() ? 0.0 : rocker.system.input.values.front();
+  settings.step = 0.05;
+  settings.rate = 1;
+  settings.max_rows = 10000;
+  const kinema::Circuit circuit = kinema::solve_circuit(rocker.kinematics, settings);
+  REQUIRE(circuit.table.is_circuit());
+  check_table(rocker.system, circuit.table);
+  CHECK(undefined_rows > 0);  // rows with NaN were compared too
 }
