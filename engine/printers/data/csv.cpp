@@ -35,10 +35,11 @@ class CsvPrinter : public ResultsPrinter {
     const std::size_t columns = result_column_count(system, job.circuit), rows = last - first;
     std::vector<double> values(columns * rows);
     result_rows(system, OutputScale(system), table, first, last, values.data());
-    // At most kMaxNumberChars + 1 a value, the status and the note a row: written in place.
-    const std::size_t start = out.size();
-    out.resize(start + rows * ((kMaxNumberChars + 1) * columns + 64));
-    char* p = out.data() + start;
+    // At most kMaxNumberChars + 1 a value, the status and the note a row, in a buffer of the
+    // thread's that only grows (resizing `out` would clear every byte first).
+    thread_local std::vector<char> text;
+    text.resize(std::max(text.size(), rows * ((kMaxNumberChars + 1) * columns + 64)));
+    char* p = text.data();
     const auto put_text = [&p](const char* text) {
       while (*text) *p++ = *text++;
     };
@@ -69,7 +70,7 @@ class CsvPrinter : public ResultsPrinter {
         }
       }
     }
-    out.resize(static_cast<std::size_t>(p - out.data()));
+    out.append(text.data(), p);
   }
 
   void tail(std::string&, const PrintJob&, std::size_t) const override {}
