@@ -159,8 +159,8 @@ int run(int argc, char** argv) {
       ->check(CLI::Range(1, 17));
   unsigned threads = 0;  // one per core: formatting on more threads changes no byte
   eval_cmd->add_option("--threads", threads,
-                       "threads formatting the output of long runs (default: one per core); the solve stays "
-                       "serial, so the output is the same bytes whatever the count")
+                       "threads formatting and writing the output of long runs, a block each in turn (default: "
+                       "one per core); the solve stays serial, so the output is the same bytes whatever the count")
       ->check(CLI::Range(1u, 256u));
   std::string circuit_step;
   eval_cmd->add_option("--circuit", circuit_step,

@@ -1,9 +1,11 @@
 #include <kinema/engine/printers/results_stream.hpp>
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <condition_variable>
-#include <deque>
 #include <exception>
+#include <functional>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -15,90 +17,108 @@ namespace kinema {
 
 namespace {
 
-// Formats blocks on worker threads; the caller hands them over in run order and takes
-// the texts back in the same order. At most `slots` blocks are in flight.
-class FormatPool {
+// Whether `ready` holds within `budget`, asked again and again: waking a thread that
+// sleeps costs about 70 us on a virtual machine (as long as formatting a block), and the
+// waits of a run whose threads each have a core are shorter than that.
+template <class Ready>
+bool spin_until(Ready ready, std::chrono::microseconds budget) {
+  if (budget.count() <= 0) return ready();
+  const auto deadline = std::chrono::steady_clock::now() + budget;
+  for (;;) {
+    for (int spin = 0; spin < 64; ++spin) {
+      if (ready()) return true;
+#if defined(__x86_64__) || defined(__i386__)
+      __builtin_ia32_pause();
+#endif
+    }
+    if (std::chrono::steady_clock::now() > deadline) return ready();
+  }
+}
+
+// The blocks of a run on several threads, each taking the next block from the solver
+// (one at a time, so the run is the serial one), formatting it, and writing it once the
+// blocks before it are written. At most one block a thread is in flight.
+class OrderedRun {
  public:
-  struct Slot {
-    SweepBlock block;
-    std::string text;
-    bool ready = false;
-  };
+  OrderedRun(SweepSolver& solver, const ResultsPrinter& printer, const PrintJob& job, const StreamSettings& settings,
+             std::size_t block_rows, const std::function<void(const SweepBlock&)>& account)
+      : solver_(solver), printer_(printer), job_(job), settings_(settings), block_rows_(block_rows), account_(account) {}
 
-  FormatPool(const ResultsPrinter& printer, const PrintJob& job, unsigned threads)
-      : printer_(printer), job_(job), slots_(threads + 2) {
-    for (unsigned t = 0; t < threads; ++t) workers_.emplace_back([this] { work(); });
-  }
-  ~FormatPool() {
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      stop_ = true;
-    }
-    work_ready_.notify_all();
-    for (auto& worker : workers_) worker.join();
-  }
-
-  std::size_t capacity() const { return slots_.size(); }
-  Slot& slot(std::size_t block) { return slots_[block % slots_.size()]; }
-  void format(std::size_t block) {
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      slot(block).ready = false;
-      queue_.push_back(block);
-    }
-    work_ready_.notify_one();
-  }
-  /// The text of that block, once formatted (rethrows a worker's exception).
-  const std::string& text(std::size_t block) {
-    std::unique_lock<std::mutex> lock(mutex_);
-    text_ready_.wait(lock, [&] { return slot(block).ready || error_; });
+  /// Runs on this thread and `threads - 1` more; rethrows the first error of any.
+  void run(unsigned threads) {
+    // More threads than cores: a spinning thread would take the core of one that works.
+    if (threads > 1 && threads <= std::max(1u, std::thread::hardware_concurrency())) spin_ = std::chrono::microseconds(200);
+    std::vector<std::thread> others;
+    for (unsigned t = 1; t < threads; ++t) others.emplace_back([this] { work(); });
+    work();
+    for (auto& thread : others) thread.join();
     if (error_) std::rethrow_exception(error_);
-    return slot(block).text;
   }
 
  private:
   void work() {
-    for (;;) {
-      std::size_t block;
-      {
-        std::unique_lock<std::mutex> lock(mutex_);
-        work_ready_.wait(lock, [&] { return stop_ || !queue_.empty(); });
-        if (stop_) return;
-        block = queue_.front();
-        queue_.pop_front();
+    SweepBlock block;
+    std::string text;
+    try {
+      for (;;) {
+        std::size_t turn;
+        {
+          if (!spin_until([&] { return solve_mutex_.try_lock(); }, spin_)) solve_mutex_.lock();
+          std::lock_guard<std::mutex> lock(solve_mutex_, std::adopt_lock);
+          if (failed_ || solver_.done()) return;
+          turn = next_turn_++;
+          solver_.solve_next(block, block_rows_);
+          account_(block);
+        }
+        text.clear();
+        printer_.rows(text, job_, block.table, block.first, block.last, block.run_row);
+        if (!spin_until([&] { return write_turn_ == turn || failed_; }, spin_)) {
+          std::unique_lock<std::mutex> lock(turn_mutex_);
+          turn_passed_.wait(lock, [&] { return write_turn_ == turn || failed_; });
+        }
+        if (failed_) return;
+        settings_.write(text);
+        done_ += block.size();
+        if (settings_.progress) settings_.progress(done_, solver_.size());
+        pass_turn(turn + 1);
       }
-      Slot& s = slot(block);
-      std::exception_ptr error;
-      try {
-        s.text.clear();
-        printer_.rows(s.text, job_, s.block.table, s.block.first, s.block.last, s.block.run_row);
-      } catch (...) {
-        error = std::current_exception();
-      }
-      {
-        std::lock_guard<std::mutex> lock(mutex_);
-        s.ready = true;
-        if (error && !error_) error_ = error;
-      }
-      text_ready_.notify_all();
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(turn_mutex_);
+      if (!error_) error_ = std::current_exception();
+      failed_ = true;
+      turn_passed_.notify_all();
     }
   }
+  void pass_turn(std::size_t next) {
+    {
+      std::lock_guard<std::mutex> lock(turn_mutex_);
+      write_turn_ = next;
+    }
+    turn_passed_.notify_all();  // no system call when no thread sleeps on it
+  }
 
+  SweepSolver& solver_;
   const ResultsPrinter& printer_;
   const PrintJob& job_;
-  std::vector<Slot> slots_;
-  std::vector<std::thread> workers_;
-  std::mutex mutex_;
-  std::condition_variable work_ready_, text_ready_;
-  std::deque<std::size_t> queue_;
+  const StreamSettings& settings_;
+  const std::size_t block_rows_;
+  const std::function<void(const SweepBlock&)>& account_;
+  std::mutex solve_mutex_;  // the solver and next_turn_
+  std::size_t next_turn_ = 0;
+  std::mutex turn_mutex_;   // sleeping on write_turn_, and error_
+  std::condition_variable turn_passed_;
+  std::atomic<std::size_t> write_turn_{0};
+  std::atomic<bool> failed_{false};
+  std::chrono::microseconds spin_{0};
+  std::size_t done_ = 0;  // written by the thread whose turn it is
   std::exception_ptr error_;
-  bool stop_ = false;
 };
 
-// Each block costs about 30 us whatever its size (a write, two hand-offs between
-// threads), and each slot's buffers are first touched once, page by page (microseconds
-// a page on a virtual machine): a short run gains from smaller blocks, a long one from
-// larger. Measured: 36,001 rows 38 -> 34 ms at 256 rows, 360,001 rows best at 1024.
+// Each block costs some tens of microseconds whatever its size (a write, hand-offs
+// between threads), and each thread's buffers are first touched once, page by page
+// (microseconds a page on a virtual machine): a short run gains from smaller blocks, a
+// long one from larger. Measured: 36,001 rows 38 -> 34 ms at 256 rows, 360,001 rows
+// best at 1024; the same with a block a thread in flight.
 std::size_t automatic_block_rows(std::size_t total) { return std::clamp<std::size_t>(total / 128, 256, 1024); }
 
 }  // namespace
@@ -126,48 +146,23 @@ RunSummary stream_results(const Model& model, const InputValues& inputs, const A
       if (settings.on_failure) settings.on_failure(input, status, block.table.failure(row));
     }
   };
-  const auto progress = [&] {
-    if (settings.progress) settings.progress(solver.solved(), total);
-  };
   const ResultsPrinter* printer = settings.printer;
-  std::string text;
-  if (printer) {
-    printer->head(text, job, total);
-    settings.write(text);
-  }
-  if (!printer || settings.threads <= 1) {
+  if (!printer) {  // solve only
     SweepBlock block;
     while (!solver.done()) {
       solver.solve_next(block, block_rows);
       account(block);
-      if (printer) {
-        text.clear();
-        printer->rows(text, job, block.table, block.first, block.last, block.run_row);
-        settings.write(text);
-      }
-      progress();
+      if (settings.progress) settings.progress(solver.solved(), total);
     }
-  } else {
-    // This thread solves (the run is serial) and writes; the pool formats in between.
-    FormatPool pool(*printer, job, settings.threads);
-    std::size_t solved = 0, written = 0, done = 0;
-    while (written < solved || !solver.done()) {
-      while (!solver.done() && solved - written < pool.capacity()) {
-        FormatPool::Slot& slot = pool.slot(solved);
-        solver.solve_next(slot.block, block_rows);
-        account(slot.block);
-        pool.format(solved++);
-      }
-      settings.write(pool.text(written));
-      done += pool.slot(written++).block.size();
-      if (settings.progress) settings.progress(done, total);
-    }
+    return summary;
   }
-  if (printer) {
-    text.clear();
-    printer->tail(text, job, total);
-    settings.write(text);
-  }
+  std::string text;
+  printer->head(text, job, total);
+  settings.write(text);
+  OrderedRun(solver, *printer, job, settings, block_rows, account).run(std::max(1u, settings.threads));
+  text.clear();
+  printer->tail(text, job, total);
+  settings.write(text);
   return summary;
 }
 

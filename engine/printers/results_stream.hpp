@@ -18,8 +18,10 @@ namespace kinema {
 struct StreamSettings {
   const ResultsPrinter* printer = nullptr;  ///< nullptr: solve only (to check a run before printing it).
   int precision = 0;                        ///< As PrintJob::precision.
-  /// Threads formatting blocks. The solve itself stays serial, so the numbers are the
-  /// serial run's whatever the count (AnalysisOptions::threads is not used here).
+  /// Threads (this one and count - 1 more), each taking the next block from the solver,
+  /// formatting it and writing it after the blocks before it. The solve itself stays
+  /// serial, one block at a time, so the numbers are the serial run's whatever the count
+  /// (AnalysisOptions::threads is not used here).
   unsigned threads = 1;
   /// Rows a block; 0: from the run's length (a 128th of it, 256 to 1024 rows).
   std::size_t block_rows = 0;
