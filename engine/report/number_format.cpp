@@ -271,24 +271,6 @@ bool has_avx512() {
 #pragma GCC diagnostic pop
 #endif
 
-char* put_list(char* out, const double* values, std::size_t count, int significant, char separator, bool vector) {
-  if (!(significant >= 1 && significant <= 13)) {
-    for (std::size_t k = 0; k < count; ++k) {
-      if (k > 0) *out++ = separator;
-      if (!std::isnan(values[k])) out = put_significant(out, values[k], significant);
-    }
-    return out;
-  }
-  SignificantChunk chunk;
-  for (std::size_t begin = 0; begin < count; begin += kChunk) {
-    const std::size_t n = std::min(kChunk, count - begin);
-    chunk.convert(values + begin, n, significant, vector);
-    if (begin > 0) *out++ = separator;
-    out = chunk.put(out, 0, n, separator);
-  }
-  return out;
-}
-
 }  // namespace
 
 // std::to_chars: printf's %.*g digits without its locale and format parsing; for up to
@@ -340,7 +322,21 @@ char* SignificantChunk::put(char* out, std::size_t first, std::size_t last, char
 }
 
 char* put_significant_list(char* out, const double* values, std::size_t count, int significant, char separator) {
-  return put_list(out, values, count, significant, separator, vector_number_path());
+  if (!(significant >= 1 && significant <= 13)) {
+    for (std::size_t k = 0; k < count; ++k) {
+      if (k > 0) *out++ = separator;
+      if (!std::isnan(values[k])) out = put_significant(out, values[k], significant);
+    }
+    return out;
+  }
+  SignificantChunk chunk;
+  for (std::size_t begin = 0; begin < count; begin += kChunk) {
+    const std::size_t n = std::min(kChunk, count - begin);
+    chunk.convert(values + begin, n, significant);
+    if (begin > 0) *out++ = separator;
+    out = chunk.put(out, 0, n, separator);
+  }
+  return out;
 }
 
 bool vector_number_path() {
@@ -350,13 +346,6 @@ bool vector_number_path() {
   return false;
 #endif
 }
-
-namespace detail {
-char* put_significant_list_portable(char* out, const double* values, std::size_t count, int significant,
-                                    char separator) {
-  return put_list(out, values, count, significant, separator, false);
-}
-}  // namespace detail
 
 char* put_shortest(char* out, double value) {
   return std::to_chars(out, out + kMaxNumberChars, value == 0 ? 0.0 : value).ptr;

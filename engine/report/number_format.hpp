@@ -52,12 +52,6 @@ class SignificantChunk {
   int significant_ = 0;
 };
 
-namespace detail {
-/// put_significant_list without vector instructions; for tests that compare the two.
-char* put_significant_list_portable(char* out, const double* values, std::size_t count, int significant,
-                                    char separator);
-}  // namespace detail
-
 /// The shortest text that reads back as the same double ("0.1", "6.283185307179586",
 /// "1e-05"); never "-0". Returns the end.
 char* put_shortest(char* out, double value);

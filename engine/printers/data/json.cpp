@@ -93,7 +93,10 @@ class JsonPrinter : public ResultsPrinter {
             std::size_t run_row) const override {
     const ConstraintSystem& system = job.model.system;
     const OutputScale scale(system);
-    std::vector<double> values(result_column_count(system, job.circuit));
+    // The block's values at once (worked out column by column), then row by row.
+    const std::size_t columns = result_column_count(system, job.circuit);
+    std::vector<double> block((last - first) * columns);
+    result_rows(system, scale, table, first, last, block.data());
     std::vector<std::string> coordinate_keys, point_keys, frame_keys;
     for (const Coordinate& q : system.unknowns) coordinate_keys.push_back(quoted(q.name) + ": {\"value\": ");
     for (const PointObservable& p : system.points) point_keys.push_back(quoted(p.name) + ": {\"position\": ");
@@ -131,7 +134,7 @@ class JsonPrinter : public ResultsPrinter {
       vector(v, dimension);
     };
     for (std::size_t row = first; row < last; ++row) {
-      result_values(system, scale, table, row, values.data());
+      const double* values = block.data() + (row - first) * columns;
       const Status status = table.status(row);
       out += run_row + (row - first) == 0 ? "\n    {\"input\": " : ",\n    {\"input\": ";
       number(values[0]);
@@ -143,7 +146,7 @@ class JsonPrinter : public ResultsPrinter {
       const std::string message = describe_failure(system, table.input(row), table.failure(row));
       if (!message.empty()) out += ", \"message\": " + quoted(message);
       out += ", \"coordinates\": {";
-      const double* v = values.data() + kInputColumns;
+      const double* v = values + kInputColumns;
       for (std::size_t i = 0; i < system.unknowns.size(); ++i, v += 3) {
         if (status == Status::unassembled) continue;
         if (i > 0) out += ", ";
@@ -205,7 +208,7 @@ class JsonPrinter : public ResultsPrinter {
         out += '}';
       }
       if (job.circuit && status != Status::unassembled) {  // each dyad's assembly sign, by its inner joint
-        const double* signs = values.data() + values.size() - branch_keys.size();
+        const double* signs = values + columns - branch_keys.size();
         out += ", \"branch\": {";
         for (std::size_t k = 0; k < branch_keys.size(); ++k) {
           out += (k > 0 ? ", " : "") + branch_keys[k];

@@ -55,14 +55,16 @@ class NpyPrinter : public ResultsPrinter {
             std::size_t) const override {
     const ConstraintSystem& system = job.model.system;
     const OutputScale scale(system);
-    std::vector<double> values(result_column_count(system, job.circuit));
-    const std::size_t bytes = values.size() * sizeof(double);
+    // The block's values at once (worked out column by column), then a record a row.
+    const std::size_t columns = result_column_count(system, job.circuit);
+    std::vector<double> values((last - first) * columns);
+    result_rows(system, scale, table, first, last, values.data());
+    const std::size_t bytes = columns * sizeof(double);
     std::vector<char> record(bytes + 2);
     out.reserve(out.size() + (last - first) * record.size());  // one allocation a block
     for (std::size_t row = first; row < last; ++row) {
-      result_values(system, scale, table, row, values.data());
       // x86-64 and every platform kinema builds on are little-endian, as '<f8' says.
-      std::memcpy(record.data(), values.data(), bytes);
+      std::memcpy(record.data(), values.data() + (row - first) * columns, bytes);
       const Status status = table.status(row);
       record[bytes] = static_cast<char>(status == Status::ok ? 0 : status == Status::singular ? 1 : 2);
       record[bytes + 1] = static_cast<char>(table.failure(row).kind == Failure::Kind::resumed_after_gap ? 1 : 0);
