@@ -32,73 +32,129 @@ class TapeBuilder {
 
   void add_input(const ex& symbol, int level) {
     if (!GiNaC::is_a<GiNaC::symbol>(symbol)) throw std::invalid_argument("input is not a symbol");
-    memo_[symbol] = new_register(0.0);
+    memo_[symbol] = {new_register(0.0), false};
     level_.back() = level;
   }
 
   /// Level of each register: the highest input level it depends on.
   std::vector<int> level_;
 
-  std::uint32_t compile(const ex& e) {
-    auto found = memo_.find(e);
-    if (found != memo_.end()) return found->second;
-    const std::uint32_t reg = compile_new(e);
-    memo_[e] = reg;
-    return reg;
-  }
+  /// A register that holds e's value.
+  std::uint32_t compile(const ex& e) { return value(compile_signed(e)); }
 
  private:
   using Op = CompiledExpressions::Op;
+  /// A value as a register and a sign: the register's value, negated if `negated`.
+  struct Signed {
+    std::uint32_t reg;
+    bool negated;
+  };
+  /// An expression's hash of structure and names, the same for e and -e, and the sign
+  /// that tells them apart.
+  struct Key {
+    std::uint64_t magnitude;
+    bool negated;
+  };
+  enum class Parity { odd, even, neither };
+
   CompiledExpressions& t_;
-  std::map<ex, std::uint32_t, GiNaC::ex_is_less> memo_;
+  std::map<ex, Signed, GiNaC::ex_is_less> memo_;
+  std::map<ex, Key, GiNaC::ex_is_less> keys_;
   std::map<double, std::uint32_t> constants_;
   /// Value numbering: an instruction already on the tape is not emitted again, so
   /// sub-products that GiNaC's expression tree repeats (b*sin(theta3) inside several
   /// terms) are computed once.
   std::map<std::tuple<Op, std::uint32_t, std::uint32_t, int>, std::uint32_t> emitted_;
   std::map<std::uint32_t, std::pair<std::uint32_t, std::uint32_t>> sincos_of_;
-  std::map<ex, std::uint64_t, GiNaC::ex_is_less> shape_;
 
-  // A hash of the expression's structure and names, the same in every run. GiNaC
-  // orders the terms of a sum by hash values that include addresses, so the tape
-  // added them up in another order in each run and the last digits changed (issue 9,
-  // finding 17); operands are taken in the order of this hash instead.
-  std::uint64_t shape(const ex& e) {
-    auto found = shape_.find(e);
-    if (found != shape_.end()) return found->second;
-    auto mix = [](std::uint64_t h, std::uint64_t v) { return (h ^ v) * 0x100000001b3ull + (h >> 29); };
-    auto text_hash = [&](std::uint64_t h, const std::string& text) {
-      for (unsigned char c : text) h = mix(h, c);
-      return h;
-    };
-    std::uint64_t h = 0xcbf29ce484222325ull;
-    if (GiNaC::is_a<GiNaC::numeric>(e) || GiNaC::is_a<GiNaC::symbol>(e) || GiNaC::is_a<GiNaC::constant>(e)) {
-      std::ostringstream text;
-      text << (GiNaC::is_a<GiNaC::numeric>(e) ? "n" : "s") << e;
-      h = text_hash(h, text.str());
-    } else {
-      std::vector<std::uint64_t> parts;
-      for (const ex& operand : e) parts.push_back(shape(operand));
-      const bool commutative = GiNaC::is_a<GiNaC::add>(e) || GiNaC::is_a<GiNaC::mul>(e);
-      if (commutative) std::sort(parts.begin(), parts.end());
-      h = text_hash(h, GiNaC::is_a<GiNaC::add>(e)   ? "+"
-                       : GiNaC::is_a<GiNaC::mul>(e)   ? "*"
-                       : GiNaC::is_a<GiNaC::power>(e) ? "^"
-                       : GiNaC::is_a<GiNaC::function>(e) ? GiNaC::ex_to<GiNaC::function>(e).get_name()
-                                                        : "?");
-      for (std::uint64_t part : parts) h = mix(h, part);
-    }
-    shape_.emplace(e, h);
+  static Parity parity(const std::string& function) {
+    if (function == "sin" || function == "tan" || function == "asin" || function == "atan") return Parity::odd;
+    if (function == "cos" || function == "abs") return Parity::even;
+    return Parity::neither;
+  }
+  static std::uint64_t mix(std::uint64_t h, std::uint64_t v) { return (h ^ v) * 0x100000001b3ull + (h >> 29); }
+  static std::uint64_t text_hash(std::uint64_t h, const std::string& text) {
+    for (unsigned char c : text) h = mix(h, c);
     return h;
   }
+  static std::string text_of(const ex& e) {
+    std::ostringstream text;
+    text << e;
+    return text.str();
+  }
 
-  // The operands of a sum or product in canonical order (GiNaC keeps a sum's constant
-  // and a product's numeric coefficient last; that stays so).
+  // GiNaC orders the operands of sums and products by hashes that include addresses
+  // (of type information, which move between builds) and symbol serials, and writes a
+  // difference either way round: sin(a - b) from one build, -sin(b - a) from another.
+  // A tape that followed it added up in another order or with another sign, and the
+  // last digits of the numbers and the exported code changed from build to build (issue
+  // 9, finding 17). Operands are taken in the order of these keys instead, and every sum
+  // is worked out the way round in which its term of the lowest key is positive.
+  Key key(const ex& e) {
+    using namespace GiNaC;
+    auto found = keys_.find(e);
+    if (found != keys_.end()) return found->second;
+    const std::uint64_t seed = 0xcbf29ce484222325ull;
+    Key k{seed, false};
+    if (is_a<numeric>(e)) {
+      const numeric& n = ex_to<numeric>(e);
+      k.negated = n.is_real() && n.is_negative();
+      k.magnitude = text_hash(seed, "n" + text_of(k.negated ? ex(-n) : e));
+    } else if (is_a<symbol>(e) || is_a<constant>(e)) {
+      k.magnitude = text_hash(seed, "s" + text_of(e));
+    } else if (is_a<add>(e)) {
+      std::vector<Key> terms;
+      for (const ex& term : e) terms.push_back(key(term));
+      const auto lowest = std::min_element(terms.begin(), terms.end(),
+                                           [](const Key& x, const Key& y) { return x.magnitude < y.magnitude; });
+      k.negated = lowest != terms.end() && lowest->negated;
+      std::vector<std::uint64_t> parts;
+      for (const Key& term : terms) parts.push_back(mix(term.magnitude, term.negated != k.negated));
+      std::sort(parts.begin(), parts.end());
+      k.magnitude = text_hash(seed, "+");
+      for (std::uint64_t part : parts) k.magnitude = mix(k.magnitude, part);
+    } else if (is_a<mul>(e)) {
+      std::vector<std::uint64_t> parts;
+      for (const ex& factor : e) {
+        const Key f = key(factor);
+        k.negated = k.negated != f.negated;
+        if (!(is_a<numeric>(factor) && abs(ex_to<numeric>(factor)).is_equal(1))) parts.push_back(f.magnitude);
+      }
+      std::sort(parts.begin(), parts.end());
+      if (parts.size() == 1) {
+        k.magnitude = parts.front();  // -x: the key of x
+      } else {
+        k.magnitude = text_hash(seed, "*");
+        for (std::uint64_t part : parts) k.magnitude = mix(k.magnitude, part);
+      }
+    } else if (is_a<power>(e)) {
+      const Key base = key(e.op(0)), exponent = key(e.op(1));
+      k.magnitude = mix(mix(text_hash(seed, "^"), base.magnitude), mix(exponent.magnitude, exponent.negated));
+      if (is_a<numeric>(e.op(1)) && ex_to<numeric>(e.op(1)).is_integer())
+        k.negated = base.negated && ex_to<numeric>(e.op(1)).is_odd();
+      else
+        k.magnitude = mix(k.magnitude, base.negated);  // (-x)^(1/2) is not -(x^(1/2))
+    } else if (is_a<function>(e)) {
+      const std::string name = ex_to<function>(e).get_name();
+      k.magnitude = text_hash(seed, name);
+      const Parity kind = e.nops() == 1 ? parity(name) : Parity::neither;
+      for (const ex& argument : e) {
+        const Key a = key(argument);
+        k.magnitude = mix(k.magnitude, kind == Parity::neither ? mix(a.magnitude, a.negated) : a.magnitude);
+        if (kind == Parity::odd) k.negated = a.negated;
+      }
+    } else {
+      k.magnitude = text_hash(seed, "?" + text_of(e));
+    }
+    keys_.emplace(e, k);
+    return k;
+  }
+
+  // The operands of a sum or product in the order of their keys.
   std::vector<ex> operands(const ex& e) {
     std::vector<ex> list(e.begin(), e.end());
-    const bool numeric_last = !list.empty() && GiNaC::is_a<GiNaC::numeric>(list.back());
-    std::stable_sort(list.begin(), list.end() - (numeric_last ? 1 : 0),
-                     [&](const ex& a, const ex& b) { return shape(a) < shape(b); });
+    std::stable_sort(list.begin(), list.end(),
+                     [&](const ex& a, const ex& b) { return key(a).magnitude < key(b).magnitude; });
     return list;
   }
 
@@ -128,97 +184,113 @@ class TapeBuilder {
     return out;
   }
 
-  std::uint32_t compile_new(const ex& e) {
+  std::uint32_t value(Signed s) { return s.negated ? emit(Op::neg, s.reg) : s.reg; }
+
+  Signed compile_signed(const ex& e) {
+    auto found = memo_.find(e);
+    if (found != memo_.end()) return found->second;
+    const Signed s = compile_new(e);
+    memo_[e] = s;
+    return s;
+  }
+
+  // e as a register and a sign: the sign is key(e).negated, the register holds the value
+  // of the way round that the key takes for e and -e alike.
+  Signed compile_new(const ex& e) {
     using namespace GiNaC;
     if (is_a<numeric>(e)) {
       const numeric& n = ex_to<numeric>(e);
       if (!n.is_real()) throw std::invalid_argument("complex number in a compiled expression");
-      return constant_register(n.to_double());
+      return {constant_register(std::fabs(n.to_double())), n.is_negative()};
     }
-    if (is_a<GiNaC::constant>(e)) return constant_register(ex_to<numeric>(evalf(e)).to_double());
-    if (is_a<symbol>(e)) {
-      std::ostringstream name;
-      name << e;
-      throw std::invalid_argument("symbol " + name.str() + " is not an input of the compiled expressions");
-    }
+    if (is_a<GiNaC::constant>(e)) return {constant_register(ex_to<numeric>(evalf(e)).to_double()), false};
+    if (is_a<symbol>(e)) throw std::invalid_argument("symbol " + text_of(e) + " is not an input of the compiled expressions");
     if (is_a<add>(e)) {
-      // Terms with a coefficient -1 become subtractions.
+      // Terms negative in the way round taken become subtractions.
+      const bool flipped = key(e).negated;
       std::uint32_t sum = 0;
       bool first = true;
       for (const ex& term : operands(e)) {
-        bool negative = is_a<mul>(term) && term.op(term.nops() - 1).is_equal(-1);
-        const ex magnitude = negative ? ex(-term) : term;
-        const std::uint32_t reg = compile(magnitude);
-        if (first) sum = negative ? emit(Op::neg, reg) : reg;
-        else sum = emit(negative ? Op::sub : Op::add, sum, reg);
+        const Signed t = compile_signed(term);
+        const bool negative = t.negated != flipped;
+        if (first) sum = negative ? emit(Op::neg, t.reg) : t.reg;
+        else sum = emit(negative ? Op::sub : Op::add, sum, t.reg);
         first = false;
       }
-      return sum;
+      return {sum, flipped};
     }
     if (is_a<mul>(e)) {
-      // A coefficient -1 (GiNaC keeps it last) is a negation, not a multiplication.
-      const ex last = e.op(e.nops() - 1);
-      if (last.is_equal(-1)) return emit(Op::neg, compile(-e));
-      std::uint32_t product = 0;
-      std::uint32_t divisor = 0;
+      bool negated = false;
+      std::uint32_t product = 0, divisor = 0;
       bool have_product = false, have_divisor = false;
       for (const ex& factor : operands(e)) {
-        // Factors with negative integer powers go to one divisor.
-        if (is_a<power>(factor) && is_a<numeric>(factor.op(1)) &&
-            ex_to<numeric>(factor.op(1)).is_integer() && ex_to<numeric>(factor.op(1)).is_negative()) {
-          const std::uint32_t reg = compile(pow(factor.op(0), -factor.op(1)));
-          divisor = have_divisor ? emit(Op::mul, divisor, reg) : reg;
-          have_divisor = true;
+        if (is_a<numeric>(factor) && abs(ex_to<numeric>(factor)).is_equal(1)) {  // a sign only
+          negated = negated != ex_to<numeric>(factor).is_negative();
           continue;
         }
-        const std::uint32_t reg = compile(factor);
-        product = have_product ? emit(Op::mul, product, reg) : reg;
-        have_product = true;
+        // Factors with negative integer powers go to one divisor.
+        const bool reciprocal = is_a<power>(factor) && is_a<numeric>(factor.op(1)) &&
+                                ex_to<numeric>(factor.op(1)).is_integer() && ex_to<numeric>(factor.op(1)).is_negative();
+        const Signed f = compile_signed(reciprocal ? pow(factor.op(0), -factor.op(1)) : factor);
+        negated = negated != f.negated;
+        std::uint32_t& into = reciprocal ? divisor : product;
+        bool& have = reciprocal ? have_divisor : have_product;
+        into = have ? emit(Op::mul, into, f.reg) : f.reg;
+        have = true;
       }
       if (!have_product) product = constant_register(1.0);
-      return have_divisor ? emit(Op::div, product, divisor) : product;
+      return {have_divisor ? emit(Op::div, product, divisor) : product, negated};
     }
     if (is_a<power>(e)) {
       const ex exponent = e.op(1);
       if (is_a<numeric>(exponent) && ex_to<numeric>(exponent).is_integer()) {
         const int k = ex_to<numeric>(exponent).to_int();
-        const std::uint32_t base = compile(e.op(0));
-        if (k == 2) return emit(Op::square, base);
-        if (k == -1) return emit(Op::div, constant_register(1.0), base);
-        return emit(Op::powi, base, 0, k);
+        const Signed base = compile_signed(e.op(0));
+        const bool negated = base.negated && k % 2 != 0;
+        if (k == 2) return {emit(Op::square, base.reg), negated};
+        if (k == -1) return {emit(Op::div, constant_register(1.0), base.reg), negated};
+        return {emit(Op::powi, base.reg, 0, k), negated};
       }
-      if (exponent.is_equal(numeric(1, 2))) return emit(Op::sqrt, compile(e.op(0)));
-      return emit(Op::pow, compile(e.op(0)), compile(exponent));
+      const std::uint32_t base = compile(e.op(0));
+      if (exponent.is_equal(numeric(1, 2))) return {emit(Op::sqrt, base), false};
+      return {emit(Op::pow, base, compile(exponent)), false};
     }
     if (is_a<function>(e)) {
       const std::string name = ex_to<function>(e).get_name();
       if (name == "sin" || name == "cos") {
         // One sincos for both; memoise the partner so it is never recomputed.
-        const std::uint32_t argument = compile(e.op(0));
-        auto found = sincos_of_.find(argument);
+        const Signed argument = compile_signed(e.op(0));
+        auto found = sincos_of_.find(argument.reg);
         if (found == sincos_of_.end()) {
           const std::uint32_t sin_reg = new_register(0.0);
           const std::uint32_t cos_reg = new_register(0.0);
-          t_.instructions_.push_back({Op::sincos, sin_reg, argument, cos_reg, 0});
-          level_[sin_reg] = level_[cos_reg] = level_[argument];
-          found = sincos_of_.emplace(argument, std::make_pair(sin_reg, cos_reg)).first;
+          t_.instructions_.push_back({Op::sincos, sin_reg, argument.reg, cos_reg, 0});
+          level_[sin_reg] = level_[cos_reg] = level_[argument.reg];
+          found = sincos_of_.emplace(argument.reg, std::make_pair(sin_reg, cos_reg)).first;
         }
         const auto [sin_reg, cos_reg] = found->second;
-        memo_[GiNaC::sin(e.op(0))] = sin_reg;
-        memo_[GiNaC::cos(e.op(0))] = cos_reg;
-        return name == "sin" ? sin_reg : cos_reg;
+        memo_[GiNaC::sin(e.op(0))] = {sin_reg, argument.negated};
+        memo_[GiNaC::cos(e.op(0))] = {cos_reg, false};
+        return name == "sin" ? Signed{sin_reg, argument.negated} : Signed{cos_reg, false};
       }
-      if (name == "atan2") return emit(Op::atan2, compile(e.op(0)), compile(e.op(1)));
+      if (name == "atan2") return {emit(Op::atan2, compile(e.op(0)), compile(e.op(1))), false};
       static const std::map<std::string, Op> unary = {
           {"tan", Op::tan}, {"exp", Op::exp}, {"log", Op::log}, {"abs", Op::abs},
           {"asin", Op::asin}, {"acos", Op::acos}, {"atan", Op::atan}};
       auto found = unary.find(name);
-      if (found != unary.end()) return emit(found->second, compile(e.op(0)));
-      throw std::invalid_argument("function " + name + " cannot be compiled");
+      if (found == unary.end()) throw std::invalid_argument("function " + name + " cannot be compiled");
+      switch (parity(name)) {
+        case Parity::odd: {  // f(-x) = -f(x)
+          const Signed argument = compile_signed(e.op(0));
+          return {emit(found->second, argument.reg), argument.negated};
+        }
+        case Parity::even:  // f(-x) = f(x)
+          return {emit(found->second, compile_signed(e.op(0)).reg), false};
+        case Parity::neither:
+          return {emit(found->second, compile(e.op(0))), false};
+      }
     }
-    std::ostringstream text;
-    text << e;
-    throw std::invalid_argument("cannot compile " + text.str());
+    throw std::invalid_argument("cannot compile " + text_of(e));
   }
 };
 

@@ -20,8 +20,8 @@ using kinema::PrintKind;
 
 namespace {
 
-// The derivation (text and LaTeX; the loops' equations and the seeds' two methods) and
-// the worked solution, or the message a printer refuses with.
+// The derivation (text and LaTeX; the loops' equations and the seeds' two methods), the
+// worked solution and the exported C++ header, or the message a printer refuses with.
 std::vector<std::string> printed(const kinema::Model& model, const kinema::MotionTable& values) {
   std::vector<std::string> outputs;
   const auto print = [&](PrintKind kind, const char* format, const kinema::PrintJob& job) {
@@ -36,6 +36,7 @@ std::vector<std::string> printed(const kinema::Model& model, const kinema::Motio
   print(PrintKind::derivation, "text", kinema::PrintJob{model});
   print(PrintKind::derivation, "latex", kinema::PrintJob{model});
   print(PrintKind::document, "latex", kinema::PrintJob{model, &values});
+  print(PrintKind::code, "cpp", kinema::PrintJob{model});
   for (auto m : {kinema::DerivationMethod::relative_velocity, kinema::DerivationMethod::joint_coordinates}) {
     kinema::PrintJob job{model};
     job.method = m;
@@ -47,8 +48,8 @@ std::vector<std::string> printed(const kinema::Model& model, const kinema::Motio
 
 }  // namespace
 
-// Not yet so: exported code (kinema codegen), whose tape follows the structure GiNaC
-// gives the formulas; it is the same in every run of one program.
+// Exported code (kinema codegen) too: the tape takes operands in an order of its own and
+// works every difference out one way round, whichever way GiNaC wrote it.
 TEST_CASE("engine/printers: every sample prints the same formulas whatever GiNaC's order") {
   for (const char* sample : kinema_test::kSamples) {
     const std::string name = sample;
