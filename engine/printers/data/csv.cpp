@@ -32,11 +32,14 @@ class CsvPrinter : public ResultsPrinter {
             std::size_t) const override {
     const ConstraintSystem& system = job.model.system;
     const int digits = job.precision > 0 ? job.precision : 12;
-    const std::size_t columns = result_column_count(system, job.circuit), rows = last - first;
-    std::vector<double> values(columns * rows);
+    const std::size_t columns = result_column_count(system, job.circuit), rows = last - first,
+                      block_values = columns * rows;
+    // The values and at most kMaxNumberChars + 1 characters a value, the status and the
+    // note a row, in buffers of the thread's that only grow (a new or resized buffer would
+    // be cleared first, every block).
+    thread_local std::vector<double> values;
+    values.resize(std::max(values.size(), block_values));
     result_rows(system, OutputScale(system), table, first, last, values.data());
-    // At most kMaxNumberChars + 1 a value, the status and the note a row, in a buffer of the
-    // thread's that only grows (resizing `out` would clear every byte first).
     thread_local std::vector<char> text;
     text.resize(std::max(text.size(), rows * ((kMaxNumberChars + 1) * columns + 64)));
     char* p = text.data();
@@ -48,8 +51,8 @@ class CsvPrinter : public ResultsPrinter {
     std::size_t row = first, column = 0;
     SignificantChunk chunk;
     const bool chunked = digits >= 1 && digits <= 13;
-    for (std::size_t begin = 0; begin < values.size(); begin += SignificantChunk::capacity) {
-      const std::size_t n = std::min(SignificantChunk::capacity, values.size() - begin);
+    for (std::size_t begin = 0; begin < block_values; begin += SignificantChunk::capacity) {
+      const std::size_t n = std::min(SignificantChunk::capacity, block_values - begin);
       if (chunked) chunk.convert(values.data() + begin, n, digits);
       for (std::size_t k = 0; k < n;) {
         // The run of values up to the status or the end of the row, within this chunk.
