@@ -8,6 +8,7 @@
 #include <functional>
 #include <mutex>
 #include <string>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -49,7 +50,13 @@ class OrderedRun {
     // More threads than cores: a spinning thread would take the core of one that works.
     if (threads > 1 && threads <= std::max(1u, std::thread::hardware_concurrency())) spin_ = std::chrono::microseconds(200);
     std::vector<std::thread> others;
-    for (unsigned t = 1; t < threads; ++t) others.emplace_back([this] { work(); });
+    for (unsigned t = 1; t < threads; ++t) {
+      try {
+        others.emplace_back([this] { work(); });
+      } catch (const std::system_error&) {
+        break;  // no more threads to be had: the run goes on with those there are
+      }
+    }
     work();
     for (auto& thread : others) thread.join();
     if (error_) std::rethrow_exception(error_);
