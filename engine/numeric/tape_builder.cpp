@@ -186,24 +186,25 @@ class TapeBuilder {
 
   std::uint32_t value(Signed s) { return s.negated ? emit(Op::neg, s.reg) : s.reg; }
 
+  // e as a register and key(e)'s sign: the register holds the value of the way round
+  // that the key takes for e and -e alike.
   Signed compile_signed(const ex& e) {
     auto found = memo_.find(e);
     if (found != memo_.end()) return found->second;
-    const Signed s = compile_new(e);
+    const Signed s{compile_new(e), key(e).negated};
     memo_[e] = s;
     return s;
   }
 
-  // e as a register and a sign: the sign is key(e).negated, the register holds the value
-  // of the way round that the key takes for e and -e alike.
-  Signed compile_new(const ex& e) {
+  // The register of compile_signed.
+  std::uint32_t compile_new(const ex& e) {
     using namespace GiNaC;
     if (is_a<numeric>(e)) {
       const numeric& n = ex_to<numeric>(e);
       if (!n.is_real()) throw std::invalid_argument("complex number in a compiled expression");
-      return {constant_register(std::fabs(n.to_double())), n.is_negative()};
+      return constant_register(std::fabs(n.to_double()));
     }
-    if (is_a<GiNaC::constant>(e)) return {constant_register(ex_to<numeric>(evalf(e)).to_double()), false};
+    if (is_a<GiNaC::constant>(e)) return constant_register(ex_to<numeric>(evalf(e)).to_double());
     if (is_a<symbol>(e)) throw std::invalid_argument("symbol " + text_of(e) + " is not an input of the compiled expressions");
     if (is_a<add>(e)) {
       // Terms negative in the way round taken become subtractions.
@@ -217,43 +218,37 @@ class TapeBuilder {
         else sum = emit(negative ? Op::sub : Op::add, sum, t.reg);
         first = false;
       }
-      return {sum, flipped};
+      return sum;
     }
     if (is_a<mul>(e)) {
-      bool negated = false;
       std::uint32_t product = 0, divisor = 0;
       bool have_product = false, have_divisor = false;
       for (const ex& factor : operands(e)) {
-        if (is_a<numeric>(factor) && abs(ex_to<numeric>(factor)).is_equal(1)) {  // a sign only
-          negated = negated != ex_to<numeric>(factor).is_negative();
-          continue;
-        }
+        if (is_a<numeric>(factor) && abs(ex_to<numeric>(factor)).is_equal(1)) continue;  // a sign only
         // Factors with negative integer powers go to one divisor.
         const bool reciprocal = is_a<power>(factor) && is_a<numeric>(factor.op(1)) &&
                                 ex_to<numeric>(factor.op(1)).is_integer() && ex_to<numeric>(factor.op(1)).is_negative();
         const Signed f = compile_signed(reciprocal ? pow(factor.op(0), -factor.op(1)) : factor);
-        negated = negated != f.negated;
         std::uint32_t& into = reciprocal ? divisor : product;
         bool& have = reciprocal ? have_divisor : have_product;
         into = have ? emit(Op::mul, into, f.reg) : f.reg;
         have = true;
       }
       if (!have_product) product = constant_register(1.0);
-      return {have_divisor ? emit(Op::div, product, divisor) : product, negated};
+      return have_divisor ? emit(Op::div, product, divisor) : product;
     }
     if (is_a<power>(e)) {
       const ex exponent = e.op(1);
       if (is_a<numeric>(exponent) && ex_to<numeric>(exponent).is_integer()) {
         const int k = ex_to<numeric>(exponent).to_int();
         const Signed base = compile_signed(e.op(0));
-        const bool negated = base.negated && k % 2 != 0;
-        if (k == 2) return {emit(Op::square, base.reg), negated};
-        if (k == -1) return {emit(Op::div, constant_register(1.0), base.reg), negated};
-        return {emit(Op::powi, base.reg, 0, k), negated};
+        if (k == 2) return emit(Op::square, base.reg);
+        if (k == -1) return emit(Op::div, constant_register(1.0), base.reg);
+        return emit(Op::powi, base.reg, 0, k);
       }
       const std::uint32_t base = compile(e.op(0));
-      if (exponent.is_equal(numeric(1, 2))) return {emit(Op::sqrt, base), false};
-      return {emit(Op::pow, base, compile(exponent)), false};
+      if (exponent.is_equal(numeric(1, 2))) return emit(Op::sqrt, base);
+      return emit(Op::pow, base, compile(exponent));
     }
     if (is_a<function>(e)) {
       const std::string name = ex_to<function>(e).get_name();
@@ -269,26 +264,18 @@ class TapeBuilder {
           found = sincos_of_.emplace(argument.reg, std::make_pair(sin_reg, cos_reg)).first;
         }
         const auto [sin_reg, cos_reg] = found->second;
-        memo_[GiNaC::sin(e.op(0))] = {sin_reg, argument.negated};
+        memo_[GiNaC::sin(e.op(0))] = {sin_reg, argument.negated};  // sin is odd, cos even
         memo_[GiNaC::cos(e.op(0))] = {cos_reg, false};
-        return name == "sin" ? Signed{sin_reg, argument.negated} : Signed{cos_reg, false};
+        return name == "sin" ? sin_reg : cos_reg;
       }
-      if (name == "atan2") return {emit(Op::atan2, compile(e.op(0)), compile(e.op(1))), false};
+      if (name == "atan2") return emit(Op::atan2, compile(e.op(0)), compile(e.op(1)));
       static const std::map<std::string, Op> unary = {
           {"tan", Op::tan}, {"exp", Op::exp}, {"log", Op::log}, {"abs", Op::abs},
           {"asin", Op::asin}, {"acos", Op::acos}, {"atan", Op::atan}};
       auto found = unary.find(name);
       if (found == unary.end()) throw std::invalid_argument("function " + name + " cannot be compiled");
-      switch (parity(name)) {
-        case Parity::odd: {  // f(-x) = -f(x)
-          const Signed argument = compile_signed(e.op(0));
-          return {emit(found->second, argument.reg), argument.negated};
-        }
-        case Parity::even:  // f(-x) = f(x)
-          return {emit(found->second, compile_signed(e.op(0)).reg), false};
-        case Parity::neither:
-          return {emit(found->second, compile(e.op(0))), false};
-      }
+      // f(-x) = -f(x) or f(x): f of the argument's way round (the sign is the key's).
+      return emit(found->second, parity(name) == Parity::neither ? compile(e.op(0)) : compile_signed(e.op(0)).reg);
     }
     throw std::invalid_argument("cannot compile " + text_of(e));
   }

@@ -281,7 +281,7 @@ char* put_significant(char* out, double value, int significant) {
     *out = '0';
     return out + 1;
   }
-  if (significant >= 1 && significant <= 13 && std::isfinite(value)) {
+  if (SignificantChunk::handles(significant) && std::isfinite(value)) {
     char* digits = out;
     if (value < 0) *digits++ = '-';
     if (char* end = put_significant_fast(digits, std::fabs(value), significant)) return end;
@@ -322,7 +322,7 @@ char* SignificantChunk::put(char* out, std::size_t first, std::size_t last, char
 }
 
 char* put_significant_list(char* out, const double* values, std::size_t count, int significant, char separator) {
-  if (!(significant >= 1 && significant <= 13)) {
+  if (!SignificantChunk::handles(significant)) {
     for (std::size_t k = 0; k < count; ++k) {
       if (k > 0) *out++ = separator;
       if (!std::isnan(values[k])) out = put_significant(out, values[k], significant);

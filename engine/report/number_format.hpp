@@ -33,6 +33,9 @@ constexpr std::size_t kMaxNumberChars = 32;
 class SignificantChunk {
  public:
   static constexpr std::size_t capacity = 64;
+  /// Whether `significant` digits are within what a chunk writes (1 to 13: the rounded
+  /// mantissa stays below 10^13, exact in a double).
+  static constexpr bool handles(int significant) { return significant >= 1 && significant <= 13; }
   /// values[0, count) (count <= capacity; they stay readable until the last put).
   /// `vector` false: without vector instructions (what other processors run; for tests).
   void convert(const double* values, std::size_t count, int significant, bool vector = vector_number_path());

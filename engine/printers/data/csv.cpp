@@ -50,7 +50,7 @@ class CsvPrinter : public ResultsPrinter {
     // the status, the rest (undefined ones empty), then the note.
     std::size_t row = first, column = 0;
     SignificantChunk chunk;
-    const bool chunked = digits >= 1 && digits <= 13;
+    const bool chunked = SignificantChunk::handles(digits);
     for (std::size_t begin = 0; begin < block_values; begin += SignificantChunk::capacity) {
       const std::size_t n = std::min(SignificantChunk::capacity, block_values - begin);
       if (chunked) chunk.convert(values.data() + begin, n, digits);

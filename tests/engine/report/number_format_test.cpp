@@ -117,7 +117,7 @@ TEST_CASE("engine/report/number_format: put_significant_list writes what put_sig
   // The list in chunks without vector instructions (what other processors run); past 13
   // digits there is no chunked path.
   const auto portable_list = [](char* out, const double* list, std::size_t count, int digits) {
-    if (digits > 13) return kinema::put_significant_list(out, list, count, digits, ';');
+    if (!kinema::SignificantChunk::handles(digits)) return kinema::put_significant_list(out, list, count, digits, ';');
     kinema::SignificantChunk chunk;
     for (std::size_t begin = 0; begin < count; begin += chunk.capacity) {
       const std::size_t n = std::min(chunk.capacity, count - begin);
