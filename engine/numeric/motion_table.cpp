@@ -143,6 +143,24 @@ void MotionTable::set(std::size_t row, const MotionState& s) {
   }
 }
 
+void MotionTable::set(std::size_t row, const MotionTable& from, std::size_t from_row) {
+  input_[row] = from.input_[from_row];
+  const Status status = status_[row] = from.status_[from_row];
+  failure_[row] = from.failure_[from_row];
+  loop_residual_[row] = from.loop_residual_[from_row];
+  reciprocal_condition_[row] = from.reciprocal_condition_[from_row];
+  const std::size_t rows = size(), from_rows = from.size();
+  const auto copy = [&](const std::vector<double>& values, std::vector<double>& to) {
+    for (std::size_t i = 0, columns = to.size() / std::max<std::size_t>(rows, 1); i < columns; ++i)
+      to[i * rows + row] = values[i * from_rows + from_row];
+  };
+  if (status != Status::unassembled) copy(from.q_, q_);
+  if (status != Status::ok) return;
+  copy(from.qd_, qd_);
+  copy(from.qdd_, qdd_);
+  copy(from.points_, points_);  // the points' columns, then the frames'
+}
+
 void MotionTable::set_ok(std::size_t first, std::size_t count) {
   std::fill_n(status_.begin() + first, count, Status::ok);
   std::fill_n(failure_.begin() + first, count, Failure{});

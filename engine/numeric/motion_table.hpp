@@ -119,6 +119,9 @@ class MotionTable {
   MotionState operator[](std::size_t row) const;
   /// Stores a state (its input, status, failure and whatever its status makes valid).
   void set(std::size_t row, const MotionState& state);
+  /// set(row, from[from_row]) for a table of the same shape, without the MotionState
+  /// between (no vectors allocated a row: a streamed run copies its history every block).
+  void set(std::size_t row, const MotionTable& from, std::size_t from_row);
 
   /// Column storage for solvers that fill blocks of rows: value i of row r at
   /// [i * size() + r]; points: the 3 * dimension values of each point in turn, then the

@@ -303,7 +303,7 @@ void SweepSolver::solve_next(SweepBlock& block, std::size_t rows) {
   }
   MotionTable& table = block.table;
   table.assign_inputs(s.inputs, start - history, history + ahead);
-  for (std::size_t row = 0; row < history; ++row) table.set(row, s.history[row]);
+  for (std::size_t row = 0; row < history; ++row) table.set(row, s.history, row);
   const std::size_t before = s.at.batch_rows;
   const std::size_t reached =
       solve_rows(s.kinematics, s.solvers, table, history, history + count, table.size(), 0, start - history, s.at);
@@ -314,7 +314,7 @@ void SweepSolver::solve_next(SweepBlock& block, std::size_t rows) {
   s.next = start + (reached - history);
   const std::size_t keep = std::min(State::kHistory, reached);
   s.history.assign_inputs(s.inputs, s.next - keep, keep);
-  for (std::size_t row = 0; row < keep; ++row) s.history.set(row, table[reached - keep + row]);
+  for (std::size_t row = 0; row < keep; ++row) s.history.set(row, table, reached - keep + row);
 }
 
 }  // namespace kinema

@@ -200,6 +200,42 @@ TEST_CASE("engine/numeric/motion_table: what each status keeps, one failure per 
   CHECK(table.failure(3).kind == Failure::Kind::resumed_after_gap);
   CHECK(table[3].qd == resumed.qd);
 
+  // A row copied from another table is what storing its MotionState stores: every column
+  // (stale values where the status says nothing, too) and the failure, for each status.
+  MotionTable state_copied({9, 9, 9, 9, 9}, 2, {2, 3}, 5.0, -1.0), row_copied = state_copied;
+  for (std::size_t r = 0; r < 4; ++r) {
+    state_copied.set(4 - r, table[r]);
+    row_copied.set(4 - r, table, r);
+  }
+  for (std::size_t r = 0; r < 5; ++r) {
+    CAPTURE(r);
+    CHECK(row_copied.input(r) == state_copied.input(r));
+    CHECK(row_copied.status(r) == state_copied.status(r));
+    CHECK(row_copied.failure(r).kind == state_copied.failure(r).kind);
+    CHECK(row_copied.failure(r).residual == state_copied.failure(r).residual);
+    CHECK(row_copied.loop_residual(r) == state_copied.loop_residual(r));
+    CHECK(row_copied.reciprocal_condition(r) == state_copied.reciprocal_condition(r));
+    for (std::size_t i = 0; i < 2; ++i) {
+      CHECK(row_copied.q_column(i)[r] == state_copied.q_column(i)[r]);
+      CHECK(row_copied.qd_column(i)[r] == state_copied.qd_column(i)[r]);
+      CHECK(row_copied.qdd_column(i)[r] == state_copied.qdd_column(i)[r]);
+    }
+    for (std::size_t k = 0; k < 15; ++k) CHECK(row_copied.point_column(k < 6 ? 0 : 1, k < 6 ? k : k - 6)[r] == state_copied.point_column(k < 6 ? 0 : 1, k < 6 ? k : k - 6)[r]);
+  }
+  CHECK(row_copied.q_column(1)[4] == singular.q[1]);  // the copies went where they should
+  CHECK(row_copied.point_column(1, 8)[1] == resumed.points[1].acceleration[2]);
+  // Frames (spatial chains) come with the points' columns.
+  MotionTable framed({0.1}, 1, {}, 1.0, 0.0, 1), framed_copy({0.5, 0.6}, 1, {}, 1.0, 0.0, 1);
+  MotionState turning;
+  turning.status = Status::ok;
+  turning.q = turning.qd = turning.qdd = Eigen::VectorXd::Constant(1, 0.5);
+  turning.frames = {kinema::FrameMotion{{1, 2, 3}, {4, 5, 6}}};
+  framed.set(0, turning);
+  framed_copy.set(1, framed, 0);
+  CHECK(framed_copy.frame(1, 0).angular_acceleration[2] == 6.0);
+  CHECK(framed_copy.qd(1)[0] == 0.5);
+  CHECK(framed_copy.status(0) == Status::unassembled);
+
   // set_ok marks rows ok and clears their failures, and only those rows.
   table.set_ok(1, 2);
   CHECK(table.status(0) == Status::singular);
