@@ -72,6 +72,10 @@ class TapeBuilder {
     if (function == "cos" || function == "abs") return Parity::even;
     return Parity::neither;
   }
+  /// A factor +1 or -1: a sign only, in a product's key and on the tape alike.
+  static bool is_sign(const ex& factor) {
+    return GiNaC::is_a<GiNaC::numeric>(factor) && GiNaC::abs(GiNaC::ex_to<GiNaC::numeric>(factor)).is_equal(1);
+  }
   static std::uint64_t mix(std::uint64_t h, std::uint64_t v) { return (h ^ v) * 0x100000001b3ull + (h >> 29); }
   static std::uint64_t text_hash(std::uint64_t h, const std::string& text) {
     for (unsigned char c : text) h = mix(h, c);
@@ -118,7 +122,7 @@ class TapeBuilder {
       for (const ex& factor : e) {
         const Key f = key(factor);
         k.negated = k.negated != f.negated;
-        if (!(is_a<numeric>(factor) && abs(ex_to<numeric>(factor)).is_equal(1))) parts.push_back(f.magnitude);
+        if (!is_sign(factor)) parts.push_back(f.magnitude);
       }
       std::sort(parts.begin(), parts.end());
       if (parts.size() == 1) {
@@ -224,7 +228,7 @@ class TapeBuilder {
       std::uint32_t product = 0, divisor = 0;
       bool have_product = false, have_divisor = false;
       for (const ex& factor : operands(e)) {
-        if (is_a<numeric>(factor) && abs(ex_to<numeric>(factor)).is_equal(1)) continue;  // a sign only
+        if (is_sign(factor)) continue;
         // Factors with negative integer powers go to one divisor.
         const bool reciprocal = is_a<power>(factor) && is_a<numeric>(factor.op(1)) &&
                                 ex_to<numeric>(factor.op(1)).is_integer() && ex_to<numeric>(factor.op(1)).is_negative();
