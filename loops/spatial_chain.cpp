@@ -3,6 +3,7 @@
 #include <set>
 
 #include <kinema/engine/errors.hpp>
+#include <kinema/engine/symbolic/differentiate.hpp>
 #include <kinema/engine/symbolic/naming.hpp>
 #include <kinema/engine/report/number_format.hpp>
 #include <kinema/loops/formula_reader.hpp>
@@ -23,8 +24,8 @@ GiNaC::exmap SpatialKinematics::instant() const {
 
 GiNaC::ex SpatialKinematics::time_derivative(const GiNaC::ex& e) const {
   GiNaC::ex total = 0;
-  for (const Coordinate& v : variables) total += e.diff(v.symbol) * v.rate + e.diff(v.rate) * v.second_rate;
-  return total + e.diff(time);
+  for (const Coordinate& v : variables) total += partial(e, v.symbol) * v.rate + partial(e, v.rate) * v.second_rate;
+  return total + partial(e, time);
 }
 
 namespace {

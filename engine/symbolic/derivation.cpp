@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include <kinema/engine/errors.hpp>
+#include <kinema/engine/symbolic/differentiate.hpp>
 #include <kinema/engine/symbolic/expression_parts.hpp>
 #include <kinema/engine/symbolic/trig_simplify.hpp>
 
@@ -108,8 +109,8 @@ std::vector<SlidingLinkTerms> sliding_links(const ConstraintSystem& system) {
 
 GiNaC::ex time_derivative(const ConstraintSystem& system, const GiNaC::ex& e) {
   const Driver& input = system.input;
-  ex result = e.diff(input.symbol) * input.rate + e.diff(input.rate) * input.second_rate;
-  for (const Coordinate& q : system.unknowns) result += e.diff(q.symbol) * q.rate + e.diff(q.rate) * q.second_rate;
+  ex result = partial(e, input.symbol) * input.rate + partial(e, input.rate) * input.second_rate;
+  for (const Coordinate& q : system.unknowns) result += partial(e, q.symbol) * q.rate + partial(e, q.rate) * q.second_rate;
   return result;
 }
 
@@ -125,8 +126,8 @@ Derivation derive(const ConstraintSystem& system, DerivationScope scope) {
   d.input_jacobian = GiNaC::matrix(n, 1);
   for (std::size_t i = 0; i < n; ++i) {
     const ex& phi = system.equations[i].expression;
-    for (std::size_t j = 0; j < n; ++j) d.jacobian(i, j) = phi.diff(system.unknowns[j].symbol);
-    d.input_jacobian(i, 0) = phi.diff(system.input.symbol);
+    for (std::size_t j = 0; j < n; ++j) d.jacobian(i, j) = partial(phi, system.unknowns[j].symbol);
+    d.input_jacobian(i, 0) = partial(phi, system.input.symbol);
     d.velocity_equations.push_back(time_derivative(system, phi));
     d.acceleration_equations.push_back(time_derivative(system, d.velocity_equations.back()).expand());
     d.acceleration_rhs.push_back((-d.acceleration_equations.back().subs(no_second_rates)).expand());

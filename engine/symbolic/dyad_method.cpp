@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include <kinema/engine/errors.hpp>
+#include <kinema/engine/symbolic/differentiate.hpp>
 #include <kinema/engine/report/structure.hpp>
 
 namespace kinema {
@@ -467,7 +468,7 @@ class Writer {
     GiNaC::exmap once, twice;
     const auto derivative = [&](const ex& e, const GiNaC::exmap& map) {
       ex total = 0;
-      for (const auto& [s, rate] : map) total += e.diff(GiNaC::ex_to<GiNaC::symbol>(s)) * rate;
+      for (const auto& [s, rate] : map) total += partial(e, GiNaC::ex_to<GiNaC::symbol>(s)) * rate;
       return total;
     };
     const Vec r_j = position(j), v_j = velocity_symbols(j, d.first), a_j = acceleration_symbols(j, d.first);
