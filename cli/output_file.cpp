@@ -1,10 +1,12 @@
 #include "output_file.hpp"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -71,6 +73,37 @@ std::string resolved(const std::string& path) {
   return error ? path : target.string();
 }
 
+// The temporary of the output being written, for a signal that ends the run (Ctrl-C,
+// kill, a closed terminal): the handler removes it, so nothing half-written remains,
+// then ends the process as the signal would have. A fixed buffer: a handler may only
+// call what is async-signal-safe (unlink, raise), not read a std::string.
+char removed_on_signal[4096];
+volatile std::sig_atomic_t has_removed_on_signal = 0;
+
+extern "C" void remove_temporary_and_reraise(int signal_number) {
+  if (has_removed_on_signal) ::unlink(removed_on_signal);
+  std::signal(signal_number, SIG_DFL);
+  std::raise(signal_number);
+}
+
+void remove_on_signal(const std::string& temporary) {
+  if (temporary.size() >= sizeof removed_on_signal) return;  // not in the buffer: left to the destructor
+  has_removed_on_signal = 0;
+  std::memcpy(removed_on_signal, temporary.c_str(), temporary.size() + 1);
+  has_removed_on_signal = 1;
+  for (const int signal_number : {SIGINT, SIGTERM, SIGHUP, SIGQUIT}) {
+    struct sigaction current {};
+    // A signal the caller ignores (nohup, a background job's SIGINT) stays ignored.
+    if (::sigaction(signal_number, nullptr, &current) == 0 && current.sa_handler == SIG_IGN) continue;
+    struct sigaction action {};
+    action.sa_handler = remove_temporary_and_reraise;
+    sigemptyset(&action.sa_mask);
+    ::sigaction(signal_number, &action, nullptr);
+  }
+}
+
+void keep_on_signal() { has_removed_on_signal = 0; }
+
 // A character device, FIFO or socket takes the text as it is: nothing to replace.
 bool is_stream(const std::string& path) {
   struct stat existing;
@@ -81,6 +114,9 @@ bool is_stream(const std::string& path) {
 }  // namespace
 
 Output::Output(const std::string& shown_path) : shown_(shown_path) {
+  // Past a file size limit (ulimit -f) a write fails with EFBIG and the run ends with
+  // its message (status 5), instead of the process being killed mid-file.
+  std::signal(SIGXFSZ, SIG_IGN);
   if (shown_path.empty() || shown_path == "-") {
     flush_standard_output();  // anything written before comes first
     fd_ = STDOUT_FILENO;
@@ -101,12 +137,16 @@ Output::Output(const std::string& shown_path) : shown_(shown_path) {
   if (fd_ < 0) fail_file(shown_, errno);
   owns_fd_ = true;
   temporary_ = name.data();
+  remove_on_signal(temporary_);
   if (::fchmod(fd_, mode_for(path_)) != 0) fail(errno);
 }
 
 Output::~Output() {
   if (owns_fd_) ::close(fd_);
-  if (!temporary_.empty()) ::unlink(temporary_.c_str());
+  if (!temporary_.empty()) {
+    ::unlink(temporary_.c_str());
+    keep_on_signal();
+  }
 }
 
 void Output::fail(int error_number) {
@@ -114,6 +154,7 @@ void Output::fail(int error_number) {
   owns_fd_ = false;
   if (!temporary_.empty()) {
     ::unlink(temporary_.c_str());
+    keep_on_signal();
     temporary_.clear();
     fail_file(shown_, error_number);
   }
@@ -135,6 +176,7 @@ void Output::commit() {
   owns_fd_ = false;
   if (error_number == 0 && !temporary_.empty() && std::rename(temporary_.c_str(), path_.c_str()) != 0) error_number = errno;
   if (error_number != 0) fail(error_number);
+  keep_on_signal();  // renamed: the name is OUT's now (a signal before this found no file to remove)
   temporary_.clear();
 }
 

@@ -122,10 +122,11 @@ TEST_CASE("-o onto a directory exits 5 and leaves the directory as it was") {
   CHECK(files_in(directory + "/out").empty());
 }
 
-// `ulimit -f 1` (1024 bytes) with SIGXFSZ ignored: writes past the limit fail
-// with EFBIG, the way a full disk fails them; a 361-row table is far longer.
+// `ulimit -f 1` (1024 bytes): writes past the limit fail with EFBIG, the way a full
+// disk fails them (kinema ignores SIGXFSZ, which would kill it mid-file); a 361-row
+// table is far longer.
 const std::string kLimitedSweep =
-    "ulimit -f 1; trap '' XFSZ; " + kinema_exe + " eval " + shell_quote(kinema_test::sample("four_bar.toml")) +
+    "ulimit -f 1; " + kinema_exe + " eval " + shell_quote(kinema_test::sample("four_bar.toml")) +
     " --sweep 0:360:1";
 
 TEST_CASE("-o under a file-size limit exits 5, keeps the previous file and leaves no temporary") {
@@ -153,6 +154,25 @@ TEST_CASE("stdout redirected to a file under a file-size limit exits 5") {
   CHECK(result.exit_status == 5);
   CHECK(result.err.rfind("kinema: error: cannot write standard output: ", 0) == 0);
   CHECK(result.err.find('\n') == result.err.size() - 1);
+}
+
+// A run ended by a signal (kill, a closed terminal) while it writes OUT's temporary
+// removes it: no half-written file remains, and the status is the signal's.
+TEST_CASE("-o: a run killed while writing leaves neither OUT nor its temporary") {
+  const std::string directory = kinema_test::fresh_directory("cli_output_killed");
+  for (const std::string signal : {"TERM", "HUP"}) {
+    CAPTURE(signal);
+    const std::string path = directory + "/out.csv";
+    // 3.6 * 10^7 values: tens of seconds, killed once its temporary has appeared.
+    const auto result = run_shell(
+        kinema_exe + " eval " + shell_quote(kinema_test::sample("four_bar.toml")) +
+        " --sweep 0:360:0.00001 --format csv -o " + shell_quote(path) + " & pid=$!; " +
+        "for i in $(seq 400); do ls -A " + shell_quote(directory) + " | grep -q '^.kinema-' && break; sleep 0.05; done; " +
+        "sleep 0.2; kill -" + signal + " $pid; wait $pid; echo \"status $?\"");
+    CAPTURE(result.err);
+    CHECK(result.out == "status " + std::to_string(128 + (signal == "TERM" ? 15 : 1)) + "\n");
+    CHECK(files_in(directory).empty());
+  }
 }
 
 // Issue 9, finding 3: -o never replaces a FIFO, a device or a symbolic link with a
