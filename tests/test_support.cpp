@@ -110,7 +110,7 @@ bool matches_printed(double actual, const std::string& printed) {
   const auto dot = printed.find('.');
   const int decimals = dot == std::string::npos ? 0 : static_cast<int>(printed.size() - dot - 1);
   const double last_digit = std::pow(10.0, -decimals);
-  const double tolerance = std::max(last_digit, 1e-3 * std::fabs(value)) * (1 + 1e-9);
+  const double tolerance = last_digit * (1 + 1e-9);
   return std::fabs(actual - value) <= tolerance;
 }
 

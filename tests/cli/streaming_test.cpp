@@ -85,6 +85,7 @@ TEST_CASE("kinema eval: streamed output is the printer over the whole table, on 
         const std::string path = directory + "/out." + format;
         const auto run = run_kinema({"eval", kinema_test::sample(sample), "--sweep", sweep, "--format", format,
                                      "--threads", t == 0 ? "1" : "2", "-o", path});
+        CAPTURE(run.err);
         REQUIRE(run.exit_status == 0);
         printed[t] = kinema_test::read_file(path);
       }
