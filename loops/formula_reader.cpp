@@ -15,6 +15,7 @@ using GiNaC::ex;
 
 // Limits (README, "Mechanism files").
 constexpr int kMaxDepth = 100;                 ///< parentheses
+constexpr int kMaxSignRun = 10;                ///< + and - signs in a row (each one more level of the parser)
 constexpr std::size_t kMaxLiteralLength = 100;  ///< characters of one number
 constexpr std::size_t kMaxLiteralExponentDigits = 4;  ///< digits of its exponent (1e9999 at most)
 constexpr double kMaxExactDigits = 400;        ///< decimal digits of an exact power of numbers
@@ -33,9 +34,19 @@ bool is_name_part(char c) { return std::isalnum(static_cast<unsigned char>(c)) |
 bool is_digit(char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; }
 
 void check_shape(const std::string& formula, const std::string& context) {
-  int depth = 0;
+  int depth = 0, signs = 0;
   for (std::size_t i = 0; i < formula.size(); ++i) {
     const char c = formula[i];
+    // GiNaC's parser reads each sign of "---a" by recursion, as it does a parenthesis:
+    // 10,000 signs overflowed the stack (a crash).
+    if (c == '+' || c == '-') {
+      if (++signs > kMaxSignRun) {
+        throw InputError(context + ": the formula has more than " + std::to_string(kMaxSignRun) +
+                         " + and - signs in a row; write one sign (\"--a\" is \"a\")");
+      }
+    } else if (c != ' ' && c != '\t') {
+      signs = 0;
+    }
     if (c == '(' && ++depth > kMaxDepth) {
       throw InputError(context + ": the formula nests parentheses more than " + std::to_string(kMaxDepth) +
                        " deep; write it more simply");

@@ -271,6 +271,20 @@ TEST_CASE("a formula that makes the simplification blow up is evaluated and deri
   }
 }
 
+// Found by an audit (tests/fuzz/regressions/formula_10000_unary_minus_signs.toml): GiNaC's
+// parser reads each sign of "----a" by recursion; 10,000 of them overflowed the stack
+// (a crash, status 139). Up to 10 in a row are read; more are bad input.
+TEST_CASE("a formula with thousands of signs in a row is bad input, not a crash") {
+  check_bad("signs_point", replaced("P = \"a*exp(I*theta2)\"", "P = \"" + std::string(10000, '-') + "a\""),
+            {2, {"signs_point.toml:", "point \"P\"", "more than 10 + and - signs in a row"}});
+  check_bad("signs_parameter", replaced("a = \"40 mm\"", "a = \"" + std::string(5000, '+') + "40 mm\""),
+            {2, {"signs_parameter.toml:", "parameter \"a\"", "signs in a row"}});
+  // Ten are read as they always were: -(-a) ten times over is a.
+  const auto ten = kinema_test::run_kinema({"eval", kinema_test::write_temporary("signs_ten.toml",
+      replaced("P = \"a*exp(I*theta2)\"", "P = \"- - - - - - - - - -a*exp(I*theta2)\"")), "--format", "csv"});
+  CHECK(ten.exit_status == 0);
+}
+
 // Found by the pipeline fuzzer (tests/fuzz/regressions/loop_log_of_complex_argument.toml):
 // a function of a complex argument other than exp(I*...) does not split into real x and
 // y parts (log(I*phi4) -> log(abs(I*phi4))); it was an "internal error" in the compiler.
