@@ -47,6 +47,11 @@ void check_shape(const std::string& formula, const std::string& context) {
     } else if (c != ' ' && c != '\t') {
       signs = 0;
     }
+    // GiNaC's parser reads {a, b} as a list and [..] as a matrix: nothing kinema evaluates.
+    if (c == '{' || c == '}' || c == '[' || c == ']') {
+      throw InputError(context + ": \"" + std::string(1, c) + "\" is not part of a formula (lists and matrices are not read); " +
+                       "group with ( )");
+    }
     if (c == '(' && ++depth > kMaxDepth) {
       throw InputError(context + ": the formula nests parentheses more than " + std::to_string(kMaxDepth) +
                        " deep; write it more simply");
@@ -148,6 +153,15 @@ class RestoreNumbers : public GiNaC::map_function {
   }
 
   void check_power(const ex& base, const ex& exponent) const {
+    // GiNaC throws on 0^0 and 0^-1 as it evaluates, and 0^theta3 there or in its
+    // derivative (an "internal error" before).
+    if (base.is_zero() && !(GiNaC::is_a<GiNaC::numeric>(exponent) && GiNaC::ex_to<GiNaC::numeric>(exponent).is_real() &&
+                            GiNaC::ex_to<GiNaC::numeric>(exponent).is_positive())) {
+      const bool bare = GiNaC::is_a<GiNaC::symbol>(exponent) || GiNaC::is_a<GiNaC::function>(exponent) ||
+                        (GiNaC::is_a<GiNaC::numeric>(exponent) && !GiNaC::ex_to<GiNaC::numeric>(exponent).is_negative());
+      fail("the power 0^" + (bare ? shown(exponent) : "(" + shown(exponent) + ")") +
+           " is undefined where its exponent is 0 or negative");
+    }
     if (!GiNaC::is_a<GiNaC::numeric>(exponent)) return;
     const GiNaC::numeric& x = GiNaC::ex_to<GiNaC::numeric>(exponent);
     const double magnitude = std::hypot(x.real().to_double(), x.imag().to_double());

@@ -285,6 +285,30 @@ TEST_CASE("a formula with thousands of signs in a row is bad input, not a crash"
   CHECK(ten.exit_status == 0);
 }
 
+// Found by an audit: braces (a GiNaC list) and a power of zero reached the compiler and
+// GiNaC's evaluation as "internal error: cannot compile {a}" and "power::eval(): division
+// by zero". Both are bad input, named where they are written; 0^2 and 0^0.5 are 0.
+TEST_CASE("braces, brackets and powers of zero in a formula are bad input, not internal errors") {
+  for (const char* formula : {"{a}", "a*{a, a}", "[a]"}) {
+    CAPTURE(formula);
+    check_bad("braces", replaced("P = \"a*exp(I*theta2)\"", std::string("P = \"") + formula + "\""),
+              {2, {"braces.toml:", "point \"P\"", "is not part of a formula", "group with ( )"}});
+  }
+  for (const auto& [formula, shown] : {std::pair{"a*0^theta3", "0^theta3"}, std::pair{"a*(a-a)^cos(theta3)", "0^cos(theta3)"},
+                                       std::pair{"a*0^(theta3-theta4)", "0^(theta3-theta4)"}, std::pair{"a*0^0", "0^0"},
+                                       std::pair{"a + 0^(-1)*a", "0^(-1)"}}) {
+    CAPTURE(formula);
+    check_bad("zero_power", replaced("P = \"a*exp(I*theta2)\"", std::string("P = \"") + formula + "\""),
+              {2, {"zero_power.toml:", "point \"P\"", std::string("the power ") + shown + " is undefined"}});
+  }
+  for (const char* formula : {"a + 0^2*a", "a + 0^0.5*a"}) {
+    CAPTURE(formula);
+    const auto run = kinema_test::run_kinema({"eval", kinema_test::write_temporary("zero_power_defined.toml",
+        replaced("P = \"a*exp(I*theta2)\"", std::string("P = \"") + formula + "\"")), "--format", "csv"});
+    CHECK(run.exit_status == 0);
+  }
+}
+
 // Found by the pipeline fuzzer (tests/fuzz/regressions/loop_log_of_complex_argument.toml):
 // a function of a complex argument other than exp(I*...) does not split into real x and
 // y parts (log(I*phi4) -> log(abs(I*phi4))); it was an "internal error" in the compiler.
