@@ -2,8 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include <kinema/engine/errors.hpp>
+#include <kinema/engine/report/number_format.hpp>
+#include <kinema/engine/report/output_scale.hpp>
 #include <kinema/engine/symbolic/expression_parts.hpp>
 #include <kinema/engine/symbolic/trig_simplify.hpp>
 
@@ -42,8 +46,10 @@ namespace {
 struct Instant {
   GiNaC::exmap angles, numbers;
   std::vector<std::pair<Coordinate, double>> values;
+  std::string where;  // the instant, for a message: "t = 0 s", "theta1 = 30 deg"
+  std::string source_file;
 
-  explicit Instant(const ConstraintSystem& system) {
+  explicit Instant(const ConstraintSystem& system) : source_file(system.source_file) {
     for (const SystemParameter& p : system.parameters) {
       numbers[p.symbol] = p.value;
       const double quarters = p.value / (M_PI / 2);
@@ -65,26 +71,47 @@ struct Instant {
     const Driver& input = system.input;
     if (input.dimension != Dimension::time) {
       put(input, input.values.front(), input.rate_value, input.second_rate_value);
+      const OutputScale scale(system);
+      where = input.symbol.get_name() + " = " + format_significant(scale.input(input.values.front())) + " " +
+              scale.coordinate_unit(input.dimension);
     } else {  // formulas of time at the instant t = 0
       angles[input.symbol] = 0;
       numbers[input.symbol] = 0;
+      where = input.symbol.get_name() + " = 0 s";
     }
     for (const Coordinate& q : system.unknowns) {
       put(q, q.guess, parameter_value(q.rate.get_name() + "_0"), parameter_value(q.second_rate.get_name() + "_0"));
     }
   }
 
+  // GiNaC refuses a formula that divides by zero at the instant (abs(t)' = abs(t)/t,
+  // sqrt(t)' at t = 0): the rates are not defined there, as at a singular position.
+  [[noreturn]] void undefined(const std::domain_error& error) const {
+    throw SingularPositionError(source_file + ": the chain's rates are not defined at " + where +
+                                ", the instant derive and latex work out (" + error.what() +
+                                "); a motion written with abs(), sqrt() or a division by the input is not "
+                                "differentiable there: eval gives the rates at other values");
+  }
+
   // The shorter of the expanded formula and the one with products of sin/cos combined.
-  ex formula(const ex& e) const {
+  ex formula(const ex& e) const try {
+    return shorter_form(e);
+  } catch (const std::domain_error& error) {
+    undefined(error);
+  }
+
+  ex shorter_form(const ex& e) const {
     const ex plain = e.subs(angles, GiNaC::subs_options::no_pattern).expand();
     const ex combined = combine_trig_products(plain);
     return to_text(combined).size() < to_text(plain).size() ? combined : plain;
   }
 
-  double number(const ex& e) const {
+  double number(const ex& e) const try {
     const ex value = GiNaC::evalf(e.subs(numbers, GiNaC::subs_options::no_pattern));
     double x = GiNaC::is_a<GiNaC::numeric>(value) ? GiNaC::ex_to<GiNaC::numeric>(value).to_double() : NAN;
     return std::fabs(x) < 1e-12 ? 0.0 : x;  // rounding of an exact zero
+  } catch (const std::domain_error& error) {
+    undefined(error);
   }
 };
 

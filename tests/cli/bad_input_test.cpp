@@ -309,6 +309,27 @@ TEST_CASE("braces, brackets and powers of zero in a formula are bad input, not i
   }
 }
 
+// Found by an audit: a chain's point moving as abs(t) or sqrt(t) has no rate at t = 0,
+// the instant derive and latex work out; GiNaC's "division by zero" there was an
+// internal error. It is the singular-position status (4), named, as eval gives it.
+TEST_CASE("derive and latex of a chain whose motion is not differentiable at the instant: status 4, not an internal error") {
+  const std::string arm = kinema_test::read_file(kinema_test::sample("robot_arm_seed000.toml"));
+  for (const char* motion : {"L3*abs(t)", "L3*sqrt(t)"}) {
+    CAPTURE(motion);
+    const std::string path = kinema_test::write_temporary(
+        "chain_not_differentiable.toml", replaced("\"L3*sin(beta)\"", std::string("\"") + motion + "\"", arm));
+    for (const std::vector<std::string>& command :
+         {std::vector<std::string>{"derive", path}, {"derive", path, "--format", "latex"}, {"latex", path}}) {
+      CAPTURE(command[0]);
+      const auto result = kinema_test::run_kinema(command);
+      CAPTURE(result.err);
+      CHECK(result.exit_status == 4);
+      CHECK(result.out.empty());
+      CHECK(result.err.rfind("kinema: error: " + path + ": the chain's rates are not defined at t = 0 s", 0) == 0);
+    }
+  }
+}
+
 // Found by the pipeline fuzzer (tests/fuzz/regressions/loop_log_of_complex_argument.toml):
 // a function of a complex argument other than exp(I*...) does not split into real x and
 // y parts (log(I*phi4) -> log(abs(I*phi4))); it was an "internal error" in the compiler.
