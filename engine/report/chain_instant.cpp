@@ -95,15 +95,11 @@ struct Instant {
 
   // The shorter of the expanded formula and the one with products of sin/cos combined.
   ex formula(const ex& e) const try {
-    return shorter_form(e);
-  } catch (const std::domain_error& error) {
-    undefined(error);
-  }
-
-  ex shorter_form(const ex& e) const {
     const ex plain = e.subs(angles, GiNaC::subs_options::no_pattern).expand();
     const ex combined = combine_trig_products(plain);
     return to_text(combined).size() < to_text(plain).size() ? combined : plain;
+  } catch (const std::domain_error& error) {
+    undefined(error);
   }
 
   double number(const ex& e) const try {

@@ -10,17 +10,19 @@ GiNaC::ex partial(const GiNaC::ex& e, const GiNaC::symbol& s) {
   if (GiNaC::is_a<GiNaC::add>(e)) {  // the terms with s, each differentiated
     GiNaC::exvector terms;
     for (const ex& term : e) {
-      if (term.has(s)) terms.push_back(partial(term, s));
+      const ex derivative = partial(term, s);  // 0 at once where s is absent
+      if (!derivative.is_zero()) terms.push_back(derivative);
     }
     return GiNaC::add(terms);
   }
   if (GiNaC::is_a<GiNaC::mul>(e)) {  // product rule over the factors with s
     GiNaC::exvector terms;
     for (std::size_t i = 0; i < e.nops(); ++i) {
-      if (!e.op(i).has(s)) continue;
+      const ex derivative = partial(e.op(i), s);
+      if (derivative.is_zero()) continue;
       GiNaC::exvector factors;
       factors.reserve(e.nops());
-      for (std::size_t j = 0; j < e.nops(); ++j) factors.push_back(j == i ? partial(e.op(i), s) : e.op(j));
+      for (std::size_t j = 0; j < e.nops(); ++j) factors.push_back(j == i ? derivative : e.op(j));
       terms.push_back(GiNaC::mul(factors));
     }
     return GiNaC::add(terms);
