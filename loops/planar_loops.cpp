@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include <kinema/engine/errors.hpp>
+#include <kinema/engine/symbolic/complex_parts.hpp>
 #include <kinema/engine/symbolic/expression_parts.hpp>
 #include <kinema/engine/symbolic/naming.hpp>
 #include <kinema/loops/formula_reader.hpp>
@@ -102,31 +103,6 @@ class LengthPower {
  private:
   const std::map<ex, int, GiNaC::ex_is_less>& powers_;
 };
-
-// GiNaC leaves real_part(atan(theta3)) unevaluated although every symbol is real:
-// a function call without I inside is real here (the formulas describe real
-// geometry), so real_part(f) is f and imag_part(f) is 0.
-struct ResolveRealParts : GiNaC::map_function {
-  ex operator()(const ex& e) override {
-    if (GiNaC::is_a<GiNaC::function>(e)) {
-      const std::string name = GiNaC::ex_to<GiNaC::function>(e).get_name();
-      if ((name == "real_part" || name == "imag_part") && !e.op(0).has(GiNaC::I)) {
-        return name == "real_part" ? e.op(0).map(*this) : ex(0);
-      }
-    }
-    return e.map(*this);
-  }
-};
-
-ex real_part_of(const ex& e) {
-  ResolveRealParts resolve;
-  return resolve(e.real_part()).expand();
-}
-
-ex imag_part_of(const ex& e) {
-  ResolveRealParts resolve;
-  return resolve(e.imag_part()).expand();
-}
 
 class Builder {
  public:

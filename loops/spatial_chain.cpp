@@ -106,6 +106,14 @@ class ChainBuilder {
     throw InputError(where.str() + ": " + message);
   }
 
+  // d/dt of a formula from the file, refused (at where) when too large to build.
+  ex derivative(const ex& e, const std::string& what, const char* formula) const {
+    GiNaC::exset moving{k_.time};
+    for (const Coordinate& v : k_.variables) moving.insert({v.symbol, v.rate});
+    check_derivative_size(e, moving, what, formula);
+    return k_.time_derivative(e);
+  }
+
   GiNaC::realsymbol symbol(const std::string& name) {
     GiNaC::realsymbol s(name, latex_symbol_name(name));
     reader_.define(name, s);
@@ -226,13 +234,15 @@ class ChainBuilder {
       const unsigned a = static_cast<unsigned>(axis[0] - 'x');
       const ex angle = sign * value_of(t.angle, t.where, "frame \"" + f.name + "\" turn angle", Dimension::angle);
       const Vector3 direction = column(rotation, a);  // the axis, as turned so far
-      const ex rate = k_.time_derivative(angle);
+      const std::string turn_of = t.where.str() + ": frame \"" + f.name + "\" turn angle";
+      const ex rate = derivative(angle, turn_of, "angular velocity");
       if (!rate.is_zero()) {
         const Vector3 term = rate * direction;
         // Its derivative in the observer: the rate's own change along the axis, and the
         // axis carried round by the frame it is fixed in, whose angular velocity so far is
         // omega (w x term is the same with this term added: term x term = 0).
-        const Vector3 rate_change = k_.time_derivative(rate) * direction, carried = cross(omega, term);
+        const Vector3 rate_change = derivative(rate, turn_of, "angular acceleration") * direction;
+        const Vector3 carried = cross(omega, term);
         omega = omega + term;
         // The rate about the axis it turns about: the parent's, for a frame's first
         // turn; after that the frame's own, as turned so far.
@@ -254,6 +264,7 @@ class ChainBuilder {
       if (frame == frame_index_.end() && p.frame != k_.observer) {
         fail(p.where, "point \"" + p.name + "\": frame \"" + p.frame + "\" does not exist (frames: " + frame_list() + ")");
       }
+      const std::string what = p.where.str() + ": point \"" + p.name + "\"";
       ChainPointMotion m;
       m.name = p.name;
       m.frame = p.frame;
@@ -269,14 +280,14 @@ class ChainBuilder {
       Vector3 local, local_rate, local_second_rate;
       for (std::size_t c = 0; c < 3; ++c) {
         local[c] = value_of(p.at[c], p.where, "point \"" + p.name + "\" " + "xyz"[c], Dimension::length);
-        local_rate[c] = k_.time_derivative(local[c]);
-        local_second_rate[c] = k_.time_derivative(local_rate[c]);
+        local_rate[c] = derivative(local[c], what, "velocity");
+        local_second_rate[c] = derivative(local_rate[c], what, "acceleration");
       }
       const Vector3 r = times(rotation, local);
       m.position = origin + r;
       for (std::size_t c = 0; c < 3; ++c) {
-        m.frame_velocity[c] = k_.time_derivative(origin[c]);
-        m.frame_acceleration[c] = k_.time_derivative(m.frame_velocity[c]);
+        m.frame_velocity[c] = derivative(origin[c], what, "frame velocity");
+        m.frame_acceleration[c] = derivative(m.frame_velocity[c], what, "frame acceleration");
       }
       m.transport = cross(omega, r);
       m.relative_velocity = times(rotation, local_rate);

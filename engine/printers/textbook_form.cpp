@@ -8,6 +8,7 @@
 #include <vector>
 
 #include <kinema/engine/report/number_format.hpp>
+#include <kinema/engine/symbolic/complex_parts.hpp>
 #include <kinema/engine/symbolic/expression_parts.hpp>
 
 namespace kinema {
@@ -709,11 +710,11 @@ std::string TextbookForm::loop_component(const EquationGroup& group, bool imagin
     // of its angle for a link vector, the real or imaginary part of anything else.
     const LinkVector v = split_link_vector(term);
     ex part;
-    if (v.polar && GiNaC::imag_part(v.length).is_zero()) {
+    if (v.polar && complex_parts(v.length).imag.is_zero()) {
       part = v.length * (imaginary ? GiNaC::sin(v.angle) : GiNaC::cos(v.angle));
     } else {
       const ex expanded = term.expand();
-      part = (imaginary ? GiNaC::imag_part(expanded) : GiNaC::real_part(expanded)).expand();
+      part = imaginary ? imag_part_of(expanded) : real_part_of(expanded);
     }
     if (part.is_zero()) continue;
     std::string rendered = render(part, 0, c);

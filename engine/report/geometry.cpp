@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include <kinema/engine/symbolic/complex_parts.hpp>
 #include <kinema/engine/symbolic/derivation.hpp>
 #include <kinema/engine/symbolic/expression_parts.hpp>
 #include <kinema/loops/dyad_positions.hpp>
@@ -46,8 +47,8 @@ MechanismGeometry::MechanismGeometry(const ConstraintSystem& system) {
     if (!group.vector) continue;
     loop_term_count_.push_back(group.terms.size());
     for (const GiNaC::ex& term : group.terms) {
-      outputs.push_back(term.real_part().expand());
-      outputs.push_back(term.imag_part().expand());
+      outputs.push_back(real_part_of(term));
+      outputs.push_back(imag_part_of(term));
       // A term that moves is a link; one whose length moves is a slider's guide.
       bool moving = term.has(system.input.symbol);
       bool sliding = moving && system.input.dimension == Dimension::length;
@@ -73,7 +74,7 @@ MechanismGeometry::MechanismGeometry(const ConstraintSystem& system) {
       try {  // a term GiNaC cannot differentiate (a power of 0): the point is just not drawn on a link
         const int link = link_of(system, last);
         if (link < 0) continue;
-        const GiNaC::ex x = last.real_part().expand(), y = last.imag_part().expand();
+        const GiNaC::ex x = real_part_of(last), y = imag_part_of(last);
         points_.push_back({p, link});
         outputs.push_back(x);
         outputs.push_back(y);

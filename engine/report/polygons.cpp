@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include <kinema/engine/symbolic/complex_parts.hpp>
 #include <kinema/engine/symbolic/derivation.hpp>
 #include <kinema/engine/symbolic/expression_parts.hpp>
 
@@ -94,11 +95,11 @@ PolygonBuilder::PolygonBuilder(const ConstraintSystem& system) : system_(&system
       parts = {0, velocity, 0, 0, 0, time_derivative(system, velocity)};
       formulas.formulas = {0, 0, 0, 0, 0, 0};
     }
-    outputs.push_back(term.real_part().expand());
-    outputs.push_back(term.imag_part().expand());
+    outputs.push_back(real_part_of(term));
+    outputs.push_back(imag_part_of(term));
     for (const ex& part : parts) {
-      outputs.push_back(part.real_part().expand());
-      outputs.push_back(part.imag_part().expand());
+      outputs.push_back(real_part_of(part));
+      outputs.push_back(imag_part_of(part));
     }
     for (ex& formula : formulas.formulas) {
       outputs.push_back(formula.expand());

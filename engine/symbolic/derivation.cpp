@@ -1,6 +1,8 @@
 #include <kinema/engine/symbolic/derivation.hpp>
 
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include <kinema/engine/errors.hpp>
 #include <kinema/engine/symbolic/differentiate.hpp>
@@ -11,6 +13,30 @@ namespace kinema {
 namespace {
 
 using GiNaC::ex;
+
+// The symbols d/dt differentiates through: the driver, the unknowns and their rates.
+GiNaC::exset moving_symbols(const ConstraintSystem& system) {
+  GiNaC::exset moving{system.input.symbol, system.input.rate};
+  for (const Coordinate& q : system.unknowns) moving.insert({q.symbol, q.rate});
+  return moving;
+}
+
+// d/dt e, refused (as bad input) when it would be larger than the budget.
+ex bounded_time_derivative(const ConstraintSystem& system, const GiNaC::exset& moving, const ex& e,
+                           const std::string& what, const char* formula) {
+  check_derivative_size(e, moving, what, formula);
+  return time_derivative(system, e);
+}
+
+GiNaC::exset symbols_of(const ex& e) {
+  GiNaC::exset found;
+  const auto collect = [&found](const auto& self, const ex& x) -> void {
+    if (GiNaC::is_a<GiNaC::symbol>(x)) found.insert(x);
+    for (const ex& operand : x) self(self, operand);
+  };
+  collect(collect, e);
+  return found;
+}
 
 // Cramer's rule on block rows/columns, each ratio simplified the textbook way.
 // A block whose Jacobian vanishes identically cannot give its unknowns at any position
@@ -108,10 +134,20 @@ std::vector<SlidingLinkTerms> sliding_links(const ConstraintSystem& system) {
 }  // namespace
 
 GiNaC::ex time_derivative(const ConstraintSystem& system, const GiNaC::ex& e) {
-  const Driver& input = system.input;
-  ex result = partial(e, input.symbol) * input.rate + partial(e, input.rate) * input.second_rate;
-  for (const Coordinate& q : system.unknowns) result += partial(e, q.symbol) * q.rate + partial(e, q.rate) * q.second_rate;
-  return result;
+  // Only the coordinates e contains are differentiated: a system of many loops has
+  // thousands of coordinates, and each of its formulas a handful.
+  const GiNaC::exset symbols = symbols_of(e);
+  GiNaC::exvector terms;
+  const auto add_chain_rule = [&](const GiNaC::symbol& s, const ex& rate) {
+    if (symbols.count(s) != 0) terms.push_back(partial(e, s) * rate);
+  };
+  add_chain_rule(system.input.symbol, system.input.rate);
+  add_chain_rule(system.input.rate, system.input.second_rate);
+  for (const Coordinate& q : system.unknowns) {
+    add_chain_rule(q.symbol, q.rate);
+    add_chain_rule(q.rate, q.second_rate);
+  }
+  return GiNaC::add(terms);
 }
 
 Derivation derive(const ConstraintSystem& system, DerivationScope scope) {
@@ -119,6 +155,14 @@ Derivation derive(const ConstraintSystem& system, DerivationScope scope) {
   d.scope = scope;
   const bool full = scope == DerivationScope::full;
   const std::size_t n = system.unknowns.size();
+  if (n > kMaxUnknowns) {
+    throw InputError(system.unknowns[kMaxUnknowns].where.str() + ": unknown \"" + system.unknowns[kMaxUnknowns].name +
+                     "\": the mechanism has " + std::to_string(n) + " unknowns, and kinema solves up to " +
+                     std::to_string(kMaxUnknowns) +
+                     " in one system (its solver is dense: the time per position grows as the cube of the count); "
+                     "split the file into mechanisms that do not share unknowns");
+  }
+  const GiNaC::exset moving = moving_symbols(system);
   GiNaC::exmap no_second_rates;
   for (const Coordinate& q : system.unknowns) no_second_rates[q.second_rate] = 0;
 
@@ -126,10 +170,16 @@ Derivation derive(const ConstraintSystem& system, DerivationScope scope) {
   d.input_jacobian = GiNaC::matrix(n, 1);
   for (std::size_t i = 0; i < n; ++i) {
     const ex& phi = system.equations[i].expression;
-    for (std::size_t j = 0; j < n; ++j) d.jacobian(i, j) = partial(phi, system.unknowns[j].symbol);
+    const GiNaC::exset symbols = symbols_of(phi);
+    for (std::size_t j = 0; j < n; ++j)
+      if (symbols.count(system.unknowns[j].symbol) != 0) d.jacobian(i, j) = partial(phi, system.unknowns[j].symbol);
     d.input_jacobian(i, 0) = partial(phi, system.input.symbol);
-    d.velocity_equations.push_back(time_derivative(system, phi));
-    d.acceleration_equations.push_back(time_derivative(system, d.velocity_equations.back()).expand());
+    const Equation& equation = system.equations[i];
+    const EquationGroup& group = system.groups[equation.group];
+    const std::string what = group.where.str() + ": " + group.kind + " \"" + group.name + "\" (" + equation.component + ")";
+    d.velocity_equations.push_back(bounded_time_derivative(system, moving, phi, what, "velocity"));
+    d.acceleration_equations.push_back(
+        bounded_time_derivative(system, moving, d.velocity_equations.back(), what, "acceleration").expand());
     d.acceleration_rhs.push_back((-d.acceleration_equations.back().subs(no_second_rates)).expand());
     if (full) d.acceleration_rhs_combined.push_back(combine_trig_products(d.acceleration_rhs.back()));
   }
@@ -140,9 +190,10 @@ Derivation derive(const ConstraintSystem& system, DerivationScope scope) {
 
   for (const PointObservable& point : system.points) {
     PointMotionFormulas motion;
+    const std::string what = point.where.str() + ": point \"" + point.name + "\"";
     for (const ex& component : point.position) {
-      motion.velocity.push_back(time_derivative(system, component));
-      motion.acceleration.push_back(time_derivative(system, motion.velocity.back()));
+      motion.velocity.push_back(bounded_time_derivative(system, moving, component, what, "velocity"));
+      motion.acceleration.push_back(bounded_time_derivative(system, moving, motion.velocity.back(), what, "acceleration"));
       if (full) motion.acceleration_combined.push_back(combine_trig_products(motion.acceleration.back()));
     }
     d.points.push_back(motion);

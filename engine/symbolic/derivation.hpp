@@ -63,8 +63,13 @@ struct Derivation {
 /// d/dt by the chain rule through q, qd, theta, thetad.
 GiNaC::ex time_derivative(const ConstraintSystem& system, const GiNaC::ex& e);
 
-/// Builds the derivation of a system. Either scope checks the same (a block whose
-/// unknowns are not independent is refused).
+/// Most unknowns in one system: the numeric solver factorises the dense Jacobian at
+/// each position, so its time grows as the cube of the count (2,000 took minutes).
+constexpr std::size_t kMaxUnknowns = 256;
+
+/// Builds the derivation of a system. Either scope checks the same: a block whose
+/// unknowns are not independent, more than kMaxUnknowns unknowns, and a formula whose
+/// velocity or acceleration would be too large to build are refused (InputError).
 Derivation derive(const ConstraintSystem& system, DerivationScope scope = DerivationScope::full);
 
 /// The derivation a printer of formulas reads; throws std::logic_error for one made for

@@ -1,11 +1,52 @@
 #include <kinema/engine/symbolic/differentiate.hpp>
 
+#include <cstdio>
 #include <string>
+#include <vector>
+
+#include <kinema/engine/errors.hpp>
 
 namespace kinema {
+namespace {
+
+using GiNaC::ex;
+
+// 10.3 million, 500 thousand: an estimate to three digits.
+std::string approximate_count(double n) {
+  if (n >= 1e12) return "over a million million";
+  const char* unit = n >= 1e9 ? " billion" : n >= 1e6 ? " million" : n >= 1e3 ? " thousand" : "";
+  const double scale = n >= 1e9 ? 1e9 : n >= 1e6 ? 1e6 : n >= 1e3 ? 1e3 : 1;
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", n / scale);
+  return text + std::string(unit);
+}
+
+struct SizeEstimate {
+  double nodes = 0, derivative = 0;  // of e and of d/dt e (0: e does not move)
+};
+
+// The product rule gives a copy of the other factors for each factor that moves, the
+// chain rule a copy of the call (or power) times the argument's derivative.
+SizeEstimate estimate_sizes(const ex& e, const GiNaC::exset& moving) {
+  if (GiNaC::is_a<GiNaC::symbol>(e)) return {1, moving.count(e) != 0 ? 1.0 : 0.0};
+  SizeEstimate total{1, 0};
+  std::vector<SizeEstimate> parts;
+  for (const ex& operand : e) {
+    parts.push_back(estimate_sizes(operand, moving));
+    total.nodes += parts.back().nodes;
+  }
+  for (const SizeEstimate& part : parts) {
+    if (part.derivative == 0) continue;
+    if (GiNaC::is_a<GiNaC::add>(e)) total.derivative += part.derivative;
+    else if (GiNaC::is_a<GiNaC::mul>(e)) total.derivative += part.derivative + total.nodes - part.nodes;
+    else total.derivative += total.nodes + part.derivative;
+  }
+  return total;
+}
+
+}  // namespace
 
 GiNaC::ex partial(const GiNaC::ex& e, const GiNaC::symbol& s) {
-  using GiNaC::ex;
   if (!e.has(s)) return 0;
   if (GiNaC::is_a<GiNaC::add>(e)) {  // the terms with s, each differentiated
     GiNaC::exvector terms;
@@ -35,6 +76,19 @@ GiNaC::ex partial(const GiNaC::ex& e, const GiNaC::symbol& s) {
     if (name == "exp") return e * partial(e.op(0), s);
   }
   return e.diff(s);
+}
+
+double derivative_size_estimate(const GiNaC::ex& e, const GiNaC::exset& moving) {
+  return estimate_sizes(e, moving).derivative;
+}
+
+void check_derivative_size(const GiNaC::ex& e, const GiNaC::exset& moving, const std::string& what,
+                           const std::string& formula) {
+  const double estimate = derivative_size_estimate(e, moving);
+  if (estimate <= kDerivativeBudget) return;
+  throw InputError(what + ": its " + formula + " formula would have about " + approximate_count(estimate) +
+                   " terms and factors, and kinema derives up to " + approximate_count(kDerivativeBudget) +
+                   ": write it with fewer nested products and functions (e.g. as a sum of link vectors)");
 }
 
 }  // namespace kinema

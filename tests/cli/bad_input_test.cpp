@@ -348,3 +348,87 @@ TEST_CASE("a number with an exponent of more than 4 digits is refused at once") 
   check_bad("long_exponent_point", replaced("P = \"a*exp(I*theta2)\"", "P = \"1e-123456*a\""),
             {2, {"long_exponent_point.toml", "point \"P\"", "exponent of more than 4 digits"}});
 }
+
+namespace {
+
+// kinema under a CPU limit of 10 s (the runs below took minutes before; bounds, not timings).
+kinema_test::CommandResult run_bounded(const std::string& command, const std::string& path) {
+  return kinema_test::run_shell("ulimit -t 10; " + kinema_test::shell_quote(KINEMA_EXE) + " " + command + " " +
+                                kinema_test::shell_quote(path) + " 2>&1");
+}
+
+}  // namespace
+
+// Found by an audit (tests/fuzz/regressions/hang_sin_nest25.toml): GiNaC's real_part of
+// sin(u) asks for both parts of u, so 25 nested sines took minutes (2^25 calls). The
+// parts are now split in one pass: derived, evaluated and typeset at once.
+TEST_CASE("a point of 30 nested sines is evaluated, derived and typeset at once") {
+  std::string nested = "theta3";
+  for (int k = 0; k < 30; ++k) nested = "sin(" + nested + ")";
+  const std::string path = kinema_test::write_temporary("nested_sines.toml",
+                                                        replaced("P = \"a*exp(I*theta2)\"", "P = \"a*" + nested + "\""));
+  for (const std::string command : {"eval", "derive", "latex"}) {
+    CAPTURE(command);
+    const auto result = run_bounded(command, path);
+    CAPTURE(result.out.substr(0, 400));
+    CHECK(result.exit_status == 0);
+    const char* shown = command == "latex" ? "\\documentclass" : command == "eval" ? "\n  P  " : "P = a*sin(sin(";
+    CHECK(result.out.find(shown) != std::string::npos);
+  }
+}
+
+// Found by an audit (tests/fuzz/regressions/hang_product300.toml,
+// hang_1000_loops.toml): a point that is a product of 300 cosines has 10^8 nodes in its
+// acceleration, and 1,000 loops (2,002 unknowns) a dense Jacobian of 4 million entries
+// factorised at every step: minutes and gigabytes. Both are now refused at once, with
+// what to change; a product of 40 cosines is still derived.
+TEST_CASE("formulas too large to differentiate and systems too large to solve are refused at once") {
+  std::string product = "a";
+  for (int k = 0; k < 300; ++k) product += "*cos(theta3+" + std::to_string(k) + ")";
+  const std::string products = kinema_test::write_temporary(
+      "product300.toml", replaced("P = \"a*exp(I*theta2)\"", "P = \"" + product + "\""));
+  for (const std::string command : {"eval", "derive", "latex"}) {
+    CAPTURE(command);
+    const auto result = run_bounded(command, products);
+    CAPTURE(result.out);
+    CHECK(result.exit_status == 2);
+    CHECK(result.out.find("product300.toml:") != std::string::npos);
+    CHECK(result.out.find("point \"P\": its acceleration formula would have about ") != std::string::npos);
+    CHECK(result.out.find("kinema derives up to 500 thousand") != std::string::npos);
+  }
+  std::string fewer = "a";
+  for (int k = 0; k < 40; ++k) fewer += "*cos(theta3+" + std::to_string(k) + ")";
+  CHECK(run_bounded("eval", kinema_test::write_temporary(
+                                "product40.toml", replaced("P = \"a*exp(I*theta2)\"", "P = \"" + fewer + "\"")))
+            .exit_status == 0);
+
+  std::string unknowns, loops;
+  for (int k = 0; k < 1000; ++k) {
+    const std::string i = std::to_string(k);
+    unknowns += "u" + i + " = \"" + i + " deg\"\nv" + i + " = \"" + i + " deg\"\n";
+    loops += "L" + i + " = \"a*exp(I*u" + i + ") + b*exp(I*v" + i + ") - c*exp(I*theta2) - a\"\n";
+  }
+  std::string text = replaced("theta4 = \"80 deg\"\n", "theta4 = \"80 deg\"\n" + unknowns);
+  text = replaced("- d\"\n", "- d\"\n" + loops, text);
+  const auto many = run_bounded("eval", kinema_test::write_temporary("loops1000.toml", text));
+  CAPTURE(many.out);
+  CHECK(many.exit_status == 2);
+  CHECK(many.out.find("loops1000.toml:") != std::string::npos);
+  CHECK(many.out.find("unknown \"u127\": the mechanism has 2002 unknowns, and kinema solves up to 256") !=
+        std::string::npos);
+}
+
+// The same guard in a chain's front end: it differentiates a point's formulas in its
+// frame before the engine sees them (10 s and 450 MB for this point).
+TEST_CASE("a chain's point too large to differentiate is refused at once") {
+  std::string product = "L3";
+  for (int k = 0; k < 300; ++k) product += "*cos(theta5+" + std::to_string(k) + ")";
+  const std::string arm = kinema_test::read_file(kinema_test::sample("robot_arm_seed000.toml"));
+  const std::string path = kinema_test::write_temporary(
+      "arm_product.toml", replaced("at = [\"L3*sin(beta)\"", "at = [\"" + product + "\"", arm));
+  const auto result = run_bounded("eval", path);
+  CAPTURE(result.out);
+  CHECK(result.exit_status == 2);
+  CHECK(result.out.find("arm_product.toml:") != std::string::npos);
+  CHECK(result.out.find("point \"B\": its acceleration formula would have about") != std::string::npos);
+}

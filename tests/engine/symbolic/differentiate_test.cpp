@@ -5,6 +5,8 @@
 
 #include <kinema/engine/symbolic/differentiate.hpp>
 
+#include <kinema/engine/errors.hpp>
+
 #include <string>
 
 using GiNaC::ex;
@@ -54,4 +56,57 @@ TEST_CASE("engine/symbolic/differentiate: a sum without the symbol is zero witho
   const ex e = GiNaC::sin(y) + GiNaC::cos(y) * y;
   CHECK(kinema::partial(e, x).is_zero());
   CHECK(kinema::partial(GiNaC::sin(x) + e, x).is_equal(GiNaC::cos(x)));
+}
+
+namespace {
+
+// d/dt through x (rate w) and w (rate z), as a derivation builds it.
+ex d_dt(const ex& e, const symbol& x, const symbol& w, const symbol& z) {
+  return kinema::partial(e, x) * w + kinema::partial(e, w) * z;
+}
+
+std::size_t nodes(const ex& e) {
+  std::size_t count = 0;
+  for (auto it = e.preorder_begin(); it != e.preorder_end(); ++it) ++count;
+  return count;
+}
+
+}  // namespace
+
+// The estimate guards against formulas whose derivatives take minutes: within a small
+// factor of the real size, or it would refuse files that are fine or let through the
+// ones it is for.
+TEST_CASE("engine/symbolic/differentiate: the size estimate of d/dt is within a factor of 4 of the real size") {
+  const symbol a("a"), x("x"), w("w"), z("z");
+  const GiNaC::exset moving{x, w};
+  ex product = a, nested = x;
+  for (int k = 0; k < 30; ++k) product *= GiNaC::cos(x + k);
+  for (int k = 0; k < 20; ++k) nested = GiNaC::sin(nested);
+  for (const ex& position : {ex(a * GiNaC::cos(x) + a * GiNaC::sin(x)), product, a * nested,
+                             GiNaC::pow(a + x, 5) * GiNaC::exp(GiNaC::I * x)}) {
+    CAPTURE(position);
+    const ex velocity = d_dt(position, x, w, z), acceleration = d_dt(velocity, x, w, z);
+    for (const auto& [e, derivative] : {std::pair{position, velocity}, std::pair{velocity, acceleration}}) {
+      const double real = static_cast<double>(nodes(derivative));
+      const double estimate = kinema::derivative_size_estimate(e, moving);
+      CAPTURE(real);
+      CHECK(estimate >= real / 4);
+      CHECK(estimate <= real * 4);
+    }
+  }
+}
+
+TEST_CASE("engine/symbolic/differentiate: a formula over the budget is refused with what it is and the estimate") {
+  const symbol a("a"), x("x"), w("w");
+  ex product = a;
+  for (int k = 0; k < 1000; ++k) product *= GiNaC::cos(x + k);  // about 4,000 nodes
+  try {
+    kinema::check_derivative_size(product, {x, w}, "file.toml:30: point \"P\"", "velocity");
+    FAIL("a product of 1000 cosines passed");
+  } catch (const kinema::InputError& error) {
+    const std::string message = error.what();
+    CHECK(message.rfind("file.toml:30: point \"P\": its velocity formula would have about ", 0) == 0);
+    CHECK(message.find("about 4 million terms and factors, and kinema derives up to 500 thousand") != std::string::npos);
+  }
+  CHECK_NOTHROW(kinema::check_derivative_size(a * GiNaC::cos(x) * GiNaC::sin(x), {x, w}, "P", "velocity"));
 }
