@@ -20,6 +20,7 @@
 
 #include <kinema/engine/errors.hpp>
 #include <kinema/engine/report/number_format.hpp>
+#include <kinema/engine/symbolic/naming.hpp>
 #include <kinema/loops/linkage_loops.hpp>
 #include <kinema/loops/toml_ascii.hpp>
 
@@ -343,6 +344,8 @@ class FileReader {
         unknown.rate_name = optional_name(*value, "rate_name");
         unknown.second_rate_name = optional_name(*value, "second_rate_name");
         unknown.latex_name = optional_string(*value, "latex", "");
+        if (!unknown.latex_name.empty())  // refused here, at its line, before any printer meets it
+          check_latex_name(unknown.latex_name, where(at(*value, "latex")).str() + ": unknown \"" + name + "\"");
       }
       const Quantity q = quantity(*guess, name);
       if (q.dimension != Dimension::angle && q.dimension != Dimension::length) {

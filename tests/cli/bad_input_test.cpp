@@ -348,3 +348,30 @@ TEST_CASE("a number with an exponent of more than 4 digits is refused at once") 
   check_bad("long_exponent_point", replaced("P = \"a*exp(I*theta2)\"", "P = \"1e-123456*a\""),
             {2, {"long_exponent_point.toml", "point \"P\"", "exponent of more than 4 digits"}});
 }
+
+// Audit 2026-11-24 (tests/fuzz/regressions/latex_name_trailing_underscore.toml): a LaTeX
+// name that cannot compile (x_, \hat) was passed on and pdflatex stopped on the notes.
+// It is refused when the file is read, by every command, with what to write instead.
+TEST_CASE("a LaTeX name that cannot typeset is refused at read time with the line, the name and what to write") {
+  struct Case {
+    std::string latex;
+    std::vector<std::string> parts;
+  };
+  for (const Case& c : {Case{"x_", {"\"x_\"", "write x_{1}"}}, Case{"\\\\hat", {"\"\\hat\"", "write \\hat{x}"}},
+                        Case{"x_1_2", {"\"x_1_2\"", "x_{1,2}"}}, Case{"{x", {"unbalanced braces"}},
+                        Case{"\\\\csname x\\\\endcsname", {"\\csname"}}}) {
+    CAPTURE(c.latex);
+    std::vector<std::string> parts = {"latex_name.toml:12", "unknown \"theta3\""};
+    parts.insert(parts.end(), c.parts.begin(), c.parts.end());
+    const std::string text =
+        replaced("theta3 = \"20 deg\"", "theta3 = { guess = \"20 deg\", latex = \"" + c.latex + "\" }");
+    check_bad("latex_name", text, {2, parts});
+    const std::string path = kinema_test::write_temporary("latex_name.toml", text);
+    const std::string output = path + ".tex";
+    std::filesystem::remove(output);
+    const auto latex = kinema_test::run_kinema({"latex", path, "-o", output});
+    CHECK(latex.exit_status == 2);
+    CHECK(latex.err.find("latex_name.toml:12") != std::string::npos);
+    CHECK_FALSE(std::filesystem::exists(output));
+  }
+}

@@ -337,3 +337,42 @@ TEST_CASE("user text past ASCII typesets: Greek, signs, accents, quotes; an emoj
   CHECK(compile_document(document.out, "unicode_title", log) >= 3);
   CHECK(log.find("not set up for use with LaTeX") == std::string::npos);
 }
+
+// Audit 2026-11-24 (tests/fuzz/regressions/latex_single_letter_angle_name.toml,
+// latex_name_plain_letter.toml): an angle named u, or an unknown given latex = "q", was
+// written \cosu, an undefined command, and kinema exited 0.
+TEST_CASE("kinema latex: an angle named with one letter and a LaTeX name that is a letter compile") {
+  for (const auto& [file, written] : std::vector<std::pair<std::string, std::string>>{
+           {"latex_single_letter_angle_name", "\\cos u"}, {"latex_name_plain_letter", "\\cos q"}}) {
+    CAPTURE(file);
+    const std::string path = kinema_test::sample("../tests/fuzz/regressions/" + file + ".toml");
+    const auto document = kinema_test::run_kinema({"latex", path});
+    REQUIRE(document.exit_status == 0);
+    CHECK(document.out.find(written) != std::string::npos);
+    std::string log;
+    CHECK(compile_document(document.out, file, log) >= 3);
+    const auto derived = kinema_test::run_kinema({"derive", "--format", "latex", path});
+    REQUIRE(derived.exit_status == 0);
+    CHECK(compiles(derived.out, "derive_" + file, log));
+  }
+}
+
+// Audit 2026-11-24 (tests/fuzz/regressions/latex_name_trailing_underscore.toml): names that
+// the old check let through and pdflatex stopped on. Each accepted name is typeset where
+// the derivation puts a name (after \cos, under \dot and \ddot, in matrices) and compiles.
+TEST_CASE("derive --format latex: LaTeX names the grammar accepts compile where kinema puts them") {
+  for (const char* name : {"q", "x'", "\\hat{\\varphi}_{3}", "\\dot{s}'", "{x}_{1,\\mathrm{out}}", "x''_{1}",
+                           "\\theta_3'", "\\bar{q} \\prime", "L a", "\\vec{r}_\\alpha"}) {
+    const std::string shown = name;
+    CAPTURE(shown);
+    std::string basic;  // the name in a TOML basic string
+    for (const char c : shown) basic += c == '\\' ? std::string("\\\\") : std::string(1, c);
+    const std::string path = kinema_test::write_temporary(
+        "latex_name.toml", kinema_test::replaced("theta3 = \"20 deg\"",
+                                                 "theta3 = { guess = \"20 deg\", latex = \"" + basic + "\" }"));
+    const auto derived = kinema_test::run_kinema({"derive", "--format", "latex", path});
+    REQUIRE(derived.exit_status == 0);
+    std::string log;
+    CHECK(compiles(derived.out, "latex_name", log));
+  }
+}
