@@ -376,3 +376,27 @@ TEST_CASE("derive --format latex: LaTeX names the grammar accepts compile where 
     CHECK(compiles(derived.out, "latex_name", log));
   }
 }
+
+// Audit 2026-11-24 (tests/fuzz/regressions/latex_point_pole.toml): a point at a*tan(theta2)
+// is 1.6e16 a at 90 deg; its path and speed went into the plots as they were and pgfplots
+// stopped ("divide by 0.0"). Such values are gaps now, and a path along a line widens the
+// short side of the equal-scale box.
+TEST_CASE("kinema latex: a point with a pole over the turn and a path along a line compile") {
+  const std::string pole = kinema_test::sample("../tests/fuzz/regressions/latex_point_pole.toml");
+  const std::string alone = kinema_test::write_temporary(
+      "pole_alone.toml",
+      kinema_test::replaced("P = \"a*exp(I*theta2)\"", "P = \"a*tan(theta2)\"",
+                            kinema_test::replaced("[points]", "[points]\nQ = \"1e4*a*cos(theta2)\"")));
+  for (const auto& [path, arguments] : std::vector<std::pair<std::string, std::vector<std::string>>>{
+           {pole, {}}, {pole, {"--angle", "90"}}, {alone, {}}}) {
+    std::vector<std::string> command = {"latex", path};
+    command.insert(command.end(), arguments.begin(), arguments.end());
+    CAPTURE(path);
+    CAPTURE(arguments.size());
+    const auto document = kinema_test::run_kinema(command);
+    REQUIRE(document.exit_status == 0);
+    CHECK(document.out.find("(90.000000,nan)") != std::string::npos);  // the pole is a gap
+    std::string log;
+    CHECK(compile_document(document.out, "point_pole", log) >= 3);
+  }
+}
