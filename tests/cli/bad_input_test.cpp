@@ -422,3 +422,20 @@ TEST_CASE("control and bidirectional characters in a file's strings and keys are
     }
   }
 }
+
+// Audit 2026-11-24: `kinema loops` of a spatial chain wrote an empty mechanism (name = "",
+// no unknowns, no loops) and exited 0.
+TEST_CASE("kinema loops of a spatial chain is bad input: it has no vector loops; nothing is written") {
+  for (const char* sample : {"robot_arm_seed000.toml", "rssr_spatial_four_bar.toml"}) {
+    CAPTURE(sample);
+    const std::string output = kinema_test::write_temporary("spatial_loops.toml", "") + ".out";
+    std::filesystem::remove(output);
+    const auto result = kinema_test::run_kinema({"loops", kinema_test::sample(sample), "-o", output});
+    CHECK(result.exit_status == 2);
+    CHECK_FALSE(std::filesystem::exists(output));
+    CHECK(result.err.rfind("kinema: error: ", 0) == 0);
+    CHECK(result.err.find(sample) != std::string::npos);
+    CHECK(result.err.find("spatial chain") != std::string::npos);
+    CHECK(result.err.find("kinema derive") != std::string::npos);
+  }
+}
