@@ -12,6 +12,7 @@
 
 #include <kinema/engine/errors.hpp>
 #include <kinema/engine/report/number_format.hpp>
+#include <kinema/engine/report/user_text.hpp>
 #include <kinema/loops/dyad_positions.hpp>
 #include <kinema/loops/formula_reader.hpp>
 
@@ -1099,12 +1100,19 @@ class LinkageWriter {
   }
 };
 
-// A TOML basic string.
+// A TOML basic string: quotes and backslashes escaped, line breaks and tabs as \n, \t,
+// other control characters and bidirectional controls as \uXXXX (a raw line break would
+// end the string: a multi-line title or description made the file unreadable).
 std::string quoted(const std::string& text) {
   std::string out = "\"";
-  for (char c : text) {
-    if (c == '"' || c == '\\') out += '\\';
-    out += c;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const std::size_t start = i;
+    const unsigned long c = next_code_point(text, i);
+    if (c == '"' || c == '\\') out += std::string("\\") + static_cast<char>(c);
+    else if (c == '\n') out += "\\n";
+    else if (c == '\t') out += "\\t";
+    else if (is_control_character(c) || is_bidi_control(c)) out += "\\u" + code_point_name(c).substr(2);
+    else out.append(text, start, i + 1 - start);
   }
   return out + "\"";
 }
@@ -1114,9 +1122,14 @@ std::string quoted(const std::string& text) {
 void linkage_loops(Mechanism& mechanism) { LinkageWriter(mechanism).write(); }
 
 std::string vector_loop_file(const Mechanism& m) {
+  if (m.chain) {  // its input, unknowns and loops are empty: it was written as an empty mechanism
+    throw InputError(m.source_file + ": kinema loops writes a planar mechanism as vector loops; this file is a "
+                     "spatial chain ([frames] and [variables]), which they cannot describe. Its equations: kinema "
+                     "derive " + m.source_file);
+  }
   std::ostringstream out;
-  out << "# " << m.title << ": vector loops";
-  if (m.linkage) out << " written by kinema from the joints and links of " << m.source_file;
+  out << "# " << one_line(m.title) << ": vector loops";
+  if (m.linkage) out << " written by kinema from the joints and links of " << one_line(m.source_file);
   out << "\ntitle = " << quoted(m.title) << "\n";
   if (!m.description.empty()) out << "description = " << quoted(m.description) << "\n";
   if (!m.parameters.empty()) {

@@ -20,6 +20,8 @@
 
 #include <kinema/engine/errors.hpp>
 #include <kinema/engine/report/number_format.hpp>
+#include <kinema/engine/report/user_text.hpp>
+#include <kinema/engine/symbolic/naming.hpp>
 #include <kinema/loops/linkage_loops.hpp>
 #include <kinema/loops/toml_ascii.hpp>
 
@@ -50,8 +52,9 @@ class FileReader {
     } catch (const toml::parse_error& error) {
       const auto& at = error.source().begin;
       throw InputError(file_ + ":" + std::to_string(at.line) + ": syntax error in the mechanism file (column " +
-                       std::to_string(at.column) + "): " + printable(std::string(error.description())));
+                       std::to_string(at.column) + "): " + one_line(std::string(error.description())));
     }
+    check_text(root, "", false);
     Mechanism mechanism;
     mechanism.source_file = file_;
     if (has(root, "frames") || has(root, "variables")) return read_chain(root, mechanism);
@@ -73,6 +76,40 @@ class FileReader {
 
  private:
   std::string file_;
+
+  // Every key and string of the file, before anything reads them: no character that
+  // controls how text is shown (engine/report/user_text.hpp) — ESC and the like would
+  // reach the terminal, U+202E reorders a C++ comment or a message. Line breaks only in
+  // the title and the description (`multi_line`); tabs anywhere.
+  void check_text(const Node& node, const std::string& key, bool multi_line) const {
+    if (const auto* table = node.as_table()) {
+      for (const auto& [name, value] : *table) {
+        const std::string child(name.str());
+        const std::string path = key.empty() ? child : key + "." + child;
+        check_string(child, {file_, static_cast<int>(name.source().begin.line)}, "the key \"" + one_line(child) + "\"",
+                     false);
+        check_text(value, path, key.empty() && (child == "title" || child == "description"));
+      }
+    } else if (const auto* array = node.as_array()) {
+      for (std::size_t i = 0; i < array->size(); ++i) check_text(*array->get(i), key + "[" + std::to_string(i) + "]", false);
+    } else if (node.is_string()) {
+      check_string(node.as_string()->get(), where(node), "\"" + key + "\"", multi_line);
+    }
+  }
+
+  void check_string(const std::string& text, const SourceLocation& at, const std::string& what, bool multi_line) const {
+    for (std::size_t i = 0; i < text.size(); ++i) {
+      const unsigned long c = next_code_point(text, i);
+      if (c == '\t' || (c == '\n' && multi_line)) continue;
+      std::string why;
+      if (c == '\n') why = "a line break; only title and description may have several lines";
+      else if (is_control_character(c)) why = "the control character " + code_point_name(c) + "; remove it";
+      else if (is_bidi_control(c))
+        why = code_point_name(c) + ", a bidirectional control that reorders the text shown after it (in a terminal, "
+              "an editor, generated code); remove it";
+      if (!why.empty()) throw InputError(at.str() + ": " + what + " contains " + why);
+    }
+  }
 
   SourceLocation where(const Node& value) const { return {file_, static_cast<int>(value.source().begin.line)}; }
 
@@ -152,17 +189,11 @@ class FileReader {
   // Names of loops and points: identifiers (they head CSV columns and LaTeX text).
   void check_name(const Node& value, const std::string& name, const std::string& what) const {
     if (!is_identifier(name)) {
-      fail(value, what + " name \"" + printable(name) + "\" is not a valid name (letters, digits, _; "
+      fail(value, what + " name \"" + one_line(name) + "\" is not a valid name (letters, digits, _; "
                   "starting with a letter)");
     }
   }
 
-  // A name as it can be shown in a one-line message.
-  static std::string printable(const std::string& name) {
-    std::string shown;
-    for (char c : name) shown += (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) ? '?' : c;
-    return shown;
-  }
 
   void check_identifier(const Node& value, const std::string& name,
                         const std::string& what) const {
@@ -343,6 +374,8 @@ class FileReader {
         unknown.rate_name = optional_name(*value, "rate_name");
         unknown.second_rate_name = optional_name(*value, "second_rate_name");
         unknown.latex_name = optional_string(*value, "latex", "");
+        if (!unknown.latex_name.empty())  // refused here, at its line, before any printer meets it
+          check_latex_name(unknown.latex_name, where(at(*value, "latex")).str() + ": unknown \"" + name + "\"");
       }
       const Quantity q = quantity(*guess, name);
       if (q.dimension != Dimension::angle && q.dimension != Dimension::length) {
@@ -628,7 +661,7 @@ class FileReader {
   // Link names may start with a digit, as links are numbered in figures ("2", "3").
   void check_link_name(const Node& value, const std::string& name) const {
     if (!is_identifier("L" + name) || name == "ground") {
-      fail(value, "link name \"" + printable(name) + "\" is not valid (letters, digits, _; \"ground\" is the frame)");
+      fail(value, "link name \"" + one_line(name) + "\" is not valid (letters, digits, _; \"ground\" is the frame)");
     }
   }
 
@@ -656,7 +689,7 @@ class FileReader {
       for (const auto& joint : *joints->as_array()) {
         const std::string joint_name = string_value(joint, "joints");
         if (std::find(link.joints.begin(), link.joints.end(), joint_name) != link.joints.end()) {
-          fail(joint, "link \"" + name + "\" lists joint \"" + printable(joint_name) + "\" twice");
+          fail(joint, "link \"" + name + "\" lists joint \"" + one_line(joint_name) + "\" twice");
         }
         link.joints.push_back(joint_name);
       }
@@ -678,7 +711,7 @@ class FileReader {
             return std::find(link.joints.begin(), link.joints.end(), j) != link.joints.end();
           };
           if (dash == std::string::npos || !on_link(a) || !on_link(b) || a == b) {
-            fail(*length, "\"" + printable(pair) + "\" is not two joints of link \"" + name +
+            fail(*length, "\"" + one_line(pair) + "\" is not two joints of link \"" + name +
                               "\" joined by '-' (e.g. \"" + link.joints[0] + "-" +
                               (link.joints.size() > 1 ? link.joints[1] : std::string("B")) + "\")");
           }
@@ -691,7 +724,7 @@ class FileReader {
         for (const auto& [joint, angle] : ordered(angles)) {
           if (link.joints.size() < 3 || std::find(link.joints.begin() + 2, link.joints.end(), joint) == link.joints.end()) {
             fail(*angle, "angles of link \"" + name + "\" are given for its joints after the second (the angle at its "
-                         "first joint from its second to that joint); \"" + printable(joint) + "\" is not one");
+                         "first joint from its second to that joint); \"" + one_line(joint) + "\" is not one");
           }
           link.angles.push_back({joint, string_value(*angle, joint)});
         }

@@ -242,9 +242,6 @@ class Builder {
     driver.second_rate_value = input.second_rate;
     powers_[driver.symbol] = input.dimension == Dimension::length ? 1 : 0;
     for (const Unknown& unknown : mechanism_.unknowns) {
-      if (!unknown.latex_name.empty()) {
-        check_latex_name(unknown.latex_name, unknown.where.str() + ": unknown \"" + unknown.name + "\"");
-      }
       Coordinate q;
       q.name = unknown.name;
       q.dimension = unknown.dimension;

@@ -502,7 +502,8 @@ std::string TextbookForm::render_power(const ex& base, const ex& exponent, Conte
     return f.substr(0, 4) + "^{" + power + "}" + f.substr(4);
   }
   std::string b = render(base, GiNaC::is_a<GiNaC::power>(base) ? 0 : kPower, c);  // wrapped below
-  if (GiNaC::is_a<GiNaC::power>(base) || (c.latex() && b.find('^') != std::string::npos)) b = "(" + b + ")";
+  // A prime is a superscript too (x' is x^{\prime}): x'^{2} would be a double superscript.
+  if (GiNaC::is_a<GiNaC::power>(base) || (c.latex() && b.find_first_of("^'") != std::string::npos)) b = "(" + b + ")";
   return c.latex() ? b + "^{" + power + "}" : b + "^" + power;
 }
 
@@ -528,7 +529,9 @@ std::string TextbookForm::render_function(const ex& f, const ex& argument, Conte
     const std::string inner = render_argument(argument, c);
     // \sin\theta_{3}; a number put in for the symbol in parentheses: \sin(30^\circ).
     const bool single = GiNaC::is_a<GiNaC::symbol>(argument) && !(c.texts && c.texts->count(argument));
-    return "\\" + name + (single ? inner : "(" + inner + ")");
+    // A name starting with a letter (u, or a file's latex = "q") would join the command: \cosu.
+    const bool letter = !inner.empty() && std::isalpha(static_cast<unsigned char>(inner[0])) != 0;
+    return "\\" + name + (single ? (letter ? " " : "") + inner : "(" + inner + ")");
   }
   std::string text = "\\operatorname{" + name + "}(";
   for (std::size_t i = 0; i < f.nops(); ++i) text += (i ? ", " : "") + render_argument(i == 0 ? argument : f.op(i), c);

@@ -14,7 +14,7 @@ const std::set<std::string>& greek_letters() {
       "alpha", "beta",  "gamma", "delta", "epsilon", "zeta", "eta",   "theta", "iota",  "kappa",
       "lambda", "mu",   "nu",    "xi",    "pi",      "rho",  "sigma", "tau",   "upsilon", "phi",
       "chi",   "psi",   "omega", "Gamma", "Delta",   "Theta", "Lambda", "Xi",  "Pi",    "Sigma",
-      "Upsilon", "Phi", "Psi",   "Omega", "varphi",  "vartheta", "varepsilon"};
+      "Upsilon", "Phi", "Psi",   "Omega", "varphi",  "vartheta", "varepsilon", "varsigma", "varrho", "varpi"};
   return letters;
 }
 
@@ -90,36 +90,159 @@ std::string default_rate_name(const std::string& coordinate, int order) {
   return coordinate + (order == 1 ? "_dot" : "_ddot");
 }
 
-void check_latex_name(const std::string& latex, const std::string& context) {
-  static const std::set<std::string> accents = {"dot", "ddot", "hat", "bar", "tilde", "vec", "mathrm",
-                                                "mathit", "prime"};
-  // No ^ at all: TeX's ^^5c notation would rebuild any command from plain characters.
-  int depth = 0;
-  for (std::size_t i = 0; i < latex.size(); ++i) {
-    const char c = latex[i];
-    const bool ascii_alnum = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9');
-    if (c == '{') ++depth;
-    if (c == '}' && --depth < 0) break;
-    if (ascii_alnum || std::string("_{}' ,").find(c) != std::string::npos) continue;
-    if (c == '\\') {
-      std::size_t j = i + 1;
-      while (j < latex.size() && std::isalpha(static_cast<unsigned char>(latex[j]))) ++j;
-      const std::string command = latex.substr(i + 1, j - i - 1);
-      if (greek_letters().count(command) || accents.count(command)) {
-        i = j - 1;
-        continue;
-      }
-      throw InputError(context + ": LaTeX name \"" + latex + "\" uses \\" + command +
-                       "; only Greek letters and \\dot \\ddot \\hat \\bar \\tilde \\vec \\mathrm "
-                       "\\mathit \\prime are allowed");
+namespace {
+
+// A LaTeX name from a file, read by its grammar (README, "Mechanism files"), so that it
+// typesets wherever a printer puts it (\cos u, \dot{...}, (...)^{2}) and runs nothing but
+// math typesetting:
+//   name    := item*                                  (spaces between parts are ignored)
+//   item    := nucleus [primes] ["_" script] [primes]   (one group of primes)
+//   nucleus := letter | digit | "," | greek | \prime | accent "{" name "}" | "{" name "}"
+//   script  := letter | digit | greek | \prime | "{" name "}"
+// Nothing else: no ^ (TeX's ^^5c spells any command from plain characters), no other
+// command, no $ & % # ~ \\ (so no \input, \write, \def, \catcode, \csname ...).
+class LatexNameCheck {
+ public:
+  LatexNameCheck(const std::string& latex, const std::string& context) : latex_(latex), context_(context) {}
+
+  void run() {
+    name(0);
+    if (i_ < latex_.size()) fail("has unbalanced braces { }; close each { with }");  // a } too many
+    if (!nuclei_) fail("has nothing to typeset; write a letter, e.g. \\varphi_{2}");
+  }
+
+ private:
+  static constexpr int kMaxDepth = 8;  // braces within braces
+  const std::string& latex_;
+  const std::string& context_;
+  std::size_t i_ = 0;
+  int nuclei_ = 0;
+
+  [[noreturn]] void fail(const std::string& why) const {
+    throw InputError(context_ + ": LaTeX name \"" + latex_ + "\" " + why);
+  }
+  bool at(char c) const { return i_ < latex_.size() && latex_[i_] == c; }
+  void skip_spaces() {
+    while (at(' ')) ++i_;
+  }
+  static bool letter_or_digit(char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9');
+  }
+
+  void name(int depth) {
+    for (skip_spaces(); i_ < latex_.size() && !at('}'); skip_spaces()) item(depth);
+  }
+
+  void item(int depth) {
+    nucleus(depth);
+    const bool primed = primes();
+    if (at('_')) {
+      ++i_;
+      script(depth);
+      skip_spaces();
+      if (at('_')) fail("has two subscripts on one letter; write them as one: x_{1,2}");
+      if (primes() && primed) fail("has primes before and after a subscript; write them together: x''_{1}");
     }
-    throw InputError(context + ": LaTeX name \"" + latex + "\" contains \"" +
-                     (static_cast<unsigned char>(c) < 0x20 ? std::string("a control character") : std::string(1, c)) +
-                     "\"; use letters, digits, _ { } ' and Greek letters");
+    skip_spaces();
+    if (at('_')) fail("has two subscripts on one letter; write them as one: x_{1,2}");
+    if (at('\'')) fail("has primes before and after a subscript; write them together: x''_{1}");
   }
-  if (depth != 0) {
-    throw InputError(context + ": LaTeX name \"" + latex + "\" has unbalanced braces { }; close each { with }");
+
+  bool primes() {
+    skip_spaces();
+    if (!at('\'')) return false;
+    while (at('\'')) ++i_;
+    skip_spaces();
+    return true;
   }
+
+  // \name at i_ (i_ on the backslash): the command's name, i_ past it.
+  std::string command() {
+    std::size_t j = i_ + 1;
+    while (j < latex_.size() && std::isalpha(static_cast<unsigned char>(latex_[j]))) ++j;
+    const std::string command = latex_.substr(i_ + 1, j - i_ - 1);
+    if (command.empty()) fail("has a \\ that starts no command (\\\\, \\, and the like are not allowed)");
+    i_ = j;
+    return command;
+  }
+
+  static bool is_symbol_command(const std::string& command) {
+    return greek_letters().count(command) || command == "prime";
+  }
+  static bool is_accent(const std::string& command) {
+    static const std::set<std::string> accents = {"dot", "ddot", "hat", "bar", "tilde", "vec", "mathrm", "mathit"};
+    return accents.count(command) > 0;
+  }
+
+  void group(int depth) {
+    if (depth + 1 > kMaxDepth) fail("nests braces more than " + std::to_string(kMaxDepth) + " deep");
+    ++i_;  // {
+    name(depth + 1);
+    if (!at('}')) fail("has unbalanced braces { }; close each { with }");
+    ++i_;
+  }
+
+  void nucleus(int depth) {
+    const char c = latex_[i_];
+    ++nuclei_;
+    if (letter_or_digit(c) || c == ',') {
+      ++i_;
+    } else if (c == '{') {
+      group(depth);
+    } else if (c == '\\') {
+      const std::string name = command();
+      if (is_symbol_command(name)) return;
+      if (!is_accent(name)) {
+        fail("uses \\" + name + "; only Greek letters (\\alpha ... \\Omega, \\varphi, ...), \\prime, and \\dot \\ddot "
+             "\\hat \\bar \\tilde \\vec \\mathrm \\mathit with their argument in braces are allowed");
+      }
+      skip_spaces();
+      if (!at('{')) fail("uses \\" + name + " without its argument: write \\" + name + "{x}");
+      group(depth);
+    } else if (c == '_') {
+      fail("has a subscript _ with nothing before it; write x_{1}");
+    } else if (c == '\'') {
+      fail("has a prime ' with nothing before it; write x'");
+    } else if (c == '^') {
+      fail("contains \"^\"; a superscript is not allowed (write a prime x' or a subscript x_{1})");
+    } else {
+      const bool control = static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
+      const bool ascii = static_cast<unsigned char>(c) < 0x80;
+      fail("contains " + (control ? std::string("a control character")
+                          : ascii ? "\"" + std::string(1, c) + "\""
+                                  : std::string("a character past ASCII (write Greek letters as \\alpha ...)")) +
+           "; use letters, digits, _ { } ' , and Greek letters");
+    }
+  }
+
+  void script(int depth) {
+    skip_spaces();
+    if (i_ >= latex_.size() || at('}')) fail("has a subscript _ with nothing after it; write x_{1}");
+    const char c = latex_[i_];
+    if (letter_or_digit(c)) {
+      ++i_;
+    } else if (c == '{') {
+      group(depth);
+    } else if (c == '\\') {
+      const std::size_t start = i_;
+      const std::string name = command();
+      if (is_symbol_command(name)) return;
+      i_ = start;
+      if (is_accent(name)) fail("has \\" + name + " as a subscript without braces; write x_{\\" + name + "{y}}");
+      nucleus(depth);  // says what is wrong with the command
+    } else if (c == '_') {
+      fail("has two subscripts on one letter; write them as one: x_{1,2}");
+    } else {
+      nucleus(depth);  // says what is wrong with the character (or takes "," for a subscript: not allowed)
+      fail("has a subscript that is not a letter, a digit or {...}; write x_{1}");
+    }
+  }
+};
+
+}  // namespace
+
+void check_latex_name(const std::string& latex, const std::string& context) {
+  LatexNameCheck(latex, context).run();
 }
 
 }  // namespace kinema

@@ -15,8 +15,10 @@ std::string default_rate_name(const std::string& coordinate, int order);
 /// La -> L_{a}, AB -> \mathit{AB}. Names are identifiers, so nothing needs escaping.
 std::string latex_symbol_name(const std::string& name);
 
-/// Throws InputError unless a LaTeX name given in a mechanism file uses only
-/// letters, digits, _ ^ { } ' and the commands for Greek letters and accents.
+/// Throws InputError ("context: LaTeX name ... what to write instead") unless a LaTeX
+/// name given in a mechanism file follows the grammar of README's "Mechanism files":
+/// letters, digits, , ' and subscripts _x or _{...}, balanced braces, Greek letters,
+/// \prime, and \dot \ddot \hat \bar \tilde \vec \mathrm \mathit with a braced argument.
 void check_latex_name(const std::string& latex, const std::string& context);
 
 }  // namespace kinema

@@ -117,7 +117,9 @@ TEST_CASE("names that are not identifiers are refused: rate names, points, loops
   check_bad("rate_name_tex", replaced("rate = \"10 rad/s\"", "rate = \"10 rad/s\"\nrate_name = \"\\\\input{/etc/passwd}\""),
             {2, {"rate_name_tex.toml:", "rate name", "not a valid name"}});
   check_bad("rate_name_newline", replaced("theta3 = \"20 deg\"", "theta3 = { guess = \"20 deg\", rate_name = \"w\\n% x\" }"),
-            {2, {"rate_name_newline.toml:12", "not a valid name"}});
+            {2, {"rate_name_newline.toml:12", "rate_name", "line break"}});  // before the name check
+  check_bad("rate_name_tab", replaced("theta3 = \"20 deg\"", "theta3 = { guess = \"20 deg\", rate_name = \"w\\tx\" }"),
+            {2, {"rate_name_tab.toml:12", "not a valid name"}});
   check_bad("point_comma", replaced("P = \"", "\"P,Q\" = \""), {2, {"point_comma.toml", "point name \"P,Q\""}});
   check_bad("loop_space", replaced("ABCD = \"", "\"AB CD\" = \""), {2, {"loop_space.toml:15", "loop name \"AB CD\""}});
   check_bad("underscore", replaced("theta3 = \"20 deg\"", "_ = \"20 deg\""), {2, {"underscore.toml:12", "name \"_\""}});
@@ -431,4 +433,93 @@ TEST_CASE("a chain's point too large to differentiate is refused at once") {
   CHECK(result.exit_status == 2);
   CHECK(result.out.find("arm_product.toml:") != std::string::npos);
   CHECK(result.out.find("point \"B\": its acceleration formula would have about") != std::string::npos);
+}
+
+// Audit 2026-11-24 (tests/fuzz/regressions/latex_name_trailing_underscore.toml): a LaTeX
+// name that cannot compile (x_, \hat) was passed on and pdflatex stopped on the notes.
+// It is refused when the file is read, by every command, with what to write instead.
+TEST_CASE("a LaTeX name that cannot typeset is refused at read time with the line, the name and what to write") {
+  struct Case {
+    std::string latex;
+    std::vector<std::string> parts;
+  };
+  for (const Case& c : {Case{"x_", {"\"x_\"", "write x_{1}"}}, Case{"\\\\hat", {"\"\\hat\"", "write \\hat{x}"}},
+                        Case{"x_1_2", {"\"x_1_2\"", "x_{1,2}"}}, Case{"{x", {"unbalanced braces"}},
+                        Case{"\\\\csname x\\\\endcsname", {"\\csname"}}}) {
+    CAPTURE(c.latex);
+    std::vector<std::string> parts = {"latex_name.toml:12", "unknown \"theta3\""};
+    parts.insert(parts.end(), c.parts.begin(), c.parts.end());
+    const std::string text =
+        replaced("theta3 = \"20 deg\"", "theta3 = { guess = \"20 deg\", latex = \"" + c.latex + "\" }");
+    check_bad("latex_name", text, {2, parts});
+    const std::string path = kinema_test::write_temporary("latex_name.toml", text);
+    const std::string output = path + ".tex";
+    std::filesystem::remove(output);
+    const auto latex = kinema_test::run_kinema({"latex", path, "-o", output});
+    CHECK(latex.exit_status == 2);
+    CHECK(latex.err.find("latex_name.toml:12") != std::string::npos);
+    CHECK_FALSE(std::filesystem::exists(output));
+  }
+}
+
+// Audit 2026-11-24 (tests/fuzz/regressions/terminal_escape_title.toml, codegen_bidi_title.toml):
+// a title's ESC sequences reached the terminal, and its U+202E a C++ comment, which
+// g++ -Werror refused. Characters that control how text is shown are refused in every key
+// and string when the file is read, with file:line and the code point (line breaks only in
+// the title and the description, tabs anywhere); the message itself carries none of them.
+TEST_CASE("control and bidirectional characters in a file's strings and keys are refused with file:line and the code point") {
+  struct Case {
+    std::string name, text;
+    std::vector<std::string> parts;
+  };
+  for (const Case& c : std::vector<Case>{
+           {"escape_title", replaced("title = \"four-bar\"", "title = \"X\\u001b[2J\\u001b]0;pwned\\u0007\\u001b[31mRED\""),
+            {"escape_title.toml:1", "\"title\"", "control character U+001B"}},
+           {"bidi_title", replaced("title = \"four-bar\"", "title = \"four \\u202e bar\""),
+            {"bidi_title.toml:1", "\"title\"", "U+202E", "bidirectional"}},
+           {"bidi_raw", replaced("title = \"four-bar\"", "title = \"four \xe2\x81\xa6 bar\""), {"bidi_raw.toml:1", "U+2066"}},
+           {"bidi_key", replaced("a = \"40 mm\"", "\"a\\u200fb\" = \"40 mm\""),
+            {"bidi_key.toml:3", "the key \"a[U+200F]b\"", "U+200F"}},
+           {"bidi_comment_of_loop", replaced("- d\"", "- d\" # \xd8\x9c"), {}},  // in a comment: harmless, read
+           {"line_break_parameter", replaced("a = \"40 mm\"", "a = \"40\\nmm\""),
+            {"line_break_parameter.toml:3", "\"parameters.a\"", "line break", "only title and description"}},
+           {"carriage_return", replaced("title = \"four-bar\"", "title = \"four-bar\"\ndescription = \"a\\rb\""),
+            {"carriage_return.toml:2", "\"description\"", "U+000D"}},
+           {"c1_control_point", replaced("P = \"a*exp(I*theta2)\"", "P = { x = \"a\", y = \"0\\u0085\" }"),
+            {"c1_control_point.toml:17", "\"points.P.y\"", "U+0085"}},
+           {"array", replaced("value = \"40 deg\"", "values = [\"40 deg\", \"50\\u001bdeg\"]"),
+            {"array.toml:9", "\"input.values[1]\"", "U+001B"}}}) {
+    if (c.parts.empty()) {  // accepted
+      const std::string path = kinema_test::write_temporary(c.name + ".toml", c.text);
+      CHECK(kinema_test::run_kinema({"eval", path}).exit_status == 0);
+      continue;
+    }
+    check_bad(c.name, c.text, {2, c.parts});
+    const std::string path = kinema_test::write_temporary(c.name + ".toml", c.text);
+    const std::string header = path + ".hpp";
+    std::filesystem::remove(header);
+    const auto codegen = kinema_test::run_kinema({"codegen", path, "-o", header});
+    CHECK(codegen.exit_status == 2);
+    CHECK_FALSE(std::filesystem::exists(header));
+    for (const char* shown : {"\x1b", "\x07", "\r", "\xe2\x80\xae", "\xe2\x81\xa6", "\xe2\x80\x8f", "\xc2\x85"}) {
+      CHECK(codegen.err.find(shown) == std::string::npos);
+    }
+  }
+}
+
+// Audit 2026-11-24: `kinema loops` of a spatial chain wrote an empty mechanism (name = "",
+// no unknowns, no loops) and exited 0.
+TEST_CASE("kinema loops of a spatial chain is bad input: it has no vector loops; nothing is written") {
+  for (const char* sample : {"robot_arm_seed000.toml", "rssr_spatial_four_bar.toml"}) {
+    CAPTURE(sample);
+    const std::string output = kinema_test::write_temporary("spatial_loops.toml", "") + ".out";
+    std::filesystem::remove(output);
+    const auto result = kinema_test::run_kinema({"loops", kinema_test::sample(sample), "-o", output});
+    CHECK(result.exit_status == 2);
+    CHECK_FALSE(std::filesystem::exists(output));
+    CHECK(result.err.rfind("kinema: error: ", 0) == 0);
+    CHECK(result.err.find(sample) != std::string::npos);
+    CHECK(result.err.find("spatial chain") != std::string::npos);
+    CHECK(result.err.find("kinema derive") != std::string::npos);
+  }
 }

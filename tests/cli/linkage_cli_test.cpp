@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include <kinema/loops/mechanism_file.hpp>
+
 #include "test_support.hpp"
 
 TEST_CASE("kinema loops: the vector loops of a joints-and-links sample evaluate to the same numbers") {
@@ -149,4 +151,36 @@ TEST_CASE("kinema eval --circuit: what it cannot follow is said, with a usage or
     CHECK(result.err.find(c.message) != std::string::npos);
     CHECK_FALSE(std::filesystem::exists(output));
   }
+}
+
+// Audit 2026-11-24 (tests/fuzz/regressions/loops_multiline_description.toml): a line break in
+// the title or description was written into a TOML string as it was, and kinema could not
+// read the file it had written. Written back, a file reads as the same mechanism, and
+// `kinema loops` of its own output gives the same bytes.
+TEST_CASE("kinema loops: line breaks, quotes, backslashes, tabs and Unicode in the text round-trip") {
+  const std::string directory = kinema_test::fresh_directory("loops_round_trip");
+  std::string text = kinema_test::replaced(
+      "title = \"four-bar\"", "title = \"four-bar \\\"open\\\" C:\\\\notes\\tθ\\nsecond line\"\n"
+                              "description = \"\"\"\nA crank-rocker.\n\n  Open branch \\\\ \"quoted\".\"\"\"");
+  text = kinema_test::replaced("theta3 = \"20 deg\"", "theta3 = { guess = \"20 deg\", latex = '\\hat{\\varphi}_{3}' }", text);
+  for (const std::string& file :
+       {kinema_test::write_temporary("round_trip.toml", text),
+        kinema_test::sample("../tests/fuzz/regressions/loops_multiline_description.toml")}) {
+    CAPTURE(file);
+    const std::string once = directory + "/once.toml", twice = directory + "/twice.toml";
+    REQUIRE(kinema_test::run_kinema({"loops", file, "-o", once}).exit_status == 0);
+    const auto again = kinema_test::run_kinema({"loops", once, "-o", twice});
+    INFO(again.err);
+    REQUIRE(again.exit_status == 0);
+    CHECK(kinema_test::read_file(twice) == kinema_test::read_file(once));
+    const kinema::Mechanism original = kinema::read_mechanism_file(file), written = kinema::read_mechanism_file(once);
+    CHECK(written.title == original.title);
+    CHECK(written.description == original.description);
+    CHECK(written.unknowns[0].latex_name == original.unknowns[0].latex_name);
+    const auto a = kinema_test::run_kinema({"eval", file, "--format", "json"});
+    const auto b = kinema_test::run_kinema({"eval", once, "--format", "json"});
+    REQUIRE(a.exit_status == 0);
+    CHECK(b.out == a.out);  // the same title and numbers
+  }
+  CHECK(kinema::read_mechanism_text(text, "t.toml").title == "four-bar \"open\" C:\\notes\tθ\nsecond line");
 }

@@ -4,29 +4,10 @@
 
 #include <kinema/engine/printers/latex/latex_unicode.hpp>
 #include <kinema/engine/report/number_format.hpp>
+#include <kinema/engine/report/user_text.hpp>
 #include <kinema/engine/symbolic/expression_parts.hpp>
 
 namespace kinema {
-
-namespace {
-
-// The UTF-8 character starting at text[i] (i is left on its last byte); U+FFFD for
-// bytes that are not UTF-8 (a library caller's text need not be).
-unsigned long next_code_point(const std::string& text, std::size_t& i) {
-  const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
-  const unsigned char lead = byte(i);
-  const int length = lead >= 0xF0 && lead <= 0xF4 ? 4 : lead >= 0xE0 ? (lead <= 0xEF ? 3 : 0) : lead >= 0xC2 ? 2 : 0;
-  if (length == 0 || i + length > text.size()) return 0xFFFD;
-  unsigned long value = lead & (0x7F >> length);
-  for (int k = 1; k < length; ++k) {
-    if ((byte(i + k) & 0xC0) != 0x80) return 0xFFFD;
-    value = (value << 6) | (byte(i + k) & 0x3F);
-  }
-  i += length - 1;
-  return value;
-}
-
-}  // namespace
 
 std::string latex_escape_text(const std::string& text) {
   std::string out;
@@ -46,14 +27,13 @@ std::string latex_escape_text(const std::string& text) {
       case '<': out += "\\textless{}"; break;
       case '>': out += "\\textgreater{}"; break;
       case '|': out += "\\textbar{}"; break;
-      case '\n': case '\r': out += ' '; break;
-      default:
-        if (static_cast<unsigned char>(c) >= 0x80) {
-          out += latex_for_code_point(next_code_point(text, i));
-        } else {
-          // Control characters (ESC, DEL, NUL, ...) stop pdflatex: a space instead.
-          out += (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) ? ' ' : c;
-        }
+      default: {
+        const unsigned long code = next_code_point(text, i);
+        // Control characters (a line break, ESC, DEL, NUL, ...) stop pdflatex: a space instead.
+        if (is_control_character(code)) out += ' ';
+        else if (code < 0x80) out += c;
+        else out += latex_for_code_point(code);
+      }
     }
   }
   return out;

@@ -11,6 +11,25 @@
 namespace kinema {
 namespace {
 
+// A value more than this many times the typical size of its plot's values is drawn as a
+// gap: a pole (a point at a*tan(theta2) is 1.6e16 a at 90 deg) would squash every other
+// value of the plot flat, and pgfplots stops ("divide by 0.0", "Dimension too large") on
+// values some 1e6 times apart in the paths' equal scales.
+constexpr double kPlotSpan = 1000;
+
+// The largest magnitude a plot draws: kPlotSpan times the 90th percentile of the
+// magnitudes of its finite values that print as more than 0 (rounding noise around 0 is not
+// a size; a pole's few huge values do not move a percentile); infinite when there are none.
+double plot_limit(const std::vector<double>& values) {
+  std::vector<double> sizes;
+  for (const double v : values)
+    if (std::isfinite(v) && std::fabs(v) >= 5e-7) sizes.push_back(std::fabs(v));  // format_fixed's 6 decimals
+  if (sizes.empty()) return INFINITY;
+  const auto percentile = sizes.begin() + (sizes.size() * 9) / 10;
+  std::nth_element(sizes.begin(), percentile, sizes.end());
+  return kPlotSpan * *percentile;
+}
+
 class PlotWriter {
  public:
   PlotWriter(std::ostream& out, const ConstraintSystem& system, const MotionTable& sweep)
@@ -53,46 +72,40 @@ class PlotWriter {
                                             : order == 1 ? "rates" : "second rates";
         const std::string y_unit = order == 0 ? scale_.coordinate_unit(dim)
                                               : order == 1 ? scale_.rate_unit(dim) : scale_.second_rate_unit(dim);
-        begin_axis(x_label, what + " [$\\mathrm{" + y_unit + "}$]", plotted++);
+        std::vector<std::vector<double>> curves;  // each member's values, one per row of rows_
         for (std::size_t j : members) {
-          out_ << "\\addplot+[mark=none, thick] coordinates {";
+          std::vector<double>& ys = curves.emplace_back();
           for (std::size_t row : rows_) {
-            if (row == kBreak) {
-              out_ << " (nan,nan)";
-              continue;
-            }
-            const MotionState s = sweep_[row];
             double y = NAN;
-            if (order == 0 && s.status != Status::unassembled) {
-              y = scale_.unwrapped(dim, s.q[j]);  // continuous curves without +-180 deg jumps
-            } else if (order > 0 && s.status == Status::ok) {
-              y = scale_.rate(dim, order == 1 ? s.qd[j] : s.qdd[j]);
+            if (row != kBreak) {
+              const MotionState s = sweep_[row];
+              if (order == 0 && s.status != Status::unassembled) {
+                y = scale_.unwrapped(dim, s.q[j]);  // continuous curves without +-180 deg jumps
+              } else if (order > 0 && s.status == Status::ok) {
+                y = scale_.rate(dim, order == 1 ? s.qd[j] : s.qdd[j]);
+              }
             }
-            point(x_of(s.input), y);
+            ys.push_back(y);
           }
-          const Coordinate& q = system_.unknowns[j];
-          out_ << " };\n\\addlegendentry{$" << to_latex(order == 0 ? q.symbol : order == 1 ? q.rate : q.second_rate)
-               << "$}\n";
         }
-        singular_marks();
-        end_axis();
+        std::vector<std::string> legends;
+        for (std::size_t j : members) {
+          const Coordinate& q = system_.unknowns[j];
+          legends.push_back("$" + to_latex(order == 0 ? q.symbol : order == 1 ? q.rate : q.second_rate) + "$");
+        }
+        axis(x_label, what + " [$\\mathrm{" + y_unit + "}$]", plotted++, curves, legends);
       }
     }
     if (!system_.points.empty()) {
-      begin_axis(x_label, "speed [$\\mathrm{" + scale_.length_unit + "/s}$]", plotted++);
+      std::vector<std::vector<double>> curves;
+      std::vector<std::string> legends;
       for (std::size_t p = 0; p < system_.points.size(); ++p) {
-        out_ << "\\addplot+[mark=none, thick] coordinates {";
-        for (std::size_t row : rows_) {
-          if (row == kBreak) {
-            out_ << " (nan,nan)";
-            continue;
-          }
-          point(x_of(sweep_.input(row)), sweep_.status(row) == Status::ok ? sweep_.point(row, p).speed() / scale_.length : NAN);
-        }
-        out_ << " };\n\\addlegendentry{" << latex_escape_text(system_.points[p].name) << "}\n";
+        std::vector<double>& ys = curves.emplace_back();
+        for (std::size_t row : rows_)
+          ys.push_back(row != kBreak && sweep_.status(row) == Status::ok ? sweep_.point(row, p).speed() / scale_.length : NAN);
+        legends.push_back(latex_escape_text(system_.points[p].name));
       }
-      singular_marks();
-      end_axis();
+      axis(x_label, "speed [$\\mathrm{" + scale_.length_unit + "/s}$]", plotted++, curves, legends);
     }
     out_ << "\n";
     if (system_.frames.empty()) paths();
@@ -110,26 +123,47 @@ class PlotWriter {
       if (reach > 0) moving.push_back(p);
     }
     if (moving.empty()) return;
+    std::vector<double> coordinates;
+    for (std::size_t p : moving)
+      for (std::size_t row = 0; row < sweep_.size(); ++row)
+        if (sweep_.status(row) != Status::unassembled)
+          for (const int k : {0, 1}) coordinates.push_back(sweep_.point(row, p).position[k] / scale_.length);
+    const double limit = plot_limit(coordinates);  // one for x and y: the scales are equal
+    std::string curves;
+    double low[2] = {INFINITY, INFINITY}, high[2] = {-INFINITY, -INFINITY};
+    for (std::size_t p : moving) {
+      curves += "\\addplot+[mark=none, thick] coordinates {";
+      for (std::size_t row = 0; row < sweep_.size(); ++row) {
+        const PointMotion m = sweep_.point(row, p);
+        const double xy[2] = {m.position[0] / scale_.length, m.position[1] / scale_.length};
+        const bool drawn = sweep_.status(row) != Status::unassembled && std::fabs(xy[0]) <= limit && std::fabs(xy[1]) <= limit;
+        curves += drawn ? " (" + format_fixed(xy[0]) + "," + format_fixed(xy[1]) + ")" : std::string(" (nan,nan)");
+        for (const int k : {0, 1}) {
+          if (!drawn) continue;
+          low[k] = std::min(low[k], xy[k]);
+          high[k] = std::max(high[k], xy[k]);
+        }
+      }
+      curves += " };\n\\addlegendentry{" + latex_escape_text(system_.points[p].name) + "}\n";
+    }
+    // Equal scales of a box far longer than high (paths along a line, one of them long) are
+    // more than pgfplots can lay out: the short side is widened to 1/kPlotSpan of the long.
+    std::string box;
+    const double longest = std::max(high[0] - low[0], high[1] - low[1]);
+    for (const int k : {0, 1}) {
+      if (!(high[k] - low[k] < longest / kPlotSpan)) continue;
+      const double middle = (low[k] + high[k]) / 2, half = longest / kPlotSpan / 2;
+      const std::string axis = k == 0 ? "x" : "y";
+      box += axis + "min=" + format_fixed(middle - half) + ", " + axis + "max=" + format_fixed(middle + half) + ", ";
+    }
     const std::string l = "[$\\mathrm{" + scale_.length_unit + "}$]";
     out_ << "\\medskip\n\\noindent Paths of the points over the run (coupler curves of points on a coupler), "
             "to one scale in $x$ and $y$:\n\n\\begin{center}\n\\begin{tikzpicture}\n\\begin{axis}[width=0.7\\linewidth, "
-            "axis equal image, xlabel={$x$ "
-         << l << "}, ylabel={$y$ " << l
+            "axis equal image, "
+         << box << "xlabel={$x$ " << l << "}, ylabel={$y$ " << l
          << "}, unbounded coords=jump, legend style={font=\\footnotesize, at={(0.5,1.02)}, anchor=south, "
-            "legend columns=-1}]\n";
-    for (std::size_t p : moving) {
-      out_ << "\\addplot+[mark=none, thick] coordinates {";
-      for (std::size_t row = 0; row < sweep_.size(); ++row) {
-        if (sweep_.status(row) == Status::unassembled) {
-          out_ << " (nan,nan)";
-          continue;
-        }
-        const PointMotion m = sweep_.point(row, p);
-        out_ << " (" << format_fixed(m.position[0] / scale_.length) << "," << format_fixed(m.position[1] / scale_.length) << ")";
-      }
-      out_ << " };\n\\addlegendentry{" << latex_escape_text(system_.points[p].name) << "}\n";
-    }
-    out_ << "\\end{axis}\n\\end{tikzpicture}\n\\end{center}\n\n";
+            "legend columns=-1}]\n"
+         << curves << "\\end{axis}\n\\end{tikzpicture}\n\\end{center}\n\n";
   }
 
   static constexpr std::size_t kBreak = static_cast<std::size_t>(-1);
@@ -149,8 +183,28 @@ class PlotWriter {
   }
   double x_of(double si) const { return turn_ ? wrapped(si) : scale_.input(si); }
 
-  void point(double x, double y) {
-    out_ << " (" << format_fixed(x) << "," << (std::isfinite(y) ? format_fixed(y) : "nan") << ")";
+  // One axis of curves over rows_, each with its legend; a value past the axis's
+  // plot_limit is a gap, as a non-finite one is.
+  void axis(const std::string& x_label, const std::string& y_label, int index,
+            const std::vector<std::vector<double>>& curves, const std::vector<std::string>& legends) {
+    std::vector<double> all;
+    for (const auto& ys : curves) all.insert(all.end(), ys.begin(), ys.end());
+    const double limit = plot_limit(all);
+    begin_axis(x_label, y_label, index);
+    for (std::size_t k = 0; k < curves.size(); ++k) {
+      out_ << "\\addplot+[mark=none, thick] coordinates {";
+      for (std::size_t i = 0; i < rows_.size(); ++i) {
+        const double y = curves[k][i];
+        if (rows_[i] == kBreak || !(std::fabs(y) <= limit)) {
+          out_ << (rows_[i] == kBreak ? " (nan,nan)" : " (" + format_fixed(x_of(sweep_.input(rows_[i]))) + ",nan)");
+          continue;
+        }
+        out_ << " (" << format_fixed(x_of(sweep_.input(rows_[i]))) << "," << format_fixed(y) << ")";
+      }
+      out_ << " };\n\\addlegendentry{" << legends[k] << "}\n";
+    }
+    singular_marks();
+    end_axis();
   }
 
   void begin_axis(const std::string& x_label, const std::string& y_label, int index) {

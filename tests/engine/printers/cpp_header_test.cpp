@@ -369,3 +369,30 @@ TEST_CASE("kinema codegen: keyword and macro names are renamed, the header compi
   CHECK(refused.exit_status == 2);
   CHECK(refused.err.find("int_") != std::string::npos);
 }
+
+// Audit 2026-11-24 (tests/fuzz/regressions/codegen_bidi_title.toml): U+202E in a title went
+// into a // comment and g++ -Werror refused the header (-Wbidi-chars). A file's text is
+// refused now (tests/cli/bad_input_test.cpp); what is left, a multi-line title and a path
+// from the command line with a line break and U+202E, goes into the comments on one line.
+TEST_CASE("kinema codegen: a multi-line title and a path with a line break and U+202E give a header that compiles") {
+  const auto directory = std::filesystem::temp_directory_path() / "kinema_tests" / "codegen_text";
+  std::filesystem::create_directories(directory);
+  const std::string mechanism = (directory / "four\xe2\x80\xae\nbar.toml").string();
+  std::ofstream(mechanism) << kinema_test::replaced("title = \"four-bar\"",
+                                                    "title = \"\"\"four-bar\nopen branch \\\\\"\"\"\n"
+                                                    "description = \"\"\"two\nlines\"\"\"");
+  const std::string header = (directory / "text.hpp").string();
+  const auto generated = kinema_test::run_kinema({"codegen", mechanism, "-o", header});
+  INFO(generated.err);
+  REQUIRE(generated.exit_status == 0);
+  const std::string code = read_file(header);
+  CHECK(code.find("\xe2\x80\xae") == std::string::npos);
+  CHECK(code.find("four[U+202E] bar.toml: four-bar open branch \\.") != std::string::npos);
+  const std::string source = (directory / "include.cpp").string();
+  std::ofstream(source) << "#include \"" << header << "\"\nint main() { return text::unknown_count == 2 ? 0 : 1; }\n";
+  const std::string program = (directory / "include").string();
+  const int compiled = std::system((std::string(KINEMA_CXX) + " -std=c++17 -Wall -Wextra -Werror -o '" + program +
+                                    "' '" + source + "' 2> '" + program + ".log'").c_str());
+  INFO(read_file(program + ".log"));
+  CHECK(compiled == 0);
+}

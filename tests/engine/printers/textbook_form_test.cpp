@@ -128,3 +128,17 @@ TEST_CASE("engine/printers/textbook_form: sums nested in products a hundred deep
     CHECK(text.find("b99") != std::string::npos);
   }
 }
+
+// Audit 2026-11-24: an angle named u, or given latex = "q", printed as \cosu (an undefined
+// command); a name with a prime squared as x'^{2} (a double superscript).
+TEST_CASE("textbook form: a name after \\sin, \\cos, \\tan and a primed name in a power typeset") {
+  const kinema::TextbookForm form;
+  const GiNaC::realsymbol u("u", "u"), q("theta3", "q"), primed("s", "s'"), theta("theta2", "\\theta_{2}");
+  CHECK(form(GiNaC::cos(u), Style::latex) == "\\cos u");
+  CHECK(form(GiNaC::sin(q), Style::latex) == "\\sin q");
+  CHECK(form(GiNaC::tan(q), Style::latex) == "\\tan q");
+  CHECK(form(GiNaC::pow(GiNaC::sin(u), 2), Style::latex) == "\\sin^{2} u");
+  CHECK(form(GiNaC::cos(theta), Style::latex) == "\\cos\\theta_{2}");  // a command needs no space
+  CHECK(form(GiNaC::pow(primed, 2), Style::latex) == "(s')^{2}");
+  CHECK(form(GiNaC::pow(u, 2), Style::latex) == "u^{2}");
+}

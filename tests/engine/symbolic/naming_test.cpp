@@ -68,7 +68,8 @@ TEST_CASE("engine/symbolic/naming: latex_symbol_name") {
 
 TEST_CASE("engine/symbolic/naming: check_latex_name allows names, refuses commands and specials") {
   for (const char* good : {"\\varphi_{2}", "\\dot{s}'", "\\hat{x}_1", "\\mathrm{AB}", "r_{1,\\mathit{out}}",
-                           "\\ddot{\\theta}_{3}", "L a", "\\vec{r}"}) {
+                           "\\ddot{\\theta}_{3}", "L a", "\\vec{r}", "q", "x'", "x''_{1}", "x_1'", "\\theta_3'",
+                           "{x}_{1,\\mathrm{out}}", "\\vec{r}_\\alpha", "\\hat {x}", "{{{{{{{{x}}}}}}}}"}) {
     CAPTURE(good);
     CHECK_NOTHROW(check_latex_name(good, "here"));
   }
@@ -79,7 +80,16 @@ TEST_CASE("engine/symbolic/naming: check_latex_name allows names, refuses comman
   for (const Bad& bad : {Bad{"\\input{/etc/passwd}", "\\input"}, Bad{"\\def\\x{1}", "\\def"},
                          Bad{"\\textbf{x}", "\\textbf"}, Bad{"\\\\", "\\"}, Bad{"x$y", "\"$\""},
                          Bad{"50%", "\"%\""}, Bad{"a&b", "\"&\""}, Bad{"#1", "\"#\""}, Bad{"x~y", "\"~\""},
-                         Bad{"x^{2}", "\"^\""}, Bad{"^^5cinput", "\"^\""}}) {
+                         Bad{"x^{2}", "\"^\""}, Bad{"^^5cinput", "\"^\""},
+                         // Audit 2026-11-24: names the old check passed and pdflatex stopped on, and
+                         // commands beyond math typesetting; each message says what to write.
+                         Bad{"x_", "write x_{1}"}, Bad{"\\hat", "write \\hat{x}"}, Bad{"\\hat x", "write \\hat{x}"},
+                         Bad{"x_1_2", "x_{1,2}"}, Bad{"x__1", "x_{1,2}"}, Bad{"x'_1'", "x''_{1}"},
+                         Bad{"_1", "nothing before"}, Bad{"'x", "nothing before"}, Bad{"x\\", "\\"},
+                         Bad{"x_\\hat{y}", "x_{\\hat{y}}"}, Bad{"x_,", "x_{1}"}, Bad{" ", "nothing to typeset"},
+                         Bad{"{{{{{{{{{x}}}}}}}}}", "8 deep"}, Bad{"\\alphax", "\\alphax"}, Bad{"\\csname", "\\csname"},
+                         Bad{"\\catcode", "\\catcode"}, Bad{"\\immediate", "\\immediate"},
+                         Bad{"\\openout", "\\openout"}, Bad{"\\write", "\\write"}, Bad{"x\xc3\xa9", "past ASCII"}}) {
     CAPTURE(bad.latex);
     try {
       check_latex_name(bad.latex, "unit.toml:7: unknown \"q\"");
