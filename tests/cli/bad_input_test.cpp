@@ -348,3 +348,29 @@ TEST_CASE("a number with an exponent of more than 4 digits is refused at once") 
   check_bad("long_exponent_point", replaced("P = \"a*exp(I*theta2)\"", "P = \"1e-123456*a\""),
             {2, {"long_exponent_point.toml", "point \"P\"", "exponent of more than 4 digits"}});
 }
+
+// Audit 2026-11-24: two result columns with one name (npy refuses the file, JSON gets a
+// duplicate key, CSV is ambiguous), whatever the names come from.
+TEST_CASE("names that would give two output columns one name are refused with both names and lines") {
+  // An unknown named like point P's x column.
+  check_bad("column_unknown_point", replaced("theta4", "P_x", replaced("theta4 = ", "P_x = ")),
+            {2, {"column_unknown_point.toml:17", "point \"P\"", "unknown \"P_x\"", "column_unknown_point.toml:13",
+                 "output column \"P_x\"", "rename one of them"}});
+  // A rate name given in the file, named like a point's column.
+  check_bad("column_rate", replaced("theta3 = \"20 deg\"", "theta3 = { guess = \"20 deg\", rate_name = \"P_speed\" }"),
+            {2, {"column_rate.toml:17", "point \"P\"", "the rate of unknown \"theta3\"", "column_rate.toml:12",
+                 "output column \"P_speed\""}});
+  const std::string rocker = kinema_test::read_file(kinema_test::sample("triple_rocker_circuit.toml"));
+  // A point named like a joint (both are points of the results).
+  check_bad("column_joint_point", replaced("P = {", "B = {", rocker),
+            {2, {"column_joint_point.toml:33", "point \"B\"", "joint \"B\"", "column_joint_point.toml:23",
+                 "output column \"B_x\""}});
+  // A link's angle named like --circuit's assembly column: refused for every run of the file.
+  check_bad("column_branch", replaced("length = \"BC\" }", "length = \"BC\", angle = \"branch_C\" }", rocker),
+            {2, {"column_branch.toml:29", "unknown \"branch_C\"", "assembly sign (--circuit) of joint \"C\"",
+                 "output column \"branch_C\""}});
+  // A point of a spatial chain named like a frame's angular velocity.
+  const std::string arm = kinema_test::read_file(kinema_test::sample("robot_arm_seed000.toml"));
+  check_bad("column_frame", replaced("B = {", "E1_omega = {", arm),
+            {2, {"column_frame.toml:36", "point \"E1_omega\"", "frame \"E1\"", "output column \"E1_omega_x\""}});
+}
