@@ -216,6 +216,7 @@ int run(int argc, char** argv) {
   if (!output_path.empty() && output_path != "-" && std::filesystem::equivalent(file, output_path, same_error)) {
     throw InputError("-o " + output_path + " is the mechanism file itself; write the output to another file");
   }
+  kinema_cli::check_output(output_path);  // as the shell refuses a > before it runs anything
   Mechanism mechanism = read_mechanism_file(file);
   if (!chain_input.empty()) {
     if (!mechanism.chain) {
