@@ -2,6 +2,7 @@
 
 #include <kinema/engine/errors.hpp>
 #include <kinema/engine/symbolic/expression_parts.hpp>
+#include <kinema/loops/units.hpp>
 
 namespace kinema {
 
@@ -65,7 +66,7 @@ std::optional<int> LengthPower::of(const ex& e, const std::string& context) cons
       auto power = of(argument, context);
       if (power && *power != 0) {
         throw InputError(context + ": the argument of " + name + "(...) in \"" + to_text(e) +
-                         "\" is a " + describe(*power) + ", but an angle or a plain number "
+                         "\" is " + with_article(describe(*power)) + ", but an angle or a plain number "
                          "is needed there");
       }
     }

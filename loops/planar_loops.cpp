@@ -84,9 +84,10 @@ class Builder {
       }
       auto power = units.of(vector.expand(), context);
       if (power && *power != 1) {
-        throw InputError(context + " is a " + LengthPower::describe(*power) +
+        throw InputError(context + " is " + with_article(LengthPower::describe(*power)) +
                          ", but a loop is a sum of link vectors (lengths)");
       }
+      if (misuses_plain_numbers(vector.expand(), true)) check_plain_numbers(vector, context);
       if (!depends_on_unknowns(x, system) && !depends_on_unknowns(y, system)) {
         throw InputError(context + " contains none of the unknowns; each loop must close "
                          "through at least one unknown coordinate");
@@ -102,7 +103,11 @@ class Builder {
     const std::size_t equations = system.equations.size();
     const std::size_t unknowns = system.unknowns.size();
     if (equations != unknowns) {
-      throw InputError(mechanism_.source_file + ": " + std::to_string(mechanism_.loops.size()) +
+      // Where the count is passed: the first unknown without an equation, or the first
+      // loop without unknowns.
+      const SourceLocation where = unknowns > equations ? mechanism_.unknowns[equations].where
+                                                        : mechanism_.loops[unknowns / 2].where;
+      throw InputError(where.str() + ": " + std::to_string(mechanism_.loops.size()) +
                        " loop(s) give " + std::to_string(equations) + " scalar equations, but there are " +
                        std::to_string(unknowns) + " unknowns (" + unknown_list() +
                        "); each vector loop closes two unknowns: add or remove a loop or an unknown");
@@ -121,9 +126,10 @@ class Builder {
       ex position = parse(point.formula, context);
       auto power = units.of(position.expand(), context);
       if (power && *power != 1) {
-        throw InputError(context + " is a " + LengthPower::describe(*power) +
+        throw InputError(context + " is " + with_article(LengthPower::describe(*power)) +
                          ", but a point position must be a length (x + I*y)");
       }
+      if (misuses_plain_numbers(position.expand(), true)) check_plain_numbers(position, context);
       PointObservable observable;
       observable.name = point.name;
       observable.where = point.where;
@@ -143,6 +149,48 @@ class Builder {
   // (a parser per formula copied the table each time: quadratic in the parameters).
   FormulaReader formulas_;
   std::map<ex, int, GiNaC::ex_is_less> powers_;
+  // A parameter written as a bare number ("40") is a plain number (a ratio: p = "k*a"),
+  // not metres: powers_ leaves it out (a formula with it may be anything), plain_powers_
+  // counts it as of no length. A formula that is a length with the one and not with the
+  // other uses such a number as a length.
+  struct PlainNumber {
+    GiNaC::realsymbol symbol;
+    std::string name, text;
+    SourceLocation where;
+  };
+  std::vector<PlainNumber> plain_numbers_;
+  LengthPower::Powers plain_powers_;
+  GiNaC::exmap formulas_of_parameters_;
+
+  // Whether `e` (a length, or with length false anything) stops being one, or mixes
+  // units, once bare numbers count as of no length.
+  bool misuses_plain_numbers(const ex& e, bool length) const {
+    if (plain_numbers_.empty()) return false;  // the common case
+    try {
+      const auto power = LengthPower(plain_powers_).of(e, "");
+      return length && power && *power != 1;
+    } catch (const InputError&) {
+      return true;
+    }
+  }
+
+  // Refuses the first bare-number parameter `e` uses, itself or through formulas of
+  // parameters, if `e` is to be a length: it was read as metres without a word.
+  void check_plain_numbers(const ex& e, const std::string& used_in) const {
+    ex expanded = e;
+    for (std::size_t k = 0; k < formulas_of_parameters_.size(); ++k) {
+      const ex next = expanded.subs(formulas_of_parameters_);
+      if (next.is_equal(expanded)) break;
+      expanded = next;
+    }
+    for (const PlainNumber& p : plain_numbers_) {
+      if (!expanded.has(p.symbol)) continue;
+      throw InputError(p.where.str() + ": parameter \"" + p.name + "\" = \"" + p.text + "\" has no unit, and " +
+                       used_in.substr(used_in.find(": ") + 2) + " (" + used_in.substr(0, used_in.find(": ")) +
+                       ") uses it as a length; give its unit, e.g. \"" + p.text +
+                       " mm\" (a number without a unit is a ratio, as k in p = \"k*a\")");
+    }
+  }
   std::set<std::string> taken_;  ///< Names of symbols so far (rate names must not clash).
 
   GiNaC::realsymbol symbol(const std::string& name, const std::string& latex = "") {
@@ -268,7 +316,7 @@ class Builder {
     for (const Parameter& parameter : mechanism_.parameters) {
       const std::string context = parameter.where.str() + ": parameter \"" + parameter.name + "\"";
       double value = 0.0;
-      std::optional<int> power;
+      std::optional<int> power, plain_power;
       ex formula;
       if (parameter.quantity) {
         value = parameter.quantity->si_value;
@@ -277,7 +325,7 @@ class Builder {
           case Dimension::angle: power = 0; break;
           case Dimension::number: break;
           default:
-            throw UnitError(context + " is a " + dimension_name(parameter.quantity->dimension) +
+            throw UnitError(context + " is " + with_article(dimension_name(parameter.quantity->dimension)) +
                             "; loop parameters are lengths, angles or plain numbers (the driver's "
                             "speed goes under [input] rate)");
         }
@@ -286,6 +334,8 @@ class Builder {
         formula = parse(parameter.formula, context);
         value = formula_value(formula, values, context, parameter.formula, " (only earlier parameters can be used)");
         power = LengthPower(powers_).of(formula.expand(), context);
+        if (misuses_plain_numbers(formula.expand(), false)) check_plain_numbers(formula, context);  // a + k
+        plain_power = plain_numbers_.empty() ? power : LengthPower(plain_powers_).of(formula.expand(), context);
       }
       if (!std::isfinite(value)) {
         throw InputError(context + " = \"" + parameter.text + "\" is not a finite number");
@@ -301,6 +351,13 @@ class Builder {
                             ? Dimension::angle
                             : Dimension::number;
       if (power) powers_[entry.symbol] = *power;
+      if (parameter.quantity) plain_power = power;
+      if (parameter.quantity && parameter.quantity->dimension == Dimension::number) {
+        plain_power = 0;
+        plain_numbers_.push_back({entry.symbol, parameter.name, parameter.text, parameter.where});
+      }
+      if (plain_power) plain_powers_[entry.symbol] = *plain_power;
+      if (!parameter.quantity) formulas_of_parameters_[entry.symbol] = formula;
       values[entry.symbol] = value;
       if (entry.dimension == Dimension::length && parameter.quantity) largest = std::max(largest, std::fabs(value));
       system.parameters.push_back(entry);

@@ -236,7 +236,7 @@ class ChainBuilder {
       const ex angle = sign * value_of(t.angle, t.where, what, Dimension::angle);
       const auto power = LengthPower(powers_).of(angle.expand(), t.where.str() + ": " + what);
       if (power && *power != 0) {
-        fail(t.where, what + " \"" + t.angle + "\" is a " + LengthPower::describe(*power) +
+        fail(t.where, what + " \"" + t.angle + "\" is " + with_article(LengthPower::describe(*power)) +
                           ", but a turn is an angle (e.g. \"30 deg\", or a parameter or variable in deg or rad)");
       }
       const Vector3 direction = column(rotation, a);  // the axis, as turned so far
