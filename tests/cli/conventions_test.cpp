@@ -80,6 +80,17 @@ TEST_CASE("usage errors exit 2 with one line that says what is wrong and what to
   check_usage_error({"eval", file, "--format", "bogus"}, {"eval: --format", "bogus", "table,csv,json"},
                     "kinema eval --help");
   check_usage_error({"frob", file}, {"unknown command \"frob\"", "derive, eval, latex, codegen"}, "kinema --help");
+  // An empty value (a shell variable not set) was taken as the option left out: -o "" wrote
+  // to stdout, --sweep "" ran the file's values (audit 2026-11-24).
+  const std::string arm = kinema_test::sample("robot_arm_seed000.toml");
+  for (const auto& [command, option] : std::vector<std::pair<std::string, std::string>>{
+           {"eval", "-o"}, {"eval", "--sweep"}, {"eval", "--angle"}, {"eval", "--circuit"}, {"eval", "--input"},
+           {"derive", "--basis"}, {"derive", "-o"}, {"latex", "--at"}, {"codegen", "--namespace"}, {"loops", "-o"}}) {
+    std::vector<std::string> arguments = {command, command == "eval" || command == "loops" ? file : arm, option, ""};
+    if (command == "codegen") arguments.insert(arguments.end(), {"-o", "out.hpp"});
+    check_usage_error(arguments, {command + ": ", "an empty value; give one or leave the option out"},
+                      "kinema " + command + " --help");
+  }
 }
 
 TEST_CASE("-o writes the whole output, replaces a previous file and keeps its mode") {
