@@ -46,8 +46,8 @@ double parse_input_value(const ConstraintSystem& m, const std::string& text) {
     return m.input.dimension == Dimension::angle ? from_degrees(q.si_value) : q.si_value * m.output.length_factor;
   }
   if (q.dimension != m.input.dimension) {
-    throw UnitError("input value \"" + text + "\" is a " + dimension_name(q.dimension) + ", but " +
-                    m.input.name + " is a " + dimension_name(m.input.dimension));
+    throw UnitError("input value \"" + text + "\" is " + with_article(dimension_name(q.dimension)) + ", but " +
+                    m.input.name + " is " + with_article(dimension_name(m.input.dimension)));
   }
   return q.si_value;
 }
@@ -122,6 +122,12 @@ void write_circuit(const Model& model, const std::string& step_text, const std::
   output.write(text);
   output.commit();
 }
+
+// An option given an empty value ("-o ''", a shell variable that was not set) is a
+// mistake, not the option left out: it would have meant stdout, the file's input, ...
+const CLI::Validator kNotEmpty(
+    [](std::string& value) { return value.empty() ? std::string("an empty value; give one or leave the option out") : std::string(); },
+    "");
 
 int run(int argc, char** argv) {
   CLI::App app{"kinema: velocity and acceleration analysis of mechanisms (vector loops, or joints and links)", "kinema"};
@@ -205,6 +211,11 @@ int run(int argc, char** argv) {
   loops_cmd->add_option("FILE", file, "mechanism file (TOML)")->required();
   loops_cmd->add_option("-o,--output", output_path, "write to this file instead of stdout");
 
+  for (CLI::App* command : app.get_subcommands({})) {
+    for (CLI::Option* option : command->get_options()) {
+      if (!option->get_positional() && option->get_type_size() != 0) option->check(kNotEmpty);
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
@@ -216,6 +227,7 @@ int run(int argc, char** argv) {
   if (!output_path.empty() && output_path != "-" && std::filesystem::equivalent(file, output_path, same_error)) {
     throw InputError("-o " + output_path + " is the mechanism file itself; write the output to another file");
   }
+  kinema_cli::check_output(output_path);  // as the shell refuses a > before it runs anything
   Mechanism mechanism = read_mechanism_file(file);
   if (!chain_input.empty()) {
     if (!mechanism.chain) {

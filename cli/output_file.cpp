@@ -65,12 +65,35 @@ int write_all(int fd, std::string_view text) {
 }
 
 
-// The file a path names: a symbolic link is followed (the link stays a link and its
-// target gets the text), as far as its components exist.
-std::string resolved(const std::string& path) {
+// The file a path names: symbolic links are followed to their target, also one that
+// does not exist yet (the link stays a link and its target gets the text, as the
+// shell's > does).
+std::string resolved(const std::string& path, const std::string& shown) {
+  std::string name = path;
+  for (int hops = 0;; ++hops) {
+    std::error_code error;
+    if (!std::filesystem::is_symlink(name, error)) break;
+    if (hops == 40) fail_file(shown, ELOOP);
+    const std::filesystem::path target = std::filesystem::read_symlink(name, error);
+    if (error) fail_file(shown, error.value());
+    name = target.is_absolute() ? target.string() : directory_of(name) + "/" + target.string();
+  }
   std::error_code error;
-  const std::filesystem::path target = std::filesystem::weakly_canonical(path, error);
-  return error ? path : target.string();
+  const std::filesystem::path target = std::filesystem::weakly_canonical(name, error);
+  return error ? name : target.string();
+}
+
+// Refuses what the shell's > would refuse: a file without write permission for this
+// user (the rename that replaces a file asks only its directory's), a directory. A file
+// that is not there yet needs a directory to make it in.
+void check_permission(const std::string& path, const std::string& shown) {
+  struct stat existing;
+  if (::stat(path.c_str(), &existing) == 0) {
+    if (S_ISDIR(existing.st_mode)) fail_file(shown, EISDIR);
+    if (::faccessat(AT_FDCWD, path.c_str(), W_OK, AT_EACCESS) != 0) fail_file(shown, errno);
+    if (!S_ISREG(existing.st_mode)) return;  // a stream is written directly
+  }
+  if (::faccessat(AT_FDCWD, directory_of(path).c_str(), W_OK | X_OK, AT_EACCESS) != 0) fail_file(shown, errno);
 }
 
 // The temporary of the output being written, for a signal that ends the run (Ctrl-C,
@@ -123,7 +146,8 @@ Output::Output(const std::string& shown_path) : shown_(shown_path) {
     shown_ = "standard output";
     return;
   }
-  path_ = resolved(shown_path);
+  path_ = resolved(shown_path, shown_);
+  check_permission(path_, shown_);
   if (is_stream(path_)) {
     fd_ = ::open(path_.c_str(), O_WRONLY | O_NOCTTY | O_CLOEXEC);
     if (fd_ < 0) fail_file(shown_, errno);
@@ -178,6 +202,11 @@ void Output::commit() {
   if (error_number != 0) fail(error_number);
   keep_on_signal();  // renamed: the name is OUT's now (a signal before this found no file to remove)
   temporary_.clear();
+}
+
+void check_output(const std::string& path) {
+  if (path.empty() || path == "-") return;
+  check_permission(resolved(path, path), path);
 }
 
 void write_output(const std::string& text, const std::string& path) {

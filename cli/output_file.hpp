@@ -19,7 +19,9 @@ class OutputError : public kinema::Error {
 /// Output written piece by piece that appears only when complete. A file given with -o
 /// is written to a temporary created exclusively in its directory and renamed over it
 /// by commit(); an Output destroyed (or failing) before commit removes the temporary
-/// and leaves a previous file at path as it was. A character device, FIFO or socket,
+/// and leaves a previous file at path as it was; a file this user may not write is
+/// refused, as the shell's > refuses it (the rename would replace it all the same). A
+/// symbolic link stays a link, its target (made if missing) gets the text. A character device, FIFO or socket,
 /// and stdout ("" or "-"), take the pieces as they come. Failures throw OutputError
 /// naming the path and the system's reason.
 class Output {
@@ -37,6 +39,11 @@ class Output {
   int fd_ = -1;
   bool owns_fd_ = false;
 };
+
+/// Refuses (OutputError) an output that Output would not write: a file or a directory
+/// this user may not write (as the shell's > would), a symbolic link loop. For a check
+/// before any work; Output checks again when it opens.
+void check_output(const std::string& path);
 
 /// Writes text to path, or to stdout when path is "" or "-" (an Output written at once).
 void write_output(const std::string& text, const std::string& path);

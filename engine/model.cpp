@@ -1,6 +1,7 @@
 #include <kinema/engine/model.hpp>
 
 #include <kinema/engine/numeric/sweep.hpp>
+#include <kinema/engine/report/output_scale.hpp>
 #include <kinema/loops/mechanism_file.hpp>
 #include <kinema/loops/planar_loops.hpp>
 #include <kinema/loops/spatial_chain.hpp>
@@ -10,6 +11,7 @@ namespace kinema {
 Model make_model(const Mechanism& mechanism, DerivationScope scope) {
   Model model;
   model.system = mechanism.chain ? build_spatial_system(mechanism) : build_planar_loops(mechanism);
+  check_column_names(model.system);
   model.derivation = derive(model.system, scope);
   model.kinematics = Kinematics(model.system, model.derivation);
   return model;

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 #include <set>
+#include <string_view>
 #include <vector>
 
 #include <kinema/engine/errors.hpp>
@@ -33,10 +34,30 @@ bool is_name_start(char c) { return std::isalpha(static_cast<unsigned char>(c)) 
 bool is_name_part(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
 bool is_digit(char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; }
 
+// What a formula is written with: names, numbers, operators, parentheses, commas and
+// spaces. GiNaC's parser would take more: '#' starts a comment there (the rest of the
+// formula was dropped without a word), and a byte past ASCII was shown half a character.
+bool is_formula_character(char c) {
+  return is_name_part(c) || std::string_view(" \t\r\n+-*/^().,").find(c) != std::string_view::npos;
+}
+
+[[noreturn]] void refuse_character(const std::string& formula, std::size_t at, const std::string& context) {
+  // The whole UTF-8 character: its lead byte says how many follow.
+  const unsigned char lead = static_cast<unsigned char>(formula[at]);
+  const std::size_t length = lead >= 0xf0 ? 4 : lead >= 0xe0 ? 3 : lead >= 0xc0 ? 2 : 1;
+  const std::string character = formula.substr(at, length);
+  const std::string why = character == "#" ? "; a comment goes after the closing quote: x = \"...\"  # comment"
+                          : character == "{" || character == "}" || character == "[" || character == "]"
+                              ? " (lists and matrices are not read); group with ( )"
+                              : "; formulas are written with names, numbers, + - * / ^ ( ) and commas";
+  throw InputError(context + ": \"" + character + "\" is not part of a formula in \"" + formula + "\"" + why);
+}
+
 void check_shape(const std::string& formula, const std::string& context) {
   int depth = 0, signs = 0;
   for (std::size_t i = 0; i < formula.size(); ++i) {
     const char c = formula[i];
+    if (!is_formula_character(c)) refuse_character(formula, i, context);
     // GiNaC's parser reads each sign of "---a" by recursion, as it does a parenthesis:
     // 10,000 signs overflowed the stack (a crash).
     if (c == '+' || c == '-') {
@@ -46,11 +67,6 @@ void check_shape(const std::string& formula, const std::string& context) {
       }
     } else if (c != ' ' && c != '\t') {
       signs = 0;
-    }
-    // GiNaC's parser reads {a, b} as a list and [..] as a matrix: nothing kinema evaluates.
-    if (c == '{' || c == '}' || c == '[' || c == ']') {
-      throw InputError(context + ": \"" + std::string(1, c) + "\" is not part of a formula (lists and matrices are not read); " +
-                       "group with ( )");
     }
     if (c == '(' && ++depth > kMaxDepth) {
       throw InputError(context + ": the formula nests parentheses more than " + std::to_string(kMaxDepth) +
@@ -99,6 +115,10 @@ ShieldedFormula shield_numbers(const std::string& formula, const std::string& pr
         }
       }
       const std::string literal = formula.substr(i, j - i);
+      if (std::count(literal.begin(), literal.end(), '.') > 1) {
+        throw InputError(context + ": \"" + literal.substr(0, 30) + "\" in \"" + formula +
+                         "\" is not a number (more than one decimal point)");
+      }
       if (literal.size() > kMaxLiteralLength) {
         throw InputError(context + ": a number in \"" + formula.substr(0, 40) + "...\" has more than " +
                          std::to_string(kMaxLiteralLength) + " characters; write it with an exponent (1.5e300)");
@@ -223,6 +243,46 @@ void check_functions(const ex& e, const std::string& formula, const std::string&
   }
 }
 
+// GiNaC's parse error in kinema's words: its line and column are always 0 and its
+// tokens are named as its lexer sees them ("EOF", a number's placeholder).
+std::string parse_failure(std::string why, const std::string& placeholder) {
+  why = why.substr(0, why.find('\n'));
+  if (why.find("power should have exactly 2 operands") != std::string::npos) {
+    return "a^b^c can be read two ways; write (a^b)^c or a^(b^c)";
+  }
+  const std::string parse_error = "parse error at line ";
+  if (const auto at = why.find(parse_error); at != std::string::npos) {
+    const auto colon = why.find(": ", at + parse_error.size());
+    why = colon == std::string::npos ? why : why.substr(colon + 2);
+  }
+  const std::string got = "got: ";
+  const auto at = why.find(got);
+  std::string token = at == std::string::npos ? "" : why.substr(at + got.size());
+  if (token.size() >= 2 && token.front() == '"' && token.back() == '"') token = token.substr(1, token.size() - 2);
+  if (token.rfind(placeholder, 0) == 0) token = "a number";  // a literal, shielded
+  else if (!token.empty() && token != "EOF") token = "\"" + token + "\"";
+  if (token == "EOF") {
+    if (why.rfind("expected ')'", 0) == 0) return "a parenthesis is not closed";
+    return "it ends where a name, a number or \"(\" is needed";
+  }
+  if (why.rfind("expected EOF", 0) == 0) {
+    return token == "\")\"" ? "a \")\" closes no parenthesis"
+                            : token + " follows a complete expression; is an operator (+ - * / ^) missing before it?";
+  }
+  if (why.rfind("unexpected token", 0) == 0) return token + " stands where a name, a number or \"(\" is needed";
+  const std::string no_function = "no function \"";
+  if (why.rfind(no_function, 0) == 0) {
+    const std::string name = why.substr(no_function.size(), why.find('"', no_function.size()) - no_function.size());
+    if (is_compiled_function(name)) {
+      return name + "(...) is called with the wrong number of arguments: " +
+             (name == "atan2" ? "atan2(y, x) takes two" : name + " takes one");
+    }
+    return name + "(...) is not a function kinema knows (a product needs *: a*(b)); formulas may use " +
+           understood_functions();
+  }
+  return why;
+}
+
 }  // namespace
 
 FormulaReader::FormulaReader() : parser_(GiNaC::symtab(), /*strict=*/true) {}
@@ -276,9 +336,7 @@ GiNaC::ex FormulaReader::read(const std::string& formula, const std::string& con
       throw InputError(context + ": unknown name \"" + name + "\" in \"" + formula +
                        "\"; define it under [parameters] or [unknowns], or check the spelling");
     }
-    const auto newline = why.find('\n');
-    if (newline != std::string::npos) why = why.substr(0, newline);
-    throw InputError(context + ": cannot read the formula \"" + formula + "\" (" + why + ")");
+    throw InputError(context + ": cannot read the formula \"" + formula + "\": " + parse_failure(why, prefix));
   }
   return e;
 }

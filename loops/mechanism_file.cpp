@@ -171,8 +171,8 @@ class FileReader {
     const Quantity q = quantity(value, key);
     if (q.dimension != expected && q.dimension != Dimension::number) {
       throw UnitError(where(value).str() + ": " + key + " = \"" + string_value(value, key) +
-                      "\" is a " + dimension_name(q.dimension) + ", but a " +
-                      dimension_name(expected) + " is needed here");
+                      "\" is " + with_article(dimension_name(q.dimension)) + ", but " +
+                      with_article(dimension_name(expected)) + " is needed here");
     }
     return q.si_value;
   }
@@ -293,7 +293,7 @@ class FileReader {
       const Quantity q = quantity(value, key);
       if (q.dimension != Dimension::angle && q.dimension != Dimension::length) {
         throw UnitError(where(value).str() + ": " + key + " = \"" + string_value(value, key) +
-                        "\" is a " + dimension_name(q.dimension) +
+                        "\" is " + with_article(dimension_name(q.dimension)) +
                         "; the input must be an angle (e.g. \"30 deg\") or a length (e.g. \"2 in\")");
       }
       if (kind && *kind != q.dimension) {
@@ -306,6 +306,10 @@ class FileReader {
     if (has(table, "values")) {
       const Node& list = at(table, "values");
       if (!list.is_array()) fail(list, "values must be a list, e.g. [\"30 deg\", \"45 deg\"]");
+      if (list.as_array()->empty()) {
+        fail(list, "values = [] lists no value; give one or more, e.g. values = [\"30 deg\", \"45 deg\"], or leave "
+                   "values out and give them on the command line (--angle, --sweep)");
+      }
       for (const auto& value : *list.as_array()) take_value(value, "values");
     }
     if (has(table, "sweep")) {

@@ -13,96 +13,12 @@
 #include <kinema/engine/symbolic/expression_parts.hpp>
 #include <kinema/engine/symbolic/naming.hpp>
 #include <kinema/loops/formula_reader.hpp>
+#include <kinema/loops/length_power.hpp>
 
 namespace kinema {
 namespace {
 
 using GiNaC::ex;
-
-/// Length exponent of a formula ("a*exp(I*theta)" -> 1, "theta" -> 0);
-/// nullopt where it cannot be known (plain-number parameters, bare constants).
-class LengthPower {
- public:
-  // Refers to the caller's table (a copy per parameter made 10,000 parameters quadratic).
-  explicit LengthPower(const std::map<ex, int, GiNaC::ex_is_less>& powers) : powers_(powers) {}
-
-  /// Throws InputError(context + why) on a mismatch.
-  std::optional<int> of(const ex& e, const std::string& context) const {
-    if (GiNaC::is_a<GiNaC::numeric>(e) || GiNaC::is_a<GiNaC::constant>(e)) return std::nullopt;
-    if (GiNaC::is_a<GiNaC::symbol>(e)) {
-      auto found = powers_.find(e);
-      if (found == powers_.end()) return std::nullopt;
-      return found->second;
-    }
-    if (GiNaC::is_a<GiNaC::add>(e)) {
-      std::optional<int> common;
-      ex first;
-      for (const ex& term : e) {
-        auto power = of(term, context);
-        if (!power) continue;
-        if (common && *common != *power) {
-          throw InputError(context + ": the terms \"" + to_text(first) + "\" and \"" +
-                           to_text(term) + "\" have different units (" + describe(*common) +
-                           " and " + describe(*power) + "); check the units of the parameters");
-        }
-        common = power;
-        first = term;
-      }
-      return common;
-    }
-    if (GiNaC::is_a<GiNaC::mul>(e)) {
-      int total = 0;
-      for (const ex& factor : e) {
-        if (GiNaC::is_a<GiNaC::numeric>(factor)) continue;
-        auto power = of(factor, context);
-        if (!power) return std::nullopt;
-        total += *power;
-      }
-      return total;
-    }
-    if (GiNaC::is_a<GiNaC::power>(e)) {
-      auto base = of(e.op(0), context);
-      if (!base) return std::nullopt;
-      const ex exponent = e.op(1);
-      if (*base == 0) return 0;
-      if (GiNaC::is_a<GiNaC::numeric>(exponent) && GiNaC::ex_to<GiNaC::numeric>(exponent).is_integer()) {
-        return *base * GiNaC::ex_to<GiNaC::numeric>(exponent).to_int();
-      }
-      if (exponent.is_equal(GiNaC::numeric(1, 2)) && *base % 2 == 0) return *base / 2;
-      return std::nullopt;
-    }
-    if (GiNaC::is_a<GiNaC::function>(e)) {
-      const std::string name = GiNaC::ex_to<GiNaC::function>(e).get_name();
-      if (name == "abs") return of(e.op(0), context);
-      if (name == "atan2") {
-        auto y = of(e.op(0), context), x = of(e.op(1), context);
-        if (y && x && *y != *x) {
-          throw InputError(context + ": atan2 needs two arguments of the same unit in \"" + to_text(e) + "\"");
-        }
-        return 0;
-      }
-      for (const ex& argument : e) {
-        auto power = of(argument, context);
-        if (power && *power != 0) {
-          throw InputError(context + ": the argument of " + name + "(...) in \"" + to_text(e) +
-                           "\" is a " + describe(*power) + ", but an angle or a plain number "
-                           "is needed there");
-        }
-      }
-      return 0;
-    }
-    return std::nullopt;
-  }
-
-  static std::string describe(int power) {
-    if (power == 0) return "angle or plain number";
-    if (power == 1) return "length";
-    return "length^" + std::to_string(power);
-  }
-
- private:
-  const std::map<ex, int, GiNaC::ex_is_less>& powers_;
-};
 
 class Builder {
  public:
@@ -144,9 +60,10 @@ class Builder {
       }
       auto power = units.of(vector.expand(), context);
       if (power && *power != 1) {
-        throw InputError(context + " is a " + LengthPower::describe(*power) +
+        throw InputError(context + " is " + with_article(LengthPower::describe(*power)) +
                          ", but a loop is a sum of link vectors (lengths)");
       }
+      if (misuses_plain_numbers(vector.expand(), true)) check_plain_numbers(vector, context);
       if (!depends_on_unknowns(x, system) && !depends_on_unknowns(y, system)) {
         throw InputError(context + " contains none of the unknowns; each loop must close "
                          "through at least one unknown coordinate");
@@ -162,7 +79,11 @@ class Builder {
     const std::size_t equations = system.equations.size();
     const std::size_t unknowns = system.unknowns.size();
     if (equations != unknowns) {
-      throw InputError(mechanism_.source_file + ": " + std::to_string(mechanism_.loops.size()) +
+      // Where the count is passed: the first unknown without an equation, or the first
+      // loop without unknowns.
+      const SourceLocation where = unknowns > equations ? mechanism_.unknowns[equations].where
+                                                        : mechanism_.loops[unknowns / 2].where;
+      throw InputError(where.str() + ": " + std::to_string(mechanism_.loops.size()) +
                        " loop(s) give " + std::to_string(equations) + " scalar equations, but there are " +
                        std::to_string(unknowns) + " unknowns (" + unknown_list() +
                        "); each vector loop closes two unknowns: add or remove a loop or an unknown");
@@ -181,9 +102,10 @@ class Builder {
       ex position = parse(point.formula, context);
       auto power = units.of(position.expand(), context);
       if (power && *power != 1) {
-        throw InputError(context + " is a " + LengthPower::describe(*power) +
+        throw InputError(context + " is " + with_article(LengthPower::describe(*power)) +
                          ", but a point position must be a length (x + I*y)");
       }
+      if (misuses_plain_numbers(position.expand(), true)) check_plain_numbers(position, context);
       PointObservable observable;
       observable.name = point.name;
       observable.where = point.where;
@@ -203,6 +125,48 @@ class Builder {
   // (a parser per formula copied the table each time: quadratic in the parameters).
   FormulaReader formulas_;
   std::map<ex, int, GiNaC::ex_is_less> powers_;
+  // A parameter written as a bare number ("40") is a plain number (a ratio: p = "k*a"),
+  // not metres: powers_ leaves it out (a formula with it may be anything), plain_powers_
+  // counts it as of no length. A formula that is a length with the one and not with the
+  // other uses such a number as a length.
+  struct PlainNumber {
+    GiNaC::realsymbol symbol;
+    std::string name, text;
+    SourceLocation where;
+  };
+  std::vector<PlainNumber> plain_numbers_;
+  LengthPower::Powers plain_powers_;
+  GiNaC::exmap formulas_of_parameters_;
+
+  // Whether `e` (a length, or with length false anything) stops being one, or mixes
+  // units, once bare numbers count as of no length.
+  bool misuses_plain_numbers(const ex& e, bool length) const {
+    if (plain_numbers_.empty()) return false;  // the common case
+    try {
+      const auto power = LengthPower(plain_powers_).of(e, "");
+      return length && power && *power != 1;
+    } catch (const InputError&) {
+      return true;
+    }
+  }
+
+  // Refuses the first bare-number parameter `e` uses, itself or through formulas of
+  // parameters, if `e` is to be a length: it was read as metres without a word.
+  void check_plain_numbers(const ex& e, const std::string& used_in) const {
+    ex expanded = e;
+    for (std::size_t k = 0; k < formulas_of_parameters_.size(); ++k) {
+      const ex next = expanded.subs(formulas_of_parameters_);
+      if (next.is_equal(expanded)) break;
+      expanded = next;
+    }
+    for (const PlainNumber& p : plain_numbers_) {
+      if (!expanded.has(p.symbol)) continue;
+      throw InputError(p.where.str() + ": parameter \"" + p.name + "\" = \"" + p.text + "\" has no unit, and " +
+                       used_in.substr(used_in.find(": ") + 2) + " (" + used_in.substr(0, used_in.find(": ")) +
+                       ") uses it as a length; give its unit, e.g. \"" + p.text +
+                       " mm\" (a number without a unit is a ratio, as k in p = \"k*a\")");
+    }
+  }
   std::set<std::string> taken_;  ///< Names of symbols so far (rate names must not clash).
 
   GiNaC::realsymbol symbol(const std::string& name, const std::string& latex = "") {
@@ -325,7 +289,7 @@ class Builder {
     for (const Parameter& parameter : mechanism_.parameters) {
       const std::string context = parameter.where.str() + ": parameter \"" + parameter.name + "\"";
       double value = 0.0;
-      std::optional<int> power;
+      std::optional<int> power, plain_power;
       ex formula;
       if (parameter.quantity) {
         value = parameter.quantity->si_value;
@@ -334,7 +298,7 @@ class Builder {
           case Dimension::angle: power = 0; break;
           case Dimension::number: break;
           default:
-            throw UnitError(context + " is a " + dimension_name(parameter.quantity->dimension) +
+            throw UnitError(context + " is " + with_article(dimension_name(parameter.quantity->dimension)) +
                             "; loop parameters are lengths, angles or plain numbers (the driver's "
                             "speed goes under [input] rate)");
         }
@@ -343,6 +307,8 @@ class Builder {
         formula = parse(parameter.formula, context);
         value = formula_value(formula, values, context, parameter.formula, " (only earlier parameters can be used)");
         power = LengthPower(powers_).of(formula.expand(), context);
+        if (misuses_plain_numbers(formula.expand(), false)) check_plain_numbers(formula, context);  // a + k
+        plain_power = plain_numbers_.empty() ? power : LengthPower(plain_powers_).of(formula.expand(), context);
       }
       if (!std::isfinite(value)) {
         throw InputError(context + " = \"" + parameter.text + "\" is not a finite number");
@@ -358,6 +324,13 @@ class Builder {
                             ? Dimension::angle
                             : Dimension::number;
       if (power) powers_[entry.symbol] = *power;
+      if (parameter.quantity) plain_power = power;
+      if (parameter.quantity && parameter.quantity->dimension == Dimension::number) {
+        plain_power = 0;
+        plain_numbers_.push_back({entry.symbol, parameter.name, parameter.text, parameter.where});
+      }
+      if (plain_power) plain_powers_[entry.symbol] = *plain_power;
+      if (!parameter.quantity) formulas_of_parameters_[entry.symbol] = formula;
       values[entry.symbol] = value;
       if (entry.dimension == Dimension::length && parameter.quantity) largest = std::max(largest, std::fabs(value));
       system.parameters.push_back(entry);

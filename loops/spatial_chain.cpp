@@ -1,5 +1,6 @@
 #include <kinema/loops/spatial_chain.hpp>
 
+#include <optional>
 #include <set>
 
 #include <kinema/engine/errors.hpp>
@@ -7,6 +8,7 @@
 #include <kinema/engine/symbolic/naming.hpp>
 #include <kinema/engine/report/number_format.hpp>
 #include <kinema/loops/formula_reader.hpp>
+#include <kinema/loops/length_power.hpp>
 
 namespace kinema {
 
@@ -99,6 +101,7 @@ class ChainBuilder {
   SpatialKinematics k_;
   FormulaReader reader_;
   GiNaC::exmap values_;  // parameters, for evaluating their formulas
+  LengthPower::Powers powers_;  // what each parameter and variable measures, where known
   std::set<std::string> symbol_names_;
   std::map<std::string, std::size_t> frame_index_;
 
@@ -127,17 +130,21 @@ class ChainBuilder {
       entry.text = p.text;
       entry.where = p.where;
       const std::string context = p.where.str() + ": parameter \"" + p.name + "\"";
+      std::optional<int> power;  // of length, where known
       if (p.quantity) {
         entry.value = p.quantity->si_value;
         entry.dimension = p.quantity->dimension == Dimension::length || p.quantity->dimension == Dimension::angle
                               ? p.quantity->dimension
                               : Dimension::number;
+        if (entry.dimension != Dimension::number) power = entry.dimension == Dimension::length ? 1 : 0;
       } else {
         const ex formula = reader_.read(p.formula, context);
         entry.formula = formula;
         entry.value = formula_value(formula, values_, context, p.formula, " (only earlier parameters can be used)");
+        power = LengthPower(powers_).of(formula.expand(), context);
       }
       entry.symbol = symbol(p.name);
+      if (power) powers_[entry.symbol] = *power;
       values_[entry.symbol] = entry.value;
       k_.parameters.push_back(entry);
     }
@@ -150,6 +157,7 @@ class ChainBuilder {
       c.dimension = v.dimension;
       c.where = v.where;
       c.symbol = symbol(v.name);
+      powers_[c.symbol] = v.dimension == Dimension::length ? 1 : 0;
       const auto rate_name = [&](const std::string& given, int order) {
         if (!given.empty()) return given;
         return default_rate_name(v.name, order);
@@ -232,7 +240,13 @@ class ChainBuilder {
                       "(or -x, -y, -z)");
       }
       const unsigned a = static_cast<unsigned>(axis[0] - 'x');
-      const ex angle = sign * value_of(t.angle, t.where, "frame \"" + f.name + "\" turn angle", Dimension::angle);
+      const std::string what = "frame \"" + f.name + "\" turn angle";
+      const ex angle = sign * value_of(t.angle, t.where, what, Dimension::angle);
+      const auto power = LengthPower(powers_).of(angle.expand(), t.where.str() + ": " + what);
+      if (power && *power != 0) {
+        fail(t.where, what + " \"" + t.angle + "\" is " + with_article(LengthPower::describe(*power)) +
+                          ", but a turn is an angle (e.g. \"30 deg\", or a parameter or variable in deg or rad)");
+      }
       const Vector3 direction = column(rotation, a);  // the axis, as turned so far
       const std::string turn_of = t.where.str() + ": frame \"" + f.name + "\" turn angle";
       const ex rate = derivative(angle, turn_of, "angular velocity");

@@ -14,6 +14,8 @@ class AsciiRewriter {
 
   std::string rewrite() {
     out_.reserve(text_.size() + text_.size() / 4);
+    // A byte-order mark, which some editors put first: UTF-8 needs none; skipped.
+    if (starts_with("\xEF\xBB\xBF")) i_ = 3;
     while (i_ < text_.size()) {
       const char c = text_[i_];
       if (c == '#') {

@@ -60,6 +60,11 @@ const char* dimension_name(Dimension dimension) {
   return "?";
 }
 
+std::string with_article(const std::string& word) {
+  const bool vowel = !word.empty() && std::string("aeiou").find(word[0]) != std::string::npos;
+  return (vowel ? "an " : "a ") + word;
+}
+
 Dimension rate_dimension(Dimension dimension) { return per_second(dimension); }
 
 const char* understood_units() {
@@ -130,8 +135,8 @@ double quantity_of_dimension(const std::string& text, Dimension dimension, const
     throw UnitError(context + ": " + error.what());
   }
   if (q.dimension != dimension && q.dimension != Dimension::number) {
-    throw UnitError(context + " = \"" + text + "\" is a " + dimension_name(q.dimension) + ", but a " +
-                    dimension_name(dimension) + " is needed here");
+    throw UnitError(context + " = \"" + text + "\" is " + with_article(dimension_name(q.dimension)) + ", but " +
+                    with_article(dimension_name(dimension)) + " is needed here");
   }
   return q.si_value;
 }

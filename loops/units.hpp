@@ -26,6 +26,9 @@ inline double to_degrees(double radians) { return radians * 180.0 / 3.1415926535
 /// "length", "angle", ... for messages.
 const char* dimension_name(Dimension dimension);
 
+/// The word with its indefinite article, for messages: "a length", "an angle".
+std::string with_article(const std::string& word);
+
 /// The time derivative's dimension: angle -> angular_velocity -> angular_acceleration.
 Dimension rate_dimension(Dimension dimension);
 

@@ -4,7 +4,9 @@
 #include <cctype>
 #include <complex>
 #include <limits>
+#include <map>
 
+#include <kinema/engine/errors.hpp>
 #include <kinema/engine/symbolic/naming.hpp>
 
 #include <cmath>
@@ -52,44 +54,94 @@ std::string OutputScale::second_rate_unit(Dimension dimension) const {
   return dimension == Dimension::angle ? "rad/s^2" : length_unit + "/s^2";
 }
 
-std::vector<ResultColumn> result_columns(const ConstraintSystem& system, const OutputScale& scale, bool circuit) {
-  const Driver& input = system.input;
-  std::vector<ResultColumn> columns = {{input.name, scale.coordinate_unit(input.dimension)},
-                                       {input.rate.get_name(), scale.rate_unit(input.dimension)},
-                                       {input.second_rate.get_name(), scale.second_rate_unit(input.dimension)}};
-  for (const Coordinate& q : system.unknowns) {
-    columns.push_back({q.name, scale.coordinate_unit(q.dimension)});
-    columns.push_back({q.rate.get_name(), scale.rate_unit(q.dimension)});
-    columns.push_back({q.second_rate.get_name(), scale.second_rate_unit(q.dimension)});
-  }
+namespace {
+
+// What a column's name comes from, as the file says it (for the message when two coincide).
+struct ColumnOwner {
+  std::string what;
+  SourceLocation where;
+};
+
+// result_columns, and with owners given, what named each column (owners[k] for column k).
+std::vector<ResultColumn> named_columns(const ConstraintSystem& system, const OutputScale& scale, bool circuit,
+                                        std::vector<ColumnOwner>* owners) {
+  std::vector<ResultColumn> columns;
+  const auto add = [&](std::string name, std::string unit, const std::string& what, const SourceLocation& where) {
+    columns.push_back({std::move(name), std::move(unit)});
+    if (owners) owners->push_back({what, where});
+  };
+  const auto add_coordinate = [&](const Coordinate& q, const std::string& kind) {
+    const std::string named = kind + " \"" + q.name + "\"";
+    add(q.name, scale.coordinate_unit(q.dimension), named, q.where);
+    add(q.rate.get_name(), scale.rate_unit(q.dimension), "the rate of " + named, q.where);
+    add(q.second_rate.get_name(), scale.second_rate_unit(q.dimension), "the second rate of " + named, q.where);
+  };
+  add_coordinate(system.input, "input");
+  for (const Coordinate& q : system.unknowns) add_coordinate(q, "unknown");
   const std::string& l = scale.length_unit;
   for (const PointObservable& p : system.points) {
-    for (const auto& c : p.components) columns.push_back({p.name + "_" + c, l});
-    for (const auto& c : p.components) columns.push_back({p.name + "_v" + c, l + "/s"});
-    columns.push_back({p.name + "_speed", l + "/s"});
-    for (const auto& c : p.components) columns.push_back({p.name + "_a" + c, l + "/s^2"});
-    columns.push_back({p.name + "_acceleration", l + "/s^2"});
+    // A joints-and-links file's joints are points of the system too, written where the joint is.
+    bool joint = false;
+    if (system.linkage) {
+      for (const Joint& j : system.linkage->joints) joint = joint || (j.name == p.name && j.where.line == p.where.line);
+    }
+    const std::string what = (joint ? "joint \"" : "point \"") + p.name + "\"";
+    for (const auto& c : p.components) add(p.name + "_" + c, l, what, p.where);
+    for (const auto& c : p.components) add(p.name + "_v" + c, l + "/s", what, p.where);
+    add(p.name + "_speed", l + "/s", what, p.where);
+    for (const auto& c : p.components) add(p.name + "_a" + c, l + "/s^2", what, p.where);
+    add(p.name + "_acceleration", l + "/s^2", what, p.where);
   }
   for (const FrameObservable& f : system.frames) {
-    for (const char* c : {"x", "y", "z"}) columns.push_back({f.name + "_omega_" + c, "rad/s"});
-    for (const char* c : {"x", "y", "z"}) columns.push_back({f.name + "_alpha_" + c, "rad/s^2"});
+    const std::string what = "frame \"" + f.name + "\"";
+    for (const char* c : {"x", "y", "z"}) add(f.name + "_omega_" + c, "rad/s", what, f.where);
+    for (const char* c : {"x", "y", "z"}) add(f.name + "_alpha_" + c, "rad/s^2", what, f.where);
   }
   for (const auto& [body, angle] : block_links(system)) {
-    columns.push_back({angle, "deg"});
-    columns.push_back({default_rate_name(angle, 1), "rad/s"});
-    columns.push_back({default_rate_name(angle, 2), "rad/s^2"});
+    const Link& link = system.linkage->links[body - 1];
+    const std::string what = "slider block link \"" + link.name + "\"";
+    add(angle, "deg", what, link.where);
+    add(default_rate_name(angle, 1), "rad/s", what, link.where);
+    add(default_rate_name(angle, 2), "rad/s^2", what, link.where);
   }
   if (system.linkage) {
     for (const LinkageFrames::Slider& slider : system.linkage->frames.sliders) {
-      const std::string& j = system.linkage->joints[slider.joint].name;
-      for (const char* part : {"_vrel_x", "_vrel_y"}) columns.push_back({j + part, l + "/s"});
-      for (const char* part : {"_arel_x", "_arel_y", "_coriolis_x", "_coriolis_y"}) columns.push_back({j + part, l + "/s^2"});
+      const Joint& joint = system.linkage->joints[slider.joint];
+      const std::string what = "slider \"" + joint.name + "\"";
+      for (const char* part : {"_vrel_x", "_vrel_y"}) add(joint.name + part, l + "/s", what, joint.where);
+      for (const char* part : {"_arel_x", "_arel_y", "_coriolis_x", "_coriolis_y"})
+        add(joint.name + part, l + "/s^2", what, joint.where);
     }
   }
   if (circuit) {
-    for (const std::string& joint : dyad_inner_joints(system)) columns.push_back({"branch_" + joint, "sign"});
+    for (const std::string& name : dyad_inner_joints(system)) {
+      SourceLocation where;
+      for (const Joint& j : system.linkage->joints) where = j.name == name ? j.where : where;
+      add("branch_" + name, "sign", "the assembly sign (--circuit) of joint \"" + name + "\"", where);
+    }
   }
   return columns;
+}
+
+}  // namespace
+
+std::vector<ResultColumn> result_columns(const ConstraintSystem& system, const OutputScale& scale, bool circuit) {
+  return named_columns(system, scale, circuit, nullptr);
+}
+
+void check_column_names(const ConstraintSystem& system) {
+  std::vector<ColumnOwner> owners;
+  // With a circuit's columns: --circuit adds them to any run of the file.
+  const std::vector<ResultColumn> columns = named_columns(system, OutputScale(system), true, &owners);
+  std::map<std::string, std::size_t> seen;
+  for (std::size_t k = 0; k < columns.size(); ++k) {
+    const auto [it, inserted] = seen.emplace(columns[k].name, k);
+    if (inserted) continue;
+    const ColumnOwner &first = owners[it->second], &second = owners[k];
+    throw InputError(second.where.str() + ": " + second.what + " and " + first.what + " (" + first.where.str() +
+                     ") both give the output column \"" + columns[k].name +
+                     "\" (CSV, JSON and npy need distinct names); rename one of them");
+  }
 }
 
 std::size_t linkage_columns_begin(const ConstraintSystem& system) {

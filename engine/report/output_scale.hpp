@@ -42,6 +42,11 @@ std::vector<ResultColumn> result_columns(const ConstraintSystem& system, const O
                                          bool circuit = false);
 constexpr std::size_t kInputColumns = 3;
 
+/// Throws InputError (file:line, both names, "rename one of them") when two result
+/// columns, a circuit's among them, would have one name: data tools refuse or
+/// silently merge such columns (npy fields, JSON keys of points, CSV headers).
+void check_column_names(const ConstraintSystem& system);
+
 /// How many columns result_columns gives (without naming them).
 std::size_t result_column_count(const ConstraintSystem& system, bool circuit = false);
 

@@ -65,7 +65,9 @@ TEST_CASE("a unit that is not understood") {
 
 TEST_CASE("a unit that does not fit: a length as the driver's rate") {
   check_bad("rate_unit", replaced("\"10 rad/s\"", "\"10 mm\""),
-            {2, {"rate_unit.toml:10", "rate", "is a length", "angular velocity is needed"}});
+            {2, {"rate_unit.toml:10", "rate", "is a length, but an angular velocity is needed"}});
+  // "an angle", not "a angle" (audit 2026-11-24).
+  check_bad("rate_angle", replaced("\"10 rad/s\"", "\"10 deg\""), {2, {"rate_angle.toml:10", "is an angle, but an angular velocity"}});
 }
 
 TEST_CASE("a unit that does not fit: a length where an angle is needed") {
@@ -80,7 +82,10 @@ TEST_CASE("a unit that does not fit: an unknown's guess without an angle or leng
 
 TEST_CASE("count of scalar equations different from the count of unknowns") {
   check_bad("count", replaced("theta4 = \"80 deg\"", "theta4 = \"80 deg\"\nr = \"10 mm\""),
-            {2, {"count.toml", "2 scalar equations", "3 unknowns", "theta3, theta4, r"}});
+            {2, {"count.toml:14", "2 scalar equations", "3 unknowns", "theta3, theta4, r"}});
+  // More loops than the unknowns need: the first loop past the count.
+  check_bad("count_loops", replaced("[points]", "extra = { x = \"a*cos(theta3)\", y = \"b*sin(theta4)\" }\n[points]"),
+            {2, {"count_loops.toml:16", "2 loop(s) give 4 scalar equations", "2 unknowns"}});
 }
 
 TEST_CASE("a position that cannot be assembled names the loop and the angle") {
@@ -522,4 +527,76 @@ TEST_CASE("kinema loops of a spatial chain is bad input: it has no vector loops;
     CHECK(result.err.find("spatial chain") != std::string::npos);
     CHECK(result.err.find("kinema derive") != std::string::npos);
   }
+}
+
+// Audit 2026-11-24: two result columns with one name (npy refuses the file, JSON gets a
+// duplicate key, CSV is ambiguous), whatever the names come from.
+TEST_CASE("names that would give two output columns one name are refused with both names and lines") {
+  // An unknown named like point P's x column.
+  check_bad("column_unknown_point", replaced("theta4", "P_x", replaced("theta4 = ", "P_x = ")),
+            {2, {"column_unknown_point.toml:17", "point \"P\"", "unknown \"P_x\"", "column_unknown_point.toml:13",
+                 "output column \"P_x\"", "rename one of them"}});
+  // A rate name given in the file, named like a point's column.
+  check_bad("column_rate", replaced("theta3 = \"20 deg\"", "theta3 = { guess = \"20 deg\", rate_name = \"P_speed\" }"),
+            {2, {"column_rate.toml:17", "point \"P\"", "the rate of unknown \"theta3\"", "column_rate.toml:12",
+                 "output column \"P_speed\""}});
+  const std::string rocker = kinema_test::read_file(kinema_test::sample("triple_rocker_circuit.toml"));
+  // A point named like a joint (both are points of the results).
+  check_bad("column_joint_point", replaced("P = {", "B = {", rocker),
+            {2, {"column_joint_point.toml:33", "point \"B\"", "joint \"B\"", "column_joint_point.toml:23",
+                 "output column \"B_x\""}});
+  // A link's angle named like --circuit's assembly column: refused for every run of the file.
+  check_bad("column_branch", replaced("length = \"BC\" }", "length = \"BC\", angle = \"branch_C\" }", rocker),
+            {2, {"column_branch.toml:29", "unknown \"branch_C\"", "assembly sign (--circuit) of joint \"C\"",
+                 "output column \"branch_C\""}});
+  // A point of a spatial chain named like a frame's angular velocity.
+  const std::string arm = kinema_test::read_file(kinema_test::sample("robot_arm_seed000.toml"));
+  check_bad("column_frame", replaced("B = {", "E1_omega = {", arm),
+            {2, {"column_frame.toml:36", "point \"E1_omega\"", "frame \"E1\"", "output column \"E1_omega_x\""}});
+}
+
+// Audit 2026-11-24, messages: GiNaC's own words ("make_binop_expr", "line 0, column 0")
+// and half a UTF-8 character reached the user; '#' ended a formula without a word (GiNaC's
+// parser reads it as a comment); a number of two decimal points was CLN's "Illegal number".
+TEST_CASE("a formula GiNaC cannot read is refused in kinema's words, with file:line") {
+  const auto in_p = [](const std::string& formula) { return replaced("P = \"", "P = \"" + formula + " + "); };
+  check_bad("comment", in_p("a # the rest"),
+            {2, {"comment.toml:17", "point \"P\"", "\"#\" is not part of a formula", "a comment goes after the closing quote"}});
+  check_bad("utf8", in_p("a*\xc3\xa9"), {2, {"utf8.toml:17", "\"\xc3\xa9\" is not part of a formula"}});
+  check_bad("power_chain", in_p("2^2^2*a"), {2, {"power_chain.toml:17", "write (a^b)^c or a^(b^c)"}});
+  check_bad("ends_early", replaced("- d\"", "- d*\""), {2, {"ends_early.toml:15", "it ends where a name, a number"}});
+  check_bad("unclosed", in_p("(a"), {2, {"unclosed.toml:17", "a parenthesis is not closed"}});
+  check_bad("juxtaposed", in_p("a b"), {2, {"juxtaposed.toml:17", "\"b\" follows a complete expression"}});
+  check_bad("arguments", in_p("a*atan2(theta2)"), {2, {"arguments.toml:17", "atan2(y, x) takes two"}});
+  check_bad("not_function", in_p("a*foo(theta2)"), {2, {"not_function.toml:17", "foo(...) is not a function kinema knows"}});
+  check_bad("two_points", in_p("1.2.3*a"), {2, {"two_points.toml:17", "\"1.2.3\"", "more than one decimal point"}});
+  for (const char* formula : {"a # c", "a*\xc3\xa9", "2^2^2*a", "a*", "(a", "a b", "a*atan2(theta2)", "1.2.3*a"}) {
+    CAPTURE(formula);
+    const std::string path = kinema_test::write_temporary("words.toml", in_p(formula));
+    const auto result = kinema_test::run_kinema({"eval", path});
+    CHECK(result.err.find("GiNaC") == std::string::npos);
+    CHECK(result.err.find("line 0") == std::string::npos);
+    CHECK(result.err.find("make_binop_expr") == std::string::npos);
+    CHECK(result.err.find("Illegal") == std::string::npos);
+  }
+}
+
+TEST_CASE("values = [] is refused with file:line, not taken as no values") {
+  check_bad("no_values", replaced("value = \"40 deg\"", "values = []"), {2, {"no_values.toml:9", "values = [] lists no value"}});
+}
+
+// Audit 2026-11-24: a parameter written without a unit was read as metres where the loops
+// use it as a length. The README documents a bare number as a plain number (a ratio).
+TEST_CASE("a parameter without a unit used as a length is refused at its line; as a ratio it is a plain number") {
+  check_bad("bare_length", replaced("a = \"40 mm\"", "a = \"40\""),
+            {2, {"bare_length.toml:3", "parameter \"a\" = \"40\" has no unit", "loop \"ABCD\"", "bare_length.toml:15) uses it as a length",
+                 "give its unit, e.g. \"40 mm\""}});
+  // Through a formula of parameters, and added to a length in one.
+  check_bad("bare_through", replaced("d = \"100 mm\"", "k = \"100\"\nd = \"k/1\""),
+            {2, {"bare_through.toml:6", "parameter \"k\"", "loop \"ABCD\""}});
+  check_bad("bare_sum", replaced("d = \"100 mm\"", "k = \"1\"\nd = \"c + k\""),
+            {2, {"bare_sum.toml:6", "parameter \"k\"", "parameter \"d\"", "bare_sum.toml:7) uses it as a length"}});
+  // A ratio: the good file's numbers with d = k*c, k a plain number.
+  const std::string ratio = kinema_test::write_temporary("ratio.toml", replaced("d = \"100 mm\"", "k = \"1.25\"\nd = \"k*c\""));
+  CHECK(kinema_test::run_kinema({"eval", ratio}).exit_status == 0);
 }

@@ -1,6 +1,7 @@
 // The command line as a shell user sees it: --version, one-line usage errors
 // with status 2, and output that is written completely or not at all (status 5).
 #include <doctest/doctest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -79,6 +80,17 @@ TEST_CASE("usage errors exit 2 with one line that says what is wrong and what to
   check_usage_error({"eval", file, "--format", "bogus"}, {"eval: --format", "bogus", "table,csv,json"},
                     "kinema eval --help");
   check_usage_error({"frob", file}, {"unknown command \"frob\"", "derive, eval, latex, codegen"}, "kinema --help");
+  // An empty value (a shell variable not set) was taken as the option left out: -o "" wrote
+  // to stdout, --sweep "" ran the file's values (audit 2026-11-24).
+  const std::string arm = kinema_test::sample("robot_arm_seed000.toml");
+  for (const auto& [command, option] : std::vector<std::pair<std::string, std::string>>{
+           {"eval", "-o"}, {"eval", "--sweep"}, {"eval", "--angle"}, {"eval", "--circuit"}, {"eval", "--input"},
+           {"derive", "--basis"}, {"derive", "-o"}, {"latex", "--at"}, {"codegen", "--namespace"}, {"loops", "-o"}}) {
+    std::vector<std::string> arguments = {command, command == "eval" || command == "loops" ? file : arm, option, ""};
+    if (command == "codegen") arguments.insert(arguments.end(), {"-o", "out.hpp"});
+    check_usage_error(arguments, {command + ": ", "an empty value; give one or leave the option out"},
+                      "kinema " + command + " --help");
+  }
 }
 
 TEST_CASE("-o writes the whole output, replaces a previous file and keeps its mode") {
@@ -120,6 +132,81 @@ TEST_CASE("-o onto a directory exits 5 and leaves the directory as it was") {
   CHECK(result.err.find("cannot write " + directory + "/out: ") != std::string::npos);
   CHECK(files_in(directory) == std::set<std::string>{"out"});
   CHECK(files_in(directory + "/out").empty());
+}
+
+// Audit 2026-11-24: the temporary-and-rename replaced a file its user may not write (a
+// rename asks only the directory). Now -o asks what the shell's > asks, before any work.
+// As root that is nothing (root writes a 0444 file, as with >); the refusal is run as
+// the user nobody when the tests run as root (setpriv), as the user itself otherwise.
+TEST_CASE("-o onto a file the user may not write is refused before any work, as the shell refuses it") {
+  const std::string directory = kinema_test::fresh_directory("cli_output_read_only");
+  std::filesystem::permissions(directory, std::filesystem::perms::all);  // anyone may make files here
+  const std::string mechanism = directory + "/m.toml", path = directory + "/ro.csv";
+  std::filesystem::copy_file(kinema_test::sample("four_bar.toml"), mechanism);
+  const auto make_read_only = [&] {
+    std::filesystem::remove(path);
+    std::ofstream(path) << "old\n";
+    std::filesystem::permissions(path, std::filesystem::perms::owner_read | std::filesystem::perms::group_read |
+                                           std::filesystem::perms::others_read);
+  };
+  const bool root = ::geteuid() == 0;
+  // Not root: the user itself; root: nobody, if it can run the program from where it is.
+  const std::string as_user = root ? "setpriv --reuid=nobody --regid=nogroup --clear-groups " : "";
+  const bool runs = run_shell(as_user + kinema_exe + " --version").exit_status == 0;
+  if (!runs) {
+    MESSAGE("not run: the user nobody cannot run " << KINEMA_EXE << " (setpriv missing or the path closed to it); "
+            "only root's case below is tested");
+  } else {
+    make_read_only();
+    // A mechanism that cannot be assembled: status 3 had it been solved before the check.
+    const std::string unassembled = directory + "/reach.toml";
+    std::ofstream(unassembled) << kinema_test::replaced("d = \"100 mm\"", "d = \"400 mm\"");
+    for (const std::string& file : {mechanism, unassembled}) {
+      CAPTURE(file);
+      const auto result = run_shell(as_user + kinema_exe + " eval " + shell_quote(file) + " -o " + shell_quote(path));
+      CAPTURE(result.err);
+      CHECK(result.exit_status == 5);
+      CHECK(result.out.empty());
+      CHECK(result.err == "kinema: error: cannot write " + path + ": Permission denied; nothing was written\n");
+      CHECK(kinema_test::read_file(path) == "old\n");
+      CHECK(files_in(directory) == std::set<std::string>{"m.toml", "reach.toml", "ro.csv"});  // no temporary
+    }
+  }
+  if (root) {
+    // Root may write it, as with the shell's >: it is replaced and keeps its mode.
+    make_read_only();
+    const auto result = run_kinema({"eval", mechanism, "--format", "csv", "-o", path});
+    CHECK(result.exit_status == 0);
+    CHECK(kinema_test::read_file(path).rfind("theta2 [deg]", 0) == 0);
+    CHECK((std::filesystem::status(path).permissions() & std::filesystem::perms::all) ==
+          (std::filesystem::perms::owner_read | std::filesystem::perms::group_read | std::filesystem::perms::others_read));
+  }
+}
+
+// Audit 2026-11-24: a link whose target did not exist was replaced by a regular file.
+TEST_CASE("-o through a dangling symbolic link makes its target, as the shell's > does; a link loop is refused") {
+  const std::string directory = kinema_test::fresh_directory("cli_output_dangling_link");
+  const std::string mechanism = kinema_test::sample("four_bar.toml");
+  const auto expected = run_kinema({"eval", mechanism});
+  REQUIRE(expected.exit_status == 0);
+  // Relative to the link's directory, as the system reads a link.
+  std::filesystem::create_symlink("made.txt", directory + "/link.txt");
+  CHECK(run_kinema({"eval", mechanism, "-o", directory + "/link.txt"}).exit_status == 0);
+  CHECK(std::filesystem::is_symlink(directory + "/link.txt"));
+  CHECK(kinema_test::read_file(directory + "/made.txt") == expected.out);
+  // A target in a directory that does not exist, and a loop: status 5, the links as they were.
+  std::filesystem::create_symlink("no/such/out.txt", directory + "/nowhere.txt");
+  std::filesystem::create_symlink("loop_b", directory + "/loop_a");
+  std::filesystem::create_symlink("loop_a", directory + "/loop_b");
+  for (const auto& [name, reason] : {std::pair<std::string, std::string>{"nowhere.txt", "No such file or directory"},
+                                     {"loop_a", "Too many levels of symbolic links"}}) {
+    const auto result = run_kinema({"eval", mechanism, "-o", directory + "/" + name});
+    CAPTURE(result.err);
+    CHECK(result.exit_status == 5);
+    CHECK(result.err == "kinema: error: cannot write " + directory + "/" + name + ": " + reason + "; nothing was written\n");
+    CHECK(std::filesystem::is_symlink(directory + "/" + name));
+  }
+  CHECK(files_in(directory) == std::set<std::string>{"link.txt", "made.txt", "nowhere.txt", "loop_a", "loop_b"});
 }
 
 // `ulimit -f 1` (1024 bytes): writes past the limit fail with EFBIG, the way a full

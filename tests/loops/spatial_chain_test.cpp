@@ -204,6 +204,18 @@ TEST_CASE("spatial_chain: bad frames, axes, points and formulas are refused with
   CHECK(unknown.find("L4") != std::string::npos);
   CHECK(error_of(kinema_test::replaced("[points]", "[links]\n[points]", arm))
             .find("unknown key \"links\" in the top level of a spatial chain") != std::string::npos);
+  // A length as a turn (audit 2026-11-24): a parameter, a formula of lengths, a length variable.
+  CHECK(error_of(kinema_test::replaced(R"(["z", "theta1"])", R"(["z", "L1"])", arm))
+            .find("arm.toml:29: frame \"E1\" turn angle \"L1\" is a length, but a turn is an angle") !=
+        std::string::npos);
+  CHECK(error_of(kinema_test::replaced(R"(["y", "theta5"])", R"(["y", "2*L2*L3/L1"])", arm))
+            .find("arm.toml:31: frame \"E3\" turn angle \"2*L2*L3/L1\" is a length") != std::string::npos);
+  CHECK(error_of(kinema_test::replaced(R"(theta5 = { value = "0 deg")", R"(theta5 = { value = "0 m")",
+                                       kinema_test::replaced("\"1 rad/s\", rate_name = \"omega5\"",
+                                                             "\"1 m/s\", rate_name = \"omega5\"", arm)))
+            .find("arm.toml:31: frame \"E3\" turn angle \"theta5\" is a length") != std::string::npos);
+  // An angle formula of lengths that divide out is an angle.
+  CHECK(error_of(kinema_test::replaced(R"(["y", "theta5"])", R"(["y", "theta5 + L3/L1"])", arm)).empty());
 }
 
 TEST_CASE("spatial_chain: derive prints the composition of angular velocities and each term of v and a, as seed 000") {

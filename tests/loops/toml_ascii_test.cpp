@@ -58,3 +58,13 @@ TEST_CASE("loops/toml_ascii: non-ASCII outside strings, bad UTF-8 and surrogates
   CHECK(error_of("t = \"\xf4\x90\x80\x80\"").find("not UTF-8") != std::string::npos);  // past U+10FFFF
   CHECK(error_of("t = \"\xe2\x82\"").find("not UTF-8") != std::string::npos);      // cut short
 }
+
+// Audit 2026-11-24: a file saved with a byte-order mark was refused as "U+FEFF outside a
+// string", which does not say what to do. A leading BOM is skipped; elsewhere it is a
+// character outside a string, named.
+TEST_CASE("loops/toml_ascii: a leading byte-order mark is skipped, lines as they were") {
+  const std::string& text = kinema_test::four_bar_text();
+  CHECK(ascii_toml("\xEF\xBB\xBF" + text, "u.toml") == text);
+  CHECK(kinema::read_mechanism_text("\xEF\xBB\xBF" + text, "u.toml").unknowns[0].where.line == 12);
+  CHECK(error_of("a = 1\n\xEF\xBB\xBF" "b = 2\n").find("u.toml:2: syntax error in the mechanism file: the character U+FEFF") == 0);
+}
