@@ -18,6 +18,7 @@
 #include <kinema/engine/printers/results_stream.hpp>
 #include <kinema/engine/report/chain_instant.hpp>
 #include <kinema/engine/report/diagnostics.hpp>
+#include <kinema/engine/report/number_format.hpp>
 #include <kinema/engine/report/plot_range.hpp>
 #include <kinema/engine/report/structure.hpp>
 #include <kinema/loops/linkage_loops.hpp>
@@ -50,6 +51,27 @@ double parse_input_value(const ConstraintSystem& m, const std::string& text) {
                     m.input.name + " is " + with_article(dimension_name(m.input.dimension)));
   }
   return q.si_value;
+}
+
+// An angle input is turned into radians and reduced by its sine and cosine: past 1e9
+// deg the double's rounding moves it by more than the printed digits (1e15 deg was
+// solved at 279.95 deg, not 280). The values of a sweep run from its first to its last.
+void check_input_range(const ConstraintSystem& m, const InputValues& values) {
+  constexpr double kMaxAngleDegrees = 1e9;
+  if (m.input.dimension != Dimension::angle) return;
+  const auto check = [&](double si) {
+    const double degrees = si / kRadiansPerDegree;
+    if (std::fabs(degrees) <= kMaxAngleDegrees * (1 + 1e-12)) return;  // 1e9 deg read back through radians
+    throw InputError(m.source_file + ": " + m.input.name + " = " + format_significant(degrees) +
+                     " deg: an angle past 1e9 deg (2.8 million turns) loses digits in its sine and cosine; give it "
+                     "within a few turns");
+  };
+  if (values.is_sweep() && !values.empty()) {
+    check(values[0]);
+    check(values[values.size() - 1]);
+  } else {
+    for (std::size_t i = 0; i < values.size(); ++i) check(values[i]);
+  }
 }
 
 // The printer of that kind and name (the command line's own check named the choices).
@@ -289,6 +311,7 @@ int run(int argc, char** argv) {
     if (inputs.empty()) {
       throw InputError(m.source_file + ": no input value: give --angle VALUE or value = \"...\" under [input]");
     }
+    check_input_range(m, inputs);
     const MotionTable at_values = analyse(model, inputs);
     for (const MotionState& s : at_values) {
       if (s.status == Status::unassembled) throw AssemblyError(m.source_file + ": " + describe_failure(m, s));
@@ -331,6 +354,7 @@ int run(int argc, char** argv) {
     throw InputError(m.source_file + ": no input value: give --angle VALUE or --sweep START:STOP:STEP, "
                      "or value = \"...\" under [input]");
   }
+  check_input_range(m, run_inputs);
 
   StreamSettings settings;
   settings.threads = threads > 0 ? threads : std::max(1u, std::thread::hardware_concurrency());

@@ -232,6 +232,24 @@ double expanded_terms(const ex& e, const std::string& formula, const std::string
   return terms;
 }
 
+// A number past the largest double (1e400, 10^399, 1e200*1e200 as GiNaC folds it)
+// would reach the evaluator and the printers as inf.
+void check_numbers_finite(const ex& e, const std::string& formula, const std::string& context) {
+  for (auto it = e.preorder_begin(); it != e.preorder_end(); ++it) {
+    if (!GiNaC::is_a<GiNaC::numeric>(*it)) continue;
+    const GiNaC::numeric& x = GiNaC::ex_to<GiNaC::numeric>(*it);
+    bool finite = false;
+    try {
+      finite = std::isfinite(x.real().to_double()) && std::isfinite(x.imag().to_double());
+    } catch (const std::exception&) {  // CLN's overflow of the conversion
+    }
+    if (!finite) {
+      throw InputError(context + ": a number in \"" + formula.substr(0, 60) + (formula.size() > 60 ? "..." : "") +
+                       "\" is larger than the largest number kinema computes with (about 1.8e308)");
+    }
+  }
+}
+
 void check_functions(const ex& e, const std::string& formula, const std::string& context) {
   for (GiNaC::const_preorder_iterator it = e.preorder_begin(); it != e.preorder_end(); ++it) {
     if (!GiNaC::is_a<GiNaC::function>(*it)) continue;
@@ -323,6 +341,7 @@ GiNaC::ex FormulaReader::read(const std::string& formula, const std::string& con
     check_functions(parsed, formula, context);
     RestoreNumbers restore(numbers, formula, context);
     e = restore(parsed);
+    check_numbers_finite(e, formula, context);
     expanded_terms(e, formula, context);
   } catch (const InputError&) {
     throw;

@@ -16,16 +16,22 @@
 
 namespace kinema {
 
+/// The length of (x, y, z): the square root of the sum of squares where that sum is a
+/// normal number (fast), std::hypot where the squares overflow or underflow (|v| of
+/// components of 1e160 is 1e160, not inf).
+inline double vector_length(double x, double y, double z = 0) {
+  const double squares = x * x + y * y + z * z;
+  if (squares > 1e-300 && squares < 1e300) return std::sqrt(squares);
+  return std::hypot(x, y, z);
+}
+
 /// Position, velocity and acceleration of a point (SI); `dimension` components
 /// are meaningful (2 for planar points, 3 for spatial ones).
 struct PointMotion {
   std::size_t dimension = 2;
   std::array<double, 3> position{}, velocity{}, acceleration{};
-  double speed() const { return std::sqrt(velocity[0] * velocity[0] + velocity[1] * velocity[1] + velocity[2] * velocity[2]); }
-  double acceleration_magnitude() const {
-    return std::sqrt(acceleration[0] * acceleration[0] + acceleration[1] * acceleration[1] +
-                     acceleration[2] * acceleration[2]);
-  }
+  double speed() const { return vector_length(velocity[0], velocity[1], velocity[2]); }
+  double acceleration_magnitude() const { return vector_length(acceleration[0], acceleration[1], acceleration[2]); }
 };
 
 /// Angular velocity and angular acceleration of a frame of a spatial chain relative to

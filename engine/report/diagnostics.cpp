@@ -1,5 +1,7 @@
 #include <kinema/engine/report/diagnostics.hpp>
 
+#include <cmath>
+
 #include <kinema/engine/report/number_format.hpp>
 #include <kinema/engine/numeric/solver.hpp>
 #include <kinema/engine/report/output_scale.hpp>
@@ -31,6 +33,11 @@ std::string describe_failure(const ConstraintSystem& system, double input, const
     case Kind::resumed_after_gap:
       return "resumed after positions that could not be assembled; the branch across the gap is not guaranteed";
     case Kind::group_open:
+      if (!std::isfinite(failure.residual)) {  // not a gap to print: the equations gave no number
+        return system.describe_group(failure.group) + " cannot be evaluated at " + describe_input(system, input) +
+               ": its equations do not give finite numbers there (an angle or length past the range of the "
+               "arithmetic, or a division by zero); choose another input value";
+      }
       return system.describe_group(failure.group) + " cannot be closed at " + describe_input(system, input) +
              ": the links do not reach (loop gap " +
              format_significant(failure.residual / system.output.length_factor) + " " + system.output.length +
@@ -60,7 +67,7 @@ std::string describe_failure(const ConstraintSystem& system, double input, const
              "accelerations are not defined at the toggle itself";
     case Kind::nonfinite_rates:
       return "non-finite rates at " + describe_input(system, input) +
-             " (a formula divides by zero there); choose a nearby value";
+             " (a formula divides by zero or overflows there); choose a nearby value, or check the sizes of the file's numbers";
   }
   return "";
 }

@@ -7,6 +7,7 @@
 #include <map>
 
 #include <kinema/engine/errors.hpp>
+#include <kinema/engine/report/number_format.hpp>
 #include <kinema/engine/symbolic/naming.hpp>
 
 #include <cmath>
@@ -251,8 +252,11 @@ void result_values(const ConstraintSystem& system, const OutputScale& scale, con
   result_rows(system, scale, table, row, row + 1, values);
 }
 
-void result_rows(const ConstraintSystem& system, const OutputScale& scale, const MotionTable& table,
-                 std::size_t first, std::size_t last, double* values) {
+namespace {
+
+// result_rows without the overflow check; `overflow` is set when a value is infinite.
+void write_rows(const ConstraintSystem& system, const OutputScale& scale, const MotionTable& table,
+                std::size_t first, std::size_t last, double* values, bool& overflow) {
   constexpr double undefined = std::numeric_limits<double>::quiet_NaN();
   const std::size_t stride = result_column_count(system, table.is_circuit());
   std::size_t column = 0;
@@ -264,6 +268,7 @@ void result_rows(const ConstraintSystem& system, const OutputScale& scale, const
       const Status status = table.status(row);
       const bool defined = needs == Status::ok ? status == Status::ok : status != Status::unassembled;
       *out = defined ? value(row) : undefined;
+      overflow |= std::isinf(*out);
     }
   };
   const Dimension input_kind = system.input.dimension;
@@ -289,9 +294,7 @@ void result_rows(const ConstraintSystem& system, const OutputScale& scale, const
     const auto component = [&](std::size_t k) { return table.point_column(p, k); };
     const auto magnitude = [&](std::size_t k) {
       fill(Status::ok, [&, k](std::size_t row) {
-        double sum = 0;
-        for (std::size_t c = 0; c < dimension; ++c) sum += component(k + c)[row] * component(k + c)[row];
-        return std::sqrt(sum) / f;
+        return vector_length(component(k)[row], component(k + 1)[row], dimension == 3 ? component(k + 2)[row] : 0.0) / f;
       });
     };
     for (std::size_t c = 0; c < dimension; ++c) fill(Status::ok, [&, v = component(c)](std::size_t row) { return v[row] / f; });
@@ -317,12 +320,34 @@ void result_rows(const ConstraintSystem& system, const OutputScale& scale, const
                      Position<MotionTable::Column>{table.q(row), table.qd(row), table.qdd(row), table.input(row),
                                                    table.input_rate(row), table.input_second_rate(row)},
                      out);
+      for (std::size_t c = 0; c < linkage_count; ++c) overflow |= std::isinf(out[c]);
     }
   }
   column += linkage_count;
   if (!table.is_circuit()) return;
   for (std::size_t k = 0; k < system.linkage->frames.dyads.size(); ++k) {
     fill(Status::singular, [&](std::size_t row) { return double(table.assembly_sign(row, k)); });
+  }
+}
+
+}  // namespace
+
+void result_rows(const ConstraintSystem& system, const OutputScale& scale, const MotionTable& table,
+                 std::size_t first, std::size_t last, double* values) {
+  bool overflow = false;
+  write_rows(system, scale, table, first, last, values, overflow);
+  if (!overflow) return;
+  // A finite result in SI can pass the largest double in the output unit (1.8e308 m in
+  // mm), and a formula's huge numbers can overflow in SI: not a result to print.
+  const std::vector<ResultColumn> columns = result_columns(system, scale, table.is_circuit());
+  for (std::size_t row = first; row < last; ++row) {
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+      if (!std::isinf(values[(row - first) * columns.size() + c])) continue;
+      throw InputError(system.source_file + ": " + columns[c].name + " at " + system.input.name + " = " +
+                       format_significant(values[(row - first) * columns.size()]) + " " + columns[0].unit +
+                       " is beyond the largest number (1.8e308 " + columns[c].unit +
+                       "): check the sizes of the numbers in the file's formulas and parameters");
+    }
   }
 }
 

@@ -43,6 +43,10 @@ class ResultsTablePrinter : public ResultsPrinter {
     const Dimension input_kind = input.dimension;
     const int digits = job.precision > 0 ? job.precision : 6;
     const auto number = [&](double value) { return format_significant(value, digits); };
+    // The rows as the data formats print them, for their check: a value past the largest
+    // number in the output unit is refused, not printed as inf.
+    std::vector<double> checked(result_column_count(system, table.is_circuit()) * (last - first));
+    result_rows(system, scale, table, first, last, checked.data());
     std::ostringstream out;
     for (std::size_t row = first; row < last; ++row) {
       const MotionState s = table[row];
