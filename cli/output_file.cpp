@@ -65,22 +65,23 @@ int write_all(int fd, std::string_view text) {
 }
 
 
-// The file a path names: symbolic links are followed to their target, also one that
-// does not exist yet (the link stays a link and its target gets the text, as the
-// shell's > does).
+// The file a path names: a symbolic link is followed (the link stays a link and its
+// target gets the text), as far as its components exist. A link to a file that does not
+// exist is refused: made through the link, the file would land wherever the link points
+// (a link planted in /tmp by another user), which the kernel's protected_symlinks check
+// would not see; /dev/stdout and /dev/fd/N (links to pipes) exist and are followed.
 std::string resolved(const std::string& path, const std::string& shown) {
-  std::string name = path;
-  for (int hops = 0;; ++hops) {
-    std::error_code error;
-    if (!std::filesystem::is_symlink(name, error)) break;
-    if (hops == 40) fail_file(shown, ELOOP);
-    const std::filesystem::path target = std::filesystem::read_symlink(name, error);
-    if (error) fail_file(shown, error.value());
-    name = target.is_absolute() ? target.string() : directory_of(name) + "/" + target.string();
+  struct stat existing, link;
+  if (::stat(path.c_str(), &existing) != 0) {
+    if (errno != ENOENT) fail_file(shown, errno);  // a loop of links, a file as a directory
+    if (::lstat(path.c_str(), &link) == 0 && S_ISLNK(link.st_mode)) {
+      throw OutputError("cannot write " + shown + ": it is a symbolic link to a file that does not exist; give the "
+                        "target's own path, or remove the link; nothing was written");
+    }
   }
   std::error_code error;
-  const std::filesystem::path target = std::filesystem::weakly_canonical(name, error);
-  return error ? name : target.string();
+  const std::filesystem::path target = std::filesystem::weakly_canonical(path, error);
+  return error ? path : target.string();
 }
 
 // Refuses what the shell's > would refuse: a file without write permission for this

@@ -164,7 +164,7 @@ class Builder {
       throw InputError(p.where.str() + ": parameter \"" + p.name + "\" = \"" + p.text + "\" has no unit, and " +
                        used_in.substr(used_in.find(": ") + 2) + " (" + used_in.substr(0, used_in.find(": ")) +
                        ") uses it as a length; give its unit, e.g. \"" + p.text +
-                       " mm\" (a number without a unit is a ratio, as k in p = \"k*a\")");
+                       " m\" or \"" + p.text + " mm\" (a number without a unit is a ratio, as k in p = \"k*a\")");
     }
   }
   std::set<std::string> taken_;  ///< Names of symbols so far (rate names must not clash).

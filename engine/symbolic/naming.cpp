@@ -184,14 +184,18 @@ class LatexNameCheck {
 
   void nucleus(int depth) {
     const char c = latex_[i_];
-    ++nuclei_;
+    // Only what shows counts as something to typeset: "{}" or "\\hat{}" alone is nothing.
     if (letter_or_digit(c) || c == ',') {
+      nuclei_ += c != ',';
       ++i_;
     } else if (c == '{') {
       group(depth);
     } else if (c == '\\') {
       const std::string name = command();
-      if (is_symbol_command(name)) return;
+      if (is_symbol_command(name)) {
+        ++nuclei_;
+        return;
+      }
       if (!is_accent(name)) {
         fail("uses \\" + name + "; only Greek letters (\\alpha ... \\Omega, \\varphi, ...), \\prime, and \\dot \\ddot "
              "\\hat \\bar \\tilde \\vec \\mathrm \\mathit with their argument in braces are allowed");

@@ -87,9 +87,13 @@ TEST_CASE("engine/symbolic/naming: check_latex_name allows names, refuses comman
                          Bad{"x_1_2", "x_{1,2}"}, Bad{"x__1", "x_{1,2}"}, Bad{"x'_1'", "x''_{1}"},
                          Bad{"_1", "nothing before"}, Bad{"'x", "nothing before"}, Bad{"x\\", "\\"},
                          Bad{"x_\\hat{y}", "x_{\\hat{y}}"}, Bad{"x_,", "x_{1}"}, Bad{" ", "nothing to typeset"},
-                         Bad{"{{{{{{{{{x}}}}}}}}}", "8 deep"}, Bad{"\\alphax", "\\alphax"}, Bad{"\\csname", "\\csname"},
-                         Bad{"\\catcode", "\\catcode"}, Bad{"\\immediate", "\\immediate"},
-                         Bad{"\\openout", "\\openout"}, Bad{"\\write", "\\write"}, Bad{"x\xc3\xa9", "past ASCII"}}) {
+                         Bad{"{{{{{{{{{x}}}}}}}}}", "8 deep"}, Bad{"\\alphax", "uses \\alphax; only Greek"},
+                         Bad{"\\csname", "uses \\csname; only Greek"}, Bad{"\\catcode", "uses \\catcode; only Greek"},
+                         Bad{"\\immediate", "uses \\immediate; only Greek"}, Bad{"\\openout", "uses \\openout; only Greek"},
+                         Bad{"\\write", "uses \\write; only Greek"}, Bad{"x\xc3\xa9", "past ASCII"},
+                         Bad{"\\input{/etc/passwd}", "uses \\input; only Greek"}, Bad{"\\def\\x{1}", "uses \\def; only Greek"},
+                         Bad{"x\\", "starts no command"}, Bad{"{}", "nothing to typeset"}, Bad{"{ }", "nothing to typeset"},
+                         Bad{"\\hat{}", "nothing to typeset"}, Bad{"\\mathrm{}", "nothing to typeset"}}) {
     CAPTURE(bad.latex);
     try {
       check_latex_name(bad.latex, "unit.toml:7: unknown \"q\"");
