@@ -10,6 +10,7 @@
 
 #include <kinema/engine/errors.hpp>
 #include <kinema/engine/symbolic/complex_parts.hpp>
+#include <kinema/engine/symbolic/derivation.hpp>
 #include <kinema/engine/symbolic/expression_parts.hpp>
 #include <kinema/engine/symbolic/naming.hpp>
 #include <kinema/loops/formula_reader.hpp>
@@ -25,6 +26,10 @@ class Builder {
   explicit Builder(const Mechanism& mechanism) : mechanism_(mechanism) {}
 
   ConstraintSystem build() {
+    // Before the loops are read: their checks grow with the square of the count.
+    const auto& written = mechanism_.unknowns;
+    if (written.size() > kMaxUnknowns)
+      check_unknown_count(written.size(), written[kMaxUnknowns].where, written[kMaxUnknowns].name);
     ConstraintSystem system;
     system.title = mechanism_.title;
     system.description = mechanism_.description;

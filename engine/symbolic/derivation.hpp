@@ -67,6 +67,10 @@ GiNaC::ex time_derivative(const ConstraintSystem& system, const GiNaC::ex& e);
 /// each position, so its time grows as the cube of the count (2,000 took minutes).
 constexpr std::size_t kMaxUnknowns = 256;
 
+/// Throws InputError at the first unknown past the limit (where, name) when count is over
+/// kMaxUnknowns; a front end asks before its own work grows with the count.
+void check_unknown_count(std::size_t count, const SourceLocation& first_past, const std::string& name);
+
 /// Builds the derivation of a system. Either scope checks the same: a block whose
 /// unknowns are not independent, more than kMaxUnknowns unknowns, and a formula whose
 /// velocity or acceleration would be too large to build are refused (InputError).

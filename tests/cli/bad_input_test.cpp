@@ -514,7 +514,7 @@ TEST_CASE("control and bidirectional characters in a file's strings and keys are
 
 // Audit 2026-11-24: `kinema loops` of a spatial chain wrote an empty mechanism (name = "",
 // no unknowns, no loops) and exited 0.
-TEST_CASE("kinema loops of a spatial chain is bad input: it has no vector loops; nothing is written") {
+TEST_CASE("kinema loops of a spatial chain is bad input: it has no vector loops - nothing is written") {
   for (const char* sample : {"robot_arm_seed000.toml", "rssr_spatial_four_bar.toml"}) {
     CAPTURE(sample);
     const std::string output = kinema_test::write_temporary("spatial_loops.toml", "") + ".out";
@@ -587,10 +587,10 @@ TEST_CASE("values = [] is refused with file:line, not taken as no values") {
 
 // Audit 2026-11-24: a parameter written without a unit was read as metres where the loops
 // use it as a length. The README documents a bare number as a plain number (a ratio).
-TEST_CASE("a parameter without a unit used as a length is refused at its line; as a ratio it is a plain number") {
+TEST_CASE("a parameter without a unit used as a length is refused at its line - as a ratio it is a plain number") {
   check_bad("bare_length", replaced("a = \"40 mm\"", "a = \"40\""),
             {2, {"bare_length.toml:3", "parameter \"a\" = \"40\" has no unit", "loop \"ABCD\"", "bare_length.toml:15) uses it as a length",
-                 "give its unit, e.g. \"40 mm\""}});
+                 "give its unit, e.g. \"40 m\" or \"40 mm\""}});
   // Through a formula of parameters, and added to a length in one.
   check_bad("bare_through", replaced("d = \"100 mm\"", "k = \"100\"\nd = \"k/1\""),
             {2, {"bare_through.toml:6", "parameter \"k\"", "loop \"ABCD\""}});
@@ -606,7 +606,7 @@ const std::string kMillimetres = "[output]\nlength = \"mm\"\n";
 // Audit 2026-11-24 (tests/fuzz/regressions/speed_overflow_inf.toml): |v| and |a| were
 // sqrt(x^2 + y^2), inf for components of 1e161 mm; and a value past the largest double
 // in the output unit (1e306 m/s^2 is 1e309 mm/s^2) was printed as inf in every format.
-TEST_CASE("magnitudes of huge components are finite; a value past the largest number is refused, not printed as inf") {
+TEST_CASE("magnitudes of huge components are finite - a value past the largest number is refused, not printed as inf") {
   const std::string huge = kinema_test::write_temporary(
       "huge_point.toml", replaced("P = \"a*exp(I*theta2)\"", "P = \"1e160*a*exp(I*theta3)\"") + kMillimetres);
   const auto csv = kinema_test::run_kinema({"eval", huge, "--format", "csv"});
@@ -652,7 +652,7 @@ TEST_CASE("a number past the largest double in a formula is refused where it is 
 // Audit 2026-11-24: --angle 1e15 was solved at 279.95 deg (1e15 deg in radians has lost
 // the digits that say where in the turn it is) and printed as if exact; --at 1e300 of a
 // chain said "loop gap nan m".
-TEST_CASE("an angle past 1e9 deg is refused; an input where the equations give no number says so, not nan") {
+TEST_CASE("an angle past 1e9 deg is refused - an input where the equations give no number says so, not nan") {
   const std::string four_bar = kinema_test::sample("four_bar.toml");
   for (const std::vector<std::string>& arguments :
        {std::vector<std::string>{"eval", four_bar, "--angle", "1e15"}, {"eval", four_bar, "--sweep", "0:2e9:1e8"},

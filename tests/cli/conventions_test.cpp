@@ -187,7 +187,7 @@ TEST_CASE("-o onto a file the user may not write is refused before any work, as 
 // Following it instead would make a file wherever the link points (one planted in /tmp
 // by another user): refused, the link left as it was. /dev/stdout into a pipe is a link
 // that exists and is written.
-TEST_CASE("-o through a dangling symbolic link is refused and the link kept; -o /dev/stdout into a pipe is written") {
+TEST_CASE("-o through a dangling symbolic link is refused and the link kept - -o /dev/stdout into a pipe is written") {
   const std::string directory = kinema_test::fresh_directory("cli_output_dangling_link");
   const std::string mechanism = kinema_test::sample("four_bar.toml");
   const auto expected = run_kinema({"eval", mechanism});

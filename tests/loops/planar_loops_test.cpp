@@ -170,7 +170,7 @@ TEST_CASE("loops/planar_loops: points have x, y components and their position ex
   CHECK_FALSE(same_meaning(s.points[2].position[1], a * sin(t2) + p * sin(t3 - delta)));
 }
 
-TEST_CASE("loops/planar_loops: parameters keep dimension, SI value, text and formula; length scale") {
+TEST_CASE("loops/planar_loops: parameters keep dimension, SI value, text and formula - length scale") {
   const ConstraintSystem s = build(replaced("d = \"100 mm\"", "d = \"100 mm\"\ndelta = \"30 deg\"\np = \"b/2\"\nk = \"2\"\n"
                                                                "ratio = \"b/a\"\nturn = \"2*delta\""));
   REQUIRE(s.parameters.size() == 9);
@@ -198,16 +198,15 @@ TEST_CASE("loops/planar_loops: parameters keep dimension, SI value, text and for
   // The largest length: b = 120 mm.
   CHECK(s.length_scale == doctest::Approx(0.12).epsilon(1e-15));
 
-  // No length among the parameters: 1 m.
+  // Lengths without units: refused where a loop uses them as lengths (a number without a
+  // unit is a ratio).
   std::string plain = four_bar_text();
   for (const auto& [from, to] : std::vector<std::pair<std::string, std::string>>{
            {"a = \"40 mm\"", "a = \"0.04\""}, {"b = \"120 mm\"", "b = \"0.12\""},
            {"c = \"80 mm\"", "c = \"0.08\""}, {"d = \"100 mm\"", "d = \"0.1\""}})
     plain = replaced(from, to, plain);
-  const ConstraintSystem unitless = build(plain);
-  CHECK(unitless.parameters[1].dimension == Dimension::number);
-  CHECK(unitless.parameters[1].value == doctest::Approx(0.12));
-  CHECK(unitless.length_scale == 1.0);
+  const std::string unitless = error_of(plain);
+  CHECK(unitless.find("fb.toml:3: parameter \"a\" = \"0.04\" has no unit") != std::string::npos);
 
   // A parameter formula may use only earlier parameters.
   const std::string later = error_of(replaced("a = \"40 mm\"", "a = \"b/3\""));

@@ -247,7 +247,7 @@ TEST_CASE("spatial_chain: derive prints the composition of angular velocities an
   CHECK(csv.out.find("\n0.5,1,0,ok,") != std::string::npos);
 }
 
-TEST_CASE("spatial_chain: the RSSR four-bar closes its loop over a turn; rates by finite differences") {
+TEST_CASE("spatial_chain: the RSSR four-bar closes its loop over a turn - rates by finite differences") {
   // Its input is the crank angle at 1 rad/s: finite differences in the angle (rad) are in time (s).
   const kinema::Model model = kinema::load_model(kinema_test::sample("rssr_spatial_four_bar.toml"));
   REQUIRE(model.system.unknowns.size() == 1);  // theta4: theta2 is the input
@@ -377,7 +377,7 @@ TEST_CASE("spatial_chain: each frame's angular velocity and acceleration are eva
   }
 }
 
-TEST_CASE("spatial_chain: a driven variable as the input (--input, or input = in the file); the others follow it") {
+TEST_CASE("spatial_chain: a driven variable as the input (--input, or input = in the file) - the others follow it") {
   // theta1 at 30 deg with omega1 = 1 rad/s is the arm at t = pi/6 s: the same positions,
   // velocities, accelerations and angular velocities.
   const nlohmann::json by_angle = kinema_test::eval_json("robot_arm_seed000.toml", {"--input", "theta1", "--at", "30"});
@@ -503,7 +503,7 @@ TEST_CASE("spatial_chain: an RSSR that cannot turn fully reports its limit posit
   CHECK(table.err.find("singular position at theta2 = 228.987 deg") != std::string::npos);
 }
 
-TEST_CASE("spatial_chain: derive --basis gives the vectors along a frame's axes; the LaTeX form carries them exactly") {
+TEST_CASE("spatial_chain: derive --basis gives the vectors along a frame's axes - the LaTeX form carries them exactly") {
   const kinema::Model model = kinema::load_model(kArm);
   const kinema::ChainAtInstant observer = kinema::chain_at_instant(model.system);
   const kinema::ChainAtInstant arm = kinema::chain_at_instant(model.system, "E3");

@@ -139,7 +139,7 @@ TEST_CASE("engine/numeric/sweep: a value that cannot be assembled names the open
   CHECK(alone.failure(0).group == 0);
 }
 
-TEST_CASE("engine/numeric/sweep: the branch stops at the limit; rows after the gap say so") {
+TEST_CASE("engine/numeric/sweep: the branch stops at the limit - rows after the gap say so") {
   const kinema::Model rocker = kinema_unit::model_from_text(kTripleRocker, "rocker.toml");
   const MotionTable table = kinema::solve_sweep(rocker.kinematics, degrees({90, 180, 200, 300, 310}), settings(1.0));
   REQUIRE(table.size() == 5);

@@ -273,7 +273,7 @@ TEST_CASE("kinema codegen: the header's numbers and singular positions are the e
   CHECK(piston_singular >= 2);
 }
 
-TEST_CASE("solver::reciprocal_condition: the pivot ratio where clearly regular, else the singular values; 1 x 1 against the length scale") {
+TEST_CASE("solver::reciprocal_condition: the pivot ratio where clearly regular, else the singular values - 1 x 1 against the length scale") {
   std::mt19937 random(7);
   std::normal_distribution<double> normal;
   for (int trial = 0; trial < 300; ++trial) {
@@ -333,7 +333,7 @@ TEST_CASE("solver::reciprocal_condition: the pivot ratio where clearly regular, 
 
 // Issue 9, finding 18: names that are C++ keywords or <cmath> macros, and a header
 // named int.hpp, still give a header that compiles (names get a trailing _).
-TEST_CASE("kinema codegen: keyword and macro names are renamed, the header compiles; --namespace int is refused") {
+TEST_CASE("kinema codegen: keyword and macro names are renamed, the header compiles - --namespace int is refused") {
   const auto directory = std::filesystem::temp_directory_path() / "kinema_tests" / "codegen_keywords";
   std::filesystem::create_directories(directory);
   std::string text = kinema_test::four_bar_text();

@@ -135,7 +135,7 @@ TEST_CASE("derive --format latex: the solved formulas are the engine's and the b
   }
 }
 
-TEST_CASE("derive --format latex: hostile titles print as text; names must be identifiers") {
+TEST_CASE("derive --format latex: hostile titles print as text - names must be identifiers") {
   const std::string text = kinema_test::replaced(
       "ABCD = ", "A_B = ",
       kinema_test::replaced("title = \"four-bar\"", "title = \"\\\\input{/etc/passwd} 100% & $x$ \\\\write18{rm -rf ~}\""));
@@ -291,7 +291,7 @@ TEST_CASE("kinema latex: a value that cannot be assembled is an error, nothing w
 // braces balanced, and control characters in user text do not stop pdflatex (a file's
 // are refused when it is read since the audit of 2026-11-24: tests/cli/bad_input_test.cpp;
 // a library caller's become spaces); a multi-line description typesets.
-TEST_CASE("LaTeX names: ^^ notation and unbalanced braces refused; control characters as spaces, line breaks compile") {
+TEST_CASE("LaTeX names: ^^ notation and unbalanced braces refused - control characters as spaces, line breaks compile") {
   CHECK_THROWS_AS(kinema::check_latex_name("^^5cinput^^7b^^2fetc^^2fpasswd^^7d", "here"), kinema::InputError);
   CHECK_THROWS_AS(kinema::check_latex_name("x^{2}", "here"), kinema::InputError);
   CHECK_THROWS_AS(kinema::check_latex_name("}", "here"), kinema::InputError);
@@ -322,7 +322,7 @@ TEST_CASE("LaTeX names: ^^ notation and unbalanced braces refused; control chara
 // Issue 9, finding 19: a title, description and names with characters past ASCII
 // typeset (θ ≠ 0 was "Unicode character not set up"), and a character LaTeX has no
 // spelling for is written as its code point.
-TEST_CASE("user text past ASCII typesets: Greek, signs, accents, quotes; an emoji as its code point") {
+TEST_CASE("user text past ASCII typesets: Greek, signs, accents, quotes - an emoji as its code point") {
   CHECK(kinema::latex_escape_text("θ ≠ 0") == "\\ensuremath{\\theta} \\ensuremath{\\neq} 0");
   CHECK(kinema::latex_escape_text("café — “x”") == "caf\\'e --- ``x''");
   CHECK(kinema::latex_escape_text("🙂") == "[U+1F642]");

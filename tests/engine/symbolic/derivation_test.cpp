@@ -141,7 +141,7 @@ TEST_CASE("engine/symbolic/derivation: Example 4.1: the slider on link 1 and its
   CHECK((acceleration - named).expand().is_zero());
 }
 
-TEST_CASE("engine/symbolic/derivation: Example 4.2: the slider along turning link 3; none in a four-bar") {
+TEST_CASE("engine/symbolic/derivation: Example 4.2: the slider along turning link 3 - none in a four-bar") {
   const ConstraintSystem s = sample_system("example_4_2_r_rtr_rrt.toml");
   const Derivation d = kinema::derive(s);
   REQUIRE(d.sliding_links.size() == 1);
