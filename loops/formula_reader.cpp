@@ -8,6 +8,7 @@
 #include <vector>
 
 #include <kinema/engine/errors.hpp>
+#include <kinema/engine/report/user_text.hpp>
 
 namespace kinema {
 namespace {
@@ -42,10 +43,9 @@ bool is_formula_character(char c) {
 }
 
 [[noreturn]] void refuse_character(const std::string& formula, std::size_t at, const std::string& context) {
-  // The whole UTF-8 character: its lead byte says how many follow.
-  const unsigned char lead = static_cast<unsigned char>(formula[at]);
-  const std::size_t length = lead >= 0xf0 ? 4 : lead >= 0xe0 ? 3 : lead >= 0xc0 ? 2 : 1;
-  const std::string character = formula.substr(at, length);
+  std::size_t last = at;  // the whole UTF-8 character, not half of it
+  next_code_point(formula, last);
+  const std::string character = formula.substr(at, last - at + 1);
   const std::string why = character == "#" ? "; a comment goes after the closing quote: x = \"...\"  # comment"
                           : character == "{" || character == "}" || character == "[" || character == "]"
                               ? " (lists and matrices are not read); group with ( )"

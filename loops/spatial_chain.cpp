@@ -89,6 +89,7 @@ class ChainBuilder {
     variables();
     // Time may be written in the chain's formulas (not in parameters: they are constants).
     if (symbol_names_.count("t") == 0) reader_.define("t", k_.time);
+    moving_.insert(k_.time);
     frames();
     points();
     closures();
@@ -104,6 +105,7 @@ class ChainBuilder {
   LengthPower::Powers powers_;  // what each parameter and variable measures, where known
   std::set<std::string> symbol_names_;
   std::map<std::string, std::size_t> frame_index_;
+  GiNaC::exset moving_;  // time, the variables and their rates: what d/dt goes through
 
   [[noreturn]] static void fail(const SourceLocation& where, const std::string& message) {
     throw InputError(where.str() + ": " + message);
@@ -111,9 +113,7 @@ class ChainBuilder {
 
   // d/dt of a formula from the file, refused (at where) when too large to build.
   ex derivative(const ex& e, const std::string& what, const char* formula) const {
-    GiNaC::exset moving{k_.time};
-    for (const Coordinate& v : k_.variables) moving.insert({v.symbol, v.rate});
-    check_derivative_size(e, moving, what, formula);
+    check_derivative_size(e, moving_, what, formula);
     return k_.time_derivative(e);
   }
 
@@ -165,6 +165,7 @@ class ChainBuilder {
       c.rate = symbol(rate_name(v.rate_name, 1));
       c.second_rate = symbol(rate_name(v.second_rate_name, 2));
       k_.variables.push_back(c);
+      moving_.insert({c.symbol, c.rate});
       k_.unknown.push_back(v.unknown);
       k_.values.push_back(v.value);
       k_.rates.push_back(v.rate);

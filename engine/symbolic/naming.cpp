@@ -5,6 +5,7 @@
 #include <set>
 
 #include <kinema/engine/errors.hpp>
+#include <kinema/engine/report/user_text.hpp>
 
 namespace kinema {
 namespace {
@@ -210,7 +211,7 @@ class LatexNameCheck {
     } else if (c == '^') {
       fail("contains \"^\"; a superscript is not allowed (write a prime x' or a subscript x_{1})");
     } else {
-      const bool control = static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
+      const bool control = is_control_character(static_cast<unsigned char>(c));
       const bool ascii = static_cast<unsigned char>(c) < 0x80;
       fail("contains " + (control ? std::string("a control character")
                           : ascii ? "\"" + std::string(1, c) + "\""
