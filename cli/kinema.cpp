@@ -184,11 +184,13 @@ int run(int argc, char** argv) {
   eval_cmd->add_option("--precision", precision,
                        "significant digits in table, csv and json (default: 6 in the table, 12 in csv, "
                        "round-trip in json)")
+      ->check(kNotEmpty)  // before the range, whose message would not say what is wrong
       ->check(CLI::Range(1, 17));
   unsigned threads = 0;  // one per core: formatting on more threads changes no byte
   eval_cmd->add_option("--threads", threads,
                        "threads formatting and writing the output of long runs, a block each in turn (default: "
                        "one per core); the solve stays serial, so the output is the same bytes whatever the count")
+      ->check(kNotEmpty)
       ->check(CLI::Range(1u, 256u));
   std::string circuit_step;
   eval_cmd->add_option("--circuit", circuit_step,

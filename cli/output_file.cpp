@@ -71,7 +71,10 @@ int write_all(int fd, std::string_view text) {
 // (a link planted in /tmp by another user), which the kernel's protected_symlinks check
 // would not see; /dev/stdout and /dev/fd/N (links to pipes) exist and are followed.
 std::string resolved(const std::string& path, const std::string& shown) {
-  struct stat existing, link;
+  struct stat existing, link, directory;
+  // As the shell's > does, the directory is looked up as written: weakly_canonical would
+  // turn "nodir/../x.csv" into "x.csv" without asking whether nodir exists.
+  if (::stat(directory_of(path).c_str(), &directory) != 0) fail_file(shown, errno);
   if (::stat(path.c_str(), &existing) != 0) {
     if (errno != ENOENT) fail_file(shown, errno);  // a loop of links, a file as a directory
     if (::lstat(path.c_str(), &link) == 0 && S_ISLNK(link.st_mode)) {

@@ -82,6 +82,7 @@ struct PointObservable {
   std::optional<GiNaC::ex> written;     ///< Planar: x + I*y as written.
   std::vector<GiNaC::ex> written_terms;  ///< Planar: its terms in the order written (sum = written).
   std::optional<RelativeMotionTerms> terms;  ///< Spatial chains.
+  bool is_joint = false;                     ///< A joint of a joints-and-links file (its messages say "joint").
 };
 
 /// One relative turning summed into a frame's angular velocity: a rate times the unit

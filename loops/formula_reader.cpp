@@ -49,6 +49,9 @@ bool is_formula_character(char c) {
   const std::string why = character == "#" ? "; a comment goes after the closing quote: x = \"...\"  # comment"
                           : character == "{" || character == "}" || character == "[" || character == "]"
                               ? " (lists and matrices are not read); group with ( )"
+                          : character == "\u00b0"
+                              ? "; units are not written inside a formula: give the angle its own parameter "
+                                "(beta = \"30 deg\") and use its name, or write radians (30*Pi/180)"
                               : "; formulas are written with names, numbers, + - * / ^ ( ) and commas";
   throw InputError(context + ": \"" + character + "\" is not part of a formula in \"" + formula + "\"" + why);
 }

@@ -815,6 +815,7 @@ class LinkageWriter {
       point.name = joint.name;
       point.formula = sum_text(flatten(position(body, j), 0));
       point.where = joint.where;
+      point.is_joint = true;
       m_.points.push_back(point);
     }
     for (const LinkPoint& p : linkage_.points) {

@@ -67,6 +67,7 @@ struct Point {
   std::string name;
   std::string formula;
   SourceLocation where;
+  bool is_joint = false;  ///< A joints-and-links file's joint, written as a point by its front end.
 };
 
 /// A joint of a mechanism described as drawn (joints and links, README "Joints and

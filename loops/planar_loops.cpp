@@ -114,6 +114,7 @@ class Builder {
       PointObservable observable;
       observable.name = point.name;
       observable.where = point.where;
+      observable.is_joint = point.is_joint;
       observable.components = {"x", "y"};
       observable.position = {real_part_of(position), imag_part_of(position)};
       check_separated(observable.position[0], observable.position[1], point.formula, context);

@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include <kinema/engine/errors.hpp>
+#include <kinema/engine/report/user_text.hpp>
 
 namespace kinema {
 namespace {
@@ -31,7 +32,7 @@ class AsciiRewriter {
       } else if (is_ascii(c)) {
         copy();
       } else {
-        fail("the character U+" + hex(code_point(), 4) + " is outside a string or a comment; names and "
+        fail("the character " + code_point_name(code_point()) + " is outside a string or a comment; names and "
              "numbers are ASCII (write it inside \"...\")");
       }
     }
@@ -53,6 +54,7 @@ class AsciiRewriter {
     throw InputError(file_ + ":" + std::to_string(line_) + ": syntax error in the mechanism file: " + why);
   }
 
+  // TOML's escapes have exactly 4 or 8 digits.
   static std::string hex(unsigned long value, int digits) {
     char buffer[16];
     std::snprintf(buffer, sizeof buffer, "%0*lX", digits, value);

@@ -81,12 +81,7 @@ std::vector<ResultColumn> named_columns(const ConstraintSystem& system, const Ou
   for (const Coordinate& q : system.unknowns) add_coordinate(q, "unknown");
   const std::string& l = scale.length_unit;
   for (const PointObservable& p : system.points) {
-    // A joints-and-links file's joints are points of the system too, written where the joint is.
-    bool joint = false;
-    if (system.linkage) {
-      for (const Joint& j : system.linkage->joints) joint = joint || (j.name == p.name && j.where.line == p.where.line);
-    }
-    const std::string what = (joint ? "joint \"" : "point \"") + p.name + "\"";
+    const std::string what = (p.is_joint ? "joint \"" : "point \"") + p.name + "\"";
     for (const auto& c : p.components) add(p.name + "_" + c, l, what, p.where);
     for (const auto& c : p.components) add(p.name + "_v" + c, l + "/s", what, p.where);
     add(p.name + "_speed", l + "/s", what, p.where);

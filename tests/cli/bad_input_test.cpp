@@ -563,6 +563,10 @@ TEST_CASE("a formula GiNaC cannot read is refused in kinema's words, with file:l
   check_bad("comment", in_p("a # the rest"),
             {2, {"comment.toml:17", "point \"P\"", "\"#\" is not part of a formula", "a comment goes after the closing quote"}});
   check_bad("utf8", in_p("a*\xc3\xa9"), {2, {"utf8.toml:17", "\"\xc3\xa9\" is not part of a formula"}});
+  // A degree sign inside a formula: the message says how to write the angle (it said
+  // only what formulas are written with, though "30 deg" and "30°" are read elsewhere).
+  check_bad("degrees", in_p("a*cos(30\xc2\xb0)"),
+            {2, {"degrees.toml:17", "\"\xc2\xb0\" is not part of a formula", "beta = \"30 deg\"", "30*Pi/180"}});
   check_bad("power_chain", in_p("2^2^2*a"), {2, {"power_chain.toml:17", "write (a^b)^c or a^(b^c)"}});
   check_bad("ends_early", replaced("- d\"", "- d*\""), {2, {"ends_early.toml:15", "it ends where a name, a number"}});
   check_bad("unclosed", in_p("(a"), {2, {"unclosed.toml:17", "a parenthesis is not closed"}});

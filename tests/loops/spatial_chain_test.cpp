@@ -5,6 +5,7 @@
 // seed's boxed v_B by meaning; a point sliding along the arm (Coriolis); bad input.
 #include <doctest/doctest.h>
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <string>
@@ -646,4 +647,31 @@ TEST_CASE("spatial_chain: a point moving in its frame by a formula of time t") {
   const auto refused = kinema_test::run_kinema({"eval", file, "--input", "theta1"});
   CHECK(refused.exit_status == 2);
   CHECK(refused.err.find("--input theta1: the chain has formulas of time t; keep time as its input") != std::string::npos);
+}
+
+// README: in a chain a number is metres in an origin or a point's place and radians in a
+// turn (Pi/2 is a number), and a parameter written without a unit is such a number.
+TEST_CASE("spatial_chain: a bare number is metres in an origin or point and radians in a turn") {
+  const auto chain = [](const std::string& parameter, const std::string& origin, const std::string& turn,
+                        const std::string& at) {
+    const std::string text = "title = \"numbers\"\n[parameters]\nk = \"" + parameter +
+                             "\"\n[variables]\ntheta1 = { value = \"20 deg\", rate = \"1 rad/s\" }\n[frames]\n"
+                             "E1 = { parent = \"E0\", origin = [\"" + origin + "\", \"0 m\", \"0 m\"], turns = [[\"z\", \"theta1\"], [\"x\", \"" +
+                             turn + "\"]] }\n[points]\nB = { frame = \"E1\", at = [\"0 m\", \"" + at + "\", \"0 m\"] }\n";
+    return kinema::build_spatial_chain(kinema::read_mechanism_text(text, "numbers.toml"));
+  };
+  const kinema::SpatialKinematics with_units = chain("0.5 m", "0.25 m", "0.5 rad", "0.75 m");
+  const GiNaC::exmap units_instant = with_units.instant();
+  for (const auto& [parameter, origin, turn, at_y] : std::vector<std::array<std::string, 4>>{
+           {"0.5 m", "0.25", "0.5", "0.75"}, {"0.5", "k/2", "k", "1.5*k"}, {"0.5 m", "0.5*k", "1/2", "3/4"}}) {
+    CAPTURE(origin);
+    CAPTURE(turn);
+    const kinema::SpatialKinematics bare = chain(parameter, origin, turn, at_y);
+    const GiNaC::exmap instant = bare.instant();
+    for (std::size_t c = 0; c < 3; ++c) {
+      CHECK(at(point(bare, "B").position[c], instant) == doctest::Approx(at(point(with_units, "B").position[c], units_instant)));
+      CHECK(at(point(bare, "B").acceleration[c], instant) ==
+            doctest::Approx(at(point(with_units, "B").acceleration[c], units_instant)));
+    }
+  }
 }

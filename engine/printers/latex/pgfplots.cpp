@@ -123,15 +123,14 @@ class PlotWriter {
       if (reach > 0) moving.push_back(p);
     }
     if (moving.empty()) return;
-    std::vector<double> coordinates;
-    for (std::size_t p : moving)
-      for (std::size_t row = 0; row < sweep_.size(); ++row)
-        if (sweep_.status(row) != Status::unassembled)
-          for (const int k : {0, 1}) coordinates.push_back(sweep_.point(row, p).position[k] / scale_.length);
-    const double limit = plot_limit(coordinates);  // one for x and y: the scales are equal
     std::string curves;
     double low[2] = {INFINITY, INFINITY}, high[2] = {-INFINITY, -INFINITY};
     for (std::size_t p : moving) {
+      std::vector<double> coordinates;
+      for (std::size_t row = 0; row < sweep_.size(); ++row)
+        if (sweep_.status(row) != Status::unassembled)
+          for (const int k : {0, 1}) coordinates.push_back(sweep_.point(row, p).position[k] / scale_.length);
+      const double limit = plot_limit(coordinates);  // the point's own, one for x and y: the scales are equal
       curves += "\\addplot+[mark=none, thick] coordinates {";
       for (std::size_t row = 0; row < sweep_.size(); ++row) {
         const PointMotion m = sweep_.point(row, p);
@@ -183,15 +182,15 @@ class PlotWriter {
   }
   double x_of(double si) const { return turn_ ? wrapped(si) : scale_.input(si); }
 
-  // One axis of curves over rows_, each with its legend; a value past the axis's
+  // One axis of curves over rows_, each with its legend; a value past its curve's
   // plot_limit is a gap, as a non-finite one is.
   void axis(const std::string& x_label, const std::string& y_label, int index,
             const std::vector<std::vector<double>>& curves, const std::vector<std::string>& legends) {
-    std::vector<double> all;
-    for (const auto& ys : curves) all.insert(all.end(), ys.begin(), ys.end());
-    const double limit = plot_limit(all);
     begin_axis(x_label, y_label, index);
     for (std::size_t k = 0; k < curves.size(); ++k) {
+      // Each curve's own: pooled, a curve far larger than its neighbours (one of twenty)
+      // was past the limit everywhere and vanished, and a small one kept its pole.
+      const double limit = plot_limit(curves[k]);
       out_ << "\\addplot+[mark=none, thick] coordinates {";
       for (std::size_t i = 0; i < rows_.size(); ++i) {
         const double y = curves[k][i];

@@ -386,3 +386,26 @@ TEST_CASE("engine/printers/worked_solution: the points' paths (coupler curves) o
   }
   CHECK(row == sweep.size());
 }
+
+// A curve is cut at values far past its own typical size (a pole). Judged over the whole
+// axis, a point a thousand times faster than eleven others (fewer than a tenth of the
+// values) was past the axis's limit everywhere and vanished from the speeds plot.
+TEST_CASE("engine/printers/worked_solution: a plot's gaps are judged curve by curve") {
+  std::string points = "[points]\n";
+  for (int i = 1; i <= 11; ++i) points += "Q" + std::to_string(i) + " = \"a*exp(I*theta2) + " + std::to_string(i) + "*b*exp(I*theta3)\"\n";
+  points += "H = \"1e5*a*cos(theta2)\"\n";
+  const kinema::Model model = kinema::load_model(kinema_test::write_temporary(
+      "fast_point.toml", kinema_test::replaced("[points]\n", points)));
+  const MotionTable sweep = kinema::analyse(model, kinema::plot_range(model.system, 40 * kDeg));
+  const std::string tex = document(model, nullptr, &sweep, true);
+  std::size_t curves = 0;
+  for (auto legend = tex.find("\\addlegendentry{H}"); legend != std::string::npos;
+       legend = tex.find("\\addlegendentry{H}", legend + 1), ++curves) {
+    const auto begin = tex.rfind("coordinates {", legend);
+    const std::string curve = tex.substr(begin, legend - begin);
+    CAPTURE(curve.substr(0, 200));
+    CHECK(count(curve, "nan") <= 2);  // the turn's wrap, not the curve
+    CHECK(count(curve, ")") > sweep.size() / 2);
+  }
+  CHECK(curves >= 2);  // its path and its speed
+}
