@@ -27,9 +27,7 @@ class Builder {
 
   ConstraintSystem build() {
     // Before the loops are read: their checks grow with the square of the count.
-    const auto& written = mechanism_.unknowns;
-    if (written.size() > kMaxUnknowns)
-      check_unknown_count(written.size(), written[kMaxUnknowns].where, written[kMaxUnknowns].name);
+    check_unknown_count(mechanism_.unknowns);
     ConstraintSystem system;
     system.title = mechanism_.title;
     system.description = mechanism_.description;

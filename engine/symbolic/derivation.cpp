@@ -150,8 +150,7 @@ GiNaC::ex time_derivative(const ConstraintSystem& system, const GiNaC::ex& e) {
   return GiNaC::add(terms);
 }
 
-void check_unknown_count(std::size_t count, const SourceLocation& first_past, const std::string& name) {
-  if (count <= kMaxUnknowns) return;
+void refuse_unknown_count(std::size_t count, const SourceLocation& first_past, const std::string& name) {
   throw InputError(first_past.str() + ": unknown \"" + name + "\": the mechanism has " + std::to_string(count) +
                    " unknowns, and kinema solves up to " + std::to_string(kMaxUnknowns) +
                    " in one system (its solver is dense: the time per position grows as the cube of the count); "
@@ -163,7 +162,7 @@ Derivation derive(const ConstraintSystem& system, DerivationScope scope) {
   d.scope = scope;
   const bool full = scope == DerivationScope::full;
   const std::size_t n = system.unknowns.size();
-  if (n > kMaxUnknowns) check_unknown_count(n, system.unknowns[kMaxUnknowns].where, system.unknowns[kMaxUnknowns].name);
+  check_unknown_count(system.unknowns);
   const GiNaC::exset moving = moving_symbols(system);
   GiNaC::exmap no_second_rates;
   for (const Coordinate& q : system.unknowns) no_second_rates[q.second_rate] = 0;

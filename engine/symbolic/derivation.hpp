@@ -67,9 +67,16 @@ GiNaC::ex time_derivative(const ConstraintSystem& system, const GiNaC::ex& e);
 /// each position, so its time grows as the cube of the count (2,000 took minutes).
 constexpr std::size_t kMaxUnknowns = 256;
 
-/// Throws InputError at the first unknown past the limit (where, name) when count is over
-/// kMaxUnknowns; a front end asks before its own work grows with the count.
-void check_unknown_count(std::size_t count, const SourceLocation& first_past, const std::string& name);
+/// Throws InputError at the first unknown past the limit (where, name).
+[[noreturn]] void refuse_unknown_count(std::size_t count, const SourceLocation& first_past, const std::string& name);
+
+/// Refuses more than kMaxUnknowns unknowns (each with .where and .name); a front end asks
+/// before its own work grows with the count.
+template <class Unknowns>
+void check_unknown_count(const Unknowns& unknowns) {
+  if (unknowns.size() > kMaxUnknowns)
+    refuse_unknown_count(unknowns.size(), unknowns[kMaxUnknowns].where, unknowns[kMaxUnknowns].name);
+}
 
 /// Builds the derivation of a system. Either scope checks the same: a block whose
 /// unknowns are not independent, more than kMaxUnknowns unknowns, and a formula whose

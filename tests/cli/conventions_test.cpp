@@ -43,6 +43,18 @@ void check_usage_error(const std::vector<std::string>& arguments, const std::vec
   }
 }
 
+// Status 5, nothing on stdout, one line on stderr naming the path (then `reason`) and
+// saying nothing was written.
+void check_refused_output(const kinema_test::CommandResult& result, const std::string& path,
+                          const std::string& reason = "") {
+  CAPTURE(result.err);
+  CHECK(result.exit_status == 5);
+  CHECK(result.out.empty());
+  CHECK(result.err.rfind("kinema: error: cannot write " + path + ": " + reason, 0) == 0);
+  CHECK(result.err.find("nothing was written") != std::string::npos);
+  CHECK(result.err.find('\n') == result.err.size() - 1);
+}
+
 }  // namespace
 
 TEST_CASE("kinema --version prints the version and exits 0") {
@@ -115,13 +127,8 @@ TEST_CASE("-o into a missing directory exits 5, names the path and writes nothin
   const std::string directory = kinema_test::fresh_directory("cli_output_missing_directory");
   // "no/../out.csv": the shell's > refuses it (no is looked up); it was written as out.csv.
   for (const std::string& path : {directory + "/no/such/out.csv", directory + "/no/../out.csv"}) {
-    const auto result = run_kinema({"eval", kinema_test::sample("four_bar.toml"), "-o", path});
-    CAPTURE(result.err);
-    CHECK(result.exit_status == 5);
-    CHECK(result.out.empty());
-    CHECK(result.err.rfind("kinema: error: cannot write " + path + ": No such file or directory", 0) == 0);
-    CHECK(result.err.find("nothing was written") != std::string::npos);
-    CHECK(result.err.find('\n') == result.err.size() - 1);
+    check_refused_output(run_kinema({"eval", kinema_test::sample("four_bar.toml"), "-o", path}), path,
+                         "No such file or directory");
     CHECK(files_in(directory).empty());
   }
 }
@@ -226,13 +233,7 @@ TEST_CASE("-o under a file-size limit exits 5, keeps the previous file and leave
   const std::string path = directory + "/out.txt";
   const std::string previous = "previous text, shorter than the limit\n";
   std::ofstream(path) << previous;
-  const auto result = run_shell(kLimitedSweep + " -o " + shell_quote(path));
-  CAPTURE(result.err);
-  CHECK(result.exit_status == 5);
-  CHECK(result.out.empty());
-  CHECK(result.err.rfind("kinema: error: cannot write " + path + ": ", 0) == 0);
-  CHECK(result.err.find("nothing was written") != std::string::npos);
-  CHECK(result.err.find('\n') == result.err.size() - 1);
+  check_refused_output(run_shell(kLimitedSweep + " -o " + shell_quote(path)), path);
   CHECK(kinema_test::read_file(path) == previous);
   CHECK(files_in(directory) == std::set<std::string>{"out.txt"});
 }
