@@ -240,6 +240,9 @@ KINEMA_AVX512 void chunk_digits_avx512(const double* values, std::size_t n, int 
   const __m512d low = _mm512_set1_pd(powers[kPowers + digits - 1]), high = _mm512_set1_pd(powers[kPowers + digits]);
   const __m512d tie_window = _mm512_set1_pd(powers[kPowers + digits] * 1e-15);
   const __m512i index_base = _mm512_set1_epi64(kPowers + digits - 1);
+  const int window = kPowers + digits - 1 - 11;  // the power for exponent 11, then up to exponent -4
+  const __m512i window_base = _mm512_set1_epi64(window);
+  const __m512d window_low = _mm512_loadu_pd(powers + window), window_high = _mm512_loadu_pd(powers + window + 8);
   const __m512i one = _mm512_set1_epi64(1);
   for (std::size_t k = 0; k < n; k += 8) {
     const __mmask8 present = n - k >= 8 ? 0xff : static_cast<__mmask8>((1u << (n - k)) - 1);
@@ -251,8 +254,12 @@ KINEMA_AVX512 void chunk_digits_avx512(const double* values, std::size_t n, int 
     const __m512i binary_exponent =
         _mm512_sub_epi64(_mm512_srli_epi64(_mm512_castpd_si512(magnitude), 52), _mm512_set1_epi64(1023));
     __m512i exponent = _mm512_srai_epi64(_mm512_mullo_epi64(binary_exponent, _mm512_set1_epi64(78913)), 18);
-    const __m512d power = _mm512_mask_i64gather_pd(_mm512_set1_pd(1.0), finite_in_range,
-                                             _mm512_sub_epi64(index_base, exponent), powers, 8);
+    // 10^(digits - 1 - exponent) from the 16 powers held in two registers (exponents -4
+    // to 11: the magnitudes of a mechanism's results); a gather only for lanes outside them.
+    const __m512i index = _mm512_sub_epi64(index_base, exponent), offset = _mm512_sub_epi64(index, window_base);
+    __m512d power = _mm512_permutex2var_pd(window_low, offset, window_high);
+    const __mmask8 outside = _mm512_cmp_epu64_mask(offset, _mm512_set1_epi64(15), _MM_CMPINT_GT) & finite_in_range;
+    if (outside) power = _mm512_mask_i64gather_pd(power, outside, index, powers, 8);
     __m512d scaled = _mm512_mul_pd(magnitude, power);
     const __mmask8 above = _mm512_cmp_pd_mask(scaled, high, _CMP_GE_OQ) & finite_in_range;
     const __mmask8 below = _mm512_cmp_pd_mask(scaled, low, _CMP_LT_OQ) & finite_in_range;
@@ -287,6 +294,84 @@ bool has_avx512() {
                           __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512vl");
   return has;
 }
+
+bool has_avx512_vbmi() {
+  static const bool has = has_avx512() && __builtin_cpu_supports("avx512vbmi");
+  return has;
+}
+
+// The texts of %g's plain notation (exponent -4 to 12), each one byte shuffle of the
+// significant digits (bytes 0-15) and '.', '0' (bytes 16, 17): pattern e + 4 is
+// "ddd.ddd" with the point after e + 1 digits, or "0.000ddd" for a negative e. A text is
+// cut to its length afterwards, so bytes past it (a point after the last kept digit,
+// digits past the significant ones) do not matter; branches on the exponent, which
+// changes from column to column, took a third of put_digits' time.
+constexpr int kPlainLowest = -4, kPlainPatterns = 17;
+struct PlainPatterns {
+  alignas(32) unsigned char index[kPlainPatterns][32];
+};
+constexpr PlainPatterns make_plain_patterns() {
+  PlainPatterns patterns{};
+  for (int e = kPlainLowest; e < kPlainLowest + kPlainPatterns; ++e) {
+    const int zeros = e >= 0 ? 0 : -e, point = e >= 0 ? e + 1 : 1;  // zeros: "0" and those after the point
+    for (int at = 0; at < 32; ++at) {
+      const int without_point = at - (at > point ? 1 : 0);
+      patterns.index[e - kPlainLowest][at] = static_cast<unsigned char>(at == point              ? 16
+                                                                       : without_point < zeros ? 17
+                                                                                               : without_point - zeros);
+    }
+  }
+  return patterns;
+}
+constexpr PlainPatterns kPlainPatternTable = make_plain_patterns();
+
+#define KINEMA_AVX512_VBMI __attribute__((target("avx512f,avx512bw,avx512vl,avx512vbmi")))
+
+// SignificantChunk::put with the plain notation by shuffles (32 bytes stored, the
+// text's length kept); the rest as put_digits writes it.
+KINEMA_AVX512_VBMI char* put_chunk_vbmi(char* out, const ChunkDigits& chunk, const double* values, std::size_t first,
+                                        std::size_t last, int digits, char separator) {
+  const __m128i zero_digit = _mm_set1_epi8('0');
+  const __m128i point_and_zero = _mm_setr_epi8('.', '0', 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+  const unsigned significant_mask = (1u << digits) - 1;
+  for (std::size_t k = first; k < last; ++k) {
+    if (k > first) *out++ = separator;
+    const int exponent = chunk.exponents[k];
+    if (chunk.kinds[k] == kNumber && exponent >= kPlainLowest && exponent < digits) {
+      *out = '-';  // kept for a negative value only
+      out += std::signbit(values[k]);
+      // The significant digits first; the 16 bytes read run into the next row (there is one).
+      const __m128i text = _mm_loadu_si128(reinterpret_cast<const __m128i*>(chunk.texts[k] + 16 - digits));
+      // Digits kept: up to the last that is not '0' (the first never is).
+      const unsigned nonzero = _mm_cmpneq_epi8_mask(text, zero_digit) & significant_mask;
+      const int kept = 32 - __builtin_clz(nonzero);
+      const __m256i source = _mm256_inserti128_si256(_mm256_castsi128_si256(text), point_and_zero, 1);
+      const __m256i pattern =
+          _mm256_load_si256(reinterpret_cast<const __m256i*>(kPlainPatternTable.index[exponent - kPlainLowest]));
+      _mm256_storeu_si256(reinterpret_cast<__m256i*>(out), _mm256_permutexvar_epi8(pattern, source));
+      // "0." and the zeros after it, the digits or the whole part, a point before kept
+      // digits past the whole part: without branches (the exponent is unpredictable).
+      const int whole = exponent + 1, zeros = std::max(0, -exponent);
+      out += std::max(kept, whole) + static_cast<int>(kept > whole) + zeros;
+      continue;
+    }
+    switch (chunk.kinds[k]) {
+      case kNumber:
+        *out = '-';
+        out = put_digits(out + std::signbit(values[k]), chunk.texts[k], exponent, digits);
+        break;
+      case kZero:
+        *out++ = '0';
+        break;
+      case kEmpty:
+        break;
+      case kExact:
+        out = std::to_chars(out, out + kMaxNumberChars, values[k], std::chars_format::general, digits).ptr;
+        break;
+    }
+  }
+  return out;
+}
 #pragma GCC diagnostic pop
 #endif
 
@@ -311,14 +396,21 @@ char* put_significant(char* out, double value, int significant) {
 void SignificantChunk::convert(const double* values, std::size_t count, int significant, bool vector) {
   values_ = values;
   significant_ = significant;
+  shuffled_texts_ = false;
 #ifdef KINEMA_VECTOR_NUMBERS
-  if (vector) return chunk_digits_avx512(values, count, significant, digits_);
+  if (vector) {
+    shuffled_texts_ = has_avx512_vbmi();
+    return chunk_digits_avx512(values, count, significant, digits_);
+  }
 #endif
   (void)vector;
   chunk_digits_portable(values, count, significant, digits_);
 }
 
 char* SignificantChunk::put(char* out, std::size_t first, std::size_t last, char separator) const {
+#ifdef KINEMA_VECTOR_NUMBERS
+  if (shuffled_texts_) return put_chunk_vbmi(out, digits_, values_, first, last, significant_, separator);
+#endif
   for (std::size_t k = first; k < last; ++k) {
     if (k > first) *out++ = separator;
     const double value = values_[k];

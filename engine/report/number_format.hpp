@@ -28,7 +28,8 @@ constexpr std::size_t kMaxNumberChars = 32;
 
 /// Up to `capacity` numbers written as put_significant writes them (NaN as nothing), for
 /// 1 to 13 significant digits: the arithmetic of all of them first, eight at a time with
-/// vector instructions where the processor has them, then each text. What runs of
+/// vector instructions where the processor has them, then each text (by one byte shuffle
+/// where it has AVX-512 VBMI, but for scientific notation). What runs of
 /// numbers that are not one list (rows with other text between) are written with.
 class SignificantChunk {
  public:
@@ -53,6 +54,7 @@ class SignificantChunk {
   Digits digits_;
   const double* values_ = nullptr;
   int significant_ = 0;
+  bool shuffled_texts_ = false;  // put writes plain notation by byte shuffles (AVX-512 VBMI)
 };
 
 /// The shortest text that reads back as the same double ("0.1", "6.283185307179586",

@@ -113,6 +113,10 @@ TEST_CASE("engine/report/number_format: put_significant_list writes what put_sig
     values.push_back(static_cast<double>(random() % 1000000000000ULL) + 0.5);  // ties at 12 digits
     if (i % 7 == 0) values.push_back(i % 2 ? 0.0 : -0.0);
     if (i % 11 == 0) values.push_back(std::numeric_limits<double>::quiet_NaN());
+    // Plain notation ("0.000ddd" to "ddddddddddddd"), each exponent with as many trailing
+    // zeros as digits after them: a mechanism's results, and every shuffle pattern.
+    const double whole = static_cast<double>(random() % 10000000000000ULL) / std::pow(10.0, random() % 13);
+    values.push_back((i % 2 ? -1 : 1) * whole * std::pow(10.0, static_cast<int>(random() % 18) - 6));
   }
   // The list in chunks without vector instructions (what other processors run); past 13
   // digits there is no chunked path.
@@ -158,7 +162,7 @@ TEST_CASE("engine/report/number_format: put_significant_list writes what put_sig
   }
   CHECK(lists > 500);
   CHECK(characters > 1000000);
-  MESSAGE("put_significant_list with vector instructions: " << (kinema::vector_number_path() ? "yes" : "no"));
+  MESSAGE("put_significant_list with vector instructions: " << std::string(kinema::vector_number_path() ? "yes" : "no"));
 }
 
 TEST_CASE("engine/report/number_format: put_shortest reads back as the same double") {
