@@ -167,6 +167,23 @@ unsigned char kind_of(double value) {
   return kExact;
 }
 
+// Entry k of a converted chunk at out (kMaxNumberChars free), as put_significant writes it.
+char* put_entry(char* out, const ChunkDigits& chunk, const double* values, std::size_t k, int digits) {
+  switch (chunk.kinds[k]) {
+    case kNumber:
+      *out = '-';  // kept for a negative value only
+      return put_digits(out + std::signbit(values[k]), chunk.texts[k], chunk.exponents[k], digits);
+    case kZero:
+      *out = '0';
+      return out + 1;
+    case kEmpty:
+      return out;
+    case kExact:
+      break;
+  }
+  return std::to_chars(out, out + kMaxNumberChars, values[k], std::chars_format::general, digits).ptr;
+}
+
 void chunk_digits_portable(const double* values, std::size_t n, int digits, ChunkDigits& chunk) {
   Decimal decimals[kChunk];
   for (std::size_t k = 0; k < n; ++k) {
@@ -355,20 +372,7 @@ KINEMA_AVX512_VBMI char* put_chunk_vbmi(char* out, const ChunkDigits& chunk, con
       out += std::max(kept, whole) + static_cast<int>(kept > whole) + zeros;
       continue;
     }
-    switch (chunk.kinds[k]) {
-      case kNumber:
-        *out = '-';
-        out = put_digits(out + std::signbit(values[k]), chunk.texts[k], exponent, digits);
-        break;
-      case kZero:
-        *out++ = '0';
-        break;
-      case kEmpty:
-        break;
-      case kExact:
-        out = std::to_chars(out, out + kMaxNumberChars, values[k], std::chars_format::general, digits).ptr;
-        break;
-    }
+    out = put_entry(out, chunk, values, k, digits);
   }
   return out;
 }
@@ -413,21 +417,7 @@ char* SignificantChunk::put(char* out, std::size_t first, std::size_t last, char
 #endif
   for (std::size_t k = first; k < last; ++k) {
     if (k > first) *out++ = separator;
-    const double value = values_[k];
-    switch (digits_.kinds[k]) {
-      case kNumber:
-        *out = '-';  // kept for a negative value only
-        out = put_digits(out + std::signbit(value), digits_.texts[k], digits_.exponents[k], significant_);
-        break;
-      case kZero:
-        *out++ = '0';
-        break;
-      case kEmpty:
-        break;
-      case kExact:
-        out = std::to_chars(out, out + kMaxNumberChars, value, std::chars_format::general, significant_).ptr;
-        break;
-    }
+    out = put_entry(out, digits_, values_, k, significant_);
   }
   return out;
 }
