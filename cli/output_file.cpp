@@ -101,7 +101,8 @@ void check_permission(const std::string& path, const std::string& shown) {
 }
 
 // The temporary of the output being written, for a signal that ends the run (Ctrl-C,
-// kill, a closed terminal): the handler removes it, so nothing half-written remains,
+// kill, a closed terminal, timeout's SIGALRM, ulimit -t's SIGXCPU, any other whose
+// default is to end the process): the handler removes it, so nothing half-written remains,
 // then ends the process as the signal would have. A fixed buffer: a handler may only
 // call what is async-signal-safe (unlink, raise), not read a std::string.
 char removed_on_signal[4096];
@@ -118,7 +119,21 @@ void remove_on_signal(const std::string& temporary) {
   has_removed_on_signal = 0;
   std::memcpy(removed_on_signal, temporary.c_str(), temporary.size() + 1);
   has_removed_on_signal = 1;
-  for (const int signal_number : {SIGINT, SIGTERM, SIGHUP, SIGQUIT}) {
+  // Every signal whose default action ends the process, except the ones a fault raises
+  // (SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT, SIGTRAP): those are left to the debugger
+  // and the sanitizers, whose reports a handler here would replace.
+  for (const int signal_number : {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGALRM, SIGUSR1, SIGUSR2, SIGPIPE, SIGXCPU,
+                                  SIGVTALRM, SIGPROF, SIGSYS,
+#ifdef SIGPOLL
+                                  SIGPOLL,
+#endif
+#ifdef SIGPWR
+                                  SIGPWR,
+#endif
+#ifdef SIGSTKFLT
+                                  SIGSTKFLT,
+#endif
+                                 }) {
     struct sigaction current {};
     // A signal the caller ignores (nohup, a background job's SIGINT) stays ignored.
     if (::sigaction(signal_number, nullptr, &current) == 0 && current.sa_handler == SIG_IGN) continue;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include <kinema/engine/numeric/sweep.hpp>
+#include <kinema/engine/report/output_scale.hpp>
 
 namespace kinema {
 
@@ -156,9 +157,15 @@ RunSummary stream_results(const Model& model, const InputValues& inputs, const A
   const ResultsPrinter* printer = settings.printer;
   if (!printer) {  // solve only
     SweepBlock block;
+    const OutputScale scale(model.system);
+    std::vector<double> values;
     while (!solver.done()) {
       solver.solve_next(block, block_rows);
       account(block);
+      // The rows' values as a printer takes them: one past the largest number in the
+      // output unit throws here, before anything of the run is printed.
+      values.resize(block.size() * result_column_count(model.system, block.table.is_circuit()));
+      result_rows(model.system, scale, block.table, block.first, block.last, values.data());
       if (settings.progress) settings.progress(solver.solved(), total);
     }
     return summary;

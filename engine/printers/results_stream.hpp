@@ -16,7 +16,9 @@
 namespace kinema {
 
 struct StreamSettings {
-  const ResultsPrinter* printer = nullptr;  ///< nullptr: solve only (to check a run before printing it).
+  /// nullptr: solve only, to check a run before printing it (its values taken out as a
+  /// printer takes them: one that overflows the output unit throws InputError).
+  const ResultsPrinter* printer = nullptr;
   int precision = 0;                        ///< As PrintJob::precision.
   /// Threads (this one and count - 1 more), each taking the next block from the solver,
   /// formatting it and writing it after the blocks before it. The solve itself stays

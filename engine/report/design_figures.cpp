@@ -103,6 +103,9 @@ std::optional<FourBarFigures> four_bar_figures(const Model& model) {
   const double sum = f.ground + f.crank + f.coupler + f.rocker, p_q = sum - s - l;
   const double tolerance = 1e-9 * l;
   const OutputScale scale(system);
+  // A side of length zero is no four-bar to classify (a crank of length zero drives
+  // nothing), and sums past the largest number in the output unit have no figures.
+  if (!(s > 0) || !std::isfinite(sum / scale.length)) return std::nullopt;
   const auto shown = [&](double x) { return format_significant(x / scale.length); };
   const char* relation = std::fabs(s + l - p_q) <= tolerance ? "=" : s + l < p_q ? "<" : ">";
   f.inequality = "s + l = " + shown(s) + " + " + shown(l) + " = " + shown(s + l) + " " + relation + " p + q = " +

@@ -635,6 +635,21 @@ TEST_CASE("magnitudes of huge components are finite - a value past the largest n
   }
 }
 
+// Session 30's review: a list of values checked before printing checked only that each
+// was solved; a value past the largest number in the output unit was found while
+// printing, after the title, the units and the design figures had gone to stdout.
+TEST_CASE("an --angle list whose values overflow the output unit prints nothing on stdout") {
+  const std::string path = kinema_test::write_temporary(
+      "past_largest_list.toml", replaced("P = \"a*exp(I*theta2)\"", "P = \"1e306*a*exp(I*theta3)\"") + kMillimetres);
+  for (const char* format : {"table", "csv", "json"}) {
+    CAPTURE(format);
+    const auto result = kinema_test::run_kinema({"eval", path, "--format", format, "--angle", "10", "--angle", "40"});
+    CHECK(result.exit_status == 2);
+    CHECK(result.out.empty());
+    CHECK(result.err.find("at theta2 = 10 deg is beyond the largest number") != std::string::npos);
+  }
+}
+
 // Audit 2026-11-24 (tests/fuzz/regressions/float_literal_inf_in_point.toml): 1e400 in a
 // point was read (CLN holds it), derive printed inf*a, codegen wrote inf (C++ that does
 // not compile) and eval said "divides by zero".

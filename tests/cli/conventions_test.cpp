@@ -253,7 +253,10 @@ TEST_CASE("stdout redirected to a file under a file-size limit exits 5") {
 // removes it: no half-written file remains, and the status is the signal's.
 TEST_CASE("-o: a run killed while writing leaves neither OUT nor its temporary") {
   const std::string directory = kinema_test::fresh_directory("cli_output_killed");
-  for (const std::string signal : {"TERM", "HUP"}) {
+  // TERM and HUP as a user or terminal sends them; ALRM (timeout -s ALRM), XCPU (ulimit
+  // -t), USR1 and PIPE: every signal that ends the process by default.
+  for (const auto& [signal, number] : {std::pair<std::string, int>{"TERM", 15}, {"HUP", 1}, {"ALRM", 14}, {"XCPU", 24},
+                                       {"USR1", 10}, {"PIPE", 13}}) {
     CAPTURE(signal);
     const std::string path = directory + "/out.csv";
     // 3.6 * 10^7 values: tens of seconds, killed once its temporary has appeared.
@@ -263,7 +266,7 @@ TEST_CASE("-o: a run killed while writing leaves neither OUT nor its temporary")
         "for i in $(seq 400); do ls -A " + shell_quote(directory) + " | grep -q '^.kinema-' && break; sleep 0.05; done; " +
         "sleep 0.2; kill -" + signal + " $pid; wait $pid; echo \"status $?\"");
     CAPTURE(result.err);
-    CHECK(result.out == "status " + std::to_string(128 + (signal == "TERM" ? 15 : 1)) + "\n");
+    CHECK(result.out == "status " + std::to_string(128 + number) + "\n");
     CHECK(files_in(directory).empty());
   }
 }

@@ -13,6 +13,7 @@
 #include <kinema/engine/printers/printer.hpp>
 #include <kinema/engine/report/user_text.hpp>
 
+#include <algorithm>
 #include <cctype>
 #include <set>
 #include <sstream>
@@ -51,7 +52,10 @@ std::string literal(double value) { return cpp_double_literal(value); }
 }  // namespace
 
 bool is_cpp_reserved(const std::string& name) {
-  // C++ keywords and alternative tokens, and the macros <cmath> may define.
+  // C++ keywords and alternative tokens; the namespaces the standard keeps; macros of the
+  // C library's headers that a program including the header may have included first
+  // (<cmath>, <cstdio>, <cerrno>, <cassert>, <csetjmp>, <cstdarg>, <csignal>), and the
+  // ones g++ predefines in its default GNU dialect (linux, unix).
   static const std::set<std::string> reserved = {
       "alignas", "alignof", "and", "and_eq", "asm", "auto", "bitand", "bitor", "bool", "break", "case", "catch",
       "char", "char8_t", "char16_t", "char32_t", "class", "compl", "concept", "const", "consteval", "constexpr",
@@ -62,16 +66,41 @@ bool is_cpp_reserved(const std::string& name) {
       "requires", "return", "short", "signed", "sizeof", "static", "static_assert", "static_cast", "struct",
       "switch", "template", "this", "thread_local", "throw", "true", "try", "typedef", "typeid", "typename",
       "union", "unsigned", "using", "virtual", "void", "volatile", "wchar_t", "while", "xor", "xor_eq",
-      "NULL", "NAN", "INFINITY", "HUGE_VAL", "HUGE_VALF", "HUGE_VALL", "M_PI", "M_E", "M_PI_2", "M_PI_4",
-      "M_1_PI", "M_2_PI", "M_SQRT2", "M_SQRT1_2", "M_LN2", "M_LN10", "M_LOG2E", "M_LOG10E", "M_2_SQRTPI",
-      "FP_NAN", "FP_INFINITE", "FP_ZERO", "FP_NORMAL", "FP_SUBNORMAL", "EOF", "errno", "assert"};
-  return reserved.count(name) > 0;
+      "std", "posix", "linux", "unix", "i386",
+      "NULL", "NAN", "INFINITY", "HUGE_VAL", "HUGE_VALF", "HUGE_VALL", "EOF", "BUFSIZ", "FILENAME_MAX",
+      "FOPEN_MAX", "TMP_MAX", "L_tmpnam", "stdin", "stdout", "stderr", "errno", "assert", "setjmp", "va_arg",
+      "va_copy", "va_end", "va_start", "offsetof", "MB_LEN_MAX", "RAND_MAX", "EXIT_SUCCESS", "EXIT_FAILURE",
+      "CLOCKS_PER_SEC", "TIME_UTC", "EDOM", "ERANGE", "EILSEQ", "MB_CUR_MAX", "WEOF", "CHAR_BIT"};
+  if (reserved.count(name) > 0) return true;
+  // Families of upper-case macros: <cmath>'s M_PI, FP_NAN, MATH_ERRNO; <cfloat>'s
+  // DBL_MAX; <climits>' INT_MAX, LONG_MIN; <cstdint>'s INT8_C, UINT64_MAX, SIZE_MAX;
+  // <csignal>'s SIGINT, SIG_DFL; <cstdio>'s SEEK_SET, _IOFBF; <clocale>'s LC_ALL.
+  const bool upper = std::all_of(name.begin(), name.end(), [](char c) {
+    return std::isupper(static_cast<unsigned char>(c)) || std::isdigit(static_cast<unsigned char>(c)) || c == '_';
+  });
+  if (!upper) return false;
+  for (const char* prefix : {"M_", "FP_", "FE_", "MATH_", "DBL_", "FLT_", "LDBL_", "DECIMAL_DIG", "INT", "UINT", "CHAR_",
+                             "SCHAR_", "UCHAR_", "SHRT_", "USHRT_", "LONG_", "ULONG_", "LLONG_", "ULLONG_", "SIZE_",
+                             "PTRDIFF_", "WCHAR_", "WINT_", "SIG_ATOMIC_", "SIG", "SEEK_", "LC_"})
+    if (name.rfind(prefix, 0) == 0) return true;
+  return false;
 }
 
 std::string cpp_identifier(const std::string& text) {
+  // Each run of other characters (a UTF-8 letter's bytes, "-", "__") becomes one "_":
+  // a "__" anywhere, or "_" first, is the implementation's ("été" -> "mechanism_t_").
   std::string id;
-  for (char c : text) id += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
-  if (id.empty() || std::isdigit(static_cast<unsigned char>(id[0]))) id = "mechanism_" + id;
+  for (char c : text) {
+    if (std::isalnum(static_cast<unsigned char>(c)))
+      id += c;
+    else if (id.empty() || id.back() != '_')
+      id += '_';
+  }
+  if (id.empty() || id[0] == '_') {
+    id = "mechanism" + id;
+  } else if (std::isdigit(static_cast<unsigned char>(id[0]))) {
+    id = "mechanism_" + id;
+  }
   if (is_cpp_reserved(id)) id += "_";
   return id;
 }

@@ -16,12 +16,14 @@ namespace kinema {
 /// or unassembled.
 void write_cpp_header(std::ostream& out, const Model& model, const std::string& name);
 
-/// True for a C++ keyword or alternative token (int, or, not, ...) and for the
-/// macros <cmath> may define (M_PI, NAN, ...): names generated code cannot use.
+/// True for a C++ keyword or alternative token (int, or, not, ...), the namespaces std
+/// and posix, and the macros of the C library's headers and of g++'s GNU dialect (M_PI,
+/// NAN, DBL_MAX, stdin, linux, ...): names generated code cannot use.
 bool is_cpp_reserved(const std::string& name);
 
 /// A C++ identifier made from a name or a file stem ("four-bar" -> "four_bar",
-/// "int" -> "int_"), safe in generated code.
+/// "int" -> "int_", "été" -> "mechanism_t_"; never a "__" or a leading "_"), safe in
+/// generated code.
 std::string cpp_identifier(const std::string& text);
 
 }  // namespace kinema

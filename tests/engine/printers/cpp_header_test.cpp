@@ -14,6 +14,7 @@
 
 #include <kinema/engine/model.hpp>
 #include <kinema/engine/numeric/solver.hpp>
+#include <kinema/engine/printers/code/cpp_header.hpp>
 #include "test_support.hpp"
 
 using kinema_test::read_file;
@@ -368,6 +369,49 @@ TEST_CASE("kinema codegen: keyword and macro names are renamed, the header compi
   const auto refused = kinema_test::run_kinema({"codegen", mechanism, "-o", header, "--namespace", "int"});
   CHECK(refused.exit_status == 2);
   CHECK(refused.err.find("int_") != std::string::npos);
+}
+
+// Session 30's hostile-input review: g++'s GNU dialect (its default) predefines linux
+// and unix, and a program may include <cfloat> and <climits> first (DBL_MAX,
+// CHAR_BIT); a header named std.hpp or été.hpp gave namespace std or __t__ (reserved).
+TEST_CASE("kinema codegen: macro names of g++ and the C headers, and reserved namespaces, are renamed") {
+  CHECK(kinema::cpp_identifier("std") == "std_");
+  CHECK(kinema::cpp_identifier("\xc3\xa9t\xc3\xa9") == "mechanism_t_");
+  CHECK(kinema::cpp_identifier("a__b") == "a_b");
+  CHECK(kinema::cpp_identifier("_x") == "mechanism_x");
+  CHECK(kinema::cpp_identifier("SIGMA") == "SIGMA_");  // SIG...: <csignal>'s family
+  CHECK(kinema::cpp_identifier("Sigma") == "Sigma");
+  CHECK(kinema::cpp_identifier("four-bar") == "four_bar");
+
+  const auto directory = std::filesystem::temp_directory_path() / "kinema_tests" / "codegen_macros";
+  std::filesystem::create_directories(directory);
+  std::string text = kinema_test::four_bar_text();
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"a = ", "linux = "}, {"b = ", "DBL_MAX = "},
+                                 {"c = ", "unix = "}, {"d = ", "CHAR_BIT = "}}) {
+    text = kinema_test::replaced(from, to, text);
+  }
+  text = kinema_test::replaced("\"a*exp(I*theta2) + b*exp(I*theta3) - c*exp(I*theta4) - d\"",
+                               "\"linux*exp(I*theta2) + DBL_MAX*exp(I*theta3) - unix*exp(I*theta4) - CHAR_BIT\"", text);
+  text = kinema_test::replaced("P = \"a*exp(I*theta2)\"", "P = \"linux*exp(I*theta2)\"", text);
+  const std::string mechanism = kinema_test::write_temporary("macros.toml", text);
+  const std::string header = (directory / "linux.hpp").string();
+  const auto generated = kinema_test::run_kinema({"codegen", mechanism, "-o", header});
+  INFO(generated.err);
+  REQUIRE(generated.exit_status == 0);
+  const std::string code = read_file(header);
+  CHECK(code.find("namespace linux_ {") != std::string::npos);
+  CHECK(code.find("double DBL_MAX_ = ") != std::string::npos);
+  const std::string source = (directory / "driver.cpp").string();
+  std::ofstream(source) << "#include <cfloat>\n#include <climits>\n#include <cstdio>\n#include \"" << header << "\"\n"
+                        << "int main() {\n  linux_::Parameters p;\n  double q[linux_::unknown_count];\n"
+                        << "  linux_::initial_guess(q);\n  linux_::Motion m;\n"
+                        << "  return linux_::evaluate(p, 0.7, 10, 0, q, m) == linux_::Status::ok ? 0 : 1;\n}\n";
+  const std::string program = (directory / "driver").string();
+  const int compiled = std::system((std::string(KINEMA_CXX) + " -std=gnu++17 -Wall -Wextra -Werror -o '" + program +
+                                    "' '" + source + "' 2> '" + program + ".log'").c_str());
+  INFO(read_file(program + ".log"));
+  CHECK(compiled == 0);
+  CHECK(std::system(("'" + program + "'").c_str()) == 0);
 }
 
 // Audit 2026-11-24 (tests/fuzz/regressions/codegen_bidi_title.toml): U+202E in a title went

@@ -34,6 +34,11 @@ TEST_CASE("design figures: Grashof class of a four-bar from its lengths") {
   CHECK(four_bar_with("100", "40", "80", "120")->grashof == "double-rocker");  // s = coupler
   CHECK(four_bar_with("40", "100", "40", "100")->grashof == "change point");   // s + l = p + q
   CHECK(four_bar_with("50", "70", "45", "60")->grashof == "non-Grashof triple rocker");
+  // Session 30's review: a crank of length zero is no crank-rocker (it drives nothing),
+  // and lengths whose sum passes the largest number in mm gave "s + l = inf".
+  CHECK_FALSE(four_bar_with("0", "120", "80", "100").has_value());
+  CHECK_FALSE(four_bar_with("1e308", "1e308", "1e308", "1e308").has_value());
+  CHECK(four_bar_with("1e300", "3e300", "2e300", "2.5e300")->grashof == "crank-rocker");
   const auto crank_rocker = four_bar_with("40", "120", "80", "100");
   CHECK(crank_rocker->inequality == "s + l = 40 + 120 = 160 < p + q = 180 (mm)");
   // The same from files written as joints and links.
