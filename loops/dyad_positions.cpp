@@ -204,15 +204,19 @@ void unknowns_from_poses(const LinkageFrames& frames, const std::vector<BodyPose
   }
 }
 
-std::vector<int> signs_nearest(const LinkageFrames& frames, double input, const double* q, double length_scale) {
+std::vector<int> signs_nearest(const LinkageFrames& frames, double input, const double* q, double length_scale,
+                               const std::vector<int>* current) {
   std::vector<int> signs;
   std::vector<BodyPose> poses;
   place_driver(frames, input, poses);
+  // Nearer by more than rounding: at a toggle the two positions differ in the last bits.
+  const double tie = current ? 1e-9 : 0.0;
   for (const LinkageFrames::Dyad& d : frames.dyads) {
     double best = INFINITY;
-    int chosen = d.sign;
+    const int first = current ? (*current)[signs.size()] : d.sign;
+    int chosen = first;
     std::vector<BodyPose> kept;
-    for (int sign : {d.sign, -d.sign}) {
+    for (int sign : {first, -first}) {
       std::vector<BodyPose> trial = poses;
       if (!place_dyad(frames, trial, d, sign)) continue;
       // The unknowns this dyad placed: its links' angles and the coordinates of sliders
@@ -231,7 +235,7 @@ std::vector<int> signs_nearest(const LinkageFrames& frames, double input, const 
             std::real((world(frames, trial, s.block, s.joint) - through) * std::conj(turn(g.angle + s.direction)));
         miss += std::fabs(travel - q[s.unknown]) / length_scale;
       }
-      if (miss < best) {
+      if (miss + tie < best) {
         best = miss;
         chosen = sign;
         kept = trial;

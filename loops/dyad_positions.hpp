@@ -38,7 +38,10 @@ void unknowns_from_poses(const LinkageFrames& frames, const std::vector<BodyPose
 /// The signs of the dyads whose positions at `input` are nearest the unknowns q (link
 /// angles to whole turns, slider coordinates relative to `length_scale`): the signs of a
 /// solved position, or of a predicted one. Dyads that cannot close keep frames' signs.
-std::vector<int> signs_nearest(const LinkageFrames& frames, double input, const double* q, double length_scale);
+/// With `current` (the signs a path is on), a dyad whose two positions are equally near
+/// (at a toggle they are one) keeps its current sign rather than the sketch's.
+std::vector<int> signs_nearest(const LinkageFrames& frames, double input, const double* q, double length_scale,
+                               const std::vector<int>* current = nullptr);
 
 /// The sign of each dyad in a configuration (the sketch's): the one of the two
 /// solutions that lies nearer its links' poses.

@@ -1,5 +1,6 @@
 #include <kinema/engine/numeric/circuit.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -38,12 +39,16 @@ struct CircuitRow {
 
 // Where the rows go: along the grid in the input's direction until a dyad cannot close;
 // there the toggle, found by bisection, then back on the grid with that dyad's sign
-// changed. Elsewhere each row's signs are those nearest the position extrapolated along
-// the path (so a change point, where two assemblies cross, is passed as in a sweep).
+// changed. Between rows the mechanism is followed in substeps of at most
+// Kinematics::max_continuation_step (2 deg, or 1 % of the length scale), whatever the
+// grid's step: a coarse step would jump over the range where a dyad cannot close, and
+// would take a far position's signs from a straight-line guess. At each substep the signs
+// are those nearest the position extrapolated along the path (so a change point, where
+// two assemblies cross, is passed as in a sweep).
 Circuit::Stop walk(const Kinematics& kinematics, const CircuitSettings& settings, std::vector<CircuitRow>& rows,
                    std::uint32_t& stuck_dyad) {
   const LinkageFrames& frames = *kinematics.closed_form();
-  const double scale = kinematics.length_scale();
+  const double scale = kinematics.length_scale(), substep = kinematics.max_continuation_step();
   const bool angle_input = frames.driver_slider < 0;
   std::vector<BodyPose> poses;
   std::size_t failing = 0;
@@ -64,42 +69,66 @@ Circuit::Stop walk(const Kinematics& kinematics, const CircuitSettings& settings
   Eigen::VectorXd q = kinematics.guess(), previous_q;
   std::uint32_t unused = 0;
   closed_form_position(frames, start, signs, q, unused);
-  double previous_x = start;
   rows.push_back({start, direction, signs});
+  // The path so far: the last position reached (a row or a substep) and the one before.
+  double here = start, previous_x = start;
+  bool have_previous = false, at_toggle = false;
+  // Substeps are bounded too: a slider's range can be long next to its substep.
+  std::size_t substeps_left = settings.max_rows * 64;
   long grid = 0;  // the grid index the next row steps from
-  bool just_turned = false;
   for (;;) {
     if (rows.size() >= settings.max_rows) return Circuit::Stop::too_many_rows;
     const long next = grid + direction;
-    double x = start + static_cast<double>(next) * step;
+    double target = start + static_cast<double>(next) * step;
     bool last = false;
-    if (angle_input && std::fabs(x - start) >= 2 * M_PI) {  // a whole turn without a toggle
-      x = start + direction * 2 * M_PI;
+    if (angle_input && std::fabs(target - start) >= 2 * M_PI) {  // a whole turn without a toggle
+      target = start + direction * 2 * M_PI;
       last = true;
     }
-    std::vector<int> trial = signs;
-    if (!just_turned && rows.size() >= 2) {
-      const double x_last = rows.back().input, span = std::fabs(x_last - previous_x);
-      if (span > 0) {
-        Eigen::VectorXd predicted = q + (q - previous_q) * (std::fabs(x - x_last) / span);
-        trial = signs_nearest(frames, x, predicted.data(), scale);
-        if (!closes(x, trial)) trial = signs;
+    // To the target in equal substeps, each on the signs continuity gives.
+    const double span = std::fabs(target - here);
+    const double count = std::ceil(span / substep);
+    if (!(count <= static_cast<double>(substeps_left))) return Circuit::Stop::too_many_rows;
+    const long substeps = std::max(1L, static_cast<long>(count));
+    substeps_left -= static_cast<std::size_t>(substeps);
+    const double from = here;
+    bool reached = true;
+    for (long k = 1; k <= substeps; ++k) {
+      const double x = k == substeps ? target : from + (target - from) * (static_cast<double>(k) / substeps);
+      std::vector<int> trial = signs;
+      if (have_previous && !at_toggle) {
+        // A straight line through two positions a hair apart (a row next to a toggle)
+        // says nothing a whole substep on: the signs stay as they are then.
+        const double covered = std::fabs(here - previous_x);
+        if (covered > 0 && 4 * covered >= std::fabs(x - here)) {
+          const Eigen::VectorXd predicted = q + (q - previous_q) * (std::fabs(x - here) / covered);
+          trial = signs_nearest(frames, x, predicted.data(), scale, &signs);
+          if (!closes(x, trial)) trial = signs;
+        }
       }
-    }
-    if (closes(x, trial)) {
+      if (!closes(x, trial)) {
+        reached = false;
+        break;
+      }
       signs = trial;
       previous_q = q;
-      previous_x = rows.back().input;
+      previous_x = here;
+      have_previous = true;
       closed_form_position(frames, x, signs, q, unused);
-      rows.push_back({x, direction, signs});
+      here = x;
+      at_toggle = false;
+    }
+    if (reached) {
+      rows.push_back({target, direction, signs});
       grid = next;
-      just_turned = false;
       if (last || (rows.size() > 2 && next == 0 && direction == start_direction && signs == start_signs))
         return Circuit::Stop::closed;
       continue;
     }
-    // A toggle between the last row and x: the last value where the dyads still close.
-    double a = rows.back().input, b = x;
+    // A toggle between the position reached and the next substep: the last value where
+    // the dyads still close.
+    double a = here, b = here + (target - from) / static_cast<double>(substeps);
+    if (direction * (b - target) > 0) b = target;
     std::size_t toggle_dyad = failing;
     for (int i = 0; i < 200 && a != b; ++i) {
       const double middle = 0.5 * (a + b);
@@ -110,20 +139,24 @@ Circuit::Stop walk(const Kinematics& kinematics, const CircuitSettings& settings
         toggle_dyad = failing;
       }
     }
-    if (rows.back().toggle && std::fabs(a - rows.back().input) <= 1e-12 * (std::fabs(a) + step)) {
+    if (at_toggle && std::fabs(a - here) <= 1e-12 * (std::fabs(a) + step)) {
       stuck_dyad = static_cast<std::uint32_t>(toggle_dyad);
       return Circuit::Stop::locked;
     }
     previous_q = q;
-    previous_x = rows.back().input;
+    previous_x = here;
     closed_form_position(frames, a, signs, q, unused);
+    here = a;
     rows.push_back({a, direction, signs, true, static_cast<std::uint32_t>(toggle_dyad)});
     signs[toggle_dyad] = -signs[toggle_dyad];
     direction = -direction;
     rows.back().direction = direction;  // the toggle row moves on the way out of it
-    just_turned = true;
+    at_toggle = true;
     // The grid value next to the toggle in the new direction.
     const double r = (a - start) / step;
+    // A start at a toggle: the circuit closes there, on the way out as it began.
+    if (rows.size() > 2 && std::fabs(r) <= 1e-9 && direction == start_direction && signs == start_signs)
+      return Circuit::Stop::closed;
     grid = direction > 0 ? static_cast<long>(std::floor(r + 1e-9)) : static_cast<long>(std::ceil(r - 1e-9));
   }
 }

@@ -177,3 +177,72 @@ TEST_CASE("circuit: a start that cannot close, and a step too small for the row 
   CHECK(circuit.stop == Circuit::Stop::too_many_rows);
   CHECK(circuit.table.empty());
 }
+
+namespace {
+
+// Row r of `coarse` is a row of `fine` (the same input, direction, assembly and position):
+// a coarse grid is a subset of a fine one's rows, toggles included.
+void check_rows_of(const MotionTable& coarse, const MotionTable& fine, std::size_t dyads) {
+  for (std::size_t r = 0; r < coarse.size(); ++r) {
+    CAPTURE(r);
+    CAPTURE(coarse.input(r) * 180 / M_PI);
+    bool found = false;
+    for (std::size_t f = 0; f < fine.size() && !found; ++f) {
+      if (std::fabs(fine.input(f) - coarse.input(r)) > 1e-9 || fine.input_rate(f) != coarse.input_rate(r) ||
+          fine.status(f) != coarse.status(r) || row_signs(fine, f, dyads) != row_signs(coarse, r, dyads))
+        continue;
+      found = true;
+      for (Eigen::Index i = 0; i < coarse.q(r).size(); ++i)
+        if (std::fabs(std::remainder(fine.q(f)[i] - coarse.q(r)[i], 2 * M_PI)) > 1e-9) found = false;  // angles to whole turns
+    }
+    CHECK(found);
+  }
+}
+
+}  // namespace
+
+// Session 30's hostile-input review: a step of 60 deg or more jumped over the range
+// where the triple rocker cannot close (a "full turn" of two rows); 40 or 13 deg took a
+// far position's assembly from a straight-line guess (wrong numbers, status ok); 30 deg
+// never closed. Between rows the walk now takes substeps of at most 2 deg.
+TEST_CASE("circuit: a coarse step gives rows of the one-degree circuit, toggles included") {
+  const kinema::Model model = kinema::load_model(kinema_test::sample("triple_rocker_circuit.toml"));
+  const std::size_t dyads = model.kinematics.closed_form()->dyads.size();
+  const CircuitSettings fine_settings = one_degree(model);
+  const Circuit fine = kinema::solve_circuit(model.kinematics, fine_settings);
+  REQUIRE(fine.stop == Circuit::Stop::closed);
+  for (const double degrees : {7.0, 13.0, 30.0, 40.0, 60.0, 120.0, 400.0, 1e9}) {
+    CAPTURE(degrees);
+    CircuitSettings settings = fine_settings;
+    settings.step = degrees * kDegree;
+    const Circuit coarse = kinema::solve_circuit(model.kinematics, settings);
+    REQUIRE(coarse.stop == Circuit::Stop::closed);
+    CHECK(coarse.toggles == 2);
+    check_rows_of(coarse.table, fine.table, dyads);
+    // Start, the grid values of the swing each way, the two toggles, the start again.
+    CHECK(coarse.table.input(coarse.table.size() - 1) == coarse.table.input(0));
+  }
+}
+
+// A start next to a toggle, or exactly at one (the toggle's value as printed), closes
+// after the two toggles: the row beside the start took its assembly from a line through
+// two positions a hair apart, and a start at the toggle was never passed again.
+TEST_CASE("circuit: a start beside or at a toggle closes after one swing each way") {
+  const kinema::Model model = kinema::load_model(kinema_test::sample("triple_rocker_circuit.toml"));
+  const double toggle = std::acos(0.9125);
+  for (const double start : {2 * M_PI - toggle - 1e-4 * kDegree, 2 * M_PI - toggle - 3e-3 * kDegree,
+                             toggle + 1e-3 * kDegree, 2 * M_PI - toggle, toggle}) {
+    for (const double degrees : {1.0, 30.0}) {
+      CAPTURE(start * 180 / M_PI);
+      CAPTURE(degrees);
+      CircuitSettings settings = one_degree(model);
+      settings.start = start;
+      settings.step = degrees * kDegree;
+      const Circuit circuit = kinema::solve_circuit(model.kinematics, settings);
+      REQUIRE(circuit.stop == Circuit::Stop::closed);
+      CHECK(circuit.toggles == 2);
+      // Every degree (or 30) of the swing once each way, not twice.
+      CHECK(circuit.table.size() <= 2 * static_cast<std::size_t>((2 * M_PI - 2 * toggle) / settings.step) + 6);
+    }
+  }
+}
