@@ -21,6 +21,7 @@
 #include <kinema/engine/report/number_format.hpp>
 #include <kinema/engine/report/plot_range.hpp>
 #include <kinema/engine/report/structure.hpp>
+#include <kinema/engine/symbolic/dyad_method.hpp>
 #include <kinema/loops/linkage_loops.hpp>
 #include <kinema/loops/mechanism_file.hpp>
 
@@ -62,7 +63,7 @@ void check_input_range(const ConstraintSystem& m, const InputValues& values) {
   const auto check = [&](double si) {
     const double degrees = si / kRadiansPerDegree;
     if (std::fabs(degrees) <= kMaxAngleDegrees * (1 + 1e-12)) return;  // 1e9 deg read back through radians
-    throw InputError(m.source_file + ": " + m.input.name + " = " + format_significant(degrees) +
+    throw InputError(m.source_file + ": " + m.input.name + " = " + format_significant(degrees, 12) +
                      " deg: an angle past 1e9 deg (2.8 million turns) loses digits in its sine and cosine; give it "
                      "within a few turns");
   };
@@ -284,6 +285,7 @@ int run(int argc, char** argv) {
   if (derive_cmd->parsed()) {
     PrintJob job{model};
     job.method = *find_method(method);
+    check_method_applies(model.system, job.method);
     job.basis = basis;
     printer(PrintKind::derivation, derive_format).print(out, job);
     write_output(out.str(), output_path);
@@ -322,6 +324,7 @@ int run(int argc, char** argv) {
     PrintJob job{model, &at_values, &sweep_table};
     job.fragment = fragment;
     job.method = *find_method(method);
+    check_method_applies(model.system, job.method);
     job.basis = basis;
     printer(PrintKind::document, "latex").print(out, job);
     write_output(out.str(), output_path);

@@ -268,6 +268,19 @@ void check_functions(const ex& e, const std::string& formula, const std::string&
 // tokens are named as its lexer sees them ("EOF", a number's placeholder).
 std::string parse_failure(std::string why, const std::string& placeholder) {
   why = why.substr(0, why.find('\n'));
+  // GiNaC evaluates numbers while it reads, and says so in its own terms
+  // ("power::eval(): division by zero", "log_eval(): log(0)", "tan_eval(): simple pole").
+  if (why.find("division by zero") != std::string::npos) {
+    return "it divides by zero whatever the values (a denominator such as (a-a) or 0); write it without that division";
+  }
+  if (const auto eval = why.find("_eval(): "); eval != std::string::npos && why.find("::") == std::string::npos) {
+    const std::string function = why.substr(0, eval);
+    if (why.find("pole") != std::string::npos) {
+      return function + "(...) is infinite at the value written (a pole, as tan(Pi/2)); change its argument";
+    }
+    return function + "(...) is undefined at the value written (" + why.substr(eval + 9) +
+           "); change its argument";
+  }
   if (why.find("power should have exactly 2 operands") != std::string::npos) {
     return "a^b^c can be read two ways; write (a^b)^c or a^(b^c)";
   }

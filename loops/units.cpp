@@ -72,12 +72,42 @@ const char* understood_units() {
          "(e.g. rad/s, in/s, m/s^2)";
 }
 
+namespace {
+
+// The length of the decimal number that `text` starts with ("40", "-1.5e3", ".5"), 0 if
+// none: strtod alone would also read hexadecimal ("0x10"), "inf" and "nan", which
+// --sweep's numbers and a reader of the file do not take for numbers.
+std::size_t decimal_number_length(const char* text) {
+  const auto digit = [](const char* c) { return std::isdigit(static_cast<unsigned char>(*c)) != 0; };
+  const char* p = text;
+  if (*p == '+' || *p == '-') ++p;
+  const char* whole = p;
+  while (digit(p)) ++p;
+  bool any = p != whole;
+  if (*p == '.') {
+    const char* fraction = ++p;
+    while (digit(p)) ++p;
+    any = any || p != fraction;
+  }
+  if (!any) return 0;
+  if (*p == 'e' || *p == 'E') {
+    const char* exponent = p + 1;
+    if (*exponent == '+' || *exponent == '-') ++exponent;
+    if (digit(exponent)) {
+      while (digit(exponent)) ++exponent;
+      p = exponent;
+    }
+  }
+  return static_cast<std::size_t>(p - text);
+}
+
+}  // namespace
+
 bool looks_like_quantity(const std::string& text) {
   const std::string trimmed = trim(text);
   if (trimmed.empty()) return false;
   const char* begin = trimmed.c_str();
-  char* end = nullptr;
-  std::strtod(begin, &end);
+  const char* end = begin + decimal_number_length(begin);
   if (end == begin) return false;
   // "2*a" or "0.5 + a" are formulas, "2 in" is a quantity.
   std::string rest = trim(std::string(end));
@@ -88,8 +118,11 @@ bool looks_like_quantity(const std::string& text) {
 Quantity parse_quantity(const std::string& text) {
   const std::string trimmed = trim(text);
   const char* begin = trimmed.c_str();
-  char* end = nullptr;
-  const double number = std::strtod(begin, &end);
+  const char* end = begin + decimal_number_length(begin);
+  const double number = std::strtod(std::string(begin, end).c_str(), nullptr);
+  if ((*end == 'x' || *end == 'X') && number == 0 && end - begin <= 2) {
+    throw UnitError("\"" + text + "\" is written in hexadecimal; write the number in decimal digits (16, not 0x10)");
+  }
   if (end == begin) {
     throw UnitError("\"" + text + "\" is not a number with a unit (write e.g. \"150 mm\")");
   }

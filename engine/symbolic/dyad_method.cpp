@@ -588,13 +588,27 @@ class Writer {
 
 }  // namespace
 
+namespace {
+
+bool solved_dyad_by_dyad(const ConstraintSystem& system) { return system.linkage && system.linkage->frames.closed_form; }
+
+[[noreturn]] void refuse_method(const ConstraintSystem& system, DerivationMethod method) {
+  const char* what = system.linkage          ? " (this one has links solved together by Newton)"
+                     : !system.frames.empty() ? " (this file is a spatial chain of frames)"
+                                              : " (this file is vector loops)";
+  throw InputError(system.source_file + ": --method " + method_name(method) +
+                   " works dyad by dyad: it needs a mechanism written as joints and links whose links all form "
+                   "dyads" + what + "; --method loops works for every file");
+}
+
+}  // namespace
+
+void check_method_applies(const ConstraintSystem& system, DerivationMethod method) {
+  if (method != DerivationMethod::loops && !solved_dyad_by_dyad(system)) refuse_method(system, method);
+}
+
 DyadDerivation derive_by_dyads(const ConstraintSystem& system, DerivationMethod method) {
-  if (!system.linkage || !system.linkage->frames.closed_form) {
-    throw InputError(system.source_file + ": --method " + method_name(method) +
-                     " works dyad by dyad: it needs a mechanism written as joints and links whose links all form "
-                     "dyads" + (system.linkage ? " (this one has links solved together by Newton)" : " (this file is vector loops)") +
-                     "; --method loops works for every file");
-  }
+  if (!solved_dyad_by_dyad(system)) refuse_method(system, method);
   return Writer(system, method).run();
 }
 

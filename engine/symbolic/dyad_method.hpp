@@ -61,4 +61,8 @@ struct DyadDerivation {
 /// InputError for any other system (vector loops, or links that form no dyad).
 DyadDerivation derive_by_dyads(const ConstraintSystem& system, DerivationMethod method);
 
+/// InputError (what the file is, and that --method loops works for every file) unless
+/// `method` is loops or the system is joints and links solved dyad by dyad.
+void check_method_applies(const ConstraintSystem& system, DerivationMethod method);
+
 }  // namespace kinema

@@ -49,6 +49,25 @@ TEST_CASE("unknown name in a formula names the loop, line and name") {
   check_bad("unknown_name", replaced("- d\"", "- dd\""), {2, {"unknown_name.toml:15", "loop \"ABCD\"", "unknown name \"dd\""}});
 }
 
+// Session 30's review: GiNaC evaluates numbers while it reads a formula, and its own
+// words reached the user ("power::eval(): division by zero", "tan_eval(): simple pole").
+TEST_CASE("a formula GiNaC cannot evaluate as written says what is wrong in the user's terms") {
+  check_bad("divides_by_zero", replaced("- d\"", "- d/(theta3-theta3)\""),
+            {2, {"divides_by_zero.toml:15", "loop \"ABCD\"", "divides by zero whatever the values"}});
+  check_bad("log_zero", replaced("d = \"100 mm\"", "d = \"100 mm\"\nk = \"log(0)\""),
+            {2, {"log_zero.toml:", "parameter \"k\"", "log(...) is undefined at the value written", "change its argument"}});
+  check_bad("pole", replaced("d = \"100 mm\"", "d = \"100 mm\"\nk = \"tan(Pi/2)\""),
+            {2, {"pole.toml:", "parameter \"k\"", "tan(...) is infinite at the value written"}});
+  for (const char* name : {"divides_by_zero", "log_zero", "pole"}) {
+    CAPTURE(name);
+    const auto path = std::filesystem::temp_directory_path() / "kinema_tests" / (std::string(name) + ".toml");  // check_bad's
+    const auto result = kinema_test::run_kinema({"eval", path.string()});
+    CHECK(result.exit_status == 2);
+    CHECK(result.err.find("eval()") == std::string::npos);
+    CHECK(result.err.find("_eval") == std::string::npos);
+  }
+}
+
 TEST_CASE("duplicate name between a parameter and an unknown") {
   check_bad("duplicate", replaced("theta3 = \"20 deg\"", "d = \"20 deg\""),
             {2, {"duplicate.toml:12", "duplicate name \"d\"", "duplicate.toml:6"}});
@@ -688,6 +707,10 @@ TEST_CASE("an angle past 1e9 deg is refused - an input where the equations give 
   REQUIRE(at_limit.exit_status == 0);
   const auto results = [](const std::string& table) { return table.substr(table.find("  coordinate")); };
   CHECK(results(at_limit.out) == results(at_280.out));
+  // Just past it, the message shows the value as given (it said "1e+09").
+  const auto past = kinema_test::run_kinema({"eval", four_bar, "--angle", "1.0000001e9"});
+  CHECK(past.exit_status == 2);
+  CHECK(past.err.find("theta2 = 1000000100 deg") != std::string::npos);
 
   const auto chain = kinema_test::run_kinema({"eval", kinema_test::sample("robot_arm_seed000.toml"), "--at", "1e300"});
   CHECK(chain.exit_status == 3);

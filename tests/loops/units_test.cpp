@@ -32,6 +32,21 @@ TEST_CASE("unknown units and non-finite numbers are refused with the list of uni
   CHECK_THROWS_AS(parse_quantity("mm"), UnitError);
 }
 
+// Session 30's review: strtod read --angle 0x10 as 16 deg (and "inf", "nan" as numbers)
+// while --sweep 0x0:0x10:0x8 was refused: a number is decimal digits everywhere.
+TEST_CASE("a quantity's number is decimal: hexadecimal, inf and nan are refused") {
+  CHECK(parse_quantity(".5 deg").si_value == doctest::Approx(0.5 * M_PI / 180));
+  CHECK(parse_quantity("-.5e1 deg").si_value == doctest::Approx(-5 * M_PI / 180));
+  CHECK(parse_quantity("5.").si_value == 5);
+  CHECK(parse_quantity("40deg").si_value == doctest::Approx(40 * M_PI / 180));
+  CHECK_THROWS_WITH_AS(parse_quantity("0x10"), doctest::Contains("hexadecimal"), UnitError);
+  CHECK_THROWS_WITH_AS(parse_quantity("0x1p4 deg"), doctest::Contains("hexadecimal"), UnitError);
+  CHECK_THROWS_WITH_AS(parse_quantity("inf"), doctest::Contains("not a number with a unit"), UnitError);
+  CHECK_THROWS_WITH_AS(parse_quantity("nan mm"), doctest::Contains("not a number with a unit"), UnitError);
+  CHECK_THROWS_WITH_AS(parse_quantity("1e999 mm"), doctest::Contains("not a finite number"), UnitError);
+  CHECK_THROWS_WITH_AS(parse_quantity("1e mm"), doctest::Contains("unit \"e mm\""), UnitError);
+}
+
 TEST_CASE("sweeps include the stop value and refuse steps that never reach it") {
   const auto values = parse_sweep("0:360:90", 1.0).to_vector();
   REQUIRE(values.size() == 5);

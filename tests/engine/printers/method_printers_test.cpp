@@ -121,6 +121,19 @@ TEST_CASE("derive --method on vector loops, or an unknown method, is refused") {
   CHECK(loops.exit_status == 2);
   CHECK(loops.err.find("four_bar.toml: --method relative-velocity works dyad by dyad") != std::string::npos);
   CHECK(loops.out.empty());
+  // Session 30's review: a spatial chain was called "vector loops", and a driven chain
+  // (seed 000's arm) printed its own derivation with exit 0, the method ignored.
+  for (const char* chain : {"rssr_spatial_four_bar.toml", "robot_arm_seed000.toml"}) {
+    for (const char* command : {"derive", "latex"}) {
+      CAPTURE(chain);
+      CAPTURE(command);
+      const auto refused = kinema_test::run_kinema({command, kinema_test::sample(chain), "--method", "joint-coordinates"});
+      CHECK(refused.exit_status == 2);
+      CHECK(refused.out.empty());
+      CHECK(refused.err.find("works dyad by dyad") != std::string::npos);
+      CHECK(refused.err.find("(this file is a spatial chain of frames)") != std::string::npos);
+    }
+  }
   const auto unknown = kinema_test::run_kinema({"derive", kinema_test::sample("problem_4_4_joints.toml"), "--method", "graphs"});
   CHECK(unknown.exit_status == 2);
   CHECK(unknown.err.find("--method") != std::string::npos);
