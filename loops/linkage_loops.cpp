@@ -246,7 +246,13 @@ class LinkageWriter {
       }
       if (joint.kind == Joint::Kind::slider) {
         // Its guide may list it too (it slides along that link's line); the block is the other.
+        const std::size_t listed = on.size();
         on.erase(std::remove_if(on.begin(), on.end(), [&](std::size_t b) { return bodies_[b].name == joint.guide; }), on.end());
+        if (on.empty() && listed > 0) {
+          fail(joint.where, "slider \"" + joint.name + "\" slides on \"" + joint.guide +
+                                "\", the only link that lists it: its block cannot be its guide; write slider = "
+                                "\"ground\" for a fixed guide, or the name of the link that carries the guide");
+        }
         if (on.size() != 1) {
           fail(joint.where, on.empty() ? "slider \"" + joint.name + "\" is on no link: list it in the joints of its block"
                                        : "slider \"" + joint.name + "\" is listed by links " + body_list(on) +
@@ -413,7 +419,16 @@ class LinkageWriter {
 
   double slider_direction(std::size_t j) {
     const Joint& joint = linkage_.joints[j];
-    if (!joint.angle.empty()) return value_of(joint.angle, Dimension::angle, joint.where, "slider " + joint.name + " angle");
+    if (!joint.angle.empty()) {
+      const double angle = value_of(joint.angle, Dimension::angle, joint.where, "slider " + joint.name + " angle");
+      // Past 1e9 deg a double's sine and cosine are rounding noise (as for the input).
+      if (!(std::fabs(angle) <= 1e9 * M_PI / 180)) {
+        fail(joint.where, "slider \"" + joint.name + "\": angle = \"" + joint.angle +
+                              "\" is past 1e9 deg, where its direction is lost to rounding; give the direction of its "
+                              "line within a turn (e.g. \"90 deg\")");
+      }
+      return angle;
+    }
     const Body* guide = listing_guide(j);
     if (guide == nullptr || guide->joints[0] == j || std::abs(at_[j] - at_[guide->joints[0]]) < 1e-12) {
       fail(joint.where, "slider \"" + joint.name + "\" needs angle = \"...\", the direction of its line in the sketch "

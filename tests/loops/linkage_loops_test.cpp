@@ -328,6 +328,14 @@ k = "asin(a/c)")x"));
           std::string::npos);
     CHECK(error_of(edited(R"(5 = { joints = ["C", "S"] })", R"(5 = { joints = ["C"] })", slider_crank))
               .find("slider \"S\" is on no link") != std::string::npos);
+    // Session 30's review: an angle of 1e300 deg was "0.12391 m off its line".
+    CHECK(error_of(edited(R"(angle = "0 deg")", R"(angle = "1e300 deg")", slider_crank))
+              .find("slider \"S\": angle = \"1e300 deg\" is past 1e9 deg") != std::string::npos);
+    CHECK(error_of(edited(R"(angle = "0 deg")", R"(angle = "720 deg")", slider_crank)).empty());
+    // Session 30's review: a guide that is the block itself was "on no link", though listed.
+    CHECK(error_of(edited(R"(slider = "ground")", R"(slider = "5")", slider_crank))
+              .find("slider \"S\" slides on \"5\", the only link that lists it: its block cannot be its guide") !=
+          std::string::npos);
   }
 }
 
