@@ -21,12 +21,14 @@ struct RunCursor {
   Eigen::VectorXd q;                ///< A solution at the last row solved (or the guess).
   bool have_previous = false;       ///< The last row is solved (status ok) on the user's branch.
   bool after_gap = false;           ///< The last row failed or was singular after solved rows.
+  bool q_singular = false;          ///< q is a singular position (Newton from it has no direction).
   bool any_solved = false;
   std::size_t next_batch_try = 0;   ///< Run row: after a refused SIMD block, one by one until here.
   std::size_t batch_rows = 0;       ///< Rows solved in SIMD blocks.
   // Joints and links (rows placed in closed form):
   std::vector<int> signs;           ///< The dyads' signs to place with (empty: the sketch's).
-  bool have_last_ok = false;        ///< The last ok row, to keep its assembly or run on smoothly from it.
+  // Every run: the last ok row, to keep its assembly or run on smoothly from it.
+  bool have_last_ok = false;
   double last_ok_input = 0;
   Eigen::VectorXd last_ok_q, last_ok_qd, last_ok_qdd;
 };
@@ -107,13 +109,12 @@ std::size_t solve_rows(const Kinematics& kinematics, Solvers& solvers, MotionTab
         at.batch_rows += BatchWorkspace::kLanes;
         row += BatchWorkspace::kLanes - 1;
         at.q = table.q(row);
-        if (closed_form != nullptr) {
-          at.have_last_ok = true;
-          at.last_ok_input = table.input(row);
-          at.last_ok_q = at.q;
-          at.last_ok_qd = table.qd(row);
-          at.last_ok_qdd = table.qdd(row);
-        }
+        at.q_singular = false;
+        at.have_last_ok = true;
+        at.last_ok_input = table.input(row);
+        at.last_ok_q = at.q;
+        at.last_ok_qd = table.qd(row);
+        at.last_ok_qdd = table.qdd(row);
         continue;
       }
       at.next_batch_try = offset + row + BatchWorkspace::kLanes;
@@ -172,6 +173,15 @@ std::size_t solve_rows(const Kinematics& kinematics, Solvers& solvers, MotionTab
         why.group = dyad;
       } else {
         solved = solvers.scalar.solve_position(input, trial, &worst_group, &residual);
+        if (!solved && at.q_singular && at.have_last_ok && rate != 0) {
+          // Newton from a singular position (a change point: the parallelogram folded)
+          // has no direction to go; from the last ok row's motion carried on past it, it has.
+          const double h = input - at.last_ok_input;
+          for (Eigen::Index i = 0; i < trial.size(); ++i)
+            trial[i] = solver::predict_second_order(at.last_ok_q[i], at.last_ok_qd[i], at.last_ok_qdd[i], rate,
+                                                    second_rate, h);
+          solved = solvers.scalar.solve_position(input, trial, &worst_group, &residual);
+        }
         if (!solved) {
           why.kind = Failure::Kind::group_open;
           why.group = static_cast<std::uint32_t>(worst_group);
@@ -193,11 +203,12 @@ std::size_t solve_rows(const Kinematics& kinematics, Solvers& solvers, MotionTab
     at.q = trial;
     at.any_solved = true;
     solvers.scalar.motion_into(input, rate, second_rate, at.q, state);
+    at.q_singular = state.status == Status::singular;
     if (at.after_gap && state.status == Status::ok) state.failure.kind = Failure::Kind::resumed_after_gap;
     // Past a singular position the branch may change: treat it like a gap.
     at.after_gap = state.status != Status::ok;
     at.have_previous = state.status == Status::ok;
-    if (closed_form != nullptr && state.status == Status::ok) {
+    if (state.status == Status::ok) {
       at.have_last_ok = true;
       at.last_ok_input = input;
       at.last_ok_q = state.q;

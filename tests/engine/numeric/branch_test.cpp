@@ -4,8 +4,10 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <vector>
 
 #include <kinema/engine/model.hpp>
+#include <kinema/loops/linkage_loops.hpp>
 #include <kinema/loops/mechanism_file.hpp>
 #include "test_support.hpp"
 
@@ -155,4 +157,28 @@ TEST_CASE("Workspace::advance steps along the open branch and refuses to cross a
   CHECK_FALSE(rocker_workspace.advance(180 * deg, 1.0, 0.0, at_90));
   CHECK(at_90.input == before.input);
   CHECK(at_90.q == before.q);
+}
+
+// Session 30's review: the parallelogram of Problem 4.1 as the vector loops kinema writes
+// for it, swept through its change point at 180 deg, had every row after it unassembled
+// ("the links do not reach"): Newton started from the folded, singular position has no
+// direction to go. From the last ok row's motion carried on past it, it runs on as the
+// joints-and-links file does (the parallelogram kept).
+TEST_CASE("branch: a vector-loop sweep runs on past a singular row (the parallelogram through its change point)") {
+  const kinema::Mechanism drawn = kinema::read_mechanism_file(kinema_test::sample("problem_4_1_parallelogram.toml"));
+  const kinema::Model joints = kinema::make_model(drawn);
+  const kinema::Model loops = kinema::make_model(kinema::read_mechanism_text(kinema::vector_loop_file(drawn), "loops.toml"));
+  REQUIRE(loops.kinematics.closed_form() == nullptr);
+  std::vector<double> inputs;
+  for (int d = 0; d <= 350; d += 10) inputs.push_back(d * deg);
+  const kinema::MotionTable by_loops = kinema::analyse(loops, inputs), by_joints = kinema::analyse(joints, inputs);
+  for (std::size_t row = 0; row < inputs.size(); ++row) {
+    CAPTURE(inputs[row] / deg);
+    REQUIRE(by_loops.status(row) != kinema::Status::unassembled);
+    CHECK(by_loops.status(row) == by_joints.status(row));
+    // At a change point (singular: 0 and 180 deg) a position is known to the square root of rounding.
+    const double tolerance = by_joints.status(row) == kinema::Status::ok ? 1e-9 : 1e-6;
+    for (Eigen::Index i = 0; i < by_loops.q(row).size(); ++i)
+      CHECK(std::fabs(std::remainder(by_loops.q(row)[i] - by_joints.q(row)[i], 2 * M_PI)) < tolerance);
+  }
 }
