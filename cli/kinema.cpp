@@ -54,11 +54,9 @@ double parse_input_value(const ConstraintSystem& m, const std::string& text) {
   return q.si_value;
 }
 
-// An angle input is turned into radians and reduced by its sine and cosine: past 1e9
-// deg the double's rounding moves it by more than the printed digits (1e15 deg was
-// solved at 279.95 deg, not 280). The values of a sweep run from its first to its last.
+// An angle input is turned into radians and reduced by its sine and cosine: no further
+// than kMaxAngleDegrees. The values of a sweep run from its first to its last.
 void check_input_range(const ConstraintSystem& m, const InputValues& values) {
-  constexpr double kMaxAngleDegrees = 1e9;
   if (m.input.dimension != Dimension::angle) return;
   const auto check = [&](double si) {
     const double degrees = si / kRadiansPerDegree;

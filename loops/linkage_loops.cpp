@@ -421,8 +421,7 @@ class LinkageWriter {
     const Joint& joint = linkage_.joints[j];
     if (!joint.angle.empty()) {
       const double angle = value_of(joint.angle, Dimension::angle, joint.where, "slider " + joint.name + " angle");
-      // Past 1e9 deg a double's sine and cosine are rounding noise (as for the input).
-      if (!(std::fabs(angle) <= 1e9 * M_PI / 180)) {
+      if (!(std::fabs(angle) <= from_degrees(kMaxAngleDegrees))) {  // as for the input
         fail(joint.where, "slider \"" + joint.name + "\": angle = \"" + joint.angle +
                               "\" is past 1e9 deg, where its direction is lost to rounding; give the direction of its "
                               "line within a turn (e.g. \"90 deg\")");

@@ -23,6 +23,11 @@ constexpr double kRadiansPerDegree = 3.14159265358979323846 / 180.0;
 inline double from_degrees(double degrees) { return degrees * kRadiansPerDegree; }
 inline double to_degrees(double radians) { return radians * 180.0 / 3.14159265358979323846; }
 
+/// The largest angle kinema takes (the input's values, a slider's direction): past it a
+/// double's rounding moves the angle by more than the printed digits (1e15 deg was
+/// solved at 279.95 deg, not 280).
+constexpr double kMaxAngleDegrees = 1e9;
+
 /// "length", "angle", ... for messages.
 const char* dimension_name(Dimension dimension);
 

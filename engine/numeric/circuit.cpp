@@ -92,6 +92,7 @@ Circuit::Stop walk(const Kinematics& kinematics, const CircuitSettings& settings
     const long substeps = std::max(1L, static_cast<long>(count));
     substeps_left -= static_cast<std::size_t>(substeps);
     const double from = here;
+    double failed_at = target;  // the substep where a dyad could not close
     bool reached = true;
     for (long k = 1; k <= substeps; ++k) {
       const double x = k == substeps ? target : from + (target - from) * (static_cast<double>(k) / substeps);
@@ -108,6 +109,7 @@ Circuit::Stop walk(const Kinematics& kinematics, const CircuitSettings& settings
       }
       if (!closes(x, trial)) {
         reached = false;
+        failed_at = x;
         break;
       }
       signs = trial;
@@ -127,8 +129,7 @@ Circuit::Stop walk(const Kinematics& kinematics, const CircuitSettings& settings
     }
     // A toggle between the position reached and the next substep: the last value where
     // the dyads still close.
-    double a = here, b = here + (target - from) / static_cast<double>(substeps);
-    if (direction * (b - target) > 0) b = target;
+    double a = here, b = failed_at;
     std::size_t toggle_dyad = failing;
     for (int i = 0; i < 200 && a != b; ++i) {
       const double middle = 0.5 * (a + b);

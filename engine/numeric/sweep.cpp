@@ -79,6 +79,13 @@ void choose_signs(const Kinematics& kinematics, const LinkageFrames& frames, dou
   at.signs = signs;
 }
 
+// The position h on from one whose rates are qd and qdd at the run's input rates.
+template <class Q, class Rate, class SecondRate>
+void predict_position(const Q& q, const Rate& qd, const SecondRate& qdd, double rate, double second_rate, double h,
+                      Eigen::VectorXd& out) {
+  for (Eigen::Index i = 0; i < out.size(); ++i) out[i] = solver::predict_second_order(q[i], qd[i], qdd[i], rate, second_rate, h);
+}
+
 struct Solvers {
   explicit Solvers(const Kinematics& kinematics, bool batch, double rate) : scalar(kinematics) {
     if (batch && rate != 0) simd = std::make_unique<BatchWorkspace>(kinematics);
@@ -128,10 +135,7 @@ std::size_t solve_rows(const Kinematics& kinematics, Solvers& solvers, MotionTab
       const double previous_input = table.input(row - 1);
       const double h = input - previous_input;
       if (rate != 0 && std::fabs(h) <= kinematics.max_continuation_step()) {
-        for (Eigen::Index i = 0; i < at.q.size(); ++i) {
-          predicted[i] = solver::predict_second_order(at.q[i], table.qd(row - 1)[i], table.qdd(row - 1)[i], rate,
-                                                      second_rate, h);
-        }
+        predict_position(at.q, table.qd(row - 1), table.qdd(row - 1), rate, second_rate, h, predicted);
         solved = solvers.scalar.predict_and_correct(input, predicted, trial);
       }
       double stuck_at = previous_input;
@@ -176,10 +180,8 @@ std::size_t solve_rows(const Kinematics& kinematics, Solvers& solvers, MotionTab
         if (!solved && at.q_singular && at.have_last_ok && rate != 0) {
           // Newton from a singular position (a change point: the parallelogram folded)
           // has no direction to go; from the last ok row's motion carried on past it, it has.
-          const double h = input - at.last_ok_input;
-          for (Eigen::Index i = 0; i < trial.size(); ++i)
-            trial[i] = solver::predict_second_order(at.last_ok_q[i], at.last_ok_qd[i], at.last_ok_qdd[i], rate,
-                                                    second_rate, h);
+          predict_position(at.last_ok_q, at.last_ok_qd, at.last_ok_qdd, rate, second_rate, input - at.last_ok_input,
+                           trial);
           solved = solvers.scalar.solve_position(input, trial, &worst_group, &residual);
         }
         if (!solved) {

@@ -158,13 +158,14 @@ RunSummary stream_results(const Model& model, const InputValues& inputs, const A
   if (!printer) {  // solve only
     SweepBlock block;
     const OutputScale scale(model.system);
+    const std::size_t columns = result_column_count(model.system);  // a run of values: no circuit
     std::vector<double> values;
     while (!solver.done()) {
       solver.solve_next(block, block_rows);
       account(block);
       // The rows' values as a printer takes them: one past the largest number in the
       // output unit throws here, before anything of the run is printed.
-      values.resize(block.size() * result_column_count(model.system, block.table.is_circuit()));
+      values.resize(block.size() * columns);
       result_rows(model.system, scale, block.table, block.first, block.last, values.data());
       if (settings.progress) settings.progress(solver.solved(), total);
     }

@@ -586,10 +586,6 @@ class Writer {
   }
 };
 
-}  // namespace
-
-namespace {
-
 bool solved_dyad_by_dyad(const ConstraintSystem& system) { return system.linkage && system.linkage->frames.closed_form; }
 
 [[noreturn]] void refuse_method(const ConstraintSystem& system, DerivationMethod method) {
