@@ -389,6 +389,16 @@ std::size_t chain_input(const Mechanism& mechanism, const SpatialKinematics& k) 
       throw InputError(where + ": it has no rate, so the other driven variables cannot follow it (they move at the "
                                "time it reaches each value at its rate); give it a rate, or keep time as the input");
     }
+    // With a second rate the input's rate changes along the time run, but an input run
+    // gives every value one rate: the followers would move at the wrong instant (each
+    // gaining omega_i alpha_in / omega_in), a motion the file does not describe.
+    if (k.second_rates[i] != 0 && moving) {
+      const std::string unit = k.variables[i].dimension == Dimension::angle ? " rad/s^2" : " m/s^2";
+      throw InputError(where + ": it has a second rate (" + format_significant(k.second_rates[i]) + unit +
+                       "), so its rate changes from value to value along the file's motion, while an input run "
+                       "gives every value one rate and the other driven variables could not follow it; keep "
+                       "time as the input (kinema eval FILE --at T), or give it no second rate");
+    }
     return i;
   }
   throw InputError(where + ": no such variable; the input is one of the driven variables of [variables] (" +

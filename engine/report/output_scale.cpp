@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <complex>
+#include <functional>
 #include <limits>
 #include <map>
 
@@ -108,6 +109,20 @@ std::vector<ResultColumn> named_columns(const ConstraintSystem& system, const Ou
       for (const char* part : {"_arel_x", "_arel_y", "_coriolis_x", "_coriolis_y"})
         add(joint.name + part, l + "/s^2", what, joint.where);
     }
+    for (const GuidePoint& g : guide_points(system)) {
+      const LinkageFrames::Slider& slider = system.linkage->frames.sliders[g.slider];
+      const Joint& joint = system.linkage->joints[slider.joint];
+      const std::string what = "the point of link \"" + system.linkage->links[slider.guide - 1].name +
+                               "\" under slider \"" + joint.name + "\"";
+      for (const char* part : {"_vx", "_vy"}) add(g.name + part, l + "/s", what, joint.where);
+      for (const char* part : {"_ax", "_ay"}) add(g.name + part, l + "/s^2", what, joint.where);
+    }
+    for (const RelativeTurning& r : relative_turnings(system)) {
+      const Joint& joint = system.linkage->joints[r.joint];
+      const std::string what = "the relative turning at pin \"" + joint.name + "\"";
+      add(r.rate_name, "rad/s", what, joint.where);
+      add(r.second_rate_name, "rad/s^2", what, joint.where);
+    }
   }
   if (circuit) {
     for (const std::string& name : dyad_inner_joints(system)) {
@@ -161,15 +176,86 @@ std::vector<std::pair<std::size_t, std::string>> block_links(const ConstraintSys
 
 namespace {
 
+bool all_digits(const std::string& name) {
+  return !name.empty() && std::all_of(name.begin(), name.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); });
+}
+
+// The seed writes a point of a link or two links' relative turning with the links'
+// numbers run together (B1, omega23); other link names keep an underscore between.
+std::string joined_names(const std::string& first, const std::string& second) {
+  return all_digits(second) ? first + second : first + "_" + second;
+}
+
+}  // namespace
+
+std::vector<GuidePoint> guide_points(const ConstraintSystem& system) {
+  std::vector<GuidePoint> points;
+  if (!system.linkage) return points;
+  const Linkage& linkage = *system.linkage;
+  const LinkageFrames& frames = linkage.frames;
+  const auto point_named = [&](const std::string& name) {
+    for (std::size_t p = 0; p < system.points.size(); ++p)
+      if (system.points[p].is_joint && system.points[p].name == name) return int(p);
+    return -1;
+  };
+  for (std::size_t k = 0; k < frames.sliders.size(); ++k) {
+    const LinkageFrames::Slider& slider = frames.sliders[k];
+    if (slider.guide == 0) continue;  // a fixed guide's point does not move
+    // The slider is shown as a point of its own, or by the block's pin at its place.
+    int shown = point_named(linkage.joints[slider.joint].name);
+    const auto& on_block = frames.bodies[slider.block].points;
+    std::complex<double> at;
+    for (const auto& [joint, local] : on_block) at = joint == slider.joint ? local : at;
+    for (const auto& [joint, local] : on_block) {
+      if (shown >= 0) break;
+      if (joint != slider.joint && linkage.joints[joint].kind == Joint::Kind::pin &&
+          std::abs(local - at) <= 1e-9 * system.length_scale)
+        shown = point_named(linkage.joints[joint].name);
+    }
+    if (shown < 0) continue;
+    points.push_back({k, std::size_t(shown), joined_names(system.points[std::size_t(shown)].name,
+                                                          linkage.links[slider.guide - 1].name)});
+  }
+  return points;
+}
+
+std::vector<RelativeTurning> relative_turnings(const ConstraintSystem& system) {
+  std::vector<RelativeTurning> turnings;
+  if (!system.linkage) return turnings;
+  const LinkageFrames& frames = system.linkage->frames;
+  for (const LinkageFrames::Pin& pin : frames.pins) {
+    const bool a_block = frames.bodies[pin.a].guide >= 0, b_block = frames.bodies[pin.b].guide >= 0;
+    if (!a_block && !b_block) continue;
+    const std::size_t block = a_block ? pin.a : pin.b, other = a_block ? pin.b : pin.a;
+    if (other == 0 || int(other) == frames.bodies[block].guide) continue;  // its own turning, or none
+    const std::string names = joined_names(system.linkage->links[block - 1].name, system.linkage->links[other - 1].name);
+    const bool numbered = all_digits(system.linkage->links[block - 1].name);
+    turnings.push_back({block, other, pin.joint, (numbered ? "omega" : "omega_") + names,
+                        (numbered ? "alpha" : "alpha_") + names});
+  }
+  return turnings;
+}
+
+namespace {
+
 struct Turning {
   double angle = 0, rate = 0, second_rate = 0;
 };
 
-// The unknowns and the input of one position (a table row, or a MotionState).
+// The unknowns and the input of one position (a table row, or a MotionState), and its points.
 template <typename Vector>
 struct Position {
   const Vector &q, &qd, &qdd;
   double input, rate, second_rate;
+  std::function<PointMotion(std::size_t)> point;
+};
+
+// What the joints-and-links columns list beyond blocks and sliders, worked out once a run.
+struct LinkageColumns {
+  std::vector<GuidePoint> guides;
+  std::vector<RelativeTurning> turnings;
+  explicit LinkageColumns(const ConstraintSystem& system)
+      : guides(guide_points(system)), turnings(relative_turnings(system)) {}
 };
 
 // A body's angle and rates: ground's are 0, an unknown's or the driver's are the
@@ -192,8 +278,8 @@ Turning turning(const LinkageFrames& frames, const Position<Vector>& at, std::si
 
 // The joints-and-links values of an ok position (see result_columns), from `values` on.
 template <typename Vector>
-double* linkage_values(const ConstraintSystem& system, const OutputScale& scale, const Position<Vector>& at,
-                       double* values) {
+double* linkage_values(const ConstraintSystem& system, const OutputScale& scale, const LinkageColumns& columns,
+                       const Position<Vector>& at, double* values) {
   const LinkageFrames& frames = system.linkage->frames;
   // The blocks in the order of block_links (body order), without its names: this runs per row.
   for (std::size_t body = 1; body < frames.bodies.size(); ++body) {
@@ -219,15 +305,40 @@ double* linkage_values(const ConstraintSystem& system, const OutputScale& scale,
       *values++ = c.imag() / scale.length;
     }
   }
+  for (const GuidePoint& g : columns.guides) {
+    // The slider point less its sliding: what the guide's own point there does.
+    const LinkageFrames::Slider& slider = frames.sliders[g.slider];
+    const Turning guide = turning(frames, at, slider.guide);
+    const std::complex<double> u = std::polar(1.0, guide.angle + slider.direction);
+    double s1 = at.rate, s2 = at.second_rate;
+    if (slider.unknown >= 0) {
+      s1 = at.qd[Eigen::Index(slider.unknown)];
+      s2 = at.qdd[Eigen::Index(slider.unknown)];
+    }
+    const PointMotion p = at.point(g.point);
+    const std::complex<double> relative = s1 * u;
+    const std::complex<double> v = std::complex<double>(p.velocity[0], p.velocity[1]) - relative;
+    const std::complex<double> a = std::complex<double>(p.acceleration[0], p.acceleration[1]) - s2 * u -
+                                   2 * guide.rate * std::complex<double>(0, 1) * relative;
+    for (const std::complex<double>& c : {v, a}) {
+      *values++ = c.real() / scale.length;
+      *values++ = c.imag() / scale.length;
+    }
+  }
+  for (const RelativeTurning& r : columns.turnings) {
+    const Turning block = turning(frames, at, r.block), other = turning(frames, at, r.other);
+    *values++ = block.rate - other.rate;
+    *values++ = block.second_rate - other.second_rate;
+  }
   return values;
 }
 
 }  // namespace
 
 void linkage_values(const ConstraintSystem& system, const OutputScale& scale, const MotionState& state, double* values) {
-  linkage_values(system, scale,
+  linkage_values(system, scale, LinkageColumns(system),
                  Position<Eigen::VectorXd>{state.q, state.qd, state.qdd, state.input, state.input_rate,
-                                           state.input_second_rate},
+                                           state.input_second_rate, [&](std::size_t p) { return state.points[p]; }},
                  values);
 }
 
@@ -237,6 +348,7 @@ std::size_t result_column_count(const ConstraintSystem& system, bool circuit) {
   if (system.linkage) {
     for (const LinkageFrames::Body& body : system.linkage->frames.bodies) count += body.guide >= 0 ? 3 : 0;
     count += 6 * system.linkage->frames.sliders.size();
+    count += 4 * guide_points(system).size() + 2 * relative_turnings(system).size();
     if (circuit) count += system.linkage->frames.dyads.size();  // an assembly sign each
   }
   return count;
@@ -306,14 +418,16 @@ void write_rows(const ConstraintSystem& system, const OutputScale& scale, const 
   if (!system.linkage) return;
   // Joints and links: the blocks' and sliders' values row by row (angles of their guides).
   const std::size_t linkage_count = stride - column - (table.is_circuit() ? system.linkage->frames.dyads.size() : 0);
+  const LinkageColumns linkage_columns(system);
   for (std::size_t row = first; row < last; ++row) {
     double* out = values + (row - first) * stride + column;
     if (table.status(row) != Status::ok) {
       std::fill_n(out, linkage_count, undefined);
     } else {
-      linkage_values(system, scale,
+      linkage_values(system, scale, linkage_columns,
                      Position<MotionTable::Column>{table.q(row), table.qd(row), table.qdd(row), table.input(row),
-                                                   table.input_rate(row), table.input_second_rate(row)},
+                                                   table.input_rate(row), table.input_second_rate(row),
+                                                   [&](std::size_t p) { return table.point(row, p); }},
                      out);
       for (std::size_t c = 0; c < linkage_count; ++c) overflow |= std::isinf(out[c]);
     }

@@ -36,7 +36,9 @@ struct ResultColumn {
 /// acceleration and its magnitude; for spatial chains, each frame's angular velocity and
 /// angular acceleration (x, y, z in the observer's basis); for joints and links, each slider block's angle and
 /// rates (its guide's turning), then each slider's relative velocity, relative
-/// acceleration and Coriolis acceleration (x, y); along a circuit, each dyad's assembly
+/// acceleration and Coriolis acceleration (x, y), each guide point's velocity and
+/// acceleration (x, y; guide_points), each relative turning's rate and second rate
+/// (relative_turnings); along a circuit, each dyad's assembly
 /// sign (+1 or -1, "branch_" and its inner joint). The first kInputColumns are the input's.
 std::vector<ResultColumn> result_columns(const ConstraintSystem& system, const OutputScale& scale,
                                          bool circuit = false);
@@ -67,16 +69,35 @@ void result_rows(const ConstraintSystem& system, const OutputScale& scale, const
 /// order (what names its assembly sign); else empty.
 std::vector<std::string> dyad_inner_joints(const ConstraintSystem& system);
 
-/// Where the joints-and-links columns (blocks, then sliders) begin in result_columns (after
+/// Where the joints-and-links columns (blocks, sliders, guide points, relative turnings) begin in result_columns (after
 /// the points and frames).
 std::size_t linkage_columns_begin(const ConstraintSystem& system);
 
-/// The joints-and-links values of an ok state (blocks, then sliders), from result_columns'
+/// The joints-and-links values of an ok state (blocks, sliders, guide points, relative turnings), from result_columns'
 /// linkage_columns_begin on.
 void linkage_values(const ConstraintSystem& system, const OutputScale& scale, const MotionState& state, double* values);
 
 /// Joints and links: the links that are slider blocks (bodies of LinkageFrames) and the
 /// name of each one's angle, in the order of their columns.
 std::vector<std::pair<std::size_t, std::string>> block_links(const ConstraintSystem& system);
+
+/// Joints and links: at a slider on a moving guide, the guide's point where the slider is
+/// now (the seed's v_B1: B on link 1), whose velocity and acceleration are the slider
+/// point's without the sliding: v = v_S - v_rel, a = a_S - a_rel - 2 w x v_rel.
+struct GuidePoint {
+  std::size_t slider = 0;  ///< Index into LinkageFrames::sliders.
+  std::size_t point = 0;   ///< Index into ConstraintSystem::points: the point that shows the slider.
+  std::string name;        ///< The point's name and the guide's ("B" on link "1": "B1", on "crank": "B_crank").
+};
+std::vector<GuidePoint> guide_points(const ConstraintSystem& system);
+
+/// Joints and links: at each pin of a slider block to a moving link, the block's turning
+/// relative to that link (the seed's omega23 = omega2 - omega3, its alpha23).
+struct RelativeTurning {
+  std::size_t block = 0, other = 0;  ///< Bodies of LinkageFrames.
+  std::size_t joint = 0;             ///< The pin (index into Linkage::joints).
+  std::string rate_name, second_rate_name;  ///< "omega23", "alpha23" (links 2 and 3).
+};
+std::vector<RelativeTurning> relative_turnings(const ConstraintSystem& system);
 
 }  // namespace kinema

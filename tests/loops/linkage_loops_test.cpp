@@ -6,6 +6,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <complex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -421,6 +422,69 @@ TEST_CASE("loops/linkage_loops: at each slider the relative velocity, relative a
   CHECK_PRINTED(e42.at("blocks").at("2").at("rate").get<double>() - 4.712, "-2.905");
   // A slider on a fixed guide has no Coriolis term.
   CHECK(e42.at("sliders").at("E5").at("coriolis")[0].get<double>() == 0);
+}
+
+TEST_CASE("loops/linkage_loops: the guide's point under each slider and the blocks' relative turnings are outputs") {
+  // Example 4.1: v_B1 = -0.804i + 0.804j m/s, a_B1 = -2.528i - 2.528j m/s^2 (B on the crank 1),
+  // omega23 = -0.762 rad/s, alpha23 = 2.252 rad/s^2 (block 2 relative to link 3 at B).
+  const nlohmann::json e41 = kinema_test::eval_json("example_4_1_joints.toml").at("results").at(0);
+  const nlohmann::json& b1 = e41.at("guide_points").at("B1");
+  CHECK(b1.at("slider") == "B2");
+  CHECK(b1.at("link") == "1");
+  CHECK_PRINTED(b1.at("velocity")[0].get<double>(), "-0.804");
+  CHECK_PRINTED(b1.at("velocity")[1].get<double>(), "0.804");
+  CHECK_PRINTED(b1.at("acceleration")[0].get<double>(), "-2.528");
+  CHECK_PRINTED(b1.at("acceleration")[1].get<double>(), "-2.528");
+  const nlohmann::json& w23 = e41.at("relative_turnings").at("omega23");
+  CHECK(w23.at("links") == nlohmann::json::array({"2", "3"}));
+  CHECK(w23.at("joint") == "B");
+  CHECK(w23.at("second_rate_name") == "alpha23");
+  CHECK_PRINTED(w23.at("rate").get<double>(), "-0.762");
+  CHECK_PRINTED(w23.at("second_rate").get<double>(), "2.252");
+  // Independently: the crank's point at B turns about A (the origin) at omega1 = 3.141, alpha1 = 0.
+  const double xb = e41.at("points").at("B").at("position")[0], yb = e41.at("points").at("B").at("position")[1];
+  CHECK(b1.at("velocity")[0].get<double>() == doctest::Approx(-3.141 * yb).epsilon(1e-12));
+  CHECK(b1.at("velocity")[1].get<double>() == doctest::Approx(3.141 * xb).epsilon(1e-12));
+  CHECK(b1.at("acceleration")[0].get<double>() == doctest::Approx(-3.141 * 3.141 * xb).epsilon(1e-12));
+  CHECK(b1.at("acceleration")[1].get<double>() == doctest::Approx(-3.141 * 3.141 * yb).epsilon(1e-12));
+
+  // Example 4.2: v_B3 = -0.398i + 0.127j m/s, a_B3 = -0.456i - 0.649j m/s^2 (B on link 3),
+  // omega21 = -2.905 rad/s (block 2 relative to the crank 1 at B).
+  const nlohmann::json e42 = kinema_test::eval_json("example_4_2_joints.toml").at("results").at(0);
+  const nlohmann::json& b3 = e42.at("guide_points").at("B3");
+  CHECK_PRINTED(b3.at("velocity")[0].get<double>(), "-0.398");
+  CHECK_PRINTED(b3.at("velocity")[1].get<double>(), "0.127");
+  CHECK_PRINTED(b3.at("acceleration")[0].get<double>(), "-0.456");
+  CHECK_PRINTED(b3.at("acceleration")[1].get<double>(), "-0.649");
+  CHECK_PRINTED(e42.at("relative_turnings").at("omega21").at("rate").get<double>(), "-2.905");
+  CHECK(e42.at("guide_points").size() == 1);  // E5's guide is ground: its point does not move
+  // Link 3 turns about C (the origin): v = i w3 r_B, a = (i alpha3 - w3^2) r_B.
+  const double w3 = e42.at("coordinates").at("phi3").at("rate"), a3 = e42.at("coordinates").at("phi3").at("second_rate");
+  const std::complex<double> rb(e42.at("points").at("B").at("position")[0], e42.at("points").at("B").at("position")[1]);
+  const std::complex<double> vb3 = std::complex<double>(0, w3) * rb, ab3 = std::complex<double>(-w3 * w3, a3) * rb;
+  CHECK(b3.at("velocity")[0].get<double>() == doctest::Approx(vb3.real()).epsilon(1e-12));
+  CHECK(b3.at("velocity")[1].get<double>() == doctest::Approx(vb3.imag()).epsilon(1e-12));
+  CHECK(b3.at("acceleration")[0].get<double>() == doctest::Approx(ab3.real()).epsilon(1e-12));
+  CHECK(b3.at("acceleration")[1].get<double>() == doctest::Approx(ab3.imag()).epsilon(1e-12));
+
+  // The same numbers in the table, CSV and npy columns.
+  const auto table = kinema_test::run_kinema({"eval", kinema_test::sample("example_4_1_joints.toml")});
+  CHECK(table.out.find("  B1      (-0.804584, 0.804584)") != std::string::npos);
+  CHECK(table.out.find("omega23 = -0.761804 rad/s") != std::string::npos);
+  const auto csv = kinema_test::run_kinema({"eval", kinema_test::sample("example_4_1_joints.toml"), "--format", "csv"});
+  for (const char* column : {"B1_vx [m/s]", "B1_vy [m/s]", "B1_ax [m/s^2]", "B1_ay [m/s^2]", "omega23 [rad/s]",
+                             "alpha23 [rad/s^2]"}) {
+    CAPTURE(column);
+    CHECK(csv.out.find(column) != std::string::npos);
+  }
+  const auto latex = kinema_test::run_kinema({"latex", kinema_test::sample("example_4_1_joints.toml"), "--fragment"});
+  CHECK(latex.out.find("${B}_{\\mathrm{1}}$ & 1 & $(-0.80458,\\ 0.80458)$ & $(-2.5272,\\ -2.5272)$") != std::string::npos);
+  CHECK(latex.out.find("$\\omega_{23} = -0.7618$ & $\\alpha_{23} = 2.2521$") != std::string::npos);
+  const auto npy = kinema_test::run_kinema({"eval", kinema_test::sample("example_4_2_joints.toml"), "--format", "npy"});
+  for (const char* field : {"'B3_vx'", "'B3_ay'", "'omega21'", "'alpha54'"}) {
+    CAPTURE(field);
+    CHECK(npy.out.find(field) != std::string::npos);
+  }
 }
 
 TEST_CASE("loops/linkage_loops: links that form no dyad (a triad) are named and solved by Newton on their loops") {

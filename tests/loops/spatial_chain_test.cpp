@@ -460,6 +460,73 @@ TEST_CASE("spatial_chain: a driven variable as the input (--input, or input = in
   }
 }
 
+TEST_CASE("spatial_chain: an input variable with a second rate is refused, never printed at the wrong instant") {
+  // Issue 32's arm: theta1 accelerates (alpha1 = 0.4 rad/s^2). As the input, one rate for
+  // every value could not carry theta4 and theta5 along the file's motion: the old run
+  // printed alpha4 = -1.28667 and alpha5 = 1.48667 rad/s^2 at theta1 = 30 deg (the file's
+  // instant, where the file gives -1.1 and 0.9), each gaining omega_i alpha1 / omega1.
+  const std::string arm = kinema_test::write_temporary("accelerating_arm.toml", R"toml(title = "arm at another instant"
+[parameters]
+L1 = "1.2 m"
+L2 = "0.6 m"
+L3 = "0.2 m"
+alpha = "60 deg"
+beta = "90 deg"
+[variables]
+theta1 = { value = "30 deg", rate = "1.5 rad/s", second_rate = "0.4 rad/s^2" }
+theta4 = { value = "-20 deg", rate = "-0.7 rad/s", second_rate = "-1.1 rad/s^2" }
+theta5 = { value = "50 deg", rate = "2.2 rad/s", second_rate = "0.9 rad/s^2" }
+[frames]
+E1 = { parent = "E0", turns = [["z", "theta1"]] }
+E2 = { parent = "E1", origin = ["0 m", "L1*cos(alpha)", "L1*sin(alpha)"], turns = [["x", "alpha - Pi/2"], ["-x", "theta4"]] }
+E3 = { parent = "E2", origin = ["0 m", "L2", "0 m"], turns = [["y", "theta5"]] }
+[points]
+O2 = { frame = "E2" }
+A = { frame = "E3" }
+B = { frame = "E3", at = ["L3*sin(beta)", "L3*cos(beta)", "0 m"] }
+)toml");
+  const auto eval_json = [](const std::string& path, std::vector<std::string> extra) {
+    extra.insert(extra.begin(), {"eval", path, "--format", "json"});
+    const auto result = kinema_test::run_kinema(extra);
+    REQUIRE(result.exit_status == 0);
+    return nlohmann::json::parse(result.out);
+  };
+  // The time run is the file's motion: at t = 0 its own second rates.
+  const nlohmann::json by_time = eval_json(arm, {"--at", "0"});
+  const auto& row = by_time["results"][0];
+  REQUIRE(row["status"] == "ok");
+  CHECK(row["coordinates"]["theta4"]["second_rate"].get<double>() == doctest::Approx(-1.1).epsilon(1e-12));
+  CHECK(row["coordinates"]["theta5"]["second_rate"].get<double>() == doctest::Approx(0.9).epsilon(1e-12));
+  CHECK_PRINTED(row["points"]["B"]["acceleration"][0].get<double>(), "-0.1100");
+  for (const char* command : {"eval", "derive", "latex", "codegen"}) {
+    CAPTURE(command);
+    std::vector<std::string> arguments{command, arm, "--input", "theta1"};
+    if (std::string(command) == "codegen") arguments.insert(arguments.end(), {"-o", kinema_test::fresh_directory("arm_input") + "/arm.hpp"});
+    const auto refused = kinema_test::run_kinema(arguments);
+    CHECK(refused.exit_status == 2);
+    CHECK(refused.out.empty());
+    CHECK(refused.err.find("--input theta1: it has a second rate (0.4 rad/s^2)") != std::string::npos);
+    CHECK(refused.err.find("keep time as the input") != std::string::npos);
+  }
+  // The library refuses it as the program does.
+  kinema::Mechanism mechanism = kinema::read_mechanism_file(arm);
+  mechanism.chain->input = "theta1";
+  CHECK_THROWS_AS(kinema::make_model(mechanism), kinema::InputError);
+  // Without the second rate the input run is the time run at the instant the input has its value.
+  const std::string steady = kinema_test::write_temporary(
+      "steady_arm.toml", kinema_test::replaced(R"(rate = "1.5 rad/s", second_rate = "0.4 rad/s^2")", R"(rate = "1.5 rad/s")",
+                                               kinema_test::read_file(arm)));
+  const nlohmann::json at_angle = eval_json(steady, {"--input", "theta1", "--at", "45"});
+  const nlohmann::json at_time = eval_json(steady, {"--at", "0.174532925199432957"});  // 15 deg at 1.5 rad/s
+  for (const char* name : {"theta4", "theta5"})
+    for (const char* part : {"value", "rate", "second_rate"})
+      CHECK(at_angle["results"][0]["coordinates"][name][part].get<double>() ==
+            doctest::Approx(at_time["results"][0]["coordinates"][name][part].get<double>()).epsilon(1e-12));
+  for (std::size_t c = 0; c < 3; ++c)
+    CHECK(at_angle["results"][0]["points"]["B"]["acceleration"][c].get<double>() ==
+          doctest::Approx(at_time["results"][0]["points"]["B"]["acceleration"][c].get<double>()).epsilon(1e-10));
+}
+
 TEST_CASE("spatial_chain: an RSSR that cannot turn fully reports its limit positions where the closed form puts them") {
   // With a 45 mm crank the coupler cannot reach between theta2 = 228.987 and 256.837 deg:
   // there |B - C|^2 = u^2 + dy^2 + 4100 - sqrt((100 u)^2 + 4000^2) (its least value over the

@@ -102,6 +102,18 @@ class JsonPrinter : public ResultsPrinter {
     for (const PointObservable& p : system.points) point_keys.push_back(quoted(p.name) + ": {\"position\": ");
     for (const FrameObservable& f : system.frames) frame_keys.push_back(quoted(f.name) + ": {\"angular_velocity\": ");
     const auto blocks = block_links(system);  // joints and links: once, not per row
+    std::vector<std::string> guide_keys, turning_keys;
+    for (const GuidePoint& g : guide_points(system)) {
+      const LinkageFrames::Slider& slider = system.linkage->frames.sliders[g.slider];
+      guide_keys.push_back(quoted(g.name) + ": {\"slider\": " + quoted(system.linkage->joints[slider.joint].name) +
+                           ", \"link\": " + quoted(system.linkage->links[slider.guide - 1].name) + ", \"velocity\": ");
+    }
+    for (const RelativeTurning& r : relative_turnings(system)) {
+      turning_keys.push_back(quoted(r.rate_name) + ": {\"links\": [" + quoted(system.linkage->links[r.block - 1].name) +
+                             ", " + quoted(system.linkage->links[r.other - 1].name) + "], \"joint\": " +
+                             quoted(system.linkage->joints[r.joint].name) + ", \"second_rate_name\": " +
+                             quoted(r.second_rate_name) + ", \"rate\": ");
+    }
     std::vector<std::string> branch_keys;
     if (job.circuit)
       for (const std::string& joint : dyad_inner_joints(system)) branch_keys.push_back(quoted(joint) + ": ");
@@ -206,6 +218,26 @@ class JsonPrinter : public ResultsPrinter {
           out += '}';
         }
         out += '}';
+        if (!guide_keys.empty()) {  // the guide's point under each slider on a moving guide
+          out += ", \"guide_points\": {";
+          for (std::size_t k = 0; k < guide_keys.size(); ++k, v += 4) {
+            out += (k > 0 ? ", " : "") + guide_keys[k];
+            vector(v, 2);
+            member_vector(", \"acceleration\": ", v + 2, 2);
+            out += '}';
+          }
+          out += '}';
+        }
+        if (!turning_keys.empty()) {  // each slider block relative to a link it is pinned to
+          out += ", \"relative_turnings\": {";
+          for (std::size_t k = 0; k < turning_keys.size(); ++k, v += 2) {
+            out += (k > 0 ? ", " : "") + turning_keys[k];
+            number(v[0]);
+            member(", \"second_rate\": ", v[1]);
+            out += '}';
+          }
+          out += '}';
+        }
       }
       if (job.circuit && status != Status::unassembled) {  // each dyad's assembly sign, by its inner joint
         const double* signs = values + columns - branch_keys.size();

@@ -23,6 +23,7 @@
 #include <kinema/engine/report/output_scale.hpp>
 #include <kinema/engine/report/polygons.hpp>
 #include <kinema/engine/symbolic/expression_parts.hpp>
+#include <kinema/engine/symbolic/naming.hpp>
 
 namespace kinema {
 namespace {
@@ -347,6 +348,38 @@ class DocumentWriter {
       v += 6;
     }
     out_ << "\\bottomrule\n\\end{tabular}\n\n";
+    // The guide's point under each slider on a moving guide (the seed's v_B1), and each
+    // block's turning relative to a link it is pinned to (omega23).
+    const auto guides = guide_points(system_);
+    if (!guides.empty()) {
+      out_ << "\\medskip\n\\begin{tabular}{llcc}\n\\toprule\npoint & on link & velocity $\\mathbf{v}$ & acceleration "
+              "$\\mathbf{a}$ \\\\\n & & $\\mathrm{"
+           << l << "/s}$ & $\\mathrm{" << l << "/s^2}$ \\\\\n\\midrule\n";
+      for (const GuidePoint& g : guides) {
+        const LinkageFrames::Slider& slider = system_.linkage->frames.sliders[g.slider];
+        // B on link 3 is B_3, as the seed writes it (braced: the point's name may carry a subscript).
+        const std::string& link = system_.linkage->links[slider.guide - 1].name;
+        out_ << "${" << latex_symbol_name(system_.points[g.point].name) << "}_{\\mathrm{" << latex_escape_text(link)
+             << "}}$ & " << latex_escape_text(link)
+             << " & " << pair(v) << " & " << pair(v + 2) << " \\\\\n";
+        v += 4;
+      }
+      out_ << "\\bottomrule\n\\end{tabular}\n\n";
+    }
+    const auto turnings = relative_turnings(system_);
+    if (!turnings.empty()) {
+      out_ << "\\medskip\n\\begin{tabular}{llrr}\n\\toprule\nlinks & at & relative $\\omega$ & relative $\\alpha$ "
+              "\\\\\n & & $\\mathrm{rad/s}$ & $\\mathrm{rad/s^2}$ \\\\\n\\midrule\n";
+      for (const RelativeTurning& r : turnings) {
+        out_ << latex_escape_text(system_.linkage->links[r.block - 1].name) << ", "
+             << latex_escape_text(system_.linkage->links[r.other - 1].name) << " & "
+             << latex_escape_text(system_.linkage->joints[r.joint].name) << " & $" << latex_symbol_name(r.rate_name)
+             << " = " << latex_number(v[0], 5) << "$ & $" << latex_symbol_name(r.second_rate_name) << " = "
+             << latex_number(v[1], 5) << "$ \\\\\n";
+        v += 2;
+      }
+      out_ << "\\bottomrule\n\\end{tabular}\n\n";
+    }
   }
 
   // Spatial chains: each point's position, velocity and acceleration as vectors, and

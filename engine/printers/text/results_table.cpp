@@ -121,6 +121,25 @@ class ResultsTablePrinter : public ResultsPrinter {
           << pair(v + 4) << "\n";
       v += 6;
     }
+    const auto pair = [&](const double* c) { return "(" + number(c[0]) + ", " + number(c[1]) + ")"; };
+    const auto guides = guide_points(system);
+    if (!guides.empty()) {
+      out << "  " << pad("guide", 8) << pad("v (" + l + "/s)", 26) << "a (" << l << "/s^2)   (the guide's point under the slider)\n";
+      for (const GuidePoint& g : guides) {
+        out << "  " << pad(g.name, 8) << pad(pair(v), 26) << pair(v + 2) << "\n";
+        v += 4;
+      }
+    }
+    const auto turnings = relative_turnings(system);
+    if (!turnings.empty()) {
+      out << "  " << pad("links", 8) << pad("relative rate", 30) << "relative second rate\n";
+      for (const RelativeTurning& r : turnings) {
+        out << "  " << pad(system.linkage->links[r.block - 1].name + "/" + system.linkage->links[r.other - 1].name, 8)
+            << pad(r.rate_name + " = " + number(v[0]) + " rad/s", 30) << r.second_rate_name << " = " << number(v[1])
+            << " rad/s^2\n";
+        v += 2;
+      }
+    }
   }
 
   // Spatial chains: each frame's angular velocity and acceleration relative to the observer.
