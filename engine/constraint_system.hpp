@@ -36,11 +36,22 @@ struct Coordinate {
   SourceLocation where;
 };
 
+/// An angle that moves with the input as a given function of it (a spatial chain's driven
+/// variable): value + rate tau + second_rate tau^2 / 2 at tau = (input - origin) / scale
+/// (Driver's follower_origin and follower_scale). An input value is refused where one of
+/// them would pass kMaxAngleDegrees (its sine and cosine lose their digits).
+struct FollowingAngle {
+  std::string name;
+  double value = 0.0, rate = 0.0, second_rate = 0.0;  ///< SI, per unit of tau.
+};
+
 /// The driver: its coordinate and the motion the file gives it.
 struct Driver : Coordinate {
   std::vector<double> values;  ///< SI values from the file (may be empty).
   double rate_value = 0.0;     ///< SI; negative = clockwise / retracting.
   double second_rate_value = 0.0;
+  std::vector<FollowingAngle> followers;
+  double follower_origin = 0.0, follower_scale = 1.0;
 };
 
 /// Equations that belong together as the user wrote them: a vector loop

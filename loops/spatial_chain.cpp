@@ -471,6 +471,15 @@ ConstraintSystem build_spatial_system(const Mechanism& mechanism) {
             parameter(q.rate.get_name() + "_0", k.rates[input], Dimension::number, q.where);
     }
   }
+  if (input < k.variables.size() && k.rates[input] != 0) {
+    t.follower_origin = k.values[input];
+    t.follower_scale = k.rates[input];
+  }
+  for (std::size_t i = 0; i < k.variables.size(); ++i) {
+    if (i == input || k.unknown[i] || k.variables[i].dimension != Dimension::angle) continue;
+    if (input < k.variables.size() && k.rates[input] == 0) continue;  // nothing moves with a still input
+    t.followers.push_back({k.variables[i].name, k.values[i], k.rates[i], k.second_rates[i]});
+  }
   for (std::size_t i = 0; i < k.variables.size(); ++i) {
     if (i == input) continue;
     Coordinate q = k.variables[i];

@@ -3,6 +3,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <map>
 
 #include <kinema/engine/errors.hpp>
@@ -115,7 +116,27 @@ bool looks_like_quantity(const std::string& text) {
   return std::isalpha(static_cast<unsigned char>(rest[0])) != 0;
 }
 
-Quantity parse_quantity(const std::string& text) {
+namespace {
+
+// A nonzero number below the smallest normal double (about 2.2e-308) is subnormal: CLN
+// refuses to take it in ("floating point underflow") and the solvers lose its digits.
+Quantity normal_or_refused(const Quantity& q, const std::string& text) {
+  if (q.si_value != 0 && std::fabs(q.si_value) < std::numeric_limits<double>::min()) {
+    throw UnitError("\"" + text + "\" is smaller than the smallest number kinema computes with (about 2.2e-308 in SI "
+                    "units: m, rad, s); write 0 if you mean zero");
+  }
+  return q;
+}
+
+Quantity parse_quantity_as_written(const std::string& text);
+
+}  // namespace
+
+Quantity parse_quantity(const std::string& text) { return normal_or_refused(parse_quantity_as_written(text), text); }
+
+namespace {
+
+Quantity parse_quantity_as_written(const std::string& text) {
   const std::string trimmed = trim(text);
   const char* begin = trimmed.c_str();
   const char* end = begin + decimal_number_length(begin);
@@ -159,6 +180,8 @@ Quantity parse_quantity(const std::string& text) {
   for (int i = 0; i < time_power; ++i) dimension = per_second(dimension);
   return {number * found->second.factor, dimension};
 }
+
+}  // namespace
 
 double quantity_of_dimension(const std::string& text, Dimension dimension, const std::string& context) {
   Quantity q;

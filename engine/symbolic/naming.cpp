@@ -110,6 +110,12 @@ class LatexNameCheck {
     name(0);
     if (i_ < latex_.size()) fail("has unbalanced braces { }; close each { with }");  // a } too many
     if (!nuclei_) fail("has nothing to typeset; write a letter, e.g. \\varphi_{2}");
+    // amsmath cannot typeset an accent over two accents (\dot{\hat{x}_{\hat{y}}} stops
+    // pdflatex), and kinema writes a coordinate's rate as \dot{name}.
+    if (accents_ > 1) {
+      fail("has more than one accent (\\dot \\ddot \\hat \\bar \\tilde \\vec); kinema writes a rate as "
+           "\\dot{...} over the name, and amsmath cannot typeset an accent over two: keep one, e.g. \\hat{x}_{y}");
+    }
   }
 
  private:
@@ -118,6 +124,7 @@ class LatexNameCheck {
   const std::string& context_;
   std::size_t i_ = 0;
   int nuclei_ = 0;
+  int accents_ = 0;  // math accents (\mathrm and \mathit are fonts, not accents)
 
   [[noreturn]] void fail(const std::string& why) const {
     throw InputError(context_ + ": LaTeX name \"" + latex_ + "\" " + why);
@@ -203,6 +210,7 @@ class LatexNameCheck {
       }
       skip_spaces();
       if (!at('{')) fail("uses \\" + name + " without its argument: write \\" + name + "{x}");
+      accents_ += name != "mathrm" && name != "mathit";
       group(depth);
     } else if (c == '_') {
       fail("has a subscript _ with nothing before it; write x_{1}");

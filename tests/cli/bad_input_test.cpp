@@ -718,3 +718,56 @@ TEST_CASE("an angle past 1e9 deg is refused - an input where the equations give 
   CHECK(chain.err.find("cannot be evaluated at t = 1e+300 s: its equations do not give finite numbers there") !=
         std::string::npos);
 }
+
+// Issue 33: a subnormal quantity (below 2.2e-308, even unused) made every command print
+// CLN's "internal error: floating point underflow." with status 1.
+TEST_CASE("a quantity below the smallest normal number is refused at its line, never an internal error") {
+  const std::string planar = kinema_test::write_temporary(
+      "subnormal.toml", kinema_test::replaced("[parameters]", "[parameters]\nk = \"1e-310\""));
+  const std::string spatial = kinema_test::write_temporary(
+      "subnormal_chain.toml", kinema_test::replaced("[parameters]", "[parameters]\nk = \"1e-318 mm\"",
+                                                    kinema_test::read_file(kinema_test::sample("robot_arm_seed000.toml"))));
+  for (const std::string& path : {planar, spatial})
+    for (const char* command : {"eval", "derive", "latex"}) {
+      CAPTURE(path);
+      CAPTURE(command);
+      const auto result = kinema_test::run_kinema({command, path});
+      CHECK(result.exit_status == 2);
+      CHECK(result.out.empty());
+      CHECK(result.err.find("is smaller than the smallest number kinema computes with") != std::string::npos);
+      CHECK(result.err.find(".toml:") != std::string::npos);
+      CHECK(result.err.find("internal error") == std::string::npos);
+    }
+}
+
+// Issue 33: the 1e9 deg limit held for an angle input only; a chain's time (or a variable
+// as the input) carried its driven variables past it: --at 1e15 printed theta = 120 deg
+// beside positions of 120.877 deg.
+TEST_CASE("a time or variable input that carries a driven angle past 1e9 deg is refused, naming the angle") {
+  const std::string arm = kinema_test::sample("robot_arm_seed000.toml");
+  struct Case {
+    std::vector<std::string> arguments;
+    std::string message;
+  };
+  for (const Case& c : std::vector<Case>{
+           {{"eval", arm, "--at", "1e15"}, "at t = 1e+15 s, theta1 would be 5.72958e+16 deg"},
+           {{"eval", arm, "--sweep", "0:1e8:1e7"}, "at t = 100000000 s, theta1 would be 5.72958e+09 deg"},
+           {{"latex", arm, "--at", "-2e7"}, "at t = -20000000 s, theta1 would be -1.14592e+09 deg"}}) {
+    CAPTURE(c.message);
+    const auto result = kinema_test::run_kinema(c.arguments);
+    CHECK(result.exit_status == 2);
+    CHECK(result.out.empty());
+    CHECK(result.err.find(c.message) != std::string::npos);
+  }
+  // Within the limit the time run is printed as before.
+  CHECK(kinema_test::run_kinema({"eval", arm, "--at", "1e7"}).exit_status == 0);
+  // An accelerating variable turns back: the limit holds where it does, between the ends.
+  const std::string back = kinema_test::write_temporary(
+      "turning_back.toml", kinema_test::replaced(R"(theta1 = { value = "0 deg", rate = "1 rad/s")",
+                                                 R"(theta1 = { value = "0 deg", rate = "1e5 rad/s", second_rate = "-1e-3 rad/s^2")",
+                                                 kinema_test::read_file(arm)));
+  const auto turning = kinema_test::run_kinema({"eval", back, "--sweep", "0:2e8:5e7"});
+  CHECK(kinema_test::run_kinema({"eval", back, "--at", "2e8"}).exit_status == 0);  // back within the limit
+  CHECK(turning.exit_status == 2);
+  CHECK(turning.err.find("at t = 100000000 s, theta1 would be 2.86479e+14 deg") != std::string::npos);
+}

@@ -52,10 +52,8 @@ std::string literal(double value) { return cpp_double_literal(value); }
 }  // namespace
 
 bool is_cpp_reserved(const std::string& name) {
-  // C++ keywords and alternative tokens; the namespaces the standard keeps; macros of the
-  // C library's headers that a program including the header may have included first
-  // (<cmath>, <cstdio>, <cerrno>, <cassert>, <csetjmp>, <cstdarg>, <csignal>), and the
-  // ones g++ predefines in its default GNU dialect (linux, unix).
+  // C++ keywords and alternative tokens; the namespaces the standard keeps; and every
+  // macro a program may have defined before the header (c_library_macros.inc).
   static const std::set<std::string> reserved = {
       "alignas", "alignof", "and", "and_eq", "asm", "auto", "bitand", "bitor", "bool", "break", "case", "catch",
       "char", "char8_t", "char16_t", "char32_t", "class", "compl", "concept", "const", "consteval", "constexpr",
@@ -67,14 +65,12 @@ bool is_cpp_reserved(const std::string& name) {
       "switch", "template", "this", "thread_local", "throw", "true", "try", "typedef", "typeid", "typename",
       "union", "unsigned", "using", "virtual", "void", "volatile", "wchar_t", "while", "xor", "xor_eq",
       "std", "posix", "linux", "unix", "i386",
-      "NULL", "NAN", "INFINITY", "HUGE_VAL", "HUGE_VALF", "HUGE_VALL", "EOF", "BUFSIZ", "FILENAME_MAX",
-      "FOPEN_MAX", "TMP_MAX", "L_tmpnam", "stdin", "stdout", "stderr", "errno", "assert", "setjmp", "va_arg",
-      "va_copy", "va_end", "va_start", "offsetof", "MB_LEN_MAX", "RAND_MAX", "EXIT_SUCCESS", "EXIT_FAILURE",
-      "CLOCKS_PER_SEC", "TIME_UTC", "EDOM", "ERANGE", "EILSEQ", "MB_CUR_MAX", "WEOF", "CHAR_BIT"};
+#include <kinema/engine/printers/code/c_library_macros.inc>
+  };
   if (reserved.count(name) > 0) return true;
-  // Families of upper-case macros: <cmath>'s M_PI, FP_NAN, MATH_ERRNO; <cfloat>'s
-  // DBL_MAX; <climits>' INT_MAX, LONG_MIN; <cstdint>'s INT8_C, UINT64_MAX, SIZE_MAX;
-  // <csignal>'s SIGINT, SIG_DFL; <cstdio>'s SEEK_SET, _IOFBF; <clocale>'s LC_ALL.
+  // Families of upper-case macros that other C libraries and headers add to (a header of
+  // another platform may define more of them than glibc's): M_PI, FP_NAN, DBL_MAX, INT_MAX,
+  // SIGINT, SEEK_SET, LC_ALL. A reserved name with "_" appended is taken as free (M_PI_).
   const bool upper = std::all_of(name.begin(), name.end(), [](char c) {
     return std::isupper(static_cast<unsigned char>(c)) || std::isdigit(static_cast<unsigned char>(c)) || c == '_';
   });
@@ -105,6 +101,21 @@ std::string cpp_identifier(const std::string& text) {
   return id;
 }
 
+std::vector<std::string> cpp_identifiers(const std::vector<std::string>& names, const std::set<std::string>& taken) {
+  std::set<std::string> used = taken;
+  std::vector<std::string> ids;
+  for (const std::string& name : names) {
+    const std::string base = cpp_identifier(name);
+    // int and int_, a_b and a__b: one C++ name for two of the file's; the later is
+    // numbered (int_2, a_b_2: never a "__").
+    std::string id = base;
+    for (int k = 2; !used.insert(id).second; ++k)
+      id = base + (base.back() == '_' ? "" : "_") + std::to_string(k);
+    ids.push_back(id);
+  }
+  return ids;
+}
+
 void write_cpp_header(std::ostream& out, const Model& model, const std::string& name) {
   const ConstraintSystem& m = model.system;
   const Kinematics& k = model.kinematics;
@@ -120,9 +131,13 @@ void write_cpp_header(std::ostream& out, const Model& model, const std::string& 
     for (std::size_t c = 0; c < point_dimension; ++c)
       point_components += std::string(point_components.empty() ? "" : ", ") + prefix + "xyz"[c];
 
+  // The parameters' member names, one each (a member may not be named as its struct).
+  std::vector<std::string> parameter_names;
+  for (const SystemParameter& p : m.parameters) parameter_names.push_back(p.symbol.get_name());
+  const std::vector<std::string> members = cpp_identifiers(parameter_names, {"Parameters"});
   // Tape input names, in TapeLayout's order.
   std::vector<std::string> inputs(layout.input_register_count());
-  for (std::size_t p = 0; p < parameters; ++p) inputs[layout.parameter(p)] = "p." + cpp_identifier(m.parameters[p].symbol.get_name());
+  for (std::size_t p = 0; p < parameters; ++p) inputs[layout.parameter(p)] = "p." + members[p];
   inputs[layout.input()] = "theta";
   inputs[layout.rate()] = "theta_rate";
   inputs[layout.second_rate()] = "theta_second_rate";
@@ -180,7 +195,7 @@ void write_cpp_header(std::ostream& out, const Model& model, const std::string& 
       << "/// The mechanism's parameters (SI); change them for design studies.\n"
       << "struct Parameters {\n";
   for (std::size_t i = 0; i < parameters; ++i) {
-    out << "  double " << cpp_identifier(m.parameters[i].symbol.get_name()) << " = " << literal(k.parameter_values()[i]) << ";  // "
+    out << "  double " << members[i] << " = " << literal(k.parameter_values()[i]) << ";  // "
         << one_line(m.parameters[i].text) << "\n";
   }
   if (parameters == 0) out << "  int unused = 0;\n";

@@ -5,7 +5,9 @@
 #pragma once
 
 #include <ostream>
+#include <set>
 #include <string>
+#include <vector>
 
 #include <kinema/engine/model.hpp>
 
@@ -25,5 +27,9 @@ bool is_cpp_reserved(const std::string& name);
 /// "int" -> "int_", "été" -> "mechanism_t_"; never a "__" or a leading "_"), safe in
 /// generated code.
 std::string cpp_identifier(const std::string& text);
+
+/// cpp_identifier of each name, made distinct from each other and from `taken` by
+/// numbering (int and int_ -> int_ and int_2; never a "__").
+std::vector<std::string> cpp_identifiers(const std::vector<std::string>& names, const std::set<std::string>& taken = {});
 
 }  // namespace kinema

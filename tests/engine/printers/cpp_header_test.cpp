@@ -439,3 +439,59 @@ TEST_CASE("kinema codegen: a multi-line title and a path with a line break and U
   INFO(read_file(program + ".log"));
   CHECK(compiled == 0);
 }
+
+// Issue 33: two of the file's names that map to one C++ name were duplicate members, and
+// the macros of the C library beyond the families (math_errhandling, M_PIl, WNOHANG,
+// EINVAL, P_tmpdir, PATH_MAX, ...) gave headers that did not compile after <cerrno>,
+// <cstdio>, <climits>, <cmath>. Each compiles alone and after them.
+TEST_CASE("kinema codegen: names that map to one C++ name are numbered, every C library macro is renamed") {
+  CHECK(kinema::cpp_identifiers({"int", "int_", "a_b", "a__b", "Parameters"}, {"Parameters"}) ==
+        std::vector<std::string>{"int_", "int_2", "a_b", "a_b_2", "Parameters_2"});
+  const std::string after = "#include <cerrno>\n#include <cstdio>\n#include <climits>\n#include <cmath>\n";
+  struct Case {
+    std::array<std::string, 4> names;
+    std::string header, members;
+  };
+  for (const Case& c : std::vector<Case>{
+           {{"int", "int_", "a_b", "a__b"}, "math_errhandling.hpp", "int_ int_2 a_b a_b_2"},
+           {{"M_PIl", "M_El", "FD_SETSIZE", "WNOHANG"}, "EINVAL.hpp", "M_PIl_ M_El_ FD_SETSIZE_ WNOHANG_"},
+           {{"ENOENT", "P_tmpdir", "PATH_MAX", "L_ctermid"}, "M_El.hpp", "ENOENT_ P_tmpdir_ PATH_MAX_ L_ctermid_"}}) {
+    CAPTURE(c.header);
+    const RenamedHeader made = four_bar_header_named("codegen_" + c.header.substr(0, c.header.find('.')), c.names, c.header);
+    std::istringstream members(c.members);
+    for (std::string member; members >> member;) {
+      CAPTURE(member);
+      CHECK(made.code.find("  double " + member + " = ") != std::string::npos);
+    }
+    const std::string space = c.header.substr(0, c.header.find('.')) + "_";
+    CHECK(made.code.find("namespace " + space + " {") != std::string::npos);
+    check_driver_runs(made, space, "", "gnu++17");
+    check_driver_runs(made, space, after, "gnu++17");
+  }
+  for (const char* name : {"math_errhandling", "M_PIl", "FD_SETSIZE", "WNOHANG", "EINVAL", "P_tmpdir", "PATH_MAX"}) {
+    CAPTURE(name);
+    const auto refused = kinema_test::run_kinema({"codegen", kinema_test::sample("four_bar.toml"), "-o",
+                                                  kinema_test::fresh_directory("codegen_namespace") + "/x.hpp",
+                                                  "--namespace", name});
+    CHECK(refused.exit_status == 2);
+    CHECK(refused.err.find(std::string("try \"") + name + "_\"") != std::string::npos);
+  }
+}
+
+// The list of macros (engine/printers/code/c_library_macros.inc) is what this compiler and
+// C library define: a macro missing from it would be a header that does not compile.
+TEST_CASE("kinema codegen: every macro of the C and C++ library headers is a reserved name") {
+  const auto listed = kinema_test::run_shell(
+      "for h in cassert cctype cerrno cfenv cfloat cinttypes climits clocale cmath csetjmp csignal cstdarg cstddef "
+      "cstdint cstdio cstdlib cstring ctime cuchar cwchar cwctype algorithm array atomic chrono complex "
+      "condition_variable functional iostream limits memory mutex string thread vector; do echo \"#include <$h>\"; "
+      "done | " + std::string(KINEMA_CXX) + " -std=gnu++17 -dM -E -x c++ - | awk '{print $2}' | sed 's/(.*//' | grep -v '^_' | sort -u");
+  REQUIRE(listed.exit_status == 0);
+  std::istringstream names(listed.out);
+  std::size_t count = 0;
+  for (std::string name; names >> name; ++count) {
+    CAPTURE(name);
+    CHECK(kinema::is_cpp_reserved(name));
+  }
+  CHECK(count > 500);
+}

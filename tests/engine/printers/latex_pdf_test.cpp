@@ -364,7 +364,8 @@ TEST_CASE("kinema latex: an angle named with one letter and a LaTeX name that is
 // the derivation puts a name (after \cos, under \dot and \ddot, in matrices) and compiles.
 TEST_CASE("derive --format latex: LaTeX names the grammar accepts compile where kinema puts them") {
   for (const char* name : {"q", "x'", "\\hat{\\varphi}_{3}", "\\dot{s}'", "{x}_{1,\\mathrm{out}}", "x''_{1}",
-                           "\\theta_3'", "\\bar{q} \\prime", "L a", "\\vec{r}_\\alpha"}) {
+                           "\\theta_3'", "\\bar{q} \\prime", "L a", "\\vec{r}_\\alpha", "x_{\\hat{y}}",
+                           "\\mathrm{\\hat{x}}_{\\mathit{y}}"}) {
     const std::string shown = name;
     CAPTURE(shown);
     std::string basic;  // the name in a TOML basic string

@@ -93,7 +93,9 @@ TEST_CASE("engine/symbolic/naming: check_latex_name allows names, refuses comman
                          Bad{"\\write", "uses \\write; only Greek"}, Bad{"x\xc3\xa9", "past ASCII"},
                          Bad{"\\input{/etc/passwd}", "uses \\input; only Greek"}, Bad{"\\def\\x{1}", "uses \\def; only Greek"},
                          Bad{"x\\", "starts no command"}, Bad{"{}", "nothing to typeset"}, Bad{"{ }", "nothing to typeset"},
-                         Bad{"\\hat{}", "nothing to typeset"}, Bad{"\\mathrm{}", "nothing to typeset"}}) {
+                         Bad{"\\hat{}", "nothing to typeset"}, Bad{"\\mathrm{}", "nothing to typeset"},
+                         // Issue 33: kinema dotted it as \dot{\hat{x}_{\hat{y}}}, which amsmath cannot typeset.
+                         Bad{"\\hat{x}_{\\hat{y}}", "more than one accent"}, Bad{"\\bar{\\hat{x}}", "keep one"}}) {
     CAPTURE(bad.latex);
     try {
       check_latex_name(bad.latex, "unit.toml:7: unknown \"q\"");
