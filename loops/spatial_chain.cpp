@@ -80,6 +80,9 @@ GiNaC::matrix turn(unsigned axis, const ex& angle) {
   return r;
 }
 
+constexpr std::size_t kMaxChainFrames = 64;  ///< frames in one file
+constexpr std::size_t kMaxChainTurns = 14;   ///< turns from the observer to any frame
+
 class ChainBuilder {
  public:
   explicit ChainBuilder(const Mechanism& m) : m_(m), chain_(*m.chain) {}
@@ -196,8 +199,37 @@ class ChainBuilder {
       frame_index_[f.name] = k_.frames.size();
       k_.frames.emplace_back();
     }
+    check_chain_size();
     std::vector<int> state(chain_.frames.size(), 0);  // 0 new, 1 in progress, 2 done
     for (std::size_t i = 0; i < chain_.frames.size(); ++i) place(i, state);
+  }
+
+  // Each turn along a chain multiplies the rotation before it, and the derivatives grow
+  // with the product: 20 turns in a row took 34 s to derive, 24 never ended. Checked
+  // before any symbolic work (README "Limits").
+  void check_chain_size() const {
+    if (chain_.frames.size() > kMaxChainFrames) {
+      fail(chain_.frames[kMaxChainFrames].where, "the chain has more than " + std::to_string(kMaxChainFrames) +
+                                                     " frames; kinema derives chains of up to " +
+                                                     std::to_string(kMaxChainFrames) + " frames");
+    }
+    for (std::size_t i = 0; i < chain_.frames.size(); ++i) {
+      std::size_t turns = 0, steps = 0;
+      for (std::size_t j = i; steps <= chain_.frames.size(); ++steps) {  // a cycle stops here; place() names it
+        turns += chain_.frames[j].turns.size();
+        const auto parent = frame_index_.find(chain_.frames[j].parent);
+        if (parent == frame_index_.end()) break;
+        j = parent->second;
+      }
+      if (turns > kMaxChainTurns) {
+        const ChainFrame& f = chain_.frames[i];
+        fail(f.where, "frame \"" + f.name + "\" is " + std::to_string(turns) +
+                          " turns from the observer (its own and its ancestors'); kinema derives chains of up to " +
+                          std::to_string(kMaxChainTurns) +
+                          " turns in a row, whose formulas grow with each turn: split the chain, or give fixed "
+                          "turns as one");
+      }
+    }
   }
 
   // A frame after its parent (a parent defined later in the file is placed first).

@@ -1,5 +1,6 @@
 #include "test_support.hpp"
 
+#include <sys/resource.h>
 #include <sys/wait.h>
 
 #include <cmath>
@@ -82,6 +83,16 @@ CommandResult run_kinema(const std::vector<std::string>& arguments) {
 
 CommandResult run_shell(const std::string& command_line) {
   return run_captured("bash -c " + shell_quote(command_line));
+}
+
+CommandResult run_kinema_bounded(const std::vector<std::string>& arguments) {
+  std::string command = "ulimit -t 10; exec " + shell_quote(KINEMA_EXE);
+  for (const auto& argument : arguments) command += " " + shell_quote(argument);
+  CommandResult result = run_shell(command);
+  rusage usage{};
+  getrusage(RUSAGE_CHILDREN, &usage);
+  result.peak_kilobytes = usage.ru_maxrss;
+  return result;
 }
 
 kinema::AnalysisOptions with_rates(double rate, double second_rate, unsigned threads, bool simd) {

@@ -14,10 +14,16 @@ struct CommandResult {
   int exit_status = -1;
   std::string out;  ///< stdout
   std::string err;  ///< stderr
+  long peak_kilobytes = 0;  ///< run_kinema_bounded: the largest resident size of a child so far
 };
 
 /// Runs the kinema executable with the arguments (no shell quoting needed for simple words).
 CommandResult run_kinema(const std::vector<std::string>& arguments);
+
+/// Runs kinema under a CPU limit of 10 s (killed past it: status 137) and reports the
+/// largest resident size of any child so far (peak_kilobytes): issue 33's bounds, each case
+/// ending within 10 s and 2 GB.
+CommandResult run_kinema_bounded(const std::vector<std::string>& arguments);
 
 /// Runs a bash command line (`bash -c`), e.g. with ulimit or redirections; its stdout and stderr are captured.
 CommandResult run_shell(const std::string& command_line);
