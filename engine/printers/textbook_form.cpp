@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cctype>
 #include <climits>
+#include <cstdio>
+#include <cstdlib>
 #include <functional>
 #include <sstream>
 #include <vector>
@@ -194,6 +196,15 @@ std::string TextbookForm::render_number(const GiNaC::numeric& n, Context& c) con
   if (n.is_rational()) {
     const std::string p = digits(n.numer()), q = digits(n.denom());
     return c.latex() ? "\\frac{" + p + "}{" + q + "}" : p + "/" + q;
+  }
+  if (n.is_real() && exact_floats_) {
+    const double value = n.to_double();
+    char text[64];
+    for (int digits = 6; digits <= 17; ++digits) {
+      std::snprintf(text, sizeof text, "%.*g", digits, value);
+      if (std::strtod(text, nullptr) == value) break;
+    }
+    return text;
   }
   if (n.is_real()) {
     const std::string text = format_significant(n.to_double());

@@ -69,7 +69,17 @@ std::string chain_instant_latex(const ConstraintSystem& system, const ChainAtIns
          (chain.basis == chain.observer ? " (the observer)" : "") + ", in SI units";
 }
 
-std::vector<LatexRow> chain_frame_rows(const ChainAtInstant& chain, const TextbookForm& form) {
+namespace {
+// The chain's floats carry the digits they need (chain_at_instant): printed as they are.
+TextbookForm exact_floats(const TextbookForm& form) {
+  TextbookForm exact = form;
+  exact.set_exact_floats(true);
+  return exact;
+}
+}  // namespace
+
+std::vector<LatexRow> chain_frame_rows(const ChainAtInstant& chain, const TextbookForm& textbook) {
+  const TextbookForm form = exact_floats(textbook);
   std::vector<LatexRow> rows;
   const std::string& o = chain.observer;
   for (const ChainFrameAtInstant& f : chain.frames) {
@@ -108,7 +118,8 @@ std::vector<LatexRow> chain_frame_rows(const ChainAtInstant& chain, const Textbo
   return rows;
 }
 
-std::vector<LatexRow> chain_point_rows(const ChainAtInstant& chain, const TextbookForm& form) {
+std::vector<LatexRow> chain_point_rows(const ChainAtInstant& chain, const TextbookForm& textbook) {
+  const TextbookForm form = exact_floats(textbook);
   std::vector<LatexRow> rows;
   for (const ChainPointAtInstant& p : chain.points) {
     const std::string F = named(p.frame), P = named(p.name);
