@@ -593,6 +593,10 @@ std::vector<std::string> TextbookForm::latex_lines(const ex& e, const ex& unknow
         denominator *= GiNaC::pow(f.op(0), -f.op(1));
       } else if (GiNaC::is_a<GiNaC::add>(f)) {
         sums.push_back(f);
+      } else if (GiNaC::is_a<GiNaC::numeric>(f) && GiNaC::ex_to<GiNaC::numeric>(f).is_rational()) {
+        // 1/2: its denominator joins the quotient's (\frac{1}{2 BC}, not \frac{\frac{1}{2}}{BC}).
+        front *= GiNaC::ex_to<GiNaC::numeric>(f).numer();
+        denominator *= GiNaC::ex_to<GiNaC::numeric>(f).denom();
       } else {
         front *= f;
       }
