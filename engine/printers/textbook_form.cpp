@@ -493,6 +493,15 @@ std::pair<bool, std::string> TextbookForm::render_product(const ex& e, Context& 
   }
   c.preferred = preferred;
   std::string bottom = join(denominator);
+  // A chain's formula: a number's denominator with a sum in the numerator as a factor in
+  // front, \frac{1}{2}\cos\alpha\,(...), so that a line can break inside the sum.
+  const auto numeric_factor = [](const Factor& f) { return GiNaC::is_a<GiNaC::numeric>(f.base); };
+  if (c.latex() && exact_floats_ && std::all_of(denominator.begin(), denominator.end(), numeric_factor) &&
+      std::any_of(numerator.begin(), numerator.end(), [](const Factor& f) { return GiNaC::is_a<GiNaC::add>(f.base); })) {
+    std::vector<Factor> numbers, rest;
+    for (const Factor& f : numerator) (numeric_factor(f) ? numbers : rest).push_back(f);
+    return {negative, "\\frac{" + (numbers.empty() ? std::string("1") : join(numbers)) + "}{" + bottom + "}\\," + join(rest)};
+  }
   if (c.latex()) return {negative, "\\frac{" + top + "}{" + bottom + "}"};
   // One factor needs no parentheses of its own (a lone sum already has them).
   const bool single = denominator.size() == 1 && denominator.front().exponent.is_equal(1);

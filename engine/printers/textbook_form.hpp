@@ -60,7 +60,8 @@ class TextbookForm {
 
   /// Floats in their shortest form that reads back as the same double (0.296198 or
   /// 0.29619813272602) instead of 6 significant digits: for formulas whose floats were
-  /// rounded to the digits they need (a spatial chain at its instant).
+  /// rounded to the digits they need (a spatial chain at its instant); in LaTeX a
+  /// number's denominator with a sum goes in front (\frac{1}{2}\cos\alpha\,(...)).
   void set_exact_floats(bool exact) { exact_floats_ = exact; }
 
  private:

@@ -473,6 +473,18 @@ TEST_CASE("derive --format latex and kinema latex: every sample with every metho
       if (method != kinema::DerivationMethod::loops) documents.push_back({sample, kinema::method_name(method)});
     }
   }
+  {
+    // Seed 000's arm at non-zero joint angles: its formulas carry sqrt(3)/2 and floats
+    // (a \frac{...}{2} of a whole sum was 1191 pt too wide).
+    std::string arm = read_file(kinema_test::sample("robot_arm_seed000.toml"));
+    for (const char* angle : {"30 deg", "-20 deg", "50 deg"}) arm.replace(arm.find("value = \"0 deg\"") + 9, 5, angle);
+    const kinema::Model model = kinema::load_model(kinema_test::write_temporary("arm_turned.toml", arm));
+    kinema::PrintJob job{model};
+    std::ostringstream out;
+    derivation->print(out, job);
+    starts.push_back({lines_in(tex) + 1, "robot_arm_seed000.toml at 30, -20, 50 deg"});
+    tex += "\\clearpage\n" + out.str();
+  }
   tex += "\\end{document}\n";
   std::string log;
   CHECK(compile_document(tex, "derive_every_method", log) > 0);
