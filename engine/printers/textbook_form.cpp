@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cctype>
 #include <climits>
+#include <cstdio>
+#include <cstdlib>
 #include <functional>
 #include <sstream>
 #include <vector>
@@ -194,6 +196,15 @@ std::string TextbookForm::render_number(const GiNaC::numeric& n, Context& c) con
   if (n.is_rational()) {
     const std::string p = digits(n.numer()), q = digits(n.denom());
     return c.latex() ? "\\frac{" + p + "}{" + q + "}" : p + "/" + q;
+  }
+  if (n.is_real() && exact_floats_) {
+    const double value = n.to_double();
+    char text[64];
+    for (int digits = 6; digits <= 17; ++digits) {
+      std::snprintf(text, sizeof text, "%.*g", digits, value);
+      if (std::strtod(text, nullptr) == value) break;
+    }
+    return text;
   }
   if (n.is_real()) {
     const std::string text = format_significant(n.to_double());
@@ -482,6 +493,15 @@ std::pair<bool, std::string> TextbookForm::render_product(const ex& e, Context& 
   }
   c.preferred = preferred;
   std::string bottom = join(denominator);
+  // A chain's formula: a number's denominator with a sum in the numerator as a factor in
+  // front, \frac{1}{2}\cos\alpha\,(...), so that a line can break inside the sum.
+  const auto numeric_factor = [](const Factor& f) { return GiNaC::is_a<GiNaC::numeric>(f.base); };
+  if (c.latex() && exact_floats_ && std::all_of(denominator.begin(), denominator.end(), numeric_factor) &&
+      std::any_of(numerator.begin(), numerator.end(), [](const Factor& f) { return GiNaC::is_a<GiNaC::add>(f.base); })) {
+    std::vector<Factor> numbers, rest;
+    for (const Factor& f : numerator) (numeric_factor(f) ? numbers : rest).push_back(f);
+    return {negative, "\\frac{" + (numbers.empty() ? std::string("1") : join(numbers)) + "}{" + bottom + "}\\," + join(rest)};
+  }
   if (c.latex()) return {negative, "\\frac{" + top + "}{" + bottom + "}"};
   // One factor needs no parentheses of its own (a lone sum already has them).
   const bool single = denominator.size() == 1 && denominator.front().exponent.is_equal(1);
@@ -582,6 +602,10 @@ std::vector<std::string> TextbookForm::latex_lines(const ex& e, const ex& unknow
         denominator *= GiNaC::pow(f.op(0), -f.op(1));
       } else if (GiNaC::is_a<GiNaC::add>(f)) {
         sums.push_back(f);
+      } else if (GiNaC::is_a<GiNaC::numeric>(f) && GiNaC::ex_to<GiNaC::numeric>(f).is_rational()) {
+        // 1/2: its denominator joins the quotient's (\frac{1}{2 BC}, not \frac{\frac{1}{2}}{BC}).
+        front *= GiNaC::ex_to<GiNaC::numeric>(f).numer();
+        denominator *= GiNaC::ex_to<GiNaC::numeric>(f).denom();
       } else {
         front *= f;
       }

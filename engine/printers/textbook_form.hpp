@@ -58,7 +58,14 @@ class TextbookForm {
   /// The loop as a vector sum, its terms as written: AB*exp(I*phi) - BC*exp(I*phi2) - (La + I*Lb).
   std::string loop_vector(const EquationGroup& group, Style style) const;
 
+  /// Floats in their shortest form that reads back as the same double (0.296198 or
+  /// 0.29619813272602) instead of 6 significant digits: for formulas whose floats were
+  /// rounded to the digits they need (a spatial chain at its instant); in LaTeX a
+  /// number's denominator with a sum goes in front (\frac{1}{2}\cos\alpha\,(...)).
+  void set_exact_floats(bool exact) { exact_floats_ = exact; }
+
  private:
+  bool exact_floats_ = false;
   struct Key {
     int rank;   // 0 numbers, 1 parameters, 2 coordinates, 3 rates, 4 functions, 5 other
     int index;  // order within the rank

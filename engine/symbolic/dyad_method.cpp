@@ -1,5 +1,6 @@
 #include <kinema/engine/symbolic/dyad_method.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 #include <kinema/engine/errors.hpp>
@@ -184,9 +185,30 @@ class Writer {
     return acceleration_symbols(j, b);
   }
 
-  // "v_D + omega3 x r_DC" in words (terms that are zero left out).
+  // Two joints at one point of body b for all time (a slider block's pin on its slide,
+  // as seed 002 draws B and B2): the vector between them is zero, so no term has it. A
+  // slider's point on its guide only passes a point of the guide, so it never counts.
+  bool coincide(std::size_t a, std::size_t b_joint, std::size_t b) const {
+    if (a == b_joint) return true;
+    for (const LinkageFrames::Slider& s : frames_.sliders)
+      if (s.guide == b && (s.joint == a || s.joint == b_joint)) return false;
+    const std::complex<double>* pa = nullptr;
+    const std::complex<double>* pb = nullptr;
+    for (const auto& [joint_index, at] : frames_.bodies[b].points) {
+      if (joint_index == a) pa = &at;
+      if (joint_index == b_joint) pb = &at;
+    }
+    if (pa == nullptr || pb == nullptr) return false;
+    return std::abs(*pa - *pb) <= 1e-12 * (1.0 + std::max(std::abs(*pa), std::abs(*pb)));
+  }
+  // r from joint `from` to joint `to` on body b (zero where they coincide).
+  Vec arm(std::size_t from, std::size_t to, std::size_t b) {
+    return coincide(from, to, b) ? Vec{} : position(to) - position(from);
+  }
+
+  // "v_D + omega3 x r_DC" in words (terms that are zero left out); `body` turns with w_body.
   void words_transfer(Words& w, std::size_t from_joint, std::size_t from_body, const ex& w_body, std::size_t to_joint,
-                      bool acceleration_order, const ex& a_body, bool leading) {
+                      bool acceleration_order, const ex& a_body, bool leading, std::size_t body) {
     bool first = leading;
     const auto plus = [&] {
       if (!first) w.add(" + ", " + ");
@@ -198,7 +220,7 @@ class Writer {
       plus();
       w.add(std::string(v) + "_" + n, std::string("\\mathbf{") + v + "}_{" + l + "}");
     }
-    if (from_joint == to_joint) {
+    if (coincide(from_joint, to_joint, body)) {
       if (first) w.add("0", "\\mathbf{0}");
       return;
     }
@@ -222,7 +244,7 @@ class Writer {
 
   // The velocity (or acceleration) of joint `to` on body b from joint `from` on b.
   Vec transfer(std::size_t from, std::size_t b, std::size_t to, bool second) {
-    const Vec r = position(to) - position(from);
+    const Vec r = arm(from, to, b);
     const bool from_rest = at_rest(from);
     if (!second) return (from_rest ? Vec{} : velocity(from, b)) + cross(omega(b), r);
     return (from_rest ? Vec{} : acceleration(from, b)) + cross(alpha(b), r) - GiNaC::pow(omega(b), 2) * r;
@@ -242,7 +264,7 @@ class Writer {
         Words w;
         const std::string n = point_name(j, b), l = point_latex(j, b);
         w.add(std::string(second ? "a_" : "v_") + n + " = ", std::string("\\mathbf{") + (second ? "a" : "v") + "}_{" + l + "} = ");
-        words_transfer(w, from, from_rest ? 0 : b, omega(b), j, second, alpha(b), true);
+        words_transfer(w, from, from_rest ? 0 : b, omega(b), j, second, alpha(b), true, b);
         const Vec value = transfer(from, b, j, second);
         const Vec named = second ? acceleration_symbols(j, b) : velocity_symbols(j, b);
         auto& list = second ? step.acceleration : step.velocity;
@@ -300,8 +322,8 @@ class Writer {
     if (side.edge >= 0) {
       const LinkageFrames::Pin& pin = frames_.pins[std::size_t(side.edge)];
       const std::size_t known = pin.a == L ? pin.b : pin.a;
-      words_transfer(w, pin.joint, known == 0 ? 0 : known, omega(L), j, second, alpha(L), true);
-      const Vec r = position(j) - position(pin.joint);
+      words_transfer(w, pin.joint, known == 0 ? 0 : known, omega(L), j, second, alpha(L), true, L);
+      const Vec r = arm(pin.joint, j, L);
       const Vec start = at_rest(pin.joint) ? Vec{} : (second ? acceleration(pin.joint, known) : velocity(pin.joint, known));
       return second ? start + cross(alpha(L), r) - GiNaC::pow(omega(L), 2) * r : start + cross(omega(L), r);
     }
@@ -335,15 +357,17 @@ class Writer {
               "\\boldsymbol{" + latex_of(w_guide) + "} \\times " + latex_of(rate) + "\\,\\mathbf{u}_{" + joint(s.joint) + "}");
       }
     }
-    if (s.joint != j) {
+    if (!coincide(s.joint, j, L)) {
+      // Its own words (leading: no sign of its own), after one " + ".
       Words rest;
-      words_transfer(rest, s.joint, 0, omega(L), j, second, alpha(L), false);
+      words_transfer(rest, s.joint, 0, omega(L), j, second, alpha(L), true, L);
       if (!rest.text.empty() && rest.text != "0") {
-        w.add(" + ", " + ");
-        w.add(rest.text, rest.latex);
+        const bool minus = rest.text[0] == '-';
+        w.add(minus ? " - " : " + ", minus ? " - " : " + ");
+        w.add(minus ? rest.text.substr(1) : rest.text, minus ? rest.latex.substr(1) : rest.latex);
       }
     }
-    const Vec r = position(j) - position(s.joint);
+    const Vec r = arm(s.joint, j, L);
     return second ? start + cross(alpha(L), r) - GiNaC::pow(omega(L), 2) * r : start + cross(omega(L), r);
   }
 
@@ -477,6 +501,7 @@ class Writer {
     twice[v_j.x] = a_j.x;
     twice[v_j.y] = a_j.y;
     std::vector<ex> constraints;
+    GiNaC::exmap same;  // a slide point that is J: its position is J's
     for (const Side& side : {first, second_side}) {
       Words w;
       ex c;
@@ -503,7 +528,14 @@ class Writer {
       } else {
         const LinkageFrames::Slider& s = frames_.sliders[std::size_t(-1 - side.edge)];
         const Vec u = direction(s), r = r_j - position(s.joint);
-        const ex h = symbol("h_" + joint(j) + joint(s.joint), "h_{" + joint(j) + joint(s.joint) + "}");
+        // J on the block's own slide point: on the line itself (h = 0), and where the
+        // derivatives leave r_S - r_J it is zero (S is J's position on the guide).
+        const bool on_line = coincide(s.joint, j, side.link);
+        if (on_line) {
+          same[position(s.joint).x] = r_j.x;
+          same[position(s.joint).y] = r_j.y;
+        }
+        const ex h = on_line ? ex(0) : symbol("h_" + joint(j) + joint(s.joint), "h_{" + joint(j) + joint(s.joint) + "}");
         c = r.x * u.y - r.y * u.x - h;  // J's distance from the guide's line through S
         const Vec rs = position(s.joint);
         if (s.guide != 0) {
@@ -515,9 +547,10 @@ class Writer {
         }
         add_angle_rates(angle(s.guide), once, twice);
         step.velocity.push_back({MethodRelation::Kind::statement,
-                                 "(r_" + joint(j) + " - r_" + joint(s.joint) + ") x u_" + joint(s.joint) + " = h_" + joint(j) + joint(s.joint),
+                                 "(r_" + joint(j) + " - r_" + joint(s.joint) + ") x u_" + joint(s.joint) + " = " +
+                                     (on_line ? "0" : "h_" + joint(j) + joint(s.joint)),
                                  "(\\mathbf{r}_{" + joint(j) + "} - \\mathbf{r}_{" + joint(s.joint) + "}) \\times \\mathbf{u}_{" +
-                                     joint(s.joint) + "} = h_{" + joint(j) + joint(s.joint) + "}",
+                                     joint(s.joint) + "} = " + (on_line ? "0" : "h_{" + joint(j) + joint(s.joint) + "}"),
                                  0, 0});
       }
       step.velocity.push_back({MethodRelation::Kind::component, "position", "position", c, 0});
@@ -527,10 +560,10 @@ class Writer {
     std::vector<ex> velocity_equations, acceleration_equations;
     for (const ex& c : constraints) {
       const ex dc = derivative(c, once).expand();
-      velocity_equations.push_back(dc);
+      velocity_equations.push_back(dc.subs(same).expand());
       GiNaC::exmap both = once;
       for (const auto& [s, rate] : twice) both[s] = rate;
-      acceleration_equations.push_back(derivative(dc, both).expand());
+      acceleration_equations.push_back(derivative(dc, both).expand().subs(same).expand());
     }
     for (const ex& e : velocity_equations) step.velocity.push_back({MethodRelation::Kind::component, "d/dt", "\\tfrac{d}{dt}", e, 0});
     solve(step.velocity, velocity_equations, {v_j.x, v_j.y});
@@ -557,7 +590,7 @@ class Writer {
       } else {
         const LinkageFrames::Slider& s = frames_.sliders[std::size_t(-1 - side.edge)];
         if (s.unknown < 0) continue;
-        const Vec u = direction(s), r = position(j) - position(s.joint);
+        const Vec u = direction(s), r = arm(s.joint, j, side.link);
         const ex w = omega(side.link), al = alpha(side.link);
         const Vec vs = s.guide == 0 ? Vec{} : velocity(s.joint, s.guide), as = s.guide == 0 ? Vec{} : acceleration(s.joint, s.guide);
         const Vec slide_v = v_j - vs - cross(w, r);

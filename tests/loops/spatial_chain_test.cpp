@@ -780,4 +780,105 @@ TEST_CASE("spatial_chain: a chain of too many turns in a row or too many frames 
   // 14 turns in a row (7 frames of two) are derived.
   const auto fourteen = kinema_test::run_kinema_bounded({"eval", kinema_test::write_temporary("deep_7.toml", chain(7, 2))});
   CHECK(fourteen.exit_status == 0);
+
+namespace {
+
+// Issue 32's arm at non-zero joint angles (30, -20, 50 deg; alpha 60 deg, beta 90 deg).
+const char* const kArmAtAnotherInstant = R"toml(title = "arm at another instant"
+[parameters]
+L1 = "1.2 m"
+L2 = "0.6 m"
+L3 = "0.2 m"
+alpha = "60 deg"
+beta = "90 deg"
+[variables]
+theta1 = { value = "30 deg", rate = "1.5 rad/s", second_rate = "0.4 rad/s^2" }
+theta4 = { value = "-20 deg", rate = "-0.7 rad/s", second_rate = "-1.1 rad/s^2" }
+theta5 = { value = "50 deg", rate = "2.2 rad/s", second_rate = "0.9 rad/s^2" }
+[frames]
+E1 = { parent = "E0", turns = [["z", "theta1"]] }
+E2 = { parent = "E1", origin = ["0 m", "L1*cos(alpha)", "L1*sin(alpha)"], turns = [["x", "alpha - Pi/2"], ["-x", "theta4"]] }
+E3 = { parent = "E2", origin = ["0 m", "L2", "0 m"], turns = [["y", "theta5"]] }
+[points]
+O2 = { frame = "E2" }
+A = { frame = "E3" }
+B = { frame = "E3", at = ["L3*sin(beta)", "L3*cos(beta)", "0 m"] }
+)toml";
+
+// The "name = [f1, f2, f3] = (...)" line of `derive` that starts with `start`: its three
+// formulas as printed, read back.
+std::vector<ex> printed_vector(const std::string& out, const std::string& start, GiNaC::parser& read) {
+  const auto at = out.find(start);
+  REQUIRE_MESSAGE(at != std::string::npos, start);
+  const auto open = out.find("= [", at) + 3;
+  const std::string list = out.substr(open, out.find("] = (", open) - open);
+  std::vector<ex> components;
+  int depth = 0;
+  std::size_t from = 0;
+  for (std::size_t i = 0; i <= list.size(); ++i) {
+    if (i < list.size() && (list[i] == '(' || list[i] == '[')) ++depth;
+    if (i < list.size() && (list[i] == ')' || list[i] == ']')) --depth;
+    if (i == list.size() || (depth == 0 && list[i] == ',')) {
+      components.push_back(read(list.substr(from, i - from)));
+      from = i + 1;
+    }
+  }
+  REQUIRE(components.size() == 3);
+  return components;
+}
+
+}  // namespace
+
+TEST_CASE("spatial_chain: derive at non-zero joint angles - exact angles stay exact, no round-off, formulas as printed "
+          "give eval's numbers") {
+  const std::string path = kinema_test::write_temporary("arm_another_instant.toml", kArmAtAnotherInstant);
+  const auto derived = kinema_test::run_kinema({"derive", path});
+  REQUIRE(derived.exit_status == 0);
+  const std::string& out = derived.out;
+  // No round-off printed as a coefficient (2.71051e-20*L3*omega5*sin(2*alpha) was).
+  CHECK(out.find("e-1") == std::string::npos);
+  CHECK(out.find("e-2") == std::string::npos);
+  // theta1 = 30 deg is Pi/6: E2's x axis is (cos 30, sin 30, 0) exactly.
+  CHECK(out.find("      = [-sqrt(3)*omega4/2, -omega4/2, omega1] = (0.606218, 0.35, 1.5)\n") != std::string::npos);
+
+  // Every frame's w and alpha and every point's v and a, as printed, read back and
+  // evaluated at the file's values, give eval's numbers to the printed 6 digits.
+  GiNaC::symtab names;
+  GiNaC::exmap values;
+  const auto name = [&](const std::string& n, double v) {
+    const GiNaC::realsymbol s(n);
+    names[n] = s;
+    values[s] = v;
+  };
+  name("L1", 1.2), name("L2", 0.6), name("L3", 0.2), name("alpha", M_PI / 3), name("beta", M_PI / 2);
+  name("omega1", 1.5), name("omega4", -0.7), name("omega5", 2.2), name("alpha1", 0.4), name("alpha4", -1.1), name("alpha5", 0.9);
+  GiNaC::parser read(names, true);
+  const auto eval = kinema_test::run_kinema({"eval", path, "--format", "json"});
+  REQUIRE(eval.exit_status == 0);
+  const nlohmann::json result = nlohmann::json::parse(eval.out)["results"][0];
+  const auto check = [&](const std::string& start, const nlohmann::json& expected) {
+    CAPTURE(start);
+    const std::vector<ex> formulas = printed_vector(out, start, read);
+    for (std::size_t c = 0; c < 3; ++c) {
+      CAPTURE(c);
+      CAPTURE(formulas[c]);
+      const double want = expected[c].get<double>();
+      CHECK(std::fabs(at(formulas[c], values) - want) <= 5e-7 * std::fabs(want) + 1e-12);
+    }
+  };
+  for (const char* f : {"E1", "E2", "E3"}) {
+    const std::string frame = f;
+    check("    w_" + frame + "/E0 = ", result["frames"][frame]["angular_velocity"]);
+    const auto alpha = out.find("    alpha_" + frame + "/E0 = ");
+    REQUIRE(alpha != std::string::npos);
+    // alpha's sum is the last "      = [" line before the next frame or section.
+    const auto next = out.find("\n  E", alpha) < out.find("\n2. ", alpha) ? out.find("\n  E", alpha) : out.find("\n2. ", alpha);
+    const auto sum = out.rfind("\n      = [", next);
+    check(out.substr(sum, next - sum), result["frames"][frame]["angular_acceleration"]);
+  }
+  for (const char* p : {"O2", "A", "B"}) {
+    const std::string point = p;
+    check("    v_" + point + " = [", result["points"][point]["velocity"]);
+    check("    a_" + point + " = [", result["points"][point]["acceleration"]);
+  }
 }

@@ -22,7 +22,7 @@ bool is_zero(const ChainVector& v) {
 // name = [column] = (numbers) unit, or for a long vector the numbers first, then each
 // component's formula broken over lines; a zero vector as 0.
 void vector_rows(std::vector<LatexRow>& rows, const TextbookForm& form, const std::string& name, const ChainVector& v,
-                 const std::string& unit, const std::string& basis, bool boxed, const std::string& comment) {
+                 const std::string& unit, const std::string& basis, bool boxed, const std::string& comment, double budget) {
   if (is_zero(v)) {
     rows.push_back({name + " &= \\mathbf{0}", comment});
     return;
@@ -33,14 +33,14 @@ void vector_rows(std::vector<LatexRow>& rows, const TextbookForm& form, const st
   if (boxed) numbers = "\\boxed{" + numbers + "}";
   double longest = 0;
   for (const ex& c : v.formula) longest = std::max(longest, latex_width(form(c, TextbookForm::Style::latex)));
-  if (latex_width(name) + longest + latex_width(numbers) < kLatexLineBudget - 12) {
+  if (latex_width(name) + longest + latex_width(numbers) < budget - 12) {
     rows.push_back({name + " &= " + latex_column(v.formula, form) + " = " + numbers, comment});
     return;
   }
   rows.push_back({name + " &= " + numbers, comment});
   static const char* const axes[3] = {"x", "y", "z"};
   for (std::size_t c = 0; c < 3; ++c) {
-    const std::vector<std::string> lines = form.latex_lines(v.formula[c], 0, nullptr, kLatexLineBudget - 22);
+    const std::vector<std::string> lines = form.latex_lines(v.formula[c], 0, nullptr, budget - 22);
     for (std::size_t k = 0; k < lines.size(); ++k) {
       rows.push_back({k == 0 ? "&\\quad \\text{along } \\hat{\\mathbf{" + std::string(axes[c]) + "}}_{" + basis + "}:\\ " + lines[k]
                              : "&\\qquad " + lines[k],
@@ -69,7 +69,17 @@ std::string chain_instant_latex(const ConstraintSystem& system, const ChainAtIns
          (chain.basis == chain.observer ? " (the observer)" : "") + ", in SI units";
 }
 
-std::vector<LatexRow> chain_frame_rows(const ChainAtInstant& chain, const TextbookForm& form) {
+namespace {
+// The chain's floats carry the digits they need (chain_at_instant): printed as they are.
+TextbookForm exact_floats(const TextbookForm& form) {
+  TextbookForm exact = form;
+  exact.set_exact_floats(true);
+  return exact;
+}
+}  // namespace
+
+std::vector<LatexRow> chain_frame_rows(const ChainAtInstant& chain, const TextbookForm& textbook, double budget) {
+  const TextbookForm form = exact_floats(textbook);
   std::vector<LatexRow> rows;
   const std::string& o = chain.observer;
   for (const ChainFrameAtInstant& f : chain.frames) {
@@ -82,7 +92,7 @@ std::vector<LatexRow> chain_frame_rows(const ChainAtInstant& chain, const Textbo
     const std::string w = "\\boldsymbol{\\omega}_{" + named(f.name + "/" + o) + "}";
     rows.push_back({w + " &= " + (sum.empty() ? "\\mathbf{0}" : sum), "frame " + f.name});
     vector_rows(rows, form, "", f.angular_velocity, "rad/s", named(chain.basis), false,
-                vector_comment("w_" + f.name, f.angular_velocity, form));
+                vector_comment("w_" + f.name, f.angular_velocity, form), budget);
     // alpha term by term: each rate's change along its axis, and the axis carried round
     // by the frame it belongs to.
     std::vector<std::string> parts;
@@ -95,7 +105,7 @@ std::vector<LatexRow> chain_frame_rows(const ChainAtInstant& chain, const Textbo
     // The parts over as many lines as they need.
     std::vector<std::string> lines = {""};
     for (const std::string& part : parts) {
-      if (!lines.back().empty() && latex_width(lines.back() + " + " + part) > kLatexLineBudget - 12) lines.push_back("");
+      if (!lines.back().empty() && latex_width(lines.back() + " + " + part) > budget - 12) lines.push_back("");
       lines.back() += (lines.back().empty() ? (lines.size() == 1 ? "" : "+ ") : " + ") + part;
     }
     rows.push_back({"\\boldsymbol{\\alpha}_{" + named(f.name + "/" + o) + "} = \\frac{d}{dt}" + w + " &= " +
@@ -103,12 +113,13 @@ std::vector<LatexRow> chain_frame_rows(const ChainAtInstant& chain, const Textbo
                     ""});
     for (std::size_t k = 1; k < lines.size(); ++k) rows.push_back({"&\\quad " + lines[k], ""});
     vector_rows(rows, form, "", f.angular_acceleration, "rad/s^2", named(chain.basis), false,
-                vector_comment("alpha_" + f.name, f.angular_acceleration, form));
+                vector_comment("alpha_" + f.name, f.angular_acceleration, form), budget);
   }
-  return rows;
+  return latex_fit_rows(rows, budget);
 }
 
-std::vector<LatexRow> chain_point_rows(const ChainAtInstant& chain, const TextbookForm& form) {
+std::vector<LatexRow> chain_point_rows(const ChainAtInstant& chain, const TextbookForm& textbook, double budget) {
+  const TextbookForm form = exact_floats(textbook);
   std::vector<LatexRow> rows;
   for (const ChainPointAtInstant& p : chain.points) {
     const std::string F = named(p.frame), P = named(p.name);
@@ -142,11 +153,11 @@ std::vector<LatexRow> chain_point_rows(const ChainAtInstant& chain, const Textbo
           default: break;
         }
         if (v.term == ChainTerm::position) comment = "point " + p.name + " in " + p.frame;
-        vector_rows(rows, form, name, v, unit, named(chain.basis), result, comment);
+        vector_rows(rows, form, name, v, unit, named(chain.basis), result, comment, budget);
       }
     }
   }
-  return rows;
+  return latex_fit_rows(rows, budget);
 }
 
 }  // namespace kinema

@@ -13,10 +13,12 @@
 namespace kinema {
 
 /// The frames' rows (angular velocities and accelerations).
-std::vector<LatexRow> chain_frame_rows(const ChainAtInstant& chain, const TextbookForm& form);
+std::vector<LatexRow> chain_frame_rows(const ChainAtInstant& chain, const TextbookForm& form,
+                                       double budget = kLatexLineBudget);
 /// The points' rows (velocities, then accelerations, of each point). Each result carries
 /// a "% kinema vector: v_B = [x, y, z]" comment in GiNaC syntax.
-std::vector<LatexRow> chain_point_rows(const ChainAtInstant& chain, const TextbookForm& form);
+std::vector<LatexRow> chain_point_rows(const ChainAtInstant& chain, const TextbookForm& form,
+                                       double budget = kLatexLineBudget);
 /// "at the instant t = 0: theta_1 = 0 deg, ...; components along the axes of E0" (text).
 std::string chain_instant_latex(const ConstraintSystem& system, const ChainAtInstant& chain);
 

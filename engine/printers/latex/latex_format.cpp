@@ -1,5 +1,8 @@
 #include <kinema/engine/printers/latex/latex_format.hpp>
 
+#include <algorithm>
+#include <cctype>
+#include <climits>
 #include <sstream>
 
 #include <kinema/engine/printers/latex/latex_unicode.hpp>
@@ -132,6 +135,128 @@ std::vector<LatexRow> latex_broken_rows(const std::string& lhs, const std::vecto
   if (lines.size() > 1 && latex_width(lines.back() + suffix) > kLatexLineBudget) rows.push_back({"&" + suffix, ""});
   else rows.back().text += suffix;
   return rows;
+}
+
+LatexRow latex_intertext(const std::string& escaped_text, const std::string& comment) {
+  return {"\\intertext{" + escaped_text + "}", comment};
+}
+
+bool is_intertext(const std::string& row) { return row.rfind("\\intertext{", 0) == 0; }
+
+namespace {
+
+// The first & of a row outside braces and environments (npos: none), and the places a
+// row may break: before " + ", " - " and " = " where a break compiles (not in braces,
+// an environment such as bmatrix, or \left...\right), each with how deep in
+// parentheses it is (a break inside sin(theta2 + theta4) is the last resort).
+struct RowShape {
+  std::size_t tab = std::string::npos;
+  std::vector<std::pair<std::size_t, int>> breaks;
+};
+
+// Nothing but spaces and \quad: a sign after it is the row's first (no break there).
+bool only_spacing(std::string text) {
+  for (const char* space : {"\\qquad", "\\quad"})
+    for (auto at = text.find(space); at != std::string::npos; at = text.find(space)) text.erase(at, std::string(space).size());
+  return text.find_first_not_of(' ') == std::string::npos;
+}
+
+RowShape row_shape(const std::string& text) {
+  RowShape shape;
+  int depth = 0, parentheses = 0;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char ch = text[i];
+    if (ch == '\\') {
+      std::size_t end = i + 1;
+      while (end < text.size() && std::isalpha(static_cast<unsigned char>(text[end]))) ++end;
+      const std::string name = text.substr(i + 1, end - i - 1);
+      if (name == "begin" || name == "left") ++depth;
+      else if (name == "end" || name == "right") --depth;
+      i = end > i + 1 ? end - 1 : i + 1;  // \{, \, and the like: two characters
+      continue;
+    }
+    if (ch == '{') {
+      ++depth;
+    } else if (ch == '}') {
+      --depth;
+    } else if (ch == '(') {
+      ++parentheses;
+    } else if (ch == ')') {
+      --parentheses;
+    } else if (depth == 0 && ch == '&' && shape.tab == std::string::npos) {
+      shape.tab = i;
+    } else if (depth == 0 && ch == ' ' && shape.tab != std::string::npos && i > shape.tab + 1 && i + 2 < text.size() &&
+               (text[i + 1] == '+' || text[i + 1] == '-' || text[i + 1] == '=') && text[i + 2] == ' ' &&
+               !only_spacing(text.substr(shape.tab + 1, i - shape.tab - 1))) {
+      shape.breaks.push_back({i, parentheses});
+    }
+  }
+  return shape;
+}
+
+// The parts of text[from, to) split at the breaks of the least depth in it; a part too
+// wide for `room` split again at its deeper breaks.
+void split_parts(const std::string& text, std::size_t from, std::size_t to, const std::vector<std::pair<std::size_t, int>>& breaks,
+                 double room, std::vector<std::string>& parts) {
+  int least = INT_MAX;
+  for (const auto& [at, level] : breaks)
+    if (at > from && at < to) least = std::min(least, level);
+  if (least == INT_MAX || latex_width(text.substr(from, to - from)) <= room) {
+    parts.push_back(text.substr(from, to - from));
+    return;
+  }
+  std::size_t start = from;
+  for (const auto& [at, level] : breaks) {
+    if (at <= from || at >= to || level != least) continue;
+    split_parts(text, start, at, breaks, room, parts);
+    start = at + 1;  // the next part starts at its sign
+  }
+  split_parts(text, start, to, breaks, room, parts);
+}
+
+}  // namespace
+
+std::vector<LatexRow> latex_fit_rows(const std::vector<LatexRow>& rows, double budget) {
+  std::vector<LatexRow> fitted;
+  for (const LatexRow& row : rows) {
+    const RowShape shape = row_shape(row.text);
+    // A little room over the budget: rows made to it start with \quad.
+    if (is_intertext(row.text) || shape.tab == std::string::npos || latex_width(row.text.substr(shape.tab)) <= budget + 3 ||
+        shape.breaks.empty()) {
+      fitted.push_back(row);
+      continue;
+    }
+    // Greedy: as many parts on a row as fit (continuation rows are indented by \qquad).
+    std::vector<std::string> parts;
+    split_parts(row.text, shape.tab + 1, row.text.size(), shape.breaks, budget - 4, parts);
+    std::string line = parts.front();
+    bool first = true;
+    const auto flush = [&] {
+      fitted.push_back({first ? row.text.substr(0, shape.tab + 1) + line : "&\\qquad " + line, first ? row.comment : ""});
+      first = false;
+    };
+    for (std::size_t k = 1; k < parts.size(); ++k) {
+      const double room = first ? budget : budget - 4;
+      if (latex_width(line + " " + parts[k]) > room && latex_width(line) > 0) {
+        flush();
+        line = parts[k];
+      } else {
+        line += " " + parts[k];
+      }
+    }
+    flush();
+  }
+  return fitted;
+}
+
+std::string latex_align_rows(const std::vector<LatexRow>& rows) {
+  std::string out;
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    out += "  " + rows[r].text + (r + 1 < rows.size() && !is_intertext(rows[r].text) ? " \\\\" : "");
+    if (!rows[r].comment.empty()) out += " % " + rows[r].comment;
+    out += "\n";
+  }
+  return out;
 }
 
 }  // namespace kinema

@@ -29,6 +29,23 @@ constexpr double kLatexLineBudget = 68;
 std::vector<LatexRow> latex_broken_rows(const std::string& lhs, const std::vector<std::string>& lines,
                                         const std::string& suffix = "", const std::string& comment = "");
 
+/// Glyphs a whole row of `derive --format latex` may take after its & in a plain article
+/// (10 pt, 345 pt text width), where that block is meant to be pasted.
+constexpr double kPlainArticleBudget = 40;
+
+/// A row of text in an align* (amsmath \intertext: it wraps as a paragraph does). It
+/// comes before a row of math, never last; rows are joined by latex_align_rows.
+LatexRow latex_intertext(const std::string& escaped_text, const std::string& comment = "");
+bool is_intertext(const std::string& row);
+
+/// Rows wider than `budget` glyphs after their & broken before a + , - or = outside
+/// braces, environments and \left...\right, onto rows "&\qquad ..." (a part that cannot
+/// be broken stays whole).
+std::vector<LatexRow> latex_fit_rows(const std::vector<LatexRow>& rows, double budget);
+
+/// The rows of an align*, each ended by \\ but the last and an \intertext, comments after.
+std::string latex_align_rows(const std::vector<LatexRow>& rows);
+
 /// User text (titles, descriptions) for LaTeX text mode: every special character
 /// is printed as itself, so a file cannot inject commands (\input{...} prints as text).
 std::string latex_escape_text(const std::string& text);

@@ -4,11 +4,13 @@
 
 namespace kinema {
 
-std::vector<LatexRow> method_rows(const MethodStep& step, bool acceleration, const TextbookForm& form) {
+std::vector<LatexRow> method_rows(const MethodStep& step, bool acceleration, const TextbookForm& form, double budget) {
   const auto latex = [&](const GiNaC::ex& e) { return form(e, TextbookForm::Style::latex); };
   std::vector<LatexRow> rows;
-  rows.push_back({"\\text{" + latex_escape_text(step.heading) + "}\\quad", ""});
-  if (!step.note.empty()) rows.push_back({"& \\text{" + latex_escape_text("(" + step.note + ")") + "}", ""});
+  // The heading and a note as text that wraps (in the first column, a long heading
+  // pushed every formula to the right).
+  rows.push_back(latex_intertext(latex_escape_text(step.heading)));
+  if (!step.note.empty()) rows.push_back(latex_intertext(latex_escape_text("(" + step.note + ")")));
   for (const MethodRelation& r : acceleration ? step.acceleration : step.velocity) {
     switch (r.kind) {
       case MethodRelation::Kind::statement:
@@ -20,14 +22,14 @@ std::vector<LatexRow> method_rows(const MethodStep& step, bool acceleration, con
         break;
       case MethodRelation::Kind::solution:
         // Long solutions broken over lines inside the text width.
-        for (const LatexRow& row : latex_broken_rows(latex(r.left), form.latex_lines(r.right, 0, nullptr, kLatexLineBudget),
+        for (const LatexRow& row : latex_broken_rows(latex(r.left), form.latex_lines(r.right, 0, nullptr, budget),
                                                      "", "kinema: " + form(r.left, TextbookForm::Style::text) + " = " +
                                                          form(r.right, TextbookForm::Style::text)))
           rows.push_back(row);
         break;
     }
   }
-  return rows;
+  return latex_fit_rows(rows, budget);
 }
 
 std::string method_title(DerivationMethod method) {

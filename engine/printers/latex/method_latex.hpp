@@ -12,7 +12,9 @@ namespace kinema {
 
 /// The velocity (or acceleration) relations of one step: its heading, each relation as
 /// the method writes it, its scalar equations, and what they solve for, in textbook form.
-std::vector<LatexRow> method_rows(const MethodStep& step, bool acceleration, const TextbookForm& form);
+/// Each row within `budget` glyphs after its & where it can be broken.
+std::vector<LatexRow> method_rows(const MethodStep& step, bool acceleration, const TextbookForm& form,
+                                  double budget = kLatexLineBudget);
 
 /// "relative velocities" or "joint coordinates": how a document names the method.
 std::string method_title(DerivationMethod method);

@@ -489,7 +489,7 @@ class DocumentWriter {
   void align_rows(const std::vector<std::string>& rows) {
     for (std::size_t r = 0; r < rows.size(); ++r) {
       const auto comment = rows[r].find(" %% ");
-      out_ << "  " << rows[r].substr(0, comment) << (r + 1 < rows.size() ? " \\\\" : "");
+      out_ << "  " << rows[r].substr(0, comment) << (r + 1 < rows.size() && !is_intertext(rows[r]) ? " \\\\" : "");
       if (comment != std::string::npos) out_ << " % " << rows[r].substr(comment + 4);
       out_ << "\n";
     }

@@ -64,7 +64,8 @@ void print_chain(std::ostream& out, const ConstraintSystem& system, const std::s
   for (const auto& [q, value] : chain.values)
     values += (values.empty() ? "" : ", ") + q.name + " = " + format_significant(scale.coordinate(q.dimension, value)) +
               " " + scale.coordinate_unit(q.dimension);
-  const TextbookForm textbook(system);
+  TextbookForm textbook(system);
+  textbook.set_exact_floats(true);  // the chain's floats carry the digits they need
   const auto text = [&](const ex& e) { return textbook(e, TextbookForm::Style::text); };
   const auto vector = [&](const ChainVector& v) {
     std::string formula = "[", number = "(";

@@ -3,6 +3,7 @@
 // escaped, and the block compiles with pdflatex.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <map>
 #include <filesystem>
@@ -12,6 +13,8 @@
 #include <kinema/engine/errors.hpp>
 #include <kinema/engine/model.hpp>
 #include <kinema/engine/printers/latex/latex_format.hpp>
+#include <kinema/engine/printers/printer.hpp>
+#include <kinema/engine/symbolic/dyad_method.hpp>
 #include <kinema/engine/report/chain_instant.hpp>
 #include <kinema/engine/symbolic/naming.hpp>
 #include <kinema/engine/symbolic/trig_simplify.hpp>
@@ -119,7 +122,8 @@ TEST_CASE("derive --format latex: the solved formulas are the engine's and the b
     const auto result = kinema_test::run_kinema({"derive", "--format", "latex", kinema_test::sample(sample)});
     REQUIRE(result.exit_status == 0);
     CHECK(result.out.find("\\begin{align*}") != std::string::npos);
-    CHECK(result.out.find("\\begin{bmatrix}") != std::string::npos);
+    // Phi_q as a matrix where it fits the page, else entry by entry.
+    CHECK((result.out.find("\\begin{bmatrix}") != std::string::npos || result.out.find("(\\Phi_{q})_{11}") != std::string::npos));
 
     // A chain driven by its joints is worked out vector by vector at the instant (its
     // vectors tested in tests/loops/spatial_chain_test.cpp): no solved rates to read back.
@@ -401,5 +405,112 @@ TEST_CASE("kinema latex: a point with a pole over the turn and a path along a li
     CHECK(document.out.find("(90.000000,nan)") != std::string::npos);  // the pole is a gap
     std::string log;
     CHECK(compile_document(document.out, "point_pole", log) >= 3);
+  }
+}
+
+namespace {
+
+// Every overfull box of a pdflatex log over 1 pt: "Overfull \hbox (12.3pt too wide) ...
+// at lines 40--41" (or "detected at line 40"), with the source line it names.
+struct Overfull {
+  double points = 0;
+  std::size_t line = 0;
+  std::string text;
+};
+std::vector<Overfull> overfull_boxes(const std::string& log) {
+  std::vector<Overfull> found;
+  for (auto at = log.find("Overfull \\"); at != std::string::npos; at = log.find("Overfull \\", at + 1)) {
+    const std::string text = log.substr(at, log.find('\n', at) - at);
+    const double points = std::atof(text.c_str() + text.find('(') + 1);
+    const auto line_at = text.find("line");
+    const std::size_t line = line_at == std::string::npos ? 0 : std::strtoul(text.c_str() + text.find_first_of("0123456789", line_at), nullptr, 10);
+    if (points > 1.0) found.push_back({points, line, text});
+  }
+  return found;
+}
+
+// The methods a sample takes: dyad by dyad only for joints and links solved in dyads.
+std::vector<kinema::DerivationMethod> methods_of(const kinema::Model& model) {
+  std::vector<kinema::DerivationMethod> methods = {kinema::DerivationMethod::loops};
+  for (kinema::DerivationMethod m : {kinema::DerivationMethod::relative_velocity, kinema::DerivationMethod::joint_coordinates}) {
+    try {
+      kinema::check_method_applies(model.system, m);
+      methods.push_back(m);
+    } catch (const kinema::InputError&) {
+    }
+  }
+  return methods;
+}
+
+// The sample and method whose part of a concatenated .tex holds `line`.
+std::string part_at(const std::vector<std::pair<std::size_t, std::string>>& starts, std::size_t line) {
+  std::string part = "?";
+  for (const auto& [start, name] : starts)
+    if (start <= line) part = name;
+  return part;
+}
+
+std::size_t lines_in(const std::string& text) { return std::size_t(std::count(text.begin(), text.end(), '\n')); }
+
+}  // namespace
+
+TEST_CASE("derive --format latex and kinema latex: every sample with every method fits the page - no overfull box") {
+  // derive --format latex of every sample and method in one plain article (one pdflatex
+  // run): each block breaks across pages and keeps every line inside 345 pt.
+  std::string tex = "\\documentclass{article}\n\\usepackage{amsmath}\n\\begin{document}\n";
+  std::vector<std::pair<std::size_t, std::string>> starts;
+  const kinema::Printer* derivation = kinema::find_printer(kinema::PrintKind::derivation, "latex");
+  REQUIRE(derivation != nullptr);
+  std::vector<std::pair<std::string, std::string>> documents;  // sample, method: kinema latex --method
+  for (const char* sample : kSamples) {
+    const kinema::Model model = kinema::load_model(kinema_test::sample(sample));
+    for (kinema::DerivationMethod method : methods_of(model)) {
+      kinema::PrintJob job{model};
+      job.method = method;
+      std::ostringstream out;
+      derivation->print(out, job);
+      starts.push_back({lines_in(tex) + 1, std::string(sample) + " " + kinema::method_name(method)});
+      tex += "\\clearpage\n" + out.str();
+      if (method != kinema::DerivationMethod::loops) documents.push_back({sample, kinema::method_name(method)});
+    }
+  }
+  {
+    // Seed 000's arm at non-zero joint angles: its formulas carry sqrt(3)/2 and floats
+    // (a \frac{...}{2} of a whole sum was 1191 pt too wide).
+    std::string arm = read_file(kinema_test::sample("robot_arm_seed000.toml"));
+    for (const char* angle : {"30 deg", "-20 deg", "50 deg"}) arm.replace(arm.find("value = \"0 deg\"") + 9, 5, angle);
+    const kinema::Model model = kinema::load_model(kinema_test::write_temporary("arm_turned.toml", arm));
+    kinema::PrintJob job{model};
+    std::ostringstream out;
+    derivation->print(out, job);
+    starts.push_back({lines_in(tex) + 1, "robot_arm_seed000.toml at 30, -20, 50 deg"});
+    tex += "\\clearpage\n" + out.str();
+  }
+  tex += "\\end{document}\n";
+  std::string log;
+  CHECK(compile_document(tex, "derive_every_method", log) > 0);
+  for (const Overfull& box : overfull_boxes(log)) {
+    INFO(part_at(starts, box.line) << ": " << box.text);
+    CHECK(box.points <= 1.0);
+  }
+
+  // kinema latex --method of each joints-and-links sample (its loops are compiled above,
+  // one document each): their fragments in one document with the documents' preamble.
+  REQUIRE(!documents.empty());
+  const auto full = kinema_test::run_kinema({"latex", kinema_test::sample(documents.front().first)});
+  REQUIRE(full.exit_status == 0);
+  std::string all = full.out.substr(0, full.out.find("\\begin{document}") + 17);
+  starts.clear();
+  for (const auto& [sample, method] : documents) {
+    const auto fragment = kinema_test::run_kinema({"latex", kinema_test::sample(sample), "--method", method, "--fragment"});
+    REQUIRE(fragment.exit_status == 0);
+    starts.push_back({lines_in(all) + 1, sample + " " + method});
+    all += "\\clearpage\n" + fragment.out;
+  }
+  all += "\\end{document}\n";
+  CHECK(compile_document(all, "latex_every_method", log) > 0);
+  for (const Overfull& box : overfull_boxes(log)) {
+    INFO(part_at(starts, box.line) << ": " << box.text);
+    CHECK(box.points <= 1.0);
   }
 }

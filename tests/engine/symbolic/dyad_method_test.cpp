@@ -6,8 +6,11 @@
 // and position relation holds.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <complex>
 #include <string>
+#include <vector>
 
 #include <kinema/engine/symbolic/dyad_method.hpp>
 #include <kinema/loops/dyad_positions.hpp>
@@ -56,6 +59,11 @@ std::size_t check_method(const std::string& name, DerivationMethod method) {
     REQUIRE(kinema::joint_position(frames, poses, j, p));
     at[system.linkage->joints[j].name] = p;
   }
+  // A slider joint is where its block puts it (a guide that lists it only has it pass
+  // by: as drawn in the sketch, its point on the guide is not where the block is now).
+  for (const kinema::LinkageFrames::Slider& s : frames.sliders)
+    for (const auto& [j, v] : frames.bodies[s.block].points)
+      if (j == s.joint) at[system.linkage->joints[j].name] = poses[s.block].origin + v * std::polar(1.0, poses[s.block].angle);
   for (const auto& [symbol_name, symbol] : derivation.symbols) {
     const std::string rest = symbol_name.substr(2);
     if (symbol_name.rfind("x_", 0) == 0) values[symbol] = at.at(rest).real();
@@ -131,6 +139,80 @@ TEST_CASE("dyad_method: relative velocities and joint coordinates of every joint
                            "problem_4_1_antiparallelogram.toml", "triple_rocker_circuit.toml"}) {
     for (DerivationMethod method : {DerivationMethod::relative_velocity, DerivationMethod::joint_coordinates}) {
       CHECK(check_method(name, method) > 10);
+    }
+  }
+}
+
+TEST_CASE("dyad_method: no empty terms, and no term of the zero vector between two joints at one point") {
+  // Example 4.1 as the seed writes it (slider 2's pin B is its slide point B2): no
+  // "+  +" (an empty term) and no omega1 x r_B2B, whose r_B2B is zero.
+  {
+    const kinema::Model model = kinema::load_model(kinema_test::sample("example_4_1_joints.toml"));
+    const kinema::DyadDerivation d = kinema::derive_by_dyads(model.system, DerivationMethod::relative_velocity);
+    std::vector<std::string> statements;
+    for (const auto& step : d.steps)
+      for (const auto* list : {&step.velocity, &step.acceleration})
+        for (const MethodRelation& r : *list)
+          if (r.kind == MethodRelation::Kind::statement) statements.push_back(r.text);
+    const auto has = [&](const std::string& s) { return std::find(statements.begin(), statements.end(), s) != statements.end(); };
+    CHECK(has("v_B = v_B2_1 + r_dot u_B2 = omega3 x r_CB"));
+    CHECK(has("a_B = a_B2_1 + r_ddot u_B2 + 2 omega1 x r_dot u_B2 = alpha3 x r_CB - omega3^2 r_CB"));
+    CHECK(has("v_B2 = v_B"));
+    CHECK(has("a_B2 = a_B"));
+  }
+  for (const char* name : {"problem_4_4_joints.toml", "example_4_1_joints.toml", "example_4_2_joints.toml",
+                           "problem_3_22_joints.toml", "problem_4_1_parallelogram.toml",
+                           "problem_4_1_antiparallelogram.toml", "triple_rocker_circuit.toml"}) {
+    const kinema::Model model = kinema::load_model(kinema_test::sample(name));
+    const kinema::LinkageFrames& frames = model.system.linkage->frames;
+    // Joints at one point of a body (not a slide point on its guide, which only passes).
+    std::vector<std::pair<std::string, std::string>> together;
+    for (std::size_t b = 1; b < frames.bodies.size(); ++b) {
+      const auto& points = frames.bodies[b].points;
+      for (std::size_t i = 0; i < points.size(); ++i)
+        for (std::size_t k = i + 1; k < points.size(); ++k) {
+          bool slides = false;
+          for (const auto& s : frames.sliders)
+            slides = slides || (s.guide == b && (s.joint == points[i].first || s.joint == points[k].first));
+          if (!slides && std::abs(points[i].second - points[k].second) < 1e-12)
+            together.push_back({model.system.linkage->joints[points[i].first].name,
+                                model.system.linkage->joints[points[k].first].name});
+        }
+    }
+    for (DerivationMethod method : {DerivationMethod::relative_velocity, DerivationMethod::joint_coordinates}) {
+      CAPTURE(name);
+      CAPTURE(kinema::method_name(method));
+      const kinema::DyadDerivation d = kinema::derive_by_dyads(model.system, method);
+      const auto symbol = [&](const std::string& n) {
+        const auto found = d.symbols.find(n);
+        return found == d.symbols.end() ? ex(0) : ex(found->second);
+      };
+      for (const auto& step : d.steps)
+        for (const auto* list : {&step.velocity, &step.acceleration})
+          for (const MethodRelation& r : *list) {
+            CAPTURE(r.text);
+            if (r.kind == MethodRelation::Kind::statement) {
+              CHECK(r.text.find("  ") == std::string::npos);
+              CHECK(r.text.find("+ +") == std::string::npos);
+              CHECK(r.latex.find("+  +") == std::string::npos);
+              for (const auto& [p, q] : together) {
+                CHECK(r.text.find("r_" + p + q) == std::string::npos);
+                CHECK(r.text.find("r_" + q + p) == std::string::npos);
+              }
+              continue;
+            }
+            if (r.text == "position") continue;  // the relation itself, not printed
+            // A formula with both joints' coordinates has (x_P - x_Q)-like terms: zero.
+            for (const auto& [p, q] : together)
+              for (const char* axis : {"x_", "y_"}) {
+                const ex xp = symbol(axis + p), xq = symbol(axis + q);
+                if (xp.is_zero() || xq.is_zero()) continue;
+                CAPTURE(p);
+                CAPTURE(q);
+                const bool both = (r.left.has(xp) || r.right.has(xp)) && (r.left.has(xq) || r.right.has(xq));
+                CHECK_FALSE(both);
+              }
+          }
     }
   }
 }
