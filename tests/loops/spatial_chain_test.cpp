@@ -780,6 +780,7 @@ TEST_CASE("spatial_chain: a chain of too many turns in a row or too many frames 
   // 14 turns in a row (7 frames of two) are derived.
   const auto fourteen = kinema_test::run_kinema_bounded({"eval", kinema_test::write_temporary("deep_7.toml", chain(7, 2))});
   CHECK(fourteen.exit_status == 0);
+}
 
 namespace {
 
