@@ -122,17 +122,32 @@ void write_tikz_mechanism(std::ostream& out, const ConstraintSystem& system, con
       out << "\\draw[gray, dashed] " << xy(g.from) << " -- " << xy(g.to) << ";\n";
       for (const auto& end : {g.from, g.to}) write_pivot(out, xy(end));
     } else if (g.kind == Segment::Kind::slider) {
-      // The block sits at the moving end: not on the ground (origin or a ground vector's end).
-      bool to_is_ground = std::abs(g.to) < 1e-9 * size;
-      for (const Segment& h : segments)
-        if (h.kind == Segment::Kind::ground && (std::abs(h.to - g.to) < 1e-9 * size || std::abs(h.from - g.to) < 1e-9 * size))
-          to_is_ground = true;
-      const std::complex<double> block = to_is_ground ? g.from : g.to;
-      const std::complex<double> d = g.to - g.from;
-      const double angle = to_degrees(std::arg(d));
-      out << "\\draw[gray, thin] " << xy(g.from - d * 0.1) << " -- " << xy(g.to + d * 0.1) << ";\n"
-           << "\\draw[thick, fill=white, rotate around={" << format_fixed(angle) << ":" << xy(block) << "}] "
-           << xy(block) << " ++(-0.35,-0.2) rectangle ++(0.7,0.4);\n";
+      // The block at the slider's point, on the guide the geometry gives: a fixed guide
+      // hatched across the drawing; a guide on a turning link drawn as that link, from the
+      // term's other end through the block and on.
+      const double angle = to_degrees(std::arg(g.along));
+      const std::complex<double> other = std::abs(g.block - g.to) < 1e-9 * size ? g.from : g.to;
+      const std::complex<double> centre((min_x + max_x) / 2, (min_y + max_y) / 2);
+      if (g.fixed_guide) {
+        const double t = std::real((centre - g.block) * std::conj(g.along));
+        const std::complex<double> a = g.block + g.along * std::min(t - 0.5 * size, -0.15 * size),
+                                   b = g.block + g.along * std::max(t + 0.5 * size, 0.15 * size);
+        out << "\\draw[gray] " << xy(a) << " -- " << xy(b) << ";\n"
+            << "\\fill[pattern=north east lines, rotate around={" << format_fixed(angle) << ":" << xy(a) << "}] "
+            << xy(a) << " rectangle ++(" << format_fixed(std::abs(b - a) * cm) << ",-0.15);\n";
+      } else {
+        const std::complex<double> d = g.block - other;
+        const bool on_line = std::abs(std::imag(d * std::conj(g.along))) < 1e-9 * size;
+        const std::complex<double> beyond = d / std::max(std::abs(d), 1e-30) * (0.6 / cm);
+        if (on_line && std::abs(d) > 1e-9 * size) {
+          out << "\\draw[very thick, blue!70!black] " << xy(other) << " -- " << xy(g.block + beyond) << ";\n";
+        } else {
+          out << "\\draw[gray, thin] " << xy(g.block - g.along * (0.25 * size)) << " -- "
+              << xy(g.block + g.along * (0.25 * size)) << ";\n";
+        }
+      }
+      out << "\\draw[thick, fill=white, rotate around={" << format_fixed(angle) << ":" << xy(g.block) << "}] "
+          << xy(g.block) << " ++(-0.35,-0.2) rectangle ++(0.7,0.4);\n";
     } else {
       out << "\\draw[very thick, blue!70!black] " << xy(g.from) << " -- " << xy(g.to) << ";\n";
     }
@@ -166,6 +181,17 @@ void write_tikz_mechanism(std::ostream& out, const ConstraintSystem& system, con
     out << "\\node[circle, draw, inner sep=1pt, font=\\scriptsize] at "
         << xy((g.from + g.to) / 2.0 + across * (0.35 / cm)) << " {" << latex_escape_text(geometry.link_labels()[g.link])
         << "};\n";
+  }
+  // A link that is only a slider's guide (a crank carrying a slot): numbered beside it.
+  for (const Segment& g : segments) {
+    if (g.kind != Segment::Kind::slider || g.guide_link < 0 || numbered[g.guide_link] ||
+        std::abs(g.to - g.from) < 1e-9 * size)
+      continue;
+    numbered[g.guide_link] = true;
+    const std::complex<double> across = g.along * std::complex<double>(0, 1);
+    out << "\\node[circle, draw, inner sep=1pt, font=\\scriptsize] at "
+        << xy((g.from + g.to) / 2.0 + across * (0.35 / cm)) << " {"
+        << latex_escape_text(geometry.link_labels()[g.guide_link]) << "};\n";
   }
   for (const Segment& g : segments) {
     for (const auto& end : {g.from, g.to})

@@ -1,0 +1,198 @@
+// The worked solution's figures read back from its TikZ: slider blocks on the guides
+// the loop equations put them on, instant centres, plots and polygons as drawn.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <cstdio>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <kinema/engine/printers/printer.hpp>
+#include <kinema/engine/report/instant_centres.hpp>
+#include <kinema/engine/report/plot_range.hpp>
+#include <kinema/engine/report/polygons.hpp>
+#include "../unit_support.hpp"
+#include "../../test_support.hpp"
+
+using kinema::MotionTable;
+using kinema::PrintKind;
+using Point = std::complex<double>;
+
+namespace {
+
+std::string document(const kinema::Model& model, const MotionTable* values, const MotionTable* sweep = nullptr) {
+  const kinema::Printer* printer = kinema::find_printer(PrintKind::document, "latex");
+  REQUIRE(printer != nullptr);
+  kinema::PrintJob job{model, values, sweep};
+  job.fragment = true;
+  std::ostringstream out;
+  printer->print(out, job);
+  return out.str();
+}
+
+// Every "(x,y)" of a line, in order.
+std::vector<Point> coordinates(const std::string& line) {
+  std::vector<Point> found;
+  for (std::size_t at = line.find('('); at != std::string::npos; at = line.find('(', at + 1)) {
+    double x, y;
+    char close;
+    if (std::sscanf(line.c_str() + at, "(%lf,%lf%c", &x, &y, &close) == 3 && close == ')') found.push_back({x, y});
+  }
+  return found;
+}
+
+std::vector<std::string> lines_starting(const std::string& figure, const std::string& start) {
+  std::vector<std::string> found;
+  std::istringstream in(figure);
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind(start, 0) == 0) found.push_back(line);
+  return found;
+}
+
+// The mechanism's drawing: the first tikzpicture with its plain options.
+std::string mechanism_figure(const std::string& tex, std::size_t from = 0) {
+  const auto begin = tex.find("\\begin{tikzpicture}[line cap=round]\n", from);
+  REQUIRE(begin != std::string::npos);
+  return tex.substr(begin, tex.find("\\end{tikzpicture}", begin) - begin);
+}
+
+struct Line {
+  Point a, b;
+};
+
+double distance_to_line(Point p, const Line& l) {
+  const Point d = (l.b - l.a) / std::abs(l.b - l.a);
+  return std::abs(std::imag((p - l.a) * std::conj(d)));
+}
+
+bool within(Point p, const Line& l, double slack) {
+  const Point d = (l.b - l.a) / std::abs(l.b - l.a);
+  const double t = std::real((p - l.a) * std::conj(d));
+  return t >= -slack && t <= std::abs(l.b - l.a) + slack;
+}
+
+struct Block {
+  Point centre;
+  double degrees = 0;
+};
+
+struct Drawing {
+  std::vector<Line> guides, bars;
+  std::vector<Block> blocks;
+  std::vector<std::pair<std::string, Point>> points;
+  std::vector<Point> pivots;
+};
+
+Drawing read_drawing(const std::string& figure) {
+  Drawing d;
+  for (const std::string& line : lines_starting(figure, "\\draw[gray] ")) {
+    const auto c = coordinates(line);
+    if (c.size() == 2) d.guides.push_back({c[0], c[1]});
+  }
+  for (const std::string& line : lines_starting(figure, "\\draw[very thick, blue!70!black] ")) {
+    const auto c = coordinates(line);
+    for (std::size_t k = 1; k < c.size(); ++k) d.bars.push_back({c[k - 1], c[k]});
+  }
+  for (const std::string& line : lines_starting(figure, "\\draw[thick, fill=white, rotate around={")) {
+    Block b;
+    double x, y;
+    REQUIRE(std::sscanf(line.c_str(), "\\draw[thick, fill=white, rotate around={%lf:(%lf,%lf)}]", &b.degrees, &x, &y) == 3);
+    b.centre = {x, y};
+    d.blocks.push_back(b);
+  }
+  for (const std::string& line : lines_starting(figure, "\\fill (")) {
+    const auto c = coordinates(line);
+    const auto open = line.rfind('{'), close = line.rfind('}');
+    if (!c.empty() && open != std::string::npos) d.points.push_back({line.substr(open + 1, close - open - 1), c[0]});
+  }
+  for (const std::string& line : lines_starting(figure, "\\fill[pattern=north east lines] ")) d.pivots.push_back(coordinates(line)[0]);
+  return d;
+}
+
+Point drawn_point(const Drawing& d, const std::string& name) {
+  for (const auto& [n, at] : d.points)
+    if (n == name) return at;
+  FAIL("no point " << name << " drawn");
+  return {};
+}
+
+}  // namespace
+
+TEST_CASE("engine/printers/figures: every slider block on the guide its loop equation puts it on") {
+  // The point that slides on a fixed guide in each vector-loop sample, and the guide's line.
+  struct Case {
+    const char* sample;
+    std::vector<const char*> sliding;  ///< Named points on fixed guides.
+  };
+  for (const Case& c : {Case{"crank_shaper.toml", {"C"}}, Case{"slider_crank.toml", {"B"}},
+                        Case{"problem_4_4_six_bar.toml", {"F"}}, Case{"example_4_2_r_rtr_rrt.toml", {"E"}},
+                        Case{"problem_3_22_six_bar_sliders.toml", {"B", "D"}}, Case{"example_4_1_r_trr.toml", {}}}) {
+    CAPTURE(std::string(c.sample));
+    const kinema::Model model = kinema::load_model(kinema_test::sample(c.sample));
+    const double input = model.system.input.values.empty() ? 0.5 : model.system.input.values.front();
+    const MotionTable values = kinema::analyse(model, {input});
+    REQUIRE(values.status(0) == kinema::Status::ok);
+    const Drawing d = read_drawing(mechanism_figure(document(model, &values)));
+    REQUIRE_FALSE(d.blocks.empty());
+    // Every block's centre on a drawn guide (hatched line) or on the link that carries it,
+    // turned along it.
+    for (const Block& b : d.blocks) {
+      CAPTURE(b.centre);
+      bool on = false;
+      for (const auto* lines : {&d.guides, &d.bars})
+        for (const Line& l : *lines) {
+          const double along = std::remainder(b.degrees - std::arg(l.b - l.a) * 180 / M_PI, 180.0);
+          on = on || (distance_to_line(b.centre, l) < 0.02 && within(b.centre, l, 0.02) && std::fabs(along) < 0.1);
+        }
+      CHECK(on);
+    }
+    // Drawing units per metre, from the point furthest from the origin (drawn at (0,0)).
+    double cm = 0, furthest = 0;
+    for (std::size_t p = 0; p < model.system.points.size(); ++p) {
+      const Point real(values[0].points[p].position[0], values[0].points[p].position[1]);
+      if (std::abs(real) <= furthest) continue;
+      furthest = std::abs(real);
+      cm = std::abs(drawn_point(d, model.system.points[p].name)) / furthest;
+    }
+    REQUIRE(cm > 0);
+    // The guide is the constraint's line: the sliding point, solved at two other inputs,
+    // lies on the hatched line its block is drawn on.
+    const MotionTable others = kinema::analyse(model, {input + 0.4, input + 1.3});
+    for (const char* name : c.sliding) {
+      CAPTURE(std::string(name));
+      std::size_t p = 0;
+      while (model.system.points[p].name != name) ++p;
+      const Point at = drawn_point(d, name);
+      bool block = false;
+      for (const Block& b : d.blocks) block = block || std::abs(b.centre - at) < 0.02;
+      CHECK(block);
+      const Line* guide = nullptr;
+      for (const Line& l : d.guides)
+        if (distance_to_line(at, l) < 0.02) guide = &l;
+      REQUIRE(guide);
+      for (std::size_t k = 0; k < 2; ++k) {
+        REQUIRE(others.status(k) == kinema::Status::ok);
+        const Point moved = Point(others[k].points[p].position[0], others[k].points[p].position[1]) * cm;
+        CHECK(std::abs(moved - at) > 0.05);  // it did move
+        CHECK(distance_to_line(moved, *guide) < 0.02);
+      }
+    }
+  }
+  // Example 4.1: the block at B on crank 1 (drawn from A through B), ground at A and C only.
+  const kinema::Model model = kinema::load_model(kinema_test::sample("example_4_1_r_trr.toml"));
+  const MotionTable values = kinema::analyse(model, model.system.input.values);
+  const std::string figure = mechanism_figure(document(model, &values));
+  const Drawing d = read_drawing(figure);
+  const Point B = drawn_point(d, "B");
+  REQUIRE(d.blocks.size() == 1);
+  CHECK(std::abs(d.blocks[0].centre - B) < 0.02);
+  bool crank = false;
+  for (const Line& l : d.bars) crank = crank || (std::abs(l.a) < 0.02 && distance_to_line(B, l) < 0.02 && within(B, l, 0));
+  CHECK(crank);
+  const double AC_cm = 0.1 * std::abs(B) / std::abs(Point(values[0].points[0].position[0], values[0].points[0].position[1]));
+  REQUIRE(d.pivots.size() == 2);
+  for (const Point& p : d.pivots) CHECK((std::abs(p) < 0.02 || std::abs(p - AC_cm) < 0.02));
+}
