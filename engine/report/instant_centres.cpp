@@ -137,11 +137,11 @@ std::optional<InstantCentres> centres_from_points(const ConstraintSystem& system
       if (std::fabs(wa - wb) <= 1e-12 * (std::fabs(wa) + std::fabs(wb))) {
         const std::complex<double> relative = velocity_of(b) - velocity_of(a);  // uniform: they turn alike
         if (std::abs(relative) <= 1e-12 * fastest) continue;  // moving as one: no centre
-        result.centres.push_back({a, b, true, I * relative / std::abs(relative), how, {}});
+        result.centres.push_back({a, b, true, I * relative / std::abs(relative), how, {}, std::nullopt});
         continue;
       }
       const std::complex<double> at = (velocity_of(b) - velocity_of(a) + I * (wa * A - wb * B)) / (I * (wa - wb));
-      result.centres.push_back({a, b, false, at, how, {}});
+      result.centres.push_back({a, b, false, at, how, {}, std::nullopt});
     }
   }
   for (std::size_t a = 0; a < n; ++a)
@@ -149,6 +149,36 @@ std::optional<InstantCentres> centres_from_points(const ConstraintSystem& system
       if (!result.find(a, b)) result.not_found.push_back({a, b});
   for (const InstantCentre& c : result.centres)
     if (!std::isfinite(c.at.real()) || !std::isfinite(c.at.imag())) return std::nullopt;
+  // Centres away from the joints: on the two Kennedy lines (through I_ab and I_bc for
+  // another body b) that cross there most squarely.
+  std::vector<std::complex<double>> joints = {0};
+  for (const PointMotion& m : s.points) joints.push_back({m.position[0], m.position[1]});
+  for (InstantCentre& centre : result.centres) {
+    if (centre.at_infinity) {
+      centre.seen_from = (point_of(centre.a) + point_of(centre.b)) / 2.0;
+      continue;
+    }
+    bool joint = false;
+    for (const auto& j : joints) joint = joint || std::abs(j - centre.at) <= 1e-9 * system.length_scale;
+    if (joint) continue;
+    std::vector<std::pair<Line, std::size_t>> lines;
+    for (std::size_t b = 0; b < n; ++b) {
+      if (b == centre.a || b == centre.b) continue;
+      const InstantCentre *ab = result.find(centre.a, b), *bc = result.find(b, centre.b);
+      if (!ab || !bc) continue;
+      if (const auto l = line_through(*ab, *bc, system.length_scale)) lines.push_back({*l, b});
+    }
+    double best = 1e-6;
+    for (std::size_t i = 0; i < lines.size(); ++i)
+      for (std::size_t j = i + 1; j < lines.size(); ++j) {
+        const double sine = std::fabs(cross(lines[i].first.along, lines[j].first.along));
+        if (sine <= best) continue;
+        best = sine;
+        const std::size_t b1 = lines[i].second, b2 = lines[j].second;
+        centre.kennedy = {std::minmax(centre.a, b1), std::minmax(b1, centre.b), std::minmax(centre.a, b2),
+                          std::minmax(b2, centre.b)};
+      }
+  }
   if (result.driver != 0) add_ratios(result, system.length_scale);
   return result;
 }
@@ -197,10 +227,11 @@ std::optional<InstantCentres> instant_centres(const ConstraintSystem& system, co
   const auto world = [&](std::size_t b, Complex local) {
     return b == 0 ? local : poses[b].origin + local * std::polar(1.0, poses[b].angle);
   };
-  const auto add = [&](std::size_t a, std::size_t b, bool infinite, Complex at, const std::string& how) {
+  const auto add = [&](std::size_t a, std::size_t b, bool infinite, Complex at, const std::string& how,
+                       std::optional<Complex> seen_from = std::nullopt) {
     if (a > b) std::swap(a, b);
     if (a == b || result.find(a, b)) return;
-    result.centres.push_back({a, b, infinite, at, how, {}});
+    result.centres.push_back({a, b, infinite, at, how, {}, seen_from});
   };
   // Primary centres: pins, then sliders (at infinity across the line).
   for (const LinkageFrames::Pin& pin : frames.pins) {
@@ -211,7 +242,11 @@ std::optional<InstantCentres> instant_centres(const ConstraintSystem& system, co
   }
   for (const LinkageFrames::Slider& slider : frames.sliders) {
     const double line = (slider.guide == 0 ? 0.0 : poses[slider.guide].angle) + slider.direction;
-    add(slider.block, slider.guide, true, std::polar(1.0, line + M_PI / 2), "slider " + linkage.joints[slider.joint].name);
+    std::optional<Complex> joint_at;  // the arrow starts at the slider's joint
+    for (const auto& [joint, local] : frames.bodies[slider.block].points)
+      if (joint == slider.joint) joint_at = world(slider.block, local);
+    add(slider.block, slider.guide, true, std::polar(1.0, line + M_PI / 2), "slider " + linkage.joints[slider.joint].name,
+        joint_at);
   }
   // Kennedy: I_ac on the line I_ab I_bc and on the line I_ad I_dc; of all such pairs of
   // lines the one that crosses most squarely.
@@ -241,13 +276,13 @@ std::optional<InstantCentres> instant_centres(const ConstraintSystem& system, co
               how += (k == 0 ? "" : k == 2 ? ", " : " ") + centre_name(result.bodies, kennedy[k].first, kennedy[k].second);
             if (sine <= 1e-9) {  // parallel lines: a centre at infinity, unless they are one line
               if (std::fabs(cross(q.through - p.through, p.along)) > 1e-9 * system.length_scale && !chosen)
-                chosen = InstantCentre{a, c, true, p.along, how, kennedy};
+                chosen = InstantCentre{a, c, true, p.along, how, kennedy, p.through};
               continue;
             }
             if (sine <= best) continue;
             best = sine;
             const double t = cross(q.through - p.through, q.along) / cross(p.along, q.along);
-            chosen = InstantCentre{a, c, false, p.through + t * p.along, how, kennedy};
+            chosen = InstantCentre{a, c, false, p.through + t * p.along, how, kennedy, std::nullopt};
           }
         }
         if (chosen) {

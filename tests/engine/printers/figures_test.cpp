@@ -196,3 +196,102 @@ TEST_CASE("engine/printers/figures: every slider block on the guide its loop equ
   REQUIRE(d.pivots.size() == 2);
   for (const Point& p : d.pivots) CHECK((std::abs(p) < 0.02 || std::abs(p - AC_cm) < 0.02));
 }
+
+namespace {
+
+// The text of the figure after `heading`: its first tikzpicture.
+std::string figure_after(const std::string& tex, const std::string& heading, std::size_t from = 0) {
+  const auto at = tex.find(heading, from);
+  if (at == std::string::npos) return "";
+  const auto begin = tex.find("\\begin{tikzpicture}", at);
+  return tex.substr(begin, tex.find("\\end{tikzpicture}", begin) - begin);
+}
+
+std::string centre_label(const kinema::InstantCentres& c, std::size_t a, std::size_t b) {
+  return "$I_{" + c.bodies[a] + c.bodies[b];
+}
+
+}  // namespace
+
+TEST_CASE("engine/printers/figures: instant centres, every one listed and drawn or pointed to") {
+  for (const char* name : {"four_bar.toml", "crank_shaper.toml", "problem_4_4_joints.toml", "triple_rocker_circuit.toml",
+                           "example_4_2_joints.toml", "example_4_1_joints.toml", "problem_3_22_joints.toml"}) {
+    CAPTURE(std::string(name));
+    const kinema::Model model = kinema::load_model(kinema_test::sample(name));
+    const double input = model.system.input.values.empty() ? 0.5 : model.system.input.values.front();
+    const MotionTable values = kinema::analyse(model, {input});
+    const auto centres = kinema::instant_centres(model.system, values[0]);
+    REQUIRE(centres);
+    const std::string tex = document(model, &values);
+    const auto heading = tex.find("\\subsubsection*{Instant centres}");
+    REQUIRE(heading != std::string::npos);
+    const std::string figure = figure_after(tex, "\\subsubsection*{Instant centres}");
+    const std::string table = tex.substr(tex.find("centre & $x$ & $y$ & found by", heading));
+    const std::string rows = table.substr(0, table.find("\\bottomrule"));
+    const std::size_t n = centres->bodies.size();
+    // n(n-1)/2 rows, one per pair.
+    long listed = 0;
+    for (auto row = rows.find("\n$I_{"); row != std::string::npos; row = rows.find("\n$I_{", row + 1)) ++listed;
+    CHECK(listed == static_cast<long>(n * (n - 1) / 2));
+    for (std::size_t a = 0; a < n; ++a)
+      for (std::size_t b = a + 1; b < n; ++b) CHECK(rows.find(centre_label(*centres, a, b) + "}$ &") != std::string::npos);
+    // Figure units per metre, from the drawn centre furthest from the origin.
+    double cm = 0, furthest = 0;
+    for (const std::string& line : lines_starting(figure, "\\filldraw[red!75!black, fill=white] ")) {
+      const Point drawn = coordinates(line)[0];
+      for (const kinema::InstantCentre& c : centres->centres)
+        if (line.find(centre_label(*centres, c.a, c.b) + "}$}") != std::string::npos && std::abs(c.at) > furthest) {
+          furthest = std::abs(c.at);
+          cm = std::abs(drawn) / furthest;
+        }
+    }
+    REQUIRE(cm > 0);
+    const auto arrows = lines_starting(figure, "\\draw[->, red!75!black");
+    for (const kinema::InstantCentre& c : centres->centres) {
+      const std::string label = centre_label(*centres, c.a, c.b);
+      CAPTURE(label);
+      bool drawn = false;
+      for (const std::string& line : lines_starting(figure, "\\filldraw[red!75!black, fill=white] "))
+        if (line.find(label + "}$}") != std::string::npos) {
+          drawn = true;
+          CHECK(std::abs(coordinates(line)[0] - c.at * cm) < 0.02);
+        }
+      for (const std::string& line : arrows) {
+        if (line.find(label + "}$}") == std::string::npos && line.find(label + "}\\to\\infty$}") == std::string::npos) continue;
+        drawn = true;
+        const auto ends = coordinates(line);
+        REQUIRE(ends.size() == 2);
+        const Point along = ends[1] - ends[0];
+        // At infinity: along its direction, from its joint; off the figure: towards it.
+        const Point towards = c.at_infinity ? c.at : c.at * cm - ends[1];
+        CHECK(std::fabs(std::arg(along / towards)) < 0.02);
+        if (c.at_infinity && c.seen_from) CHECK(std::abs(ends[0] - *c.seen_from * cm) < 0.02);
+      }
+      CHECK(drawn);
+    }
+    // Kennedy lines in every figure with four bodies or more.
+    if (n >= 4) CHECK(figure.find("\\draw[gray!60, dashed]") != std::string::npos);
+  }
+  // Example 4.2: the arrow of I05 (slider 5 on the ground) starts at E, not at slider 2.
+  const kinema::Model model = kinema::load_model(kinema_test::sample("example_4_2_joints.toml"));
+  const MotionTable values = kinema::analyse(model, model.system.input.values);
+  const auto centres = kinema::instant_centres(model.system, values[0]);
+  REQUIRE(centres);
+  const kinema::InstantCentre* i05 = centres->find(0, 5);
+  REQUIRE(i05);
+  REQUIRE(i05->seen_from);
+  for (std::size_t p = 0; p < model.system.points.size(); ++p)
+    if (model.system.points[p].name == "E")
+      CHECK(std::abs(*i05->seen_from - Point(values[0].points[p].position[0], values[0].points[p].position[1])) < 1e-9);
+  // The crank-shaper: no bar from C to O4 (the ram's vector is no link); the ram a block.
+  const kinema::Model shaper = kinema::load_model(kinema_test::sample("crank_shaper.toml"));
+  const MotionTable shaper_values = kinema::analyse(shaper, shaper.system.input.values);
+  const std::string figure = figure_after(document(shaper, &shaper_values), "\\subsubsection*{Instant centres}");
+  const Drawing d = read_drawing(figure);
+  REQUIRE(d.blocks.size() == 2);  // blocks at A and C
+  for (const Block& ram : d.blocks) {
+    if (std::fabs(std::sin(ram.degrees * M_PI / 180)) > 1e-6) continue;  // the block in the rocker's slot
+    for (const Line& bar : d.bars)
+      CHECK_FALSE((std::abs(bar.a) < 0.02 && std::abs(bar.b - ram.centre) < 0.02));
+  }
+}
