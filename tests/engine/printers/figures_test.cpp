@@ -295,3 +295,74 @@ TEST_CASE("engine/printers/figures: instant centres, every one listed and drawn 
       CHECK_FALSE((std::abs(bar.a) < 0.02 && std::abs(bar.b - ram.centre) < 0.02));
   }
 }
+
+namespace {
+
+struct Curve {
+  std::string options;
+  std::vector<Point> points;  ///< nan where there is a gap
+};
+
+// The \addplot curves of each axis after "\subsection*{Over the input range}".
+std::vector<std::vector<Curve>> plotted_axes(const std::string& tex) {
+  std::vector<std::vector<Curve>> axes;
+  const auto start = tex.find("\\subsection*{Over the input range}");
+  REQUIRE(start != std::string::npos);
+  for (auto at = tex.find("\\begin{axis}", start); at != std::string::npos; at = tex.find("\\begin{axis}", at + 1)) {
+    const std::string axis = tex.substr(at, tex.find("\\end{axis}", at) - at);
+    if (axis.find("axis equal image") != std::string::npos) continue;  // the points' paths
+    auto& curves = axes.emplace_back();
+    for (const std::string& line : lines_starting(axis, "\\addplot+[")) {
+      Curve c;
+      c.options = line.substr(10, line.find("] coordinates") - 10);
+      for (auto p = line.find(" ("); p != std::string::npos; p = line.find(" (", p + 1)) {
+        const auto comma = line.find(',', p), close = line.find(')', p);
+        const std::string x = line.substr(p + 2, comma - p - 2), y = line.substr(comma + 1, close - comma - 1);
+        c.points.push_back({x == "nan" ? NAN : std::stod(x), y == "nan" ? NAN : std::stod(y)});
+      }
+      curves.push_back(c);
+    }
+  }
+  return axes;
+}
+
+}  // namespace
+
+TEST_CASE("engine/printers/figures: plots unwrapped, without a line back to the start, curves told apart") {
+  for (const char* name : {"example_4_1_joints.toml", "rssr_spatial_four_bar.toml", "four_bar.toml", "crank_shaper.toml",
+                           "problem_4_4_six_bar.toml"}) {
+    CAPTURE(std::string(name));
+    const kinema::Model model = kinema::load_model(kinema_test::sample(name));
+    const double first = model.system.input.values.empty() ? 0.0 : model.system.input.values.front();
+    const MotionTable values = kinema::analyse(model, {first});
+    const MotionTable sweep = kinema::analyse(model, kinema::plot_range(model.system, first));
+    const std::string tex = document(model, &values, &sweep);
+    const auto axes = plotted_axes(tex);
+    REQUIRE(axes.size() >= 3);
+    for (std::size_t a = 0; a < axes.size(); ++a) {
+      const auto& curves = axes[a];
+      for (std::size_t k = 0; k < curves.size(); ++k) {
+        // Along a curve's drawn stretch x only grows (no line back to 0 at 360 deg) and an
+        // angle (the first axis: angles) moves by less than 90 deg a step: no jump of 360.
+        const auto& pts = curves[k].points;
+        for (std::size_t i = 1; i < pts.size(); ++i) {
+          if (!std::isfinite(pts[i].imag()) || !std::isfinite(pts[i - 1].imag())) continue;
+          CHECK(pts[i].real() > pts[i - 1].real());
+          if (a == 0) CHECK(std::fabs(pts[i].imag() - pts[i - 1].imag()) < 90);
+        }
+        // Each curve of an axis its own dash pattern and marks.
+        for (std::size_t j = 0; j < k; ++j) CHECK(curves[j].options != curves[k].options);
+        CHECK(curves[k].options.find("mark=none") == std::string::npos);
+      }
+    }
+  }
+  // Example 4.1 as joints: phi3 from its file value (about 58.6 deg), not 360-420 deg.
+  const kinema::Model model = kinema::load_model(kinema_test::sample("example_4_1_joints.toml"));
+  const double first = model.system.input.values.front();
+  const MotionTable sweep = kinema::analyse(model, kinema::plot_range(model.system, first));
+  const MotionTable values = kinema::analyse(model, {first});
+  const auto axes = plotted_axes(document(model, &values, &sweep));
+  for (const Curve& c : axes[0])
+    for (const Point& p : c.points)
+      if (std::isfinite(p.imag())) CHECK(std::fabs(p.imag()) < 360);
+}
