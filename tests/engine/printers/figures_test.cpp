@@ -366,3 +366,73 @@ TEST_CASE("engine/printers/figures: plots unwrapped, without a line back to the 
     for (const Point& p : c.points)
       if (std::isfinite(p.imag())) CHECK(std::fabs(p.imag()) < 360);
 }
+
+TEST_CASE("engine/printers/figures: polygons fill the width at a round scale, every vertex lettered, no label on another") {
+  for (const char* name : {"crank_shaper.toml", "problem_4_4_joints.toml", "four_bar.toml", "example_4_2_r_rtr_rrt.toml"}) {
+    CAPTURE(std::string(name));
+    const kinema::Model model = kinema::load_model(kinema_test::sample(name));
+    const MotionTable values = kinema::analyse(model, model.system.input.values.empty() ? std::vector<double>{0.5}
+                                                                                        : model.system.input.values);
+    const auto polygons = kinema::PolygonBuilder(model.system).polygons(values[0]);
+    REQUIRE(polygons);
+    const std::string tex = document(model, &values);
+    std::size_t at = tex.find("\\subsubsection*{Velocity and acceleration polygons}");
+    REQUIRE(at != std::string::npos);
+    for (const kinema::Polygon* polygon : {&polygons->first, &polygons->second}) {
+      const auto begin = tex.find("\\begin{tikzpicture}[line cap=round, >=latex]", at);
+      const auto end = tex.find("\\end{tikzpicture}", begin);
+      const std::string figure = tex.substr(begin, end - begin);
+      const auto stated = tex.find("scale 1\\,cm = $", end) + 15;
+      at = stated;
+      // A round scale: 1, 1.5, 2, 2.5, 3, 4, 5, 6 or 8 times a power of ten.
+      double per_cm = std::stod(tex.substr(stated, tex.find_first_of("\\$", stated) - stated));
+      const auto power = tex.find("\\cdot 10^{", stated);
+      if (power < tex.find('$', stated)) per_cm *= std::pow(10.0, std::stod(tex.substr(power + 10)));
+      const double mantissa = per_cm / std::pow(10.0, std::floor(std::log10(per_cm) + 1e-12));
+      bool round = false;
+      for (double m : {1.0, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0, 8.0}) round = round || std::fabs(mantissa - m) < 1e-9;
+      CHECK(round);
+      // The labels: the vertices' nodes, the arrows' at their pos and shift.
+      std::vector<std::pair<std::string, Point>> labels;
+      double min_x = 0, max_x = 0, min_y = 0, max_y = 0;
+      for (const std::string& line : lines_starting(figure, "\\node[font=\\small, inner sep=0pt] at ")) {
+        const auto open = line.rfind('{');
+        labels.push_back({line.substr(open + 1, line.rfind('}') - open - 1), coordinates(line)[0]});
+      }
+      for (const std::string& line : lines_starting(figure, "\\draw[->")) {
+        const auto c = coordinates(line);
+        for (const Point& p : c) {
+          min_x = std::min(min_x, p.real()), max_x = std::max(max_x, p.real());
+          min_y = std::min(min_y, p.imag()), max_y = std::max(max_y, p.imag());
+        }
+        double pos, xshift, yshift;
+        const auto node = line.find("node[pos=");
+        if (node == std::string::npos) continue;
+        REQUIRE(std::sscanf(line.c_str() + node, "node[pos=%lf, xshift=%lfcm, yshift=%lfcm", &pos, &xshift, &yshift) == 3);
+        const auto open = line.find("{$", node);
+        labels.push_back({line.substr(open), c[0] + (c[1] - c[0]) * pos + Point(xshift, yshift)});
+      }
+      // Filling the width: 12 cm across or 7 cm high at most, more than 2/3 of one of them.
+      CHECK(max_x - min_x <= 12.01);
+      CHECK(max_y - min_y <= 7.01);
+      CHECK((max_x - min_x > 8 || max_y - min_y > 5));
+      // Every vertex lettered.
+      for (const kinema::PolygonVertex& v : polygon->vertices) {
+        std::string letter = v.name;
+        letter[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(letter[0])));
+        bool lettered = false;
+        for (const auto& [text, where] : labels) lettered = lettered || text.find(letter) != std::string::npos;
+        CAPTURE(letter);
+        CHECK(lettered);
+      }
+      // No label on another: their centres apart by more than a line's height, or side by side.
+      for (std::size_t i = 0; i < labels.size(); ++i)
+        for (std::size_t j = 0; j < i; ++j) {
+          CAPTURE(labels[i].first);
+          CAPTURE(labels[j].first);
+          const Point d = labels[i].second - labels[j].second;
+          CHECK((std::fabs(d.imag()) >= 0.3 || std::fabs(d.real()) >= 0.35));
+        }
+    }
+  }
+}
