@@ -79,6 +79,8 @@ class MechanismGeometry {
   std::vector<PointOnLink> points_on_links(const MotionState& state) const;
   /// Each link's number, as DrawingSegment::link and PointOnLink::link index them.
   const std::vector<std::string>& link_labels() const { return link_labels_; }
+  /// Each link's angular rate (omega3), indexed as link_labels.
+  const std::vector<GiNaC::ex>& link_rates() const { return link_rates_; }
 
  private:
   CompiledExpressions tape_;  ///< Inputs: parameters, input, q; outputs: x, y of each term, then of each point's last.

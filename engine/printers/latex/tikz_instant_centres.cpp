@@ -132,8 +132,10 @@ void write_tikz_instant_centres(std::ostream& out, const ConstraintSystem& syste
     out << "Instant centres: the primary ones at the pins and, for a slider, at infinity across its line; every "
            "other by the Aronhold--Kennedy theorem, where two lines of centres it shares a body with cross (dashed).";
   } else {
-    out << "Instant centres of the links that the file's points lie on (a point whose formula ends in a link vector "
-           "of fixed length is on that link), each where the two links' velocities agree; ground is link "
+    out << "Instant centres of the loops' links (a link vector of fixed length, known by a joint whose velocity is "
+           "known) and slider blocks (at the sliding point, turning with the guide; numbered in the gaps the links "
+           "leave), each where the two bodies' velocities agree, with two lines of centres through it (dashed, "
+           "Aronhold--Kennedy); ground is link "
         << latex_escape_text(c.bodies[0]) << ".";
   }
   out << " Drawing scale 1\\,cm = $"
