@@ -97,6 +97,14 @@ MechanismGeometry::MechanismGeometry(const ConstraintSystem& system) {
           guide_output = -1;
         }
       }
+      // A link vector turning with a coordinate itself (theta3, not theta3 + beta).
+      int coordinate = -1;
+      if (const LinkVector v = split_link_vector(term); v.polar) {
+        if (v.angle.is_equal(system.input.symbol) && system.input.dimension == Dimension::angle) coordinate = 0;
+        for (std::size_t j = 0; j < system.unknowns.size(); ++j)
+          if (v.angle.is_equal(system.unknowns[j].symbol)) coordinate = static_cast<int>(j) + 1;
+      }
+      term_coordinates_.push_back(coordinate);
       guide_outputs_.push_back(guide_output);
       guide_turns_.push_back(guide_turns);
       guide_links_.push_back(guide_link);
@@ -218,6 +226,11 @@ std::vector<DrawingSegment> MechanismGeometry::segments(const MotionState& state
       g.to = at + terms[k];
       g.kind = kinds_[term];
       g.link = term_links_[term];
+      g.coordinate = term_coordinates_[term];
+      if (g.coordinate >= 0) {
+        g.angle = g.coordinate == 0 ? state.input : state.q[g.coordinate - 1];
+        g.angle_at = std::real(terms[k] * std::polar(1.0, -g.angle)) >= 0 ? g.from : g.to;
+      }
       at += terms[k];
     }
     // A slider's point: the end of its term that is not on the ground side (the origin or a
@@ -245,6 +258,16 @@ std::vector<DrawingSegment> MechanismGeometry::segments(const MotionState& state
       if (std::abs(g.along) > 0) g.along /= std::abs(g.along);
     }
     first += count;
+  }
+  // Blocks numbered in the gaps the links leave.
+  std::vector<std::string> used(link_labels_);
+  used.push_back(std::find(used.begin(), used.end(), "1") != used.end() ? "0" : "1");
+  int next = 1;
+  for (DrawingSegment& g : segments) {
+    if (g.kind != DrawingSegment::Kind::slider) continue;
+    while (std::find(used.begin(), used.end(), std::to_string(next)) != used.end()) ++next;
+    g.block_label = std::to_string(next);
+    used.push_back(g.block_label);
   }
   return segments;
 }

@@ -26,6 +26,15 @@ struct DrawingSegment {
   std::complex<double> block, along;
   bool fixed_guide = false;
   int guide_link = -1;
+  /// A slider's block number: in the gaps the links' numbers leave (ground first: 1, or 0
+  /// when a link is 1), as the instant centres number it.
+  std::string block_label;
+  /// A link vector whose angle is a coordinate (the input or an unknown): that coordinate
+  /// (0: the input, k + 1: unknown k), its value, and the joint it is measured at (the end
+  /// the vector length*e^{i angle} starts from: `from`, or `to` for a term written negated).
+  int coordinate = -1;
+  double angle = 0;
+  std::complex<double> angle_at;
 };
 
 /// A named point on a link: its formula's last term is a link vector of fixed length
@@ -93,6 +102,7 @@ class MechanismGeometry {
   std::vector<int> guide_outputs_;
   std::vector<bool> guide_turns_;
   std::vector<int> guide_links_;
+  std::vector<int> term_coordinates_;  ///< Per term: its angle's coordinate (as DrawingSegment::coordinate) or -1.
   std::vector<std::pair<std::size_t, int>> points_;  ///< Points on links: the point, its link.
   std::vector<GiNaC::ex> link_rates_;                ///< Per link: the rate it turns with.
   std::vector<std::string> link_labels_;

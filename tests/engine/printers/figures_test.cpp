@@ -11,6 +11,7 @@
 #include <vector>
 
 #include <kinema/engine/printers/printer.hpp>
+#include <kinema/engine/report/geometry.hpp>
 #include <kinema/engine/report/instant_centres.hpp>
 #include <kinema/engine/report/plot_range.hpp>
 #include <kinema/engine/report/polygons.hpp>
@@ -433,6 +434,52 @@ TEST_CASE("engine/printers/figures: polygons fill the width at a round scale, ev
           const Point d = labels[i].second - labels[j].second;
           CHECK((std::fabs(d.imag()) >= 0.3 || std::fabs(d.real()) >= 0.35));
         }
+    }
+  }
+}
+
+TEST_CASE("engine/printers/figures: the drawing's axes, angle arcs, numbered blocks and labels off the hatching") {
+  for (const char* name : {"crank_shaper.toml", "slider_crank.toml", "problem_4_4_six_bar.toml", "example_4_2_r_rtr_rrt.toml",
+                           "example_4_1_r_trr.toml", "four_bar.toml", "problem_3_22_joints.toml", "example_4_2_joints.toml"}) {
+    CAPTURE(std::string(name));
+    const kinema::Model model = kinema::load_model(kinema_test::sample(name));
+    const MotionTable values = kinema::analyse(model, model.system.input.values.empty() ? std::vector<double>{0.5}
+                                                                                        : model.system.input.values);
+    const std::string figure = mechanism_figure(document(model, &values));
+    const Drawing d = read_drawing(figure);
+    // x and y from the origin.
+    CHECK(figure.find("\\draw[->, gray] (0,0) -- (1.2,0) node[right, font=\\scriptsize] {$x$};") != std::string::npos);
+    CHECK(figure.find("\\draw[->, gray] (0,0) -- (0,1.2) node[above, font=\\scriptsize] {$y$};") != std::string::npos);
+    // Every block numbered: a circled number beside it, off its guide's hatching.
+    const auto numbers = lines_starting(figure, "\\node[circle, draw, inner sep=1pt, font=\\scriptsize] at ");
+    for (const Block& b : d.blocks) {
+      bool numbered = false;
+      for (const std::string& line : numbers) numbered = numbered || std::abs(coordinates(line)[0] - b.centre) < 0.6;
+      CHECK(numbered);
+    }
+    // No number on a guide's hatching (0.15 cm on one side of its line).
+    for (const std::string& line : numbers) {
+      const Point at = coordinates(line)[0];
+      CAPTURE(line);
+      for (const Line& g : d.guides)
+        if (within(at, g, 0)) CHECK(distance_to_line(at, g) > 0.25);
+    }
+    if (model.system.linkage) continue;
+    // Each angle that is a coordinate of a link vector drawn: an arc to its solved value.
+    std::vector<double> arcs;
+    for (const std::string& line : lines_starting(figure, "\\draw[->, gray] (")) {
+      const auto at = line.find("end angle=");
+      if (at != std::string::npos) arcs.push_back(std::stod(line.substr(at + 10)));
+    }
+    const kinema::MechanismGeometry geometry(model.system);
+    for (const kinema::DrawingSegment& g : geometry.segments(values[0])) {
+      if (g.coordinate < 0 || g.kind != kinema::DrawingSegment::Kind::link) continue;
+      const double degrees = std::remainder(g.angle * 180 / M_PI, 360.0);
+      if (std::fabs(degrees) < 1) continue;
+      bool drawn = false;
+      for (double a : arcs) drawn = drawn || std::fabs(a - degrees) < 0.01;
+      CAPTURE(degrees);
+      CHECK(drawn);
     }
   }
 }
