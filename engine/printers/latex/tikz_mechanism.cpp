@@ -218,11 +218,13 @@ void write_tikz_mechanism(std::ostream& out, const ConstraintSystem& system, con
         << xy(beside((g.from + g.to) / 2.0, across)) << " {"
         << latex_escape_text(geometry.link_labels()[g.guide_link]) << "};\n";
   }
-  // Every block numbered, on the side of its guide away from the hatching.
+  // Every block numbered: on the side of a fixed guide away from its hatching; beside a
+  // block on a turning link, on the side away from its point's label (above left).
   for (const Segment& g : segments)
     if (g.kind == Segment::Kind::slider && !g.block_label.empty())
       out << "\\node[circle, draw, inner sep=1pt, font=\\scriptsize] at "
-          << xy(g.block + g.along * std::complex<double>(0, 0.55 / cm)) << " {" << latex_escape_text(g.block_label)
+          << xy(g.block + g.along * std::complex<double>(0, (g.fixed_guide ? 0.55 : -0.55) / cm)) << " {"
+          << latex_escape_text(g.block_label)
           << "};\n";
   // The angles that are coordinates, each once: an arc from the x direction at the joint
   // its link vector starts from.
