@@ -19,6 +19,22 @@ struct DrawingSegment {
   std::complex<double> from, to;  ///< SI.
   Kind kind = Kind::link;
   int link = -1;  ///< A link vector of fixed length: its link (MechanismGeometry::link_labels), else -1.
+  /// A slider's term: the slider point (its end away from the ground side) and the guide it
+  /// moves on, the line through `block` along d(term)/d(length) (unit), the way the point moves
+  /// when the length changes with the other coordinates held. fixed_guide when that direction
+  /// does not turn (a guide on the ground); else guide_link is the link it turns with, or -1.
+  std::complex<double> block, along;
+  bool fixed_guide = false;
+  int guide_link = -1;
+  /// A slider's block number: in the gaps the links' numbers leave (ground first: 1, or 0
+  /// when a link is 1), as the instant centres number it.
+  std::string block_label;
+  /// A link vector whose angle is a coordinate (the input or an unknown): that coordinate
+  /// (0: the input, k + 1: unknown k), its value, and the joint it is measured at (the end
+  /// the vector length*e^{i angle} starts from: `from`, or `to` for a term written negated).
+  int coordinate = -1;
+  double angle = 0;
+  std::complex<double> angle_at;
 };
 
 /// A named point on a link: its formula's last term is a link vector of fixed length
@@ -62,12 +78,18 @@ std::optional<LinkageDrawing> linkage_drawing(const ConstraintSystem& system, co
 class MechanismGeometry {
  public:
   explicit MechanismGeometry(const ConstraintSystem& system);
-  /// The loops' segments at a state whose position is known (status not unassembled).
+  /// The loops' segments at a state whose position is known (status not unassembled). A loop's
+  /// terms are laid end to end from the origin in the order, among those that close it, that
+  /// puts its ground vectors at the origin and its corners on the most named points (the
+  /// written order when it does so already): r e^{i phi} - AC - BC e^{i phi3} is drawn
+  /// A -> B -> C -> A, not through B - AC.
   std::vector<DrawingSegment> segments(const MotionState& state) const;
   /// The named points that lie on a link, at a state that is ok.
   std::vector<PointOnLink> points_on_links(const MotionState& state) const;
   /// Each link's number, as DrawingSegment::link and PointOnLink::link index them.
   const std::vector<std::string>& link_labels() const { return link_labels_; }
+  /// Each link's angular rate (omega3), indexed as link_labels.
+  const std::vector<GiNaC::ex>& link_rates() const { return link_rates_; }
 
  private:
   CompiledExpressions tape_;  ///< Inputs: parameters, input, q; outputs: x, y of each term, then of each point's last.
@@ -75,11 +97,19 @@ class MechanismGeometry {
   std::vector<std::size_t> loop_term_count_;  ///< Terms of each loop, in order.
   std::vector<DrawingSegment::Kind> kinds_;
   std::vector<int> term_links_;                      ///< Per term: its link or -1.
+  /// Per term: where d(term)/d(length) is among the tape's outputs (x, y), or -1; whether it
+  /// turns (a guide on a link) and with which link.
+  std::vector<int> guide_outputs_;
+  std::vector<bool> guide_turns_;
+  std::vector<int> guide_links_;
+  std::vector<int> term_coordinates_;  ///< Per term: its angle's coordinate (as DrawingSegment::coordinate) or -1.
   std::vector<std::pair<std::size_t, int>> points_;  ///< Points on links: the point, its link.
   std::vector<GiNaC::ex> link_rates_;                ///< Per link: the rate it turns with.
   std::vector<std::string> link_labels_;
   /// The link a term of fixed length turning with an angle is on (added when new), or -1.
   int link_of(const ConstraintSystem& system, const GiNaC::ex& term);
+  /// The link turning with this angle (added when new).
+  int link_of_angle(const ConstraintSystem& system, const GiNaC::ex& angle);
 };
 
 }  // namespace kinema

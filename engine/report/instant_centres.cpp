@@ -111,10 +111,100 @@ std::optional<InstantCentres> centres_from_points(const ConstraintSystem& system
     bodies.push_back({rate, name, {m.position[0], m.position[1]}, {m.velocity[0], m.velocity[1]}, order, w});
   }
   if (bodies.empty()) return std::nullopt;
-  std::stable_sort(bodies.begin(), bodies.end(), [](const Body& a, const Body& b) { return a.order < b.order; });
+  // The loops' links no point ends on, known by a joint whose velocity is known (a named
+  // point, or a ground one), and the slider blocks (at their sliding points, turning with
+  // their guides): every body of the mechanism, as a course counts them.
+  {
+    std::vector<std::pair<Complex, Complex>> known;  // position, velocity
+    for (const PointMotion& m : s.points) known.push_back({{m.position[0], m.position[1]}, {m.velocity[0], m.velocity[1]}});
+    const MechanismGeometry geometry(system);
+    const std::vector<DrawingSegment> segments = geometry.segments(s);
+    known.push_back({0, 0});
+    for (const DrawingSegment& g : segments)
+      if (g.kind == DrawingSegment::Kind::ground) {
+        known.push_back({g.from, 0});
+        known.push_back({g.to, 0});
+      }
+    const auto velocity_at = [&](Complex p) -> std::optional<Complex> {
+      for (const auto& [at, v] : known)
+        if (std::abs(at - p) <= 1e-9 * system.length_scale) return v;
+      return std::nullopt;
+    };
+    const auto omega_of = [&](const GiNaC::ex& rate) -> std::optional<double> {
+      try {
+        const GiNaC::ex w = rate.subs(values).evalf();
+        if (!GiNaC::is_a<GiNaC::numeric>(w) || !GiNaC::ex_to<GiNaC::numeric>(w).is_real()) return std::nullopt;
+        const double d = GiNaC::ex_to<GiNaC::numeric>(w).to_double();
+        return std::isfinite(d) ? std::optional<double>(d) : std::nullopt;
+      } catch (const std::exception&) {
+        return std::nullopt;
+      }
+    };
+    for (const DrawingSegment& g : segments) {
+      if (g.kind != DrawingSegment::Kind::link || g.link < 0) continue;
+      const GiNaC::ex& rate = geometry.link_rates()[g.link];
+      bool seen = false;
+      for (const Body& b : bodies) seen = seen || b.rate.is_equal(rate);
+      const std::optional<double> w = omega_of(rate);
+      if (seen || !w) continue;
+      for (const Complex end : {g.from, g.to})
+        if (const auto v = velocity_at(end)) {
+          std::size_t order = system.unknowns.size() + 1;
+          for (std::size_t j = system.unknowns.size(); j-- > 0;)
+            if (rate.has(system.unknowns[j].rate)) order = j + 1;
+          if (rate.has(system.input.rate)) order = 0;
+          bodies.push_back({rate, geometry.link_labels()[g.link], end, *v, order, *w});
+          break;
+        }
+    }
+    // A link that is only a slider's guide (Example 4.1's crank 1), known by the term's
+    // other end when that lies on the guide line.
+    for (const DrawingSegment& g : segments) {
+      if (g.kind != DrawingSegment::Kind::slider || g.guide_link < 0) continue;
+      const GiNaC::ex& rate = geometry.link_rates()[g.guide_link];
+      bool seen = false;
+      for (const Body& b : bodies) seen = seen || b.rate.is_equal(rate);
+      const Complex other = std::abs(g.block - g.to) <= 1e-9 * system.length_scale ? g.from : g.to;
+      const std::optional<double> w = omega_of(rate);
+      const auto v = velocity_at(other);
+      if (seen || !w || !v || std::fabs(cross(other - g.block, g.along)) > 1e-9 * system.length_scale) continue;
+      std::size_t order = system.unknowns.size() + 1;
+      for (std::size_t j = system.unknowns.size(); j-- > 0;)
+        if (rate.has(system.unknowns[j].rate)) order = j + 1;
+      if (rate.has(system.input.rate)) order = 0;
+      bodies.push_back({rate, geometry.link_labels()[g.guide_link], other, *v, order, *w});
+    }
+    for (const DrawingSegment& g : segments) {
+      if (g.kind != DrawingSegment::Kind::slider || (!g.fixed_guide && g.guide_link < 0)) continue;
+      const std::optional<double> w = g.fixed_guide ? std::optional<double>(0.0) : omega_of(geometry.link_rates()[g.guide_link]);
+      const auto v = velocity_at(g.block);
+      if (!w || !v) continue;
+      bodies.push_back({0, "", g.block, *v, system.unknowns.size() + 2, *w});  // named below
+    }
+  }
   InstantCentres result;
   bool one_taken = false;
   for (const Body& b : bodies) one_taken = one_taken || b.name == "1";
+  // Blocks numbered in the gaps the links leave (Example 4.2: links 1, 3, 4, blocks 2, 5).
+  {
+    std::vector<std::string> used = {one_taken ? "0" : "1"};
+    for (const Body& b : bodies) used.push_back(b.name);
+    int next = 1;
+    for (Body& b : bodies) {
+      if (!b.name.empty()) continue;
+      while (std::find(used.begin(), used.end(), std::to_string(next)) != used.end()) ++next;
+      b.name = std::to_string(next);
+      used.push_back(b.name);
+    }
+  }
+  const auto number = [](const std::string& name) {
+    return !name.empty() && name.find_first_not_of("0123456789") == std::string::npos ? std::stoi(name) : -1;
+  };
+  bool numbered = true;
+  for (const Body& b : bodies) numbered = numbered && number(b.name) >= 0;
+  std::stable_sort(bodies.begin(), bodies.end(), [&](const Body& a, const Body& b) {
+    return numbered ? number(a.name) < number(b.name) : a.order < b.order;
+  });
   result.bodies.push_back(one_taken ? "0" : "1");
   result.angular_velocities.push_back(0);
   result.rates.push_back(0);
@@ -135,13 +225,14 @@ std::optional<InstantCentres> centres_from_points(const ConstraintSystem& system
       const std::complex<double> A = point_of(a), B = point_of(b), I(0, 1);
       const std::string how = "velocities of the points on " + result.bodies[a] + " and " + result.bodies[b];
       if (std::fabs(wa - wb) <= 1e-12 * (std::fabs(wa) + std::fabs(wb))) {
-        const std::complex<double> relative = velocity_of(b) - velocity_of(a);  // uniform: they turn alike
+        // Uniform where they turn alike: v_b(P) - v_a(P) = v_b(B) - v_a(A) + i omega (A - B).
+        const std::complex<double> relative = velocity_of(b) - velocity_of(a) + I * wa * (A - B);
         if (std::abs(relative) <= 1e-12 * fastest) continue;  // moving as one: no centre
-        result.centres.push_back({a, b, true, I * relative / std::abs(relative), how, {}});
+        result.centres.push_back({a, b, true, I * relative / std::abs(relative), how, {}, std::nullopt});
         continue;
       }
       const std::complex<double> at = (velocity_of(b) - velocity_of(a) + I * (wa * A - wb * B)) / (I * (wa - wb));
-      result.centres.push_back({a, b, false, at, how, {}});
+      result.centres.push_back({a, b, false, at, how, {}, std::nullopt});
     }
   }
   for (std::size_t a = 0; a < n; ++a)
@@ -149,6 +240,39 @@ std::optional<InstantCentres> centres_from_points(const ConstraintSystem& system
       if (!result.find(a, b)) result.not_found.push_back({a, b});
   for (const InstantCentre& c : result.centres)
     if (!std::isfinite(c.at.real()) || !std::isfinite(c.at.imag())) return std::nullopt;
+  // Centres away from the joints: on the two Kennedy lines (through I_ab and I_bc for
+  // another body b) that cross there most squarely.
+  std::vector<std::complex<double>> joints = {0};
+  for (const PointMotion& m : s.points) joints.push_back({m.position[0], m.position[1]});
+  for (InstantCentre& centre : result.centres) {
+    if (centre.at_infinity) {  // the arrow from the block (rate 0, not ground), else the moving body
+      const auto block = [&](std::size_t b) { return b != 0 && result.rates[b].is_zero(); };
+      centre.seen_from = block(centre.b) || centre.a == 0 ? point_of(centre.b)
+                         : block(centre.a)                ? point_of(centre.a)
+                                                          : (point_of(centre.a) + point_of(centre.b)) / 2.0;
+      continue;
+    }
+    bool joint = false;
+    for (const auto& j : joints) joint = joint || std::abs(j - centre.at) <= 1e-9 * system.length_scale;
+    if (joint) continue;
+    std::vector<std::pair<Line, std::size_t>> lines;
+    for (std::size_t b = 0; b < n; ++b) {
+      if (b == centre.a || b == centre.b) continue;
+      const InstantCentre *ab = result.find(centre.a, b), *bc = result.find(b, centre.b);
+      if (!ab || !bc) continue;
+      if (const auto l = line_through(*ab, *bc, system.length_scale)) lines.push_back({*l, b});
+    }
+    double best = 1e-6;
+    for (std::size_t i = 0; i < lines.size(); ++i)
+      for (std::size_t j = i + 1; j < lines.size(); ++j) {
+        const double sine = std::fabs(cross(lines[i].first.along, lines[j].first.along));
+        if (sine <= best) continue;
+        best = sine;
+        const std::size_t b1 = lines[i].second, b2 = lines[j].second;
+        centre.kennedy = {std::minmax(centre.a, b1), std::minmax(b1, centre.b), std::minmax(centre.a, b2),
+                          std::minmax(b2, centre.b)};
+      }
+  }
   if (result.driver != 0) add_ratios(result, system.length_scale);
   return result;
 }
@@ -197,10 +321,11 @@ std::optional<InstantCentres> instant_centres(const ConstraintSystem& system, co
   const auto world = [&](std::size_t b, Complex local) {
     return b == 0 ? local : poses[b].origin + local * std::polar(1.0, poses[b].angle);
   };
-  const auto add = [&](std::size_t a, std::size_t b, bool infinite, Complex at, const std::string& how) {
+  const auto add = [&](std::size_t a, std::size_t b, bool infinite, Complex at, const std::string& how,
+                       std::optional<Complex> seen_from = std::nullopt) {
     if (a > b) std::swap(a, b);
     if (a == b || result.find(a, b)) return;
-    result.centres.push_back({a, b, infinite, at, how, {}});
+    result.centres.push_back({a, b, infinite, at, how, {}, seen_from});
   };
   // Primary centres: pins, then sliders (at infinity across the line).
   for (const LinkageFrames::Pin& pin : frames.pins) {
@@ -211,7 +336,11 @@ std::optional<InstantCentres> instant_centres(const ConstraintSystem& system, co
   }
   for (const LinkageFrames::Slider& slider : frames.sliders) {
     const double line = (slider.guide == 0 ? 0.0 : poses[slider.guide].angle) + slider.direction;
-    add(slider.block, slider.guide, true, std::polar(1.0, line + M_PI / 2), "slider " + linkage.joints[slider.joint].name);
+    std::optional<Complex> joint_at;  // the arrow starts at the slider's joint
+    for (const auto& [joint, local] : frames.bodies[slider.block].points)
+      if (joint == slider.joint) joint_at = world(slider.block, local);
+    add(slider.block, slider.guide, true, std::polar(1.0, line + M_PI / 2), "slider " + linkage.joints[slider.joint].name,
+        joint_at);
   }
   // Kennedy: I_ac on the line I_ab I_bc and on the line I_ad I_dc; of all such pairs of
   // lines the one that crosses most squarely.
@@ -241,13 +370,13 @@ std::optional<InstantCentres> instant_centres(const ConstraintSystem& system, co
               how += (k == 0 ? "" : k == 2 ? ", " : " ") + centre_name(result.bodies, kennedy[k].first, kennedy[k].second);
             if (sine <= 1e-9) {  // parallel lines: a centre at infinity, unless they are one line
               if (std::fabs(cross(q.through - p.through, p.along)) > 1e-9 * system.length_scale && !chosen)
-                chosen = InstantCentre{a, c, true, p.along, how, kennedy};
+                chosen = InstantCentre{a, c, true, p.along, how, kennedy, p.through};
               continue;
             }
             if (sine <= best) continue;
             best = sine;
             const double t = cross(q.through - p.through, q.along) / cross(p.along, q.along);
-            chosen = InstantCentre{a, c, false, p.through + t * p.along, how, kennedy};
+            chosen = InstantCentre{a, c, false, p.through + t * p.along, how, kennedy, std::nullopt};
           }
         }
         if (chosen) {

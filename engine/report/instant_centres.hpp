@@ -25,6 +25,9 @@ struct InstantCentre {
   std::string found_by;
   /// Found by Kennedy: the bodies of the two other centres on each of its two lines.
   std::vector<std::pair<std::size_t, std::size_t>> kennedy;
+  /// At infinity: a point of a line it lies on, where a drawing starts its arrow (a
+  /// slider's joint, or a centre on the Kennedy line that fixed its direction).
+  std::optional<std::complex<double>> seen_from;
 };
 
 /// omega_j / omega_driver from the centres (I_0d, I_dj, I_0j on one line:
@@ -39,7 +42,10 @@ struct InstantCentres {
   std::vector<double> angular_velocities;  ///< rad/s, per body.
   /// The rate each body turns with (omega3), 0 for ground and for slider blocks.
   std::vector<GiNaC::ex> rates;
-  std::vector<InstantCentre> centres;  ///< Every pair that was found.
+  /// Every pair that was found. A vector-loop file's centres that are not at a joint (a
+  /// named point or the origin) carry the two Kennedy lines through them that cross most
+  /// squarely, as the joints-and-links ones do.
+  std::vector<InstantCentre> centres;
   std::vector<std::pair<std::size_t, std::size_t>> not_found;  ///< Pairs no two Kennedy lines fix.
   std::size_t driver = 0;
   std::vector<VelocityRatio> ratios;

@@ -12,4 +12,10 @@ namespace kinema {
 /// 201 values over one length scale centred on `first` for a length input. SI.
 std::vector<double> plot_range(const ConstraintSystem& system, double first);
 
+/// An angle's curve in degrees made continuous: each value moved by whole turns to within
+/// 180 deg of the last finite one before it (a solver's atan2 wraps to +-180, a closed form's
+/// to 0..360), then the whole curve by whole turns so its value at `reference` is in
+/// (-180, 180]. Non-finite values stay (gaps) and are stepped over.
+std::vector<double> unwrap_degrees(std::vector<double> degrees, std::size_t reference);
+
 }  // namespace kinema

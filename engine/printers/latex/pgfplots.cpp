@@ -7,6 +7,7 @@
 #include <kinema/engine/printers/latex/latex_format.hpp>
 #include <kinema/engine/report/number_format.hpp>
 #include <kinema/engine/report/output_scale.hpp>
+#include <kinema/engine/report/plot_range.hpp>
 
 namespace kinema {
 namespace {
@@ -86,6 +87,12 @@ class PlotWriter {
               }
             }
             ys.push_back(y);
+          }
+          // An angle drawn as one continuous curve, at its file value's turn at the file's input.
+          if (order == 0 && dim == Dimension::angle) {
+            std::size_t first = 0;
+            while (first < rows_.size() && rows_[first] != 0) ++first;
+            ys = unwrap_degrees(ys, first);
           }
         }
         std::vector<std::string> legends;
@@ -180,7 +187,12 @@ class PlotWriter {
     const double w = std::fmod(x, 360.0);
     return w < 0 ? w + 360.0 : w;
   }
-  double x_of(double si) const { return turn_ ? wrapped(si) : scale_.input(si); }
+  // A turn's last row, a whole turn from the first, at 360 deg, not back at 0.
+  double x_of(double si) const {
+    if (!turn_) return scale_.input(si);
+    const double x = wrapped(si);
+    return x < 1e-9 && scale_.input(si) - scale_.input(sweep_.input(0)) >= 359.999 ? 360.0 : x;
+  }
 
   // One axis of curves over rows_, each with its legend; a value past its curve's
   // plot_limit is a gap, as a non-finite one is.
@@ -191,7 +203,7 @@ class PlotWriter {
       // Each curve's own: pooled, a curve far larger than its neighbours (one of twenty)
       // was past the limit everywhere and vanished, and a small one kept its pole.
       const double limit = plot_limit(curves[k]);
-      out_ << "\\addplot+[mark=none, thick] coordinates {";
+      out_ << "\\addplot+[" << curve_style(k, rows_.size()) << "] coordinates {";
       for (std::size_t i = 0; i < rows_.size(); ++i) {
         const double y = curves[k][i];
         if (rows_[i] == kBreak || !(std::fabs(y) <= limit)) {
@@ -206,11 +218,25 @@ class PlotWriter {
     end_axis();
   }
 
+  // Curves told apart where they coincide: each its own dash pattern and marks, spaced
+  // along it and set off from the other curves' (the legend shows both).
+  static std::string curve_style(std::size_t k, std::size_t rows) {
+    static const char* const dashes[] = {"solid", "dashed", "densely dotted", "dashdotted", "loosely dashed",
+                                         "densely dashdotted"};
+    static const char* const marks[] = {"*", "square*", "triangle*", "o", "square", "triangle"};
+    const std::size_t every = std::max<std::size_t>(rows / 8, 1);
+    return std::string("thick, ") + dashes[k % 6] + ", mark=" + marks[k % 6] + ", mark size=1.5pt, mark repeat=" +
+           std::to_string(every) + ", mark phase=" + std::to_string(1 + (k * every / 3) % every) +
+           ", mark options={solid}";
+  }
+
   void begin_axis(const std::string& x_label, const std::string& y_label, int index) {
     out_ << (index % 2 ? "\\hfill" : "\\noindent") << "\\begin{minipage}{0.48\\linewidth}\n"
          << "\\begin{tikzpicture}\n\\begin{axis}[width=0.85\\linewidth, height=5.5cm, xlabel={" << x_label
          << "}, ylabel={" << y_label
-         << "}, " << (turn_ ? "xmin=0, xmax=360, xtick={0,90,180,270,360}, " : "")
+         << "}, " << (turn_ ? "xmin=0, xmax=360, xtick={0,90,180,270,360}, " : "max space between ticks=40, ")
+         << "ticklabel style={font=\\scriptsize}, "
+         << "yticklabel style={/pgf/number format/fixed, /pgf/number format/precision=3}, "
          << "unbounded coords=jump, legend style={font=\\footnotesize, at={(0.5,1.02)}, anchor=south, "
          << "legend columns=-1}]\n";
   }

@@ -29,6 +29,14 @@ void write_tikz_instant_centres(std::ostream& out, const ConstraintSystem& syste
     drawing.emplace();
     for (const DrawingSegment& segment : geometry.segments(s)) {
       if (segment.kind == DrawingSegment::Kind::ground) continue;
+      if (segment.kind == DrawingSegment::Kind::slider) {
+        // A block on its guide; a guide on a turning link drawn as that link up to the block.
+        drawing->links.push_back({{{"", segment.block}}, true, std::arg(segment.along), ""});
+        if (segment.fixed_guide) continue;
+        const std::complex<double> other = segment.block == segment.to ? segment.from : segment.to;
+        drawing->links.push_back({{{"", other}, {"", segment.block}}, false, 0, ""});
+        continue;
+      }
       drawing->links.push_back({{{"", segment.from}, {"", segment.to}}, false, 0, ""});
     }
     drawing->ground_pivots.push_back({"", 0});
@@ -57,13 +65,36 @@ void write_tikz_instant_centres(std::ostream& out, const ConstraintSystem& syste
     return "(" + format_fixed(p.real() * cm, 3) + "," + format_fixed(p.imag() * cm, 3) + ")";
   };
   out << "\\begin{center}\n\\begin{tikzpicture}[line cap=round, >=latex]\n";
-  // The Kennedy lines: each secondary centre on two lines of known centres.
+  // The figure's frame: a centre beyond it is an arrow at its edge pointing to it.
+  const double fx0 = min_x * cm, fx1 = max_x * cm, fy0 = min_y * cm, fy1 = max_y * cm;
+  const auto edge_towards = [&](std::complex<double> from, std::complex<double> along) {  // cm
+    double t = 1e300;
+    if (along.real() > 1e-12) t = std::min(t, (fx1 - from.real()) / along.real());
+    if (along.real() < -1e-12) t = std::min(t, (fx0 - from.real()) / along.real());
+    if (along.imag() > 1e-12) t = std::min(t, (fy1 - from.imag()) / along.imag());
+    if (along.imag() < -1e-12) t = std::min(t, (fy0 - from.imag()) / along.imag());
+    return from + along * std::max(t, 0.0);
+  };
+  const auto cm_xy = [&](std::complex<double> p) {
+    return "(" + format_fixed(p.real(), 3) + "," + format_fixed(p.imag(), 3) + ")";
+  };
+  const auto anchor = [](std::complex<double> along) {
+    const double a = std::arg(along) * 180 / M_PI;
+    return a > 45 && a < 135 ? "above" : a < -45 && a > -135 ? "below" : std::fabs(a) <= 45 ? "right" : "left";
+  };
+  // The Kennedy lines: each secondary centre on two lines of known centres; a line to a
+  // centre off the figure runs to the figure's edge towards it.
   for (const InstantCentre& centre : c.centres) {
-    if (!on_figure(centre)) continue;
+    if (centre.at_infinity) continue;
     for (const auto& [a, b] : centre.kennedy) {
       const InstantCentre* other = c.find(a, b);
-      if (other && !other->at_infinity && on_figure(*other))
-        out << "\\draw[gray!60, dashed] " << xy(other->at) << " -- " << xy(centre.at) << ";\n";
+      if (!other || other->at_infinity || (!on_figure(centre) && !on_figure(*other))) continue;
+      const InstantCentre& near = on_figure(centre) ? centre : *other;
+      const InstantCentre& far = on_figure(centre) ? *other : centre;
+      if (std::abs(far.at - near.at) <= 1e-12 * size) continue;
+      const std::complex<double> end =
+          on_figure(far) ? far.at * cm : edge_towards(near.at * cm, (far.at - near.at) / std::abs(far.at - near.at));
+      out << "\\draw[gray!60, dashed] " << xy(near.at) << " -- " << cm_xy(end) << ";\n";
     }
   }
   for (const auto& link : drawing->links) {
@@ -79,13 +110,20 @@ void write_tikz_instant_centres(std::ostream& out, const ConstraintSystem& syste
   for (const auto& pivot : drawing->ground_pivots)
     out << "\\draw " << xy(pivot.at) << " -- ++(-0.15,-0.25) -- ++(0.3,0) -- cycle;\n";
   for (const InstantCentre& centre : c.centres) {
-    if (centre.at_infinity) {  // an arrow from the middle towards it
-      const std::complex<double> tip = middle + centre.at * (0.6 * size);
-      out << "\\draw[->, red!75!black] " << xy(middle + centre.at * (0.45 * size)) << " -- " << xy(tip)
-          << " node[right, font=\\scriptsize, red!75!black] {$" << centre_latex(c, centre) << "\\to\\infty$};\n";
+    if (centre.at_infinity) {  // an arrow from its joint (else the middle) towards it
+      const std::complex<double> from = centre.seen_from.value_or(middle) * cm;
+      const std::complex<double> tip = from + centre.at * 1.2;
+      out << "\\draw[->, red!75!black] " << cm_xy(from) << " -- " << cm_xy(tip) << " node[" << anchor(centre.at)
+          << ", font=\\scriptsize, red!75!black] {$" << centre_latex(c, centre) << "\\to\\infty$};\n";
       continue;
     }
-    if (!on_figure(centre)) continue;
+    if (!on_figure(centre)) {  // off the figure: an arrow at its edge pointing to it
+      const std::complex<double> towards = (centre.at - middle) / std::abs(centre.at - middle);
+      const std::complex<double> tip = edge_towards(middle * cm, towards);
+      out << "\\draw[->, red!75!black, dashed] " << cm_xy(tip - towards * 1.0) << " -- " << cm_xy(tip) << " node["
+          << anchor(towards) << ", font=\\scriptsize, red!75!black] {$" << centre_latex(c, centre) << "$};\n";
+      continue;
+    }
     out << "\\filldraw[red!75!black, fill=white] " << xy(centre.at) << " circle (0.07) node[above right, font=\\scriptsize] {$"
         << centre_latex(c, centre) << "$};\n";
   }
@@ -94,8 +132,10 @@ void write_tikz_instant_centres(std::ostream& out, const ConstraintSystem& syste
     out << "Instant centres: the primary ones at the pins and, for a slider, at infinity across its line; every "
            "other by the Aronhold--Kennedy theorem, where two lines of centres it shares a body with cross (dashed).";
   } else {
-    out << "Instant centres of the links that the file's points lie on (a point whose formula ends in a link vector "
-           "of fixed length is on that link), each where the two links' velocities agree; ground is link "
+    out << "Instant centres of the loops' links (a link vector of fixed length, known by a joint whose velocity is "
+           "known) and slider blocks (at the sliding point, turning with the guide; numbered in the gaps the links "
+           "leave), each where the two bodies' velocities agree, with two lines of centres through it (dashed, "
+           "Aronhold--Kennedy); ground is link "
         << latex_escape_text(c.bodies[0]) << ".";
   }
   out << " Drawing scale 1\\,cm = $"
@@ -103,19 +143,29 @@ void write_tikz_instant_centres(std::ostream& out, const ConstraintSystem& syste
   const std::string l = scale.length_unit;
   out << "\\medskip\n\\begin{tabular}{lrrl}\n\\toprule\ncentre & $x$ & $y$ & found by \\\\\n & $\\mathrm{" << l << "}$ & $\\mathrm{"
       << l << "}$ & \\\\\n\\midrule\n";
-  for (const InstantCentre& centre : c.centres) {
-    out << "$" << centre_latex(c, centre) << "$ & ";
-    if (centre.at_infinity) {
-      out << "\\multicolumn{2}{c}{at infinity, $" << latex_number(to_degrees(std::arg(centre.at)), 4) << "^{\\circ}$}";
-    } else {
-      // A coordinate that is rounding noise next to the mechanism's size prints as 0.
-      const auto shown = [&](double v) { return std::fabs(v) <= 1e-12 * size ? 0.0 : v / scale.length; };
-      out << "$" << latex_number(shown(centre.at.real()), 5) << "$ & $" << latex_number(shown(centre.at.imag()), 5) << "$";
+  // Every pair of bodies, n(n-1)/2 rows: those no two lines fix say so.
+  for (std::size_t a = 0; a < c.bodies.size(); ++a) {
+    for (std::size_t b = a + 1; b < c.bodies.size(); ++b) {
+      const InstantCentre* found = c.find(a, b);
+      if (!found) {
+        out << "$I_{" << latex_escape_text(c.bodies[a]) << latex_escape_text(c.bodies[b])
+            << "}$ & \\multicolumn{2}{c}{not found} & no two lines of known centres cross there \\\\\n";
+        continue;
+      }
+      const InstantCentre& centre = *found;
+      out << "$" << centre_latex(c, centre) << "$ & ";
+      if (centre.at_infinity) {
+        out << "\\multicolumn{2}{c}{at infinity, $" << latex_number(to_degrees(std::arg(centre.at)), 4) << "^{\\circ}$}";
+      } else {
+        // A coordinate that is rounding noise next to the mechanism's size prints as 0.
+        const auto shown = [&](double v) { return std::fabs(v) <= 1e-12 * size ? 0.0 : v / scale.length; };
+        out << "$" << latex_number(shown(centre.at.real()), 5) << "$ & $" << latex_number(shown(centre.at.imag()), 5) << "$";
+      }
+      std::string how = centre.found_by;
+      // Pins and sliders name their joint; the others the two lines of centres they are on.
+      if (!centre.kennedy.empty() && system.linkage) how = "Kennedy: lines " + how;
+      out << " & " << latex_escape_text(how) << " \\\\\n";
     }
-    std::string how = centre.found_by;
-    // Pins and sliders name their joint; the others the two lines of centres they are on.
-    if (!centre.kennedy.empty()) how = "Kennedy: lines " + how;
-    out << " & " << latex_escape_text(how) << " \\\\\n";
   }
   out << "\\bottomrule\n\\end{tabular}\n\n";
   if (c.ratios.empty()) return;

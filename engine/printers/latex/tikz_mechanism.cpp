@@ -104,16 +104,41 @@ void write_tikz_mechanism(std::ostream& out, const ConstraintSystem& system, con
     return "(" + format_fixed(p.real() * cm) + "," + format_fixed(p.imag() * cm) + ")";
   };
   out << "\\begin{center}\n\\begin{tikzpicture}[line cap=round]\n";
+  // The frame the positions are in: x and y from the origin.
+  out << "\\draw[->, gray] (0,0) -- (1.2,0) node[right, font=\\scriptsize] {$x$};\n"
+      << "\\draw[->, gray] (0,0) -- (0,1.2) node[above, font=\\scriptsize] {$y$};\n";
+  // Labels beside a link go on the side away from the fixed guides' hatching.
+  std::vector<std::pair<std::complex<double>, std::complex<double>>> guide_lines;  // through, along
+  if (drawing)
+    for (const auto& g : drawing->guides) guide_lines.push_back({g.through, g.along});
+  for (const Segment& g : segments)
+    if (g.kind == Segment::Kind::slider && g.fixed_guide) guide_lines.push_back({g.block, g.along});
+  const auto beside = [&](std::complex<double> middle, std::complex<double> across) {
+    const auto clearance = [&](std::complex<double> p) {
+      double least = 1e300;
+      for (const auto& [through, along] : guide_lines)
+        least = std::min(least, std::fabs(std::imag((p - through) * std::conj(along))));
+      return least;
+    };
+    const std::complex<double> left = middle + across * (0.35 / cm), right = middle - across * (0.35 / cm);
+    return clearance(left) >= 0.3 / cm || clearance(left) >= clearance(right) ? left : right;
+  };
   if (drawing) {
     write_links(out, *drawing, xy, {(min_x + max_x) / 2, (min_y + max_y) / 2}, size, cm);
     // Link numbers beside each link (its first two joints), as the file names them.
     for (std::size_t k = 0; k < drawing->links.size() && system.linkage; ++k) {
       const auto& joints = drawing->links[k].joints;
+      if (drawing->links[k].block && !joints.empty()) {  // a block: on the side of its guide away from the hatching
+        out << "\\node[circle, draw, inner sep=1pt, font=\\scriptsize] at "
+            << xy(joints.front().at + std::polar(0.55 / cm, drawing->links[k].angle + M_PI / 2)) << " {"
+            << latex_escape_text(drawing->links[k].name) << "};\n";
+        continue;
+      }
       if (joints.size() < 2 || drawing->links[k].block || std::abs(joints[1].at - joints[0].at) < 1e-9 * size) continue;
       const std::complex<double> along = joints[1].at - joints[0].at;
       const std::complex<double> across = along / std::abs(along) * std::complex<double>(0, 1);
       out << "\\node[circle, draw, inner sep=1pt, font=\\scriptsize] at "
-          << xy((joints[0].at + joints[1].at) / 2.0 + across * (0.35 / cm)) << " {"
+          << xy(beside((joints[0].at + joints[1].at) / 2.0, across)) << " {"
           << latex_escape_text(drawing->links[k].name) << "};\n";
     }
   }
@@ -122,17 +147,32 @@ void write_tikz_mechanism(std::ostream& out, const ConstraintSystem& system, con
       out << "\\draw[gray, dashed] " << xy(g.from) << " -- " << xy(g.to) << ";\n";
       for (const auto& end : {g.from, g.to}) write_pivot(out, xy(end));
     } else if (g.kind == Segment::Kind::slider) {
-      // The block sits at the moving end: not on the ground (origin or a ground vector's end).
-      bool to_is_ground = std::abs(g.to) < 1e-9 * size;
-      for (const Segment& h : segments)
-        if (h.kind == Segment::Kind::ground && (std::abs(h.to - g.to) < 1e-9 * size || std::abs(h.from - g.to) < 1e-9 * size))
-          to_is_ground = true;
-      const std::complex<double> block = to_is_ground ? g.from : g.to;
-      const std::complex<double> d = g.to - g.from;
-      const double angle = to_degrees(std::arg(d));
-      out << "\\draw[gray, thin] " << xy(g.from - d * 0.1) << " -- " << xy(g.to + d * 0.1) << ";\n"
-           << "\\draw[thick, fill=white, rotate around={" << format_fixed(angle) << ":" << xy(block) << "}] "
-           << xy(block) << " ++(-0.35,-0.2) rectangle ++(0.7,0.4);\n";
+      // The block at the slider's point, on the guide the geometry gives: a fixed guide
+      // hatched across the drawing; a guide on a turning link drawn as that link, from the
+      // term's other end through the block and on.
+      const double angle = to_degrees(std::arg(g.along));
+      const std::complex<double> other = std::abs(g.block - g.to) < 1e-9 * size ? g.from : g.to;
+      const std::complex<double> centre((min_x + max_x) / 2, (min_y + max_y) / 2);
+      if (g.fixed_guide) {
+        const double t = std::real((centre - g.block) * std::conj(g.along));
+        const std::complex<double> a = g.block + g.along * std::min(t - 0.5 * size, -0.15 * size),
+                                   b = g.block + g.along * std::max(t + 0.5 * size, 0.15 * size);
+        out << "\\draw[gray] " << xy(a) << " -- " << xy(b) << ";\n"
+            << "\\fill[pattern=north east lines, rotate around={" << format_fixed(angle) << ":" << xy(a) << "}] "
+            << xy(a) << " rectangle ++(" << format_fixed(std::abs(b - a) * cm) << ",-0.15);\n";
+      } else {
+        const std::complex<double> d = g.block - other;
+        const bool on_line = std::abs(std::imag(d * std::conj(g.along))) < 1e-9 * size;
+        const std::complex<double> beyond = d / std::max(std::abs(d), 1e-30) * (0.6 / cm);
+        if (on_line && std::abs(d) > 1e-9 * size) {
+          out << "\\draw[very thick, blue!70!black] " << xy(other) << " -- " << xy(g.block + beyond) << ";\n";
+        } else {
+          out << "\\draw[gray, thin] " << xy(g.block - g.along * (0.25 * size)) << " -- "
+              << xy(g.block + g.along * (0.25 * size)) << ";\n";
+        }
+      }
+      out << "\\draw[thick, fill=white, rotate around={" << format_fixed(angle) << ":" << xy(g.block) << "}] "
+          << xy(g.block) << " ++(-0.35,-0.2) rectangle ++(0.7,0.4);\n";
     } else {
       out << "\\draw[very thick, blue!70!black] " << xy(g.from) << " -- " << xy(g.to) << ";\n";
     }
@@ -164,8 +204,44 @@ void write_tikz_mechanism(std::ostream& out, const ConstraintSystem& system, con
     numbered[g.link] = true;
     const std::complex<double> across = (g.to - g.from) / std::abs(g.to - g.from) * std::complex<double>(0, 1);
     out << "\\node[circle, draw, inner sep=1pt, font=\\scriptsize] at "
-        << xy((g.from + g.to) / 2.0 + across * (0.35 / cm)) << " {" << latex_escape_text(geometry.link_labels()[g.link])
+        << xy(beside((g.from + g.to) / 2.0, across)) << " {" << latex_escape_text(geometry.link_labels()[g.link])
         << "};\n";
+  }
+  // A link that is only a slider's guide (a crank carrying a slot): numbered beside it.
+  for (const Segment& g : segments) {
+    if (g.kind != Segment::Kind::slider || g.guide_link < 0 || numbered[g.guide_link] ||
+        std::abs(g.to - g.from) < 1e-9 * size)
+      continue;
+    numbered[g.guide_link] = true;
+    const std::complex<double> across = g.along * std::complex<double>(0, 1);
+    out << "\\node[circle, draw, inner sep=1pt, font=\\scriptsize] at "
+        << xy(beside((g.from + g.to) / 2.0, across)) << " {"
+        << latex_escape_text(geometry.link_labels()[g.guide_link]) << "};\n";
+  }
+  // Every block numbered: on the side of a fixed guide away from its hatching; beside a
+  // block on a turning link, on the side away from its point's label (above left).
+  for (const Segment& g : segments)
+    if (g.kind == Segment::Kind::slider && !g.block_label.empty())
+      out << "\\node[circle, draw, inner sep=1pt, font=\\scriptsize] at "
+          << xy(g.block + g.along * std::complex<double>(0, (g.fixed_guide ? 0.55 : -0.55) / cm)) << " {"
+          << latex_escape_text(g.block_label)
+          << "};\n";
+  // The angles that are coordinates, each once: an arc from the x direction at the joint
+  // its link vector starts from.
+  std::vector<bool> arced(system.unknowns.size() + 1, false);
+  for (const Segment& g : segments) {
+    if (g.coordinate < 0 || arced[g.coordinate]) continue;
+    const double degrees = std::remainder(to_degrees(g.angle), 360.0);
+    if (std::fabs(degrees) < 1 || std::abs(g.to - g.from) < 1e-9 * size) continue;
+    arced[g.coordinate] = true;
+    const GiNaC::ex symbol = g.coordinate == 0 ? GiNaC::ex(system.input.symbol)
+                                               : GiNaC::ex(system.unknowns[g.coordinate - 1].symbol);
+    const double r = 0.55;  // cm
+    out << "\\draw[gray, dashed] " << xy(g.angle_at) << " -- ++(" << format_fixed(r + 0.25) << ",0);\n"
+        << "\\draw[->, gray] " << xy(g.angle_at) << " ++(" << format_fixed(r) << ",0) arc[start angle=0, end angle="
+        << format_fixed(degrees) << ", radius=" << format_fixed(r) << "];\n"
+        << "\\node[font=\\scriptsize, gray!30!black] at "
+        << xy(g.angle_at + std::polar((r + 0.3) / cm, from_degrees(degrees / 2))) << " {$" << to_latex(symbol) << "$};\n";
   }
   for (const Segment& g : segments) {
     for (const auto& end : {g.from, g.to})

@@ -1,9 +1,11 @@
 #include <kinema/engine/printers/latex/tikz_polygons.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <complex>
 #include <string>
+#include <vector>
 
 #include <kinema/engine/printers/latex/latex_format.hpp>
 #include <kinema/engine/report/number_format.hpp>
@@ -48,13 +50,33 @@ std::string image_label(const std::string& name) {
   return "$" + (label.find('_') == std::string::npos ? label : "\\mathit{" + escaped + "}") + "$";
 }
 
-// Where a label goes round a point: away from the polygon's centre.
-std::string anchor_away(std::complex<double> from_centre) {
-  if (std::abs(from_centre) == 0) return "above right";
-  const double angle = std::arg(from_centre) * 180 / M_PI;
-  static const char* anchors[] = {"right", "above right", "above", "above left", "left", "below left", "below", "below right"};
-  const int sector = static_cast<int>(std::lround((angle < 0 ? angle + 360 : angle) / 45)) % 8;
-  return anchors[sector];
+// The labels placed so far, as boxes in cm (centre, half width, half height): a new one
+// takes the first of its candidate places that overlaps none of them.
+struct LabelBoxes {
+  struct Box {
+    std::complex<double> centre;
+    double half_width, half_height;
+  };
+  std::vector<Box> boxes;
+  bool free(const Box& b) const {
+    for (const Box& o : boxes)
+      if (std::fabs(o.centre.real() - b.centre.real()) < o.half_width + b.half_width &&
+          std::fabs(o.centre.imag() - b.centre.imag()) < o.half_height + b.half_height)
+        return false;
+    return true;
+  }
+};
+
+// A label's size in cm at \scriptsize or \small: its letters, not its markup.
+double label_half_width(const std::string& latex) {
+  int letters = 0;
+  bool command = false;
+  for (char c : latex) {
+    if (c == '\\') command = true;
+    else if (!std::isalpha(static_cast<unsigned char>(c))) command = false;
+    if (!command && (std::isalnum(static_cast<unsigned char>(c)) || c == '\'' || c == ',')) ++letters;
+  }
+  return 0.07 * letters + 0.08;
 }
 
 }  // namespace
@@ -63,7 +85,7 @@ double drawing_scale(double extent, double centimetres) {
   if (!(extent > 0) || !std::isfinite(extent)) return 1;
   const double least = extent / centimetres;
   const double decade = std::pow(10.0, std::floor(std::log10(least)));
-  for (double step : {1.0, 2.0, 2.5, 4.0, 5.0, 10.0})
+  for (double step : {1.0, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0, 8.0, 10.0})
     if (step * decade >= least * (1 - 1e-12)) return step * decade;
   return 10 * decade;
 }
@@ -71,14 +93,20 @@ double drawing_scale(double extent, double centimetres) {
 double polygon_units_per_cm(const Polygon& polygon, double metres_per_length_unit) {
   // Extent of the figure in output units, pole included.
   double min_x = 0, max_x = 0, min_y = 0, max_y = 0;
-  for (const PolygonVertex& v : polygon.vertices) {
-    const std::complex<double> p = v.at / metres_per_length_unit;
+  const auto grow = [&](std::complex<double> si) {
+    const std::complex<double> p = si / metres_per_length_unit;
     min_x = std::min(min_x, p.real());
     max_x = std::max(max_x, p.real());
     min_y = std::min(min_y, p.imag());
     max_y = std::max(max_y, p.imag());
+  };
+  for (const PolygonVertex& v : polygon.vertices) grow(v.at);
+  for (const PolygonArrow& a : polygon.arrows) {  // a normal part ends where no vertex is
+    grow(a.from);
+    grow(a.to);
   }
-  return drawing_scale(std::max(max_x - min_x, max_y - min_y), 7.0);
+  // The text's width across, at most 7 cm high (two polygons and their tables to a page).
+  return std::max(drawing_scale(max_x - min_x, 12.0), drawing_scale(max_y - min_y, 7.0));
 }
 
 double polygon_read_off(const PolygonArrow& arrow, double units_per_cm, double metres_per_length_unit) {
@@ -99,6 +127,53 @@ void write_tikz_polygon(std::ostream& out, const ConstraintSystem& system, const
     return "(" + format_fixed(p.real(), 3) + "," + format_fixed(p.imag(), 3) + ")";
   };
   out << "\\begin{center}\n\\begin{tikzpicture}[line cap=round, >=latex]\n";
+  const auto cm_of = [&](std::complex<double> si) { return si / scale.length / per_cm; };
+  // The vertices' letters first, each round its point away from the polygon's centre, or
+  // the next way round that is free; points drawn at one place share one label (o, c).
+  LabelBoxes placed;
+  std::vector<std::pair<std::complex<double>, std::string>> places;  // cm, names
+  for (const PolygonVertex& v : polygon.vertices) {
+    const std::complex<double> p = cm_of(v.at);
+    bool joined = false;
+    for (auto& [at, names] : places)
+      if (std::abs(at - p) < 0.08) {
+        names += ", " + v.name;
+        joined = true;
+        break;
+      }
+    if (!joined) places.push_back({p, v.name});
+  }
+  for (const auto& [at, names] : places) placed.boxes.push_back({at, 0.06, 0.06});  // the dots
+  const std::complex<double> middle = centre / per_cm;
+  std::vector<std::string> vertex_lines;
+  for (const auto& [at, names] : places) {
+    std::string label;
+    for (std::size_t start = 0; start <= names.size();) {
+      const auto comma = names.find(", ", start);
+      label += (label.empty() ? "" : ", ") + image_label(names.substr(start, comma - start));
+      if (comma == std::string::npos) break;
+      start = comma + 2;
+    }
+    const double half_width = label_half_width(label) * 1.2, half_height = 0.2;
+    const double away = std::abs(at - middle) > 0 ? std::arg(at - middle) : M_PI / 4;
+    const auto candidate = [&](int k) {  // away from the middle, then turning either way, then further out
+      const double angle = away + (k % 2 ? 1 : -1) * ((k % 16 + 1) / 2) * M_PI / 8, out = 1 + 0.8 * (k / 16);
+      return LabelBoxes::Box{at + out * std::complex<double>((half_width + 0.08) * std::cos(angle),
+                                                             (half_height + 0.08) * std::sin(angle)),
+                             half_width, half_height};
+    };
+    LabelBoxes::Box chosen = candidate(0);
+    for (int k = 0; k < 48; ++k)
+      if (placed.free(candidate(k))) {
+        chosen = candidate(k);
+        break;
+      }
+    placed.boxes.push_back(chosen);
+    vertex_lines.push_back("\\fill (" + format_fixed(at.real(), 3) + "," + format_fixed(at.imag(), 3) +
+                           ") circle (0.05);\n\\node[font=\\small, inner sep=0pt] at (" +
+                           format_fixed(chosen.centre.real(), 3) + "," + format_fixed(chosen.centre.imag(), 3) + ") {" +
+                           label + "};\n");
+  }
   for (std::size_t k = 0; k < polygon.arrows.size(); ++k) {
     const PolygonArrow& a = polygon.arrows[k];
     const double cm = a.length() / scale.length / per_cm;
@@ -109,15 +184,35 @@ void write_tikz_polygon(std::ostream& out, const ConstraintSystem& system, const
                         1e-9 * std::max(a.length(), 1e-300));
     if (drawn) continue;
     out << "\\draw[->, " << style(a.kind) << "] " << xy(a.from) << " -- " << xy(a.to);
-    // Short arrows keep their names in the table only.
-    if (cm >= 0.6) out << " node[midway, fill=white, inner sep=1pt, font=\\scriptsize] {$" << a.latex << "$}";
+    // Short arrows keep their names in the table only; the others' on the arrow where no
+    // other label is (nearest its middle), else beside it.
+    if (cm >= 0.6) {
+      const std::complex<double> p = cm_of(a.from), q = cm_of(a.to);
+      const double half_width = label_half_width(a.latex), half_height = 0.16;
+      const std::complex<double> across = (q - p) / std::abs(q - p) * std::complex<double>(0, 1);
+      double pos = 0.5, shift = 0;
+      bool found = false;
+      for (double side : {0.0, 1.0, -1.0, 2.0, -2.0, 3.0, -3.0}) {
+        for (double t : {0.5, 0.4, 0.6, 0.3, 0.7, 0.2, 0.8}) {
+          const std::complex<double> c = p + (q - p) * t + across * (side * (half_height + 0.1));
+          if (placed.free({c, half_width, half_height})) {
+            pos = t;
+            shift = side * (half_height + 0.1);
+            found = true;
+            break;
+          }
+        }
+        if (found) break;
+      }
+      const std::complex<double> offset = across * shift;
+      placed.boxes.push_back({p + (q - p) * pos + offset, half_width, half_height});
+      out << " node[pos=" << format_fixed(pos, 2) << ", xshift=" << format_fixed(offset.real(), 3)
+          << "cm, yshift=" << format_fixed(offset.imag(), 3) << "cm, fill=white, inner sep=1pt, font=\\scriptsize] {$"
+          << a.latex << "$}";
+    }
     out << ";\n";
   }
-  for (const PolygonVertex& v : polygon.vertices) {
-    const std::complex<double> p = v.at / scale.length;
-    out << "\\fill " << xy(v.at) << " circle (0.05) node[" << anchor_away(p - centre) << ", font=\\small] {"
-        << image_label(v.name) << "};\n";
-  }
+  for (const std::string& line : vertex_lines) out << line;
   out << "\\end{tikzpicture}\n\\end{center}\n";
   out << (velocity ? "Velocity" : "Acceleration") << " polygon, scale 1\\,cm = $" << latex_number(per_cm, 3) << "\\,"
       << unit << "$; pole $o$ (every fixed point).\n\n";

@@ -108,9 +108,12 @@ TEST_CASE("course notes: a crank's plots run from 0 to 360 deg whatever the requ
   CHECK(document.out.find("xmin=0, xmax=360, xtick={0,90,180,270,360}") != std::string::npos);
   // The first plotted point is at the wrap (0 deg, from 360 deg past the file's 40 deg),
   // and no x beyond 360 is drawn.
-  const auto first = document.out.find("\\addplot+[mark=none, thick] coordinates { (");
+  // (The first curve of the first axis: solid, its marks; the points' paths have none.)
+  const auto curve = document.out.find("\\addplot+[thick, solid, ");
+  REQUIRE(curve != std::string::npos);
+  const auto first = document.out.find("] coordinates { (", curve);
   REQUIRE(first != std::string::npos);
-  CHECK(document.out.substr(first + 42, 10) == "(0.000000,");
+  CHECK(document.out.substr(first + 16, 10) == "(0.000000,");
   CHECK(document.out.find("(400.000000,") == std::string::npos);
   CHECK(document.out.find(" (nan,nan)") != std::string::npos);  // where the two parts of the turn meet
 }

@@ -210,7 +210,7 @@ TEST_CASE("engine/printers/worked_solution: a joints-and-links drawing follows t
   CHECK(count(tex, "\\draw[very thick, blue!70!black]") == 2);       // bars 2 and 5
   CHECK(has(tex, "{O2};"));
   CHECK_FALSE(has(tex, "\\draw[gray, dashed]"));                     // no loop segments
-  CHECK(count(tex, "\\node[circle, draw, inner sep=1pt, font=\\scriptsize]") == 3);  // links 2, 3, 5 numbered
+  CHECK(count(tex, "\\node[circle, draw, inner sep=1pt, font=\\scriptsize]") == 5);  // links 2, 3, 5 and blocks 4, 6 numbered
   // A vector-loop file is drawn from its loops; C, on link 3 by its formula, makes a plate
   // with link 3's vector from A (to B), its links numbered by their angles.
   const kinema::Model loops = kinema::load_model(kinema_test::sample("problem_3_22_six_bar_sliders.toml"));

@@ -98,13 +98,34 @@ TEST_CASE("instant centres: a vector-loop file's links known by the points on th
     REQUIRE(centres->ratios.size() == 2);
     for (const kinema::VelocityRatio& r : centres->ratios) CHECK(r.from_centres == doctest::Approx(r.analytic).epsilon(1e-9));
   }
-  // A slider-crank's block is a point, not a link: the crank and the rod.
+  // A slider-crank's block is a body: ground 1, crank 2, rod 3, block 4 (numbered in the
+  // gap the links leave), its centre with ground at infinity across the line y = e.
   const kinema::Model slider = kinema::load_model(kinema_test::sample("slider_crank.toml"));
   const kinema::MotionTable one = kinema::analyse(slider, slider.system.input.values);
   const auto centres = kinema::instant_centres(slider.system, one[0]);
   REQUIRE(centres);
-  CHECK(centres->bodies.size() == 3);
+  CHECK(centres->bodies == std::vector<std::string>{"1", "2", "3", "4"});
+  CHECK(centres->centres.size() == 6);
+  REQUIRE(centres->find(0, 3));
+  CHECK(centres->find(0, 3)->at_infinity);
+  CHECK(std::fabs(centres->find(0, 3)->at.real()) < 1e-12);
   check_kennedy(*centres, slider.system.length_scale);
+  // The crank-shaper: ground 1, crank 2, block 3 in the rocker's slot, rocker 4, link 5 and
+  // ram 6: all 15 centres (issue 32: 3 of them before).
+  const kinema::Model shaper = kinema::load_model(kinema_test::sample("crank_shaper.toml"));
+  const kinema::MotionTable at = kinema::analyse(shaper, shaper.system.input.values);
+  const auto all = kinema::instant_centres(shaper.system, at[0]);
+  REQUIRE(all);
+  CHECK(all->bodies == std::vector<std::string>{"1", "2", "3", "4", "5", "6"});
+  CHECK(all->centres.size() == 15);
+  check_kennedy(*all, shaper.system.length_scale);
+  // Example 4.2 as loops: blocks 2 (on link 3) and 5 (on the x axis), as the seed numbers them.
+  const kinema::Model e42 = kinema::load_model(kinema_test::sample("example_4_2_r_rtr_rrt.toml"));
+  const kinema::MotionTable e42_at = kinema::analyse(e42, e42.system.input.values);
+  const auto e42_centres = kinema::instant_centres(e42.system, e42_at[0]);
+  REQUIRE(e42_centres);
+  CHECK(e42_centres->bodies == std::vector<std::string>{"0", "1", "2", "3", "4", "5"});
+  CHECK(e42_centres->centres.size() == 15);
 }
 
 TEST_CASE("instant centres: every vector-loop sample, each centre where the two links' velocities agree") {

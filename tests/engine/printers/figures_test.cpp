@@ -1,0 +1,485 @@
+// The worked solution's figures read back from its TikZ: slider blocks on the guides
+// the loop equations put them on, instant centres, plots and polygons as drawn.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <cstdio>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <kinema/engine/printers/printer.hpp>
+#include <kinema/engine/report/geometry.hpp>
+#include <kinema/engine/report/instant_centres.hpp>
+#include <kinema/engine/report/plot_range.hpp>
+#include <kinema/engine/report/polygons.hpp>
+#include "../unit_support.hpp"
+#include "../../test_support.hpp"
+
+using kinema::MotionTable;
+using kinema::PrintKind;
+using Point = std::complex<double>;
+
+namespace {
+
+std::string document(const kinema::Model& model, const MotionTable* values, const MotionTable* sweep = nullptr) {
+  const kinema::Printer* printer = kinema::find_printer(PrintKind::document, "latex");
+  REQUIRE(printer != nullptr);
+  kinema::PrintJob job{model, values, sweep};
+  job.fragment = true;
+  std::ostringstream out;
+  printer->print(out, job);
+  return out.str();
+}
+
+// Every "(x,y)" of a line, in order.
+std::vector<Point> coordinates(const std::string& line) {
+  std::vector<Point> found;
+  for (std::size_t at = line.find('('); at != std::string::npos; at = line.find('(', at + 1)) {
+    double x, y;
+    char close;
+    if (std::sscanf(line.c_str() + at, "(%lf,%lf%c", &x, &y, &close) == 3 && close == ')') found.push_back({x, y});
+  }
+  return found;
+}
+
+std::vector<std::string> lines_starting(const std::string& figure, const std::string& start) {
+  std::vector<std::string> found;
+  std::istringstream in(figure);
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind(start, 0) == 0) found.push_back(line);
+  return found;
+}
+
+// The mechanism's drawing: the first tikzpicture with its plain options.
+std::string mechanism_figure(const std::string& tex, std::size_t from = 0) {
+  const auto begin = tex.find("\\begin{tikzpicture}[line cap=round]\n", from);
+  REQUIRE(begin != std::string::npos);
+  return tex.substr(begin, tex.find("\\end{tikzpicture}", begin) - begin);
+}
+
+struct Line {
+  Point a, b;
+};
+
+double distance_to_line(Point p, const Line& l) {
+  const Point d = (l.b - l.a) / std::abs(l.b - l.a);
+  return std::abs(std::imag((p - l.a) * std::conj(d)));
+}
+
+bool within(Point p, const Line& l, double slack) {
+  const Point d = (l.b - l.a) / std::abs(l.b - l.a);
+  const double t = std::real((p - l.a) * std::conj(d));
+  return t >= -slack && t <= std::abs(l.b - l.a) + slack;
+}
+
+struct Block {
+  Point centre;
+  double degrees = 0;
+};
+
+struct Drawing {
+  std::vector<Line> guides, bars;
+  std::vector<Block> blocks;
+  std::vector<std::pair<std::string, Point>> points;
+  std::vector<Point> pivots;
+};
+
+Drawing read_drawing(const std::string& figure) {
+  Drawing d;
+  for (const std::string& line : lines_starting(figure, "\\draw[gray] ")) {
+    const auto c = coordinates(line);
+    if (c.size() == 2) d.guides.push_back({c[0], c[1]});
+  }
+  for (const std::string& line : lines_starting(figure, "\\draw[very thick, blue!70!black] ")) {
+    const auto c = coordinates(line);
+    for (std::size_t k = 1; k < c.size(); ++k) d.bars.push_back({c[k - 1], c[k]});
+  }
+  for (const std::string& line : lines_starting(figure, "\\draw[thick, fill=white, rotate around={")) {
+    Block b;
+    double x, y;
+    REQUIRE(std::sscanf(line.c_str(), "\\draw[thick, fill=white, rotate around={%lf:(%lf,%lf)}]", &b.degrees, &x, &y) == 3);
+    b.centre = {x, y};
+    d.blocks.push_back(b);
+  }
+  for (const std::string& line : lines_starting(figure, "\\fill (")) {
+    const auto c = coordinates(line);
+    const auto open = line.rfind('{'), close = line.rfind('}');
+    if (!c.empty() && open != std::string::npos) d.points.push_back({line.substr(open + 1, close - open - 1), c[0]});
+  }
+  for (const std::string& line : lines_starting(figure, "\\fill[pattern=north east lines] ")) d.pivots.push_back(coordinates(line)[0]);
+  return d;
+}
+
+Point drawn_point(const Drawing& d, const std::string& name) {
+  for (const auto& [n, at] : d.points)
+    if (n == name) return at;
+  FAIL("no point " << name << " drawn");
+  return {};
+}
+
+}  // namespace
+
+TEST_CASE("engine/printers/figures: every slider block on the guide its loop equation puts it on") {
+  // The point that slides on a fixed guide in each vector-loop sample, and the guide's line.
+  struct Case {
+    const char* sample;
+    std::vector<const char*> sliding;  ///< Named points on fixed guides.
+  };
+  for (const Case& c : {Case{"crank_shaper.toml", {"C"}}, Case{"slider_crank.toml", {"B"}},
+                        Case{"problem_4_4_six_bar.toml", {"F"}}, Case{"example_4_2_r_rtr_rrt.toml", {"E"}},
+                        Case{"problem_3_22_six_bar_sliders.toml", {"B", "D"}}, Case{"example_4_1_r_trr.toml", {}}}) {
+    CAPTURE(std::string(c.sample));
+    const kinema::Model model = kinema::load_model(kinema_test::sample(c.sample));
+    const double input = model.system.input.values.empty() ? 0.5 : model.system.input.values.front();
+    const MotionTable values = kinema::analyse(model, {input});
+    REQUIRE(values.status(0) == kinema::Status::ok);
+    const Drawing d = read_drawing(mechanism_figure(document(model, &values)));
+    REQUIRE_FALSE(d.blocks.empty());
+    // Every block's centre on a drawn guide (hatched line) or on the link that carries it,
+    // turned along it.
+    for (const Block& b : d.blocks) {
+      CAPTURE(b.centre);
+      bool on = false;
+      for (const auto* lines : {&d.guides, &d.bars})
+        for (const Line& l : *lines) {
+          const double along = std::remainder(b.degrees - std::arg(l.b - l.a) * 180 / M_PI, 180.0);
+          on = on || (distance_to_line(b.centre, l) < 0.02 && within(b.centre, l, 0.02) && std::fabs(along) < 0.1);
+        }
+      CHECK(on);
+    }
+    // Drawing units per metre, from the point furthest from the origin (drawn at (0,0)).
+    double cm = 0, furthest = 0;
+    for (std::size_t p = 0; p < model.system.points.size(); ++p) {
+      const Point real(values[0].points[p].position[0], values[0].points[p].position[1]);
+      if (std::abs(real) <= furthest) continue;
+      furthest = std::abs(real);
+      cm = std::abs(drawn_point(d, model.system.points[p].name)) / furthest;
+    }
+    REQUIRE(cm > 0);
+    // The guide is the constraint's line: the sliding point, solved at two other inputs,
+    // lies on the hatched line its block is drawn on.
+    const MotionTable others = kinema::analyse(model, {input + 0.4, input + 1.3});
+    for (const char* name : c.sliding) {
+      CAPTURE(std::string(name));
+      std::size_t p = 0;
+      while (model.system.points[p].name != name) ++p;
+      const Point at = drawn_point(d, name);
+      bool block = false;
+      for (const Block& b : d.blocks) block = block || std::abs(b.centre - at) < 0.02;
+      CHECK(block);
+      const Line* guide = nullptr;
+      for (const Line& l : d.guides)
+        if (distance_to_line(at, l) < 0.02) guide = &l;
+      REQUIRE(guide);
+      for (std::size_t k = 0; k < 2; ++k) {
+        REQUIRE(others.status(k) == kinema::Status::ok);
+        const Point moved = Point(others[k].points[p].position[0], others[k].points[p].position[1]) * cm;
+        CHECK(std::abs(moved - at) > 0.05);  // it did move
+        CHECK(distance_to_line(moved, *guide) < 0.02);
+      }
+    }
+  }
+  // Example 4.1: the block at B on crank 1 (drawn from A through B), ground at A and C only.
+  const kinema::Model model = kinema::load_model(kinema_test::sample("example_4_1_r_trr.toml"));
+  const MotionTable values = kinema::analyse(model, model.system.input.values);
+  const std::string figure = mechanism_figure(document(model, &values));
+  const Drawing d = read_drawing(figure);
+  const Point B = drawn_point(d, "B");
+  REQUIRE(d.blocks.size() == 1);
+  CHECK(std::abs(d.blocks[0].centre - B) < 0.02);
+  bool crank = false;
+  for (const Line& l : d.bars) crank = crank || (std::abs(l.a) < 0.02 && distance_to_line(B, l) < 0.02 && within(B, l, 0));
+  CHECK(crank);
+  const double AC_cm = 0.1 * std::abs(B) / std::abs(Point(values[0].points[0].position[0], values[0].points[0].position[1]));
+  REQUIRE(d.pivots.size() == 2);
+  for (const Point& p : d.pivots) CHECK((std::abs(p) < 0.02 || std::abs(p - AC_cm) < 0.02));
+}
+
+namespace {
+
+// The text of the figure after `heading`: its first tikzpicture.
+std::string figure_after(const std::string& tex, const std::string& heading, std::size_t from = 0) {
+  const auto at = tex.find(heading, from);
+  if (at == std::string::npos) return "";
+  const auto begin = tex.find("\\begin{tikzpicture}", at);
+  return tex.substr(begin, tex.find("\\end{tikzpicture}", begin) - begin);
+}
+
+std::string centre_label(const kinema::InstantCentres& c, std::size_t a, std::size_t b) {
+  return "$I_{" + c.bodies[a] + c.bodies[b];
+}
+
+}  // namespace
+
+TEST_CASE("engine/printers/figures: instant centres, every one listed and drawn or pointed to") {
+  for (const char* name : {"four_bar.toml", "crank_shaper.toml", "problem_4_4_joints.toml", "triple_rocker_circuit.toml",
+                           "example_4_2_joints.toml", "example_4_1_joints.toml", "problem_3_22_joints.toml"}) {
+    CAPTURE(std::string(name));
+    const kinema::Model model = kinema::load_model(kinema_test::sample(name));
+    const double input = model.system.input.values.empty() ? 0.5 : model.system.input.values.front();
+    const MotionTable values = kinema::analyse(model, {input});
+    const auto centres = kinema::instant_centres(model.system, values[0]);
+    REQUIRE(centres);
+    const std::string tex = document(model, &values);
+    const auto heading = tex.find("\\subsubsection*{Instant centres}");
+    REQUIRE(heading != std::string::npos);
+    const std::string figure = figure_after(tex, "\\subsubsection*{Instant centres}");
+    const std::string table = tex.substr(tex.find("centre & $x$ & $y$ & found by", heading));
+    const std::string rows = table.substr(0, table.find("\\bottomrule"));
+    const std::size_t n = centres->bodies.size();
+    // n(n-1)/2 rows, one per pair.
+    long listed = 0;
+    for (auto row = rows.find("\n$I_{"); row != std::string::npos; row = rows.find("\n$I_{", row + 1)) ++listed;
+    CHECK(listed == static_cast<long>(n * (n - 1) / 2));
+    for (std::size_t a = 0; a < n; ++a)
+      for (std::size_t b = a + 1; b < n; ++b) CHECK(rows.find(centre_label(*centres, a, b) + "}$ &") != std::string::npos);
+    // Figure units per metre, from the drawn centre furthest from the origin.
+    double cm = 0, furthest = 0;
+    for (const std::string& line : lines_starting(figure, "\\filldraw[red!75!black, fill=white] ")) {
+      const Point drawn = coordinates(line)[0];
+      for (const kinema::InstantCentre& c : centres->centres)
+        if (line.find(centre_label(*centres, c.a, c.b) + "}$}") != std::string::npos && std::abs(c.at) > furthest) {
+          furthest = std::abs(c.at);
+          cm = std::abs(drawn) / furthest;
+        }
+    }
+    REQUIRE(cm > 0);
+    const auto arrows = lines_starting(figure, "\\draw[->, red!75!black");
+    for (const kinema::InstantCentre& c : centres->centres) {
+      const std::string label = centre_label(*centres, c.a, c.b);
+      CAPTURE(label);
+      bool drawn = false;
+      for (const std::string& line : lines_starting(figure, "\\filldraw[red!75!black, fill=white] "))
+        if (line.find(label + "}$}") != std::string::npos) {
+          drawn = true;
+          CHECK(std::abs(coordinates(line)[0] - c.at * cm) < 0.02);
+        }
+      for (const std::string& line : arrows) {
+        if (line.find(label + "}$}") == std::string::npos && line.find(label + "}\\to\\infty$}") == std::string::npos) continue;
+        drawn = true;
+        const auto ends = coordinates(line);
+        REQUIRE(ends.size() == 2);
+        const Point along = ends[1] - ends[0];
+        // At infinity: along its direction, from its joint; off the figure: towards it.
+        const Point towards = c.at_infinity ? c.at : c.at * cm - ends[1];
+        CHECK(std::fabs(std::arg(along / towards)) < 0.02);
+        if (c.at_infinity && c.seen_from) CHECK(std::abs(ends[0] - *c.seen_from * cm) < 0.02);
+      }
+      CHECK(drawn);
+    }
+    // Kennedy lines in every figure with four bodies or more.
+    if (n >= 4) CHECK(figure.find("\\draw[gray!60, dashed]") != std::string::npos);
+  }
+  // Example 4.2: the arrow of I05 (slider 5 on the ground) starts at E, not at slider 2.
+  const kinema::Model model = kinema::load_model(kinema_test::sample("example_4_2_joints.toml"));
+  const MotionTable values = kinema::analyse(model, model.system.input.values);
+  const auto centres = kinema::instant_centres(model.system, values[0]);
+  REQUIRE(centres);
+  const kinema::InstantCentre* i05 = centres->find(0, 5);
+  REQUIRE(i05);
+  REQUIRE(i05->seen_from);
+  for (std::size_t p = 0; p < model.system.points.size(); ++p)
+    if (model.system.points[p].name == "E")
+      CHECK(std::abs(*i05->seen_from - Point(values[0].points[p].position[0], values[0].points[p].position[1])) < 1e-9);
+  // The crank-shaper: no bar from C to O4 (the ram's vector is no link); the ram a block.
+  const kinema::Model shaper = kinema::load_model(kinema_test::sample("crank_shaper.toml"));
+  const MotionTable shaper_values = kinema::analyse(shaper, shaper.system.input.values);
+  const std::string figure = figure_after(document(shaper, &shaper_values), "\\subsubsection*{Instant centres}");
+  const Drawing d = read_drawing(figure);
+  REQUIRE(d.blocks.size() == 2);  // blocks at A and C
+  for (const Block& ram : d.blocks) {
+    if (std::fabs(std::sin(ram.degrees * M_PI / 180)) > 1e-6) continue;  // the block in the rocker's slot
+    for (const Line& bar : d.bars)
+      CHECK_FALSE((std::abs(bar.a) < 0.02 && std::abs(bar.b - ram.centre) < 0.02));
+  }
+}
+
+namespace {
+
+struct Curve {
+  std::string options;
+  std::vector<Point> points;  ///< nan where there is a gap
+};
+
+// The \addplot curves of each axis after "\subsection*{Over the input range}".
+std::vector<std::vector<Curve>> plotted_axes(const std::string& tex) {
+  std::vector<std::vector<Curve>> axes;
+  const auto start = tex.find("\\subsection*{Over the input range}");
+  REQUIRE(start != std::string::npos);
+  for (auto at = tex.find("\\begin{axis}", start); at != std::string::npos; at = tex.find("\\begin{axis}", at + 1)) {
+    const std::string axis = tex.substr(at, tex.find("\\end{axis}", at) - at);
+    if (axis.find("axis equal image") != std::string::npos) continue;  // the points' paths
+    auto& curves = axes.emplace_back();
+    for (const std::string& line : lines_starting(axis, "\\addplot+[")) {
+      Curve c;
+      c.options = line.substr(10, line.find("] coordinates") - 10);
+      for (auto p = line.find(" ("); p != std::string::npos; p = line.find(" (", p + 1)) {
+        const auto comma = line.find(',', p), close = line.find(')', p);
+        const std::string x = line.substr(p + 2, comma - p - 2), y = line.substr(comma + 1, close - comma - 1);
+        c.points.push_back({x == "nan" ? NAN : std::stod(x), y == "nan" ? NAN : std::stod(y)});
+      }
+      curves.push_back(c);
+    }
+  }
+  return axes;
+}
+
+}  // namespace
+
+TEST_CASE("engine/printers/figures: plots unwrapped, without a line back to the start, curves told apart") {
+  for (const char* name : {"example_4_1_joints.toml", "rssr_spatial_four_bar.toml", "four_bar.toml", "crank_shaper.toml",
+                           "problem_4_4_six_bar.toml"}) {
+    CAPTURE(std::string(name));
+    const kinema::Model model = kinema::load_model(kinema_test::sample(name));
+    const double first = model.system.input.values.empty() ? 0.0 : model.system.input.values.front();
+    const MotionTable values = kinema::analyse(model, {first});
+    const MotionTable sweep = kinema::analyse(model, kinema::plot_range(model.system, first));
+    const std::string tex = document(model, &values, &sweep);
+    const auto axes = plotted_axes(tex);
+    REQUIRE(axes.size() >= 3);
+    for (std::size_t a = 0; a < axes.size(); ++a) {
+      const auto& curves = axes[a];
+      for (std::size_t k = 0; k < curves.size(); ++k) {
+        // Along a curve's drawn stretch x only grows (no line back to 0 at 360 deg) and an
+        // angle (the first axis: angles) moves by less than 90 deg a step: no jump of 360.
+        const auto& pts = curves[k].points;
+        for (std::size_t i = 1; i < pts.size(); ++i) {
+          if (!std::isfinite(pts[i].imag()) || !std::isfinite(pts[i - 1].imag())) continue;
+          CHECK(pts[i].real() > pts[i - 1].real());
+          if (a == 0) CHECK(std::fabs(pts[i].imag() - pts[i - 1].imag()) < 90);
+        }
+        // Each curve of an axis its own dash pattern and marks.
+        for (std::size_t j = 0; j < k; ++j) CHECK(curves[j].options != curves[k].options);
+        CHECK(curves[k].options.find("mark=none") == std::string::npos);
+      }
+    }
+  }
+  // Example 4.1 as joints: phi3 from its file value (about 58.6 deg), not 360-420 deg.
+  const kinema::Model model = kinema::load_model(kinema_test::sample("example_4_1_joints.toml"));
+  const double first = model.system.input.values.front();
+  const MotionTable sweep = kinema::analyse(model, kinema::plot_range(model.system, first));
+  const MotionTable values = kinema::analyse(model, {first});
+  const auto axes = plotted_axes(document(model, &values, &sweep));
+  for (const Curve& c : axes[0])
+    for (const Point& p : c.points)
+      if (std::isfinite(p.imag())) CHECK(std::fabs(p.imag()) < 360);
+}
+
+TEST_CASE("engine/printers/figures: polygons fill the width at a round scale, every vertex lettered, no label on another") {
+  for (const char* name : {"crank_shaper.toml", "problem_4_4_joints.toml", "four_bar.toml", "example_4_2_r_rtr_rrt.toml"}) {
+    CAPTURE(std::string(name));
+    const kinema::Model model = kinema::load_model(kinema_test::sample(name));
+    const MotionTable values = kinema::analyse(model, model.system.input.values.empty() ? std::vector<double>{0.5}
+                                                                                        : model.system.input.values);
+    const auto polygons = kinema::PolygonBuilder(model.system).polygons(values[0]);
+    REQUIRE(polygons);
+    const std::string tex = document(model, &values);
+    std::size_t at = tex.find("\\subsubsection*{Velocity and acceleration polygons}");
+    REQUIRE(at != std::string::npos);
+    for (const kinema::Polygon* polygon : {&polygons->first, &polygons->second}) {
+      const auto begin = tex.find("\\begin{tikzpicture}[line cap=round, >=latex]", at);
+      const auto end = tex.find("\\end{tikzpicture}", begin);
+      const std::string figure = tex.substr(begin, end - begin);
+      const auto stated = tex.find("scale 1\\,cm = $", end) + 15;
+      at = stated;
+      // A round scale: 1, 1.5, 2, 2.5, 3, 4, 5, 6 or 8 times a power of ten.
+      double per_cm = std::stod(tex.substr(stated, tex.find_first_of("\\$", stated) - stated));
+      const auto power = tex.find("\\cdot 10^{", stated);
+      if (power < tex.find('$', stated)) per_cm *= std::pow(10.0, std::stod(tex.substr(power + 10)));
+      const double mantissa = per_cm / std::pow(10.0, std::floor(std::log10(per_cm) + 1e-12));
+      bool round = false;
+      for (double m : {1.0, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0, 8.0}) round = round || std::fabs(mantissa - m) < 1e-9;
+      CHECK(round);
+      // The labels: the vertices' nodes, the arrows' at their pos and shift.
+      std::vector<std::pair<std::string, Point>> labels;
+      double min_x = 0, max_x = 0, min_y = 0, max_y = 0;
+      for (const std::string& line : lines_starting(figure, "\\node[font=\\small, inner sep=0pt] at ")) {
+        const auto open = line.rfind('{');
+        labels.push_back({line.substr(open + 1, line.rfind('}') - open - 1), coordinates(line)[0]});
+      }
+      for (const std::string& line : lines_starting(figure, "\\draw[->")) {
+        const auto c = coordinates(line);
+        for (const Point& p : c) {
+          min_x = std::min(min_x, p.real()), max_x = std::max(max_x, p.real());
+          min_y = std::min(min_y, p.imag()), max_y = std::max(max_y, p.imag());
+        }
+        double pos, xshift, yshift;
+        const auto node = line.find("node[pos=");
+        if (node == std::string::npos) continue;
+        REQUIRE(std::sscanf(line.c_str() + node, "node[pos=%lf, xshift=%lfcm, yshift=%lfcm", &pos, &xshift, &yshift) == 3);
+        const auto open = line.find("{$", node);
+        labels.push_back({line.substr(open), c[0] + (c[1] - c[0]) * pos + Point(xshift, yshift)});
+      }
+      // Filling the width: 12 cm across or 7 cm high at most, more than 2/3 of one of them.
+      CHECK(max_x - min_x <= 12.01);
+      CHECK(max_y - min_y <= 7.01);
+      CHECK((max_x - min_x > 8 || max_y - min_y > 5));
+      // Every vertex lettered.
+      for (const kinema::PolygonVertex& v : polygon->vertices) {
+        std::string letter = v.name;
+        letter[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(letter[0])));
+        bool lettered = false;
+        for (const auto& [text, where] : labels) lettered = lettered || text.find(letter) != std::string::npos;
+        CAPTURE(letter);
+        CHECK(lettered);
+      }
+      // No label on another: their centres apart by more than a line's height, or side by side.
+      for (std::size_t i = 0; i < labels.size(); ++i)
+        for (std::size_t j = 0; j < i; ++j) {
+          CAPTURE(labels[i].first);
+          CAPTURE(labels[j].first);
+          const Point d = labels[i].second - labels[j].second;
+          CHECK((std::fabs(d.imag()) >= 0.3 || std::fabs(d.real()) >= 0.35));
+        }
+    }
+  }
+}
+
+TEST_CASE("engine/printers/figures: the drawing's axes, angle arcs, numbered blocks and labels off the hatching") {
+  for (const char* name : {"crank_shaper.toml", "slider_crank.toml", "problem_4_4_six_bar.toml", "example_4_2_r_rtr_rrt.toml",
+                           "example_4_1_r_trr.toml", "four_bar.toml", "problem_3_22_joints.toml", "example_4_2_joints.toml"}) {
+    CAPTURE(std::string(name));
+    const kinema::Model model = kinema::load_model(kinema_test::sample(name));
+    const MotionTable values = kinema::analyse(model, model.system.input.values.empty() ? std::vector<double>{0.5}
+                                                                                        : model.system.input.values);
+    const std::string figure = mechanism_figure(document(model, &values));
+    const Drawing d = read_drawing(figure);
+    // x and y from the origin.
+    CHECK(figure.find("\\draw[->, gray] (0,0) -- (1.2,0) node[right, font=\\scriptsize] {$x$};") != std::string::npos);
+    CHECK(figure.find("\\draw[->, gray] (0,0) -- (0,1.2) node[above, font=\\scriptsize] {$y$};") != std::string::npos);
+    // Every block numbered: a circled number beside it, off its guide's hatching.
+    const auto numbers = lines_starting(figure, "\\node[circle, draw, inner sep=1pt, font=\\scriptsize] at ");
+    for (const Block& b : d.blocks) {
+      bool numbered = false;
+      for (const std::string& line : numbers) numbered = numbered || std::abs(coordinates(line)[0] - b.centre) < 0.6;
+      CHECK(numbered);
+    }
+    // No number on a guide's hatching (0.15 cm on one side of its line).
+    for (const std::string& line : numbers) {
+      const Point at = coordinates(line)[0];
+      CAPTURE(line);
+      for (const Line& g : d.guides)
+        if (within(at, g, 0)) CHECK(distance_to_line(at, g) > 0.25);
+    }
+    if (model.system.linkage) continue;
+    // Each angle that is a coordinate of a link vector drawn: an arc to its solved value.
+    std::vector<double> arcs;
+    for (const std::string& line : lines_starting(figure, "\\draw[->, gray] (")) {
+      const auto at = line.find("end angle=");
+      if (at != std::string::npos) arcs.push_back(std::stod(line.substr(at + 10)));
+    }
+    const kinema::MechanismGeometry geometry(model.system);
+    for (const kinema::DrawingSegment& g : geometry.segments(values[0])) {
+      if (g.coordinate < 0 || g.kind != kinema::DrawingSegment::Kind::link) continue;
+      const double degrees = std::remainder(g.angle * 180 / M_PI, 360.0);
+      if (std::fabs(degrees) < 1) continue;
+      bool drawn = false;
+      for (double a : arcs) drawn = drawn || std::fabs(a - degrees) < 0.01;
+      CAPTURE(degrees);
+      CHECK(drawn);
+    }
+  }
+}
