@@ -397,8 +397,11 @@ int run(int argc, char** argv) {
     int status = 0;
     settings.on_failure = [&](double input, Status row_status, const Failure& failure) {
       std::cerr << "kinema: error: " << m.source_file << ": " << describe_failure(m, input, failure) << "\n";
-      status = std::max(status, row_status == Status::singular ? kinema_cli::status::singular
-                                                               : kinema_cli::status::unassembled);
+      // A point's formula without a number there is the file's, not a singular position.
+      const int row = failure.kind == Failure::Kind::point_undefined ? kinema_cli::status::bad_input
+                      : row_status == Status::singular                 ? kinema_cli::status::singular
+                                                                       : kinema_cli::status::unassembled;
+      status = std::max(status, row);
     };
     stream_results(model, run_inputs, {}, settings);
     if (status != 0) return status;

@@ -633,7 +633,15 @@ class FileReader {
         if (!ground.is_boolean()) fail(ground, "ground must be true or false");
         joint.ground = ground.as_boolean()->get();
       }
-      if (has(*value, "assembly")) joint.assembly = string_value(at(*value, "assembly"), "assembly");
+      if (has(*value, "assembly")) {
+        joint.assembly = string_value(at(*value, "assembly"), "assembly");
+        // Left out, the sketch's side holds; empty, it would silently say the same.
+        if (joint.assembly.find_first_not_of(" \t") == std::string::npos) {
+          fail(at(*value, "assembly"), "joint \"" + joint.name + "\": assembly = \"" + joint.assembly +
+                                "\" is empty; write \"left of B-D\" or \"right of B-D\" (the side of the line between "
+                                "two joints), or leave assembly out for the sketch's side");
+        }
+      }
       if (has(*value, "slider")) {
         joint.kind = Joint::Kind::slider;
         joint.guide = string_value(at(*value, "slider"), "slider");

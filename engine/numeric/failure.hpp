@@ -23,11 +23,13 @@ struct Failure {
     too_far,               ///< Continuation from `from` refused: too many steps, or too large to step.
     singular_jacobian,     ///< Phi_q rank-deficient (toggle or dead centre).
     nonfinite_rates,       ///< A formula divides by zero at this position.
+    point_undefined,       ///< Rates defined, but point `group`'s formula gives no number here (sqrt of a negative).
     dyad_open,             ///< Joints and links: dyad `group` (in solving order) cannot close on its sign.
     circuit_toggle,        ///< Along a circuit: dyad `group` is at a toggle; the input reverses, the dyad's sign changes.
   };
   Kind kind = Kind::none;
-  std::uint32_t group = 0;      ///< group_open: the equation group that stays open; dyad_open, circuit_toggle: the dyad.
+  std::uint32_t group = 0;      ///< group_open: the equation group that stays open; dyad_open, circuit_toggle: the
+                                ///< dyad; point_undefined: the point.
   bool from_guesses = true;     ///< group_open: Newton started from the guesses (else the last assembled position).
   double from = 0;              ///< branch_stops: the input continued from (SI).
   double stopped_at = 0;        ///< branch_stops: where the motion stops (SI).

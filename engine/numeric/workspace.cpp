@@ -269,6 +269,8 @@ void Workspace::motion_into(double input, double rate, double second_rate, const
   k_.evaluator().evaluate_stage_from(TapeLayout::kPointStage, TapeLayout::kInputLevel, registers_, point_out_.data());
   state.points.resize(k_.point_count());
   bool finite = state.qd.allFinite() && state.qdd.allFinite();
+  const bool rates_finite = finite;
+  int undefined_point = -1;  // the first point without a number while the rates have them
   for (std::size_t p = 0; p < k_.point_count(); ++p) {
     const std::size_t d = layout_.point_dimensions[p];
     const double* v = point_out_.data() + layout_.point_output(p);
@@ -280,6 +282,7 @@ void Workspace::motion_into(double input, double rate, double second_rate, const
       motion.acceleration[c] = v[2 * d + c];
     }
     for (std::size_t c = 0; c < 3 * d; ++c) finite = finite && std::isfinite(v[c]);
+    if (rates_finite && !finite && undefined_point < 0) undefined_point = int(p);
   }
   state.frames.resize(k_.frame_count());
   for (std::size_t f = 0; f < k_.frame_count(); ++f) {
@@ -292,7 +295,8 @@ void Workspace::motion_into(double input, double rate, double second_rate, const
   }
   if (!finite) {
     state.status = Status::singular;
-    state.failure.kind = Failure::Kind::nonfinite_rates;
+    state.failure.kind = undefined_point >= 0 ? Failure::Kind::point_undefined : Failure::Kind::nonfinite_rates;
+    state.failure.group = undefined_point >= 0 ? std::uint32_t(undefined_point) : 0;
     return;
   }
   state.status = Status::ok;

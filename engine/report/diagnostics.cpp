@@ -65,6 +65,14 @@ std::string describe_failure(const ConstraintSystem& system, double input, const
              describe_input(system, input) +
              " (its links in line): the input reverses here and the dyad changes assembly; velocities and "
              "accelerations are not defined at the toggle itself";
+    case Kind::point_undefined: {
+      const PointObservable& point = system.points.at(failure.group);
+      return (point.is_joint ? "joint \"" : "point \"") + point.name + "\" (" + point.where.str() +
+             ") has no value at " + describe_input(system, input) +
+             ": its formula gives no real number there (the square root or logarithm of a negative number, or a "
+             "division by zero), though the position and rates are defined; choose another value, or check the "
+             "point's formula";
+    }
     case Kind::nonfinite_rates:
       return "non-finite rates at " + describe_input(system, input) +
              " (a formula divides by zero or overflows there); choose a nearby value, or check the sizes of the file's numbers";
