@@ -62,7 +62,11 @@ class DerivationLatexPrinter : public Printer {
 
     std::vector<LatexRow> rows;
     if (system.linkage) {  // joints and links: the solving order the loops come from
-      rows.push_back({"\\text{structure:}\\quad & \\text{" + latex_escape_text("mobility " + mobility_text(*system.linkage)) + "}",
+      // Gruebler's count typeset (mobility_text writes it for a terminal: "3*5 - 2*7").
+      const int n = system.linkage->body_count, j = system.linkage->joint_count;
+      rows.push_back({"\\text{structure:}\\quad & \\text{mobility } 3(n - 1) - 2j = 3\\cdot " + std::to_string(n - 1) +
+                          " - 2\\cdot " + std::to_string(j) + " = " + std::to_string(3 * (n - 1) - 2 * j) + "\\quad\\text{($n = " +
+                          std::to_string(n) + "$ bodies with ground, $j = " + std::to_string(j) + "$ joints)}",
                       "structure"});
       for (const std::string& line : structure_lines(*system.linkage))
         rows.push_back({"& \\text{" + latex_escape_text(line) + "}", ""});
