@@ -242,7 +242,7 @@ class DocumentWriter {
     const Driver& input = system_.input;
     const Dimension kind = input.dimension;
     out_ << "\\clearpage\n\\subsection*{Results at $" << to_latex(input.symbol) << " = "
-         << numbers_(scale_.input(s.input), kind, 0) << "\\,\\mathrm{" << scale_.coordinate_unit(kind) << "}$}\n";
+         << numbers_(scale_.input(s.input), kind, 0) << coordinate_unit(kind) << "$}\n";
     if (s.status != Status::ok) {
       out_ << latex_escape_text(describe_failure(system_, s)) << "\n\n";
       if (s.status == Status::unassembled) return;
@@ -251,8 +251,8 @@ class DocumentWriter {
     for (std::size_t j = 0; j < system_.unknowns.size(); ++j) {
       const Coordinate& q = system_.unknowns[j];
       const Dimension k = q.dimension;
-      out_ << "$" << to_latex(q.symbol) << "$ & $" << numbers_(scale_.coordinate(k, s.q[j]), k, 0) << "\\,\\mathrm{"
-           << scale_.coordinate_unit(k) << "}$ & ";
+      out_ << "$" << to_latex(q.symbol) << "$ & $" << numbers_(scale_.coordinate(k, s.q[j]), k, 0) << coordinate_unit(k)
+           << "$ & ";
       if (s.status == Status::ok) {
         out_ << "$" << to_latex(q.rate) << " = " << numbers_(scale_.rate(k, s.qd[j]), k, 1) << "\\,\\mathrm{"
              << scale_.rate_unit(k) << "}$ & $" << to_latex(q.second_rate) << " = "
@@ -352,6 +352,12 @@ class DocumentWriter {
            degrees(s.second_stroke) + "$ of crank, time ratio $" + latex_number(s.time_ratio) + "$";
   }
 
+  // After a coordinate's value: the degree sign, or its unit.
+  std::string coordinate_unit(Dimension dimension) const {
+    const std::string unit = scale_.coordinate_unit(dimension);
+    return unit == "deg" ? "^{\\circ}" : "\\,\\mathrm{" + latex_escape_text(unit) + "}";
+  }
+
   // A given value in the document's units ("60\\,mm", "35.5377^\\circ"), round-off as 0.
   std::string in_document_units(double si, Dimension dimension) const {
     if (dimension == Dimension::length)
@@ -366,6 +372,18 @@ class DocumentWriter {
   // formula with its value.
   std::string given_value(const SystemParameter& p) const {
     if (p.formula) return "$" + to_latex(*p.formula) + " = " + in_document_units(p.value, p.dimension) + "$";
+    // A chain's rates at the instant (omega1_0, written without unit): the rate's unit.
+    std::vector<const Coordinate*> coordinates = {&system_.input};
+    for (const Coordinate& q : system_.unknowns) coordinates.push_back(&q);
+    for (const Coordinate* q : coordinates) {
+      if (p.dimension != Dimension::number || q->dimension == Dimension::time) continue;
+      const std::string name = p.symbol.get_name();
+      if (name == q->rate.get_name() + "_0")
+        return "$" + numbers_(scale_.rate(q->dimension, p.value), q->dimension, 1) + "\\,\\mathrm{" + scale_.rate_unit(q->dimension) + "}$";
+      if (name == q->second_rate.get_name() + "_0")
+        return "$" + numbers_(scale_.rate(q->dimension, p.value), q->dimension, 2) + "\\,\\mathrm{" +
+               scale_.second_rate_unit(q->dimension) + "}$";
+    }
     const std::string& text = p.text;
     std::size_t end = 0;
     while (end < text.size() && (std::isdigit(static_cast<unsigned char>(text[end])) || std::string("+-.eE").find(text[end]) != std::string::npos))
@@ -385,7 +403,8 @@ class DocumentWriter {
     std::size_t u = end;
     while (u < text.size() && text[u] == ' ') ++u;
     const std::string unit = text.substr(u);
-    if (unit.empty()) return "$" + number + "$";
+    // A length or angle written without unit (a chain's value at the instant, in SI): in the document's.
+    if (unit.empty()) return "$" + (p.dimension == Dimension::number ? number : in_document_units(p.value, p.dimension)) + "$";
     if (unit == "deg") return "$" + number + "^{\\circ}$";
     const bool plain = std::all_of(unit.begin(), unit.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '/' || c == '^'; });
     return plain ? "$" + number + "\\,\\mathrm{" + unit + "}$" : "$" + number + "$ " + latex_escape_text(unit);
@@ -430,7 +449,7 @@ class DocumentWriter {
     const auto blocks = block_links(system_);
     if (!blocks.empty()) {
       out_ << "\\medskip\n\\begin{tabular}{lrrr}\n\\toprule\nslider block & angle & $\\omega$ & $\\alpha$ \\\\\n"
-              " & $\\mathrm{deg}$ & $\\mathrm{rad/s}$ & $\\mathrm{rad/s^2}$ \\\\\n\\midrule\n";
+              " & $^{\\circ}$ & $\\mathrm{rad/s}$ & $\\mathrm{rad/s^2}$ \\\\\n\\midrule\n";
       for (const auto& block : blocks) {
         out_ << latex_escape_text(system_.linkage->links[block.first - 1].name) << " & $"
              << numbers_(v[0], Dimension::angle, 0, 5) << "$ & $" << numbers_(v[1], Dimension::angle, 1, 5) << "$ & $"

@@ -197,7 +197,7 @@ TEST_CASE("engine/printers/latex: round-off prints as 0 at the problem's scale")
   const std::string results = between(parallelogram, "\\subsection*{Results", "\\begin{tikzpicture}");
   REQUIRE(has(results, "Numeric substitution"));
   CHECK(!has(results, "10^{-1"));
-  CHECK(has(results, "$\\theta_{2}$ & $0\\,\\mathrm{deg}$"));
+  CHECK(has(results, "$\\theta_{2}$ & $0^{\\circ}$"));
   CHECK(has(results, "\\sin(0^{\\circ} - 30^{\\circ})"));
   const std::string joints = worked_solution("problem_4_4_joints.toml");
   const std::string sliders = between(joints, "relative velocity $\\mathbf{v}^r$", "\\end{tabular}");
@@ -227,6 +227,10 @@ TEST_CASE("engine/printers/latex: given data as the file gave it, never a machin
   const std::string arm = between(worked_solution("robot_arm_slider.toml"), "\\subsection*{Data}", "\\end{tabular}");
   CHECK(has(arm, "$s_{\\mathrm{0}}$ & $0.1\\,\\mathrm{m}$"));
   CHECK(!std::regex_search(arm, std::regex("[0-9]{10}")));
+  // The chain's values at the instant, written without unit by the front end, with theirs.
+  CHECK(has(arm, "$\\theta_{1,\\mathrm{0}}$ & $0^{\\circ}$"));
+  CHECK(has(arm, "$\\omega_{1,\\mathrm{0}}$ & $1\\,\\mathrm{rad/s}$"));
+  CHECK(has(arm, "$v_{\\mathrm{s 0}}$ & $0.5\\,\\mathrm{m/s}$"));
   // A driver at 60 rpm is stated so, and in rad/s.
   CHECK(has(worked_solution("problem_4_4_joints.toml"), "\\omega_{1} = 60\\,\\mathrm{rpm} = 6.283\\,\\mathrm{rad/s}"));
 }
