@@ -458,6 +458,7 @@ class DocumentWriter {
       }
       out_ << "\\bottomrule\n\\end{tabular}\n\n";
     }
+    if (system_.linkage->frames.sliders.empty()) return;  // no slider: no table of empty rows
     const auto pair = [&](const double* c, int order) {
       return "$(" + numbers_(c[0], Dimension::length, order, 5) + ",\\ " + numbers_(c[1], Dimension::length, order, 5) + ")$";
     };
@@ -562,7 +563,9 @@ class DocumentWriter {
       numbers[q.rate] = quantity(q.dimension, 1, s.qd[j]);
       numbers[q.second_rate] = quantity(q.dimension, 2, s.qdd[j]);
     }
-    out_ << "Numeric substitution (lengths in " << latex_escape_text(unit_name) << "):\n\\begin{align*}\n";
+    out_ << "Numeric substitution (lengths in " << latex_escape_text(unit_name)
+         << (in_metres && unit_name != scale_.length_unit ? ", the unit of the lengths the formulas carry as numbers" : "")
+         << "):\n\\begin{align*}\n";
     std::vector<std::string> rows;
     for (int order = 1; order <= 2; ++order) {
       for (const SolvingBlock& block : d_.blocks) {

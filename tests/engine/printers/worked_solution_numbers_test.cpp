@@ -266,9 +266,11 @@ TEST_CASE("engine/printers/latex: the Coriolis sentence has its signs combined")
 TEST_CASE("engine/printers/latex: each substituted line evaluates to the value it states") {
   // The RSSR's formulas carry its offsets as numbers in metres: its lengths were put
   // in in mm (the line evaluated to 0.000824 where it stated -0.212265).
-  for (const char* sample : {"rssr_spatial_four_bar.toml", "four_bar.toml", "crank_shaper.toml", "slider_crank.toml"}) {
+  for (const std::string sample : kinema_test::kSamples) {
     CAPTURE(sample);
-    const std::vector<Substituted> lines = substitutions(worked_solution(sample));
+    const std::string tex = worked_solution(sample);
+    if (!has(tex, "Numeric substitution")) continue;  // a chain driven in time: worked out at the instant
+    const std::vector<Substituted> lines = substitutions(tex);
     REQUIRE(!lines.empty());
     for (const Substituted& line : lines) {
       CAPTURE(line.lhs);
