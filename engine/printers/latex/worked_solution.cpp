@@ -92,8 +92,10 @@ class DocumentWriter {
          << scale_.second_rate_unit(kind) << "}$. Unknowns: ";
     for (std::size_t j = 0; j < system_.unknowns.size(); ++j)
       out_ << (j ? ", " : "") << "$" << to_latex(system_.unknowns[j].symbol) << "$";
-    out_ << (system_.frames.empty() ? ". Angles are measured counter-clockwise from the $x$ axis.\n\n"
-                                    : ". Angles turn frames by the right-hand rule about their axes.\n\n");
+    out_ << (system_.frames.empty() ? ". Angles are measured counter-clockwise from the $x$ axis."
+                                    : ". Angles turn frames by the right-hand rule about their axes.")
+         // The digits the numbers below are given to (latex_number's callers: 6, tables of vectors and substitutions 5).
+         << " Results to six significant digits (five in tables of vectors and substitutions).\n\n";
     const std::vector<Strokes> strokes = slider_strokes(model_);
     if (four_bar_ || !strokes.empty()) {
       out_ << "\\subsection*{Design figures}\n";

@@ -232,7 +232,10 @@ TEST_CASE("engine/printers/latex: given data as the file gave it, never a machin
   CHECK(has(arm, "$\\omega_{1,\\mathrm{0}}$ & $1\\,\\mathrm{rad/s}$"));
   CHECK(has(arm, "$v_{\\mathrm{s 0}}$ & $0.5\\,\\mathrm{m/s}$"));
   // A driver at 60 rpm is stated so, and in rad/s.
-  CHECK(has(worked_solution("problem_4_4_joints.toml"), "\\omega_{1} = 60\\,\\mathrm{rpm} = 6.283\\,\\mathrm{rad/s}"));
+  const std::string six_bar = worked_solution("problem_4_4_joints.toml");
+  CHECK(has(six_bar, "\\omega_{1} = 60\\,\\mathrm{rpm} = 6.283\\,\\mathrm{rad/s}"));
+  // The document states the digits of its results.
+  CHECK(has(six_bar, "Results to six significant digits"));
 }
 
 TEST_CASE("engine/printers/latex: no ASCII formula where the document typesets") {
