@@ -20,8 +20,19 @@ void loop_rows(std::vector<LatexRow>& rows, const ConstraintSystem& system, cons
   constexpr auto latex = TextbookForm::Style::latex;
   for (const EquationGroup& group : system.groups) {
     const std::string name = latex_escape_text(group.name);
-    rows.push_back({"\\text{" + name + ":}\\quad & " + latex_vector_loop(group) + " = 0", group.kind + " " + name});
-    for (std::size_t row : group.equations) rows.push_back({"& " + textbook.equation(system, row, latex) + " = 0", ""});
+    // A distance closure (a spatial chain) has no link vectors: its name labels its first equation.
+    const std::string loop = latex_vector_loop(group);
+    std::string label = "\\text{" + name + ":}\\quad ", comment = group.kind + " " + name;
+    if (!loop.empty()) {
+      rows.push_back({label + "& " + loop + " = 0", comment});
+      label.clear();
+      comment.clear();
+    }
+    for (std::size_t row : group.equations) {
+      rows.push_back({label + "& " + textbook.equation(system, row, latex) + " = 0", comment});
+      label.clear();
+      comment.clear();
+    }
   }
   rows.push_back({"& " + jacobian + latex_column(rates) + " = " + latex_column(velocity_rhs, textbook),
                   "velocity: Phi_q qd = -Phi_theta thetad"});

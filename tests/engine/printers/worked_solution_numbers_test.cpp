@@ -289,4 +289,9 @@ TEST_CASE("engine/printers/latex: each substituted line evaluates to the value i
   CHECK(has(rssr, "distance"));
   CHECK(!has(rssr, "real and imaginary parts"));
   CHECK(!std::regex_search(rssr, std::regex(R"(&\s*= 0)")));
+  // derive --format latex the same: the closure's name on its equation.
+  const kinema::Model model = kinema::load_model(kinema_test::sample("rssr_spatial_four_bar.toml"));
+  const std::string derivation = print(PrintKind::derivation, model, nullptr);
+  CHECK(!std::regex_search(derivation, std::regex(R"(&\s*= 0)")));
+  CHECK(has(derivation, "\\text{BC:}\\quad & \\frac{"));
 }
