@@ -58,10 +58,11 @@ std::string vector_comment(const std::string& name, const ChainVector& v, const 
 
 std::string chain_instant_latex(const ConstraintSystem& system, const ChainAtInstant& chain) {
   const OutputScale scale(system);
+  const DocumentNumbers number(system);  // round-off as 0
   std::string text = system.input.dimension == Dimension::time ? "At the instant $t = 0$ (" : "At the instant (";
   for (std::size_t i = 0; i < chain.values.size(); ++i) {
     const auto& [q, value] = chain.values[i];
-    text += (i ? ", $" : "$") + to_latex(q.symbol) + " = " + latex_number(scale.coordinate(q.dimension, value)) +
+    text += (i ? ", $" : "$") + to_latex(q.symbol) + " = " + number(scale.coordinate(q.dimension, value), q.dimension, 0) +
             (q.dimension == Dimension::angle ? "^{\\circ}" : "\\,\\mathrm{" + latex_escape_text(scale.length_unit) + "}") +
             "$";
   }

@@ -130,7 +130,10 @@ class DerivationLatexPrinter : public Printer {
       out << "\\begin{align*}\n" << latex_align_rows(latex_fit_rows(rows, kPlainArticleBudget)) << "\\end{align*}\n";
     };
     if (system.linkage) {  // joints and links: the solving order the loops come from
-      out << "% structure\n\\noindent structure: " << latex_escape_text("mobility " + mobility_text(*system.linkage));
+      // Gruebler's count typeset (mobility_text writes it for a terminal: "3*5 - 2*7").
+      const int n = system.linkage->body_count, j = system.linkage->joint_count;
+      out << "% structure\n\\noindent structure: mobility $3(n - 1) - 2j = 3\\cdot " << n - 1 << " - 2\\cdot " << j
+          << " = " << 3 * (n - 1) - 2 * j << "$ ($n = " << n << "$ bodies with ground, $j = " << j << "$ joints)";
       for (const std::string& line : structure_lines(*system.linkage)) out << "\\\\\n" << latex_escape_text(line);
       out << "\\par\n";
     }

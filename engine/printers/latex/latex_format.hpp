@@ -70,4 +70,28 @@ std::string latex_vector_loop(const EquationGroup& loop);
 /// A number for math mode, `digits` significant ("1\cdot 10^{-5}" for 1e-05).
 std::string latex_number(double value, int digits = 6);
 
+/// Numbers as a document shows them. A value that is zero to the solver's accuracy at
+/// the problem's scale prints as 0: below 1e-12 of the mechanism's size for its kind
+/// (lengths: the longest length parameter; angles: 1 rad; rates: the driver's rate
+/// times those; second rates: its rate squared plus its second rate), so that round-off
+/// (1.00804e-16 m/s, -6.6262e-15 deg) never reads as a value. Every number of the
+/// worked solution is written through this.
+class DocumentNumbers {
+ public:
+  explicit DocumentNumbers(const ConstraintSystem& system);
+  /// `shown`: a value in the document's units (OutputScale: lengths in its unit, angles
+  /// in degrees, angular rates in rad/s) of a quantity of `dimension` (length, angle,
+  /// or number: never zeroed) differentiated `order` times (0, 1, 2).
+  std::string operator()(double shown, Dimension dimension, int order, int digits = 6) const;
+  /// The value itself, 0 where it is round-off.
+  double cleaned(double shown, Dimension dimension, int order) const;
+  /// Below this (document units) a value of that kind is round-off.
+  double zero_below(Dimension dimension, int order) const;
+
+ private:
+  double length_ = 1;      ///< The mechanism's size, in document units.
+  double rate_ = 1;        ///< Its typical angular rate (rad/s).
+  double second_rate_ = 1; ///< Its typical angular second rate (rad/s^2).
+};
+
 }  // namespace kinema

@@ -46,6 +46,8 @@ void write_three_methods(std::ostream& out, const ConstraintSystem& system, cons
                          const InstantCentres& centres) {
   if (rows.empty()) return;
   const OutputScale scale(system);
+  const DocumentNumbers number(system);  // round-off as 0
+  const Dimension angle = Dimension::angle, length = Dimension::length;
   const std::string velocity_unit = "\\mathrm{" + scale.length_unit + "/s}", length_unit = "\\mathrm{" + scale.length_unit + "}";
   out << "\\subsubsection*{Three methods, one answer}\nEach link's angular velocity as solved from the loop "
          "equations; read off the velocity polygon (an arrow across the link measured on the figure, over the "
@@ -54,15 +56,15 @@ void write_three_methods(std::ostream& out, const ConstraintSystem& system, cons
       << "\\begin{tabular}{lrlrr}\n\\toprule\nlink & solved & polygon & & centres \\\\\n & $\\mathrm{rad/s}$ & "
          "read off & $\\mathrm{rad/s}$ & $\\mathrm{rad/s}$ \\\\\n\\midrule\n";
   for (const ThreeMethodsRow& row : rows) {
-    out << latex_escape_text(centres.bodies[row.body]) << " & $" << latex_number(row.solved, 5) << "$ & ";
+    out << latex_escape_text(centres.bodies[row.body]) << " & $" << number(row.solved, angle, 1, 5) << "$ & ";
     if (row.from_polygon) {
-      out << "$" << row.polygon_arrow << " = " << latex_number(row.read_off, 4) << "\\," << velocity_unit << ",\\ r = "
-          << latex_number(row.lever, 4) << "\\," << length_unit << "$ & $" << latex_number(*row.from_polygon, 3) << "$";
+      out << "$" << row.polygon_arrow << " = " << number(row.read_off, length, 1, 4) << "\\," << velocity_unit << ",\\ r = "
+          << number(row.lever, length, 0, 4) << "\\," << length_unit << "$ & $" << number(*row.from_polygon, angle, 1, 3) << "$";
     } else {
       out << "--- & ---";
     }
     out << " & ";
-    out << (row.from_centres ? "$" + latex_number(*row.from_centres, 5) + "$" : std::string("---")) << " \\\\\n";
+    out << (row.from_centres ? "$" + number(*row.from_centres, angle, 1, 5) + "$" : std::string("---")) << " \\\\\n";
   }
   out << "\\bottomrule\n\\end{tabular}\n\n";
 }

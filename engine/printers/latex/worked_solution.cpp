@@ -4,7 +4,9 @@
 // TikZ drawing at each (tikz_mechanism.cpp), and pgfplots over the input's
 // range (pgfplots.cpp).
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <cstdlib>
 
 #include <kinema/engine/printers/latex/chain_latex.hpp>
 #include <kinema/engine/printers/latex/latex_format.hpp>
@@ -20,6 +22,7 @@
 #include <kinema/engine/report/diagnostics.hpp>
 #include <kinema/engine/report/geometry.hpp>
 #include <kinema/engine/report/instant_centres.hpp>
+#include <kinema/engine/report/number_format.hpp>
 #include <kinema/engine/report/output_scale.hpp>
 #include <kinema/engine/report/polygons.hpp>
 #include <kinema/engine/symbolic/expression_parts.hpp>
@@ -41,6 +44,7 @@ class DocumentWriter {
         geometry_(model.system),
         polygons_(model.system),
         textbook_(model.system),
+        numbers_(model.system),
         four_bar_(four_bar_figures(model)) {}
 
   void preamble() {
@@ -77,53 +81,59 @@ class DocumentWriter {
     out_ << "\\section*{" << latex_escape_text(system_.title) << "}\n";
     if (!system_.description.empty()) out_ << latex_escape_text(system_.description) << "\n\n";
     out_ << "\\subsection*{Data}\n\\begin{tabular}{ll}\n\\toprule\nparameter & value \\\\\n\\midrule\n";
-    for (const SystemParameter& parameter : system_.parameters) {
-      out_ << "$" << to_latex(parameter.symbol) << "$ & ";
-      if (!parameter.formula) {
-        out_ << latex_escape_text(parameter.text);
-      } else {
-        out_ << "$" << to_latex(*parameter.formula) << " = " << latex_number(parameter.value) << "$";
-      }
-      out_ << " \\\\\n";
-    }
+    for (const SystemParameter& parameter : system_.parameters)
+      out_ << "$" << to_latex(parameter.symbol) << "$ & " << given_value(parameter) << " \\\\\n";
     const Driver& input = system_.input;
     const Dimension kind = input.dimension;
     out_ << "\\bottomrule\n\\end{tabular}\n\n"
          << "Input: $" << to_latex(input.symbol) << "$ (" << (kind == Dimension::angle ? "crank angle" : kind == Dimension::time ? "time" : "slider position")
-         << "), $" << to_latex(input.rate) << " = " << latex_number(scale_.rate(kind, input.rate_value))
-         << "\\,\\mathrm{" << scale_.rate_unit(kind) << "}$ (negative: "
+         << "), $" << to_latex(input.rate) << " = " << driver_rate(input.rate_value) << "$ (negative: "
          << (kind == Dimension::angle ? "clockwise" : "decreasing") << "), $" << to_latex(input.second_rate) << " = "
-         << latex_number(scale_.rate(kind, input.second_rate_value)) << "\\,\\mathrm{"
+         << numbers_(scale_.rate(kind, input.second_rate_value), kind, 2) << "\\,\\mathrm{"
          << scale_.second_rate_unit(kind) << "}$. Unknowns: ";
     for (std::size_t j = 0; j < system_.unknowns.size(); ++j)
       out_ << (j ? ", " : "") << "$" << to_latex(system_.unknowns[j].symbol) << "$";
-    out_ << (system_.frames.empty() ? ". Angles are measured counter-clockwise from the $x$ axis.\n\n"
-                                    : ". Angles turn frames by the right-hand rule about their axes.\n\n");
+    out_ << (system_.frames.empty() ? ". Angles are measured counter-clockwise from the $x$ axis."
+                                    : ". Angles turn frames by the right-hand rule about their axes.")
+         // The digits the numbers below are given to (latex_number's callers: 6, tables of vectors and substitutions 5).
+         << " Results to six significant digits (five in tables of vectors and substitutions).\n\n";
     const std::vector<Strokes> strokes = slider_strokes(model_);
     if (four_bar_ || !strokes.empty()) {
       out_ << "\\subsection*{Design figures}\n";
-      if (four_bar_) out_ << "A four-bar: " << latex_escape_text(describe_four_bar(*four_bar_, system_.input.name)) << ".\n\n";
-      for (const Strokes& s : strokes)
-        out_ << "Slider: " << latex_escape_text(describe_strokes(s, system_.input.name, scale_.length_unit)) << ".\n\n";
+      if (four_bar_) out_ << "A four-bar: " << four_bar_sentence(*four_bar_) << ".\n\n";
+      for (const Strokes& s : strokes) out_ << "Slider: " << strokes_sentence(s) << ".\n\n";
     }
   }
 
   void loops() {
-    out_ << "\\subsection*{Vector loops}\nEach loop closes ($=0$); its real and imaginary parts are the scalar "
-            "equations $\\Phi(q,"
-         << to_latex(system_.input.symbol) << ")=0$:\n\\begin{align*}\n";
+    if (system_.frames.empty()) {
+      out_ << "\\subsection*{Vector loops}\nEach loop closes ($=0$); its real and imaginary parts are the scalar "
+              "equations $\\Phi(q,"
+           << to_latex(system_.input.symbol) << ")=0$:\n\\begin{align*}\n";
+    } else {  // a closed spatial chain: a distance between two of its points is a link's length
+      out_ << "\\subsection*{Closure of the spatial chain}\nThe chain closes where the distance between the ends of each "
+              "closing link equals the link's length; that distance closure, $\\Phi(q,"
+           << to_latex(system_.input.symbol) << ")=0$, written with the points' coordinates:\n\\begin{align*}\n";
+    }
     std::vector<std::string> rows;
     for (const EquationGroup& group : system_.groups) {
-      rows.push_back("\\text{" + latex_escape_text(group.name) + ":}\\quad & " + latex_vector_loop(group) + " = 0");
+      // A group without link vectors (a distance closure) names its first equation instead.
+      const std::string loop = latex_vector_loop(group);
+      std::string label = "\\text{" + latex_escape_text(group.name) + ":}\\quad ";
+      if (!loop.empty()) {
+        rows.push_back(label + "& " + loop + " = 0");
+        label.clear();
+      }
       for (std::size_t row : group.equations) {
         const std::string written = textbook_.equation(system_, row, TextbookForm::Style::latex);
         if (latex_width(written) <= kLatexLineBudget) {
-          rows.push_back("& " + written + " = 0");
+          rows.push_back(label + "& " + written + " = 0");
         } else {  // a long closure: over lines
           const auto lines = textbook_.latex_lines(system_.equations[row].expression, 0, nullptr, kLatexLineBudget);
           for (std::size_t k = 0; k < lines.size(); ++k)
-            rows.push_back((k == 0 ? "& " : "&\\quad ") + lines[k] + (k + 1 == lines.size() ? " = 0" : ""));
+            rows.push_back((k == 0 ? label + "& " : "&\\quad ") + lines[k] + (k + 1 == lines.size() ? " = 0" : ""));
         }
+        label.clear();
       }
     }
     align_rows(rows);
@@ -235,7 +245,7 @@ class DocumentWriter {
     const Driver& input = system_.input;
     const Dimension kind = input.dimension;
     out_ << "\\clearpage\n\\subsection*{Results at $" << to_latex(input.symbol) << " = "
-         << latex_number(scale_.input(s.input)) << "\\,\\mathrm{" << scale_.coordinate_unit(kind) << "}$}\n";
+         << numbers_(scale_.input(s.input), kind, 0) << coordinate_unit(kind) << "$}\n";
     if (s.status != Status::ok) {
       out_ << latex_escape_text(describe_failure(system_, s)) << "\n\n";
       if (s.status == Status::unassembled) return;
@@ -244,12 +254,12 @@ class DocumentWriter {
     for (std::size_t j = 0; j < system_.unknowns.size(); ++j) {
       const Coordinate& q = system_.unknowns[j];
       const Dimension k = q.dimension;
-      out_ << "$" << to_latex(q.symbol) << "$ & $" << latex_number(scale_.coordinate(k, s.q[j])) << "\\,\\mathrm{"
-           << scale_.coordinate_unit(k) << "}$ & ";
+      out_ << "$" << to_latex(q.symbol) << "$ & $" << numbers_(scale_.coordinate(k, s.q[j]), k, 0) << coordinate_unit(k)
+           << "$ & ";
       if (s.status == Status::ok) {
-        out_ << "$" << to_latex(q.rate) << " = " << latex_number(scale_.rate(k, s.qd[j])) << "\\,\\mathrm{"
+        out_ << "$" << to_latex(q.rate) << " = " << numbers_(scale_.rate(k, s.qd[j]), k, 1) << "\\,\\mathrm{"
              << scale_.rate_unit(k) << "}$ & $" << to_latex(q.second_rate) << " = "
-             << latex_number(scale_.rate(k, s.qdd[j])) << "\\,\\mathrm{" << scale_.second_rate_unit(k) << "}$";
+             << numbers_(scale_.rate(k, s.qdd[j]), k, 2) << "\\,\\mathrm{" << scale_.second_rate_unit(k) << "}$";
       } else {
         out_ << "undefined & undefined";
       }
@@ -302,7 +312,119 @@ class DocumentWriter {
   MechanismGeometry geometry_;
   PolygonBuilder polygons_;
   TextbookForm textbook_;
+  DocumentNumbers numbers_;
   std::optional<FourBarFigures> four_bar_;
+
+  // The design figures typeset (describe_four_bar and describe_strokes write them for a
+  // terminal: "phi = 0.0000 deg (-0.0344774 m)").
+  std::string degrees(double deg) const { return numbers_(deg, Dimension::angle, 0) + "^{\\circ}"; }
+
+  std::string four_bar_sentence(const FourBarFigures& f) const {
+    const std::string input = to_latex(system_.input.symbol);
+    // "s + l = 40 + 120 = 160 < p + q = 180 (mm)": the relation in math, its unit after it.
+    std::string relation = f.inequality, unit;
+    const auto open = relation.rfind(" (");
+    if (open != std::string::npos && relation.back() == ')') {
+      unit = relation.substr(open + 2, relation.size() - open - 3);
+      relation = relation.substr(0, open);
+    }
+    std::string text = (f.grashof == "change point" || f.grashof.rfind("non-", 0) == 0 ? "" : "Grashof ") +
+                       latex_escape_text(f.grashof) + " ($" + relation +
+                       (unit.empty() ? "" : "\\,\\mathrm{" + latex_escape_text(unit) + "}") + "$)";
+    if (std::isfinite(f.least_transmission)) {
+      text += "; transmission angle from $" + degrees(f.least_transmission) + "$ ($" + input + " = " + degrees(f.least_at) +
+              "$) to $" + degrees(f.greatest_transmission) + "$ ($" + input + " = " + degrees(f.greatest_at) + "$)" +
+              (f.full_turn ? "" : " where it can be assembled");
+    }
+    if (f.toggles.empty()) return text + "; no toggle position";
+    text += "; toggle positions at $" + input + " = ";
+    for (std::size_t k = 0; k < f.toggles.size(); ++k) text += (k ? ",\\ " : "") + degrees(f.toggles[k]);
+    return text + "$";
+  }
+
+  std::string strokes_sentence(const Strokes& s) const {
+    std::string name = latex_escape_text(s.name);
+    for (const Coordinate& q : system_.unknowns)
+      if (q.name == s.name) name = to_latex(q.symbol);
+    const auto length = [&](double v) {
+      return numbers_(v, Dimension::length, 0) + "\\,\\mathrm{" + latex_escape_text(scale_.length_unit) + "}";
+    };
+    return "$" + name + "$ at its limits at $" + to_latex(system_.input.symbol) + " = " + degrees(s.limit_inputs[0]) +
+           "$ ($" + length(s.limit_values[0]) + "$) and $" + degrees(s.limit_inputs[1]) + "$ ($" +
+           length(s.limit_values[1]) + "$); strokes of $" + degrees(s.first_stroke) + "$ and $" +
+           degrees(s.second_stroke) + "$ of crank, time ratio $" + latex_number(s.time_ratio) + "$";
+  }
+
+  // After a coordinate's value: the degree sign, or its unit.
+  std::string coordinate_unit(Dimension dimension) const {
+    const std::string unit = scale_.coordinate_unit(dimension);
+    return unit == "deg" ? "^{\\circ}" : "\\,\\mathrm{" + latex_escape_text(unit) + "}";
+  }
+
+  // A given value in the document's units ("60\\,mm", "35.5377^\\circ"), round-off as 0.
+  std::string in_document_units(double si, Dimension dimension) const {
+    if (dimension == Dimension::length)
+      return numbers_(si / scale_.length, dimension, 0) + "\\,\\mathrm{" + latex_escape_text(scale_.length_unit) + "}";
+    if (dimension == Dimension::angle) return numbers_(to_degrees(si), dimension, 0) + "^{\\circ}";
+    return latex_number(si);
+  }
+
+  // A parameter as the file gave it: its text, typeset, where a person wrote it ("60 mm",
+  // "0.3 m", "30 deg"); a value the front end worked out (a joint's offset, kept as
+  // 0.059999999999999998 m to read back exactly) in the document's units and digits; a
+  // formula with its value.
+  std::string given_value(const SystemParameter& p) const {
+    if (p.formula) return "$" + to_latex(*p.formula) + " = " + in_document_units(p.value, p.dimension) + "$";
+    // A chain's rates at the instant (omega1_0, written without unit): the rate's unit.
+    std::vector<const Coordinate*> coordinates = {&system_.input};
+    for (const Coordinate& q : system_.unknowns) coordinates.push_back(&q);
+    for (const Coordinate* q : coordinates) {
+      if (p.dimension != Dimension::number || q->dimension == Dimension::time) continue;
+      const std::string name = p.symbol.get_name();
+      if (name == q->rate.get_name() + "_0")
+        return "$" + numbers_(scale_.rate(q->dimension, p.value), q->dimension, 1) + "\\,\\mathrm{" + scale_.rate_unit(q->dimension) + "}$";
+      if (name == q->second_rate.get_name() + "_0")
+        return "$" + numbers_(scale_.rate(q->dimension, p.value), q->dimension, 2) + "\\,\\mathrm{" +
+               scale_.second_rate_unit(q->dimension) + "}$";
+    }
+    const std::string& text = p.text;
+    std::size_t end = 0;
+    while (end < text.size() && (std::isdigit(static_cast<unsigned char>(text[end])) || std::string("+-.eE").find(text[end]) != std::string::npos))
+      ++end;
+    std::size_t digits = 0;  // significant digits of the number written
+    bool leading = true;
+    for (std::size_t i = 0; i < end && std::toupper(static_cast<unsigned char>(text[i])) != 'E'; ++i) {
+      if (!std::isdigit(static_cast<unsigned char>(text[i]))) continue;
+      leading = leading && text[i] == '0';
+      if (!leading) ++digits;
+    }
+    if (end == 0) return latex_escape_text(text);  // not a number first: as written
+    if (digits > 12) return "$" + in_document_units(p.value, p.dimension) + "$";  // a machine's representation
+    std::string number = text.substr(0, end);
+    const auto e = number.find_first_of("eE");
+    if (e != std::string::npos) number = number.substr(0, e) + "\\cdot 10^{" + std::to_string(std::atoi(number.c_str() + e + 1)) + "}";
+    std::size_t u = end;
+    while (u < text.size() && text[u] == ' ') ++u;
+    const std::string unit = text.substr(u);
+    // A length or angle written without unit (a chain's value at the instant, in SI): in the document's.
+    if (unit.empty()) return "$" + (p.dimension == Dimension::number ? number : in_document_units(p.value, p.dimension)) + "$";
+    if (unit == "deg") return "$" + number + "^{\\circ}$";
+    const bool plain = std::all_of(unit.begin(), unit.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '/' || c == '^'; });
+    return plain ? "$" + number + "\\,\\mathrm{" + unit + "}$" : "$" + number + "$ " + latex_escape_text(unit);
+  }
+
+  // The driver's rate as the document states it: in rpm too where the file's rate is a
+  // round number of revolutions a minute (60 rpm = 6.283 rad/s).
+  std::string driver_rate(double si) const {
+    const Dimension kind = system_.input.dimension;
+    const std::string in_units = numbers_(scale_.rate(kind, si), kind, 1) + "\\,\\mathrm{" + scale_.rate_unit(kind) + "}";
+    if (kind != Dimension::angle || si == 0) return in_units;
+    const double rpm = si * 60 / (2 * M_PI);
+    const bool round_rpm = std::fabs(rpm - round_significant(rpm, 4)) <= 1e-9 * std::fabs(rpm);
+    const bool round_rad = std::fabs(si - round_significant(si, 4)) <= 1e-9 * std::fabs(si);
+    if (!round_rpm || round_rad) return in_units;
+    return latex_number(rpm) + "\\,\\mathrm{rpm} = " + latex_number(si, 4) + "\\,\\mathrm{rad/s}";
+  }
 
   // The solved rates (order 1) or second rates (order 2), block by block, each with
   // a "% kinema: name = formula" comment in GiNaC syntax for reading it back.
@@ -330,21 +452,25 @@ class DocumentWriter {
     const auto blocks = block_links(system_);
     if (!blocks.empty()) {
       out_ << "\\medskip\n\\begin{tabular}{lrrr}\n\\toprule\nslider block & angle & $\\omega$ & $\\alpha$ \\\\\n"
-              " & $\\mathrm{deg}$ & $\\mathrm{rad/s}$ & $\\mathrm{rad/s^2}$ \\\\\n\\midrule\n";
+              " & $^{\\circ}$ & $\\mathrm{rad/s}$ & $\\mathrm{rad/s^2}$ \\\\\n\\midrule\n";
       for (const auto& block : blocks) {
-        out_ << latex_escape_text(system_.linkage->links[block.first - 1].name) << " & $" << latex_number(v[0], 5)
-             << "$ & $" << latex_number(v[1], 5) << "$ & $" << latex_number(v[2], 5) << "$ \\\\\n";
+        out_ << latex_escape_text(system_.linkage->links[block.first - 1].name) << " & $"
+             << numbers_(v[0], Dimension::angle, 0, 5) << "$ & $" << numbers_(v[1], Dimension::angle, 1, 5) << "$ & $"
+             << numbers_(v[2], Dimension::angle, 2, 5) << "$ \\\\\n";
         v += 3;
       }
       out_ << "\\bottomrule\n\\end{tabular}\n\n";
     }
-    const auto pair = [](const double* c) { return "$(" + latex_number(c[0], 5) + ",\\ " + latex_number(c[1], 5) + ")$"; };
+    if (system_.linkage->frames.sliders.empty()) return;  // no slider: no table of empty rows
+    const auto pair = [&](const double* c, int order) {
+      return "$(" + numbers_(c[0], Dimension::length, order, 5) + ",\\ " + numbers_(c[1], Dimension::length, order, 5) + ")$";
+    };
     out_ << "\\medskip\n\\begin{tabular}{lccc}\n\\toprule\nslider & relative velocity $\\mathbf{v}^r$ & relative "
             "acceleration $\\mathbf{a}^r$ & Coriolis $2\\boldsymbol{\\omega}\\times\\mathbf{v}^r$ \\\\\n & $\\mathrm{"
          << l << "/s}$ & $\\mathrm{" << l << "/s^2}$ & $\\mathrm{" << l << "/s^2}$ \\\\\n\\midrule\n";
     for (const LinkageFrames::Slider& slider : system_.linkage->frames.sliders) {
-      out_ << latex_escape_text(system_.linkage->joints[slider.joint].name) << " & " << pair(v) << " & " << pair(v + 2)
-           << " & " << pair(v + 4) << " \\\\\n";
+      out_ << latex_escape_text(system_.linkage->joints[slider.joint].name) << " & " << pair(v, 1) << " & " << pair(v + 2, 2)
+           << " & " << pair(v + 4, 2) << " \\\\\n";
       v += 6;
     }
     out_ << "\\bottomrule\n\\end{tabular}\n\n";
@@ -386,8 +512,9 @@ class DocumentWriter {
   // each frame's angular velocity and acceleration (observer basis).
   void spatial_tables(const MotionState& s) {
     const std::string l = latex_escape_text(scale_.length_unit);
-    const auto triple = [&](const std::array<double, 3>& v, double f) {
-      return "$(" + latex_number(v[0] / f, 5) + ",\\ " + latex_number(v[1] / f, 5) + ",\\ " + latex_number(v[2] / f, 5) + ")$";
+    const auto triple = [&](const std::array<double, 3>& v, double f, Dimension dimension, int order) {
+      return "$(" + numbers_(v[0] / f, dimension, order, 5) + ",\\ " + numbers_(v[1] / f, dimension, order, 5) + ",\\ " +
+             numbers_(v[2] / f, dimension, order, 5) + ")$";
     };
     if (!system_.points.empty()) {
       out_ << "\\medskip\n\\begin{tabular}{lccc}\n\\toprule\npoint & position ($\\mathrm{" << l
@@ -395,8 +522,10 @@ class DocumentWriter {
            << "/s^2}$) \\\\\n\\midrule\n";
       for (std::size_t p = 0; p < system_.points.size(); ++p) {
         const PointMotion& m = s.points[p];
-        out_ << latex_escape_text(system_.points[p].name) << " & " << triple(m.position, scale_.length) << " & "
-             << triple(m.velocity, scale_.length) << " & " << triple(m.acceleration, scale_.length) << " \\\\\n";
+        const double f = scale_.length;
+        out_ << latex_escape_text(system_.points[p].name) << " & " << triple(m.position, f, Dimension::length, 0) << " & "
+             << triple(m.velocity, f, Dimension::length, 1) << " & " << triple(m.acceleration, f, Dimension::length, 2)
+             << " \\\\\n";
       }
       out_ << "\\bottomrule\n\\end{tabular}\n\n";
     }
@@ -404,8 +533,8 @@ class DocumentWriter {
          << latex_escape_text(chain_observer(system_)) << " ($\\mathrm{rad/s}$) & $\\boldsymbol{\\alpha}$ "
          << "($\\mathrm{rad/s^2}$) \\\\\n\\midrule\n";
     for (std::size_t f = 0; f < system_.frames.size(); ++f) {
-      out_ << latex_escape_text(system_.frames[f].name) << " & " << triple(s.frames[f].angular_velocity, 1) << " & "
-           << triple(s.frames[f].angular_acceleration, 1) << " \\\\\n";
+      out_ << latex_escape_text(system_.frames[f].name) << " & " << triple(s.frames[f].angular_velocity, 1, Dimension::angle, 1)
+           << " & " << triple(s.frames[f].angular_acceleration, 1, Dimension::angle, 2) << " \\\\\n";
     }
     out_ << "\\bottomrule\n\\end{tabular}\n\n";
   }
@@ -424,59 +553,84 @@ class DocumentWriter {
       // A component that is rounding noise next to its vector's length prints as 0, not 3e-15.
       const auto shown = [](double v, double size) { return std::fabs(v) <= 1e-12 * size ? 0.0 : v; };
       const double r = std::hypot(m.position[0], m.position[1]), speed = m.speed(), a = m.acceleration_magnitude();
+      static constexpr int order[8] = {0, 0, 1, 1, 1, 2, 2, 2};  // x, y, v_x, v_y, |v|, a_x, a_y, |a|
+      int k = 0;
       for (double v : {shown(m.position[0], r), shown(m.position[1], r), shown(m.velocity[0], speed),
                        shown(m.velocity[1], speed), speed, shown(m.acceleration[0], a), shown(m.acceleration[1], a), a})
-        out_ << " & $" << latex_number(v / f, 5) << "$";
+        out_ << " & $" << numbers_(v / f, Dimension::length, order[k++], 5) << "$";
       out_ << " \\\\\n";
     }
     out_ << "\\bottomrule\n\\end{tabular}\n\n";
   }
 
   // The solved formulas with the numbers put in, as a worked solution shows them:
-  // lengths in the output unit, angles in degrees, rates as computed.
+  // lengths in the output unit, angles in degrees, rates as computed. Every number of a
+  // line in one unit, so that the line evaluates to the value it states: where the
+  // formulas carry lengths as numbers (a spatial chain's offsets, in metres), lengths
+  // are put in in metres too.
   void substitution(const MotionState& s) {
+    const bool in_metres = formulas_carry_numbers();
+    const double unit = in_metres ? 1.0 : scale_.length;  // metres per substituted length unit
+    const std::string unit_name = in_metres ? "m" : scale_.length_unit;
     // Braced, so that a suffix (the degree sign) never follows another superscript
     // (a number in powers of ten: 10^{-15}).
-    auto shown = [](double value, const std::string& suffix) {
-      const std::string number = latex_number(value, 5);
+    auto shown = [](const std::string& number, const std::string& suffix) {
       const bool power = !suffix.empty() && number.find('^') != std::string::npos;
       return "(" + (power ? "{" + number + "}" : number) + suffix + ")";
     };
-    auto coordinate = [&](Dimension dimension, double si) {
-      return dimension == Dimension::angle ? shown(to_degrees(si), "^{\\circ}") : shown(si / scale_.length, "");
+    // An SI value of `dimension` differentiated `order` times, round-off as 0 (DocumentNumbers).
+    auto quantity = [&](Dimension dimension, int order, double si) {
+      if (dimension == Dimension::angle && order == 0) return shown(numbers_(to_degrees(si), dimension, 0, 5), "^{\\circ}");
+      if (dimension == Dimension::length)
+        return shown(latex_number(numbers_.cleaned(si / scale_.length, dimension, order) * scale_.length / unit, 5), "");
+      return shown(numbers_(dimension == Dimension::number ? si : scale_.rate(dimension, si), dimension, order, 5), "");
     };
     TextbookForm::SymbolTexts numbers;
-    for (const SystemParameter& parameter : system_.parameters) {
-      numbers[parameter.symbol] = parameter.dimension == Dimension::number ? shown(parameter.value, "")
-                                                                           : coordinate(parameter.dimension, parameter.value);
-    }
+    for (const SystemParameter& parameter : system_.parameters)
+      numbers[parameter.symbol] = quantity(parameter.dimension, 0, parameter.value);
     const Driver& input = system_.input;
-    numbers[input.symbol] = coordinate(input.dimension, s.input);
-    numbers[input.rate] = shown(scale_.rate(input.dimension, s.input_rate), "");
-    numbers[input.second_rate] = shown(scale_.rate(input.dimension, s.input_second_rate), "");
+    numbers[input.symbol] = quantity(input.dimension, 0, s.input);
+    numbers[input.rate] = quantity(input.dimension, 1, s.input_rate);
+    numbers[input.second_rate] = quantity(input.dimension, 2, s.input_second_rate);
     for (std::size_t j = 0; j < system_.unknowns.size(); ++j) {
       const Coordinate& q = system_.unknowns[j];
-      numbers[q.symbol] = coordinate(q.dimension, s.q[j]);
-      numbers[q.rate] = shown(scale_.rate(q.dimension, s.qd[j]), "");
-      numbers[q.second_rate] = shown(scale_.rate(q.dimension, s.qdd[j]), "");
+      numbers[q.symbol] = quantity(q.dimension, 0, s.q[j]);
+      numbers[q.rate] = quantity(q.dimension, 1, s.qd[j]);
+      numbers[q.second_rate] = quantity(q.dimension, 2, s.qdd[j]);
     }
-    out_ << "Numeric substitution (lengths in " << latex_escape_text(scale_.length_unit) << "):\n\\begin{align*}\n";
+    out_ << "Numeric substitution (lengths in " << latex_escape_text(unit_name)
+         << (in_metres && unit_name != scale_.length_unit ? ", the unit of the lengths the formulas carry as numbers" : "")
+         << "):\n\\begin{align*}\n";
     std::vector<std::string> rows;
     for (int order = 1; order <= 2; ++order) {
       for (const SolvingBlock& block : d_.blocks) {
         for (std::size_t j : block.unknowns) {
           const Coordinate& q = system_.unknowns[j];
-          const double value = scale_.rate(q.dimension, order == 1 ? s.qd[j] : s.qdd[j]);
+          const double si = order == 1 ? s.qd[j] : s.qdd[j];
+          const bool length = q.dimension == Dimension::length;
+          const std::string value = length ? latex_number(numbers_.cleaned(si / scale_.length, q.dimension, order) * scale_.length / unit)
+                                           : numbers_(scale_.rate(q.dimension, si), q.dimension, order);
+          const std::string result_unit = length ? unit_name + (order == 1 ? "/s" : "/s^2")
+                                                 : order == 1 ? scale_.rate_unit(q.dimension) : scale_.second_rate_unit(q.dimension);
           const ex& formula = order == 1 ? d_.solved_rates[j] : d_.solved_second_rates[j];
           const auto lines = textbook_.latex_lines(formula, q.symbol, &numbers, kLatexLineBudget);
-          const std::string result = " = " + latex_number(value) + "\\,\\mathrm{" +
-                                     (order == 1 ? scale_.rate_unit(q.dimension) : scale_.second_rate_unit(q.dimension)) + "}";
+          const std::string result = " = " + value + "\\,\\mathrm{" + result_unit + "}";
           for (const LatexRow& row : latex_broken_rows(to_latex(order == 1 ? q.rate : q.second_rate), lines, result))
             rows.push_back(row.text);
         }
       }
     }
     align_rows(rows);
+  }
+
+  // Whether a solved formula has a number that is not a plain fraction: a length the
+  // front end put in as a number (in metres).
+  bool formulas_carry_numbers() const {
+    for (const auto* formulas : {&d_.solved_rates, &d_.solved_second_rates})
+      for (const ex& formula : *formulas)
+        for (auto it = formula.preorder_begin(); it != formula.preorder_end(); ++it)
+          if (GiNaC::is_a<GiNaC::numeric>(*it) && !GiNaC::ex_to<GiNaC::numeric>(*it).is_rational()) return true;
+    return false;
   }
 
   void align_rows(const std::vector<LatexRow>& rows) {
@@ -499,14 +653,22 @@ class DocumentWriter {
   // Points sliding along turning links: the acceleration's named terms (derived
   // once, in the symbolic stage).
   void sliding_link_terms() {
+    // Each term as one product, its sign combined with the coefficient's
+    // (2 * -(CB' w3) prints as -2 CB' w3, -(-CB w3^2) as CB w3^2).
+    const auto term = [](const ex& coefficient, const std::string& direction) {
+      const std::string c = to_latex(coefficient);
+      if (c == "0") return std::string("0");
+      const std::string factor = GiNaC::is_a<GiNaC::add>(coefficient) ? "(" + c + ")" : c == "1" ? "" : c == "-1" ? "-" : c;
+      return factor + "\\," + direction;
+    };
     for (const SlidingLinkTerms& t : d_.sliding_links) {
       const std::string e = latex_exp(t.angle);
       out_ << "In loop " << latex_escape_text(system_.groups[t.group].name) << ", the point at the end of $"
            << to_latex(t.length) << "\\," << e
-           << "$ slides along a turning link: its acceleration has the relative term $" << to_latex(t.relative)
-           << "\\," << e << "$ along the link, the Coriolis term $2\\," << to_latex(t.coriolis) << "\\,i\\," << e
-           << "$, and the terms of the link's own rotation, $(" << to_latex(t.tangential) << ")\\,i\\," << e
-           << "$ and $-" << to_latex(t.normal) << "\\," << e << "$.\n\n";
+           << "$ slides along a turning link: its acceleration has the relative term $" << term(t.relative, e)
+           << "$ along the link, the Coriolis term $" << term(2 * t.coriolis, "i\\," + e)
+           << "$, and the terms of the link's own rotation, $" << term(t.tangential, "i\\," + e) << "$ and $"
+           << term(-t.normal, e) << "$.\n\n";
     }
   }
 };

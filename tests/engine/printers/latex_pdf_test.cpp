@@ -222,7 +222,9 @@ TEST_CASE("kinema latex: every sample's worked solution compiles, with its pages
                                "\\tdplotsetmaincoords", "\\boxed{"})
         parts.push_back(part);
     } else {
-      for (const char* part : {"\\subsection*{Vector loops}", "\\subsection*{Velocity analysis}",
+      // A closed spatial chain closes by distances, not by planar vector loops.
+      parts.push_back(model.system.frames.empty() ? "\\subsection*{Vector loops}" : "\\subsection*{Closure of the spatial chain}");
+      for (const char* part : {"\\subsection*{Velocity analysis}",
                                "\\subsection*{Acceleration analysis}"})
         parts.push_back(part);
     }
