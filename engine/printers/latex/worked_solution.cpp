@@ -487,7 +487,7 @@ class DocumentWriter {
         const std::string& link = system_.linkage->links[slider.guide - 1].name;
         out_ << "${" << latex_symbol_name(system_.points[g.point].name) << "}_{\\mathrm{" << latex_escape_text(link)
              << "}}$ & " << latex_escape_text(link)
-             << " & " << pair(v) << " & " << pair(v + 2) << " \\\\\n";
+             << " & " << pair(v, 1) << " & " << pair(v + 2, 2) << " \\\\\n";
         v += 4;
       }
       out_ << "\\bottomrule\n\\end{tabular}\n\n";
@@ -500,8 +500,8 @@ class DocumentWriter {
         out_ << latex_escape_text(system_.linkage->links[r.block - 1].name) << ", "
              << latex_escape_text(system_.linkage->links[r.other - 1].name) << " & "
              << latex_escape_text(system_.linkage->joints[r.joint].name) << " & $" << latex_symbol_name(r.rate_name)
-             << " = " << latex_number(v[0], 5) << "$ & $" << latex_symbol_name(r.second_rate_name) << " = "
-             << latex_number(v[1], 5) << "$ \\\\\n";
+             << " = " << numbers_(v[0], Dimension::angle, 1, 5) << "$ & $" << latex_symbol_name(r.second_rate_name)
+             << " = " << numbers_(v[1], Dimension::angle, 2, 5) << "$ \\\\\n";
         v += 2;
       }
       out_ << "\\bottomrule\n\\end{tabular}\n\n";
