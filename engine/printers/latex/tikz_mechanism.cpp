@@ -10,6 +10,7 @@
 #include <kinema/engine/report/geometry.hpp>
 #include <kinema/engine/report/number_format.hpp>
 #include <kinema/engine/report/output_scale.hpp>
+#include <kinema/engine/symbolic/naming.hpp>
 
 namespace kinema {
 
@@ -20,6 +21,26 @@ void write_pivot(std::ostream& out, const std::string& at) {
   out << "\\fill[pattern=north east lines] " << at << " ++(-0.3,-0.35) rectangle ++(0.6,0.15);\n"
       << "\\draw " << at << " ++(-0.3,-0.2) -- ++(0.6,0);\n"
       << "\\draw " << at << " -- ++(-0.15,-0.2) -- ++(0.3,0) -- cycle;\n";
+}
+
+// A binary link drawn as a body, as the textbooks do: a light bar with rounded ends under
+// its centre line (the line is what tests and readers measure).
+void write_bar(std::ostream& out, const std::string& path) {
+  out << "\\draw[line width=6pt, line cap=round, line join=round, blue!12] " << path << ";\n"
+      << "\\draw[very thick, blue!70!black] " << path << ";\n";
+}
+
+// The anchor that puts an arrow's label beyond its tip, away from the arrow.
+std::string anchor_beyond(std::complex<double> direction) {
+  const double a = std::arg(direction) * 180 / M_PI;
+  if (a > -22.5 && a <= 22.5) return "west";
+  if (a > 22.5 && a <= 67.5) return "south west";
+  if (a > 67.5 && a <= 112.5) return "south";
+  if (a > 112.5 && a <= 157.5) return "south east";
+  if (a > -67.5 && a <= -22.5) return "north west";
+  if (a > -112.5 && a <= -67.5) return "north";
+  if (a > -157.5 && a <= -112.5) return "north east";
+  return "east";
 }
 
 // Joints and links as drawn: fixed guides hatched, binary links as bars, links with
@@ -49,7 +70,7 @@ void write_links(std::ostream& out, const LinkageDrawing& drawing, const Xy& xy,
     if (link.joints.size() >= 3) {
       out << "\\filldraw[fill=blue!10, draw=blue!70!black, very thick, line join=round] " << path << " -- cycle;\n";
     } else {
-      out << "\\draw[very thick, blue!70!black] " << path << ";\n";
+      write_bar(out, path);
     }
   }
   for (const auto& pivot : drawing.ground_pivots) {
@@ -165,7 +186,7 @@ void write_tikz_mechanism(std::ostream& out, const ConstraintSystem& system, con
         const bool on_line = std::abs(std::imag(d * std::conj(g.along))) < 1e-9 * size;
         const std::complex<double> beyond = d / std::max(std::abs(d), 1e-30) * (0.6 / cm);
         if (on_line && std::abs(d) > 1e-9 * size) {
-          out << "\\draw[very thick, blue!70!black] " << xy(other) << " -- " << xy(g.block + beyond) << ";\n";
+          write_bar(out, xy(other) + " -- " + xy(g.block + beyond));
         } else {
           out << "\\draw[gray, thin] " << xy(g.block - g.along * (0.25 * size)) << " -- "
               << xy(g.block + g.along * (0.25 * size)) << ";\n";
@@ -174,7 +195,7 @@ void write_tikz_mechanism(std::ostream& out, const ConstraintSystem& system, con
       out << "\\draw[thick, fill=white, rotate around={" << format_fixed(angle) << ":" << xy(g.block) << "}] "
           << xy(g.block) << " ++(-0.35,-0.2) rectangle ++(0.7,0.4);\n";
     } else {
-      out << "\\draw[very thick, blue!70!black] " << xy(g.from) << " -- " << xy(g.to) << ";\n";
+      write_bar(out, xy(g.from) + " -- " + xy(g.to));
     }
   }
   // A point on a link of a vector-loop file drawn on it: a plate with a segment of the link
@@ -194,7 +215,7 @@ void write_tikz_mechanism(std::ostream& out, const ConstraintSystem& system, con
       out << "\\filldraw[fill=blue!10, draw=blue!70!black, thick, line join=round] " << xy(base->from) << " -- "
           << xy(base->to) << " -- " << xy(on.at) << " -- cycle;\n";
     } else {
-      out << "\\draw[very thick, blue!70!black] " << xy(on.from) << " -- " << xy(on.at) << ";\n";
+      write_bar(out, xy(on.from) + " -- " + xy(on.at));
     }
   }
   // Link numbers beside each link's first segment.
@@ -250,15 +271,18 @@ void write_tikz_mechanism(std::ostream& out, const ConstraintSystem& system, con
   for (std::size_t p = 0; p < points.size(); ++p) {
     out << "\\fill " << xy(points[p]) << " circle (0.06) node[above left, font=\\small] {"
          << latex_escape_text(system.points[p].name) << "};\n";
+    const std::string name = latex_symbol_name(system.points[p].name);  // v_B, a_B at the arrows' tips
     if (velocity_scale > 0 && std::abs(velocities[p]) > 0) {
       const std::complex<double> tip = velocities[p] * velocity_scale;
       out << "\\draw[-latex, red, thick] " << xy(points[p]) << " -- ++(" << format_fixed(tip.real()) << ","
-           << format_fixed(tip.imag()) << ");\n";
+           << format_fixed(tip.imag()) << ") node[anchor=" << anchor_beyond(tip) << ", inner sep=1pt, font=\\scriptsize, "
+           << "red] {$\\mathbf{v}_{" << name << "}$};\n";
     }
     if (acceleration_scale > 0 && std::abs(accelerations[p]) > 0) {
       const std::complex<double> tip = accelerations[p] * acceleration_scale;
       out << "\\draw[-latex, green!50!black, thick, dashed] " << xy(points[p]) << " -- ++(" << format_fixed(tip.real())
-          << "," << format_fixed(tip.imag()) << ");\n";
+          << "," << format_fixed(tip.imag()) << ") node[anchor=" << anchor_beyond(tip)
+          << ", inner sep=1pt, font=\\scriptsize, green!50!black] {$\\mathbf{a}_{" << name << "}$};\n";
     }
   }
   out << "\\end{tikzpicture}\n\\end{center}\n";

@@ -483,3 +483,31 @@ TEST_CASE("engine/printers/figures: the drawing's axes, angle arcs, numbered blo
     }
   }
 }
+
+// Issue 32: every arrow of the drawing is labelled at its tip (v_B, a_B), and each bar is
+// drawn as a body (a light band under its centre line), for every planar sample.
+TEST_CASE("figures: every velocity and acceleration arrow is labelled, every bar has its body") {
+  for (const char* name : kinema_test::kSamples) {
+    const kinema::Model model = kinema::load_model(kinema_test::sample(name));
+    if (!model.system.frames.empty()) continue;  // spatial chains are drawn in projection elsewhere
+    CAPTURE(name);
+    const MotionTable values = kinema::analyse(model, {model.system.input.values.front()});
+    const std::string figure = mechanism_figure(document(model, &values));
+    const auto velocities = lines_starting(figure, "\\draw[-latex, red, thick] ");
+    const auto accelerations = lines_starting(figure, "\\draw[-latex, green!50!black, thick, dashed] ");
+    CHECK(!velocities.empty());
+    for (const std::string& line : velocities) {
+      CAPTURE(line);
+      CHECK(line.find("node[anchor=") != std::string::npos);
+      CHECK(line.find("{$\\mathbf{v}_{") != std::string::npos);
+    }
+    for (const std::string& line : accelerations) {
+      CAPTURE(line);
+      CHECK(line.find("{$\\mathbf{a}_{") != std::string::npos);
+    }
+    const auto bars = lines_starting(figure, "\\draw[very thick, blue!70!black] ");
+    const auto bodies = lines_starting(figure, "\\draw[line width=6pt, line cap=round, line join=round, blue!12] ");
+    REQUIRE(bodies.size() == bars.size());
+    for (std::size_t k = 0; k < bars.size(); ++k) CHECK(coordinates(bars[k]) == coordinates(bodies[k]));
+  }
+}
