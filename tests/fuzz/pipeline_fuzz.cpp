@@ -49,6 +49,31 @@ std::vector<double> first_values(const ConstraintSystem& system) {
   return values;
 }
 
+// A spatial chain whose input is time, run as --input VARIABLE does with each driven
+// variable in turn (the rows, the derivation and the worked solution).
+void chain_by_its_variables(const std::string& text) {
+  try {
+    const Mechanism file = read_mechanism_text(text, "fuzz.toml");
+    if (!file.chain || !file.chain->input.empty()) return;
+    for (const ChainVariable& variable : file.chain->variables) {
+      if (variable.unknown) continue;
+      Mechanism mechanism = file;
+      mechanism.chain->input = variable.name;
+      try {
+        const Model model = make_model(mechanism);
+        const std::vector<double> inputs = first_values(model.system);
+        const MotionTable values = analyse(model, inputs);
+        print_everything(model, values, values);
+      } catch (const kinema::Error&) {
+        // An input without a rate, or with a second rate while others follow: refused.
+      }
+    }
+  } catch (const kinema::Error&) {
+  } catch (const std::exception&) {
+    std::abort();
+  }
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -122,5 +147,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   } catch (const std::exception&) {
     std::abort();
   }
+  chain_by_its_variables(text);
   return 0;
 }
