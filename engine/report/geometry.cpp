@@ -291,6 +291,14 @@ std::optional<LinkageDrawing> linkage_drawing(const ConstraintSystem& system, co
     link.name = linkage.links[b - 1].name;
     for (const auto& [joint, v] : frames.bodies[b].points)
       link.joints.push_back({linkage.joints[joint].name, poses[b].origin + v * std::polar(1.0, poses[b].angle)});
+    link.origin = poses[b].origin;
+    if (frames.bodies[b].unknown >= 0) {
+      link.coordinate = frames.bodies[b].unknown + 1;
+      link.coordinate_angle = state.q[Eigen::Index(frames.bodies[b].unknown)];
+    } else if (b == frames.driver_body && frames.driver_slider < 0) {
+      link.coordinate = 0;
+      link.coordinate_angle = state.input;
+    }
     drawing.links.push_back(link);
   }
   return drawing;

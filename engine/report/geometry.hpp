@@ -62,6 +62,11 @@ struct LinkageDrawing {
     bool block = false;  ///< A slider block (drawn as a block turned by `angle`).
     double angle = 0;
     std::string name;  ///< As the file names it.
+    /// The coordinate that is its angle (0: the input, i + 1: unknown i; -1: none), measured
+    /// at `origin` (its first joint) from the x direction; coordinate_angle its value (rad).
+    int coordinate = -1;
+    double coordinate_angle = 0;
+    std::complex<double> origin;
   };
   struct Guide {
     std::complex<double> through, along;  ///< A point of a fixed guide line and its unit direction.

@@ -31,13 +31,13 @@ void write_tikz_instant_centres(std::ostream& out, const ConstraintSystem& syste
       if (segment.kind == DrawingSegment::Kind::ground) continue;
       if (segment.kind == DrawingSegment::Kind::slider) {
         // A block on its guide; a guide on a turning link drawn as that link up to the block.
-        drawing->links.push_back({{{"", segment.block}}, true, std::arg(segment.along), ""});
+        drawing->links.push_back({{{"", segment.block}}, true, std::arg(segment.along), "", -1, 0, {}});
         if (segment.fixed_guide) continue;
         const std::complex<double> other = segment.block == segment.to ? segment.from : segment.to;
-        drawing->links.push_back({{{"", other}, {"", segment.block}}, false, 0, ""});
+        drawing->links.push_back({{{"", other}, {"", segment.block}}, false, 0, "", -1, 0, {}});
         continue;
       }
-      drawing->links.push_back({{{"", segment.from}, {"", segment.to}}, false, 0, ""});
+      drawing->links.push_back({{{"", segment.from}, {"", segment.to}}, false, 0, "", -1, 0, {}});
     }
     drawing->ground_pivots.push_back({"", 0});
   }

@@ -248,22 +248,26 @@ void write_tikz_mechanism(std::ostream& out, const ConstraintSystem& system, con
           << latex_escape_text(g.block_label)
           << "};\n";
   // The angles that are coordinates, each once: an arc from the x direction at the joint
-  // its link vector starts from.
+  // its link vector (or, for joints and links, its link) starts from.
   std::vector<bool> arced(system.unknowns.size() + 1, false);
-  for (const Segment& g : segments) {
-    if (g.coordinate < 0 || arced[g.coordinate]) continue;
-    const double degrees = std::remainder(to_degrees(g.angle), 360.0);
-    if (std::fabs(degrees) < 1 || std::abs(g.to - g.from) < 1e-9 * size) continue;
-    arced[g.coordinate] = true;
-    const GiNaC::ex symbol = g.coordinate == 0 ? GiNaC::ex(system.input.symbol)
-                                               : GiNaC::ex(system.unknowns[g.coordinate - 1].symbol);
+  const auto arc = [&](int coordinate, double angle, std::complex<double> at) {
+    const double degrees = std::remainder(to_degrees(angle), 360.0);
+    if (coordinate < 0 || arced[std::size_t(coordinate)] || std::fabs(degrees) < 1) return;
+    arced[std::size_t(coordinate)] = true;
+    const GiNaC::ex symbol = coordinate == 0 ? GiNaC::ex(system.input.symbol)
+                                             : GiNaC::ex(system.unknowns[std::size_t(coordinate) - 1].symbol);
     const double r = 0.55;  // cm
-    out << "\\draw[gray, dashed] " << xy(g.angle_at) << " -- ++(" << format_fixed(r + 0.25) << ",0);\n"
-        << "\\draw[->, gray] " << xy(g.angle_at) << " ++(" << format_fixed(r) << ",0) arc[start angle=0, end angle="
+    out << "\\draw[gray, dashed] " << xy(at) << " -- ++(" << format_fixed(r + 0.25) << ",0);\n"
+        << "\\draw[->, gray] " << xy(at) << " ++(" << format_fixed(r) << ",0) arc[start angle=0, end angle="
         << format_fixed(degrees) << ", radius=" << format_fixed(r) << "];\n"
         << "\\node[font=\\scriptsize, gray!30!black] at "
-        << xy(g.angle_at + std::polar((r + 0.3) / cm, from_degrees(degrees / 2))) << " {$" << to_latex(symbol) << "$};\n";
-  }
+        << xy(at + std::polar((r + 0.3) / cm, from_degrees(degrees / 2))) << " {$" << to_latex(symbol) << "$};\n";
+  };
+  for (const Segment& g : segments)
+    if (std::abs(g.to - g.from) >= 1e-9 * size) arc(g.coordinate, g.angle, g.angle_at);
+  if (drawing)
+    for (const LinkageDrawing::Link& link : drawing->links)
+      if (!link.block) arc(link.coordinate, link.coordinate_angle, link.origin);
   for (const Segment& g : segments) {
     for (const auto& end : {g.from, g.to})
       out << "\\filldraw[fill=white] " << xy(end) << " circle (0.07);\n";

@@ -511,3 +511,30 @@ TEST_CASE("figures: every velocity and acceleration arrow is labelled, every bar
     for (std::size_t k = 0; k < bars.size(); ++k) CHECK(coordinates(bars[k]) == coordinates(bodies[k]));
   }
 }
+
+// Issue 32: a joints-and-links drawing had no angle arcs; each link whose angle is a
+// coordinate (the driver's, the unknowns') now has one at its first joint, from the x
+// direction to the coordinate's value, labelled with its symbol.
+TEST_CASE("figures: a joints-and-links drawing marks each link angle that is a coordinate with its arc") {
+  const kinema::Model model = kinema::load_model(kinema_test::sample("problem_4_4_joints.toml"));
+  const MotionTable values = kinema::analyse(model, {model.system.input.values.front()});
+  const std::string figure = mechanism_figure(document(model, &values));
+  std::vector<double> drawn;
+  for (const std::string& line : lines_starting(figure, "\\draw[->, gray] ")) {
+    const auto at = line.find("arc[start angle=0, end angle=");
+    if (at == std::string::npos) continue;  // the axes
+    drawn.push_back(std::stod(line.substr(at + 29)));
+  }
+  const auto wrapped = [](double radians) { return std::remainder(radians * 180 / M_PI, 360.0); };
+  std::vector<double> expected = {wrapped(values.input(0))};
+  for (std::size_t i = 0; i < model.system.unknowns.size(); ++i)
+    if (model.system.unknowns[i].dimension == kinema::Dimension::angle) expected.push_back(wrapped(values.q(0)[Eigen::Index(i)]));
+  REQUIRE(drawn.size() == expected.size());  // phi, phi2, phi3, phi4
+  std::sort(drawn.begin(), drawn.end());
+  std::sort(expected.begin(), expected.end());
+  for (std::size_t k = 0; k < drawn.size(); ++k) CHECK(drawn[k] == doctest::Approx(expected[k]).epsilon(1e-3));
+  for (const char* symbol : {"{$\\phi$}", "{$\\phi_{2}$}", "{$\\phi_{3}$}", "{$\\phi_{4}$}"}) {
+    CAPTURE(symbol);
+    CHECK(figure.find(symbol) != std::string::npos);
+  }
+}
