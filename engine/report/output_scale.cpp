@@ -276,6 +276,24 @@ Turning turning(const LinkageFrames& frames, const Position<Vector>& at, std::si
   return {};
 }
 
+// A slider's motion along its line (u, turning with the guide): v_rel = s' u,
+// a_rel = s'' u, and the Coriolis acceleration 2 omega_guide x v_rel.
+struct Sliding {
+  std::complex<double> relative_velocity, relative_acceleration, coriolis;
+};
+
+template <typename Vector>
+Sliding sliding(const LinkageFrames& frames, const Position<Vector>& at, const LinkageFrames::Slider& slider) {
+  const Turning guide = turning(frames, at, slider.guide);
+  const std::complex<double> u = std::polar(1.0, guide.angle + slider.direction);
+  double s1 = at.rate, s2 = at.second_rate;  // the driver's, unless the slider's coordinate is an unknown
+  if (slider.unknown >= 0) {
+    s1 = at.qd[Eigen::Index(slider.unknown)];
+    s2 = at.qdd[Eigen::Index(slider.unknown)];
+  }
+  return {s1 * u, s2 * u, 2 * guide.rate * std::complex<double>(0, 1) * s1 * u};
+}
+
 // The joints-and-links values of an ok position (see result_columns), from `values` on.
 template <typename Vector>
 double* linkage_values(const ConstraintSystem& system, const OutputScale& scale, const LinkageColumns& columns,
@@ -290,36 +308,19 @@ double* linkage_values(const ConstraintSystem& system, const OutputScale& scale,
     *values++ = t.second_rate;
   }
   for (const LinkageFrames::Slider& slider : frames.sliders) {
-    // Along the line (u, turning with the guide): v_rel = s' u, a_rel = s'' u, and the
-    // Coriolis acceleration 2 omega_guide x v_rel.
-    const Turning guide = turning(frames, at, slider.guide);
-    const std::complex<double> u = std::polar(1.0, guide.angle + slider.direction);
-    double s1 = at.rate, s2 = at.second_rate;
-    if (slider.unknown >= 0) {
-      s1 = at.qd[Eigen::Index(slider.unknown)];
-      s2 = at.qdd[Eigen::Index(slider.unknown)];
-    }
-    const std::complex<double> v = s1 * u, a = s2 * u, coriolis = 2 * guide.rate * std::complex<double>(0, 1) * v;
-    for (const std::complex<double>& c : {v, a, coriolis}) {
+    const Sliding s = sliding(frames, at, slider);
+    for (const std::complex<double>& c : {s.relative_velocity, s.relative_acceleration, s.coriolis}) {
       *values++ = c.real() / scale.length;
       *values++ = c.imag() / scale.length;
     }
   }
   for (const GuidePoint& g : columns.guides) {
     // The slider point less its sliding: what the guide's own point there does.
-    const LinkageFrames::Slider& slider = frames.sliders[g.slider];
-    const Turning guide = turning(frames, at, slider.guide);
-    const std::complex<double> u = std::polar(1.0, guide.angle + slider.direction);
-    double s1 = at.rate, s2 = at.second_rate;
-    if (slider.unknown >= 0) {
-      s1 = at.qd[Eigen::Index(slider.unknown)];
-      s2 = at.qdd[Eigen::Index(slider.unknown)];
-    }
+    const Sliding s = sliding(frames, at, frames.sliders[g.slider]);
     const PointMotion p = at.point(g.point);
-    const std::complex<double> relative = s1 * u;
-    const std::complex<double> v = std::complex<double>(p.velocity[0], p.velocity[1]) - relative;
-    const std::complex<double> a = std::complex<double>(p.acceleration[0], p.acceleration[1]) - s2 * u -
-                                   2 * guide.rate * std::complex<double>(0, 1) * relative;
+    const std::complex<double> v = std::complex<double>(p.velocity[0], p.velocity[1]) - s.relative_velocity;
+    const std::complex<double> a = std::complex<double>(p.acceleration[0], p.acceleration[1]) - s.relative_acceleration -
+                                   s.coriolis;
     for (const std::complex<double>& c : {v, a}) {
       *values++ = c.real() / scale.length;
       *values++ = c.imag() / scale.length;

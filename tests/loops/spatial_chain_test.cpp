@@ -460,12 +460,10 @@ TEST_CASE("spatial_chain: a driven variable as the input (--input, or input = in
   }
 }
 
-TEST_CASE("spatial_chain: an input variable with a second rate is refused, never printed at the wrong instant") {
-  // Issue 32's arm: theta1 accelerates (alpha1 = 0.4 rad/s^2). As the input, one rate for
-  // every value could not carry theta4 and theta5 along the file's motion: the old run
-  // printed alpha4 = -1.28667 and alpha5 = 1.48667 rad/s^2 at theta1 = 30 deg (the file's
-  // instant, where the file gives -1.1 and 0.9), each gaining omega_i alpha1 / omega1.
-  const std::string arm = kinema_test::write_temporary("accelerating_arm.toml", R"toml(title = "arm at another instant"
+namespace {
+
+// Issue 32's arm at non-zero joint angles (30, -20, 50 deg; alpha 60 deg, beta 90 deg).
+const char* const kArmAtAnotherInstant = R"toml(title = "arm at another instant"
 [parameters]
 L1 = "1.2 m"
 L2 = "0.6 m"
@@ -484,7 +482,38 @@ E3 = { parent = "E2", origin = ["0 m", "L2", "0 m"], turns = [["y", "theta5"]] }
 O2 = { frame = "E2" }
 A = { frame = "E3" }
 B = { frame = "E3", at = ["L3*sin(beta)", "L3*cos(beta)", "0 m"] }
-)toml");
+)toml";
+
+// The "name = [f1, f2, f3] = (...)" line of `derive` that starts with `start`: its three
+// formulas as printed, read back.
+std::vector<ex> printed_vector(const std::string& out, const std::string& start, GiNaC::parser& read) {
+  const auto at = out.find(start);
+  REQUIRE_MESSAGE(at != std::string::npos, start);
+  const auto open = out.find("= [", at) + 3;
+  const std::string list = out.substr(open, out.find("] = (", open) - open);
+  std::vector<ex> components;
+  int depth = 0;
+  std::size_t from = 0;
+  for (std::size_t i = 0; i <= list.size(); ++i) {
+    if (i < list.size() && (list[i] == '(' || list[i] == '[')) ++depth;
+    if (i < list.size() && (list[i] == ')' || list[i] == ']')) --depth;
+    if (i == list.size() || (depth == 0 && list[i] == ',')) {
+      components.push_back(read(list.substr(from, i - from)));
+      from = i + 1;
+    }
+  }
+  REQUIRE(components.size() == 3);
+  return components;
+}
+
+}  // namespace
+
+TEST_CASE("spatial_chain: an input variable with a second rate is refused, never printed at the wrong instant") {
+  // Issue 32's arm: theta1 accelerates (alpha1 = 0.4 rad/s^2). As the input, one rate for
+  // every value could not carry theta4 and theta5 along the file's motion: the old run
+  // printed alpha4 = -1.28667 and alpha5 = 1.48667 rad/s^2 at theta1 = 30 deg (the file's
+  // instant, where the file gives -1.1 and 0.9), each gaining omega_i alpha1 / omega1.
+  const std::string arm = kinema_test::write_temporary("accelerating_arm.toml", kArmAtAnotherInstant);
   const auto eval_json = [](const std::string& path, std::vector<std::string> extra) {
     extra.insert(extra.begin(), {"eval", path, "--format", "json"});
     const auto result = kinema_test::run_kinema(extra);
@@ -782,53 +811,6 @@ TEST_CASE("spatial_chain: a chain of too many turns in a row or too many frames 
   CHECK(fourteen.exit_status == 0);
 }
 
-namespace {
-
-// Issue 32's arm at non-zero joint angles (30, -20, 50 deg; alpha 60 deg, beta 90 deg).
-const char* const kArmAtAnotherInstant = R"toml(title = "arm at another instant"
-[parameters]
-L1 = "1.2 m"
-L2 = "0.6 m"
-L3 = "0.2 m"
-alpha = "60 deg"
-beta = "90 deg"
-[variables]
-theta1 = { value = "30 deg", rate = "1.5 rad/s", second_rate = "0.4 rad/s^2" }
-theta4 = { value = "-20 deg", rate = "-0.7 rad/s", second_rate = "-1.1 rad/s^2" }
-theta5 = { value = "50 deg", rate = "2.2 rad/s", second_rate = "0.9 rad/s^2" }
-[frames]
-E1 = { parent = "E0", turns = [["z", "theta1"]] }
-E2 = { parent = "E1", origin = ["0 m", "L1*cos(alpha)", "L1*sin(alpha)"], turns = [["x", "alpha - Pi/2"], ["-x", "theta4"]] }
-E3 = { parent = "E2", origin = ["0 m", "L2", "0 m"], turns = [["y", "theta5"]] }
-[points]
-O2 = { frame = "E2" }
-A = { frame = "E3" }
-B = { frame = "E3", at = ["L3*sin(beta)", "L3*cos(beta)", "0 m"] }
-)toml";
-
-// The "name = [f1, f2, f3] = (...)" line of `derive` that starts with `start`: its three
-// formulas as printed, read back.
-std::vector<ex> printed_vector(const std::string& out, const std::string& start, GiNaC::parser& read) {
-  const auto at = out.find(start);
-  REQUIRE_MESSAGE(at != std::string::npos, start);
-  const auto open = out.find("= [", at) + 3;
-  const std::string list = out.substr(open, out.find("] = (", open) - open);
-  std::vector<ex> components;
-  int depth = 0;
-  std::size_t from = 0;
-  for (std::size_t i = 0; i <= list.size(); ++i) {
-    if (i < list.size() && (list[i] == '(' || list[i] == '[')) ++depth;
-    if (i < list.size() && (list[i] == ')' || list[i] == ']')) --depth;
-    if (i == list.size() || (depth == 0 && list[i] == ',')) {
-      components.push_back(read(list.substr(from, i - from)));
-      from = i + 1;
-    }
-  }
-  REQUIRE(components.size() == 3);
-  return components;
-}
-
-}  // namespace
 
 TEST_CASE("spatial_chain: derive at non-zero joint angles - exact angles stay exact, no round-off, formulas as printed "
           "give eval's numbers") {
