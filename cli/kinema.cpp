@@ -180,15 +180,21 @@ const CLI::Validator kNotEmpty(
     [](std::string& value) { return value.empty() ? std::string("an empty value; give one or leave the option out") : std::string(); },
     "");
 
+// Every command takes a file in any of the three forms; its help says so.
+const char* const kFileHelp =
+    "mechanism file (TOML) written as vector loops, as joints and links, or as a spatial chain of frames";
+
 int run(int argc, char** argv) {
-  CLI::App app{"kinema: velocity and acceleration analysis of mechanisms (vector loops, or joints and links)", "kinema"};
+  CLI::App app{"kinema: velocity and acceleration analysis of mechanisms written as vector loops, as joints and "
+               "links, or as spatial chains of frames",
+               "kinema"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "kinema " KINEMA_VERSION, "print the version and exit");
   std::string file, output_path, format = "table", sweep;
   std::vector<std::string> angles;
 
   auto* derive_cmd = app.add_subcommand("derive", "print the symbolic derivation");
-  derive_cmd->add_option("FILE", file, "mechanism file (TOML)")->required();
+  derive_cmd->add_option("FILE", file, kFileHelp)->required();
   derive_cmd->add_option("-o,--output", output_path, "write to this file instead of stdout");
   std::string derive_format = "text";
   derive_cmd->add_option("--format", derive_format, "text, or latex (an align* block for notes)")
@@ -201,7 +207,7 @@ int run(int argc, char** argv) {
   derive_cmd->add_option("--method", method, method_help)->check(CLI::IsMember(method_names()));
 
   auto* eval_cmd = app.add_subcommand("eval", "evaluate positions, velocities and accelerations");
-  eval_cmd->add_option("FILE", file, "mechanism file (TOML)")->required();
+  eval_cmd->add_option("FILE", file, kFileHelp)->required();
   eval_cmd->add_option("--angle,--at", angles,
                        "input value (deg for a crank, output length unit for a slider; or with a "
                        "unit, e.g. \"30 deg\"); repeat for a list");
@@ -233,7 +239,7 @@ int run(int argc, char** argv) {
 
   bool fragment = false;
   auto* latex_cmd = app.add_subcommand("latex", "write a worked solution in LaTeX (drawing, equations, plots)");
-  latex_cmd->add_option("FILE", file, "mechanism file (TOML)")->required();
+  latex_cmd->add_option("FILE", file, kFileHelp)->required();
   latex_cmd->add_option("--angle,--at", angles, "input value(s) to work out, as for eval");
   latex_cmd->add_option("-o,--output", output_path, "write to this file instead of stdout");
   latex_cmd->add_flag("--fragment", fragment, "no preamble, for \\input into existing notes");
@@ -241,7 +247,7 @@ int run(int argc, char** argv) {
 
   std::string namespace_name;
   auto* codegen_cmd = app.add_subcommand("codegen", "write a standalone C++ header (position, velocity, acceleration)");
-  codegen_cmd->add_option("FILE", file, "mechanism file (TOML)")->required();
+  codegen_cmd->add_option("FILE", file, kFileHelp)->required();
   codegen_cmd->add_option("-o,--output", output_path, "header to write, e.g. four_bar.hpp")->required();
   codegen_cmd->add_option("--namespace", namespace_name, "namespace of the generated code (default: the header's name)");
 
@@ -261,7 +267,9 @@ int run(int argc, char** argv) {
 
   auto* loops_cmd = app.add_subcommand(
       "loops", "write the mechanism as a vector-loop file (for joints and links: the loops kinema found)");
-  loops_cmd->add_option("FILE", file, "mechanism file (TOML)")->required();
+  loops_cmd->add_option("FILE", file,
+                         "mechanism file (TOML) written as vector loops or as joints and links (a spatial chain "
+                         "of frames has no vector loops)")->required();
   loops_cmd->add_option("-o,--output", output_path, "write to this file instead of stdout");
 
   for (CLI::App* command : app.get_subcommands({})) {

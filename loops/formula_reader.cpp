@@ -15,7 +15,7 @@ namespace {
 
 using GiNaC::ex;
 
-// Limits (README, "Mechanism files").
+// Limits (docs/limits.md).
 constexpr int kMaxDepth = 100;                 ///< parentheses
 constexpr int kMaxSignRun = 10;                ///< + and - signs in a row (each one more level of the parser)
 constexpr std::size_t kMaxLiteralLength = 100;  ///< characters of one number

@@ -1,5 +1,5 @@
 // Reads the formulas of a mechanism file with GiNaC's parser, refusing first what
-// the parser or what follows cannot take safely (limits: README, "Mechanism files"):
+// the parser or what follows cannot take safely (limits: docs/limits.md):
 // parentheses nested past 100 (its recursion overflows the stack near 8,000), a
 // call with no argument ("sin()" dereferences a null argument), a number literal of
 // more than 100 characters, a power of numbers whose exact value would have more

@@ -70,7 +70,7 @@ struct Point {
   bool is_joint = false;  ///< A joints-and-links file's joint, written as a point by its front end.
 };
 
-/// A joint of a mechanism described as drawn (joints and links, README "Joints and
+/// A joint of a mechanism described as drawn (joints and links, docs/mechanism-files.md "Joints and
 /// links"): a pin between two links, or a slider of one link (the block) on a line
 /// fixed in another (the guide; "ground" for a fixed guide).
 struct Joint {
@@ -224,12 +224,12 @@ struct ChainPoint {
   SourceLocation where;
 };
 
-/// A spatial chain of rotating frames (README "Spatial chains"); the observer is the frame
+/// A spatial chain of rotating frames (docs/mechanism-files.md, "Spatial chains"); the observer is the frame
 /// the first frame's parent names, which no entry defines.
 struct SpatialChain {
   std::string observer;
   /// The driven variable that is the input of the commands (eval's --sweep in its units);
-  /// empty: time. The other driven variables follow it (README, "Spatial chains").
+  /// empty: time. The other driven variables follow it (docs/mechanism-files.md, "Spatial chains").
   std::string input;
   SourceLocation input_where;  ///< Of the file's `input = "..."`; no line: given on the command line.
   std::vector<ChainVariable> variables;

@@ -38,7 +38,7 @@ const std::set<std::string>& reserved_names() {
   return names;
 }
 
-// Largest driver rate or second rate, SI (limits: README, "Mechanism files").
+// Largest driver rate or second rate, SI (limits: docs/limits.md).
 constexpr double kMaxRate = 1e9;
 
 class FileReader {
@@ -226,7 +226,7 @@ class FileReader {
   const Node& required_table(const Node& root, const std::string& key) const {
     if (!has(root, key)) {
       throw InputError(file_ + ": the section [" + key + "] is missing; see the file format "
-                       "in README.md");
+                       "in docs/mechanism-files.md");
     }
     const Node& table = at(root, key);
     if (!table.is_table()) fail(table, "\"" + key + "\" must be a table ([" + key + "])");
@@ -430,7 +430,7 @@ class FileReader {
     }
   }
 
-  // A file written as joints and links (README, "Joints and links"): read here, then
+  // A file written as joints and links (docs/mechanism-files.md, "Joints and links"): read here, then
   // written as vector loops by linkage_loops.
   Mechanism read_linkage(const Node& root, Mechanism& mechanism) const {
     check_keys(root, {"title", "description", "parameters", "driver", "joints", "links", "points", "output"},
@@ -450,7 +450,7 @@ class FileReader {
     return mechanism;
   }
 
-  // A file written as a spatial chain of frames (README, "Spatial chains").
+  // A file written as a spatial chain of frames (docs/mechanism-files.md, "Spatial chains").
   Mechanism read_chain(const Node& root, Mechanism& mechanism) const {
     check_keys(root, {"title", "description", "parameters", "input", "variables", "frames", "points", "closures",
                       "output"},

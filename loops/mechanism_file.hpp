@@ -1,4 +1,4 @@
-// Reads a mechanism file (TOML; format in README.md) into a Mechanism.
+// Reads a mechanism file (TOML; format in docs/mechanism-files.md) into a Mechanism.
 // Every error names file:line and the key, and says what to write instead.
 #pragma once
 

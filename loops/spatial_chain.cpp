@@ -206,7 +206,7 @@ class ChainBuilder {
 
   // Each turn along a chain multiplies the rotation before it, and the derivatives grow
   // with the product: 20 turns in a row took 34 s to derive, 24 never ended. Checked
-  // before any symbolic work (README "Limits").
+  // before any symbolic work (docs/limits.md).
   void check_chain_size() const {
     if (chain_.frames.size() > kMaxChainFrames) {
       fail(chain_.frames[kMaxChainFrames].where, "the chain has more than " + std::to_string(kMaxChainFrames) +

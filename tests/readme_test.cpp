@@ -1,19 +1,39 @@
-// The README says what is true: its library example is examples/library_usage.cpp
-// as it is (that file is built against an installed kinema and run by the
-// "package: ..." test), the folders its "How it works" names exist, and its first
-// example output is the program's.
+// The README and docs/ say what is true: the README is a front door of at most 200
+// lines whose links lead to files that exist, its first example output is the program's
+// and its TOML snippets are lines of the samples they name; docs/library.md shows
+// examples/library_usage.cpp as it is (that file is built against an installed kinema
+// and run by the "package: ..." test) and the folders its "How it works" names exist.
+// (docs/outputs.md's page table is checked by latex_pdf_test.)
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <filesystem>
+#include <regex>
+#include <sstream>
+
+#include <kinema/engine/model.hpp>
 
 #include "test_support.hpp"
 
-TEST_CASE("README shows examples/library_usage.cpp verbatim, and the folders it names exist") {
-  const std::string readme = kinema_test::read_file(kinema_test::sample("../README.md"));
-  const std::string example = kinema_test::read_file(kinema_test::sample("../examples/library_usage.cpp"));
-  REQUIRE(!readme.empty());
+namespace {
+
+std::string project_file(const std::string& path) { return kinema_test::read_file(kinema_test::sample("../" + path)); }
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+}  // namespace
+
+TEST_CASE("README: docs/library.md shows examples/library_usage.cpp verbatim, and the folders it names exist") {
+  const std::string library = project_file("docs/library.md");
+  const std::string example = project_file("examples/library_usage.cpp");
+  REQUIRE(!library.empty());
   REQUIRE(example.find("kinema::analyse(model") != std::string::npos);
-  CHECK(readme.find("```cpp\n" + example + "```") != std::string::npos);
+  CHECK(library.find("```cpp\n" + example + "```") != std::string::npos);
   for (const char* folder : {"loops", "engine/symbolic", "engine/numeric", "engine/report", "engine/printers/text",
                              "engine/printers/data", "engine/printers/latex", "engine/printers/code", "cli"}) {
     CAPTURE(folder);
@@ -22,9 +42,81 @@ TEST_CASE("README shows examples/library_usage.cpp verbatim, and the folders it 
 }
 
 TEST_CASE("README's \"What it prints\" is what the command prints") {
-  const std::string readme = kinema_test::read_file(kinema_test::sample("../README.md"));
+  const std::string readme = project_file("README.md");
   const auto result = kinema_test::run_kinema({"eval", kinema_test::sample("problem_4_4_six_bar.toml")});
   REQUIRE(result.exit_status == 0);
   CHECK(readme.find("```\n$ ./build/kinema eval samples/problem_4_4_six_bar.toml\n" + result.out + "```") !=
         std::string::npos);
+}
+
+TEST_CASE("README is a front door: at most 200 lines, names the three forms, and its links lead to files") {
+  const std::string readme = project_file("README.md");
+  REQUIRE(!readme.empty());
+  CHECK(lines_of(readme).size() <= 200);
+  for (const char* form : {"vector loops", "joints and links", "spatial chain"}) {
+    CAPTURE(form);
+    CHECK(readme.find(form) != std::string::npos);
+  }
+  // Every link into docs/ (pages and pictures) names a file that exists; every docs page
+  // is linked from the README.
+  const std::regex link(R"(\]\((docs/[^)#\s]+)(#[^)\s]*)?\))");
+  std::vector<std::string> linked;
+  for (auto it = std::sregex_iterator(readme.begin(), readme.end(), link); it != std::sregex_iterator(); ++it) {
+    const std::string target = (*it)[1];
+    CAPTURE(target);
+    CHECK(std::filesystem::is_regular_file(kinema_test::sample("../" + target)));
+    linked.push_back(target);
+  }
+  CHECK(std::find(linked.begin(), linked.end(), "docs/limits.md") != linked.end());
+  CHECK(std::any_of(linked.begin(), linked.end(), [](const std::string& target) {
+    return target.size() > 4 && target.substr(target.size() - 4) == ".png";
+  }));
+  for (const auto& entry : std::filesystem::directory_iterator(kinema_test::sample("../docs"))) {
+    if (entry.path().extension() != ".md") continue;
+    const std::string page = "docs/" + entry.path().filename().string();
+    CAPTURE(page);
+    CHECK(std::find(linked.begin(), linked.end(), page) != linked.end());
+  }
+}
+
+TEST_CASE("README: links between docs pages lead to files that exist") {
+  const std::regex link(R"(\]\(([A-Za-z0-9_./-]+\.(md|png))(#[^)\s]*)?\))");
+  for (const auto& entry : std::filesystem::directory_iterator(kinema_test::sample("../docs"))) {
+    if (entry.path().extension() != ".md") continue;
+    const std::string text = kinema_test::read_file(entry.path().string());
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), link); it != std::sregex_iterator(); ++it) {
+      const std::string target = (*it)[1];
+      CAPTURE(entry.path().filename().string());
+      CAPTURE(target);
+      CHECK(std::filesystem::is_regular_file(entry.path().parent_path() / target));
+    }
+  }
+}
+
+// Each ```toml snippet of the README follows a mention of the sample it comes from
+// (`samples/NAME.toml`), and each of its lines is a line of that sample as it is (but
+// a "# ..." line, which says what the snippet leaves out).
+TEST_CASE("README's TOML snippets are lines of the samples they name") {
+  const std::string readme = project_file("README.md");
+  std::size_t snippets = 0;
+  for (auto at = readme.find("```toml\n"); at != std::string::npos; at = readme.find("```toml\n", at + 1)) {
+    const auto named = readme.rfind("`samples/", at);
+    REQUIRE(named != std::string::npos);
+    const std::string sample = readme.substr(named + 9, readme.find('`', named + 1) - named - 9);
+    CAPTURE(sample);
+    const auto sample_lines = lines_of(kinema_test::read_file(kinema_test::sample(sample)));
+    REQUIRE(!sample_lines.empty());
+    const auto start = at + 8;
+    const auto end = readme.find("```", start);
+    REQUIRE(end != std::string::npos);
+    for (const std::string& line : lines_of(readme.substr(start, end - start))) {
+      if (line.empty() || line.rfind("# ...", 0) == 0) continue;  // "# ..." marks what is left out
+      CAPTURE(line);
+      CHECK(std::find(sample_lines.begin(), sample_lines.end(), line) != sample_lines.end());
+    }
+    // And the sample loads: the snippet's mechanism is one kinema reads.
+    CHECK_NOTHROW(kinema::load_model(kinema_test::sample(sample)));
+    ++snippets;
+  }
+  CHECK(snippets == 3);  // one per form
 }

@@ -58,7 +58,7 @@ void add_ratios(InstantCentres& result, double length_scale) {
 }
 
 // A vector-loop file names no links: a point whose formula ends in a link vector of fixed
-// length turning with an angle is on that link (README: "points that lie on a link term
+// length turning with an angle is on that link (docs/outputs.md: "points that lie on a link term
 // belong to that link"). Each centre from two such points' velocities:
 // v_a(I) = v_b(I) with v(P) = v_A + i omega (P - A); where the two turn alike, at
 // infinity across their relative velocity.

@@ -93,7 +93,7 @@ std::string default_rate_name(const std::string& coordinate, int order) {
 
 namespace {
 
-// A LaTeX name from a file, read by its grammar (README, "Mechanism files"), so that it
+// A LaTeX name from a file, read by its grammar (docs/mechanism-files.md, "LaTeX names"), so that it
 // typesets wherever a printer puts it (\cos u, \dot{...}, (...)^{2}) and runs nothing but
 // math typesetting:
 //   name    := item*                                  (spaces between parts are ignored)

@@ -16,7 +16,7 @@ std::string default_rate_name(const std::string& coordinate, int order);
 std::string latex_symbol_name(const std::string& name);
 
 /// Throws InputError ("context: LaTeX name ... what to write instead") unless a LaTeX
-/// name given in a mechanism file follows the grammar of README's "Mechanism files":
+/// name given in a mechanism file follows the grammar of docs/mechanism-files.md, "LaTeX names":
 /// letters, digits, , ' and subscripts _x or _{...}, balanced braces, Greek letters,
 /// \prime, and \dot \ddot \hat \bar \tilde \vec \mathrm \mathit with a braced argument.
 void check_latex_name(const std::string& latex, const std::string& context);

@@ -609,7 +609,7 @@ TEST_CASE("values = [] is refused with file:line, not taken as no values") {
 }
 
 // Audit 2026-11-24: a parameter written without a unit was read as metres where the loops
-// use it as a length. The README documents a bare number as a plain number (a ratio).
+// use it as a length. docs/mechanism-files.md documents a bare number as a plain number (a ratio).
 TEST_CASE("a parameter without a unit used as a length is refused at its line - as a ratio it is a plain number") {
   check_bad("bare_length", replaced("a = \"40 mm\"", "a = \"40\""),
             {2, {"bare_length.toml:3", "parameter \"a\" = \"40\" has no unit", "loop \"ABCD\"", "bare_length.toml:15) uses it as a length",

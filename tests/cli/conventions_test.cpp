@@ -77,6 +77,29 @@ TEST_CASE("--help prints help on stdout and exits 0") {
   CHECK(eval_help.err.empty());
 }
 
+// The front door: the program's help and each command's name the three forms a
+// mechanism file can take.
+TEST_CASE("--help and each command's help name vector loops, joints and links and spatial chains") {
+  for (const std::vector<std::string>& arguments :
+       std::vector<std::vector<std::string>>{{"--help"}, {"derive", "--help"}, {"eval", "--help"}, {"latex", "--help"},
+                                             {"codegen", "--help"}, {"loops", "--help"}}) {
+    const auto help = run_kinema(arguments);
+    CAPTURE(arguments.front());
+    REQUIRE(help.exit_status == 0);
+    // CLI11 wraps long help text: compare with runs of white space as one space.
+    std::string text;
+    for (char c : help.out) {
+      const bool space = c == ' ' || c == '\n' || c == '\t';
+      if (!space) text += c;
+      else if (!text.empty() && text.back() != ' ') text += ' ';
+    }
+    for (const char* form : {"vector loops", "joints and links", "spatial chain"}) {
+      CAPTURE(form);
+      CHECK(text.find(form) != std::string::npos);
+    }
+  }
+}
+
 TEST_CASE("usage errors exit 2 with one line that says what is wrong and what to do") {
   const std::string file = kinema_test::sample("four_bar.toml");
   check_usage_error({}, {"a command is required", "derive, eval, latex, codegen"}, "kinema --help");

@@ -6,7 +6,7 @@
 #
 # A count of 0 skips that target (two runs side by side on two cores:
 # `run_fuzzers.sh 10000000 0 & sleep 120; run_fuzzers.sh 0 3600`).
-# Defaults are the figures reported in the README: 10^7 executions of the reader and
+# Defaults are the figures reported in docs/testing.md: 10^7 executions of the reader and
 # an hour of the whole pipeline. CI runs a short smoke run (.ci/run) with FUZZ_SEED=1,
 # so that it mutates the same way in every run. Each run is
 # limited to 10 s and 2 GB; a crash, a time-out, a memory blow-up or an internal

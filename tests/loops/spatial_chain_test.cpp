@@ -745,7 +745,7 @@ TEST_CASE("spatial_chain: a point moving in its frame by a formula of time t") {
   CHECK(refused.err.find("--input theta1: the chain has formulas of time t; keep time as its input") != std::string::npos);
 }
 
-// README: in a chain a number is metres in an origin or a point's place and radians in a
+// docs/mechanism-files.md: in a chain a number is metres in an origin or a point's place and radians in a
 // turn (Pi/2 is a number), and a parameter written without a unit is such a number.
 TEST_CASE("spatial_chain: a bare number is metres in an origin or point and radians in a turn") {
   const auto chain = [](const std::string& parameter, const std::string& origin, const std::string& turn,

@@ -1,4 +1,4 @@
-// Results for programs (schema in README.md): the description of the run
+// Results for programs (schema in docs/outputs.md): the description of the run
 // indented, then the results, one object per line so that a long run streams
 // and stays readable with line tools (grep, head, jq -c).
 #include <cmath>

@@ -196,12 +196,12 @@ int compile_document(const std::string& tex_text, const std::string& name, std::
 
 namespace {
 
-// The README's table of pages: "| `four_bar.toml` | 6 |" (two samples a row).
+// docs/outputs.md's table of pages: "| `four_bar.toml` | 6 |" (two samples a row).
 int documented_pages(const std::string& sample) {
-  const std::string readme = read_file(kinema_test::sample("../README.md"));
+  const std::string outputs = read_file(kinema_test::sample("../docs/outputs.md"));
   const std::string cell = "| `" + sample + "` | ";
-  const auto at = readme.find(cell);
-  return at == std::string::npos ? -1 : std::atoi(readme.c_str() + at + cell.size());
+  const auto at = outputs.find(cell);
+  return at == std::string::npos ? -1 : std::atoi(outputs.c_str() + at + cell.size());
 }
 
 }  // namespace
@@ -237,7 +237,7 @@ TEST_CASE("kinema latex: every sample's worked solution compiles, with its pages
     std::string log;
     const int pages = compile_document(result.out, "document_" + name.substr(0, name.find('.')), log);
     INFO(log.substr(log.size() > 3000 ? log.size() - 3000 : 0));
-    // Data and equations, the results (drawing, polygons, centres), the plots: as the README
+    // Data and equations, the results (drawing, polygons, centres), the plots: as docs/outputs.md
     // says, from every build (the sanitizer build's GiNaC orders terms otherwise).
     CHECK(pages >= 3);
     CHECK(pages == documented_pages(name));
