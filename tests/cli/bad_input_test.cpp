@@ -4,6 +4,8 @@
 
 #include <filesystem>
 
+#include <kinema/loops/mechanism_file.hpp>
+
 #include "test_support.hpp"
 
 namespace {
@@ -772,4 +774,50 @@ TEST_CASE("a time or variable input that carries a driven angle past 1e9 deg is 
   CHECK(turning.err.find("at t = 5000000 s, theta1 would be 1.43239e+09 deg") != std::string::npos);
   CHECK(kinema_test::run_kinema({"eval", back, "--at", "1e7"}).exit_status == 0);  // back within the limit
   CHECK(kinema_test::run_kinema({"eval", back, "--sweep", "0:1e7:1e7"}).exit_status == 0);  // no value between
+}
+
+// Issue 33: kinema latex over a file's sweep of 100,001 values wrote an 853 MB document in
+// 80 s and 1.7 GB (a results page for each value); 10^6 values never finished. More than
+// kMaxLatexValues values are refused before any work, saying what to do instead.
+TEST_CASE("kinema latex: more results values than the limit are refused at once") {
+  const std::string sweep = kinema_test::write_temporary(
+      "latex_sweep.toml", replaced("value = \"40 deg\"", "sweep = \"0:360:0.0036 deg\""));
+  const std::string million = kinema_test::write_temporary(
+      "latex_million.toml", replaced("value = \"40 deg\"", "sweep = \"0:360:0.00036 deg\""));
+  std::vector<std::string> listed = {"latex", kinema_test::sample("four_bar.toml")};
+  for (int k = 0; k <= 50; ++k) listed.insert(listed.end(), {"--angle", std::to_string(k)});
+  for (const auto& [arguments, count] : std::vector<std::pair<std::vector<std::string>, std::string>>{
+           {{"latex", sweep}, "100001"}, {{"latex", million, "--fragment"}, "1000001"}, {listed, "51"}}) {
+    CAPTURE(count);
+    const auto result = kinema_test::run_kinema_bounded(arguments);
+    CHECK(result.exit_status == 2);
+    CHECK(result.err.find(count + " values are more than 50") != std::string::npos);
+    CHECK(result.err.find("coarser sweep") != std::string::npos);
+    CHECK(result.err.find("kinema eval") != std::string::npos);
+    CHECK(result.out.empty());
+    CHECK(result.peak_kilobytes < 2 * 1024 * 1024);
+  }
+  CHECK(kinema_test::run_kinema_bounded({"latex", sweep}).err.find("latex_sweep.toml:") != std::string::npos);
+  CHECK(kinema::kMaxLatexValues == 50);
+}
+
+// Issue 33: ESC and U+202E in a file name or an -o path reached the terminal as they were
+// in kinema's messages (a terminal acts on ESC; U+202E reverses the rest of the line).
+TEST_CASE("messages that repeat a path show its control and bidirectional characters escaped") {
+  const std::string odd = "odd\x1b[31m\u202e";
+  const std::string bad = kinema_test::write_temporary(odd + ".toml", replaced("a = \"40 mm\"", "a = \"40 parsecs\""));
+  const std::string missing = kinema_test::fresh_directory("odd_paths") + "/" + odd + "missing.toml";
+  const std::string output = kinema_test::fresh_directory("odd_paths") + "/no" + odd + "/out.csv";
+  for (const auto& arguments : std::vector<std::vector<std::string>>{
+           {"eval", bad}, {"eval", missing}, {"latex", bad}, {"eval", kinema_test::sample("four_bar.toml"), "-o", output},
+           {"eval", kinema_test::sample("four_bar.toml"), "--angle", "\x1b]0;title\x07"}}) {
+    CAPTURE(arguments[1]);
+    const auto result = kinema_test::run_kinema_bounded(arguments);
+    CHECK(result.exit_status >= 2);  // a refusal (5: the output cannot be written), not internal
+    CHECK(result.err.find('\x1b') == std::string::npos);
+    CHECK(result.err.find('\x07') == std::string::npos);
+    CHECK(result.err.find("\u202e") == std::string::npos);
+    CHECK(result.err.find("[U+001B]") != std::string::npos);
+  }
+  CHECK(kinema_test::run_kinema_bounded({"eval", bad}).err.find("odd[U+001B][31m[U+202E].toml:") != std::string::npos);
 }
