@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -140,7 +141,19 @@ void write_circuit(const Model& model, const std::string& step_text, const std::
   settings.start = inputs.empty() ? m.input.values.front() : inputs.front();
   settings.rate = m.input.rate_value;
   settings.second_rate = m.input.second_rate_value;
-  settings.max_rows = kMaxCircuitRows;
+  // Rows are bounded by the chain's size too, and a crank's turn that cannot fit in them is
+  // refused before the walk (its rows would be computed first).
+  const std::size_t unknowns = std::max<std::size_t>(1, m.unknowns.size());
+  settings.max_rows = std::min(kMaxCircuitRows, kMaxCircuitRowUnknowns / unknowns);
+  if (m.input.dimension == Dimension::angle && 2 * M_PI / settings.step > double(settings.max_rows)) {
+    throw InputError("--circuit " + step_text + ": a turn of the input is " +
+                     std::to_string(static_cast<unsigned long long>(std::min(std::ceil(2 * M_PI / settings.step), 1e18))) +
+                     " rows, more than the " +
+                     std::to_string(settings.max_rows) + " rows a circuit of " + std::to_string(unknowns) +
+                     " unknowns may have (" + std::to_string(kMaxCircuitRowUnknowns) +
+                     " rows times unknowns: each row solves them all); give a step of at least " +
+                     format_significant(1.005 * 360.0 / double(settings.max_rows), 3) + " deg");
+  }
   const Circuit circuit = solve_circuit(model.kinematics, settings);
   switch (circuit.stop) {
     case Circuit::Stop::closed: break;

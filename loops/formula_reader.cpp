@@ -28,9 +28,9 @@ constexpr double kMaxExactDigits = 400;        ///< decimal digits of an exact p
 constexpr double kMaxExponent = 1000;          ///< magnitude of a numeric exponent
 // Terms of the formula multiplied out: the derivation expands the equations and their
 // derivatives, whose coefficients grow with the power: (theta3 + theta4 + 1)^100 (5,151
-// terms) took 27-36 s to derive and past 120 s in latex, ^80 12-16 s; ^18 (190 terms) takes
-// 0.8 s in latex. A kinematic formula has tens of terms (the samples' at most a few).
-constexpr double kMaxExpandedTerms = 200;
+// terms) took 27-36 s to derive and past 120 s in latex, ^80 12-16 s; ^20 (231 terms) takes
+// 1 s in latex. A kinematic formula has tens of terms (the samples' at most a few).
+constexpr double kMaxExpandedTerms = 250;
 
 // Functions the tape compiles (sqrt and powers are powers, not functions).
 const std::set<std::string>& compiled_functions() {

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 
+#include <kinema/engine/numeric/circuit.hpp>
 #include <kinema/loops/mechanism_file.hpp>
 
 #include "test_support.hpp"
@@ -254,7 +255,7 @@ TEST_CASE("huge powers, long numbers and formulas that multiply out too far are 
   check_bad("long_number", replaced("d = \"100 mm\"", "d = \"a*" + std::string(150, '9') + "\""),
             {2, {"long_number.toml:6", "more than 100 characters"}});
   check_bad("expands", replaced("- d\"", "- d + 0.001*a*(theta3 + theta4 + theta2 + 1)^60\""),
-            {2, {"expands.toml:15", "loop \"ABCD\"", "multiplies out to more than 200 terms"}});
+            {2, {"expands.toml:15", "loop \"ABCD\"", "multiplies out to more than 250 terms"}});
   check_bad("float_overflow", replaced("d = \"100 mm\"", "d = \"a*1e300\"\nq = \"d^2*1e300\""),
             {2, {"float_overflow.toml:7", "parameter \"q\""}});
   // Inside the limits the same shapes are read, with the numbers they mean.
@@ -824,7 +825,7 @@ TEST_CASE("messages that repeat a path show its control and bidirectional charac
 
 // Issue 33: (theta3 + theta4 + 1)^100 in a loop (5,151 terms, inside the old limit of
 // 10,000) took 27-36 s to derive and past 120 s in latex, ^80 12-16 s. Refused now at once;
-// ^18 (190 terms) is derived and typeset within the time limit.
+// ^20 (231 terms) is derived and typeset within the time limit.
 TEST_CASE("a loop term that multiplies out past the limit is refused at once, one inside it is derived") {
   const auto with_power = [](int n) {
     return replaced("d = \"100 mm\"", "d = \"100 mm\"\nk = \"1e-9 mm\"",
@@ -838,14 +839,45 @@ TEST_CASE("a loop term that multiplies out past the limit is refused at once, on
       const auto result = kinema_test::run_kinema_bounded({command, path});
       CHECK(result.exit_status == 2);
       CHECK(result.err.find("power_" + std::to_string(n) + ".toml:") != std::string::npos);
-      CHECK(result.err.find("multiplies out to more than 200 terms") != std::string::npos);
+      CHECK(result.err.find("multiplies out to more than 250 terms") != std::string::npos);
     }
   }
-  const std::string inside = kinema_test::write_temporary("power_18.toml", with_power(18));
+  const std::string inside = kinema_test::write_temporary("power_20.toml", with_power(20));
   for (const std::string command : {"derive", "latex"}) {
     CAPTURE(command);
     const auto result = kinema_test::run_kinema_bounded({command, inside});
     CHECK(result.exit_status == 0);
     CHECK(result.peak_kilobytes < 2 * 1024 * 1024);
   }
+}
+
+// Issue 33: --circuit 0.002 on a chain of 63 links worked 15-47 s before it finished or was
+// refused (each of 180,000 rows a turn solves all 62 unknowns). The rows a circuit may have
+// shrink with the chain (kMaxCircuitRowUnknowns), and a turn that cannot fit is refused at once.
+TEST_CASE("--circuit with a step too fine for a long chain is refused before the walk") {
+  std::string joints = "[joints]\nA = { ground = true, at = [\"0 mm\", \"0 mm\"] }\nB = { at = [\"0 mm\", \"50 mm\"] }\n";
+  std::string links = "[links]\n1 = { joints = [\"A\", \"B\"] }\n";
+  std::string previous = "B";
+  double x = 0, y = 50;
+  for (int k = 0; k < 31; ++k) {  // dyads in a row, each driven by the last one's rocker
+    x += 70, y -= 5;
+    const std::string c = "C" + std::to_string(k), d = "D" + std::to_string(k);
+    joints += c + " = { at = [\"" + std::to_string(x) + " mm\", \"" + std::to_string(y) + " mm\"] }\n";
+    joints += d + " = { ground = true, at = [\"" + std::to_string(x) + " mm\", \"" + std::to_string(y - 45) + " mm\"] }\n";
+    links += "c" + std::to_string(k) + " = { joints = [\"" + previous + "\", \"" + c + "\"] }\n";
+    links += "r" + std::to_string(k) + " = { joints = [\"" + d + "\", \"" + c + "\"] }\n";
+    previous = c;
+  }
+  const std::string path = kinema_test::write_temporary(
+      "chain_63_links.toml", "title = \"63 links\"\n" + joints + links +
+                                 "[driver]\nlink = \"1\"\nname = \"phi\"\nvalue = \"90 deg\"\nrate = \"10 rad/s\"\n");
+  const auto refused = kinema_test::run_kinema_bounded({"eval", path, "--circuit", "0.002", "--format", "csv"});
+  CHECK(refused.exit_status == 2);
+  CHECK(refused.err.find("--circuit 0.002: a turn of the input is 180000 rows, more than the 16129 rows a circuit of "
+                         "62 unknowns may have") != std::string::npos);
+  CHECK(refused.err.find("give a step of at least 0.0224 deg") != std::string::npos);
+  const auto coarse = kinema_test::run_kinema_bounded({"eval", path, "--circuit", "0.0224", "--format", "csv"});
+  CHECK(coarse.exit_status == 0);
+  CHECK(coarse.peak_kilobytes < 2 * 1024 * 1024);
+  CHECK(kinema::kMaxCircuitRowUnknowns == 1'000'000);
 }
