@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -22,6 +23,7 @@
 #include <kinema/engine/report/output_scale.hpp>
 #include <kinema/engine/report/plot_range.hpp>
 #include <kinema/engine/report/structure.hpp>
+#include <kinema/engine/report/user_text.hpp>
 #include <kinema/engine/symbolic/dyad_method.hpp>
 #include <kinema/loops/linkage_loops.hpp>
 #include <kinema/loops/mechanism_file.hpp>
@@ -139,7 +141,19 @@ void write_circuit(const Model& model, const std::string& step_text, const std::
   settings.start = inputs.empty() ? m.input.values.front() : inputs.front();
   settings.rate = m.input.rate_value;
   settings.second_rate = m.input.second_rate_value;
-  settings.max_rows = kMaxCircuitRows;
+  // Rows are bounded by the chain's size too, and a crank's turn that cannot fit in them is
+  // refused before the walk (its rows would be computed first).
+  const std::size_t unknowns = std::max<std::size_t>(1, m.unknowns.size());
+  settings.max_rows = std::min(kMaxCircuitRows, kMaxCircuitRowUnknowns / unknowns);
+  if (m.input.dimension == Dimension::angle && 2 * M_PI / settings.step > double(settings.max_rows)) {
+    throw InputError("--circuit " + step_text + ": a turn of the input is " +
+                     std::to_string(static_cast<unsigned long long>(std::min(std::ceil(2 * M_PI / settings.step), 1e18))) +
+                     " rows, more than the " +
+                     std::to_string(settings.max_rows) + " rows a circuit of " + std::to_string(unknowns) +
+                     " unknowns may have (" + std::to_string(kMaxCircuitRowUnknowns) +
+                     " rows times unknowns: each row solves them all); give a step of at least " +
+                     format_significant(1.005 * 360.0 / double(settings.max_rows), 3) + " deg");
+  }
   const Circuit circuit = solve_circuit(model.kinematics, settings);
   switch (circuit.stop) {
     case Circuit::Stop::closed: break;
@@ -298,6 +312,19 @@ int run(int argc, char** argv) {
     mechanism.chain->input = chain_input;
     mechanism.chain->input_where = {};
   }
+  // kinema latex works out each value on a page of its own: too many values are refused
+  // before any symbolic work (their plots sample the turn on their own).
+  const auto check_latex_values = [&](std::size_t count, const std::string& where) {
+    if (count <= kMaxLatexValues) return;
+    throw InputError(where + ": kinema latex works out each input value on a results page of its own, and " +
+                     std::to_string(count) + " values are more than " + std::to_string(kMaxLatexValues) +
+                     "; give at most that many (--angle VALUE, or a coarser sweep in the file), or tabulate them with kinema eval " +
+                     "(--sweep START:STOP:STEP, --format csv)");
+  };
+  if (latex_cmd->parsed()) {
+    check_latex_values(angles.empty() ? mechanism.input.values.size() : angles.size(),
+                       angles.empty() && mechanism.input.where.line > 0 ? mechanism.input.where.str() : file);
+  }
   // A file kinema cannot analyse is not written as loops either. Only derive and latex
   // print the formulas solved in closed form: the others do without them (faster).
   const bool prints_formulas = derive_cmd->parsed() || latex_cmd->parsed();
@@ -348,6 +375,7 @@ int run(int argc, char** argv) {
 
   if (latex_cmd->parsed()) {
     if (inputs.empty()) inputs = m.input.values;
+    check_latex_values(inputs.size(), m.input.where.line > 0 ? m.input.where.str() : file);
     if (inputs.empty()) {
       throw InputError(m.source_file + ": no input value: give --angle VALUE or value = \"...\" under [input]");
     }
@@ -404,7 +432,7 @@ int run(int argc, char** argv) {
     // value is assembled and regular (solving is cheap next to printing).
     int status = 0;
     settings.on_failure = [&](double input, Status row_status, const Failure& failure) {
-      std::cerr << "kinema: error: " << m.source_file << ": " << describe_failure(m, input, failure) << "\n";
+      std::cerr << "kinema: error: " << terminal_text(m.source_file + ": " + describe_failure(m, input, failure)) << "\n";
       // A point's formula without a number there is the file's, not a singular position.
       const int row = failure.kind == Failure::Kind::point_undefined ? kinema_cli::status::bad_input
                       : row_status == Status::singular                 ? kinema_cli::status::singular
@@ -431,7 +459,7 @@ int run(int argc, char** argv) {
   if (summary.failures > 0 && !quiet) {
     std::cerr << "kinema: warning: " << summary.failures << " of " << summary.values
               << " input values have no rates (status singular or unassembled in the output); first: "
-              << describe_failure(m, summary.first_failure->input, summary.first_failure->failure) << "\n";
+              << terminal_text(describe_failure(m, summary.first_failure->input, summary.first_failure->failure)) << "\n";
   }
   return 0;
 }
@@ -445,13 +473,13 @@ int main(int argc, char** argv) {
     kinema_cli::flush_standard_output();  // help or version on a full disk is an error too
     return status;
   } catch (const kinema::Error& error) {
-    std::cerr << "kinema: error: " << error.what() << "\n";
+    std::cerr << "kinema: error: " << kinema::terminal_text(error.what()) << "\n";
     return kinema_cli::exit_status(error);
   } catch (const std::bad_alloc&) {
     std::cerr << "kinema: error: out of memory; evaluate fewer values per run (a coarser --sweep, or split it)\n";
     return kinema_cli::status::internal;
   } catch (const std::exception& error) {
-    std::cerr << "kinema: internal error: " << error.what() << "\n";
+    std::cerr << "kinema: internal error: " << kinema::terminal_text(error.what()) << "\n";
     return kinema_cli::exit_status(error);
   } catch (...) {
     std::cerr << "kinema: internal error: unknown exception\n";

@@ -2,6 +2,8 @@
 
 #include <iostream>
 
+#include <kinema/engine/report/user_text.hpp>
+
 #include "exit_status.hpp"
 
 namespace kinema_cli {
@@ -78,7 +80,7 @@ std::string usage_message(const CLI::App& app, const CLI::ParseError& error) {
 int report_parse_error(const CLI::App& app, const CLI::ParseError& error) {
   const int status = exit_status(error);
   if (status == status::success) return app.exit(error, std::cout, std::cerr);  // --help, --version
-  std::cerr << usage_message(app, error) << "\n";
+  std::cerr << kinema::terminal_text(usage_message(app, error)) << "\n";  // a path's ESC or U+202E shown, not acted on
   return status;
 }
 

@@ -15,14 +15,27 @@ namespace {
 
 using GiNaC::ex;
 
+<<<<<<< HEAD
 // Limits (docs/limits.md).
 constexpr int kMaxDepth = 100;                 ///< parentheses
+=======
+// Limits (README, "Mechanism files").
+// Parentheses (a function's among them): sin nested 38 deep in a loop gave pdflatex
+// "Dimension too large" in kinema latex (its derivative's product of cosines is one line
+// wider than TeX's largest dimension), 60 deep overflowed its buffer; 36 typeset everywhere
+// kinema puts a formula (derive --format latex, the worked solution), 32 leaves a margin.
+constexpr int kMaxDepth = 32;
+>>>>>>> issue33-bounds
 constexpr int kMaxSignRun = 10;                ///< + and - signs in a row (each one more level of the parser)
 constexpr std::size_t kMaxLiteralLength = 100;  ///< characters of one number
 constexpr std::size_t kMaxLiteralExponentDigits = 4;  ///< digits of its exponent (1e9999 at most)
 constexpr double kMaxExactDigits = 400;        ///< decimal digits of an exact power of numbers
 constexpr double kMaxExponent = 1000;          ///< magnitude of a numeric exponent
-constexpr double kMaxExpandedTerms = 10000;    ///< terms of the formula multiplied out
+// Terms of the formula multiplied out: the derivation expands the equations and their
+// derivatives, whose coefficients grow with the power: (theta3 + theta4 + 1)^100 (5,151
+// terms) took 27-36 s to derive and past 120 s in latex, ^80 12-16 s; ^20 (231 terms) takes
+// 1 s in latex. A kinematic formula has tens of terms (the samples' at most a few).
+constexpr double kMaxExpandedTerms = 250;
 
 // Functions the tape compiles (sqrt and powers are powers, not functions).
 const std::set<std::string>& compiled_functions() {
@@ -72,8 +85,9 @@ void check_shape(const std::string& formula, const std::string& context) {
       signs = 0;
     }
     if (c == '(' && ++depth > kMaxDepth) {
-      throw InputError(context + ": the formula nests parentheses more than " + std::to_string(kMaxDepth) +
-                       " deep; write it more simply");
+      throw InputError(context + ": the formula nests parentheses (function calls among them) more than " +
+                       std::to_string(kMaxDepth) + " deep, more than its derivatives can be typeset in LaTeX; write "
+                       "it more simply");
     }
     if (c == ')') --depth;
     if (c == '(' && i > 0 && is_name_part(formula[i - 1])) {

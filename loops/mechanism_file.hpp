@@ -24,6 +24,10 @@ constexpr std::size_t kMaxValuesPerRun = 10'000'000;
 /// an output of petabytes.
 constexpr std::size_t kMaxSweepValues = 1'000'000'000;
 
+/// Most input values `kinema latex` works out: the document has a results page for each
+/// (100,001 values wrote 853 MB in 80 s); a table of many values is eval's work.
+constexpr std::size_t kMaxLatexValues = 50;
+
 /// Most joints and links of a joints-and-links file: a mechanism has tens; the structure
 /// search and the loops it writes grow with the square of the count.
 constexpr std::size_t kMaxJoints = 128;

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <map>
 #include <regex>
 #include <sstream>
 
@@ -119,4 +120,42 @@ TEST_CASE("README's TOML snippets are lines of the samples they name") {
     ++snippets;
   }
   CHECK(snippets == 3);  // one per form
+
+// Issue 33: the docs list every limit with the reason for it. Each kMax constant of the
+// sources (engine/, loops/, cli/) is named in docs/limits.md with its value.
+TEST_CASE("docs/limits.md names every kMax constant of the sources with its value") {
+  const std::string limits = kinema_test::read_file(kinema_test::sample("../docs/limits.md"));
+  REQUIRE(limits.find("| what | limit") != std::string::npos);
+  const std::filesystem::path root = std::filesystem::path(kinema_test::sample("..")).lexically_normal();
+  const std::regex constant(R"(constexpr[^=;(]*\b(kMax\w+)\s*=\s*([^;]+);)");
+  std::map<std::string, double> values;
+  for (const char* folder : {"engine", "loops", "cli"}) {
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(root / folder)) {
+      const std::string extension = entry.path().extension().string();
+      if (extension != ".cpp" && extension != ".hpp" && extension != ".inc") continue;
+      const std::string text = kinema_test::read_file(entry.path().string());
+      for (std::sregex_iterator it(text.begin(), text.end(), constant), end; it != end; ++it) {
+        std::string expression = (*it)[2];
+        expression.erase(std::remove(expression.begin(), expression.end(), '\''), expression.end());
+        double value = 1;  // a literal or a product of literals (1024 * 1024)
+        std::stringstream factors(expression);
+        for (std::string factor; std::getline(factors, factor, '*');) value *= std::stod(factor);
+        const std::string name = (*it)[1];
+        CAPTURE(name);
+        CHECK((values.count(name) == 0 || values[name] == value));  // one name, one value
+        values[name] = value;
+      }
+    }
+  }
+  CHECK(values.size() >= 20);
+  for (const auto& [name, value] : values) {
+    CAPTURE(name);
+    const auto at = limits.find("`" + name + " = ");
+    REQUIRE(at != std::string::npos);
+    std::string shown = limits.substr(at + name.size() + 4, 20);
+    shown = shown.substr(0, shown.find_first_of("`;"));
+    shown.erase(std::remove(shown.begin(), shown.end(), ','), shown.end());
+    CAPTURE(shown);
+    CHECK(std::stod(shown) == value);
+  }
 }

@@ -16,6 +16,10 @@ namespace kinema {
 /// Rows a circuit may have (it is held in memory, like a list of values): a million rows
 /// draw any coupler curve finer than a plotter can.
 constexpr std::size_t kMaxCircuitRows = 1'000'000;
+/// Rows times unknowns a circuit may have: each row is a position with its rates (a dense
+/// solve of all unknowns), so a long chain has fewer rows. --circuit 0.002 on a chain of 63
+/// links (180,000 rows a turn) worked 15-47 s; a circuit that cannot fit is refused at once.
+constexpr std::size_t kMaxCircuitRowUnknowns = 1'000'000;
 
 struct CircuitSettings {
   double start = 0;        ///< Input value the circuit starts and ends at (SI), on the sketch's assembly.

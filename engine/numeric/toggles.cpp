@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <kinema/engine/numeric/workspace.hpp>
 
@@ -108,35 +109,92 @@ std::vector<Toggle> find_toggles(const Model& model) {
   return solve_with(model, [&](const Eigen::MatrixXd& phi_q, const Eigen::VectorXd&) { return scaled_determinant(phi_q, k); });
 }
 
-std::vector<Toggle> find_limit_positions(const Model& model, std::size_t j) {
-  const Kinematics& k = model.kinematics;
-  // dq_j/dtheta = 0, by Cramer: the determinant with column j replaced by -Phi_theta
-  // (scaled like det Phi_q, so that it is of order 1; no division near a toggle).
-  const std::vector<Toggle> candidates = solve_with(model, [&, j](const Eigen::MatrixXd& phi_q, const Eigen::VectorXd& phi_theta) {
-    Eigen::MatrixXd m = phi_q;
-    m.col(Eigen::Index(j)) = -phi_theta;
-    for (Eigen::Index c = 0; c < m.cols(); ++c)
-      m.col(c) *= (c == Eigen::Index(j) ? 1.0 : k.column_scale()[std::size_t(c)]) / k.length_scale();
-    return m.determinant();
-  });
-  // Newton in (q, theta) may land on another assembly of the loops: keep the limits of the
-  // mechanism's own, as reached by continuation from its file value.
-  std::vector<Toggle> limits;
-  const double first = model.system.input.values.empty() ? 0.0 : model.system.input.values.front();
-  for (const Toggle& t : candidates) {
-    const MotionTable path = analyse(model, {first, first + std::remainder(t.input - first, 2 * M_PI)});
-    if (path.status(1) == Status::unassembled) continue;
-    const double scale = k.length_scale();
-    bool same = true;
-    for (Eigen::Index i = 0; i < t.q.size(); ++i) {
-      const double unit = k.column_scale()[std::size_t(i)] != 1.0 ? scale : 1.0;
-      double d = path.q(1)[i] - t.q[i];
-      if (unit == 1.0) d = std::remainder(d, 2 * M_PI);  // angles a turn apart are the same
-      same = same && std::fabs(d) < 1e-6 * unit;
+std::vector<std::vector<Toggle>> find_limit_positions(const Model& model, const std::vector<std::size_t>& unknowns) {
+  // One sweep of the turn in 1-deg steps, shared by every unknown asked for: dq/dtheta of all
+  // unknowns from one LU per row, then each sign change of dq_j/dtheta refined alone (a
+  // root of one function of theta, q solved at each trial). Newton in (q, theta) per unknown,
+  // with its gradient by differences, cost O(n^4) a step for every unknown: 32 sliders of 16
+  // loops took 15-23 s in eval's header (issue 33); this is one sweep and a few solves a limit.
+  std::vector<std::vector<Toggle>> limits(unknowns.size());
+  const ConstraintSystem& system = model.system;
+  if (system.input.dimension != Dimension::angle || system.unknowns.empty() || unknowns.empty()) return limits;
+  const double first = system.input.values.empty() ? 0.0 : system.input.values.front();
+  std::vector<double> inputs;
+  for (int k = 0; k <= 360; ++k) inputs.push_back(first + k * M_PI / 180);
+  // The mechanism's own assembly, by continuation from its file value.
+  const MotionTable turn = analyse(model, inputs);
+  Workspace workspace(model);
+  std::vector<Eigen::VectorXd> rates(turn.size());  // dq/dtheta; empty where not assembled or singular
+  for (std::size_t row = 0; row < turn.size(); ++row) {
+    if (turn.status(row) == Status::unassembled) continue;
+    Eigen::VectorXd dq;
+    if (workspace.sensitivity(turn.input(row), turn.q(row), dq)) rates[row] = dq;
+  }
+  for (std::size_t w = 0; w < unknowns.size(); ++w) {
+    const auto j = Eigen::Index(unknowns[w]);
+    std::vector<Toggle>& found = limits[w];
+    const auto keep = [&](double input, const Eigen::VectorXd& q) {
+      const double at = wrapped(input);
+      const bool known = std::any_of(found.begin(), found.end(), [&](const Toggle& t) {
+        const double d = std::fabs(t.input - at);
+        return std::min(d, 2 * M_PI - d) < 1e-7;
+      });
+      if (!known) found.push_back({at, q});
+    };
+    for (std::size_t row = 0; row + 1 < turn.size(); ++row) {
+      if (rates[row].size() == 0 || rates[row + 1].size() == 0) continue;
+      double ga = rates[row][j], gb = rates[row + 1][j];
+      if (ga == 0) {
+        keep(turn.input(row), turn.q(row));
+        continue;
+      }
+      if (!(ga * gb < 0)) continue;
+      // Regula falsi, Illinois variant: q solved from the nearer end of the bracket (1 deg
+      // apart at most, so on the same assembly).
+      double ta = turn.input(row), tb = turn.input(row + 1);
+      Eigen::VectorXd qa = turn.q(row), qb = turn.q(row + 1), q, dq;
+      double t = ta, last = std::numeric_limits<double>::quiet_NaN();
+      bool solved = false;
+      for (int iteration = 0; iteration < 200; ++iteration) {
+        t = (ta * gb - tb * ga) / (gb - ga);
+        if (!(t > std::min(ta, tb) && t < std::max(ta, tb))) {
+          if (std::isfinite(t)) {  // rounded onto an end: the root is there to round-off
+            const bool at_a = std::fabs(ga) < std::fabs(gb);
+            t = at_a ? ta : tb;
+            q = at_a ? qa : qb;
+            solved = true;
+            break;
+          }
+          t = 0.5 * (ta + tb);
+        }
+        q = std::fabs(t - ta) < std::fabs(t - tb) ? qa : qb;
+        if (!workspace.solve_position(t, q) || !workspace.sensitivity(t, q, dq)) break;
+        const double g = dq[j];
+        // Converged when the bracket or the step from the last trial is at round-off.
+        const double tolerance = 1e-14 * (1 + std::fabs(t));
+        if (g == 0 || std::fabs(tb - ta) < tolerance || std::fabs(t - last) < tolerance) {
+          solved = true;
+          break;
+        }
+        last = t;
+        // (ta, ga) the end kept, (tb, gb) the latest trial: halve the kept end's value when
+        // it is kept twice in a row (Illinois), so that it does not stall.
+        if ((g < 0) != (gb < 0)) {
+          ta = tb, ga = gb, qa = qb;
+        } else {
+          ga *= 0.5;
+        }
+        tb = t, gb = g, qb = q;
+      }
+      if (solved) keep(t, q);
     }
-    if (same) limits.push_back(t);
+    std::sort(found.begin(), found.end(), [](const Toggle& a, const Toggle& b) { return a.input < b.input; });
   }
   return limits;
+}
+
+std::vector<Toggle> find_limit_positions(const Model& model, std::size_t j) {
+  return find_limit_positions(model, std::vector<std::size_t>{j}).front();
 }
 
 }  // namespace kinema

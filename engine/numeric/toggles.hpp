@@ -25,5 +25,8 @@ std::vector<Toggle> find_toggles(const Model& model);
 /// The limit positions of unknown `j` of a crank-driven mechanism over a turn: where its
 /// rate is 0 (a slider's dead centres), solved the same way from Phi = 0 and dq_j/dtheta = 0.
 std::vector<Toggle> find_limit_positions(const Model& model, std::size_t j);
+/// The same for several unknowns at once (one sweep of the turn shared by all): the limit
+/// positions of unknowns[w] in element w.
+std::vector<std::vector<Toggle>> find_limit_positions(const Model& model, const std::vector<std::size_t>& unknowns);
 
 }  // namespace kinema

@@ -184,10 +184,15 @@ std::vector<Strokes> slider_strokes(const Model& model) {
   std::vector<Strokes> all;
   const ConstraintSystem& system = model.system;
   if (system.input.dimension != Dimension::angle || !system.frames.empty()) return all;
+  if (system.unknowns.size() > kMaxStrokeUnknowns) return all;
   const OutputScale scale(system);
-  for (std::size_t j = 0; j < system.unknowns.size(); ++j) {
-    if (system.unknowns[j].dimension != Dimension::length) continue;
-    const std::vector<Toggle> limits = find_limit_positions(model, j);
+  std::vector<std::size_t> lengths;
+  for (std::size_t j = 0; j < system.unknowns.size(); ++j)
+    if (system.unknowns[j].dimension == Dimension::length) lengths.push_back(j);
+  const std::vector<std::vector<Toggle>> found = find_limit_positions(model, lengths);  // one sweep for all
+  for (std::size_t w = 0; w < lengths.size(); ++w) {
+    const std::size_t j = lengths[w];
+    const std::vector<Toggle>& limits = found[w];
     if (limits.size() != 2) continue;
     Strokes s;
     s.name = system.unknowns[j].name;

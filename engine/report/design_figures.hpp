@@ -40,8 +40,14 @@ struct Strokes {
   double time_ratio = 0;      ///< The longer stroke's crank angle over the shorter's (at a constant crank rate).
 };
 
+/// Most unknowns of a mechanism whose sliders' strokes are searched: the search solves a
+/// turn in 1-degree steps (a dense solve of all unknowns at each), so a larger system has no
+/// strokes in eval's header, which would otherwise cost as much as a sweep of the turn.
+constexpr std::size_t kMaxStrokeUnknowns = 128;
+
 /// The strokes of every slider coordinate of a crank-driven mechanism that has exactly two
-/// limit positions over a turn (engine/numeric/toggles: dq/dtheta = 0, solved).
+/// limit positions over a turn (engine/numeric/toggles: dq/dtheta = 0, solved); none for a
+/// mechanism of more than kMaxStrokeUnknowns unknowns.
 std::vector<Strokes> slider_strokes(const Model& model);
 std::string describe_strokes(const Strokes& strokes, const std::string& input_name, const std::string& unit);
 

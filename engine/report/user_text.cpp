@@ -43,4 +43,16 @@ std::string one_line(const std::string& text) {
   return out;
 }
 
+std::string terminal_text(const std::string& text) {
+  std::string out;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const std::size_t start = i;
+    const unsigned long c = next_code_point(text, i);
+    if (c == '\n') out += '\n';
+    else if (is_control_character(c) || is_bidi_control(c) || c == 0xFFFD) out += "[" + code_point_name(c) + "]";
+    else out.append(text, start, i + 1 - start);
+  }
+  return out;
+}
+
 }  // namespace kinema

@@ -27,4 +27,10 @@ std::string code_point_name(unsigned long c);
 /// point in brackets ([U+202E]); everything else as it is.
 std::string one_line(const std::string& text);
 
+/// text for a message on the terminal, such as one that repeats a path: line breaks kept,
+/// every other control character (ESC would start a terminal escape), bidirectional control
+/// (U+202E would reverse what follows) and byte that is not UTF-8 shown as its code point in
+/// brackets ([U+001B]), so that the message shows the name as it is without acting on it.
+std::string terminal_text(const std::string& text);
+
 }  // namespace kinema

@@ -119,7 +119,7 @@ class LatexNameCheck {
   }
 
  private:
-  static constexpr int kMaxDepth = 8;  // braces within braces
+  static constexpr int kMaxBraceDepth = 8;  // braces within braces (README, Limits)
   const std::string& latex_;
   const std::string& context_;
   std::size_t i_ = 0;
@@ -183,7 +183,7 @@ class LatexNameCheck {
   }
 
   void group(int depth) {
-    if (depth + 1 > kMaxDepth) fail("nests braces more than " + std::to_string(kMaxDepth) + " deep");
+    if (depth + 1 > kMaxBraceDepth) fail("nests braces more than " + std::to_string(kMaxBraceDepth) + " deep");
     ++i_;  // {
     name(depth + 1);
     if (!at('}')) fail("has unbalanced braces { }; close each { with }");

@@ -4,6 +4,9 @@
 
 #include <filesystem>
 
+#include <kinema/engine/numeric/circuit.hpp>
+#include <kinema/loops/mechanism_file.hpp>
+
 #include "test_support.hpp"
 
 namespace {
@@ -158,7 +161,7 @@ TEST_CASE("a function called with no argument, and nesting past the limit, are b
               {2, {"empty_call.toml:6", "called with no argument"}});
   }
   const std::string deep = std::string(10000, '(') + "a" + std::string(10000, ')');
-  check_bad("deep", replaced("d = \"100 mm\"", "d = \"2.5*" + deep + "\""), {2, {"deep.toml:6", "more than 100 deep"}});
+  check_bad("deep", replaced("d = \"100 mm\"", "d = \"2.5*" + deep + "\""), {2, {"deep.toml:6", "more than 32 deep"}});
 }
 
 // Issue 9, finding 11: a directory, or a file past the size limit, is refused at once.
@@ -252,7 +255,7 @@ TEST_CASE("huge powers, long numbers and formulas that multiply out too far are 
   check_bad("long_number", replaced("d = \"100 mm\"", "d = \"a*" + std::string(150, '9') + "\""),
             {2, {"long_number.toml:6", "more than 100 characters"}});
   check_bad("expands", replaced("- d\"", "- d + 0.001*a*(theta3 + theta4 + theta2 + 1)^60\""),
-            {2, {"expands.toml:15", "loop \"ABCD\"", "multiplies out to more than 10000 terms"}});
+            {2, {"expands.toml:15", "loop \"ABCD\"", "multiplies out to more than 250 terms"}});
   check_bad("float_overflow", replaced("d = \"100 mm\"", "d = \"a*1e300\"\nq = \"d^2*1e300\""),
             {2, {"float_overflow.toml:7", "parameter \"q\""}});
   // Inside the limits the same shapes are read, with the numbers they mean.
@@ -772,4 +775,109 @@ TEST_CASE("a time or variable input that carries a driven angle past 1e9 deg is 
   CHECK(turning.err.find("at t = 5000000 s, theta1 would be 1.43239e+09 deg") != std::string::npos);
   CHECK(kinema_test::run_kinema({"eval", back, "--at", "1e7"}).exit_status == 0);  // back within the limit
   CHECK(kinema_test::run_kinema({"eval", back, "--sweep", "0:1e7:1e7"}).exit_status == 0);  // no value between
+}
+
+// Issue 33: kinema latex over a file's sweep of 100,001 values wrote an 853 MB document in
+// 80 s and 1.7 GB (a results page for each value); 10^6 values never finished. More than
+// kMaxLatexValues values are refused before any work, saying what to do instead.
+TEST_CASE("kinema latex: more results values than the limit are refused at once") {
+  const std::string sweep = kinema_test::write_temporary(
+      "latex_sweep.toml", replaced("value = \"40 deg\"", "sweep = \"0:360:0.0036 deg\""));
+  const std::string million = kinema_test::write_temporary(
+      "latex_million.toml", replaced("value = \"40 deg\"", "sweep = \"0:360:0.00036 deg\""));
+  std::vector<std::string> listed = {"latex", kinema_test::sample("four_bar.toml")};
+  for (int k = 0; k <= 50; ++k) listed.insert(listed.end(), {"--angle", std::to_string(k)});
+  for (const auto& [arguments, count] : std::vector<std::pair<std::vector<std::string>, std::string>>{
+           {{"latex", sweep}, "100001"}, {{"latex", million, "--fragment"}, "1000001"}, {listed, "51"}}) {
+    CAPTURE(count);
+    const auto result = kinema_test::run_kinema_bounded(arguments);
+    CHECK(result.exit_status == 2);
+    CHECK(result.err.find(count + " values are more than 50") != std::string::npos);
+    CHECK(result.err.find("coarser sweep") != std::string::npos);
+    CHECK(result.err.find("kinema eval") != std::string::npos);
+    CHECK(result.out.empty());
+    CHECK(result.peak_kilobytes < 2 * 1024 * 1024);
+  }
+  CHECK(kinema_test::run_kinema_bounded({"latex", sweep}).err.find("latex_sweep.toml:") != std::string::npos);
+  CHECK(kinema::kMaxLatexValues == 50);
+}
+
+// Issue 33: ESC and U+202E in a file name or an -o path reached the terminal as they were
+// in kinema's messages (a terminal acts on ESC; U+202E reverses the rest of the line).
+TEST_CASE("messages that repeat a path show its control and bidirectional characters escaped") {
+  const std::string odd = "odd\x1b[31m\u202e";
+  const std::string bad = kinema_test::write_temporary(odd + ".toml", replaced("a = \"40 mm\"", "a = \"40 parsecs\""));
+  const std::string missing = kinema_test::fresh_directory("odd_paths") + "/" + odd + "missing.toml";
+  const std::string output = kinema_test::fresh_directory("odd_paths") + "/no" + odd + "/out.csv";
+  for (const auto& arguments : std::vector<std::vector<std::string>>{
+           {"eval", bad}, {"eval", missing}, {"latex", bad}, {"eval", kinema_test::sample("four_bar.toml"), "-o", output},
+           {"eval", kinema_test::sample("four_bar.toml"), "--angle", "\x1b]0;title\x07"}}) {
+    CAPTURE(arguments[1]);
+    const auto result = kinema_test::run_kinema_bounded(arguments);
+    CHECK(result.exit_status >= 2);  // a refusal (5: the output cannot be written), not internal
+    CHECK(result.err.find('\x1b') == std::string::npos);
+    CHECK(result.err.find('\x07') == std::string::npos);
+    CHECK(result.err.find("\u202e") == std::string::npos);
+    CHECK(result.err.find("[U+001B]") != std::string::npos);
+  }
+  CHECK(kinema_test::run_kinema_bounded({"eval", bad}).err.find("odd[U+001B][31m[U+202E].toml:") != std::string::npos);
+}
+
+// Issue 33: (theta3 + theta4 + 1)^100 in a loop (5,151 terms, inside the old limit of
+// 10,000) took 27-36 s to derive and past 120 s in latex, ^80 12-16 s. Refused now at once;
+// ^20 (231 terms) is derived and typeset within the time limit.
+TEST_CASE("a loop term that multiplies out past the limit is refused at once, one inside it is derived") {
+  const auto with_power = [](int n) {
+    return replaced("d = \"100 mm\"", "d = \"100 mm\"\nk = \"1e-9 mm\"",
+                    replaced("- d\"", "- d + k*(theta3 + theta4 + 1)^" + std::to_string(n) + "\""));
+  };
+  for (int n : {100, 80}) {
+    const std::string path = kinema_test::write_temporary("power_" + std::to_string(n) + ".toml", with_power(n));
+    for (const std::string command : {"derive", "latex", "eval"}) {
+      CAPTURE(n);
+      CAPTURE(command);
+      const auto result = kinema_test::run_kinema_bounded({command, path});
+      CHECK(result.exit_status == 2);
+      CHECK(result.err.find("power_" + std::to_string(n) + ".toml:") != std::string::npos);
+      CHECK(result.err.find("multiplies out to more than 250 terms") != std::string::npos);
+    }
+  }
+  const std::string inside = kinema_test::write_temporary("power_20.toml", with_power(20));
+  for (const std::string command : {"derive", "latex"}) {
+    CAPTURE(command);
+    const auto result = kinema_test::run_kinema_bounded({command, inside});
+    CHECK(result.exit_status == 0);
+    CHECK(result.peak_kilobytes < 2 * 1024 * 1024);
+  }
+}
+
+// Issue 33: --circuit 0.002 on a chain of 63 links worked 15-47 s before it finished or was
+// refused (each of 180,000 rows a turn solves all 62 unknowns). The rows a circuit may have
+// shrink with the chain (kMaxCircuitRowUnknowns), and a turn that cannot fit is refused at once.
+TEST_CASE("--circuit with a step too fine for a long chain is refused before the walk") {
+  std::string joints = "[joints]\nA = { ground = true, at = [\"0 mm\", \"0 mm\"] }\nB = { at = [\"0 mm\", \"50 mm\"] }\n";
+  std::string links = "[links]\n1 = { joints = [\"A\", \"B\"] }\n";
+  std::string previous = "B";
+  double x = 0, y = 50;
+  for (int k = 0; k < 31; ++k) {  // dyads in a row, each driven by the last one's rocker
+    x += 70, y -= 5;
+    const std::string c = "C" + std::to_string(k), d = "D" + std::to_string(k);
+    joints += c + " = { at = [\"" + std::to_string(x) + " mm\", \"" + std::to_string(y) + " mm\"] }\n";
+    joints += d + " = { ground = true, at = [\"" + std::to_string(x) + " mm\", \"" + std::to_string(y - 45) + " mm\"] }\n";
+    links += "c" + std::to_string(k) + " = { joints = [\"" + previous + "\", \"" + c + "\"] }\n";
+    links += "r" + std::to_string(k) + " = { joints = [\"" + d + "\", \"" + c + "\"] }\n";
+    previous = c;
+  }
+  const std::string path = kinema_test::write_temporary(
+      "chain_63_links.toml", "title = \"63 links\"\n" + joints + links +
+                                 "[driver]\nlink = \"1\"\nname = \"phi\"\nvalue = \"90 deg\"\nrate = \"10 rad/s\"\n");
+  const auto refused = kinema_test::run_kinema_bounded({"eval", path, "--circuit", "0.002", "--format", "csv"});
+  CHECK(refused.exit_status == 2);
+  CHECK(refused.err.find("--circuit 0.002: a turn of the input is 180000 rows, more than the 16129 rows a circuit of "
+                         "62 unknowns may have") != std::string::npos);
+  CHECK(refused.err.find("give a step of at least 0.0224 deg") != std::string::npos);
+  const auto coarse = kinema_test::run_kinema_bounded({"eval", path, "--circuit", "0.0224", "--format", "csv"});
+  CHECK(coarse.exit_status == 0);
+  CHECK(coarse.peak_kilobytes < 2 * 1024 * 1024);
+  CHECK(kinema::kMaxCircuitRowUnknowns == 1'000'000);
 }

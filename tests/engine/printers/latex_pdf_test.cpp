@@ -516,3 +516,29 @@ TEST_CASE("derive --format latex and kinema latex: every sample with every metho
     CHECK(box.points <= 1.0);
   }
 }
+
+// Issue 33: sin nested 40 deep in a loop was accepted (parentheses up to 100 deep) and gave
+// pdflatex "Dimension too large" in kinema latex and derive --format latex (60 deep
+// overflowed its buffer). The deepest formula the reader accepts now typesets in both; one
+// level more is refused with file:line.
+TEST_CASE("the deepest nesting the formula reader accepts typesets in derive --format latex and kinema latex") {
+  const auto nested_loop = [](int depth) {
+    std::string nested = "theta3";
+    for (int k = 0; k < depth; ++k) nested = "sin(" + nested + ")";
+    return kinema_test::replaced("d = \"100 mm\"", "d = \"100 mm\"\nk = \"1e-9 mm\"",
+                                 kinema_test::replaced("- d\"", "- d + k*" + nested + "\""));
+  };
+  const std::string deepest = kinema_test::write_temporary("deepest_formula.toml", nested_loop(32));
+  const auto document = kinema_test::run_kinema_bounded({"latex", deepest});
+  REQUIRE(document.exit_status == 0);
+  std::string log;
+  CHECK(compile_document(document.out, "deepest_formula", log) >= 3);
+  const auto derived = kinema_test::run_kinema_bounded({"derive", "--format", "latex", deepest});
+  REQUIRE(derived.exit_status == 0);
+  CHECK(compiles(derived.out, "deepest_formula_derive", log));
+  const auto deeper = kinema_test::run_kinema_bounded(
+      {"latex", kinema_test::write_temporary("deeper_formula.toml", nested_loop(33))});
+  CHECK(deeper.exit_status == 2);
+  CHECK(deeper.err.find("deeper_formula.toml:") != std::string::npos);
+  CHECK(deeper.err.find("more than 32 deep") != std::string::npos);
+}

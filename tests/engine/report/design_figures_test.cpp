@@ -145,3 +145,46 @@ TEST_CASE("design figures: a crank-shaper's time ratio against the closed form")
   CHECK(ram->time_ratio == doctest::Approx((360 - 2 * phi) / (2 * phi)).epsilon(1e-9));
   CHECK(ram->time_ratio == doctest::Approx(1.5521).epsilon(1e-4));  // as the sample's comment says
 }
+
+namespace {
+
+// n loops a*exp(I*theta2) = x_k + I*y_k: 2n sliding lengths, each at its limits a quarter
+// turn apart (x_k at 0 and 180 deg, y_k at 90 and 270 deg).
+std::string many_sliders(int n) {
+  std::string text = "title = \"many sliders\"\n[parameters]\na = \"50 mm\"\n[input]\nname = \"theta2\"\n"
+                     "value = \"30 deg\"\nrate = \"10 rad/s\"\n[output]\nlength = \"mm\"\n[unknowns]\n";
+  for (int k = 0; k < n; ++k) text += "x" + std::to_string(k) + " = \"40 mm\"\ny" + std::to_string(k) + " = \"20 mm\"\n";
+  text += "[loops]\n";
+  for (int k = 0; k < n; ++k)
+    text += "L" + std::to_string(k) + " = \"a*exp(I*theta2) - (x" + std::to_string(k) + " + I*y" + std::to_string(k) + ")\"\n";
+  return text;
+}
+
+}  // namespace
+
+// Issue 33: the limit search ran Newton in (q, theta) once per length unknown, O(n^4) a step:
+// 16 loops of 32 sliders took 15-23 s in the table's and JSON's header, 64 loops past 200 s.
+// One sweep of the turn now serves every slider; past kMaxStrokeUnknowns there are no strokes.
+TEST_CASE("design figures: the strokes of 128 sliders in eval's header within the time limit") {
+  const std::string path = kinema_test::write_temporary("many_sliders.toml", many_sliders(64));
+  const auto table = kinema_test::run_kinema_bounded({"eval", path});
+  REQUIRE(table.exit_status == 0);
+  std::size_t lines = 0;
+  for (auto at = table.out.find("slider: "); at != std::string::npos; at = table.out.find("slider: ", at + 1)) ++lines;
+  CHECK(lines == 128);
+  CHECK(table.out.find("slider: x63 at its limits at theta2 = 0.0000 deg (50 mm) and 180.0000 deg (-50 mm); strokes of "
+                       "180 and 180 deg of crank, time ratio 1\n") != std::string::npos);
+  CHECK(table.out.find("slider: y0 at its limits at theta2 = 90.0000 deg (50 mm) and 270.0000 deg (-50 mm)") !=
+        std::string::npos);
+  const auto json = kinema_test::run_kinema_bounded({"eval", path, "--format", "json"});
+  REQUIRE(json.exit_status == 0);
+  std::size_t ratios = 0;
+  for (auto at = json.out.find("\"time_ratio\""); at != std::string::npos; at = json.out.find("\"time_ratio\"", at + 1)) ++ratios;
+  CHECK(ratios == 128);
+  CHECK(json.peak_kilobytes < 2 * 1024 * 1024);
+  // The largest system (256 unknowns) has no strokes: its header costs nothing.
+  const auto largest = kinema_test::run_kinema_bounded({"eval", kinema_test::write_temporary("most_sliders.toml", many_sliders(128))});
+  REQUIRE(largest.exit_status == 0);
+  CHECK(largest.out.find("slider: ") == std::string::npos);
+  CHECK(kinema::kMaxStrokeUnknowns == 128);
+}
