@@ -15,17 +15,12 @@ namespace {
 
 using GiNaC::ex;
 
-<<<<<<< HEAD
 // Limits (docs/limits.md).
-constexpr int kMaxDepth = 100;                 ///< parentheses
-=======
-// Limits (README, "Mechanism files").
 // Parentheses (a function's among them): sin nested 38 deep in a loop gave pdflatex
 // "Dimension too large" in kinema latex (its derivative's product of cosines is one line
 // wider than TeX's largest dimension), 60 deep overflowed its buffer; 36 typeset everywhere
 // kinema puts a formula (derive --format latex, the worked solution), 32 leaves a margin.
 constexpr int kMaxDepth = 32;
->>>>>>> issue33-bounds
 constexpr int kMaxSignRun = 10;                ///< + and - signs in a row (each one more level of the parser)
 constexpr std::size_t kMaxLiteralLength = 100;  ///< characters of one number
 constexpr std::size_t kMaxLiteralExponentDigits = 4;  ///< digits of its exponent (1e9999 at most)

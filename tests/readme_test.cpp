@@ -120,6 +120,7 @@ TEST_CASE("README's TOML snippets are lines of the samples they name") {
     ++snippets;
   }
   CHECK(snippets == 3);  // one per form
+}
 
 // Issue 33: the docs list every limit with the reason for it. Each kMax constant of the
 // sources (engine/, loops/, cli/) is named in docs/limits.md with its value.
