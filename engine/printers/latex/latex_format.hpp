@@ -83,6 +83,10 @@ class DocumentNumbers {
   /// in degrees, angular rates in rad/s) of a quantity of `dimension` (length, angle,
   /// or number: never zeroed) differentiated `order` times (0, 1, 2).
   std::string operator()(double shown, Dimension dimension, int order, int digits = 6) const;
+  /// A ratio of two of the mechanism's rates (omega_j / omega_driver): 0 below 1e-12, the
+  /// solver's accuracy relative to the driver's (the parallelogram's omega2/omega1 came out
+  /// 1.96e-16).
+  std::string ratio(double value, int digits = 6) const;
   /// The value itself, 0 where it is round-off.
   double cleaned(double shown, Dimension dimension, int order) const;
   /// Below this (document units) a value of that kind is round-off.

@@ -221,12 +221,15 @@ void write_tikz_polygon(std::ostream& out, const ConstraintSystem& system, const
   out << "\\begin{tabular}{llrrl}\n\\toprule\n" << (velocity ? "velocity" : "acceleration")
       << " & kind & on the figure & read off & formula \\\\\n & & $\\mathrm{cm}$ & $" << unit << "$ & $" << unit
       << "$ \\\\\n\\midrule\n";
+  // The document's numbers: a relative velocity across a link that does not turn is 0, not
+  // its round-off (BC omega2 = 2.2e-16 m/s in the parallelogram).
+  const DocumentNumbers number(system);
   for (const PolygonArrow& a : polygon.arrows) {
     const double read_off = polygon_read_off(a, per_cm, scale.length);
     out << "$" << a.latex << "$ & " << kind_name(a.kind) << " & $" << format_fixed(read_off / per_cm, 2) << "$ & $"
-        << latex_number(read_off, 4) << "$ & $";
+        << number(read_off, Dimension::length, polygon.order, 4) << "$ & $";
     if (!a.formula.is_zero()) out << form(a.formula, TextbookForm::Style::latex) << " = ";
-    out << latex_number(a.formula_value / scale.length, 6) << "$ \\\\\n";
+    out << number(a.formula_value / scale.length, Dimension::length, polygon.order, 6) << "$ \\\\\n";
   }
   out << "\\bottomrule\n\\end{tabular}\n\n";
 }

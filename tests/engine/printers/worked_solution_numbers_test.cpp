@@ -12,7 +12,9 @@
 #include <string>
 #include <vector>
 
+#include <kinema/engine/errors.hpp>
 #include <kinema/engine/printers/latex/latex_format.hpp>
+#include <kinema/engine/symbolic/dyad_method.hpp>
 #include <kinema/engine/printers/printer.hpp>
 #include "../../test_support.hpp"
 
@@ -213,6 +215,47 @@ TEST_CASE("engine/printers/latex: round-off prints as 0 at the problem's scale")
   CHECK(numbers(1.00804e-16, kinema::Dimension::length, 1) == "0");
   CHECK(numbers(1e-9, kinema::Dimension::angle, 1) == "1\\cdot 10^{-9}");  // small, but no round-off
   CHECK(numbers(1e-16, kinema::Dimension::number, 0) == "1\\cdot 10^{-16}");  // a ratio has no scale
+}
+
+TEST_CASE("engine/printers/latex: no round-off anywhere in a worked solution, every sample and method") {
+  // The parallelogram's polygon table printed BC omega2 = 2.22045e-16 m/s and its instant
+  // centres' ratio omega2/omega1 = 1.96331e-16: no number stated in the document (comments,
+  // which carry the solver's formulas, aside) has an exponent below -12.
+  const std::regex noise(R"(10\^\{-(1[3-9]|[2-9][0-9]|[0-9]{3,})\}|[0-9]e-(1[3-9]|[2-9][0-9]|[0-9]{3,}))");
+  for (const std::string sample : kinema_test::kSamples) {
+    const kinema::Model model = kinema::load_model(kinema_test::sample(sample));
+    const MotionTable values = kinema::analyse(model, model.system.input.values);
+    for (kinema::DerivationMethod method : {kinema::DerivationMethod::loops, kinema::DerivationMethod::relative_velocity,
+                                            kinema::DerivationMethod::joint_coordinates}) {
+      if (method != kinema::DerivationMethod::loops) {
+        try {
+          kinema::check_method_applies(model.system, method);
+        } catch (const kinema::InputError&) {
+          continue;
+        }
+      }
+      CAPTURE(sample);
+      CAPTURE(kinema::method_name(method));
+      kinema::PrintJob job{model, &values, nullptr};
+      job.method = method;
+      std::ostringstream out;
+      kinema::find_printer(PrintKind::document, "latex")->print(out, job);
+      const std::string text = std::regex_replace(out.str(), std::regex(R"((^|[^\\])%[^\n]*)"), "$1");
+      std::smatch found;
+      if (std::regex_search(text, found, noise)) {
+        const auto at = static_cast<std::size_t>(found.position(0));
+        const auto from = text.rfind('\n', at);
+        FAIL_CHECK("round-off stated: " << text.substr(from + 1, text.find('\n', at) - from - 1));
+      }
+    }
+  }
+}
+
+TEST_CASE("engine/printers/latex: the parallelogram's polygon, centres and three methods state 0 for link 2") {
+  const std::string tex = worked_solution("problem_4_1_parallelogram.toml");
+  CHECK(has(tex, "$\\mathit{BC} \\omega_{2} = 0$"));
+  CHECK(has(tex, "\\overline{I_{02}I_{12}}$ & $0$ & $0$"));
+  CHECK(has(tex, "\n2 & $0$ & "));
 }
 
 TEST_CASE("engine/printers/latex: given data as the file gave it, never a machine representation") {
