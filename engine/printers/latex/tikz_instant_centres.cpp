@@ -127,7 +127,7 @@ void write_tikz_instant_centres(std::ostream& out, const ConstraintSystem& syste
     out << "\\filldraw[red!75!black, fill=white] " << xy(centre.at) << " circle (0.07) node[above right, font=\\scriptsize] {$"
         << centre_latex(c, centre) << "$};\n";
   }
-  out << "\\end{tikzpicture}\n\\end{center}\n";
+  out << "\\end{tikzpicture}\n" << latex_figure_caption("Instant centres") << "\\end{center}\n";
   if (system.linkage) {
     out << "Instant centres: the primary ones at the pins and, for a slider, at infinity across its line; every "
            "other by the Aronhold--Kennedy theorem, where two lines of centres it shares a body with cross (dashed).";

@@ -261,7 +261,7 @@ void write_tikz_mechanism(std::ostream& out, const ConstraintSystem& system, con
           << "," << format_fixed(tip.imag()) << ");\n";
     }
   }
-  out << "\\end{tikzpicture}\n\\end{center}\n";
+  out << "\\end{tikzpicture}\n" << latex_figure_caption("The mechanism at the instant") << "\\end{center}\n";
   const double length_per_cm = 1.0 / cm / scale.length;
   out << "Drawing scale: 1\\,cm = $" << latex_number(length_per_cm, 3) << "$\\," << latex_escape_text(scale.length_unit);
   if (velocity_scale > 0) {
