@@ -381,12 +381,6 @@ class DocumentWriter {
     return text;
   }
 
-  std::string driver_second_rate() const {
-    const Dimension kind = system_.input.dimension;
-    return numbers_(scale_.rate(kind, system_.input.second_rate_value), kind, 2) + "\\,\\mathrm{" +
-           scale_.second_rate_unit(kind) + "}";
-  }
-
   // The design figures typeset (describe_four_bar and describe_strokes write them for a
   // terminal: "phi = 0.0000 deg (-0.0344774 m)").
   std::string degrees(double deg) const { return numbers_(deg, Dimension::angle, 0) + "^{\\circ}"; }
@@ -485,17 +479,42 @@ class DocumentWriter {
     return plain ? "$" + number + "\\,\\mathrm{" + unit + "}$" : "$" + number + "$ " + latex_escape_text(unit);
   }
 
-  // The driver's rate as the document states it: in rpm too where the file's rate is a
-  // round number of revolutions a minute (60 rpm = 6.283 rad/s).
+  // The driver's rate as the document states it: as the file wrote it ("60 rpm",
+  // "90 deg/s") and its value in the document's unit (= 6.283 rad/s); once where the file
+  // wrote it in that unit.
   std::string driver_rate(double si) const {
     const Dimension kind = system_.input.dimension;
-    const std::string in_units = numbers_(scale_.rate(kind, si), kind, 1) + "\\,\\mathrm{" + scale_.rate_unit(kind) + "}";
-    if (kind != Dimension::angle || si == 0) return in_units;
-    const double rpm = si * 60 / (2 * M_PI);
-    const bool round_rpm = std::fabs(rpm - round_significant(rpm, 4)) <= 1e-9 * std::fabs(rpm);
-    const bool round_rad = std::fabs(si - round_significant(si, 4)) <= 1e-9 * std::fabs(si);
-    if (!round_rpm || round_rad) return in_units;
-    return latex_number(rpm) + "\\,\\mathrm{rpm} = " + latex_number(si, 4) + "\\,\\mathrm{rad/s}";
+    return as_written(system_.input.rate_text, scale_.rate(kind, si), kind, 1, scale_.rate_unit(kind));
+  }
+
+  std::string driver_second_rate() const {
+    const Dimension kind = system_.input.dimension;
+    return as_written(system_.input.second_rate_text, scale_.rate(kind, system_.input.second_rate_value), kind, 2,
+                      scale_.second_rate_unit(kind));
+  }
+
+  // A rate in math mode: `text` as written (a number and a unit), then " = " its value
+  // `shown` in the document's `unit`; that value alone where the text is missing, is in
+  // that unit, or is not a plain number and unit.
+  std::string as_written(const std::string& text, double shown, Dimension kind, int order, const std::string& unit) const {
+    const std::string in_units = numbers_(shown, kind, order) + "\\,\\mathrm{" + unit + "}";
+    std::size_t end = 0;
+    while (end < text.size() && (std::isdigit(static_cast<unsigned char>(text[end])) || std::string("+-.eE").find(text[end]) != std::string::npos))
+      ++end;
+    std::size_t u = end;
+    while (u < text.size() && text[u] == ' ') ++u;
+    const std::string written_unit = text.substr(u);
+    const bool plain = end > 0 && !written_unit.empty() &&
+                       std::all_of(written_unit.begin(), written_unit.end(), [](char c) {
+                         return std::isalnum(static_cast<unsigned char>(c)) || c == '/' || c == '^';
+                       });
+    if (!plain || written_unit == unit) return in_units;
+    std::string number = text.substr(0, end);
+    if (number.front() == '+') number = number.substr(1);
+    const auto e = number.find_first_of("eE");
+    if (e != std::string::npos) number = number.substr(0, e) + "\\cdot 10^{" + std::to_string(std::atoi(number.c_str() + e + 1)) + "}";
+    const std::string value = numbers_(shown, kind, order, 4);
+    return number + "\\,\\mathrm{" + written_unit + "} = " + value + "\\,\\mathrm{" + unit + "}";
   }
 
   // The solved rates (order 1) or second rates (order 2), block by block, each with

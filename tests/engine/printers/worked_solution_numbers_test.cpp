@@ -338,3 +338,31 @@ TEST_CASE("engine/printers/latex: each substituted line evaluates to the value i
   CHECK(!std::regex_search(derivation, std::regex(R"(&\s*= 0)")));
   CHECK(has(derivation, "\\text{BC:}\\quad & \\frac{"));
 }
+
+TEST_CASE("engine/printers/latex: the driver's rate as the file wrote it, and its SI value") {
+  // Only a round number of rpm showed as rpm (60 rpm = 6.283 rad/s); 90 deg/s showed as
+  // "15 rpm = 1.571 rad/s" and 12.3456 rpm as 1.29284 rad/s alone.
+  const auto document_of = [](const std::string& name, const std::string& text) {
+    const kinema::Model model = kinema::load_model(kinema_test::write_temporary(name, text));
+    const MotionTable values = kinema::analyse(model, model.system.input.values);
+    return std::make_pair(model.system.input.rate_text, print(PrintKind::document, model, &values));
+  };
+  const auto [degrees_text, degrees] =
+      document_of("rate_in_deg_per_s.toml", kinema_test::replaced("rate = \"10 rad/s\"", "rate = \"90 deg/s\""));
+  CHECK(degrees_text == "90 deg/s");
+  CHECK(has(degrees, "= 90\\,\\mathrm{deg/s} = 1.571\\,\\mathrm{rad/s}"));
+  CHECK(!has(degrees, "rpm"));
+  // The joints-and-links front end carries it too, and `kinema loops` writes it as written.
+  const std::string joints = kinema_test::replaced(
+      "rate = \"60 rpm\"", "rate = \"12.3456 rpm\"", kinema_test::read_file(kinema_test::sample("problem_4_4_joints.toml")));
+  const auto [rpm_text, rpm] = document_of("rate_in_rpm.toml", joints);
+  CHECK(rpm_text == "12.3456 rpm");
+  CHECK(has(rpm, "\\omega_{1} = 12.3456\\,\\mathrm{rpm} = 1.293\\,\\mathrm{rad/s}"));
+  const auto loops = kinema_test::run_kinema({"loops", kinema_test::write_temporary("rate_in_rpm.toml", joints)});
+  REQUIRE(loops.exit_status == 0);
+  CHECK(has(loops.out, "rate = \"12.3456 rpm\""));
+  // Written in the document's unit: once (10 rad/s, not 10 rad/s = 10 rad/s).
+  const std::string four_bar = worked_solution("four_bar.toml");
+  CHECK(has(four_bar, "= 10\\,\\mathrm{rad/s}$"));
+  CHECK(!has(four_bar, "\\mathrm{rad/s} = 10"));
+}
