@@ -89,7 +89,8 @@ std::string DocumentNumbers::operator()(double shown, Dimension dimension, int o
 }
 
 std::string latex_figure_caption(const std::string& text) {
-  return "\\par\\smallskip\\refstepcounter{figure}{\\small Figure~\\thefigure: " + text + "}\\par\n";
+  // \nopagebreak: the caption stays on its drawing's page.
+  return "\\par\\nopagebreak\\smallskip\\refstepcounter{figure}{\\small Figure~\\thefigure: " + text + "}\\par\n";
 }
 
 std::string DocumentNumbers::ratio(double value, int digits) const {
