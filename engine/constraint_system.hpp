@@ -50,6 +50,10 @@ struct Driver : Coordinate {
   std::vector<double> values;  ///< SI values from the file (may be empty).
   double rate_value = 0.0;     ///< SI; negative = clockwise / retracting.
   double second_rate_value = 0.0;
+  /// The rate and second rate as the file wrote them ("60 rpm", "90 deg/s"): a document
+  /// states what was written beside its SI value. Empty where no file gave them (a
+  /// spatial chain's time, a system built in code).
+  std::string rate_text, second_rate_text;
   std::vector<FollowingAngle> followers;
   double follower_origin = 0.0, follower_scale = 1.0;
 };

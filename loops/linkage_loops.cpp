@@ -1166,9 +1166,17 @@ std::string vector_loop_file(const Mechanism& m) {
     out << "]\n";
   }
   const Dimension rate = rate_dimension(input.dimension);
-  out << "rate = " << quoted(format_significant(input.rate, 15) + (rate == Dimension::angular_velocity ? " rad/s" : " m/s")) << "\n";
+  // The driver's rates as the joints-and-links file wrote them ("60 rpm"), so that the
+  // vector-loop file's documents state them so too; in SI where none was written.
+  out << "rate = "
+      << quoted(!input.rate_text.empty() ? input.rate_text
+                                         : format_significant(input.rate, 15) + (rate == Dimension::angular_velocity ? " rad/s" : " m/s"))
+      << "\n";
   out << "second_rate = "
-      << quoted(format_significant(input.second_rate, 15) + (rate == Dimension::angular_velocity ? " rad/s^2" : " m/s^2")) << "\n";
+      << quoted(!input.second_rate_text.empty()
+                    ? input.second_rate_text
+                    : format_significant(input.second_rate, 15) + (rate == Dimension::angular_velocity ? " rad/s^2" : " m/s^2"))
+      << "\n";
   if (!input.rate_name.empty()) out << "rate_name = " << quoted(input.rate_name) << "\n";
   if (!input.second_rate_name.empty()) out << "second_rate_name = " << quoted(input.second_rate_name) << "\n";
   out << "\n[unknowns]\n";

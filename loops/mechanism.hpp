@@ -48,6 +48,9 @@ struct Input {
   std::vector<double> values;  ///< SI values from the file (may be empty: CLI gives them).
   double rate = 0.0;           ///< SI; negative = clockwise / retracting.
   double second_rate = 0.0;    ///< SI.
+  /// The rate and second rate as the file wrote them ("60 rpm"), for documents to show
+  /// (empty: not given, the second rate then 0).
+  std::string rate_text, second_rate_text;
   std::string rate_name;
   std::string second_rate_name;
   SourceLocation where;

@@ -355,8 +355,10 @@ class FileReader {
                        "e.g. \"60 rpm\" or \"-42 rad/s\" for clockwise)");
     }
     input.rate = bounded_rate(at(table, "rate"), "rate", rate);
+    input.rate_text = string_value(at(table, "rate"), "rate");
     if (has(table, "second_rate")) {
       input.second_rate = bounded_rate(at(table, "second_rate"), "second_rate", second);
+      input.second_rate_text = string_value(at(table, "second_rate"), "second_rate");
     }
     input.rate_name = optional_name(table, "rate_name");
     input.second_rate_name = optional_name(table, "second_rate_name");

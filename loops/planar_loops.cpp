@@ -208,6 +208,8 @@ class Builder {
     driver.values = input.values;
     driver.rate_value = input.rate;
     driver.second_rate_value = input.second_rate;
+    driver.rate_text = input.rate_text;  // for documents: "60 rpm" as written
+    driver.second_rate_text = input.second_rate_text;
     powers_[driver.symbol] = input.dimension == Dimension::length ? 1 : 0;
     for (const Unknown& unknown : mechanism_.unknowns) {
       Coordinate q;

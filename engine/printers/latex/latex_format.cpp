@@ -88,6 +88,15 @@ std::string DocumentNumbers::operator()(double shown, Dimension dimension, int o
   return latex_number(cleaned(shown, dimension, order), digits);
 }
 
+std::string latex_figure_caption(const std::string& text) {
+  // \nopagebreak: the caption stays on its drawing's page.
+  return "\\par\\nopagebreak\\smallskip\\refstepcounter{figure}{\\small Figure~\\thefigure: " + text + "}\\par\n";
+}
+
+std::string DocumentNumbers::ratio(double value, int digits) const {
+  return latex_number(std::fabs(value) < 1e-12 ? 0.0 : value, digits);
+}
+
 std::string to_latex(const GiNaC::ex& e) { return TextbookForm()(e, TextbookForm::Style::latex); }
 
 std::string latex_exp(const GiNaC::ex& angle) {

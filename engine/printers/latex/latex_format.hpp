@@ -67,6 +67,17 @@ std::string latex_matrix(const GiNaC::matrix& matrix, const TextbookForm& form);
 /// a\,e^{i\theta_{2}} + b\,e^{i\theta_{3}} - ...
 std::string latex_vector_loop(const EquationGroup& loop);
 
+/// Where a worked solution starts a part on a new page: a new page only when the page so
+/// far is nearly half full, so that the tail of a derivation or of a table (the
+/// rest of a page that ran over) is never a page of its own (plain TeX, as a fragment
+/// compiles in anyone's notes: \pagetotal is the current page's height after \par).
+inline constexpr const char* kLatexPartBreak = "\\par\\penalty0\\relax\\ifdim\\pagetotal>0.45\\pagegoal\\clearpage\\fi\n";
+
+/// A figure's numbered caption, under its drawing ("Figure 3: Velocity polygon"): the
+/// figure counter stepped by hand rather than a float, so that the drawing stays where
+/// the text refers to it and a fragment needs no package.
+std::string latex_figure_caption(const std::string& text);
+
 /// A number for math mode, `digits` significant ("1\cdot 10^{-5}" for 1e-05).
 std::string latex_number(double value, int digits = 6);
 
@@ -83,6 +94,10 @@ class DocumentNumbers {
   /// in degrees, angular rates in rad/s) of a quantity of `dimension` (length, angle,
   /// or number: never zeroed) differentiated `order` times (0, 1, 2).
   std::string operator()(double shown, Dimension dimension, int order, int digits = 6) const;
+  /// A ratio of two of the mechanism's rates (omega_j / omega_driver): 0 below 1e-12, the
+  /// solver's accuracy relative to the driver's (the parallelogram's omega2/omega1 came out
+  /// 1.96e-16).
+  std::string ratio(double value, int digits = 6) const;
   /// The value itself, 0 where it is round-off.
   double cleaned(double shown, Dimension dimension, int order) const;
   /// Below this (document units) a value of that kind is round-off.

@@ -57,7 +57,7 @@ class PlotWriter {
     if (sweep_.empty()) return;
     const Dimension kind = system_.input.dimension;
     const std::string input = to_latex(system_.input.symbol);
-    out_ << "\\clearpage\n\\subsection*{Over the input range}\nThe unknowns, their rates and second rates";
+    out_ << kLatexPartBreak << "\\subsection*{Over the input range}\nThe unknowns, their rates and second rates";
     if (!system_.points.empty()) out_ << ", and the speeds of the points";
     out_ << " against $" << input << "$. Gaps: positions that cannot be assembled; red dashed "
             "lines: singular positions (toggle or dead centre), where the rates are not defined.\n\n";
@@ -169,7 +169,7 @@ class PlotWriter {
          << box << "xlabel={$x$ " << l << "}, ylabel={$y$ " << l
          << "}, unbounded coords=jump, legend style={font=\\footnotesize, at={(0.5,1.02)}, anchor=south, "
             "legend columns=-1}]\n"
-         << curves << "\\end{axis}\n\\end{tikzpicture}\n\\end{center}\n\n";
+         << curves << "\\end{axis}\n\\end{tikzpicture}\n" << latex_figure_caption("Paths of the points") << "\\end{center}\n\n";
   }
 
   static constexpr std::size_t kBreak = static_cast<std::size_t>(-1);
@@ -215,7 +215,10 @@ class PlotWriter {
       out_ << " };\n\\addlegendentry{" << legends[k] << "}\n";
     }
     singular_marks();
-    end_axis();
+    // Numbered, as every figure of the document: what is plotted against the input.
+    std::string plotted;
+    for (std::size_t k = 0; k < legends.size(); ++k) plotted += (k ? ", " : "") + legends[k];
+    end_axis(plotted + " against $" + to_latex(system_.input.symbol) + "$");
   }
 
   // Curves told apart where they coincide: each its own dash pattern and marks, spaced
@@ -231,7 +234,8 @@ class PlotWriter {
   }
 
   void begin_axis(const std::string& x_label, const std::string& y_label, int index) {
-    out_ << (index % 2 ? "\\hfill" : "\\noindent") << "\\begin{minipage}{0.48\\linewidth}\n"
+    // Each pair of plots a paragraph of its own, so that a page may break between pairs.
+    out_ << (index % 2 ? "\\hfill" : index ? "\\par\\medskip\\noindent" : "\\noindent") << "\\begin{minipage}{0.48\\linewidth}\n"
          << "\\begin{tikzpicture}\n\\begin{axis}[width=0.85\\linewidth, height=5.5cm, xlabel={" << x_label
          << "}, ylabel={" << y_label
          << "}, " << (turn_ ? "xmin=0, xmax=360, xtick={0,90,180,270,360}, " : "max space between ticks=40, ")
@@ -240,7 +244,9 @@ class PlotWriter {
          << "unbounded coords=jump, legend style={font=\\footnotesize, at={(0.5,1.02)}, anchor=south, "
          << "legend columns=-1}]\n";
   }
-  void end_axis() { out_ << "\\end{axis}\n\\end{tikzpicture}\n\\end{minipage}\n"; }
+  void end_axis(const std::string& caption) {
+    out_ << "\\end{axis}\n\\end{tikzpicture}\n" << latex_figure_caption(caption) << "\\end{minipage}\n";
+  }
 
   void singular_marks() {
     for (std::size_t row = 0; row < sweep_.size(); ++row) {

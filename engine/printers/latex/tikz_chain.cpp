@@ -122,7 +122,7 @@ void write_tikz_chain(std::ostream& out, const ConstraintSystem& system, const M
   }
   for (const auto& [where, names] : names_at)
     out << "\\node[anchor=north east, font=\\small, inner sep=2pt] at " << where << " {" << names << "};\n";
-  out << "\\end{tikzpicture}\n\\end{center}\n";
+  out << "\\end{tikzpicture}\n" << latex_figure_caption("The chain at the instant") << "\\end{center}\n";
   const OutputScale scale(system);
   out << "Drawing scale: 1\\,cm = $" << latex_number(1.0 / cm / scale.length, 3) << "$\\,"
       << latex_escape_text(scale.length_unit) << "; each frame's axes drawn 1\\,cm long";

@@ -127,7 +127,7 @@ void write_tikz_instant_centres(std::ostream& out, const ConstraintSystem& syste
     out << "\\filldraw[red!75!black, fill=white] " << xy(centre.at) << " circle (0.07) node[above right, font=\\scriptsize] {$"
         << centre_latex(c, centre) << "$};\n";
   }
-  out << "\\end{tikzpicture}\n\\end{center}\n";
+  out << "\\end{tikzpicture}\n" << latex_figure_caption("Instant centres") << "\\end{center}\n";
   if (system.linkage) {
     out << "Instant centres: the primary ones at the pins and, for a slider, at infinity across its line; every "
            "other by the Aronhold--Kennedy theorem, where two lines of centres it shares a body with cross (dashed).";
@@ -141,6 +141,7 @@ void write_tikz_instant_centres(std::ostream& out, const ConstraintSystem& syste
   out << " Drawing scale 1\\,cm = $"
       << latex_number(1.0 / cm / scale.length, 3) << "\\,\\mathrm{" << scale.length_unit << "}$.\n\n";
   const std::string l = scale.length_unit;
+  const DocumentNumbers number(system);  // round-off as 0, as everywhere in the document
   out << "\\medskip\n\\begin{tabular}{lrrl}\n\\toprule\ncentre & $x$ & $y$ & found by \\\\\n & $\\mathrm{" << l << "}$ & $\\mathrm{"
       << l << "}$ & \\\\\n\\midrule\n";
   // Every pair of bodies, n(n-1)/2 rows: those no two lines fix say so.
@@ -158,8 +159,8 @@ void write_tikz_instant_centres(std::ostream& out, const ConstraintSystem& syste
         out << "\\multicolumn{2}{c}{at infinity, $" << latex_number(to_degrees(std::arg(centre.at)), 4) << "^{\\circ}$}";
       } else {
         // A coordinate that is rounding noise next to the mechanism's size prints as 0.
-        const auto shown = [&](double v) { return std::fabs(v) <= 1e-12 * size ? 0.0 : v / scale.length; };
-        out << "$" << latex_number(shown(centre.at.real()), 5) << "$ & $" << latex_number(shown(centre.at.imag()), 5) << "$";
+        const auto shown = [&](double v) { return number(v / scale.length, Dimension::length, 0, 5); };
+        out << "$" << shown(centre.at.real()) << "$ & $" << shown(centre.at.imag()) << "$";
       }
       std::string how = centre.found_by;
       // Pins and sliders name their joint; the others the two lines of centres they are on.
@@ -175,8 +176,8 @@ void write_tikz_instant_centres(std::ostream& out, const ConstraintSystem& syste
     const std::string j = latex_escape_text(c.bodies[r.body]);
     const std::string ground = latex_escape_text(c.bodies[0]);
     out << "$\\omega_{" << j << "}/\\omega_{" << driver << "} = \\overline{I_{" << ground << driver << "}I_{" << driver << j
-        << "}}/\\overline{I_{" << ground << j << "}I_{" << driver << j << "}}$ & $" << latex_number(r.from_centres, 6) << "$ & $"
-        << latex_number(r.analytic, 6) << "$ \\\\\n";
+        << "}}/\\overline{I_{" << ground << j << "}I_{" << driver << j << "}}$ & $" << number.ratio(r.from_centres, 6) << "$ & $"
+        << number.ratio(r.analytic, 6) << "$ \\\\\n";
   }
   out << "\\bottomrule\n\\end{tabular}\n\n";
 }

@@ -289,7 +289,7 @@ void write_tikz_mechanism(std::ostream& out, const ConstraintSystem& system, con
           << ", inner sep=1pt, font=\\scriptsize, green!50!black] {$\\mathbf{a}_{" << name << "}$};\n";
     }
   }
-  out << "\\end{tikzpicture}\n\\end{center}\n";
+  out << "\\end{tikzpicture}\n" << latex_figure_caption("The mechanism at the instant") << "\\end{center}\n";
   const double length_per_cm = 1.0 / cm / scale.length;
   out << "Drawing scale: 1\\,cm = $" << latex_number(length_per_cm, 3) << "$\\," << latex_escape_text(scale.length_unit);
   if (velocity_scale > 0) {

@@ -126,7 +126,8 @@ void write_tikz_polygon(std::ostream& out, const ConstraintSystem& system, const
     const std::complex<double> p = si / scale.length / per_cm;
     return "(" + format_fixed(p.real(), 3) + "," + format_fixed(p.imag(), 3) + ")";
   };
-  out << "\\begin{center}\n\\begin{tikzpicture}[line cap=round, >=latex]\n";
+  // The polygon and its table in one box: a table is never a page of its own after its figure.
+  out << "\\par\\noindent\\begin{minipage}{\\linewidth}\n\\begin{center}\n\\begin{tikzpicture}[line cap=round, >=latex]\n";
   const auto cm_of = [&](std::complex<double> si) { return si / scale.length / per_cm; };
   // The vertices' letters first, each round its point away from the polygon's centre, or
   // the next way round that is free; points drawn at one place share one label (o, c).
@@ -213,7 +214,7 @@ void write_tikz_polygon(std::ostream& out, const ConstraintSystem& system, const
     out << ";\n";
   }
   for (const std::string& line : vertex_lines) out << line;
-  out << "\\end{tikzpicture}\n\\end{center}\n";
+  out << "\\end{tikzpicture}\n" << latex_figure_caption(velocity ? "Velocity polygon" : "Acceleration polygon") << "\\end{center}\n";
   out << (velocity ? "Velocity" : "Acceleration") << " polygon, scale 1\\,cm = $" << latex_number(per_cm, 3) << "\\,"
       << unit << "$; pole $o$ (every fixed point).\n\n";
   // The arrows: read off the figure (its length in cm, to 0.01 cm, times the scale), the
@@ -221,14 +222,17 @@ void write_tikz_polygon(std::ostream& out, const ConstraintSystem& system, const
   out << "\\begin{tabular}{llrrl}\n\\toprule\n" << (velocity ? "velocity" : "acceleration")
       << " & kind & on the figure & read off & formula \\\\\n & & $\\mathrm{cm}$ & $" << unit << "$ & $" << unit
       << "$ \\\\\n\\midrule\n";
+  // The document's numbers: a relative velocity across a link that does not turn is 0, not
+  // its round-off (BC omega2 = 2.2e-16 m/s in the parallelogram).
+  const DocumentNumbers number(system);
   for (const PolygonArrow& a : polygon.arrows) {
     const double read_off = polygon_read_off(a, per_cm, scale.length);
     out << "$" << a.latex << "$ & " << kind_name(a.kind) << " & $" << format_fixed(read_off / per_cm, 2) << "$ & $"
-        << latex_number(read_off, 4) << "$ & $";
+        << number(read_off, Dimension::length, polygon.order, 4) << "$ & $";
     if (!a.formula.is_zero()) out << form(a.formula, TextbookForm::Style::latex) << " = ";
-    out << latex_number(a.formula_value / scale.length, 6) << "$ \\\\\n";
+    out << number(a.formula_value / scale.length, Dimension::length, polygon.order, 6) << "$ \\\\\n";
   }
-  out << "\\bottomrule\n\\end{tabular}\n\n";
+  out << "\\bottomrule\n\\end{tabular}\n\\end{minipage}\n\n";
 }
 
 }  // namespace kinema

@@ -80,19 +80,23 @@ class DocumentWriter {
   void data() {
     out_ << "\\section*{" << latex_escape_text(system_.title) << "}\n";
     if (!system_.description.empty()) out_ << latex_escape_text(system_.description) << "\n\n";
+    statement();
+    const Driver& input = system_.input;
+    const Dimension kind = input.dimension;
+    // One table of what is given: the file's parameters, then the driver's motion.
     out_ << "\\subsection*{Data}\n\\begin{tabular}{ll}\n\\toprule\nparameter & value \\\\\n\\midrule\n";
     for (const SystemParameter& parameter : system_.parameters)
       out_ << "$" << to_latex(parameter.symbol) << "$ & " << given_value(parameter) << " \\\\\n";
-    const Driver& input = system_.input;
-    const Dimension kind = input.dimension;
-    out_ << "\\bottomrule\n\\end{tabular}\n\n"
-         << "Input: $" << to_latex(input.symbol) << "$ (" << (kind == Dimension::angle ? "crank angle" : kind == Dimension::time ? "time" : "slider position")
-         << "), $" << to_latex(input.rate) << " = " << driver_rate(input.rate_value) << "$ (negative: "
-         << (kind == Dimension::angle ? "clockwise" : "decreasing") << "), $" << to_latex(input.second_rate) << " = "
-         << numbers_(scale_.rate(kind, input.second_rate_value), kind, 2) << "\\,\\mathrm{"
-         << scale_.second_rate_unit(kind) << "}$. Unknowns: ";
-    for (std::size_t j = 0; j < system_.unknowns.size(); ++j)
-      out_ << (j ? ", " : "") << "$" << to_latex(system_.unknowns[j].symbol) << "$";
+    if (kind != Dimension::time) {
+      out_ << "\\midrule\n";
+      if (!input.values.empty()) out_ << "$" << to_latex(input.symbol) << "$ & $" << driver_values() << "$ \\\\\n";
+      out_ << "$" << to_latex(input.rate) << "$ & $" << driver_rate(input.rate_value) << "$ \\\\\n$"
+           << to_latex(input.second_rate) << "$ & $" << driver_second_rate() << "$ \\\\\n";
+    }
+    out_ << "\\bottomrule\n\\end{tabular}\n\n\\medskip\\noindent "
+         << "Input: $" << to_latex(input.symbol) << "$, the "
+         << (kind == Dimension::angle ? "crank angle (a negative rate turns it clockwise)"
+                                      : kind == Dimension::time ? "time" : "slider position (a negative rate decreases it)");
     out_ << (system_.frames.empty() ? ". Angles are measured counter-clockwise from the $x$ axis."
                                     : ". Angles turn frames by the right-hand rule about their axes.")
          // The digits the numbers below are given to (latex_number's callers: 6, tables of vectors and substitutions 5).
@@ -126,12 +130,14 @@ class DocumentWriter {
       }
       for (std::size_t row : group.equations) {
         const std::string written = textbook_.equation(system_, row, TextbookForm::Style::latex);
+        // Numbered by the equation's row of Phi, so that the text can say "from (1) and (2)".
+        const std::string tag = " \\tag{" + std::to_string(row + 1) + "}";
         if (latex_width(written) <= kLatexLineBudget) {
-          rows.push_back(label + "& " + written + " = 0");
+          rows.push_back(label + "& " + written + " = 0" + tag);
         } else {  // a long closure: over lines
           const auto lines = textbook_.latex_lines(system_.equations[row].expression, 0, nullptr, kLatexLineBudget);
           for (std::size_t k = 0; k < lines.size(); ++k)
-            rows.push_back((k == 0 ? label + "& " : "&\\quad ") + lines[k] + (k + 1 == lines.size() ? " = 0" : ""));
+            rows.push_back((k == 0 ? label + "& " : "&\\quad ") + lines[k] + (k + 1 == lines.size() ? " = 0" + tag : ""));
         }
         label.clear();
       }
@@ -177,7 +183,8 @@ class DocumentWriter {
 
   void velocity() {
     const Driver& input = system_.input;
-    out_ << "\\subsection*{Velocity analysis}\nDifferentiating the loop equations in time gives the velocity "
+    out_ << "\\subsection*{Velocity analysis}\nDifferentiating the loop equations " << equation_range()
+         << " in time gives the velocity "
             "equations $\\Phi_q\\,\\dot q = -\\Phi_{"
          << to_latex(input.symbol) << "}\\," << to_latex(input.rate) << "$:\n\\begin{align*}\n";
     std::vector<ex> rates, rhs;
@@ -192,7 +199,7 @@ class DocumentWriter {
   }
 
   void acceleration() {
-    out_ << "\\subsection*{Acceleration analysis}\nDifferentiating once more: $\\Phi_q\\,\\ddot q = \\gamma$ with "
+    out_ << "\\subsection*{Acceleration analysis}\nDifferentiating " << equation_range() << " once more: $\\Phi_q\\,\\ddot q = \\gamma$ with "
             "the same matrix $\\Phi_q$:\n\\begin{align*}\n";
     std::vector<ex> second;
     for (const Coordinate& q : system_.unknowns) second.push_back(q.second_rate);
@@ -244,7 +251,7 @@ class DocumentWriter {
   void results(const MotionState& s) {
     const Driver& input = system_.input;
     const Dimension kind = input.dimension;
-    out_ << "\\clearpage\n\\subsection*{Results at $" << to_latex(input.symbol) << " = "
+    out_ << kLatexPartBreak << "\\subsection*{Results at $" << to_latex(input.symbol) << " = "
          << numbers_(scale_.input(s.input), kind, 0) << coordinate_unit(kind) << "$}\n";
     if (s.status != Status::ok) {
       out_ << latex_escape_text(describe_failure(system_, s)) << "\n\n";
@@ -257,9 +264,10 @@ class DocumentWriter {
       out_ << "$" << to_latex(q.symbol) << "$ & $" << numbers_(scale_.coordinate(k, s.q[j]), k, 0) << coordinate_unit(k)
            << "$ & ";
       if (s.status == Status::ok) {
-        out_ << "$" << to_latex(q.rate) << " = " << numbers_(scale_.rate(k, s.qd[j]), k, 1) << "\\,\\mathrm{"
-             << scale_.rate_unit(k) << "}$ & $" << to_latex(q.second_rate) << " = "
-             << numbers_(scale_.rate(k, s.qdd[j]), k, 2) << "\\,\\mathrm{" << scale_.second_rate_unit(k) << "}$";
+        // The answers boxed, as a worked solution marks them.
+        out_ << "$" << to_latex(q.rate) << " = \\boxed{" << numbers_(scale_.rate(k, s.qd[j]), k, 1) << "}\\,\\mathrm{"
+             << scale_.rate_unit(k) << "}$ & $" << to_latex(q.second_rate) << " = \\boxed{"
+             << numbers_(scale_.rate(k, s.qdd[j]), k, 2) << "}\\,\\mathrm{" << scale_.second_rate_unit(k) << "}$";
       } else {
         out_ << "undefined & undefined";
       }
@@ -278,7 +286,7 @@ class DocumentWriter {
     write_tikz_mechanism(out_, system_, geometry_, s);
     const auto polygons = polygons_.polygons(s);
     if (polygons) {
-      out_ << "\\clearpage\n\\subsubsection*{Velocity and acceleration polygons}\nEach link vector's velocity, chained from the "
+      out_ << kLatexPartBreak << "\\subsubsection*{Velocity and acceleration polygons}\nEach link vector's velocity, chained from the "
               "pole $o$ in the order the loops and points are written: a turning link's relative velocity "
               "$\\omega r$ across it, a sliding point's velocity along its line; accelerations in the parts "
               "normal ($\\omega^{2} r$, towards the link's start), tangential ($\\alpha r$), Coriolis "
@@ -293,7 +301,7 @@ class DocumentWriter {
       write_tikz_polygon(out_, system_, textbook_, polygons->second);
     }
     if (const auto centres = instant_centres(system_, s)) {
-      out_ << "\\clearpage\n\\subsubsection*{Instant centres}\n";
+      out_ << kLatexPartBreak << "\\subsubsection*{Instant centres}\n";
       write_tikz_instant_centres(out_, system_, geometry_, s, *centres);
       if (polygons) write_three_methods(out_, system_, three_methods(system_, polygons->first, *centres), *centres);
     }
@@ -314,6 +322,64 @@ class DocumentWriter {
   TextbookForm textbook_;
   DocumentNumbers numbers_;
   std::optional<FourBarFigures> four_bar_;
+
+  // The loop equations' numbers as the text cites them: "(1)", "(1) and (2)", "(1)--(4)".
+  std::string equation_range() const {
+    const std::size_t n = system_.equations.size();
+    if (n <= 1) return "(1)";
+    return "(1)" + std::string(n == 2 ? " and " : "--") + "(" + std::to_string(n) + ")";
+  }
+
+  // "Given ... Find ...", from the file: the mechanism, its driver's motion and what kinema
+  // solves (the unknowns, their rates and second rates, the points' motion).
+  void statement() {
+    const Driver& input = system_.input;
+    const Dimension kind = input.dimension;
+    const auto list = [](const std::vector<std::string>& items) {
+      std::string text;
+      for (std::size_t k = 0; k < items.size(); ++k)
+        text += (k == 0 ? "" : k + 1 == items.size() ? (items.size() > 2 ? ", and " : " and ") : ", ") + items[k];
+      return text;
+    };
+    out_ << "\\textbf{Given:} " << (system_.frames.empty() ? "the mechanism" : "the chain") << " ``"
+         << latex_escape_text(system_.title) << "'' with the data below";
+    if (kind == Dimension::time) {
+      out_ << ", its joints moving in time as the file gives them";
+      if (!input.values.empty()) out_ << ", at $" << to_latex(input.symbol) << " = " << driver_values() << "$";
+    } else {
+      out_ << ", driven by $" << to_latex(input.symbol) << "$";
+      if (!input.values.empty()) out_ << " at $" << to_latex(input.symbol) << " = " << driver_values() << "$";
+      out_ << " with $" << to_latex(input.rate) << " = " << driver_rate(input.rate_value) << "$ and $"
+           << to_latex(input.second_rate) << " = " << driver_second_rate() << "$";
+    }
+    std::vector<std::string> found, rates, second_rates, points;
+    for (const Coordinate& q : system_.unknowns) {
+      found.push_back("$" + to_latex(q.symbol) + "$");
+      rates.push_back("$" + to_latex(q.rate) + "$");
+      second_rates.push_back("$" + to_latex(q.second_rate) + "$");
+    }
+    for (const PointObservable& p : system_.points) points.push_back(latex_escape_text(p.name));
+    std::vector<std::string> asked;
+    if (!found.empty())
+      asked.push_back(list(found) + ", " + (found.size() > 1 ? "their rates " : "its rate ") + list(rates) + " and " +
+                      (found.size() > 1 ? "second rates " : "second rate ") + list(second_rates));
+    if (!points.empty())
+      asked.push_back("the velocity and acceleration of " + std::string(points.size() > 1 ? "points " : "point ") + list(points));
+    if (!system_.frames.empty()) asked.push_back("each frame's angular velocity and acceleration");
+    out_ << ". \\textbf{Find:} ";
+    for (std::size_t k = 0; k < asked.size(); ++k) out_ << (k ? "; " : "") << asked[k];
+    out_ << ".\n\n";
+  }
+
+  // The driver's values from the file in the document's units (the first few of a sweep).
+  std::string driver_values() const {
+    const Driver& input = system_.input;
+    std::string text;
+    for (std::size_t k = 0; k < input.values.size() && k < 4; ++k)
+      text += (k ? ",\\ " : "") + numbers_(scale_.input(input.values[k]), input.dimension, 0) + coordinate_unit(input.dimension);
+    if (input.values.size() > 4) text += ",\\ \\ldots";
+    return text;
+  }
 
   // The design figures typeset (describe_four_bar and describe_strokes write them for a
   // terminal: "phi = 0.0000 deg (-0.0344774 m)").
@@ -413,17 +479,42 @@ class DocumentWriter {
     return plain ? "$" + number + "\\,\\mathrm{" + unit + "}$" : "$" + number + "$ " + latex_escape_text(unit);
   }
 
-  // The driver's rate as the document states it: in rpm too where the file's rate is a
-  // round number of revolutions a minute (60 rpm = 6.283 rad/s).
+  // The driver's rate as the document states it: as the file wrote it ("60 rpm",
+  // "90 deg/s") and its value in the document's unit (= 6.283 rad/s); once where the file
+  // wrote it in that unit.
   std::string driver_rate(double si) const {
     const Dimension kind = system_.input.dimension;
-    const std::string in_units = numbers_(scale_.rate(kind, si), kind, 1) + "\\,\\mathrm{" + scale_.rate_unit(kind) + "}";
-    if (kind != Dimension::angle || si == 0) return in_units;
-    const double rpm = si * 60 / (2 * M_PI);
-    const bool round_rpm = std::fabs(rpm - round_significant(rpm, 4)) <= 1e-9 * std::fabs(rpm);
-    const bool round_rad = std::fabs(si - round_significant(si, 4)) <= 1e-9 * std::fabs(si);
-    if (!round_rpm || round_rad) return in_units;
-    return latex_number(rpm) + "\\,\\mathrm{rpm} = " + latex_number(si, 4) + "\\,\\mathrm{rad/s}";
+    return as_written(system_.input.rate_text, scale_.rate(kind, si), kind, 1, scale_.rate_unit(kind));
+  }
+
+  std::string driver_second_rate() const {
+    const Dimension kind = system_.input.dimension;
+    return as_written(system_.input.second_rate_text, scale_.rate(kind, system_.input.second_rate_value), kind, 2,
+                      scale_.second_rate_unit(kind));
+  }
+
+  // A rate in math mode: `text` as written (a number and a unit), then " = " its value
+  // `shown` in the document's `unit`; that value alone where the text is missing, is in
+  // that unit, or is not a plain number and unit.
+  std::string as_written(const std::string& text, double shown, Dimension kind, int order, const std::string& unit) const {
+    const std::string in_units = numbers_(shown, kind, order) + "\\,\\mathrm{" + unit + "}";
+    std::size_t end = 0;
+    while (end < text.size() && (std::isdigit(static_cast<unsigned char>(text[end])) || std::string("+-.eE").find(text[end]) != std::string::npos))
+      ++end;
+    std::size_t u = end;
+    while (u < text.size() && text[u] == ' ') ++u;
+    const std::string written_unit = text.substr(u);
+    const bool plain = end > 0 && !written_unit.empty() &&
+                       std::all_of(written_unit.begin(), written_unit.end(), [](char c) {
+                         return std::isalnum(static_cast<unsigned char>(c)) || c == '/' || c == '^';
+                       });
+    if (!plain || written_unit == unit) return in_units;
+    std::string number = text.substr(0, end);
+    if (number.front() == '+') number = number.substr(1);
+    const auto e = number.find_first_of("eE");
+    if (e != std::string::npos) number = number.substr(0, e) + "\\cdot 10^{" + std::to_string(std::atoi(number.c_str() + e + 1)) + "}";
+    const std::string value = numbers_(shown, kind, order, 4);
+    return number + "\\,\\mathrm{" + written_unit + "} = " + value + "\\,\\mathrm{" + unit + "}";
   }
 
   // The solved rates (order 1) or second rates (order 2), block by block, each with
@@ -523,9 +614,11 @@ class DocumentWriter {
       for (std::size_t p = 0; p < system_.points.size(); ++p) {
         const PointMotion& m = s.points[p];
         const double f = scale_.length;
+        // The velocity and acceleration are the point's answers: boxed.
+        const auto boxed = [](const std::string& math) { return "$\\boxed{" + math.substr(1, math.size() - 2) + "}$"; };
         out_ << latex_escape_text(system_.points[p].name) << " & " << triple(m.position, f, Dimension::length, 0) << " & "
-             << triple(m.velocity, f, Dimension::length, 1) << " & " << triple(m.acceleration, f, Dimension::length, 2)
-             << " \\\\\n";
+             << boxed(triple(m.velocity, f, Dimension::length, 1)) << " & "
+             << boxed(triple(m.acceleration, f, Dimension::length, 2)) << " \\\\\n";
       }
       out_ << "\\bottomrule\n\\end{tabular}\n\n";
     }
@@ -556,8 +649,12 @@ class DocumentWriter {
       static constexpr int order[8] = {0, 0, 1, 1, 1, 2, 2, 2};  // x, y, v_x, v_y, |v|, a_x, a_y, |a|
       int k = 0;
       for (double v : {shown(m.position[0], r), shown(m.position[1], r), shown(m.velocity[0], speed),
-                       shown(m.velocity[1], speed), speed, shown(m.acceleration[0], a), shown(m.acceleration[1], a), a})
-        out_ << " & $" << numbers_(v / f, Dimension::length, order[k++], 5) << "$";
+                       shown(m.velocity[1], speed), speed, shown(m.acceleration[0], a), shown(m.acceleration[1], a), a}) {
+        const std::string number = numbers_(v / f, Dimension::length, order[k], 5);
+        // The point's speed and acceleration are its answers: boxed.
+        out_ << " & $" << (k == 4 || k == 7 ? "\\boxed{" + number + "}" : number) << "$";
+        ++k;
+      }
       out_ << " \\\\\n";
     }
     out_ << "\\bottomrule\n\\end{tabular}\n\n";

@@ -196,6 +196,30 @@ int compile_document(const std::string& tex_text, const std::string& name, std::
 
 namespace {
 
+// Each page's text height over the page's (pdftotext -bbox: from the top of its first word
+// to the foot of its last, the page number under the text left out).
+std::vector<double> text_heights(const std::string& name) {
+  const auto directory = std::filesystem::temp_directory_path() / "kinema_tests" / "latex";
+  const std::string boxes = (directory / (name + ".bbox")).string();
+  std::system(("pdftotext -bbox '" + (directory / (name + ".pdf")).string() + "' '" + boxes + "' 2>/dev/null").c_str());
+  const std::string text = read_file(boxes);
+  std::vector<double> heights;
+  for (auto page = text.find("<page "); page != std::string::npos; page = text.find("<page ", page + 1)) {
+    const auto end = text.find("</page>", page);
+    const double height = std::stod(text.substr(text.find("height=\"", page) + 8));
+    double top = height, bottom = 0;
+    for (auto word = text.find("<word ", page); word < end; word = text.find("<word ", word + 1)) {
+      const double y_min = std::stod(text.substr(text.find("yMin=\"", word) + 6));
+      const double y_max = std::stod(text.substr(text.find("yMax=\"", word) + 6));
+      if (y_min > height - 80) continue;  // the page number
+      top = std::min(top, y_min);
+      bottom = std::max(bottom, y_max);
+    }
+    heights.push_back(bottom > top ? (bottom - top) / height : 0);
+  }
+  return heights;
+}
+
 // docs/outputs.md's table of pages: "| `four_bar.toml` | 6 |" (two samples a row).
 int documented_pages(const std::string& sample) {
   const std::string outputs = read_file(kinema_test::sample("../docs/outputs.md"));
@@ -241,6 +265,13 @@ TEST_CASE("kinema latex: every sample's worked solution compiles, with its pages
     // says, from every build (the sanitizer build's GiNaC orders terms otherwise).
     CHECK(pages >= 3);
     CHECK(pages == documented_pages(name));
+    // No near-empty page (issue 32): every page but the last has text over a quarter of its height.
+    const std::vector<double> heights = text_heights("document_" + name.substr(0, name.find('.')));
+    CHECK(static_cast<int>(heights.size()) == pages);
+    for (std::size_t page = 0; page + 1 < heights.size(); ++page) {
+      CAPTURE(page + 1);
+      CHECK(heights[page] >= 0.25);
+    }
     // Nothing runs into the margin: no overfull line wider than 1 pt (issue 13).
     for (auto at = log.find("Overfull \\hbox ("); at != std::string::npos; at = log.find("Overfull \\hbox (", at + 1)) {
       const double too_wide = std::stod(log.substr(at + 16));

@@ -12,7 +12,9 @@
 #include <string>
 #include <vector>
 
+#include <kinema/engine/errors.hpp>
 #include <kinema/engine/printers/latex/latex_format.hpp>
+#include <kinema/engine/symbolic/dyad_method.hpp>
 #include <kinema/engine/printers/printer.hpp>
 #include "../../test_support.hpp"
 
@@ -215,6 +217,47 @@ TEST_CASE("engine/printers/latex: round-off prints as 0 at the problem's scale")
   CHECK(numbers(1e-16, kinema::Dimension::number, 0) == "1\\cdot 10^{-16}");  // a ratio has no scale
 }
 
+TEST_CASE("engine/printers/latex: no round-off anywhere in a worked solution, every sample and method") {
+  // The parallelogram's polygon table printed BC omega2 = 2.22045e-16 m/s and its instant
+  // centres' ratio omega2/omega1 = 1.96331e-16: no number stated in the document (comments,
+  // which carry the solver's formulas, aside) has an exponent below -12.
+  const std::regex noise(R"(10\^\{-(1[3-9]|[2-9][0-9]|[0-9]{3,})\}|[0-9]e-(1[3-9]|[2-9][0-9]|[0-9]{3,}))");
+  for (const std::string sample : kinema_test::kSamples) {
+    const kinema::Model model = kinema::load_model(kinema_test::sample(sample));
+    const MotionTable values = kinema::analyse(model, model.system.input.values);
+    for (kinema::DerivationMethod method : {kinema::DerivationMethod::loops, kinema::DerivationMethod::relative_velocity,
+                                            kinema::DerivationMethod::joint_coordinates}) {
+      if (method != kinema::DerivationMethod::loops) {
+        try {
+          kinema::check_method_applies(model.system, method);
+        } catch (const kinema::InputError&) {
+          continue;
+        }
+      }
+      CAPTURE(sample);
+      CAPTURE(kinema::method_name(method));
+      kinema::PrintJob job{model, &values, nullptr};
+      job.method = method;
+      std::ostringstream out;
+      kinema::find_printer(PrintKind::document, "latex")->print(out, job);
+      const std::string text = std::regex_replace(out.str(), std::regex(R"((^|[^\\])%[^\n]*)"), "$1");
+      std::smatch found;
+      if (std::regex_search(text, found, noise)) {
+        const auto at = static_cast<std::size_t>(found.position(0));
+        const auto from = text.rfind('\n', at);
+        FAIL_CHECK("round-off stated: " << text.substr(from + 1, text.find('\n', at) - from - 1));
+      }
+    }
+  }
+}
+
+TEST_CASE("engine/printers/latex: the parallelogram's polygon, centres and three methods state 0 for link 2") {
+  const std::string tex = worked_solution("problem_4_1_parallelogram.toml");
+  CHECK(has(tex, "$\\mathit{BC} \\omega_{2} = 0$"));
+  CHECK(has(tex, "\\overline{I_{02}I_{12}}$ & $0$ & $0$"));
+  CHECK(has(tex, "\n2 & $0$ & "));
+}
+
 TEST_CASE("engine/printers/latex: given data as the file gave it, never a machine representation") {
   // The triple rocker's x_D, r_2P and beta_2P are worked out from the joints (60 mm, ...):
   // in mm as the document, to its digits.
@@ -294,4 +337,32 @@ TEST_CASE("engine/printers/latex: each substituted line evaluates to the value i
   const std::string derivation = print(PrintKind::derivation, model, nullptr);
   CHECK(!std::regex_search(derivation, std::regex(R"(&\s*= 0)")));
   CHECK(has(derivation, "\\text{BC:}\\quad & \\frac{"));
+}
+
+TEST_CASE("engine/printers/latex: the driver's rate as the file wrote it, and its SI value") {
+  // Only a round number of rpm showed as rpm (60 rpm = 6.283 rad/s); 90 deg/s showed as
+  // "15 rpm = 1.571 rad/s" and 12.3456 rpm as 1.29284 rad/s alone.
+  const auto document_of = [](const std::string& name, const std::string& text) {
+    const kinema::Model model = kinema::load_model(kinema_test::write_temporary(name, text));
+    const MotionTable values = kinema::analyse(model, model.system.input.values);
+    return std::make_pair(model.system.input.rate_text, print(PrintKind::document, model, &values));
+  };
+  const auto [degrees_text, degrees] =
+      document_of("rate_in_deg_per_s.toml", kinema_test::replaced("rate = \"10 rad/s\"", "rate = \"90 deg/s\""));
+  CHECK(degrees_text == "90 deg/s");
+  CHECK(has(degrees, "= 90\\,\\mathrm{deg/s} = 1.571\\,\\mathrm{rad/s}"));
+  CHECK(!has(degrees, "rpm"));
+  // The joints-and-links front end carries it too, and `kinema loops` writes it as written.
+  const std::string joints = kinema_test::replaced(
+      "rate = \"60 rpm\"", "rate = \"12.3456 rpm\"", kinema_test::read_file(kinema_test::sample("problem_4_4_joints.toml")));
+  const auto [rpm_text, rpm] = document_of("rate_in_rpm.toml", joints);
+  CHECK(rpm_text == "12.3456 rpm");
+  CHECK(has(rpm, "\\omega_{1} = 12.3456\\,\\mathrm{rpm} = 1.293\\,\\mathrm{rad/s}"));
+  const auto loops = kinema_test::run_kinema({"loops", kinema_test::write_temporary("rate_in_rpm.toml", joints)});
+  REQUIRE(loops.exit_status == 0);
+  CHECK(has(loops.out, "rate = \"12.3456 rpm\""));
+  // Written in the document's unit: once (10 rad/s, not 10 rad/s = 10 rad/s).
+  const std::string four_bar = worked_solution("four_bar.toml");
+  CHECK(has(four_bar, "= 10\\,\\mathrm{rad/s}$"));
+  CHECK(!has(four_bar, "\\mathrm{rad/s} = 10"));
 }

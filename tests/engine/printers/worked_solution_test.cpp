@@ -13,6 +13,7 @@
 #include <kinema/engine/printers/latex/three_methods.hpp>
 #include <kinema/engine/printers/latex/tikz_polygons.hpp>
 #include <kinema/engine/printers/printer.hpp>
+#include <kinema/engine/report/chain_instant.hpp>
 #include <kinema/engine/report/diagnostics.hpp>
 #include <kinema/engine/report/instant_centres.hpp>
 #include <kinema/engine/report/output_scale.hpp>
@@ -92,9 +93,10 @@ TEST_CASE("engine/printers/worked_solution: a standalone document with every sec
   // The results table holds the run's numbers.
   const kinema::MotionState s = values[0];
   REQUIRE(s.status == kinema::Status::ok);
-  CHECK(has(tex, "$\\theta_{3}$ & $" + latex_number(wrapped_degrees(s.q[0])) + "^{\\circ}$ & $\\omega_{3} = " +
-                     latex_number(s.qd[0]) + "\\,\\mathrm{rad/s}$ & $\\alpha_{3} = " + latex_number(s.qdd[0]) +
-                     "\\,\\mathrm{rad/s^2}$ \\\\"));
+  // The answers boxed (issue 32).
+  CHECK(has(tex, "$\\theta_{3}$ & $" + latex_number(wrapped_degrees(s.q[0])) + "^{\\circ}$ & $\\omega_{3} = \\boxed{" +
+                     latex_number(s.qd[0]) + "}\\,\\mathrm{rad/s}$ & $\\alpha_{3} = \\boxed{" + latex_number(s.qdd[0]) +
+                     "}\\,\\mathrm{rad/s^2}$ \\\\"));
   CHECK(has(tex, "P & $" + latex_number(s.points[2].position[0] / 0.001, 5) + "$ & $" +
                      latex_number(s.points[2].position[1] / 0.001, 5) + "$"));
   // A drawing and plots.
@@ -409,4 +411,41 @@ TEST_CASE("engine/printers/worked_solution: a plot's gaps are judged curve by cu
     CHECK(count(curve, ")") > sweep.size() / 2);
   }
   CHECK(curves >= 2);  // its path and its speed
+}
+
+TEST_CASE("engine/printers/worked_solution: textbook scaffolding - statement, numbered figures and equations, answers boxed") {
+  for (const std::string sample : kinema_test::kSamples) {
+    CAPTURE(sample);
+    const kinema::Model model = kinema::load_model(kinema_test::sample(sample));
+    const MotionTable values = kinema::analyse(model, model.system.input.values);
+    const MotionTable sweep = kinema::analyse(model, kinema::plot_range(model.system, model.system.input.values.at(0)));
+    const std::string tex = document(model, &values, &sweep);
+    const kinema::ConstraintSystem& system = model.system;
+    // "Given ... Find ...", naming the driver and every unknown.
+    const auto given = tex.find("\\textbf{Given:}"), find = tex.find("\\textbf{Find:}");
+    REQUIRE(given != std::string::npos);
+    REQUIRE(find != std::string::npos);
+    CHECK(given < tex.find("\\subsection*{Data}"));
+    const std::string statement = tex.substr(given, tex.find("\n\n", find) - given);
+    CHECK(has(statement, "$" + kinema::to_latex(system.input.symbol)));
+    for (const kinema::Coordinate& q : system.unknowns) {
+      CHECK(has(statement, "$" + kinema::to_latex(q.rate) + "$"));
+      CHECK(has(statement, "$" + kinema::to_latex(q.second_rate) + "$"));
+    }
+    // One table of given data.
+    CHECK(count(tex, "\\subsection*{Data}") == 1);
+    // Every drawing and plot numbered.
+    CHECK(count(tex, "\\end{tikzpicture}") == count(tex, "\\refstepcounter{figure}{\\small Figure~\\thefigure: "));
+    // The loop equations numbered, and the text cites them.
+    if (!kinema::is_driven_chain(system)) {
+      for (std::size_t i = 1; i <= system.equations.size(); ++i) CHECK(count(tex, "\\tag{" + std::to_string(i) + "}") == 1);
+      CHECK(has(tex, "Differentiating the loop equations (1)"));
+    }
+    // The answers boxed: each unknown's rate and second rate, each point's speed and acceleration.
+    const std::string results = tex.substr(tex.find("\\subsection*{Results"));
+    if (!system.unknowns.empty()) {
+      CHECK(count(results, "\\boxed{") >= 2 * system.unknowns.size() + 2 * system.points.size());
+      for (const kinema::Coordinate& q : system.unknowns) CHECK(has(results, kinema::to_latex(q.rate) + " = \\boxed{"));
+    }
+  }
 }
