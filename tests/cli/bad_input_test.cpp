@@ -734,10 +734,11 @@ TEST_CASE("a quantity below the smallest normal number is refused at its line, n
     for (const char* command : {"eval", "derive", "latex"}) {
       CAPTURE(path);
       CAPTURE(command);
-      const auto result = kinema_test::run_kinema({command, path});
+      const auto result = kinema_test::run_kinema_bounded({command, path});
       CHECK(result.exit_status == 2);
       CHECK(result.out.empty());
       CHECK(result.err.find("is smaller than the smallest number kinema computes with") != std::string::npos);
+      CHECK(result.peak_kilobytes < 2 * 1024 * 1024);
       CHECK(result.err.find(".toml:") != std::string::npos);
       CHECK(result.err.find("internal error") == std::string::npos);
     }
@@ -757,10 +758,11 @@ TEST_CASE("a time or variable input that carries a driven angle past 1e9 deg is 
            {{"eval", arm, "--sweep", "0:1e8:1e7"}, "at t = 100000000 s, theta1 would be 5.72958e+09 deg"},
            {{"latex", arm, "--at", "-2e7"}, "at t = -20000000 s, theta1 would be -1.14592e+09 deg"}}) {
     CAPTURE(c.message);
-    const auto result = kinema_test::run_kinema(c.arguments);
+    const auto result = kinema_test::run_kinema_bounded(c.arguments);
     CHECK(result.exit_status == 2);
     CHECK(result.out.empty());
     CHECK(result.err.find(c.message) != std::string::npos);
+    CHECK(result.peak_kilobytes < 2 * 1024 * 1024);
   }
   // Within the limit the time run is printed as before.
   CHECK(kinema_test::run_kinema({"eval", arm, "--at", "1e7"}).exit_status == 0);
@@ -880,4 +882,35 @@ TEST_CASE("--circuit with a step too fine for a long chain is refused before the
   CHECK(coarse.exit_status == 0);
   CHECK(coarse.peak_kilobytes < 2 * 1024 * 1024);
   CHECK(kinema::kMaxCircuitRowUnknowns == 1'000'000);
+}
+
+// Issue 33: a point whose formula gives no number at a value (sqrt of a negative) exited 4
+// as if the position were singular, though Phi_q is regular there.
+TEST_CASE("a point whose formula has no number at a value is named, with status 2, not called singular") {
+  const std::string path = kinema_test::write_temporary(
+      "point_no_number.toml", replaced("P = \"a*exp(I*theta2)\"", "P = \"a*sqrt(theta2 - 1)\""));
+  const auto listed = kinema_test::run_kinema_bounded({"eval", path, "--angle", "40"});
+  CHECK(listed.exit_status == 2);
+  CHECK(listed.out.empty());
+  CHECK(listed.err.find("point \"P\" (") != std::string::npos);
+  CHECK(listed.err.find("point_no_number.toml:") != std::string::npos);
+  CHECK(listed.err.find("has no value at theta2 = 40 deg: its formula gives no real number there") != std::string::npos);
+  CHECK(listed.err.find("singular") == std::string::npos);
+  // Where it has one (theta2 > 1 rad) the same file is solved; a sweep across says so per row.
+  CHECK(kinema_test::run_kinema_bounded({"eval", path, "--angle", "80"}).exit_status == 0);
+  const auto swept = kinema_test::run_kinema_bounded({"eval", path, "--sweep", "40:80:40", "--format", "json"});
+  CHECK(swept.exit_status == 0);
+  CHECK(swept.out.find("has no value at theta2 = 40 deg") != std::string::npos);
+}
+
+// Issue 33: assembly = "" was taken as no assembly (the sketch's side), silently.
+TEST_CASE("an empty assembly is refused at its line") {
+  std::string text = kinema_test::read_file(kinema_test::sample("problem_4_4_joints.toml"));
+  const auto joint = text.find("\nC = { at = ");
+  REQUIRE(joint != std::string::npos);
+  text.insert(text.find('}', joint), ", assembly = \"\" ");
+  const auto result = kinema_test::run_kinema_bounded({"eval", kinema_test::write_temporary("empty_assembly.toml", text)});
+  CHECK(result.exit_status == 2);
+  CHECK(result.err.find("empty_assembly.toml:") != std::string::npos);
+  CHECK(result.err.find("joint \"C\": assembly = \"\" is empty") != std::string::npos);
 }
