@@ -60,18 +60,61 @@ void check_independent(const ConstraintSystem& system, const GiNaC::matrix& jaco
                    "independent (e.g. only their sum appears); write the loop with independent coordinates");
 }
 
+// True when calls of functions whose derivatives divide (log, tan, sqrt, atan2, ...: not
+// sin, cos, exp) hold each other `levels` deep (log(10 + log(10 + ...))).
+bool nests_functions(const ex& e, int levels) {
+  if (levels <= 0) return true;
+  bool dividing = GiNaC::is_a<GiNaC::function>(e);
+  if (dividing) {
+    const std::string name = GiNaC::ex_to<GiNaC::function>(e).get_name();
+    dividing = name != "sin" && name != "cos" && name != "exp";
+  }
+  for (std::size_t i = 0; i < e.nops(); ++i)
+    if (nests_functions(e.op(i), dividing ? levels - 1 : levels)) return true;
+  return false;
+}
+
+// The determinant by cofactors along the first row, left as it comes out.
+ex cofactor_determinant(const GiNaC::matrix& a) {
+  const unsigned k = a.rows();
+  if (k == 1) return a(0, 0);
+  ex sum = 0;
+  for (unsigned c = 0; c < k; ++c) {
+    if (a(0, c).is_zero()) continue;
+    GiNaC::matrix minor(k - 1, k - 1);
+    for (unsigned r = 1; r < k; ++r)
+      for (unsigned j = 0, m = 0; j < k; ++j)
+        if (j != c) minor(r - 1, m++) = a(r, j);
+    sum += (c % 2 == 0 ? 1 : -1) * a(0, c) * cofactor_determinant(minor);
+  }
+  return sum;
+}
+
+// Functions whose derivatives divide, nested this deep in a block's entries: GiNaC's
+// determinant normalises its result, expanding the quotients the chain rule makes of them
+// (log nested 8 deep in a loop never finished deriving, 6 deep took 5 s); such a block is
+// solved by cofactors and its ratio left unsimplified. The samples nest none of them.
+constexpr int kPlainSolveNesting = 4;
+
 std::vector<ex> solve_block(const GiNaC::matrix& jacobian, const SolvingBlock& block,
                             const std::vector<ex>& right_hand_side) {
   const std::size_t k = block.unknowns.size();
   GiNaC::matrix a(k, k);
-  for (std::size_t r = 0; r < k; ++r)
-    for (std::size_t c = 0; c < k; ++c) a(r, c) = jacobian(block.equations[r], block.unknowns[c]);
-  const ex determinant = a.determinant(GiNaC::determinant_algo::laplace);
+  bool nested = false;
+  for (std::size_t r = 0; r < k; ++r) {
+    nested = nested || nests_functions(right_hand_side[r], kPlainSolveNesting);
+    for (std::size_t c = 0; c < k; ++c) {
+      a(r, c) = jacobian(block.equations[r], block.unknowns[c]);
+      nested = nested || nests_functions(a(r, c), kPlainSolveNesting);
+    }
+  }
+  const ex determinant = nested ? cofactor_determinant(a) : a.determinant(GiNaC::determinant_algo::laplace);
   std::vector<ex> solution;
   for (std::size_t c = 0; c < k; ++c) {
     GiNaC::matrix replaced = a;
     for (std::size_t r = 0; r < k; ++r) replaced(r, c) = right_hand_side[r];
-    solution.push_back(simplify_ratio(replaced.determinant(GiNaC::determinant_algo::laplace), determinant));
+    solution.push_back(nested ? cofactor_determinant(replaced) / determinant
+                              : simplify_ratio(replaced.determinant(GiNaC::determinant_algo::laplace), determinant));
   }
   return solution;
 }
