@@ -85,8 +85,8 @@ CommandResult run_shell(const std::string& command_line) {
   return run_captured("bash -c " + shell_quote(command_line));
 }
 
-CommandResult run_kinema_bounded(const std::vector<std::string>& arguments) {
-  std::string command = "ulimit -t 10; exec " + shell_quote(KINEMA_EXE);
+CommandResult run_kinema_bounded(const std::vector<std::string>& arguments, int cpu_seconds) {
+  std::string command = "ulimit -t " + std::to_string(cpu_seconds) + "; exec " + shell_quote(KINEMA_EXE);
   for (const auto& argument : arguments) command += " " + shell_quote(argument);
   CommandResult result = run_shell(command);
   rusage usage{};

@@ -807,7 +807,7 @@ TEST_CASE("spatial_chain: a chain of too many turns in a row or too many frames 
     CHECK(result.peak_kilobytes < 2 * 1024 * 1024);
   }
   // 14 turns in a row (7 frames of two) are derived.
-  const auto fourteen = kinema_test::run_kinema_bounded({"eval", kinema_test::write_temporary("deep_7.toml", chain(7, 2))});
+  const auto fourteen = kinema_test::run_kinema_bounded({"eval", kinema_test::write_temporary("deep_7.toml", chain(7, 2))}, 60);
   CHECK(fourteen.exit_status == 0);
 }
 
