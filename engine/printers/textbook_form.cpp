@@ -558,14 +558,19 @@ std::string TextbookForm::render_function(const ex& f, const ex& argument, Conte
   return text + ")";
 }
 
+std::string latex_command_name(const std::string& latex, std::size_t backslash, std::size_t& end) {
+  end = backslash + 1;
+  while (end < latex.size() && std::isalpha(static_cast<unsigned char>(latex[end]))) ++end;
+  return latex.substr(backslash + 1, end - backslash - 1);
+}
+
 double latex_width(const std::string& text) {
   double width = 0;
   for (std::size_t i = 0; i < text.size(); ++i) {
     const char ch = text[i];
     if (ch == '\\') {
-      std::size_t end = i + 1;
-      while (end < text.size() && std::isalpha(static_cast<unsigned char>(text[end]))) ++end;
-      const std::string name = text.substr(i + 1, end - i - 1);
+      std::size_t end = 0;
+      const std::string name = latex_command_name(text, i, end);
       if (name == "sin" || name == "cos" || name == "tan") width += 2.5;
       else if (name == "quad") width += 2;
       else if (name == "qquad") width += 4;

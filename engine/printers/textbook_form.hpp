@@ -21,6 +21,10 @@ namespace kinema {
 /// Roughly how many glyphs wide a LaTeX math formula prints (for breaking lines).
 double latex_width(const std::string& latex);
 
+/// The name of the command whose backslash is at `backslash` ("sin" of "\\sin x"; empty for
+/// "\\," and the like); `end` is set past the name.
+std::string latex_command_name(const std::string& latex, std::size_t backslash, std::size_t& end);
+
 class TextbookForm {
  public:
   enum class Style { text, latex };

@@ -212,9 +212,8 @@ RowShape row_shape(const std::string& text) {
   for (std::size_t i = 0; i < text.size(); ++i) {
     const char ch = text[i];
     if (ch == '\\') {
-      std::size_t end = i + 1;
-      while (end < text.size() && std::isalpha(static_cast<unsigned char>(text[end]))) ++end;
-      const std::string name = text.substr(i + 1, end - i - 1);
+      std::size_t end = 0;
+      const std::string name = latex_command_name(text, i, end);
       if (name == "begin" || name == "left") ++depth;
       else if (name == "end" || name == "right") --depth;
       i = end > i + 1 ? end - 1 : i + 1;  // \{, \, and the like: two characters
