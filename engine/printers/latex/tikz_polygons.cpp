@@ -147,7 +147,9 @@ void write_tikz_polygon(std::ostream& out, const ConstraintSystem& system, const
   for (const auto& [at, names] : places) placed.boxes.push_back({at, 0.06, 0.06});  // the dots
   const std::complex<double> middle = centre / per_cm;
   std::vector<std::string> vertex_lines;
-  for (const auto& [at, names] : places) {
+  for (const auto& place : places) {
+    const std::complex<double> at = place.first;  // a named copy: C++17 lambdas cannot capture a structured binding
+    const std::string& names = place.second;
     std::string label;
     for (std::size_t start = 0; start <= names.size();) {
       const auto comma = names.find(", ", start);
