@@ -1,6 +1,7 @@
 #include <kinema/engine/numeric/sweep.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <memory>
 #include <thread>
@@ -93,6 +94,9 @@ struct Solvers {
   Workspace scalar;
   std::unique_ptr<BatchWorkspace> simd;
 };
+
+// Every value solve_rows solved in this process (values_solved_in_process()).
+std::atomic<std::uint64_t> values_solved{0};
 
 // Solves table rows from `first` on, in order, until a row at or past `stop`. A SIMD
 // block may run on past stop, up to `limit`; rows before first back to history_begin
@@ -219,6 +223,7 @@ std::size_t solve_rows(const Kinematics& kinematics, Solvers& solvers, MotionTab
     }
     table.set(row, state);
   }
+  values_solved.fetch_add(row - first, std::memory_order_relaxed);
   return row;
 }
 
@@ -329,5 +334,7 @@ void SweepSolver::solve_next(SweepBlock& block, std::size_t rows) {
   s.history.assign_inputs(s.inputs, s.next - keep, keep);
   for (std::size_t row = 0; row < keep; ++row) s.history.set(row, table, reached - keep + row);
 }
+
+std::uint64_t values_solved_in_process() { return values_solved.load(std::memory_order_relaxed); }
 
 }  // namespace kinema

@@ -4,6 +4,7 @@
 // a status and a structured Failure; nothing is thrown for them.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -23,6 +24,10 @@ struct SweepSettings {
   /// from the rows before and checked to stay on their branch (else one by one).
   bool simd = true;
 };
+
+/// Input values solved by solve_sweep and SweepSolver in this process so far (each
+/// counted once, however it was solved): lets a test see that a run solves a value once.
+std::uint64_t values_solved_in_process();
 
 MotionTable solve_sweep(const Kinematics& kinematics, const std::vector<double>& inputs, const SweepSettings& settings);
 

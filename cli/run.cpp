@@ -1,4 +1,5 @@
-// kinema command-line tool: a thin layer over the library (engine/, loops/).
+// The kinema command: its subcommands and options, read and run over the library
+// (engine/, loops/); main (cli/main.cpp) maps what it throws to an exit status.
 #include <CLI/CLI.hpp>
 #include <unistd.h>
 
@@ -31,7 +32,7 @@
 #include "exit_status.hpp"
 #include "output_file.hpp"
 #include "progress_line.hpp"
-#include "stable_addresses.hpp"
+#include "run.hpp"
 #include "usage.hpp"
 
 #ifndef KINEMA_VERSION
@@ -112,6 +113,12 @@ const Printer& printer(PrintKind kind, const std::string& name) {
   return *found;
 }
 
+const ResultsPrinter& results_printer(const std::string& format) {
+  const ResultsPrinter* found = find_results_printer(format);
+  if (!found) throw InputError("no output format \"" + format + "\"");
+  return *found;
+}
+
 // kinema eval --circuit: the whole circuit solved (it is held in memory), then printed
 // a block of rows at a time.
 void write_circuit(const Model& model, const std::string& step_text, const std::vector<double>& inputs,
@@ -169,8 +176,7 @@ void write_circuit(const Model& model, const std::string& step_text, const std::
       throw InputError(m.source_file + ": the circuit does not close within " + std::to_string(settings.max_rows) +
                        " rows of --circuit " + step_text + "; give a larger step");
   }
-  const ResultsPrinter* results = find_results_printer(format);
-  if (!results) throw InputError("no output format \"" + format + "\"");
+  const ResultsPrinter* results = &results_printer(format);
   PrintJob job{model, &circuit.table};
   job.circuit = true;
   job.precision = precision;
@@ -198,7 +204,36 @@ const CLI::Validator kNotEmpty(
 const char* const kFileHelp =
     "mechanism file (TOML) written as vector loops, as joints and links, or as a spatial chain of frames";
 
-int run(int argc, char** argv) {
+// kinema eval of a list of values (--angle, or the file's one value): all or nothing,
+// so solved once as one table, every value's failure reported, and printed only if
+// every value is assembled and regular.
+int write_list(const Model& model, const InputValues& inputs, const std::string& format, int precision,
+               const std::string& output_path) {
+  const ConstraintSystem& m = model.system;
+  const MotionTable table = analyse(model, inputs.to_vector());
+  int status = 0;
+  for (const MotionState& state : table) {
+    if (state.status == Status::ok) continue;
+    std::cerr << "kinema: error: " << terminal_text(m.source_file + ": " + describe_failure(m, state.input, state.failure))
+              << "\n";
+    // A point's formula without a number there is the file's, not a singular position.
+    const int row = state.failure.kind == Failure::Kind::point_undefined ? kinema_cli::status::bad_input
+                    : state.status == Status::singular                   ? kinema_cli::status::singular
+                                                                         : kinema_cli::status::unassembled;
+    status = std::max(status, row);
+  }
+  if (status != 0) return status;
+  PrintJob job{model, &table};
+  job.precision = precision;
+  std::ostringstream out;  // a value past the output unit's range throws here, before anything is written
+  results_printer(format).print(out, job);
+  write_output(out.str(), output_path);
+  return 0;
+}
+
+}  // namespace
+
+int kinema_cli::run(int argc, char** argv) {
   CLI::App app{"kinema: velocity and acceleration analysis of mechanisms written as vector loops, as joints and "
                "links, or as spatial chains of frames",
                "kinema"};
@@ -427,29 +462,13 @@ int run(int argc, char** argv) {
 
   StreamSettings settings;
   settings.threads = threads > 0 ? threads : std::max(1u, std::thread::hardware_concurrency());
-  if (!is_sweep) {
-    // A list of values is all or nothing: solved first, and printed only if every
-    // value is assembled and regular (solving is cheap next to printing).
-    int status = 0;
-    settings.on_failure = [&](double input, Status row_status, const Failure& failure) {
-      std::cerr << "kinema: error: " << terminal_text(m.source_file + ": " + describe_failure(m, input, failure)) << "\n";
-      // A point's formula without a number there is the file's, not a singular position.
-      const int row = failure.kind == Failure::Kind::point_undefined ? kinema_cli::status::bad_input
-                      : row_status == Status::singular                 ? kinema_cli::status::singular
-                                                                       : kinema_cli::status::unassembled;
-      status = std::max(status, row);
-    };
-    stream_results(model, run_inputs, {}, settings);
-    if (status != 0) return status;
-    settings.on_failure = nullptr;
-  }
+  if (!is_sweep) return write_list(model, run_inputs, format, precision, output_path);
   // Solved, formatted and written a block at a time; a file appears only when complete.
   kinema_cli::Output output(output_path);
   // Not when the results themselves scroll by on the same terminal.
   const bool results_on_terminal = (output_path.empty() || output_path == "-") && ::isatty(STDOUT_FILENO) == 1;
   kinema_cli::ProgressLine progress(!quiet && !results_on_terminal);
-  settings.printer = find_results_printer(format);
-  if (!settings.printer) throw InputError("no output format \"" + format + "\"");
+  settings.printer = &results_printer(format);
   settings.precision = precision;
   settings.write = [&](std::string_view text) { output.write(text); };
   settings.progress = [&](std::size_t done, std::size_t total) { progress.update(done, total); };
@@ -462,27 +481,4 @@ int run(int argc, char** argv) {
               << terminal_text(describe_failure(m, summary.first_failure->input, summary.first_failure->failure)) << "\n";
   }
   return 0;
-}
-
-}  // namespace
-
-int main(int argc, char** argv) {
-  kinema_cli::run_with_stable_addresses(argv);
-  try {
-    const int status = run(argc, argv);
-    kinema_cli::flush_standard_output();  // help or version on a full disk is an error too
-    return status;
-  } catch (const kinema::Error& error) {
-    std::cerr << "kinema: error: " << kinema::terminal_text(error.what()) << "\n";
-    return kinema_cli::exit_status(error);
-  } catch (const std::bad_alloc&) {
-    std::cerr << "kinema: error: out of memory; evaluate fewer values per run (a coarser --sweep, or split it)\n";
-    return kinema_cli::status::internal;
-  } catch (const std::exception& error) {
-    std::cerr << "kinema: internal error: " << kinema::terminal_text(error.what()) << "\n";
-    return kinema_cli::exit_status(error);
-  } catch (...) {
-    std::cerr << "kinema: internal error: unknown exception\n";
-    return kinema_cli::status::internal;
-  }
 }

@@ -1,0 +1,49 @@
+// The command solves each requested value once (issue 34): run in this process so that
+// the engine's count of solved values can be read before and after.
+#include <doctest/doctest.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <kinema/engine/numeric/sweep.hpp>
+
+#include "cli/run.hpp"
+#include "test_support.hpp"
+
+namespace {
+
+// Values the command solved for these arguments (its exit status must be 0).
+std::uint64_t values_solved_by(std::vector<std::string> arguments) {
+  arguments.insert(arguments.begin(), "kinema");
+  std::vector<char*> argv;
+  for (std::string& argument : arguments) argv.push_back(argument.data());
+  const std::uint64_t before = kinema::values_solved_in_process();
+  const int status = kinema_cli::run(static_cast<int>(argv.size()), argv.data());
+  CHECK(status == 0);
+  return kinema::values_solved_in_process() - before;
+}
+
+}  // namespace
+
+TEST_CASE("kinema eval solves each value of an --angle list once, in every format") {
+  const auto directory = std::filesystem::temp_directory_path() / "kinema_tests" / "solve_once";
+  std::filesystem::create_directories(directory);
+  const std::string out = (directory / "out").string();
+  for (const char* sample : {"four_bar.toml", "example_4_2_joints.toml", "robot_arm_seed000.toml"}) {
+    for (const char* format : {"table", "csv", "json", "npy"}) {
+      CAPTURE(sample);
+      CAPTURE(format);
+      const std::string file = kinema_test::sample(sample);
+      // Whatever else a run solves (design figures over the turn), three more values in
+      // the list are three more solves: one each, not one to check and one to print.
+      const std::uint64_t three = values_solved_by({"eval", file, "--format", format, "-o", out, "--at", "0.1",
+                                                    "--at", "0.2", "--at", "0.3"});
+      const std::uint64_t six = values_solved_by({"eval", file, "--format", format, "-o", out, "--at", "0.1",
+                                                  "--at", "0.2", "--at", "0.3", "--at", "0.4", "--at", "0.5",
+                                                  "--at", "0.6"});
+      CHECK(six - three == 3);
+    }
+  }
+}
