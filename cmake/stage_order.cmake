@@ -1,0 +1,117 @@
+# The stages of kinema, in the one direction the data flows: a stage's files may include
+# their own stage's and earlier stages' headers, never a later stage's, so that every
+# stage can be read (and tested, and reused by a new view) without the ones after it.
+#
+#   base          what every stage may use: errors, units and quantities, text safety
+#   front ends    what the user wrote: the three file forms, joints-and-links topology
+#   constraints   the hand-off: ConstraintSystem
+#   symbolic      derivation in GiNaC
+#   numeric       per input value, no GiNaC
+#   model         the derived and compiled mechanism
+#   analysis      what views show beyond the solved table
+#   printers      formats only
+#   cli           the command
+#
+# Configure runs kinema_check_stage_order over the tree (CMakeLists.txt); so does
+# `cmake -DROOT=<tree> -P cmake/stage_order.cmake` (tests/CMakeLists.txt runs it on a tree
+# with an upward include, which must fail).
+
+# Path prefixes (from the project root) in stage order; a path takes the first prefix it
+# starts with, so the base files inside later folders come first.
+set(KINEMA_STAGES
+  "base:engine/errors.hpp|loops/units.|loops/toml_ascii.|engine/report/user_text."
+  "front ends:loops/"
+  "constraints:engine/constraint_system.hpp"
+  "symbolic:engine/symbolic/"
+  "numeric:engine/numeric/"
+  "model:engine/model."
+  "analysis:engine/report/"
+  "printers:engine/printers/"
+  "cli:cli/")
+
+# Upward includes that the reshaping of issue 34 has yet to remove: "file -> header".
+# The list only shrinks; a new upward include fails configure.
+set(KINEMA_STAGE_ORDER_PENDING
+  "engine/model.cpp -> engine/report/output_scale.hpp"
+  "engine/model.hpp -> engine/report/diagnostics.hpp"
+  "engine/symbolic/dyad_method.cpp -> engine/report/structure.hpp"
+  "engine/numeric/toggles.hpp -> engine/model.hpp"
+  "loops/spatial_chain.cpp -> engine/symbolic/differentiate.hpp"
+  "loops/spatial_chain.cpp -> engine/symbolic/naming.hpp"
+  "loops/spatial_chain.cpp -> engine/report/number_format.hpp"
+  "loops/planar_loops.hpp -> engine/constraint_system.hpp"
+  "loops/planar_loops.cpp -> engine/symbolic/complex_parts.hpp"
+  "loops/planar_loops.cpp -> engine/symbolic/derivation.hpp"
+  "loops/planar_loops.cpp -> engine/symbolic/expression_parts.hpp"
+  "loops/planar_loops.cpp -> engine/symbolic/naming.hpp"
+  "loops/linkage_loops.cpp -> engine/report/number_format.hpp"
+  "loops/length_power.cpp -> engine/symbolic/expression_parts.hpp"
+  "loops/mechanism_file.hpp -> engine/numeric/input_values.hpp"
+  "loops/spatial_chain.hpp -> engine/constraint_system.hpp"
+  "loops/mechanism_file.cpp -> engine/report/number_format.hpp"
+  "loops/mechanism_file.cpp -> engine/symbolic/naming.hpp")
+
+cmake_policy(SET CMP0057 NEW)  # if(IN_LIST), in script mode too
+
+# The stage number of a path (from the root), or -1 for one outside every stage.
+function(kinema_stage_of path out)
+  set(index 0)
+  foreach(stage IN LISTS KINEMA_STAGES)
+    string(FIND "${stage}" ":" colon)
+    math(EXPR start "${colon} + 1")
+    string(SUBSTRING "${stage}" ${start} -1 prefixes)
+    string(REPLACE "|" ";" prefixes "${prefixes}")
+    foreach(prefix IN LISTS prefixes)
+      string(FIND "${path}" "${prefix}" at)
+      if(at EQUAL 0)
+        set(${out} ${index} PARENT_SCOPE)
+        return()
+      endif()
+    endforeach()
+    math(EXPR index "${index} + 1")
+  endforeach()
+  set(${out} -1 PARENT_SCOPE)
+endfunction()
+
+function(kinema_stage_name index out)
+  list(GET KINEMA_STAGES ${index} stage)
+  string(FIND "${stage}" ":" colon)
+  string(SUBSTRING "${stage}" 0 ${colon} name)
+  set(${out} "${name}" PARENT_SCOPE)
+endfunction()
+
+# Fails (FATAL_ERROR) naming every include from a stage to a later one under root, but
+# those in the pending list. Includes are read as the tree writes them: "engine/..." from
+# the root, or <kinema/engine/...> as the build tree's include folder spells it.
+function(kinema_check_stage_order root)
+  file(GLOB_RECURSE sources RELATIVE "${root}" "${root}/engine/*" "${root}/loops/*" "${root}/cli/*")
+  set(upward "")
+  foreach(source IN LISTS sources)
+    if(NOT source MATCHES "\\.(cpp|hpp|inc)$")
+      continue()
+    endif()
+    kinema_stage_of("${source}" from)
+    file(STRINGS "${root}/${source}" includes REGEX "^[ \t]*#[ \t]*include[ \t]*[<\"]")
+    foreach(line IN LISTS includes)
+      if(NOT line MATCHES "#[ \t]*include[ \t]*[<\"](kinema/)?((engine|loops|cli)/[^>\"]+)[>\"]")
+        continue()
+      endif()
+      set(header "${CMAKE_MATCH_2}")
+      kinema_stage_of("${header}" to)
+      if(from GREATER_EQUAL 0 AND to GREATER from AND NOT "${source} -> ${header}" IN_LIST KINEMA_STAGE_ORDER_PENDING)
+        kinema_stage_name(${from} from_name)
+        kinema_stage_name(${to} to_name)
+        list(APPEND upward "${source} (${from_name}) includes ${header} (${to_name})")
+      endif()
+    endforeach()
+  endforeach()
+  if(upward)
+    list(JOIN upward "\n  " lines)
+    message(FATAL_ERROR "an include from a stage to a later one (the stages: cmake/stage_order.cmake):\n  ${lines}\n"
+                        "Move what the earlier stage needs down to it (or to base), or the code up to the later stage.")
+  endif()
+endfunction()
+
+if(CMAKE_SCRIPT_MODE_FILE AND DEFINED ROOT)
+  kinema_check_stage_order("${ROOT}")
+endif()

@@ -1,0 +1,22 @@
+# The stage-order check itself (cmake/stage_order.cmake): on a small tree, an include
+# from a stage to a later one must fail the check and be named; includes downward, in
+# either spelling, must pass.
+#   cmake -DSOURCE_DIR=<kinema> -DWORK_DIR=<scratch> -P tests/stage_order_test.cmake
+file(REMOVE_RECURSE "${WORK_DIR}")
+file(MAKE_DIRECTORY "${WORK_DIR}/engine/numeric" "${WORK_DIR}/engine/printers")
+file(WRITE "${WORK_DIR}/engine/printers/table.cpp"
+     "#include <kinema/engine/numeric/sweep.hpp>\n#include \"engine/errors.hpp\"\n")
+file(WRITE "${WORK_DIR}/engine/numeric/sweep.hpp" "#pragma once\n#include \"engine/errors.hpp\"\n")
+execute_process(COMMAND "${CMAKE_COMMAND}" -DROOT=${WORK_DIR} -P ${SOURCE_DIR}/cmake/stage_order.cmake
+                RESULT_VARIABLE status ERROR_VARIABLE error)
+if(NOT status EQUAL 0)
+  message(FATAL_ERROR "includes from later stages to earlier ones were refused:\n${error}")
+endif()
+
+file(APPEND "${WORK_DIR}/engine/numeric/sweep.hpp" "#include \"engine/printers/table.hpp\"\n")
+execute_process(COMMAND "${CMAKE_COMMAND}" -DROOT=${WORK_DIR} -P ${SOURCE_DIR}/cmake/stage_order.cmake
+                RESULT_VARIABLE status ERROR_VARIABLE error)
+string(REGEX REPLACE "[ \n]+" " " error "${error}")  # CMake wraps its messages
+if(status EQUAL 0 OR NOT error MATCHES "engine/numeric/sweep.hpp \\(numeric\\) includes engine/printers/table.hpp \\(printers\\)")
+  message(FATAL_ERROR "an include from numeric to printers passed the check (status ${status}):\n${error}")
+endif()
