@@ -33,9 +33,8 @@ set(KINEMA_STAGES
 # The list only shrinks; a new upward include fails configure.
 set(KINEMA_STAGE_ORDER_PENDING
   "engine/model.cpp -> engine/report/output_scale.hpp"
-  "engine/model.hpp -> engine/report/diagnostics.hpp"
   "engine/symbolic/dyad_method.cpp -> engine/report/structure.hpp"
-  "engine/numeric/toggles.hpp -> engine/model.hpp"
+  "engine/report/toggles.hpp -> engine/model.hpp"
   "loops/spatial_chain.cpp -> engine/symbolic/differentiate.hpp"
   "loops/spatial_chain.cpp -> engine/symbolic/naming.hpp"
   "loops/spatial_chain.cpp -> engine/report/number_format.hpp"

@@ -1,7 +1,7 @@
 #include <kinema/engine/model.hpp>
 
 #include <kinema/engine/numeric/sweep.hpp>
-#include <kinema/engine/report/output_scale.hpp>
+#include <kinema/engine/report/output_scale.hpp>  // check_column_names: the output columns named apart before any run
 #include <kinema/loops/mechanism_file.hpp>
 #include <kinema/loops/planar_loops.hpp>
 #include <kinema/loops/spatial_chain.hpp>

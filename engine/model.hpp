@@ -18,7 +18,6 @@
 #include <kinema/engine/numeric/kinematics.hpp>
 #include <kinema/engine/numeric/motion_table.hpp>
 #include <kinema/engine/numeric/workspace.hpp>
-#include <kinema/engine/report/diagnostics.hpp>
 #include <kinema/engine/symbolic/derivation.hpp>
 #include <kinema/loops/mechanism.hpp>
 

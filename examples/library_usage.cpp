@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include <kinema/engine/model.hpp>
+#include <kinema/engine/report/diagnostics.hpp>
 
 int main(int argc, char** argv) {
   const char* path = argc > 1 ? argv[1] : "samples/four_bar.toml";

@@ -6,7 +6,7 @@
 #include <complex>
 #include <limits>
 
-#include <kinema/engine/numeric/toggles.hpp>
+#include <kinema/engine/report/toggles.hpp>
 #include <kinema/engine/report/number_format.hpp>
 #include <kinema/engine/report/output_scale.hpp>
 #include <kinema/engine/symbolic/expression_parts.hpp>

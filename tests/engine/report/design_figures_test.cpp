@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include <kinema/engine/model.hpp>
-#include <kinema/engine/numeric/toggles.hpp>
+#include <kinema/engine/report/toggles.hpp>
 #include <kinema/engine/report/design_figures.hpp>
 #include <kinema/loops/mechanism_file.hpp>
 

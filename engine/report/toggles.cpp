@@ -1,4 +1,4 @@
-#include <kinema/engine/numeric/toggles.hpp>
+#include <kinema/engine/report/toggles.hpp>
 
 #include <algorithm>
 #include <cmath>
