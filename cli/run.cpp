@@ -13,6 +13,7 @@
 #include <thread>
 
 #include <kinema/engine/errors.hpp>
+#include <kinema/engine/input_value.hpp>
 #include <kinema/engine/model.hpp>
 #include <kinema/engine/numeric/circuit.hpp>
 #include <kinema/engine/printers/code/cpp_header.hpp>
@@ -43,68 +44,6 @@ namespace {
 
 using namespace kinema;
 using kinema_cli::write_output;  // output is built in memory and written at the end: an error leaves nothing
-
-// A command-line input value: "30" (deg, or the output length unit for a slider) or "30 deg".
-double parse_input_value(const ConstraintSystem& m, const std::string& text) {
-  const Quantity q = parse_quantity(text);
-  if (q.dimension == Dimension::number) {
-    if (m.input.dimension == Dimension::time) return q.si_value;  // seconds
-    return m.input.dimension == Dimension::angle ? from_degrees(q.si_value) : q.si_value * m.output.length_factor;
-  }
-  if (q.dimension != m.input.dimension) {
-    throw UnitError("input value \"" + text + "\" is " + with_article(dimension_name(q.dimension)) + ", but " +
-                    m.input.name + " is " + with_article(dimension_name(m.input.dimension)));
-  }
-  return q.si_value;
-}
-
-// An angle input is turned into radians and reduced by its sine and cosine: no further
-// than kMaxAngleDegrees. The values of a sweep run from its first to its last.
-// An angle that follows the input (a spatial chain's driven variable) is held to the same
-// limit at every value: at its ends, and where it turns back in between.
-void check_input_range(const ConstraintSystem& m, const InputValues& values) {
-  const auto check = [&](double si) {
-    if (m.input.dimension == Dimension::angle) {
-      const double degrees = si / kRadiansPerDegree;
-      if (!(std::fabs(degrees) <= kMaxAngleDegrees * (1 + 1e-12))) {  // 1e9 deg read back through radians
-        throw InputError(m.source_file + ": " + m.input.name + " = " + format_significant(degrees, 12) +
-                         " deg: an angle past 1e9 deg (2.8 million turns) loses digits in its sine and cosine; "
-                         "give it within a few turns");
-      }
-    }
-    const double tau = (si - m.input.follower_origin) / m.input.follower_scale;
-    for (const FollowingAngle& f : m.input.followers) {
-      const double degrees = (f.value + f.rate * tau + f.second_rate * tau * tau / 2) / kRadiansPerDegree;
-      if (std::fabs(degrees) <= kMaxAngleDegrees * (1 + 1e-12)) continue;
-      const OutputScale scale(m);
-      throw InputError(m.source_file + ": at " + m.input.name + " = " + format_significant(scale.input(si), 12) + " " +
-                       scale.coordinate_unit(m.input.dimension) + ", " + f.name + " would be " +
-                       format_significant(degrees, 6) +
-                       " deg: an angle past 1e9 deg (2.8 million turns) loses digits in its sine and cosine; "
-                       "give " + m.input.name + " where the driven variables are within a few turns");
-    }
-  };
-  // The sweep's values beside where a follower turns back (its largest size in between).
-  const auto turning_point = [&]() {
-    const std::size_t n = values.size();
-    const double first = values[0], last = values[n - 1];
-    for (const FollowingAngle& f : m.input.followers) {
-      if (f.second_rate == 0 || n < 3) continue;
-      const double at = m.input.follower_origin - f.rate / f.second_rate * m.input.follower_scale;
-      if (!(at > std::min(first, last) && at < std::max(first, last))) continue;
-      const double k = std::floor((at - first) / (last - first) * double(n - 1));
-      for (double j : {k, k + 1})
-        if (j >= 0 && j < double(n)) check(values[std::size_t(j)]);
-    }
-  };
-  if (values.is_sweep() && !values.empty()) {
-    check(values[0]);
-    check(values[values.size() - 1]);
-    turning_point();
-  } else {
-    for (std::size_t i = 0; i < values.size(); ++i) check(values[i]);
-  }
-}
 
 // The printer of that kind and name (the command line's own check named the choices).
 const Printer& printer(PrintKind kind, const std::string& name) {

@@ -3,15 +3,11 @@
 // scripts can tell bad input from an unassemblable position.
 #pragma once
 
-#include <stdexcept>
 #include <string>
 
-namespace kinema {
+#include <kinema/error.hpp>  // kinema::Error, the base: the library facade's (api/kinema/)
 
-class Error : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+namespace kinema {
 
 /// The mechanism file is wrong: syntax, names, units, counts, values.
 class InputError : public Error {

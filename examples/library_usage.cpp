@@ -1,36 +1,35 @@
-// Using kinema as a library: load a mechanism, solve a few crank angles,
-// read the rates. Built and run by ctest against an installed kinema
-// (find_package(kinema)), so this example stays true.
+// Using kinema as a library: load a mechanism, solve it at a few crank angles, read
+// the results by name. Built and run by ctest against an installed kinema
+// (find_package(kinema)), which also checks its omega3 against `kinema eval`.
 #include <cstdio>
+#include <string>
+#include <vector>
 
-#include <kinema/engine/model.hpp>
-#include <kinema/engine/report/diagnostics.hpp>
+#include <kinema/kinema.hpp>
 
 int main(int argc, char** argv) {
   const char* path = argc > 1 ? argv[1] : "samples/four_bar.toml";
   try {
-    const auto model = kinema::load_model(path);
-    // Input values in SI (rad); the rates default to the file's.
-    const kinema::MotionTable table = kinema::analyse(model, {0.1, 0.2, 0.3});
-    for (const kinema::MotionState& state : table) {
-      if (state.status != kinema::Status::ok) {
-        std::fprintf(stderr, "%s\n", kinema::describe_failure(model.system, state).c_str());
+    const kinema::MechanismModel four_bar(path);
+    std::printf("%s: input %s, unknowns", four_bar.title().c_str(), four_bar.names().input.c_str());
+    for (const std::string& name : four_bar.names().unknowns) std::printf(" %s", name.c_str());
+    std::printf("\n");
+
+    // Input values with their units, solved in order on one branch; the rates are the file's.
+    const std::vector<std::string> angles = {"10 deg", "20 deg", "30 deg"};
+    const std::vector<kinema::Solution> solutions = four_bar.solve(angles);
+    for (std::size_t i = 0; i < angles.size(); ++i) {
+      const kinema::Solution& at = solutions[i];
+      if (!at.ok()) {  // does not assemble, or a toggle: kinema says why
+        std::fprintf(stderr, "%s\n", at.message().c_str());
         return 1;
       }
-      // Unknowns in file order: theta3, theta4 for the four-bar.
-      std::printf("theta2 = %.3f rad: omega3 = %.6f rad/s, alpha3 = %.6f rad/s^2\n", state.input, state.qd[0],
-                  state.qdd[0]);
+      // Results in SI, by the names the file gives.
+      const kinema::PointResult& p = at.point("P");
+      std::printf("theta2 = %s: omega3 = %.6g rad/s, alpha3 = %.6g rad/s^2, vP = (%.4f, %.4f) m/s\n",
+                  angles[i].c_str(), at.rate("omega3"), at.second_rate("alpha3"), p.velocity[0], p.velocity[1]);
     }
-    // One value at a time, each from the last (a controller, a simulation step).
-    kinema::Workspace workspace(model);
-    kinema::MotionState state = table[table.size() - 1];
-    const auto& input = model.system.input;
-    if (!workspace.advance(0.31, input.rate_value, input.second_rate_value, state)) {
-      std::fprintf(stderr, "the branch does not reach 0.31 rad\n");
-      return 1;
-    }
-    std::printf("theta2 = %.3f rad: omega3 = %.6f rad/s (advanced from the last value)\n", state.input, state.qd[0]);
-  } catch (const kinema::Error& error) {
+  } catch (const kinema::Error& error) {  // a bad file, unit or name: what and where
     std::fprintf(stderr, "%s\n", error.what());
     return 1;
   }

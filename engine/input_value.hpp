@@ -1,0 +1,23 @@
+// An input value as a user writes it ("30 deg", "120 mm", or "30" in the file's output
+// unit) turned into SI, and the range every input value is held to: the command line's
+// --at and --sweep and the library facade (api/) read values the same way.
+#pragma once
+
+#include <string>
+
+#include <kinema/engine/constraint_system.hpp>
+#include <kinema/engine/numeric/input_values.hpp>
+
+namespace kinema {
+
+/// "30 deg", "0.5 rad", "120 mm", "2 s" in SI; a bare number is in the output unit of the
+/// input's kind (degrees for an angle, the file's length unit for a slider, seconds for
+/// time). UnitError for a unit of another kind than the input's.
+double parse_input_value(const ConstraintSystem& system, const std::string& text);
+
+/// InputError unless every value (SI) is within kMaxAngleDegrees where it is an angle, and
+/// every angle that follows the input (a spatial chain's driven variables) is too; the
+/// values of a sweep are checked at its ends and where a follower turns back.
+void check_input_range(const ConstraintSystem& system, const InputValues& values);
+
+}  // namespace kinema
