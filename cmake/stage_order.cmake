@@ -10,6 +10,7 @@
 #   model         the derived and compiled mechanism
 #   analysis      what views show beyond the solved table
 #   printers      formats only
+#   facade        the installed library API (api/kinema/)
 #   cli           the command
 #
 # Configure runs kinema_check_stage_order over the tree (CMakeLists.txt); so does
@@ -25,8 +26,9 @@ set(KINEMA_STAGES
   "symbolic:engine/symbolic/"
   "numeric:engine/numeric/"
   "model:engine/model."
-  "analysis:engine/report/"
+  "analysis:engine/report/|engine/input_value."
   "printers:engine/printers/"
+  "facade:api/"
   "cli:cli/")
 
 # Upward includes that the reshaping of issue 34 has yet to remove: "file -> header".
@@ -83,7 +85,7 @@ endfunction()
 # those in the pending list. Includes are read as the tree writes them: "engine/..." from
 # the root, or <kinema/engine/...> as the build tree's include folder spells it.
 function(kinema_check_stage_order root)
-  file(GLOB_RECURSE sources RELATIVE "${root}" "${root}/engine/*" "${root}/loops/*" "${root}/cli/*")
+  file(GLOB_RECURSE sources RELATIVE "${root}" "${root}/engine/*" "${root}/loops/*" "${root}/cli/*" "${root}/api/*")
   set(upward "")
   foreach(source IN LISTS sources)
     if(NOT source MATCHES "\\.(cpp|hpp|inc)$")
@@ -92,7 +94,7 @@ function(kinema_check_stage_order root)
     kinema_stage_of("${source}" from)
     file(STRINGS "${root}/${source}" includes REGEX "^[ \t]*#[ \t]*include[ \t]*[<\"]")
     foreach(line IN LISTS includes)
-      if(NOT line MATCHES "#[ \t]*include[ \t]*[<\"](kinema/)?((engine|loops|cli)/[^>\"]+)[>\"]")
+      if(NOT line MATCHES "#[ \t]*include[ \t]*[<\"](kinema/)?((engine|loops|cli|api)/[^>\"]+)[>\"]")
         continue()
       endif()
       set(header "${CMAKE_MATCH_2}")
