@@ -77,7 +77,9 @@ void write_tikz_chain(std::ostream& out, const ConstraintSystem& system, const M
            format_fixed(d[2] * cm_along) + ")";
   };
 
-  out << "\\begin{center}\n\\tdplotsetmaincoords{65}{120}\n"
+  out << "\\noindent The chain at this instant, drawn in three dimensions"
+      << (velocity_scale > 0 ? " with the velocities of its points as arrows" : "") << ":\n"
+      << kLatexFigureBegin << "\\tdplotsetmaincoords{65}{120}\n"
       << "\\begin{tikzpicture}[tdplot_main_coords, line cap=round, >=latex]\n";
   const std::string o = latex_escape_text(observer);
   const double reach = 5.0 + 0.8;
@@ -122,7 +124,7 @@ void write_tikz_chain(std::ostream& out, const ConstraintSystem& system, const M
   }
   for (const auto& [where, names] : names_at)
     out << "\\node[anchor=north east, font=\\small, inner sep=2pt] at " << where << " {" << names << "};\n";
-  out << "\\end{tikzpicture}\n" << latex_figure_caption("The chain at the instant") << "\\end{center}\n";
+  out << "\\end{tikzpicture}\n" << latex_figure_caption("The chain at the instant") << kLatexFigureEnd;
   const OutputScale scale(system);
   out << "Drawing scale: 1\\,cm = $" << latex_number(1.0 / cm / scale.length, 3) << "$\\,"
       << latex_escape_text(scale.length_unit) << "; each frame's axes drawn 1\\,cm long";
