@@ -127,7 +127,11 @@ void write_tikz_instant_centres(std::ostream& out, const ConstraintSystem& syste
     out << "\\filldraw[red!75!black, fill=white] " << xy(centre.at) << " circle (0.07) node[above right, font=\\scriptsize] {$"
         << centre_latex(c, centre) << "$};\n";
   }
-  out << "\\end{tikzpicture}\n" << latex_figure_caption("Instant centres") << kLatexFigureEnd;
+  // The scale in the caption: on the drawing's page, as its key.
+  out << "\\end{tikzpicture}\n"
+      << latex_figure_caption("Instant centres. Drawing scale: 1\\,cm = $" + latex_number(1.0 / cm / scale.length, 3) +
+                              "\\,\\mathrm{" + scale.length_unit + "}$.")
+      << kLatexFigureEnd;
   if (system.linkage) {
     out << "Instant centres: the primary ones at the pins and, for a slider, at infinity across its line; every "
            "other by the Aronhold--Kennedy theorem, where two lines of centres it shares a body with cross (dashed).";
@@ -138,8 +142,7 @@ void write_tikz_instant_centres(std::ostream& out, const ConstraintSystem& syste
            "Aronhold--Kennedy); ground is link "
         << latex_escape_text(c.bodies[0]) << ".";
   }
-  out << " Drawing scale 1\\,cm = $"
-      << latex_number(1.0 / cm / scale.length, 3) << "\\,\\mathrm{" << scale.length_unit << "}$.\n\n";
+  out << "\n\n";
   const std::string l = scale.length_unit;
   const DocumentNumbers number(system);  // round-off as 0, as everywhere in the document
   out << "\\medskip\n\\begin{tabular}{lrrl}\n\\toprule\ncentre & $x$ & $y$ & found by \\\\\n & $\\mathrm{" << l << "}$ & $\\mathrm{"

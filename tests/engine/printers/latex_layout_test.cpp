@@ -30,10 +30,16 @@ std::vector<double> three_values(const kinema::Model& model, const kinema::Motio
   return values;
 }
 
-// kinema latex in-process (the program is not the subject here): the document the CLI writes.
+// kinema latex in-process (the program is not the subject here): the document the CLI writes,
+// its plots from every sixth value of the run (the same boxes, each of a page's plots the
+// size it is in the full run; pgfplots took half of each pdflatex run over 181 values).
 std::string worked_solution(const kinema::Model& model, kinema::DerivationMethod method, const std::vector<double>& inputs) {
   const kinema::MotionTable values = kinema::analyse(model, inputs);
-  const kinema::MotionTable sweep = kinema::analyse(model, kinema::plot_range(model.system, inputs.front()));
+  const std::vector<double> range = kinema::plot_range(model.system, inputs.front());
+  std::vector<double> coarse;
+  for (std::size_t k = 0; k < range.size(); k += 6) coarse.push_back(range[k]);
+  if (coarse.back() != range.back()) coarse.push_back(range.back());  // the run's last value kept
+  const kinema::MotionTable sweep = kinema::analyse(model, coarse);
   kinema::PrintJob job{model, &values, &sweep};
   job.method = method;
   std::ostringstream out;
