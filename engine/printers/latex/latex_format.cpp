@@ -89,8 +89,10 @@ std::string DocumentNumbers::operator()(double shown, Dimension dimension, int o
 }
 
 std::string latex_figure_caption(const std::string& text) {
-  // \nopagebreak: the caption stays on its drawing's page.
-  return "\\par\\nopagebreak\\smallskip\\refstepcounter{figure}{\\small Figure~\\thefigure: " + text + "}\\par\n";
+  // \nopagebreak: the caption stays on its drawing's page; \interlinepenalty: a caption of
+  // several lines (a drawing's scales) is never broken across pages.
+  return "\\par\\nopagebreak\\smallskip\\refstepcounter{figure}{\\small Figure~\\thefigure: " + text +
+         "\\interlinepenalty=10000\\par}\n";
 }
 
 std::string DocumentNumbers::ratio(double value, int digits) const {

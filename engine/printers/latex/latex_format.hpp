@@ -73,6 +73,13 @@ std::string latex_vector_loop(const EquationGroup& loop);
 /// compiles in anyone's notes: \pagetotal is the current page's height after \par).
 inline constexpr const char* kLatexPartBreak = "\\par\\penalty0\\relax\\ifdim\\pagetotal>0.45\\pagegoal\\clearpage\\fi\n";
 
+/// A centred figure kept on the page of the heading or sentence before it, which introduces
+/// it: a page may break before that text, never between it and the drawing (the center
+/// environment invites a break there). The drawing and its caption (latex_figure_caption)
+/// between the two; a plain group, as a fragment compiles in anyone's notes.
+inline constexpr const char* kLatexFigureBegin = "\\par\\nopagebreak\\medskip\n{\\centering\\noindent\n";
+inline constexpr const char* kLatexFigureEnd = "}\\par\\medskip\n";
+
 /// A figure's numbered caption, under its drawing ("Figure 3: Velocity polygon"): the
 /// figure counter stepped by hand rather than a float, so that the drawing stays where
 /// the text refers to it and a fragment needs no package.

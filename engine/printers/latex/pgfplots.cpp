@@ -164,12 +164,12 @@ class PlotWriter {
     }
     const std::string l = "[$\\mathrm{" + scale_.length_unit + "}$]";
     out_ << "\\medskip\n\\noindent Paths of the points over the run (coupler curves of points on a coupler), "
-            "to one scale in $x$ and $y$:\n\n\\begin{center}\n\\begin{tikzpicture}\n\\begin{axis}[width=0.7\\linewidth, "
+            "to one scale in $x$ and $y$:\n" << kLatexFigureBegin << "\\begin{tikzpicture}\n\\begin{axis}[width=0.7\\linewidth, "
             "axis equal image, "
          << box << "xlabel={$x$ " << l << "}, ylabel={$y$ " << l
          << "}, unbounded coords=jump, legend style={font=\\footnotesize, at={(0.5,1.02)}, anchor=south, "
             "legend columns=-1}]\n"
-         << curves << "\\end{axis}\n\\end{tikzpicture}\n" << latex_figure_caption("Paths of the points") << "\\end{center}\n\n";
+         << curves << "\\end{axis}\n\\end{tikzpicture}\n" << latex_figure_caption("Paths of the points") << kLatexFigureEnd << "\n";
   }
 
   static constexpr std::size_t kBreak = static_cast<std::size_t>(-1);
@@ -235,7 +235,7 @@ class PlotWriter {
 
   void begin_axis(const std::string& x_label, const std::string& y_label, int index) {
     // Each pair of plots a paragraph of its own, so that a page may break between pairs.
-    out_ << (index % 2 ? "\\hfill" : index ? "\\par\\medskip\\noindent" : "\\noindent") << "\\begin{minipage}{0.48\\linewidth}\n"
+    out_ << (index % 2 ? "\\hfill" : index ? "\\par\\medskip\\noindent" : "\\par\\nopagebreak\\noindent") << "\\begin{minipage}{0.48\\linewidth}\n"
          << "\\begin{tikzpicture}\n\\begin{axis}[width=0.85\\linewidth, height=5.5cm, xlabel={" << x_label
          << "}, ylabel={" << y_label
          << "}, " << (turn_ ? "xmin=0, xmax=360, xtick={0,90,180,270,360}, " : "max space between ticks=40, ")

@@ -77,7 +77,9 @@ void write_tikz_chain(std::ostream& out, const ConstraintSystem& system, const M
            format_fixed(d[2] * cm_along) + ")";
   };
 
-  out << "\\begin{center}\n\\tdplotsetmaincoords{65}{120}\n"
+  out << "\\par\\medskip\\noindent The chain at this instant, drawn in three dimensions"
+      << (velocity_scale > 0 ? " with the velocities of its points as arrows" : "") << ":\n"
+      << kLatexFigureBegin << "\\tdplotsetmaincoords{65}{120}\n"
       << "\\begin{tikzpicture}[tdplot_main_coords, line cap=round, >=latex]\n";
   const std::string o = latex_escape_text(observer);
   const double reach = 5.0 + 0.8;
@@ -122,15 +124,15 @@ void write_tikz_chain(std::ostream& out, const ConstraintSystem& system, const M
   }
   for (const auto& [where, names] : names_at)
     out << "\\node[anchor=north east, font=\\small, inner sep=2pt] at " << where << " {" << names << "};\n";
-  out << "\\end{tikzpicture}\n" << latex_figure_caption("The chain at the instant") << "\\end{center}\n";
+  // The scales in the caption: on the drawing's page, as its key.
   const OutputScale scale(system);
-  out << "Drawing scale: 1\\,cm = $" << latex_number(1.0 / cm / scale.length, 3) << "$\\,"
-      << latex_escape_text(scale.length_unit) << "; each frame's axes drawn 1\\,cm long";
+  std::string key = "The chain at the instant. Drawing scale: 1\\,cm = $" + latex_number(1.0 / cm / scale.length, 3) + "$\\," +
+                    latex_escape_text(scale.length_unit) + "; each frame's axes drawn 1\\,cm long";
   if (velocity_scale > 0) {
-    out << "; velocity vectors (red): 1\\,cm = $" << latex_number(1.0 / velocity_scale / scale.length, 3) << "$\\,"
-        << latex_escape_text(scale.length_unit) << "/s";
+    key += "; velocity vectors (red): 1\\,cm = $" + latex_number(1.0 / velocity_scale / scale.length, 3) + "$\\," +
+           latex_escape_text(scale.length_unit) + "/s";
   }
-  out << ".\n\n";
+  out << "\\end{tikzpicture}\n" << latex_figure_caption(key + ".") << kLatexFigureEnd << "\n";
 }
 
 }  // namespace kinema

@@ -64,7 +64,7 @@ void write_tikz_instant_centres(std::ostream& out, const ConstraintSystem& syste
   const auto xy = [&](std::complex<double> p) {
     return "(" + format_fixed(p.real() * cm, 3) + "," + format_fixed(p.imag() * cm, 3) + ")";
   };
-  out << "\\begin{center}\n\\begin{tikzpicture}[line cap=round, >=latex]\n";
+  out << kLatexFigureBegin << "\\begin{tikzpicture}[line cap=round, >=latex]\n";
   // The figure's frame: a centre beyond it is an arrow at its edge pointing to it.
   const double fx0 = min_x * cm, fx1 = max_x * cm, fy0 = min_y * cm, fy1 = max_y * cm;
   const auto edge_towards = [&](std::complex<double> from, std::complex<double> along) {  // cm
@@ -127,7 +127,11 @@ void write_tikz_instant_centres(std::ostream& out, const ConstraintSystem& syste
     out << "\\filldraw[red!75!black, fill=white] " << xy(centre.at) << " circle (0.07) node[above right, font=\\scriptsize] {$"
         << centre_latex(c, centre) << "$};\n";
   }
-  out << "\\end{tikzpicture}\n" << latex_figure_caption("Instant centres") << "\\end{center}\n";
+  // The scale in the caption: on the drawing's page, as its key.
+  out << "\\end{tikzpicture}\n"
+      << latex_figure_caption("Instant centres. Drawing scale: 1\\,cm = $" + latex_number(1.0 / cm / scale.length, 3) +
+                              "\\,\\mathrm{" + scale.length_unit + "}$.")
+      << kLatexFigureEnd;
   if (system.linkage) {
     out << "Instant centres: the primary ones at the pins and, for a slider, at infinity across its line; every "
            "other by the Aronhold--Kennedy theorem, where two lines of centres it shares a body with cross (dashed).";
@@ -138,8 +142,7 @@ void write_tikz_instant_centres(std::ostream& out, const ConstraintSystem& syste
            "Aronhold--Kennedy); ground is link "
         << latex_escape_text(c.bodies[0]) << ".";
   }
-  out << " Drawing scale 1\\,cm = $"
-      << latex_number(1.0 / cm / scale.length, 3) << "\\,\\mathrm{" << scale.length_unit << "}$.\n\n";
+  out << "\n\n";
   const std::string l = scale.length_unit;
   const DocumentNumbers number(system);  // round-off as 0, as everywhere in the document
   out << "\\medskip\n\\begin{tabular}{lrrl}\n\\toprule\ncentre & $x$ & $y$ & found by \\\\\n & $\\mathrm{" << l << "}$ & $\\mathrm{"
@@ -156,7 +159,10 @@ void write_tikz_instant_centres(std::ostream& out, const ConstraintSystem& syste
       const InstantCentre& centre = *found;
       out << "$" << centre_latex(c, centre) << "$ & ";
       if (centre.at_infinity) {
-        out << "\\multicolumn{2}{c}{at infinity, $" << latex_number(to_degrees(std::arg(centre.at)), 4) << "^{\\circ}$}";
+        // Its direction's round-off as 0 (-7.017e-15 deg was "10^{-15}^{\\circ}", a double superscript
+        // pdflatex stops on), braced so that the degree sign never follows another superscript.
+        out << "\\multicolumn{2}{c}{at infinity, ${" << number(to_degrees(std::arg(centre.at)), Dimension::angle, 0, 4)
+            << "}^{\\circ}$}";
       } else {
         // A coordinate that is rounding noise next to the mechanism's size prints as 0.
         const auto shown = [&](double v) { return number(v / scale.length, Dimension::length, 0, 5); };

@@ -124,7 +124,10 @@ void write_tikz_mechanism(std::ostream& out, const ConstraintSystem& system, con
   auto xy = [&](std::complex<double> p) {
     return "(" + format_fixed(p.real() * cm) + "," + format_fixed(p.imag() * cm) + ")";
   };
-  out << "\\begin{center}\n\\begin{tikzpicture}[line cap=round]\n";
+  // Introduced by a sentence that stays with it (after the substitution's display).
+  out << "\\par\\medskip\\noindent The mechanism at this instant, drawn to scale"
+      << (velocity_scale > 0 || acceleration_scale > 0 ? ", with the velocities and accelerations of its points as arrows" : "")
+      << ":\n" << kLatexFigureBegin << "\\begin{tikzpicture}[line cap=round]\n";
   // The frame the positions are in: x and y from the origin.
   out << "\\draw[->, gray] (0,0) -- (1.2,0) node[right, font=\\scriptsize] {$x$};\n"
       << "\\draw[->, gray] (0,0) -- (0,1.2) node[above, font=\\scriptsize] {$y$};\n";
@@ -289,18 +292,19 @@ void write_tikz_mechanism(std::ostream& out, const ConstraintSystem& system, con
           << ", inner sep=1pt, font=\\scriptsize, green!50!black] {$\\mathbf{a}_{" << name << "}$};\n";
     }
   }
-  out << "\\end{tikzpicture}\n" << latex_figure_caption("The mechanism at the instant") << "\\end{center}\n";
+  // The scales in the caption: on the drawing's page, as its key.
   const double length_per_cm = 1.0 / cm / scale.length;
-  out << "Drawing scale: 1\\,cm = $" << latex_number(length_per_cm, 3) << "$\\," << latex_escape_text(scale.length_unit);
+  std::string key = "The mechanism at the instant. Drawing scale: 1\\,cm = $" + latex_number(length_per_cm, 3) + "$\\," +
+                    latex_escape_text(scale.length_unit);
   if (velocity_scale > 0) {
-    out << "; velocity vectors (red): 1\\,cm = $" << latex_number(1.0 / velocity_scale / scale.length, 3) << "$\\,"
-         << latex_escape_text(scale.length_unit) << "/s";
+    key += "; velocity vectors (red): 1\\,cm = $" + latex_number(1.0 / velocity_scale / scale.length, 3) + "$\\," +
+           latex_escape_text(scale.length_unit) + "/s";
   }
   if (acceleration_scale > 0) {
-    out << "; acceleration vectors (green, dashed): 1\\,cm = $" << latex_number(1.0 / acceleration_scale / scale.length, 3)
-        << "\\,\\mathrm{" << scale.length_unit << "/s^{2}}$";
+    key += "; acceleration vectors (green, dashed): 1\\,cm = $" + latex_number(1.0 / acceleration_scale / scale.length, 3) +
+           "\\,\\mathrm{" + scale.length_unit + "/s^{2}}$";
   }
-  out << ".\n\n";
+  out << "\\end{tikzpicture}\n" << latex_figure_caption(key + ".") << kLatexFigureEnd << "\n";
 }
 
 }  // namespace kinema

@@ -127,7 +127,8 @@ void write_tikz_polygon(std::ostream& out, const ConstraintSystem& system, const
     return "(" + format_fixed(p.real(), 3) + "," + format_fixed(p.imag(), 3) + ")";
   };
   // The polygon and its table in one box: a table is never a page of its own after its figure.
-  out << "\\par\\noindent\\begin{minipage}{\\linewidth}\n\\begin{center}\n\\begin{tikzpicture}[line cap=round, >=latex]\n";
+  // The velocity polygon on the page of the paragraph that introduces both.
+  out << (velocity ? "\\par\\nopagebreak" : "\\par") << "\\noindent\\begin{minipage}{\\linewidth}\n\\begin{center}\n\\begin{tikzpicture}[line cap=round, >=latex]\n";
   const auto cm_of = [&](std::complex<double> si) { return si / scale.length / per_cm; };
   // The vertices' letters first, each round its point away from the polygon's centre, or
   // the next way round that is free; points drawn at one place share one label (o, c).

@@ -607,18 +607,23 @@ class DocumentWriter {
       return "$(" + numbers_(v[0] / f, dimension, order, 5) + ",\\ " + numbers_(v[1] / f, dimension, order, 5) + ",\\ " +
              numbers_(v[2] / f, dimension, order, 5) + ")$";
     };
+    // A point's three vectors as columns: three triples in a row were wider than the text
+    // (45 pt past it for robot_arm_slider at t = 0.67 s), and a column's width is one number's.
+    const auto column = [&](const std::array<double, 3>& v, int order) {
+      const double f = scale_.length;
+      return "\\begin{pmatrix} " + numbers_(v[0] / f, Dimension::length, order, 5) + " \\\\ " +
+             numbers_(v[1] / f, Dimension::length, order, 5) + " \\\\ " + numbers_(v[2] / f, Dimension::length, order, 5) +
+             " \\end{pmatrix}";
+    };
     if (!system_.points.empty()) {
       out_ << "\\medskip\n\\begin{tabular}{lccc}\n\\toprule\npoint & position ($\\mathrm{" << l
            << "}$) & velocity ($\\mathrm{" << l << "/s}$) & acceleration ($\\mathrm{" << l
            << "/s^2}$) \\\\\n\\midrule\n";
       for (std::size_t p = 0; p < system_.points.size(); ++p) {
         const PointMotion& m = s.points[p];
-        const double f = scale_.length;
         // The velocity and acceleration are the point's answers: boxed.
-        const auto boxed = [](const std::string& math) { return "$\\boxed{" + math.substr(1, math.size() - 2) + "}$"; };
-        out_ << latex_escape_text(system_.points[p].name) << " & " << triple(m.position, f, Dimension::length, 0) << " & "
-             << boxed(triple(m.velocity, f, Dimension::length, 1)) << " & "
-             << boxed(triple(m.acceleration, f, Dimension::length, 2)) << " \\\\\n";
+        out_ << (p ? "\\addlinespace\n" : "") << latex_escape_text(system_.points[p].name) << " & $" << column(m.position, 0)
+             << "$ & $\\boxed{" << column(m.velocity, 1) << "}$ & $\\boxed{" << column(m.acceleration, 2) << "}$ \\\\\n";
       }
       out_ << "\\bottomrule\n\\end{tabular}\n\n";
     }
@@ -635,7 +640,9 @@ class DocumentWriter {
   void point_table(const MotionState& s) {
     // Planar points (the drawing and the table's columns are 2-D).
     const std::string l = scale_.length_unit;
-    out_ << "\\medskip\n\\begin{tabular}{lrrrrrrrr}\n\\toprule\npoint & $x$ & $y$ & $v_x$ & $v_y$ & $|v|$ & $a_x$ & "
+    // Nine columns, two of them boxed: closer than the default 6 pt, so that six-character
+    // numbers in every column (Example 4.2 at phi = 165 deg was 12 pt too wide) fit the text width.
+    out_ << "\\medskip\n{\\setlength{\\tabcolsep}{4pt}\\begin{tabular}{lrrrrrrrr}\n\\toprule\npoint & $x$ & $y$ & $v_x$ & $v_y$ & $|v|$ & $a_x$ & "
             "$a_y$ & $|a|$ \\\\\n & \\multicolumn{2}{c}{$\\mathrm{"
          << l << "}$} & \\multicolumn{3}{c}{$\\mathrm{" << l << "/s}$} & \\multicolumn{3}{c}{$\\mathrm{" << l
          << "/s^2}$} \\\\\n\\midrule\n";
@@ -657,7 +664,7 @@ class DocumentWriter {
       }
       out_ << " \\\\\n";
     }
-    out_ << "\\bottomrule\n\\end{tabular}\n\n";
+    out_ << "\\bottomrule\n\\end{tabular}}\n\n";
   }
 
   // The solved formulas with the numbers put in, as a worked solution shows them:

@@ -18,6 +18,7 @@
 #include <kinema/engine/report/chain_instant.hpp>
 #include <kinema/engine/symbolic/naming.hpp>
 #include <kinema/engine/symbolic/trig_simplify.hpp>
+#include "engine/printers/latex_pages.hpp"
 #include "test_support.hpp"
 
 namespace {
@@ -25,6 +26,10 @@ namespace {
 using kinema_test::kSamples;  // every bundled sample
 
 using kinema_test::read_file;
+using kinema_test::compile_document;
+using kinema_test::Overfull;
+using kinema_test::overfull_boxes;
+using kinema_test::methods_of;
 
 // Compiles an align* block in a minimal document; returns the log on failure.
 bool compiles(const std::string& block, const std::string& name, std::string& log) {
@@ -174,52 +179,6 @@ TEST_CASE("derive --format latex: hostile titles print as text - names must be i
 
 namespace {
 
-// Compiles a whole document; returns its page count (0 when it does not compile cleanly).
-int compile_document(const std::string& tex_text, const std::string& name, std::string& log) {
-  const auto directory = std::filesystem::temp_directory_path() / "kinema_tests" / "latex";
-  std::filesystem::create_directories(directory);
-  std::ofstream(directory / (name + ".tex")) << tex_text;
-  std::filesystem::remove(directory / (name + ".pdf"));
-  const std::string command = "cd '" + directory.string() + "' && pdflatex -interaction=batchmode -halt-on-error '" +
-                              name + ".tex' > /dev/null 2>&1";
-  const int status = std::system(command.c_str());
-  log = read_file((directory / (name + ".log")).string());
-  if (status != 0 || log.find("Undefined control sequence") != std::string::npos) return 0;
-  const std::string info = (directory / (name + ".info")).string();
-  std::system(("pdfinfo '" + (directory / (name + ".pdf")).string() + "' > '" + info + "' 2>/dev/null").c_str());
-  const std::string text = read_file(info);
-  const auto at = text.find("Pages:");
-  return at == std::string::npos ? 0 : std::stoi(text.substr(at + 6));
-}
-
-}  // namespace
-
-namespace {
-
-// Each page's text height over the page's (pdftotext -bbox: from the top of its first word
-// to the foot of its last, the page number under the text left out).
-std::vector<double> text_heights(const std::string& name) {
-  const auto directory = std::filesystem::temp_directory_path() / "kinema_tests" / "latex";
-  const std::string boxes = (directory / (name + ".bbox")).string();
-  std::system(("pdftotext -bbox '" + (directory / (name + ".pdf")).string() + "' '" + boxes + "' 2>/dev/null").c_str());
-  const std::string text = read_file(boxes);
-  std::vector<double> heights;
-  for (auto page = text.find("<page "); page != std::string::npos; page = text.find("<page ", page + 1)) {
-    const auto end = text.find("</page>", page);
-    const double height = std::stod(text.substr(text.find("height=\"", page) + 8));
-    double top = height, bottom = 0;
-    for (auto word = text.find("<word ", page); word < end; word = text.find("<word ", word + 1)) {
-      const double y_min = std::stod(text.substr(text.find("yMin=\"", word) + 6));
-      const double y_max = std::stod(text.substr(text.find("yMax=\"", word) + 6));
-      if (y_min > height - 80) continue;  // the page number
-      top = std::min(top, y_min);
-      bottom = std::max(bottom, y_max);
-    }
-    heights.push_back(bottom > top ? (bottom - top) / height : 0);
-  }
-  return heights;
-}
-
 // docs/outputs.md's table of pages: "| `four_bar.toml` | 6 |" (two samples a row).
 int documented_pages(const std::string& sample) {
   const std::string outputs = read_file(kinema_test::sample("../docs/outputs.md"));
@@ -258,26 +217,18 @@ TEST_CASE("kinema latex: every sample's worked solution compiles, with its pages
     }
     // The solved rates and second rates in the document are the engine's.
     CHECK(formulas_parse_back(result.out, sample) == (chain ? 0 : 2 * model.system.unknowns.size()));
+    // Compiled with its figures marked (labels in lines already there: the layout is the same).
+    const kinema_test::MarkedFigures marked = kinema_test::mark_figures(result.out);
+    const std::string document = "document_" + name.substr(0, name.find('.'));
     std::string log;
-    const int pages = compile_document(result.out, "document_" + name.substr(0, name.find('.')), log);
+    const int pages = compile_document(marked.tex, document, log);
     INFO(log.substr(log.size() > 3000 ? log.size() - 3000 : 0));
     // Data and equations, the results (drawing, polygons, centres), the plots: as docs/outputs.md
     // says, from every build (the sanitizer build's GiNaC orders terms otherwise).
     CHECK(pages >= 3);
     CHECK(pages == documented_pages(name));
-    // No near-empty page (issue 32): every page but the last has text over a quarter of its height.
-    const std::vector<double> heights = text_heights("document_" + name.substr(0, name.find('.')));
-    CHECK(static_cast<int>(heights.size()) == pages);
-    for (std::size_t page = 0; page + 1 < heights.size(); ++page) {
-      CAPTURE(page + 1);
-      CHECK(heights[page] >= 0.25);
-    }
-    // Nothing runs into the margin: no overfull line wider than 1 pt (issue 13).
-    for (auto at = log.find("Overfull \\hbox ("); at != std::string::npos; at = log.find("Overfull \\hbox (", at + 1)) {
-      const double too_wide = std::stod(log.substr(at + 16));
-      INFO(log.substr(at, log.find('\n', at) - at));
-      CHECK(too_wide <= 1.0);
-    }
+    // No near-empty page, each figure with its caption and its introduction, nothing overfull.
+    kinema_test::check_layout(document, marked, pages, log);
   }
 }
 
@@ -443,38 +394,6 @@ TEST_CASE("kinema latex: a point with a pole over the turn and a path along a li
 
 namespace {
 
-// Every overfull box of a pdflatex log over 1 pt: "Overfull \hbox (12.3pt too wide) ...
-// at lines 40--41" (or "detected at line 40"), with the source line it names.
-struct Overfull {
-  double points = 0;
-  std::size_t line = 0;
-  std::string text;
-};
-std::vector<Overfull> overfull_boxes(const std::string& log) {
-  std::vector<Overfull> found;
-  for (auto at = log.find("Overfull \\"); at != std::string::npos; at = log.find("Overfull \\", at + 1)) {
-    const std::string text = log.substr(at, log.find('\n', at) - at);
-    const double points = std::atof(text.c_str() + text.find('(') + 1);
-    const auto line_at = text.find("line");
-    const std::size_t line = line_at == std::string::npos ? 0 : std::strtoul(text.c_str() + text.find_first_of("0123456789", line_at), nullptr, 10);
-    if (points > 1.0) found.push_back({points, line, text});
-  }
-  return found;
-}
-
-// The methods a sample takes: dyad by dyad only for joints and links solved in dyads.
-std::vector<kinema::DerivationMethod> methods_of(const kinema::Model& model) {
-  std::vector<kinema::DerivationMethod> methods = {kinema::DerivationMethod::loops};
-  for (kinema::DerivationMethod m : {kinema::DerivationMethod::relative_velocity, kinema::DerivationMethod::joint_coordinates}) {
-    try {
-      kinema::check_method_applies(model.system, m);
-      methods.push_back(m);
-    } catch (const kinema::InputError&) {
-    }
-  }
-  return methods;
-}
-
 // The sample and method whose part of a concatenated .tex holds `line`.
 std::string part_at(const std::vector<std::pair<std::size_t, std::string>>& starts, std::size_t line) {
   std::string part = "?";
@@ -487,14 +406,14 @@ std::size_t lines_in(const std::string& text) { return std::size_t(std::count(te
 
 }  // namespace
 
-TEST_CASE("derive --format latex and kinema latex: every sample with every method fits the page - no overfull box") {
+// kinema latex --method of each sample: tests/engine/printers/latex_layout_test.cpp.
+TEST_CASE("derive --format latex: every sample with every method fits the page - no overfull box") {
   // derive --format latex of every sample and method in one plain article (one pdflatex
   // run): each block breaks across pages and keeps every line inside 345 pt.
   std::string tex = "\\documentclass{article}\n\\usepackage{amsmath}\n\\begin{document}\n";
   std::vector<std::pair<std::size_t, std::string>> starts;
   const kinema::Printer* derivation = kinema::find_printer(kinema::PrintKind::derivation, "latex");
   REQUIRE(derivation != nullptr);
-  std::vector<std::pair<std::string, std::string>> documents;  // sample, method: kinema latex --method
   for (const char* sample : kSamples) {
     const kinema::Model model = kinema::load_model(kinema_test::sample(sample));
     for (kinema::DerivationMethod method : methods_of(model)) {
@@ -504,7 +423,6 @@ TEST_CASE("derive --format latex and kinema latex: every sample with every metho
       derivation->print(out, job);
       starts.push_back({lines_in(tex) + 1, std::string(sample) + " " + kinema::method_name(method)});
       tex += "\\clearpage\n" + out.str();
-      if (method != kinema::DerivationMethod::loops) documents.push_back({sample, kinema::method_name(method)});
     }
   }
   {
@@ -527,25 +445,6 @@ TEST_CASE("derive --format latex and kinema latex: every sample with every metho
     CHECK(box.points <= 1.0);
   }
 
-  // kinema latex --method of each joints-and-links sample (its loops are compiled above,
-  // one document each): their fragments in one document with the documents' preamble.
-  REQUIRE(!documents.empty());
-  const auto full = kinema_test::run_kinema({"latex", kinema_test::sample(documents.front().first)});
-  REQUIRE(full.exit_status == 0);
-  std::string all = full.out.substr(0, full.out.find("\\begin{document}") + 17);
-  starts.clear();
-  for (const auto& [sample, method] : documents) {
-    const auto fragment = kinema_test::run_kinema({"latex", kinema_test::sample(sample), "--method", method, "--fragment"});
-    REQUIRE(fragment.exit_status == 0);
-    starts.push_back({lines_in(all) + 1, sample + " " + method});
-    all += "\\clearpage\n" + fragment.out;
-  }
-  all += "\\end{document}\n";
-  CHECK(compile_document(all, "latex_every_method", log) > 0);
-  for (const Overfull& box : overfull_boxes(log)) {
-    INFO(part_at(starts, box.line) << ": " << box.text);
-    CHECK(box.points <= 1.0);
-  }
 }
 
 // Issue 33: sin nested 40 deep in a loop was accepted (parentheses up to 100 deep) and gave
