@@ -671,3 +671,70 @@ TEST_CASE("figures: polygon labels on no other label nor dot, each within a labe
   }
   CHECK(figures >= 20);  // a velocity and an acceleration polygon of each planar sample that has them
 }
+
+namespace {
+
+// The value of option `key` in an axis's options ("width=5.4cm" -> "5.4cm", "xtick={0,90}" -> "0,90").
+std::string axis_option(const std::string& options, const std::string& key) {
+  auto at = options.find(", " + key + "=");
+  if (at == std::string::npos && options.rfind(key + "=", 0) == 0) at = static_cast<std::size_t>(-2);
+  if (at == std::string::npos) return "";
+  at += key.size() + 3;
+  if (options[at] == '{') return options.substr(at + 1, options.find("}, ", at) - at - 1);
+  return options.substr(at, options.find(", ", at) - at);
+}
+
+std::vector<std::string> split_commas(const std::string& list) {
+  std::vector<std::string> parts;
+  std::istringstream in(list);
+  for (std::string part; std::getline(in, part, ',');) parts.push_back(part);
+  return parts;
+}
+
+}  // namespace
+
+// Issue 32: nothing kept a plot's tick labels apart (pgfplots chose them). Each axis now
+// states its ticks and labels; read back, neighbouring labels' boxes (\scriptsize, as the
+// printer estimates them) do not meet at the axis's stated length, on x side by side and
+// on y one above the other, and each label is its tick's value, inside the axis's range.
+TEST_CASE("figures: every plot's tick labels apart at the axis's length, each its tick's value") {
+  int axes = 0;
+  for (const char* name : kinema_test::kSamples) {
+    CAPTURE(std::string(name));
+    const kinema::Model model = kinema::load_model(kinema_test::sample(name));
+    const double first = model.system.input.values.empty() ? 0.0 : model.system.input.values.front();
+    const MotionTable values = kinema::analyse(model, {first});
+    const MotionTable sweep = kinema::analyse(model, kinema::plot_range(model.system, first));
+    const std::string tex = document(model, &values, &sweep);
+    for (auto at = tex.find("\\begin{axis}["); at != std::string::npos; at = tex.find("\\begin{axis}[", at + 1)) {
+      const std::string options = tex.substr(at + 13, tex.find("]\n", at) - at - 13);
+      CAPTURE(options);
+      ++axes;
+      REQUIRE(options.find("scale only axis") != std::string::npos);  // the stated width is the axis's
+      for (const char axis : {'x', 'y'}) {
+        const std::string a(1, axis);
+        const std::string length = axis_option(options, axis == 'x' ? "width" : "height");
+        REQUIRE(length.size() > 2);
+        REQUIRE(length.substr(length.size() - 2) == "cm");
+        const double lo = std::stod(axis_option(options, a + "min")), hi = std::stod(axis_option(options, a + "max"));
+        const double cm_per_unit = std::stod(length) / (hi - lo);
+        const auto ticks = split_commas(axis_option(options, a + "tick"));
+        const auto labels = split_commas(axis_option(options, a + "ticklabels"));
+        REQUIRE(!ticks.empty());
+        REQUIRE(labels.size() == ticks.size());
+        for (std::size_t i = 0; i < ticks.size(); ++i) {
+          CAPTURE(labels[i]);
+          const double tick = std::stod(ticks[i]);
+          CHECK(tick >= lo - 1e-9 * (hi - lo));
+          CHECK(tick <= hi + 1e-9 * (hi - lo));
+          CHECK(std::stod(labels[i].substr(1)) == doctest::Approx(tick).epsilon(1e-9));
+          if (i == 0) continue;
+          const kinema::LabelBox previous = kinema::label_box(labels[i - 1], 8, 0), box = kinema::label_box(labels[i], 8, 0);
+          const double room = axis == 'x' ? previous.half_width + box.half_width : previous.half_height + box.half_height;
+          CHECK((tick - std::stod(ticks[i - 1])) * cm_per_unit > room);
+        }
+      }
+    }
+  }
+  CHECK(axes >= 5 * 18);  // every sample's plots
+}
