@@ -4,6 +4,7 @@
 #include <cmath>
 #include <vector>
 
+#include <kinema/engine/printers/latex/label_boxes.hpp>
 #include <kinema/engine/printers/latex/latex_format.hpp>
 #include <kinema/engine/report/number_format.hpp>
 #include <kinema/engine/report/output_scale.hpp>
@@ -29,6 +30,59 @@ double plot_limit(const std::vector<double>& values) {
   const auto percentile = sizes.begin() + (sizes.size() * 9) / 10;
   std::nth_element(sizes.begin(), percentile, sizes.end());
   return kPlotSpan * *percentile;
+}
+
+// A plot's axis in cm (scale only axis): two to a text width's row with their tick labels
+// and axis labels beside them.
+constexpr double kAxisWidthCm = 5.4, kAxisHeightCm = 4.0;
+
+// One axis's limits and ticks (`axis` x or y) over [lo, hi] drawn `length_cm` long: the
+// smallest round step (1, 2, 2.5 or 5 times a power of ten) at which neighbouring tick
+// labels (\scriptsize, as label_box estimates them) stand apart with a gap, side by side
+// on x, one above the other on y; written with their labels, so that pgfplots neither
+// picks other ticks nor scales them.
+std::string axis_ticks(char axis, double lo, double hi, double length_cm, bool degrees_turn = false) {
+  if (!(hi - lo > 1e-6 * std::max(std::fabs(lo), std::fabs(hi)))) {  // a constant (to round-off): a tenth round it, 0 in -1..1
+    const double pad = std::max(std::fabs(lo) * 0.1, lo == 0 ? 1.0 : 1e-6);
+    lo -= pad;
+    hi += pad;
+  }
+  const double per_cm = (hi - lo) / length_cm;
+  std::vector<double> ticks;
+  std::vector<std::string> labels;
+  int decimals = 0;
+  // A turn's degrees at 45, 90 or 180 deg, else the round steps from a thousandth of the range up.
+  const std::vector<double> mantissas = degrees_turn ? std::vector<double>{45, 90, 180} : std::vector<double>{1, 2, 2.5, 5};
+  for (double decade = degrees_turn ? 1 : std::pow(10.0, std::floor(std::log10(hi - lo)) - 3);; decade *= 10) {
+    bool fits = false;
+    for (double mantissa : mantissas) {
+      const double step = mantissa * decade;
+      decimals = std::max(0, static_cast<int>(std::ceil(-std::log10(step) - 1e-9)) + (mantissa == 2.5 ? 1 : 0));
+      ticks.clear();
+      labels.clear();
+      for (double k = std::ceil(lo / step - 1e-9); k * step <= hi + 1e-9 * step; ++k) {
+        ticks.push_back(k == 0 ? 0.0 : k * step);  // not -0
+        labels.push_back("$" + format_fixed(ticks.back(), decimals) + "$");
+      }
+      fits = true;
+      for (std::size_t i = 1; i < ticks.size() && fits; ++i) {
+        const LabelBox a = label_box(labels[i - 1], 8, 0), b = label_box(labels[i], 8, 0);
+        const double room = axis == 'x' ? a.half_width + b.half_width : a.half_height + b.half_height;
+        fits = (ticks[i] - ticks[i - 1]) / per_cm >= room + 0.25;
+      }
+      // Not more ticks than a reader needs: 1 cm apart at least across, 0.8 cm up.
+      fits = fits && (ticks.size() < 2 || step / per_cm >= (axis == 'x' ? 1.0 : 0.8));
+      if (fits) break;
+    }
+    if (fits) break;
+  }
+  // The limits to a hundredth of a step, the ticks as their labels.
+  std::string out = std::string(1, axis) + "min=" + format_fixed(lo, decimals + 2) + ", " + axis +
+                    "max=" + format_fixed(hi, decimals + 2) + ", " + axis + "tick={";
+  for (std::size_t i = 0; i < ticks.size(); ++i) out += (i ? "," : "") + format_fixed(ticks[i], decimals);
+  out += "}, " + std::string(1, axis) + "ticklabels={";
+  for (std::size_t i = 0; i < labels.size(); ++i) out += (i ? "," : "") + labels[i];
+  return out + "}, ";
 }
 
 class PlotWriter {
@@ -154,19 +208,24 @@ class PlotWriter {
     }
     // Equal scales of a box far longer than high (paths along a line, one of them long) are
     // more than pgfplots can lay out: the short side is widened to 1/kPlotSpan of the long.
-    std::string box;
     const double longest = std::max(high[0] - low[0], high[1] - low[1]);
     for (const int k : {0, 1}) {
       if (!(high[k] - low[k] < longest / kPlotSpan)) continue;
       const double middle = (low[k] + high[k]) / 2, half = longest / kPlotSpan / 2;
-      const std::string axis = k == 0 ? "x" : "y";
-      box += axis + "min=" + format_fixed(middle - half) + ", " + axis + "max=" + format_fixed(middle + half) + ", ";
+      low[k] = middle - half;
+      high[k] = middle + half;
     }
+    // One scale for x and y, the box at most 11 cm wide and 5.5 cm high (a page's last
+    // third); its ticks chosen for those lengths.
+    const double cm = std::min(11.0 / (high[0] - low[0]), 5.5 / (high[1] - low[1]));
+    const double width = (high[0] - low[0]) * cm, height = (high[1] - low[1]) * cm;
     const std::string l = "[$\\mathrm{" + scale_.length_unit + "}$]";
     out_ << "\\medskip\n\\noindent Paths of the points over the run (coupler curves of points on a coupler), "
-            "to one scale in $x$ and $y$:\n" << kLatexFigureBegin << "\\begin{tikzpicture}\n\\begin{axis}[width=0.7\\linewidth, "
-            "axis equal image, "
-         << box << "xlabel={$x$ " << l << "}, ylabel={$y$ " << l
+            "to one scale in $x$ and $y$:\n" << kLatexFigureBegin << "\\begin{tikzpicture}\n\\begin{axis}[axis equal image, "
+            "scale only axis, width="
+         << format_fixed(width, 3) << "cm, height=" << format_fixed(height, 3) << "cm, "
+         << axis_ticks('x', low[0], high[0], width) << axis_ticks('y', low[1], high[1], height)
+         << "scaled ticks=false, ticklabel style={font=\\scriptsize}, xlabel={$x$ " << l << "}, ylabel={$y$ " << l
          << "}, unbounded coords=jump, legend style={font=\\footnotesize, at={(0.5,1.02)}, anchor=south, "
             "legend columns=-1}]\n"
          << curves << "\\end{axis}\n\\end{tikzpicture}\n" << latex_figure_caption("Paths of the points") << kLatexFigureEnd << "\n";
@@ -198,11 +257,29 @@ class PlotWriter {
   // plot_limit is a gap, as a non-finite one is.
   void axis(const std::string& x_label, const std::string& y_label, int index,
             const std::vector<std::vector<double>>& curves, const std::vector<std::string>& legends) {
-    begin_axis(x_label, y_label, index);
+    // Each curve's own: pooled, a curve far larger than its neighbours (one of twenty)
+    // was past the limit everywhere and vanished, and a small one kept its pole.
+    std::vector<double> limits;
+    for (const std::vector<double>& ys : curves) limits.push_back(plot_limit(ys));
+    // The axis's ranges: the rows' inputs (a turn's 0 to 360 deg) and the values drawn.
+    double x_lo = turn_ ? 0 : INFINITY, x_hi = turn_ ? 360 : -INFINITY, y_lo = INFINITY, y_hi = -INFINITY;
+    for (std::size_t i = 0; i < rows_.size(); ++i) {
+      if (rows_[i] == kBreak) continue;
+      x_lo = std::min(x_lo, x_of(sweep_.input(rows_[i])));
+      x_hi = std::max(x_hi, x_of(sweep_.input(rows_[i])));
+      for (std::size_t k = 0; k < curves.size(); ++k)
+        if (std::fabs(curves[k][i]) <= limits[k]) {
+          const double y = std::round(curves[k][i] * 1e6) / 1e6;  // as written (format_fixed): round-off is 0
+          y_lo = std::min(y_lo, y);
+          y_hi = std::max(y_hi, y);
+        }
+    }
+    if (!std::isfinite(y_lo)) y_lo = y_hi = 0;  // nothing drawn
+    const double margin = (y_hi - y_lo) * 0.05;  // the curves off the frame
+    begin_axis(x_label, y_label, index,
+               axis_ticks('x', x_lo, x_hi, kAxisWidthCm, turn_) + axis_ticks('y', y_lo - margin, y_hi + margin, kAxisHeightCm));
     for (std::size_t k = 0; k < curves.size(); ++k) {
-      // Each curve's own: pooled, a curve far larger than its neighbours (one of twenty)
-      // was past the limit everywhere and vanished, and a small one kept its pole.
-      const double limit = plot_limit(curves[k]);
+      const double limit = limits[k];
       out_ << "\\addplot+[" << curve_style(k, rows_.size()) << "] coordinates {";
       for (std::size_t i = 0; i < rows_.size(); ++i) {
         const double y = curves[k][i];
@@ -233,14 +310,12 @@ class PlotWriter {
            ", mark options={solid}";
   }
 
-  void begin_axis(const std::string& x_label, const std::string& y_label, int index) {
+  void begin_axis(const std::string& x_label, const std::string& y_label, int index, const std::string& ticks) {
     // Each pair of plots a paragraph of its own, so that a page may break between pairs.
     out_ << (index % 2 ? "\\hfill" : index ? "\\par\\medskip\\noindent" : "\\par\\nopagebreak\\noindent") << "\\begin{minipage}{0.48\\linewidth}\n"
-         << "\\begin{tikzpicture}\n\\begin{axis}[width=0.85\\linewidth, height=5.5cm, xlabel={" << x_label
-         << "}, ylabel={" << y_label
-         << "}, " << (turn_ ? "xmin=0, xmax=360, xtick={0,90,180,270,360}, " : "max space between ticks=40, ")
-         << "ticklabel style={font=\\scriptsize}, "
-         << "yticklabel style={/pgf/number format/fixed, /pgf/number format/precision=3}, "
+         << "\\begin{tikzpicture}\n\\begin{axis}[scale only axis, width=" << format_fixed(kAxisWidthCm, 1)
+         << "cm, height=" << format_fixed(kAxisHeightCm, 1) << "cm, xlabel={" << x_label << "}, ylabel={" << y_label
+         << "}, " << ticks << "scaled ticks=false, ticklabel style={font=\\scriptsize}, "
          << "unbounded coords=jump, legend style={font=\\footnotesize, at={(0.5,1.02)}, anchor=south, "
          << "legend columns=-1}]\n";
   }

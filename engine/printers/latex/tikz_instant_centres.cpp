@@ -5,6 +5,7 @@
 #include <complex>
 #include <string>
 
+#include <kinema/engine/printers/latex/label_boxes.hpp>
 #include <kinema/engine/printers/latex/latex_format.hpp>
 #include <kinema/engine/report/geometry.hpp>
 #include <kinema/engine/report/number_format.hpp>
@@ -16,6 +17,45 @@ namespace {
 
 std::string centre_latex(const InstantCentres& c, const InstantCentre& centre) {
   return "I_{" + latex_escape_text(c.bodies[centre.a]) + latex_escape_text(c.bodies[centre.b]) + "}";
+}
+
+// How a centre is shown, in cm: a dot at `to`, or an arrow from `from` to `to`.
+struct CentreMark {
+  bool dot = false;
+  std::complex<double> from, to;
+};
+
+// The centres' dots and arrows, each labelled next to its dot or its arrow's tip where no
+// other label, dot or pivot is (the shared LabelBoxes placing).
+template <class MarkOf>
+void write_centre_marks(std::ostream& out, const InstantCentres& c, const LinkageDrawing& drawing, double cm,
+                        const MarkOf& mark_of) {
+  const auto cm_xy = [](std::complex<double> p) {
+    return "(" + format_fixed(p.real(), 3) + "," + format_fixed(p.imag(), 3) + ")";
+  };
+  std::vector<CentreMark> marks;
+  LabelBoxes placed;
+  for (const InstantCentre& centre : c.centres) {
+    marks.push_back(mark_of(centre));
+    if (marks.back().dot) placed.add({marks.back().to, 0.1, 0.1});
+  }
+  for (const auto& pivot : drawing.ground_pivots) placed.add({pivot.at * cm + std::complex<double>(0, -0.125), 0.16, 0.14});
+  for (const auto& link : drawing.links) {
+    if (!link.block) continue;  // a block, 0.6 by 0.3 cm turned by its angle
+    const double cos_a = std::fabs(std::cos(link.angle)), sin_a = std::fabs(std::sin(link.angle));
+    placed.add({link.joints.front().at * cm, 0.3 * cos_a + 0.15 * sin_a, 0.3 * sin_a + 0.15 * cos_a});
+  }
+  for (std::size_t k = 0; k < c.centres.size(); ++k) {
+    const CentreMark& m = marks[k];
+    const std::string label = centre_latex(c, c.centres[k]) + (c.centres[k].at_infinity ? "\\to\\infty" : "");
+    const LabelBox box = label_box("$" + label + "$", 8, 0);
+    // A dot's label above right, as a figure letters its points; an arrow's beyond its tip.
+    const LabelBox chosen = placed.place_near(m.to, box, m.dot ? M_PI / 4 : std::arg(m.to - m.from));
+    out << (m.dot ? "\\filldraw[red!75!black, fill=white] " + cm_xy(m.to) + " circle (0.07)"
+                  : std::string("\\draw[->, red!75!black") + (c.centres[k].at_infinity ? "" : ", dashed") + "] " +
+                        cm_xy(m.from) + " -- " + cm_xy(m.to))
+        << " node[font=\\scriptsize, inner sep=0pt] at " << cm_xy(chosen.centre) << " {$" << label << "$};\n";
+  }
 }
 
 }  // namespace
@@ -78,10 +118,6 @@ void write_tikz_instant_centres(std::ostream& out, const ConstraintSystem& syste
   const auto cm_xy = [&](std::complex<double> p) {
     return "(" + format_fixed(p.real(), 3) + "," + format_fixed(p.imag(), 3) + ")";
   };
-  const auto anchor = [](std::complex<double> along) {
-    const double a = std::arg(along) * 180 / M_PI;
-    return a > 45 && a < 135 ? "above" : a < -45 && a > -135 ? "below" : std::fabs(a) <= 45 ? "right" : "left";
-  };
   // The Kennedy lines: each secondary centre on two lines of known centres; a line to a
   // centre off the figure runs to the figure's edge towards it.
   for (const InstantCentre& centre : c.centres) {
@@ -109,24 +145,18 @@ void write_tikz_instant_centres(std::ostream& out, const ConstraintSystem& syste
   }
   for (const auto& pivot : drawing->ground_pivots)
     out << "\\draw " << xy(pivot.at) << " -- ++(-0.15,-0.25) -- ++(0.3,0) -- cycle;\n";
-  for (const InstantCentre& centre : c.centres) {
+  write_centre_marks(out, c, *drawing, cm, [&](const InstantCentre& centre) {
     if (centre.at_infinity) {  // an arrow from its joint (else the middle) towards it
       const std::complex<double> from = centre.seen_from.value_or(middle) * cm;
-      const std::complex<double> tip = from + centre.at * 1.2;
-      out << "\\draw[->, red!75!black] " << cm_xy(from) << " -- " << cm_xy(tip) << " node[" << anchor(centre.at)
-          << ", font=\\scriptsize, red!75!black] {$" << centre_latex(c, centre) << "\\to\\infty$};\n";
-      continue;
+      return CentreMark{false, from, from + centre.at * 1.2};
     }
     if (!on_figure(centre)) {  // off the figure: an arrow at its edge pointing to it
       const std::complex<double> towards = (centre.at - middle) / std::abs(centre.at - middle);
       const std::complex<double> tip = edge_towards(middle * cm, towards);
-      out << "\\draw[->, red!75!black, dashed] " << cm_xy(tip - towards * 1.0) << " -- " << cm_xy(tip) << " node["
-          << anchor(towards) << ", font=\\scriptsize, red!75!black] {$" << centre_latex(c, centre) << "$};\n";
-      continue;
+      return CentreMark{false, tip - towards * 1.0, tip};
     }
-    out << "\\filldraw[red!75!black, fill=white] " << xy(centre.at) << " circle (0.07) node[above right, font=\\scriptsize] {$"
-        << centre_latex(c, centre) << "$};\n";
-  }
+    return CentreMark{true, centre.at * cm, centre.at * cm};
+  });
   // The scale in the caption: on the drawing's page, as its key.
   out << "\\end{tikzpicture}\n"
       << latex_figure_caption("Instant centres. Drawing scale: 1\\,cm = $" + latex_number(1.0 / cm / scale.length, 3) +

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include <kinema/engine/printers/latex/label_boxes.hpp>
 #include <kinema/engine/printers/latex/latex_format.hpp>
 #include <kinema/engine/report/number_format.hpp>
 #include <kinema/engine/report/output_scale.hpp>
@@ -48,35 +49,6 @@ std::string image_label(const std::string& name) {
   std::string escaped;
   for (char c : label) escaped += c == '_' ? std::string("\\_") : std::string(1, c);
   return "$" + (label.find('_') == std::string::npos ? label : "\\mathit{" + escaped + "}") + "$";
-}
-
-// The labels placed so far, as boxes in cm (centre, half width, half height): a new one
-// takes the first of its candidate places that overlaps none of them.
-struct LabelBoxes {
-  struct Box {
-    std::complex<double> centre;
-    double half_width, half_height;
-  };
-  std::vector<Box> boxes;
-  bool free(const Box& b) const {
-    for (const Box& o : boxes)
-      if (std::fabs(o.centre.real() - b.centre.real()) < o.half_width + b.half_width &&
-          std::fabs(o.centre.imag() - b.centre.imag()) < o.half_height + b.half_height)
-        return false;
-    return true;
-  }
-};
-
-// A label's size in cm at \scriptsize or \small: its letters, not its markup.
-double label_half_width(const std::string& latex) {
-  int letters = 0;
-  bool command = false;
-  for (char c : latex) {
-    if (c == '\\') command = true;
-    else if (!std::isalpha(static_cast<unsigned char>(c))) command = false;
-    if (!command && (std::isalnum(static_cast<unsigned char>(c)) || c == '\'' || c == ',')) ++letters;
-  }
-  return 0.07 * letters + 0.08;
 }
 
 }  // namespace
@@ -145,12 +117,10 @@ void write_tikz_polygon(std::ostream& out, const ConstraintSystem& system, const
       }
     if (!joined) places.push_back({p, v.name});
   }
-  for (const auto& [at, names] : places) placed.boxes.push_back({at, 0.06, 0.06});  // the dots
+  for (const auto& [at, names] : places) placed.add({at, 0.06, 0.06});  // the dots
   const std::complex<double> middle = centre / per_cm;
   std::vector<std::string> vertex_lines;
-  for (const auto& place : places) {
-    const std::complex<double> at = place.first;  // a named copy: C++17 lambdas cannot capture a structured binding
-    const std::string& names = place.second;
+  for (const auto& [at, names] : places) {
     std::string label;
     for (std::size_t start = 0; start <= names.size();) {
       const auto comma = names.find(", ", start);
@@ -158,21 +128,9 @@ void write_tikz_polygon(std::ostream& out, const ConstraintSystem& system, const
       if (comma == std::string::npos) break;
       start = comma + 2;
     }
-    const double half_width = label_half_width(label) * 1.2, half_height = 0.2;
+    // Away from the polygon's middle, else the next free way round, within a label's height.
     const double away = std::abs(at - middle) > 0 ? std::arg(at - middle) : M_PI / 4;
-    const auto candidate = [&](int k) {  // away from the middle, then turning either way, then further out
-      const double angle = away + (k % 2 ? 1 : -1) * ((k % 16 + 1) / 2) * M_PI / 8, out = 1 + 0.8 * (k / 16);
-      return LabelBoxes::Box{at + out * std::complex<double>((half_width + 0.08) * std::cos(angle),
-                                                             (half_height + 0.08) * std::sin(angle)),
-                             half_width, half_height};
-    };
-    LabelBoxes::Box chosen = candidate(0);
-    for (int k = 0; k < 48; ++k)
-      if (placed.free(candidate(k))) {
-        chosen = candidate(k);
-        break;
-      }
-    placed.boxes.push_back(chosen);
+    const LabelBox chosen = placed.place_near(at, label_box(label, 10, 0), away);
     vertex_lines.push_back("\\fill (" + format_fixed(at.real(), 3) + "," + format_fixed(at.imag(), 3) +
                            ") circle (0.05);\n\\node[font=\\small, inner sep=0pt] at (" +
                            format_fixed(chosen.centre.real(), 3) + "," + format_fixed(chosen.centre.imag(), 3) + ") {" +
@@ -192,25 +150,10 @@ void write_tikz_polygon(std::ostream& out, const ConstraintSystem& system, const
     // other label is (nearest its middle), else beside it.
     if (cm >= 0.6) {
       const std::complex<double> p = cm_of(a.from), q = cm_of(a.to);
-      const double half_width = label_half_width(a.latex), half_height = 0.16;
-      const std::complex<double> across = (q - p) / std::abs(q - p) * std::complex<double>(0, 1);
-      double pos = 0.5, shift = 0;
-      bool found = false;
-      for (double side : {0.0, 1.0, -1.0, 2.0, -2.0, 3.0, -3.0}) {
-        for (double t : {0.5, 0.4, 0.6, 0.3, 0.7, 0.2, 0.8}) {
-          const std::complex<double> c = p + (q - p) * t + across * (side * (half_height + 0.1));
-          if (placed.free({c, half_width, half_height})) {
-            pos = t;
-            shift = side * (half_height + 0.1);
-            found = true;
-            break;
-          }
-        }
-        if (found) break;
-      }
-      const std::complex<double> offset = across * shift;
-      placed.boxes.push_back({p + (q - p) * pos + offset, half_width, half_height});
-      out << " node[pos=" << format_fixed(pos, 2) << ", xshift=" << format_fixed(offset.real(), 3)
+      const LabelBox chosen = placed.place_along(p, q, label_box("$" + a.latex + "$", 8, 1));
+      const double pos = std::real((chosen.centre - p) / (q - p));
+      const std::complex<double> offset = chosen.centre - (p + (q - p) * pos);
+      out << " node[pos=" << format_fixed(pos, 3) << ", xshift=" << format_fixed(offset.real(), 3)
           << "cm, yshift=" << format_fixed(offset.imag(), 3) << "cm, fill=white, inner sep=1pt, font=\\scriptsize] {$"
           << a.latex << "$}";
     }

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include <kinema/engine/printers/latex/label_boxes.hpp>
 #include <kinema/engine/printers/printer.hpp>
 #include <kinema/engine/report/geometry.hpp>
 #include <kinema/engine/report/instant_centres.hpp>
@@ -260,8 +261,8 @@ TEST_CASE("engine/printers/figures: instant centres, every one listed and drawn 
       for (const std::string& line : arrows) {
         if (line.find(label + "}$}") == std::string::npos && line.find(label + "}\\to\\infty$}") == std::string::npos) continue;
         drawn = true;
-        const auto ends = coordinates(line);
-        REQUIRE(ends.size() == 2);
+        const auto ends = coordinates(line);  // from, to, then where its label stands
+        REQUIRE(ends.size() >= 2);
         const Point along = ends[1] - ends[0];
         // At infinity: along its direction, from its joint; off the figure: towards it.
         const Point towards = c.at_infinity ? c.at : c.at * cm - ends[1];
@@ -537,4 +538,203 @@ TEST_CASE("figures: a joints-and-links drawing marks each link angle that is a c
     CAPTURE(symbol);
     CHECK(figure.find(symbol) != std::string::npos);
   }
+}
+
+namespace {
+
+// A label read back from a figure: its box (from its text at its font, as the printer
+// estimates it) and what it names, a point (from == to) or an arrow.
+struct ReadLabel {
+  std::string text;
+  kinema::LabelBox box;
+  Point from, to;
+};
+
+// The math after the last " {$" of a line, up to its "$}".
+std::string node_text(const std::string& line) {
+  const auto open = line.rfind(" {$");
+  REQUIRE(open != std::string::npos);
+  return line.substr(open + 2, line.rfind("$}") + 1 - (open + 2));
+}
+
+// The centre of a label at `at` by a TikZ placement (above right, right, ...), with
+// inner sep 1/3 em of its 8 pt font: what the printer wrote before it stated each place.
+Point anchored(Point at, const std::string& line, const kinema::LabelBox& box) {
+  const double sep = 8.0 / 3 * 2.54 / 72.27;
+  const Point x(box.half_width + sep, 0), y(0, box.half_height + sep);
+  if (line.find("node[above right") != std::string::npos) return at + x + y;
+  if (line.find("node[above") != std::string::npos) return at + y;
+  if (line.find("node[below") != std::string::npos) return at - y;
+  if (line.find("node[right") != std::string::npos) return at + x;
+  if (line.find("node[left") != std::string::npos) return at - x;
+  FAIL("no place for the label of " << line);
+  return at;
+}
+
+// Each label on none other nor on a dot, pivot or block, and within a label's height of what it names.
+void check_labels(const std::vector<ReadLabel>& labels, const std::vector<kinema::LabelBox>& dots) {
+  for (std::size_t i = 0; i < labels.size(); ++i) {
+    CAPTURE(labels[i].text);
+    CAPTURE(labels[i].box.centre);
+    const double off = labels[i].from == labels[i].to ? labels[i].box.distance_to(labels[i].to)
+                                                      : labels[i].box.distance_to_segment(labels[i].from, labels[i].to);
+    CHECK(off <= kinema::label_reach(labels[i].box) + 0.002);  // coordinates are written to 0.001 cm
+    for (std::size_t j = 0; j < i; ++j) {
+      CAPTURE(labels[j].text);
+      CAPTURE(labels[j].box.centre);
+      CHECK_FALSE(labels[i].box.overlaps(labels[j].box));
+    }
+    for (const kinema::LabelBox& dot : dots) {
+      CAPTURE(dot.centre);
+      CHECK_FALSE(labels[i].box.overlaps(dot));
+    }
+  }
+}
+
+}  // namespace
+
+// Issue 32: in busy figures the centres' labels lay on one another (example_4_2_joints) or
+// on a slider's block (crank_shaper); each now stands where no other label, dot, pivot or
+// block is, next to its centre.
+TEST_CASE("figures: instant centres' labels on no other label, dot, pivot or block, each next to its centre") {
+  int figures = 0;
+  for (const char* name : kinema_test::kSamples) {
+    const kinema::Model model = kinema::load_model(kinema_test::sample(name));
+    const MotionTable values = kinema::analyse(model, {model.system.input.values.empty() ? 0.5 : model.system.input.values.front()});
+    const std::string figure = figure_after(document(model, &values), "\\subsubsection*{Instant centres}");
+    if (figure.empty()) continue;
+    CAPTURE(std::string(name));
+    ++figures;
+    std::vector<ReadLabel> labels;
+    std::vector<kinema::LabelBox> dots;
+    for (const std::string& line : lines_starting(figure, "\\filldraw[red!75!black, fill=white] ")) {
+      const auto c = coordinates(line);
+      dots.push_back({c[0], 0.07, 0.07});
+      const kinema::LabelBox box = kinema::label_box(node_text(line), 8, 0);
+      labels.push_back({node_text(line), {c.size() > 1 ? c[1] : anchored(c[0], line, box), box.half_width, box.half_height}, c[0], c[0]});
+    }
+    for (const std::string& line : lines_starting(figure, "\\draw[->, red!75!black")) {
+      const auto c = coordinates(line);
+      const kinema::LabelBox box = kinema::label_box(node_text(line), 8, 0);
+      labels.push_back({node_text(line), {c.size() > 2 ? c[2] : anchored(c[1], line, box), box.half_width, box.half_height}, c[0], c[1]});
+    }
+    for (const std::string& line : lines_starting(figure, "\\draw (")) {  // a ground pivot's triangle under it
+      if (line.find("-- ++(-0.15,-0.25) -- ++(0.3,0) -- cycle") == std::string::npos) continue;
+      dots.push_back({coordinates(line)[0] + Point(0, -0.125), 0.15, 0.125});
+    }
+    for (const Block& b : read_drawing(figure).blocks) {  // 0.6 by 0.3 cm, turned: the box round it
+      const double c = std::fabs(std::cos(b.degrees * M_PI / 180)), s = std::fabs(std::sin(b.degrees * M_PI / 180));
+      dots.push_back({b.centre, 0.3 * c + 0.15 * s, 0.3 * s + 0.15 * c});
+    }
+    REQUIRE(labels.size() >= 3);
+    check_labels(labels, dots);
+  }
+  CHECK(figures >= 8);  // every planar joints-and-links and vector-loop sample with centres
+}
+
+// Issue 32: a polygon's label stood up to 3 label heights from its point or arrow; each is
+// now within one, and on no other label nor a vertex's dot.
+TEST_CASE("figures: polygon labels on no other label nor dot, each within a label's height of its point or arrow") {
+  int figures = 0;
+  for (const char* name : kinema_test::kSamples) {
+    const kinema::Model model = kinema::load_model(kinema_test::sample(name));
+    const MotionTable values = kinema::analyse(model, {model.system.input.values.empty() ? 0.5 : model.system.input.values.front()});
+    const std::string tex = document(model, &values);
+    for (auto at = tex.find("\\begin{tikzpicture}[line cap=round, >=latex]\n\\draw[->, "); at != std::string::npos;
+         at = tex.find("\\begin{tikzpicture}[line cap=round, >=latex]\n\\draw[->, ", at + 1)) {
+      const std::string figure = tex.substr(at, tex.find("\\end{tikzpicture}", at) - at);
+      if (figure.find("\\node[font=\\small, inner sep=0pt] at ") == std::string::npos) continue;  // no polygon
+      CAPTURE(std::string(name));
+      ++figures;
+      std::vector<ReadLabel> labels;
+      std::vector<kinema::LabelBox> dots;
+      std::istringstream in(figure);
+      Point vertex;
+      for (std::string line; std::getline(in, line);) {
+        if (line.rfind("\\fill (", 0) == 0) {  // a vertex's dot, its label on the next line
+          vertex = coordinates(line)[0];
+          dots.push_back({vertex, 0.05, 0.05});
+        } else if (line.rfind("\\node[font=\\small, inner sep=0pt] at ", 0) == 0) {
+          const std::string text = line.substr(line.find(") {") + 3, line.rfind('}') - line.find(") {") - 3);
+          labels.push_back({text, kinema::label_box(text, 10, 0, coordinates(line)[0]), vertex, vertex});
+        } else if (line.rfind("\\draw[->", 0) == 0 && line.find("node[pos=") != std::string::npos) {
+          const auto c = coordinates(line);
+          double pos, xshift, yshift;
+          REQUIRE(std::sscanf(line.c_str() + line.find("node[pos="), "node[pos=%lf, xshift=%lfcm, yshift=%lfcm", &pos, &xshift,
+                              &yshift) == 3);
+          const std::string text = node_text(line);
+          labels.push_back({text, kinema::label_box(text, 8, 1, c[0] + (c[1] - c[0]) * pos + Point(xshift, yshift)), c[0], c[1]});
+        }
+      }
+      check_labels(labels, dots);
+    }
+  }
+  CHECK(figures >= 20);  // a velocity and an acceleration polygon of each planar sample that has them
+}
+
+namespace {
+
+// The value of option `key` in an axis's options ("width=5.4cm" -> "5.4cm", "xtick={0,90}" -> "0,90").
+std::string axis_option(const std::string& options, const std::string& key) {
+  auto at = options.find(", " + key + "=");
+  if (at == std::string::npos && options.rfind(key + "=", 0) == 0) at = static_cast<std::size_t>(-2);
+  if (at == std::string::npos) return "";
+  at += key.size() + 3;
+  if (options[at] == '{') return options.substr(at + 1, options.find("}, ", at) - at - 1);
+  return options.substr(at, options.find(", ", at) - at);
+}
+
+std::vector<std::string> split_commas(const std::string& list) {
+  std::vector<std::string> parts;
+  std::istringstream in(list);
+  for (std::string part; std::getline(in, part, ',');) parts.push_back(part);
+  return parts;
+}
+
+}  // namespace
+
+// Issue 32: nothing kept a plot's tick labels apart (pgfplots chose them). Each axis now
+// states its ticks and labels; read back, neighbouring labels' boxes (\scriptsize, as the
+// printer estimates them) do not meet at the axis's stated length, on x side by side and
+// on y one above the other, and each label is its tick's value, inside the axis's range.
+TEST_CASE("figures: every plot's tick labels apart at the axis's length, each its tick's value") {
+  int axes = 0;
+  for (const char* name : kinema_test::kSamples) {
+    CAPTURE(std::string(name));
+    const kinema::Model model = kinema::load_model(kinema_test::sample(name));
+    const double first = model.system.input.values.empty() ? 0.0 : model.system.input.values.front();
+    const MotionTable values = kinema::analyse(model, {first});
+    const MotionTable sweep = kinema::analyse(model, kinema::plot_range(model.system, first));
+    const std::string tex = document(model, &values, &sweep);
+    for (auto at = tex.find("\\begin{axis}["); at != std::string::npos; at = tex.find("\\begin{axis}[", at + 1)) {
+      const std::string options = tex.substr(at + 13, tex.find("]\n", at) - at - 13);
+      CAPTURE(options);
+      ++axes;
+      REQUIRE(options.find("scale only axis") != std::string::npos);  // the stated width is the axis's
+      for (const char axis : {'x', 'y'}) {
+        const std::string a(1, axis);
+        const std::string length = axis_option(options, axis == 'x' ? "width" : "height");
+        REQUIRE(length.size() > 2);
+        REQUIRE(length.substr(length.size() - 2) == "cm");
+        const double lo = std::stod(axis_option(options, a + "min")), hi = std::stod(axis_option(options, a + "max"));
+        const double cm_per_unit = std::stod(length) / (hi - lo);
+        const auto ticks = split_commas(axis_option(options, a + "tick"));
+        const auto labels = split_commas(axis_option(options, a + "ticklabels"));
+        REQUIRE(!ticks.empty());
+        REQUIRE(labels.size() == ticks.size());
+        for (std::size_t i = 0; i < ticks.size(); ++i) {
+          CAPTURE(labels[i]);
+          const double tick = std::stod(ticks[i]);
+          CHECK(tick >= lo - 1e-9 * (hi - lo));
+          CHECK(tick <= hi + 1e-9 * (hi - lo));
+          CHECK(std::stod(labels[i].substr(1)) == doctest::Approx(tick).epsilon(1e-9));
+          if (i == 0) continue;
+          const kinema::LabelBox previous = kinema::label_box(labels[i - 1], 8, 0), box = kinema::label_box(labels[i], 8, 0);
+          const double room = axis == 'x' ? previous.half_width + box.half_width : previous.half_height + box.half_height;
+          CHECK((tick - std::stod(ticks[i - 1])) * cm_per_unit > room);
+        }
+      }
+    }
+  }
+  CHECK(axes >= 5 * 18);  // every sample's plots
 }

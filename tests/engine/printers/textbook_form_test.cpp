@@ -105,7 +105,7 @@ TEST_CASE("textbook form: products, sums and arguments, one rule at a time") {
 TEST_CASE("course notes: a crank's plots run from 0 to 360 deg whatever the requested value") {
   const auto document = kinema_test::run_kinema({"latex", kinema_test::sample("four_bar.toml"), "--angle", "40"});
   REQUIRE(document.exit_status == 0);
-  CHECK(document.out.find("xmin=0, xmax=360, xtick={0,90,180,270,360}") != std::string::npos);
+  CHECK(document.out.find("xmin=0.00, xmax=360.00, xtick={0,90,180,270,360}") != std::string::npos);
   // The first plotted point is at the wrap (0 deg, from 360 deg past the file's 40 deg),
   // and no x beyond 360 is drawn.
   // (The first curve of the first axis: solid, its marks; the points' paths have none.)

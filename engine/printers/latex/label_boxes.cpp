@@ -1,0 +1,166 @@
+#include <kinema/engine/printers/latex/label_boxes.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+
+namespace kinema {
+
+namespace {
+
+constexpr double kCmPerPt = 2.54 / 72.27;
+
+// The width in pt of a run of math at `em` pt with no sub- or superscript in it: each
+// glyph's share of its em, as Computer Modern sets it (script capitals are wide).
+double run_width(const std::string& run, double em, bool script) {
+  double width = 0;
+  for (std::size_t i = 0; i < run.size(); ++i) {
+    const unsigned char c = static_cast<unsigned char>(run[i]);
+    if (c == '\\') {
+      std::size_t end = i + 1;
+      while (end < run.size() && std::isalpha(static_cast<unsigned char>(run[end]))) ++end;
+      const std::string name = run.substr(i + 1, end - i - 1);
+      if (name == "to") width += 1.7 * em;  // a relation, with its spaces
+      else if (name == "infty") width += 1.05 * em;
+      else if (name.empty()) width += 0.5 * em;  // \_ and the like
+      else if (name != "mathbf" && name != "mathit" && name != "mathrm") width += 0.7 * em;  // a Greek letter
+      i = name.empty() ? i + 1 : end - 1;
+    } else if (c == '{' || c == '}' || c == '$') {
+    } else if (std::isupper(c)) {
+      width += (script ? 1.15 : 0.8) * em;
+    } else if (c == '\'' || c == ' ') {
+      width += 0.35 * em;
+    } else if (c == ',') {
+      width += 0.3 * em;
+    } else {
+      width += 0.6 * em;
+    }
+  }
+  return width;
+}
+
+// The end of the group or single character after a ^ or _ at `at`.
+std::size_t script_end(const std::string& latex, std::size_t at) {
+  if (at + 1 >= latex.size() || latex[at + 1] != '{') return std::min(at + 2, latex.size());
+  int depth = 0;
+  for (std::size_t k = at + 1; k < latex.size(); ++k) {
+    depth += latex[k] == '{' ? 1 : latex[k] == '}' ? -1 : 0;
+    if (depth == 0) return k + 1;
+  }
+  return latex.size();
+}
+
+bool is_script_mark(const std::string& latex, std::size_t at) {
+  return (latex[at] == '^' || latex[at] == '_') && !(at > 0 && latex[at - 1] == '\\');
+}
+
+}  // namespace
+
+bool LabelBox::overlaps(const LabelBox& o) const {
+  return std::fabs(o.centre.real() - centre.real()) < o.half_width + half_width &&
+         std::fabs(o.centre.imag() - centre.imag()) < o.half_height + half_height;
+}
+
+double LabelBox::distance_to(std::complex<double> p) const {
+  const double dx = std::max(std::fabs(p.real() - centre.real()) - half_width, 0.0);
+  const double dy = std::max(std::fabs(p.imag() - centre.imag()) - half_height, 0.0);
+  return std::hypot(dx, dy);
+}
+
+double LabelBox::distance_to_segment(std::complex<double> a, std::complex<double> b) const {
+  // The distance is convex along the segment: its least found by golden-section search.
+  double lo = 0, hi = 1;
+  const double g = (std::sqrt(5.0) - 1) / 2;
+  for (int k = 0; k < 60; ++k) {
+    const double t1 = hi - g * (hi - lo), t2 = lo + g * (hi - lo);
+    if (distance_to(a + (b - a) * t1) <= distance_to(a + (b - a) * t2)) hi = t2;
+    else lo = t1;
+  }
+  return std::min({distance_to(a), distance_to(b), distance_to(a + (b - a) * ((lo + hi) / 2))});
+}
+
+LabelBox label_box(const std::string& latex, double font_pt, double pad_pt, std::complex<double> centre) {
+  // A script is 3/4 of \scriptsize's size, 7/10 of \small's; stacked scripts (a^{n}_{B})
+  // take the wider one's width.
+  const double script_em = font_pt * (font_pt >= 10 ? 0.7 : 0.75);
+  double width = 0;
+  for (std::size_t i = 0; i < latex.size();) {
+    if (is_script_mark(latex, i)) {
+      double widest = 0;
+      while (i < latex.size() && is_script_mark(latex, i)) {
+        const std::size_t end = script_end(latex, i);
+        widest = std::max(widest, run_width(latex.substr(i + 1, end - i - 1), script_em, true));
+        i = end;
+      }
+      width += widest;
+      continue;
+    }
+    std::size_t end = i;
+    while (end < latex.size() && !is_script_mark(latex, end)) ++end;
+    width += run_width(latex.substr(i, end - i), font_pt, false);
+    i = end;
+  }
+  // Height and depth with scripts (a^{t}_{B}): 1.2 em in all.
+  return {centre, (width / 2 + pad_pt) * kCmPerPt, (0.6 * font_pt + pad_pt) * kCmPerPt};
+}
+
+bool LabelBoxes::free(const LabelBox& box) const {
+  for (const LabelBox& o : boxes_)
+    if (o.overlaps(box)) return false;
+  return true;
+}
+
+LabelBox LabelBoxes::place_first_free(const std::vector<LabelBox>& candidates) {
+  const LabelBox* chosen = nullptr;
+  double least = INFINITY;
+  for (const LabelBox& c : candidates) {
+    double overlap = 0;
+    for (const LabelBox& o : boxes_)
+      overlap += std::max(0.0, o.half_width + c.half_width - std::fabs(o.centre.real() - c.centre.real())) *
+                 std::max(0.0, o.half_height + c.half_height - std::fabs(o.centre.imag() - c.centre.imag()));
+    if (overlap < least) {
+      least = overlap;
+      chosen = &c;
+    }
+    if (overlap == 0) break;
+  }
+  boxes_.push_back(*chosen);
+  return *chosen;
+}
+
+LabelBox LabelBoxes::place_near(std::complex<double> at, const LabelBox& size, double preferred) {
+  std::vector<LabelBox> candidates;
+  const double reach = label_reach(size);
+  for (double gap : {0.12, 0.4, 0.7, 0.95}) {
+    for (int k = 0; k < 24; ++k) {
+      const double angle = preferred + (k % 2 ? 1 : -1) * ((k + 1) / 2) * M_PI / 12;
+      const std::complex<double> along(std::cos(angle), std::sin(angle));
+      // The distance out along `along` at which the box stands `gap` label heights off `at`.
+      double lo = 0, hi = size.half_width + size.half_height + reach;
+      for (int step = 0; step < 40; ++step) {
+        const double mid = (lo + hi) / 2;
+        if (LabelBox{at + mid * along, size.half_width, size.half_height}.distance_to(at) < gap * reach) lo = mid;
+        else hi = mid;
+      }
+      candidates.push_back({at + hi * along, size.half_width, size.half_height});
+    }
+  }
+  return place_first_free(candidates);
+}
+
+LabelBox LabelBoxes::place_along(std::complex<double> a, std::complex<double> b, const LabelBox& size) {
+  std::vector<LabelBox> candidates;
+  const std::complex<double> across = (b - a) / std::abs(b - a) * std::complex<double>(0, 1);
+  // On it, then to either side, a little further each time; nearest the middle first.
+  // Past its ends too, where a label is still within reach of it.
+  for (double side : {0.0, 1.0, -1.0, 1.5, -1.5, 2.0, -2.0, 2.5, -2.5, 3.0, -3.0, 3.5, -3.5}) {
+    for (int k = 0; k < 35; ++k) {
+      const double t = 0.5 + (k % 2 ? 1 : -1) * ((k + 1) / 2) * 0.05;
+      const LabelBox c{a + (b - a) * t + across * (side * size.half_height), size.half_width, size.half_height};
+      if (c.distance_to_segment(a, b) <= label_reach(size)) candidates.push_back(c);
+    }
+  }
+  return place_first_free(candidates);
+}
+
+}  // namespace kinema
