@@ -1,5 +1,6 @@
 #include <kinema/engine/symbolic/derivation.hpp>
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -38,6 +39,49 @@ GiNaC::exset symbols_of(const ex& e) {
   return found;
 }
 
+// The determinant by cofactors along the first row, left as it comes out.
+ex cofactor_determinant(const GiNaC::matrix& a) {
+  const unsigned k = a.rows();
+  if (k == 1) return a(0, 0);
+  ex sum = 0;
+  for (unsigned c = 0; c < k; ++c) {
+    if (a(0, c).is_zero()) continue;
+    GiNaC::matrix minor(k - 1, k - 1);
+    for (unsigned r = 1; r < k; ++r)
+      for (unsigned j = 0, m = 0; j < k; ++j)
+        if (j != c) minor(r - 1, m++) = a(r, j);
+    sum += (c % 2 == 0 ? 1 : -1) * a(0, c) * cofactor_determinant(minor);
+  }
+  return sum;
+}
+
+// The terms of a determinant multiplied out, at most (the permanent of its entries'
+// counts), by cofactors of the counts; 0 for a block past 8 unknowns, whose cofactors are
+// too many to count (the samples' blocks have 2).
+double determinant_terms_estimate(const std::vector<std::vector<double>>& counts, std::vector<bool>& used,
+                                  std::size_t row) {
+  if (row == counts.size()) return 1;
+  double terms = 0;
+  for (std::size_t c = 0; c < counts.size() && terms <= kMultiplyOutBudget; ++c) {
+    if (used[c] || counts[row][c] == 0) continue;
+    used[c] = true;
+    terms += counts[row][c] * determinant_terms_estimate(counts, used, row + 1);
+    used[c] = false;
+  }
+  return terms;
+}
+
+bool multiplies_out(const GiNaC::matrix& a) {
+  const std::size_t k = a.rows();
+  if (k > 8) return false;
+  std::vector<std::vector<double>> counts(k, std::vector<double>(k));
+  for (std::size_t r = 0; r < k; ++r)
+    for (std::size_t c = 0; c < k; ++c)
+      counts[r][c] = a(r, c).is_zero() ? 0 : expanded_terms_estimate(a(r, c), kMultiplyOutBudget);
+  std::vector<bool> used(k, false);
+  return determinant_terms_estimate(counts, used, 0) > kMultiplyOutBudget;
+}
+
 // Cramer's rule on block rows/columns, each ratio simplified the textbook way.
 // A block whose Jacobian vanishes identically cannot give its unknowns at any position
 // (they are not independent: only their sum appears, say). Said as bad input.
@@ -46,7 +90,9 @@ void check_independent(const ConstraintSystem& system, const GiNaC::matrix& jaco
   GiNaC::matrix a(k, k);
   for (std::size_t r = 0; r < k; ++r)
     for (std::size_t c = 0; c < k; ++c) a(r, c) = jacobian(block.equations[r], block.unknowns[c]);
-  // Past the simplification budget the check is left to the numbers (every row singular).
+  // Past the simplification budget the check is left to the numbers (every row singular);
+  // GiNaC's determinant multiplies out (tan nested 16 deep: 2^16 terms and more).
+  if (multiplies_out(a)) return;
   const ex determinant = a.determinant(GiNaC::determinant_algo::laplace);
   if (expression_size(determinant) > kSimplifyBudget) return;
   if (!combine_trig_products(determinant.normal().numer()).is_zero()) return;
@@ -74,22 +120,6 @@ bool nests_functions(const ex& e, int levels) {
   return false;
 }
 
-// The determinant by cofactors along the first row, left as it comes out.
-ex cofactor_determinant(const GiNaC::matrix& a) {
-  const unsigned k = a.rows();
-  if (k == 1) return a(0, 0);
-  ex sum = 0;
-  for (unsigned c = 0; c < k; ++c) {
-    if (a(0, c).is_zero()) continue;
-    GiNaC::matrix minor(k - 1, k - 1);
-    for (unsigned r = 1; r < k; ++r)
-      for (unsigned j = 0, m = 0; j < k; ++j)
-        if (j != c) minor(r - 1, m++) = a(r, j);
-    sum += (c % 2 == 0 ? 1 : -1) * a(0, c) * cofactor_determinant(minor);
-  }
-  return sum;
-}
-
 // Functions whose derivatives divide, nested this deep in a block's entries: GiNaC's
 // determinant normalises its result, expanding the quotients the chain rule makes of them
 // (log nested 8 deep in a loop never finished deriving, 6 deep took 5 s); such a block is
@@ -108,11 +138,15 @@ std::vector<ex> solve_block(const GiNaC::matrix& jacobian, const SolvingBlock& b
       nested = nested || nests_functions(a(r, c), kPlainSolveNesting);
     }
   }
+  std::vector<GiNaC::matrix> numerators(k, a);
+  for (std::size_t c = 0; c < k; ++c)
+    for (std::size_t r = 0; r < k; ++r) numerators[c](r, c) = right_hand_side[r];
+  // Determinants that would multiply out past the budget are left as cofactors too.
+  nested = nested || multiplies_out(a) || std::any_of(numerators.begin(), numerators.end(), multiplies_out);
   const ex determinant = nested ? cofactor_determinant(a) : a.determinant(GiNaC::determinant_algo::laplace);
   std::vector<ex> solution;
   for (std::size_t c = 0; c < k; ++c) {
-    GiNaC::matrix replaced = a;
-    for (std::size_t r = 0; r < k; ++r) replaced(r, c) = right_hand_side[r];
+    const GiNaC::matrix& replaced = numerators[c];
     solution.push_back(nested ? cofactor_determinant(replaced) / determinant
                               : simplify_ratio(replaced.determinant(GiNaC::determinant_algo::laplace), determinant));
   }
@@ -222,9 +256,9 @@ Derivation derive(const ConstraintSystem& system, DerivationScope scope) {
     const EquationGroup& group = system.groups[equation.group];
     const std::string what = group.where.str() + ": " + group.kind + " \"" + group.name + "\" (" + equation.component + ")";
     d.velocity_equations.push_back(bounded_time_derivative(system, moving, phi, what, "velocity"));
-    d.acceleration_equations.push_back(
-        bounded_time_derivative(system, moving, d.velocity_equations.back(), what, "acceleration").expand());
-    d.acceleration_rhs.push_back((-d.acceleration_equations.back().subs(no_second_rates)).expand());
+    d.acceleration_equations.push_back(multiplied_out(
+        bounded_time_derivative(system, moving, d.velocity_equations.back(), what, "acceleration")));
+    d.acceleration_rhs.push_back(multiplied_out(-d.acceleration_equations.back().subs(no_second_rates)));
     if (full) d.acceleration_rhs_combined.push_back(combine_trig_products(d.acceleration_rhs.back()));
   }
 
