@@ -707,12 +707,20 @@ std::vector<std::string> TextbookForm::latex_lines(const ex& e, const ex& unknow
     }
     const bool minus = !part.empty() && part[0] == '-';
     if (minus) part = part.substr(1);
-    const std::string piece = first ? (minus ? "-" + part : part) : (minus ? " - " : " + ") + part;
-    if (!first && latex_width(line + piece) > budget) {
-      lines.push_back(line);
-      line.clear();
+    const std::string sign = first ? (minus ? "-" : "") : (minus ? " - " : " + ");
+    // A product wider than a line goes over lines factor by factor (the derivatives of
+    // nested functions: one product of a line's width many times; TeX stops at a row
+    // wider than its largest dimension).
+    std::vector<std::string> pieces = {sign + part};
+    if (latex_width(part) > budget && GiNaC::is_a<GiNaC::mul>(term)) pieces = factor_pieces(term, sign, c, budget);
+    for (std::size_t k = 0; k < pieces.size(); ++k) {
+      const std::string& piece = pieces[k];
+      if ((!first || k > 0) && latex_width(line + piece) > budget) {
+        lines.push_back(line);
+        line.clear();
+      }
+      line += piece;
     }
-    line += piece;
     first = false;
   }
   };
@@ -731,6 +739,51 @@ std::vector<std::string> TextbookForm::latex_lines(const ex& e, const ex& unknow
   }
   lines.push_back(line);
   return lines;
+}
+
+// A product's factors as pieces of a line to break between: its sign first (`sign`, the
+// minus of a negative coefficient), the coefficient's magnitude, then the other factors in
+// canonical order, each as it prints in a product; a factor that is a sum wider than
+// `budget` term by term inside its parentheses, the same way.
+std::vector<std::string> TextbookForm::factor_pieces(const ex& product, const std::string& sign, Context& c,
+                                                     double budget) const {
+  std::vector<std::string> pieces;
+  std::vector<std::pair<std::string, ex>> factors;
+  for (std::size_t i = 0; i < product.nops(); ++i) {
+    const ex f = product.op(i);
+    if (GiNaC::is_a<GiNaC::numeric>(f) && GiNaC::ex_to<GiNaC::numeric>(f).is_real()) {
+      const GiNaC::numeric magnitude = GiNaC::abs(GiNaC::ex_to<GiNaC::numeric>(f));
+      if (magnitude != 1) pieces.push_back(render(magnitude, kProduct, c));
+    } else {
+      factors.push_back({canonical_text(f), f});
+    }
+  }
+  std::sort(factors.begin(), factors.end(),
+            [](const std::pair<std::string, ex>& a, const std::pair<std::string, ex>& b) { return a.first < b.first; });
+  for (const auto& factor : factors) {
+    const std::string whole = render(factor.second, kProduct, c);
+    if (latex_width(whole) <= budget || !GiNaC::is_a<GiNaC::add>(factor.second)) {
+      pieces.push_back(whole);
+      continue;
+    }
+    std::vector<ex> terms(factor.second.begin(), factor.second.end());
+    sort_terms(terms, [](const ex&, const ex&) { return 0; });
+    for (std::size_t k = 0; k < terms.size(); ++k) {
+      std::string part = render(terms[k], kSum + 1, c);
+      if (part.size() > 2 && part[0] == '(' && part[1] == '-' && part.back() == ')') part = "-" + part.substr(2, part.size() - 3);
+      const bool minus = !part.empty() && part[0] == '-';
+      if (minus) part = part.substr(1);
+      const std::string term_sign = (k == 0 ? "(" : "") + std::string(k == 0 ? (minus ? "-" : "") : (minus ? "- " : "+ "));
+      std::vector<std::string> parts = {term_sign + part};
+      if (latex_width(part) > budget && GiNaC::is_a<GiNaC::mul>(terms[k])) parts = factor_pieces(terms[k], term_sign, c, budget);
+      pieces.insert(pieces.end(), parts.begin(), parts.end());
+    }
+    pieces.back() += ")";
+  }
+  for (std::size_t k = 1; k < pieces.size(); ++k) pieces[k] = " " + pieces[k];
+  if (pieces.empty()) pieces.push_back("1");
+  pieces.front() = sign + pieces.front();
+  return pieces;
 }
 
 std::string TextbookForm::solved(const ex& e, const ex& unknown, Style style, const SymbolTexts* texts) const {

@@ -114,6 +114,8 @@ class TextbookForm {
   std::string render_function(const GiNaC::ex& f, const GiNaC::ex& argument, Context& c) const;
   std::string render_number(const GiNaC::numeric& n, Context& c) const;
   std::string render_argument(const GiNaC::ex& argument, Context& c) const;
+  std::vector<std::string> factor_pieces(const GiNaC::ex& product, const std::string& sign, Context& c,
+                                         double budget) const;
   bool leads_negative(const GiNaC::ex& sum, const GiNaC::ex* first) const;
   bool sum_leads_negative(const GiNaC::ex& sum) const;
 };

@@ -82,30 +82,6 @@ bool multiplies_out(const GiNaC::matrix& a) {
   return determinant_terms_estimate(counts, used, 0) > kMultiplyOutBudget;
 }
 
-// Cramer's rule on block rows/columns, each ratio simplified the textbook way.
-// A block whose Jacobian vanishes identically cannot give its unknowns at any position
-// (they are not independent: only their sum appears, say). Said as bad input.
-void check_independent(const ConstraintSystem& system, const GiNaC::matrix& jacobian, const SolvingBlock& block) {
-  const std::size_t k = block.unknowns.size();
-  GiNaC::matrix a(k, k);
-  for (std::size_t r = 0; r < k; ++r)
-    for (std::size_t c = 0; c < k; ++c) a(r, c) = jacobian(block.equations[r], block.unknowns[c]);
-  // Past the simplification budget the check is left to the numbers (every row singular);
-  // GiNaC's determinant multiplies out (tan nested 16 deep: 2^16 terms and more).
-  if (multiplies_out(a)) return;
-  const ex determinant = a.determinant(GiNaC::determinant_algo::laplace);
-  if (expression_size(determinant) > kSimplifyBudget) return;
-  if (!combine_trig_products(determinant.normal().numer()).is_zero()) return;
-  std::string groups, unknowns;
-  for (std::size_t g : block.groups)
-    groups += (groups.empty() ? "" : ", ") + system.groups[g].where.str() + ": " + system.groups[g].kind + " \"" +
-              system.groups[g].name + "\"";
-  for (std::size_t j : block.unknowns) unknowns += (unknowns.empty() ? "" : ", ") + system.unknowns[j].name;
-  throw InputError(groups + ": the unknowns " + unknowns +
-                   " cannot be found from it: the Jacobian is singular at every position, so they are not "
-                   "independent (e.g. only their sum appears); write the loop with independent coordinates");
-}
-
 // True when calls of functions whose derivatives divide (log, tan, sqrt, atan2, ...: not
 // sin, cos, exp) hold each other `levels` deep (log(10 + log(10 + ...))).
 bool nests_functions(const ex& e, int levels) {
@@ -125,6 +101,31 @@ bool nests_functions(const ex& e, int levels) {
 // (log nested 8 deep in a loop never finished deriving, 6 deep took 5 s); such a block is
 // solved by cofactors and its ratio left unsimplified. The samples nest none of them.
 constexpr int kPlainSolveNesting = 4;
+
+// Cramer's rule on block rows/columns, each ratio simplified the textbook way.
+// A block whose Jacobian vanishes identically cannot give its unknowns at any position
+// (they are not independent: only their sum appears, say). Said as bad input.
+void check_independent(const ConstraintSystem& system, const GiNaC::matrix& jacobian, const SolvingBlock& block) {
+  const std::size_t k = block.unknowns.size();
+  GiNaC::matrix a(k, k);
+  for (std::size_t r = 0; r < k; ++r)
+    for (std::size_t c = 0; c < k; ++c) a(r, c) = jacobian(block.equations[r], block.unknowns[c]);
+  // Past the simplification budget the check is left to the numbers (every row singular);
+  // GiNaC's determinant multiplies out (tan nested 16 deep: 2^16 terms and more) and
+  // normalises (log nested 32 deep never loaded).
+  if (multiplies_out(a) || nests_functions(a, kPlainSolveNesting)) return;
+  const ex determinant = a.determinant(GiNaC::determinant_algo::laplace);
+  if (expression_size(determinant) > kSimplifyBudget) return;
+  if (!combine_trig_products(determinant.normal().numer()).is_zero()) return;
+  std::string groups, unknowns;
+  for (std::size_t g : block.groups)
+    groups += (groups.empty() ? "" : ", ") + system.groups[g].where.str() + ": " + system.groups[g].kind + " \"" +
+              system.groups[g].name + "\"";
+  for (std::size_t j : block.unknowns) unknowns += (unknowns.empty() ? "" : ", ") + system.unknowns[j].name;
+  throw InputError(groups + ": the unknowns " + unknowns +
+                   " cannot be found from it: the Jacobian is singular at every position, so they are not "
+                   "independent (e.g. only their sum appears); write the loop with independent coordinates");
+}
 
 std::vector<ex> solve_block(const GiNaC::matrix& jacobian, const SolvingBlock& block,
                             const std::vector<ex>& right_hand_side) {

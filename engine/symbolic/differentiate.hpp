@@ -39,7 +39,7 @@ double expanded_terms_estimate(const GiNaC::ex& e, double cap);
 /// past it the formula is left as it is: the chain rule of tan nested n deep is a product
 /// of n sums 1 + tan^2(...), 2^n terms multiplied out (tan nested 10 deep never finished
 /// loading). The samples' formulas have tens of terms.
-constexpr double kMultiplyOutBudget = 2000;
+constexpr double kMultiplyOutBudget = 256;
 
 /// e.expand() when that has at most `budget` terms (estimated first), else e.
 GiNaC::ex multiplied_out(const GiNaC::ex& e, double budget = kMultiplyOutBudget);
