@@ -23,6 +23,10 @@ using GiNaC::ex;
 namespace {
 
 constexpr int kSum = 1, kProduct = 2, kPower = 3;
+// A product up to this many lines wide stays on one line (the samples' longest terms, a
+// line and a half, print as before); a wider one is broken between its factors, and
+// between the terms of a wide sum among them (TeX stops at a row wider than 16,383 pt).
+constexpr double kUnbrokenProductLines = 8;
 
 bool is_odd_function(const ex& e) { return is_function(e, "sin") || is_function(e, "tan"); }
 bool is_trig(const ex& e) { return is_odd_function(e) || is_function(e, "cos"); }
@@ -712,7 +716,8 @@ std::vector<std::string> TextbookForm::latex_lines(const ex& e, const ex& unknow
     // nested functions: one product of a line's width many times; TeX stops at a row
     // wider than its largest dimension).
     std::vector<std::string> pieces = {sign + part};
-    if (latex_width(part) > budget && GiNaC::is_a<GiNaC::mul>(term)) pieces = factor_pieces(term, sign, c, budget);
+    if (latex_width(part) > kUnbrokenProductLines * budget && GiNaC::is_a<GiNaC::mul>(term))
+      pieces = factor_pieces(term, sign, c, budget);
     for (std::size_t k = 0; k < pieces.size(); ++k) {
       const std::string& piece = pieces[k];
       if ((!first || k > 0) && latex_width(line + piece) > budget) {
@@ -762,7 +767,7 @@ std::vector<std::string> TextbookForm::factor_pieces(const ex& product, const st
             [](const std::pair<std::string, ex>& a, const std::pair<std::string, ex>& b) { return a.first < b.first; });
   for (const auto& factor : factors) {
     const std::string whole = render(factor.second, kProduct, c);
-    if (latex_width(whole) <= budget || !GiNaC::is_a<GiNaC::add>(factor.second)) {
+    if (latex_width(whole) <= kUnbrokenProductLines * budget || !GiNaC::is_a<GiNaC::add>(factor.second)) {
       pieces.push_back(whole);
       continue;
     }
@@ -775,7 +780,8 @@ std::vector<std::string> TextbookForm::factor_pieces(const ex& product, const st
       if (minus) part = part.substr(1);
       const std::string term_sign = (k == 0 ? "(" : "") + std::string(k == 0 ? (minus ? "-" : "") : (minus ? "- " : "+ "));
       std::vector<std::string> parts = {term_sign + part};
-      if (latex_width(part) > budget && GiNaC::is_a<GiNaC::mul>(terms[k])) parts = factor_pieces(terms[k], term_sign, c, budget);
+      if (latex_width(part) > kUnbrokenProductLines * budget && GiNaC::is_a<GiNaC::mul>(terms[k]))
+        parts = factor_pieces(terms[k], term_sign, c, budget);
       pieces.insert(pieces.end(), parts.begin(), parts.end());
     }
     pieces.back() += ")";

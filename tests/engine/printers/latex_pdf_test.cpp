@@ -622,7 +622,9 @@ TEST_CASE("the deepest nest of every function the formula reader accepts is deri
     }
     const auto full = bounded({"latex", path});
     if (document.empty()) document = full.out.substr(0, full.out.find("\\begin{document}") + 17);
-    document += "\\clearpage\n" + bounded({"latex", path, "--fragment"}).out;
+    // Its body into the shared document (one pdflatex run for all).
+    const std::size_t body = full.out.find("\\begin{document}") + 17;
+    document += "\\clearpage\n" + full.out.substr(body, full.out.rfind("\\end{document}") - body);
     // One level more is refused before any work.
     const auto deeper = kinema_test::run_kinema_bounded(
         {"latex", kinema_test::write_temporary(name + "_deeper.toml", nested_loop(nest, nest.depth + 1))});
