@@ -21,6 +21,12 @@ using GiNaC::ex;
 // wider than TeX's largest dimension), 60 deep overflowed its buffer; 36 typeset everywhere
 // kinema puts a formula (derive --format latex, the worked solution), 32 leaves a margin.
 constexpr int kMaxDepth = 32;
+// Calls whose derivatives divide (tan, asin, acos, atan, atan2, log) and powers other
+// than whole ones (sqrt, a division), one inside another: each level multiplies the rows
+// of the derivatives' LaTeX (a quotient of the levels' chain rule that cannot be broken
+// over lines), and tan or asin nested 5 to 8 deep gave pdflatex "Dimension too large" in
+// kinema latex; sin, cos, exp and abs nest up to kMaxDepth.
+constexpr int kMaxFunctionNesting = 3;
 constexpr int kMaxSignRun = 10;                ///< + and - signs in a row (each one more level of the parser)
 constexpr std::size_t kMaxLiteralLength = 100;  ///< characters of one number
 constexpr std::size_t kMaxLiteralExponentDigits = 4;  ///< digits of its exponent (1e9999 at most)
@@ -273,6 +279,28 @@ void check_functions(const ex& e, const std::string& formula, const std::string&
   }
 }
 
+// How deep calls of dividing functions and powers other than whole ones nest in e.
+int dividing_nesting(const ex& e) {
+  bool dividing = false;
+  if (GiNaC::is_a<GiNaC::function>(e)) {
+    const std::string name = GiNaC::ex_to<GiNaC::function>(e).get_name();
+    dividing = name != "sin" && name != "cos" && name != "exp" && name != "abs";
+  } else if (GiNaC::is_a<GiNaC::power>(e)) {
+    dividing = !(GiNaC::is_a<GiNaC::numeric>(e.op(1)) && GiNaC::ex_to<GiNaC::numeric>(e.op(1)).is_pos_integer());
+  }
+  int deepest = 0;
+  for (std::size_t i = 0; i < e.nops(); ++i) deepest = std::max(deepest, dividing_nesting(e.op(i)));
+  return deepest + (dividing ? 1 : 0);
+}
+
+void check_function_nesting(const ex& e, const std::string& context) {
+  if (dividing_nesting(e) <= kMaxFunctionNesting) return;
+  throw InputError(context + ": the formula nests tan, asin, acos, atan, atan2, log, sqrt, divisions or fractional "
+                   "powers one inside another more than " + std::to_string(kMaxFunctionNesting) +
+                   " deep, more than its derivatives can be typeset in LaTeX (sin, cos, exp and abs may nest " +
+                   std::to_string(kMaxDepth) + " deep); write it more simply");
+}
+
 // GiNaC's parse error in kinema's words: its line and column are always 0 and its
 // tokens are named as its lexer sees them ("EOF", a number's placeholder).
 std::string parse_failure(std::string why, const std::string& placeholder) {
@@ -368,6 +396,7 @@ GiNaC::ex FormulaReader::read(const std::string& formula, const std::string& con
     e = restore(parsed);
     check_numbers_finite(e, formula, context);
     expanded_terms(e, formula, context);
+    check_function_nesting(e, context);
   } catch (const InputError&) {
     throw;
   } catch (const std::exception& error) {

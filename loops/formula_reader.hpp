@@ -5,7 +5,8 @@
 // more than 100 characters, a power of numbers whose exact value would have more
 // than 400 digits (GiNaC evaluates 10^(10^10) exactly while parsing: gigabytes),
 // an exponent past 1000 in magnitude, a formula that would expand to more than
-// 10,000 terms, and functions the evaluator does not compile.
+// 250 terms, functions whose derivatives divide (tan, log, sqrt, ...) nested more than
+// 3 deep, and functions the evaluator does not compile.
 #pragma once
 
 #include <ginac/ginac.h>

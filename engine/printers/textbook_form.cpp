@@ -3,14 +3,17 @@
 #include <algorithm>
 #include <cctype>
 #include <climits>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
 #include <sstream>
+#include <unordered_map>
 #include <vector>
 
 #include <kinema/engine/report/number_format.hpp>
 #include <kinema/engine/symbolic/complex_parts.hpp>
+#include <kinema/engine/symbolic/differentiate.hpp>
 #include <kinema/engine/symbolic/expression_parts.hpp>
 
 namespace kinema {
@@ -20,6 +23,10 @@ using GiNaC::ex;
 namespace {
 
 constexpr int kSum = 1, kProduct = 2, kPower = 3;
+// A product up to this many lines wide stays on one line (the samples' longest terms, a
+// line and a half, print as before); a wider one is broken between its factors, and
+// between the terms of a wide sum among them (TeX stops at a row wider than 16,383 pt).
+constexpr double kUnbrokenProductLines = 8;
 
 bool is_odd_function(const ex& e) { return is_function(e, "sin") || is_function(e, "tan"); }
 bool is_trig(const ex& e) { return is_odd_function(e) || is_function(e, "cos"); }
@@ -32,6 +39,44 @@ std::string ginac_text(const ex& e, bool latex) {
   return out.str();
 }
 
+// A canonical text longer than this stands as a digest of itself in the texts of the
+// formulas around it, so that each text is built from parts of bounded size: a formula's
+// derivatives share their subexpressions, and written out in full the texts of tan
+// nested 8 deep took minutes to build. Deterministic (from the text, not from GiNaC's
+// hashes), so the order stays the same from every build; the samples' texts are shorter.
+constexpr std::size_t kCanonicalTextBudget = 2048;
+
+std::string bounded(std::string text) {
+  if (text.size() <= kCanonicalTextBudget) return text;
+  std::uint64_t digest = 14695981039346656037ull;  // FNV-1a
+  for (const char ch : text) digest = (digest ^ static_cast<unsigned char>(ch)) * 1099511628211ull;
+  char hex[24];
+  std::snprintf(hex, sizeof hex, "#%016llx", static_cast<unsigned long long>(digest));
+  return hex;
+}
+
+}  // namespace
+
+// What the printer works out once for each subexpression however often it occurs: the
+// derivatives of nested functions repeat a subexpression once per level (tan nested 8
+// deep took past 60 s to print, each level's order worked out again below it).
+struct TextbookForm::Memo {
+  std::unordered_map<ex, Canonical, std::hash<ex>, GiNaC::ex_is_equal> canonical;
+  std::unordered_map<ex, int, std::hash<ex>, GiNaC::ex_is_equal> coordinate, parameter;
+};
+
+TextbookForm::TextbookForm() : memo_(std::make_shared<Memo>()) {}
+
+TextbookForm::Canonical TextbookForm::canonical(const ex& e) const {
+  if (GiNaC::is_a<GiNaC::symbol>(e)) return {ginac_text(e, false), false};
+  const auto known = memo_->canonical.find(e);
+  if (known != memo_->canonical.end()) return known->second;
+  Canonical result = canonical_of_parts(e);
+  result.text = bounded(std::move(result.text));
+  memo_->canonical.emplace(e, result);
+  return result;
+}
+
 // A formula's text independent of GiNaC's own order of operands and of the signs it
 // chooses, which follow hashes of addresses and symbol serials and so differ from one
 // build (or one load) to another: sums and products with their operands sorted by this
@@ -39,12 +84,7 @@ std::string ginac_text(const ex& e, bool latex) {
 // -sin(y - x), (x - y)*w or -(y - x)*w) taken out as `negated`, so that e and -e have
 // the same text. The last tie-break of every order below: a formula prints the same
 // from every build.
-struct Canonical {
-  std::string text;
-  bool negated = false;
-};
-
-Canonical canonical(const ex& e) {
+TextbookForm::Canonical TextbookForm::canonical_of_parts(const ex& e) const {
   if (GiNaC::is_a<GiNaC::numeric>(e)) {
     GiNaC::numeric n = GiNaC::ex_to<GiNaC::numeric>(e);
     const GiNaC::numeric lead = n.real().is_zero() ? n.imag() : n.real();
@@ -103,6 +143,8 @@ Canonical canonical(const ex& e) {
   return {ginac_text(e, false), false};
 }
 
+namespace {
+
 // -sum term by term: expand() would also multiply out the powers of sums among them.
 ex negated_terms(const ex& sum) {
   ex negated = 0;
@@ -110,17 +152,17 @@ ex negated_terms(const ex& sum) {
   return negated;
 }
 
+}  // namespace
+
 // The tie-break key of a term or factor: its canonical text, then its sign (after a
 // character below every other, so that the text alone decides first).
-std::string canonical_text(const ex& e) {
+std::string TextbookForm::canonical_text(const ex& e) const {
   const Canonical c = canonical(e);
   return c.text + (c.negated ? "\x02" : "\x01");
 }
 
 // The canonical text alone: the same for e and -e (which term of a difference leads).
-std::string unsigned_text(const ex& e) { return canonical(e).text; }
-
-}  // namespace
+std::string TextbookForm::unsigned_text(const ex& e) const { return canonical(e).text; }
 
 struct TextbookForm::Context {
   Style style;
@@ -131,7 +173,7 @@ struct TextbookForm::Context {
   bool latex() const { return style == Style::latex; }
 };
 
-TextbookForm::TextbookForm(const ConstraintSystem& system) {
+TextbookForm::TextbookForm(const ConstraintSystem& system) : TextbookForm() {
   int index = 0;
   for (const SystemParameter& p : system.parameters) keys_[p.symbol] = {1, index++};
   std::vector<const Coordinate*> coordinates = {&system.input};
@@ -160,24 +202,32 @@ TextbookForm::Key TextbookForm::key_of(const ex& factor) const {
 
 // The smallest file index among a term's parameters (INT_MAX without parameters).
 int TextbookForm::parameter_key(const ex& term) const {
-  int smallest = INT_MAX;
-  for (auto it = term.preorder_begin(); it != term.preorder_end(); ++it) {
-    if (!GiNaC::is_a<GiNaC::symbol>(*it)) continue;
-    const auto known = keys_.find(*it);
-    if (known != keys_.end() && known->second.rank == 1) smallest = std::min(smallest, known->second.index);
+  if (GiNaC::is_a<GiNaC::symbol>(term)) {
+    const auto known = keys_.find(term);
+    return known != keys_.end() && known->second.rank == 1 ? known->second.index : INT_MAX;
   }
+  if (term.nops() == 0) return INT_MAX;
+  const auto memo = memo_->parameter.find(term);
+  if (memo != memo_->parameter.end()) return memo->second;
+  int smallest = INT_MAX;
+  for (std::size_t i = 0; i < term.nops(); ++i) smallest = std::min(smallest, parameter_key(term.op(i)));
+  memo_->parameter.emplace(term, smallest);
   return smallest;
 }
 
 // The smallest coordinate index among a term's symbols (rates count as their
 // coordinate's); INT_MAX for a term without coordinates (it goes last in a sum).
 int TextbookForm::coordinate_key(const ex& term) const {
-  int smallest = INT_MAX;
-  for (auto it = term.preorder_begin(); it != term.preorder_end(); ++it) {
-    if (!GiNaC::is_a<GiNaC::symbol>(*it)) continue;
-    const auto known = coordinate_of_.find(*it);
-    if (known != coordinate_of_.end()) smallest = std::min(smallest, known->second);
+  if (GiNaC::is_a<GiNaC::symbol>(term)) {
+    const auto known = coordinate_of_.find(term);
+    return known != coordinate_of_.end() ? known->second : INT_MAX;
   }
+  if (term.nops() == 0) return INT_MAX;
+  const auto memo = memo_->coordinate.find(term);
+  if (memo != memo_->coordinate.end()) return memo->second;
+  int smallest = INT_MAX;
+  for (std::size_t i = 0; i < term.nops(); ++i) smallest = std::min(smallest, coordinate_key(term.op(i)));
+  memo_->coordinate.emplace(term, smallest);
   return smallest;
 }
 
@@ -616,7 +666,7 @@ std::vector<std::string> TextbookForm::latex_lines(const ex& e, const ex& unknow
       }
     }
     if (sums.empty()) return {whole};
-    const auto chosen = std::min_element(sums.begin(), sums.end(), [](const ex& a, const ex& b) {
+    const auto chosen = std::min_element(sums.begin(), sums.end(), [this](const ex& a, const ex& b) {
       if (a.nops() != b.nops()) return a.nops() > b.nops();
       return unsigned_text(a) < unsigned_text(b);
     });
@@ -661,12 +711,21 @@ std::vector<std::string> TextbookForm::latex_lines(const ex& e, const ex& unknow
     }
     const bool minus = !part.empty() && part[0] == '-';
     if (minus) part = part.substr(1);
-    const std::string piece = first ? (minus ? "-" + part : part) : (minus ? " - " : " + ") + part;
-    if (!first && latex_width(line + piece) > budget) {
-      lines.push_back(line);
-      line.clear();
+    const std::string sign = first ? (minus ? "-" : "") : (minus ? " - " : " + ");
+    // A product wider than a line goes over lines factor by factor (the derivatives of
+    // nested functions: one product of a line's width many times; TeX stops at a row
+    // wider than its largest dimension).
+    std::vector<std::string> pieces = {sign + part};
+    if (latex_width(part) > kUnbrokenProductLines * budget && GiNaC::is_a<GiNaC::mul>(term))
+      pieces = factor_pieces(term, sign, c, budget);
+    for (std::size_t k = 0; k < pieces.size(); ++k) {
+      const std::string& piece = pieces[k];
+      if ((!first || k > 0) && latex_width(line + piece) > budget) {
+        lines.push_back(line);
+        line.clear();
+      }
+      line += piece;
     }
-    line += piece;
     first = false;
   }
   };
@@ -675,13 +734,62 @@ std::vector<std::string> TextbookForm::latex_lines(const ex& e, const ex& unknow
     line += "\\bigr)";
     lines.push_back(line);
     line = "\\bigm/ \\bigl(";
-    add_terms((bottom_negative ? -denominator : denominator).expand());  // the denominator without its sign
+    // The denominator without its sign, multiplied out unless that would give more terms
+    // than lines can hold (tan nested 32 deep: a product of 32 sums, 2^32 terms).
+    const ex shown = bottom_negative ? -denominator : denominator;
+    add_terms(multiplied_out(shown));
     line += "\\bigr)";
   } else if (has_denominator || has_front) {
     line += "\\bigr)";
   }
   lines.push_back(line);
   return lines;
+}
+
+// A product's factors as pieces of a line to break between: its sign first (`sign`, the
+// minus of a negative coefficient), the coefficient's magnitude, then the other factors in
+// canonical order, each as it prints in a product; a factor that is a sum wider than
+// `budget` term by term inside its parentheses, the same way.
+std::vector<std::string> TextbookForm::factor_pieces(const ex& product, const std::string& sign, Context& c,
+                                                     double budget) const {
+  std::vector<std::string> pieces;
+  std::vector<std::pair<std::string, ex>> factors;
+  for (std::size_t i = 0; i < product.nops(); ++i) {
+    const ex f = product.op(i);
+    if (GiNaC::is_a<GiNaC::numeric>(f) && GiNaC::ex_to<GiNaC::numeric>(f).is_real()) {
+      const GiNaC::numeric magnitude = GiNaC::abs(GiNaC::ex_to<GiNaC::numeric>(f));
+      if (magnitude != 1) pieces.push_back(render(magnitude, kProduct, c));
+    } else {
+      factors.push_back({canonical_text(f), f});
+    }
+  }
+  std::sort(factors.begin(), factors.end(),
+            [](const std::pair<std::string, ex>& a, const std::pair<std::string, ex>& b) { return a.first < b.first; });
+  for (const auto& factor : factors) {
+    const std::string whole = render(factor.second, kProduct, c);
+    if (latex_width(whole) <= kUnbrokenProductLines * budget || !GiNaC::is_a<GiNaC::add>(factor.second)) {
+      pieces.push_back(whole);
+      continue;
+    }
+    std::vector<ex> terms(factor.second.begin(), factor.second.end());
+    sort_terms(terms, [](const ex&, const ex&) { return 0; });
+    for (std::size_t k = 0; k < terms.size(); ++k) {
+      std::string part = render(terms[k], kSum + 1, c);
+      if (part.size() > 2 && part[0] == '(' && part[1] == '-' && part.back() == ')') part = "-" + part.substr(2, part.size() - 3);
+      const bool minus = !part.empty() && part[0] == '-';
+      if (minus) part = part.substr(1);
+      const std::string term_sign = (k == 0 ? "(" : "") + std::string(k == 0 ? (minus ? "-" : "") : (minus ? "- " : "+ "));
+      std::vector<std::string> parts = {term_sign + part};
+      if (latex_width(part) > kUnbrokenProductLines * budget && GiNaC::is_a<GiNaC::mul>(terms[k]))
+        parts = factor_pieces(terms[k], term_sign, c, budget);
+      pieces.insert(pieces.end(), parts.begin(), parts.end());
+    }
+    pieces.back() += ")";
+  }
+  for (std::size_t k = 1; k < pieces.size(); ++k) pieces[k] = " " + pieces[k];
+  if (pieces.empty()) pieces.push_back("1");
+  pieces.front() = sign + pieces.front();
+  return pieces;
 }
 
 std::string TextbookForm::solved(const ex& e, const ex& unknown, Style style, const SymbolTexts* texts) const {

@@ -10,6 +10,7 @@
 #include <ginac/ginac.h>
 
 #include <map>
+#include <memory>
 #include <functional>
 #include <string>
 #include <vector>
@@ -35,7 +36,7 @@ class TextbookForm {
   /// unknowns, then their rates and second rates.
   explicit TextbookForm(const ConstraintSystem& system);
   /// Without a system: every symbol ordered as a parameter, by its name.
-  TextbookForm() = default;
+  TextbookForm();
 
   std::string operator()(const GiNaC::ex& e, Style style, const SymbolTexts* texts = nullptr) const;
 
@@ -70,6 +71,18 @@ class TextbookForm {
 
  private:
   bool exact_floats_ = false;
+  // A formula's text independent of GiNaC's order of operands and of where it puts a sign
+  // (the last tie-break of every order: the same print from every build).
+  struct Canonical {
+    std::string text;
+    bool negated = false;
+  };
+  struct Memo;
+  std::shared_ptr<Memo> memo_;  // shared by copies: what it holds does not depend on exact_floats_
+  Canonical canonical(const GiNaC::ex& e) const;
+  Canonical canonical_of_parts(const GiNaC::ex& e) const;
+  std::string canonical_text(const GiNaC::ex& e) const;
+  std::string unsigned_text(const GiNaC::ex& e) const;
   struct Key {
     int rank;   // 0 numbers, 1 parameters, 2 coordinates, 3 rates, 4 functions, 5 other
     int index;  // order within the rank
@@ -101,6 +114,8 @@ class TextbookForm {
   std::string render_function(const GiNaC::ex& f, const GiNaC::ex& argument, Context& c) const;
   std::string render_number(const GiNaC::numeric& n, Context& c) const;
   std::string render_argument(const GiNaC::ex& argument, Context& c) const;
+  std::vector<std::string> factor_pieces(const GiNaC::ex& product, const std::string& sign, Context& c,
+                                         double budget) const;
   bool leads_negative(const GiNaC::ex& sum, const GiNaC::ex* first) const;
   bool sum_leads_negative(const GiNaC::ex& sum) const;
 };

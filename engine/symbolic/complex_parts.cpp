@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include <kinema/engine/symbolic/differentiate.hpp>
+
 namespace kinema {
 namespace {
 
@@ -96,8 +98,8 @@ ComplexParts complex_parts(const ex& e) {
   return parts ? *parts : ComplexParts{e, 0};
 }
 
-ex real_part_of(const ex& e) { return complex_parts(e).real.expand(); }
+ex real_part_of(const ex& e) { return multiplied_out(complex_parts(e).real); }
 
-ex imag_part_of(const ex& e) { return complex_parts(e).imag.expand(); }
+ex imag_part_of(const ex& e) { return multiplied_out(complex_parts(e).imag); }
 
 }  // namespace kinema

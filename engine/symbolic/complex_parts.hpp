@@ -16,10 +16,10 @@ struct ComplexParts {
 /// is atan(u)); sums, products, exp, sin and cos split as GiNaC splits them. Not expanded.
 ComplexParts complex_parts(const GiNaC::ex& e);
 
-/// complex_parts(e).real, expanded.
+/// complex_parts(e).real, multiplied out (multiplied_out: within its budget).
 GiNaC::ex real_part_of(const GiNaC::ex& e);
 
-/// complex_parts(e).imag, expanded.
+/// complex_parts(e).imag, multiplied out (multiplied_out: within its budget).
 GiNaC::ex imag_part_of(const GiNaC::ex& e);
 
 }  // namespace kinema

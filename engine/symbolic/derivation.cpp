@@ -1,5 +1,6 @@
 #include <kinema/engine/symbolic/derivation.hpp>
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -38,42 +39,6 @@ GiNaC::exset symbols_of(const ex& e) {
   return found;
 }
 
-// Cramer's rule on block rows/columns, each ratio simplified the textbook way.
-// A block whose Jacobian vanishes identically cannot give its unknowns at any position
-// (they are not independent: only their sum appears, say). Said as bad input.
-void check_independent(const ConstraintSystem& system, const GiNaC::matrix& jacobian, const SolvingBlock& block) {
-  const std::size_t k = block.unknowns.size();
-  GiNaC::matrix a(k, k);
-  for (std::size_t r = 0; r < k; ++r)
-    for (std::size_t c = 0; c < k; ++c) a(r, c) = jacobian(block.equations[r], block.unknowns[c]);
-  // Past the simplification budget the check is left to the numbers (every row singular).
-  const ex determinant = a.determinant(GiNaC::determinant_algo::laplace);
-  if (expression_size(determinant) > kSimplifyBudget) return;
-  if (!combine_trig_products(determinant.normal().numer()).is_zero()) return;
-  std::string groups, unknowns;
-  for (std::size_t g : block.groups)
-    groups += (groups.empty() ? "" : ", ") + system.groups[g].where.str() + ": " + system.groups[g].kind + " \"" +
-              system.groups[g].name + "\"";
-  for (std::size_t j : block.unknowns) unknowns += (unknowns.empty() ? "" : ", ") + system.unknowns[j].name;
-  throw InputError(groups + ": the unknowns " + unknowns +
-                   " cannot be found from it: the Jacobian is singular at every position, so they are not "
-                   "independent (e.g. only their sum appears); write the loop with independent coordinates");
-}
-
-// True when calls of functions whose derivatives divide (log, tan, sqrt, atan2, ...: not
-// sin, cos, exp) hold each other `levels` deep (log(10 + log(10 + ...))).
-bool nests_functions(const ex& e, int levels) {
-  if (levels <= 0) return true;
-  bool dividing = GiNaC::is_a<GiNaC::function>(e);
-  if (dividing) {
-    const std::string name = GiNaC::ex_to<GiNaC::function>(e).get_name();
-    dividing = name != "sin" && name != "cos" && name != "exp";
-  }
-  for (std::size_t i = 0; i < e.nops(); ++i)
-    if (nests_functions(e.op(i), dividing ? levels - 1 : levels)) return true;
-  return false;
-}
-
 // The determinant by cofactors along the first row, left as it comes out.
 ex cofactor_determinant(const GiNaC::matrix& a) {
   const unsigned k = a.rows();
@@ -90,11 +55,77 @@ ex cofactor_determinant(const GiNaC::matrix& a) {
   return sum;
 }
 
+// The terms of a determinant multiplied out, at most (the permanent of its entries'
+// counts), by cofactors of the counts; 0 for a block past 8 unknowns, whose cofactors are
+// too many to count (the samples' blocks have 2).
+double determinant_terms_estimate(const std::vector<std::vector<double>>& counts, std::vector<bool>& used,
+                                  std::size_t row) {
+  if (row == counts.size()) return 1;
+  double terms = 0;
+  for (std::size_t c = 0; c < counts.size() && terms <= kMultiplyOutBudget; ++c) {
+    if (used[c] || counts[row][c] == 0) continue;
+    used[c] = true;
+    terms += counts[row][c] * determinant_terms_estimate(counts, used, row + 1);
+    used[c] = false;
+  }
+  return terms;
+}
+
+bool multiplies_out(const GiNaC::matrix& a) {
+  const std::size_t k = a.rows();
+  if (k > 8) return false;
+  std::vector<std::vector<double>> counts(k, std::vector<double>(k));
+  for (std::size_t r = 0; r < k; ++r)
+    for (std::size_t c = 0; c < k; ++c)
+      counts[r][c] = a(r, c).is_zero() ? 0 : expanded_terms_estimate(a(r, c), kMultiplyOutBudget);
+  std::vector<bool> used(k, false);
+  return determinant_terms_estimate(counts, used, 0) > kMultiplyOutBudget;
+}
+
+// True when calls of functions whose derivatives divide (log, tan, sqrt, atan2, ...: not
+// sin, cos, exp) hold each other `levels` deep (log(10 + log(10 + ...))).
+bool nests_functions(const ex& e, int levels) {
+  if (levels <= 0) return true;
+  bool dividing = GiNaC::is_a<GiNaC::function>(e);
+  if (dividing) {
+    const std::string name = GiNaC::ex_to<GiNaC::function>(e).get_name();
+    dividing = name != "sin" && name != "cos" && name != "exp";
+  }
+  for (std::size_t i = 0; i < e.nops(); ++i)
+    if (nests_functions(e.op(i), dividing ? levels - 1 : levels)) return true;
+  return false;
+}
+
 // Functions whose derivatives divide, nested this deep in a block's entries: GiNaC's
 // determinant normalises its result, expanding the quotients the chain rule makes of them
 // (log nested 8 deep in a loop never finished deriving, 6 deep took 5 s); such a block is
 // solved by cofactors and its ratio left unsimplified. The samples nest none of them.
 constexpr int kPlainSolveNesting = 4;
+
+// Cramer's rule on block rows/columns, each ratio simplified the textbook way.
+// A block whose Jacobian vanishes identically cannot give its unknowns at any position
+// (they are not independent: only their sum appears, say). Said as bad input.
+void check_independent(const ConstraintSystem& system, const GiNaC::matrix& jacobian, const SolvingBlock& block) {
+  const std::size_t k = block.unknowns.size();
+  GiNaC::matrix a(k, k);
+  for (std::size_t r = 0; r < k; ++r)
+    for (std::size_t c = 0; c < k; ++c) a(r, c) = jacobian(block.equations[r], block.unknowns[c]);
+  // Past the simplification budget the check is left to the numbers (every row singular);
+  // GiNaC's determinant multiplies out (tan nested 16 deep: 2^16 terms and more) and
+  // normalises (log nested 32 deep never loaded).
+  if (multiplies_out(a) || nests_functions(a, kPlainSolveNesting)) return;
+  const ex determinant = a.determinant(GiNaC::determinant_algo::laplace);
+  if (expression_size(determinant) > kSimplifyBudget) return;
+  if (!combine_trig_products(determinant.normal().numer()).is_zero()) return;
+  std::string groups, unknowns;
+  for (std::size_t g : block.groups)
+    groups += (groups.empty() ? "" : ", ") + system.groups[g].where.str() + ": " + system.groups[g].kind + " \"" +
+              system.groups[g].name + "\"";
+  for (std::size_t j : block.unknowns) unknowns += (unknowns.empty() ? "" : ", ") + system.unknowns[j].name;
+  throw InputError(groups + ": the unknowns " + unknowns +
+                   " cannot be found from it: the Jacobian is singular at every position, so they are not "
+                   "independent (e.g. only their sum appears); write the loop with independent coordinates");
+}
 
 std::vector<ex> solve_block(const GiNaC::matrix& jacobian, const SolvingBlock& block,
                             const std::vector<ex>& right_hand_side) {
@@ -108,11 +139,15 @@ std::vector<ex> solve_block(const GiNaC::matrix& jacobian, const SolvingBlock& b
       nested = nested || nests_functions(a(r, c), kPlainSolveNesting);
     }
   }
+  std::vector<GiNaC::matrix> numerators(k, a);
+  for (std::size_t c = 0; c < k; ++c)
+    for (std::size_t r = 0; r < k; ++r) numerators[c](r, c) = right_hand_side[r];
+  // Determinants that would multiply out past the budget are left as cofactors too.
+  nested = nested || multiplies_out(a) || std::any_of(numerators.begin(), numerators.end(), multiplies_out);
   const ex determinant = nested ? cofactor_determinant(a) : a.determinant(GiNaC::determinant_algo::laplace);
   std::vector<ex> solution;
   for (std::size_t c = 0; c < k; ++c) {
-    GiNaC::matrix replaced = a;
-    for (std::size_t r = 0; r < k; ++r) replaced(r, c) = right_hand_side[r];
+    const GiNaC::matrix& replaced = numerators[c];
     solution.push_back(nested ? cofactor_determinant(replaced) / determinant
                               : simplify_ratio(replaced.determinant(GiNaC::determinant_algo::laplace), determinant));
   }
@@ -222,9 +257,9 @@ Derivation derive(const ConstraintSystem& system, DerivationScope scope) {
     const EquationGroup& group = system.groups[equation.group];
     const std::string what = group.where.str() + ": " + group.kind + " \"" + group.name + "\" (" + equation.component + ")";
     d.velocity_equations.push_back(bounded_time_derivative(system, moving, phi, what, "velocity"));
-    d.acceleration_equations.push_back(
-        bounded_time_derivative(system, moving, d.velocity_equations.back(), what, "acceleration").expand());
-    d.acceleration_rhs.push_back((-d.acceleration_equations.back().subs(no_second_rates)).expand());
+    d.acceleration_equations.push_back(multiplied_out(
+        bounded_time_derivative(system, moving, d.velocity_equations.back(), what, "acceleration")));
+    d.acceleration_rhs.push_back(multiplied_out(-d.acceleration_equations.back().subs(no_second_rates)));
     if (full) d.acceleration_rhs_combined.push_back(combine_trig_products(d.acceleration_rhs.back()));
   }
 

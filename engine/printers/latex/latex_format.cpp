@@ -295,11 +295,42 @@ std::vector<LatexRow> latex_fit_rows(const std::vector<LatexRow>& rows, double b
   return fitted;
 }
 
+namespace {
+
+// Characters of one line of the .tex file: pdflatex reads a line into a buffer of 200,000
+// and stops past it ("Unable to read an entire line"); the derivatives of cos nested 32
+// deep, with their formula in GiNaC syntax as a comment, made lines of 600,000.
+constexpr std::size_t kTexLineChars = 4000;
+
+// The row's text with a line break for a space where a line would be longer (a line
+// break is a space to TeX, and a space in a formula ends no command).
+std::string wrapped_row(const std::string& text) {
+  std::string out = text;
+  std::size_t line_start = 0;
+  while (out.size() - line_start > kTexLineChars) {
+    const std::size_t space = out.rfind(' ', line_start + kTexLineChars);
+    if (space == std::string::npos || space <= line_start) break;  // no space: left as it is
+    out[space] = '\n';
+    line_start = space + 1;
+  }
+  return out;
+}
+
+// A comment over as many lines as it needs, each one a comment.
+std::string wrapped_comment(const std::string& comment) {
+  std::string out = " % " + comment.substr(0, kTexLineChars);
+  for (std::size_t at = kTexLineChars; at < comment.size(); at += kTexLineChars)
+    out += "\n  % " + comment.substr(at, kTexLineChars);
+  return out;
+}
+
+}  // namespace
+
 std::string latex_align_rows(const std::vector<LatexRow>& rows) {
   std::string out;
   for (std::size_t r = 0; r < rows.size(); ++r) {
-    out += "  " + rows[r].text + (r + 1 < rows.size() && !is_intertext(rows[r].text) ? " \\\\" : "");
-    if (!rows[r].comment.empty()) out += " % " + rows[r].comment;
+    out += "  " + wrapped_row(rows[r].text) + (r + 1 < rows.size() && !is_intertext(rows[r].text) ? " \\\\" : "");
+    if (!rows[r].comment.empty()) out += wrapped_comment(rows[r].comment);
     out += "\n";
   }
   return out;

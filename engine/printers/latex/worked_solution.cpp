@@ -745,13 +745,12 @@ class DocumentWriter {
 
   // Rows of an align*; text after " %% " in a row becomes a comment after the row's end.
   void align_rows(const std::vector<std::string>& rows) {
-    for (std::size_t r = 0; r < rows.size(); ++r) {
-      const auto comment = rows[r].find(" %% ");
-      out_ << "  " << rows[r].substr(0, comment) << (r + 1 < rows.size() && !is_intertext(rows[r]) ? " \\\\" : "");
-      if (comment != std::string::npos) out_ << " % " << rows[r].substr(comment + 4);
-      out_ << "\n";
+    std::vector<LatexRow> split;
+    for (const std::string& row : rows) {
+      const auto comment = row.find(" %% ");
+      split.push_back({row.substr(0, comment), comment == std::string::npos ? "" : row.substr(comment + 4)});
     }
-    out_ << "\\end{align*}\n";
+    out_ << latex_align_rows(split) << "\\end{align*}\n";
   }
 
   // Points sliding along turning links: the acceleration's named terms (derived
