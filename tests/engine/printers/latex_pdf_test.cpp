@@ -500,10 +500,10 @@ TEST_CASE("the deepest nest of every function the formula reader accepts is deri
                                  kinema_test::replaced("- d\"", "- d + k*" + nested + "\""));
   };
   const auto bounded = [](const std::vector<std::string>& arguments) {
-    const auto result = kinema_test::run_kinema_bounded(arguments);
+    const auto result = kinema_test::run_kinema_bounded(arguments, kinema_test::kFinishCpuSeconds);
     INFO(arguments.front() << " " << arguments.back() << ": " << result.err);
     CHECK(result.exit_status == 0);
-    CHECK(result.peak_kilobytes < 2 * 1024 * 1024);
+    CHECK(result.peak_kilobytes < kinema_test::kFinishPeakKilobytes);
     return result;
   };
   std::string derivations, document;
