@@ -399,9 +399,9 @@ int kinema_cli::run(int argc, char** argv) {
   }
   check_input_range(m, run_inputs);
 
+  if (!is_sweep) return write_list(model, run_inputs, format, precision, output_path);
   StreamSettings settings;
   settings.threads = threads > 0 ? threads : std::max(1u, std::thread::hardware_concurrency());
-  if (!is_sweep) return write_list(model, run_inputs, format, precision, output_path);
   // Solved, formatted and written a block at a time; a file appears only when complete.
   kinema_cli::Output output(output_path);
   // Not when the results themselves scroll by on the same terminal.

@@ -35,6 +35,14 @@ std::string document(const kinema::Model& model, const MotionTable* values, cons
   return out.str();
 }
 
+// The worked solution at the file's first value (or 0), with its plots over the range.
+std::string document_at_first_value(const kinema::Model& model) {
+  const double first = model.system.input.values.empty() ? 0.0 : model.system.input.values.front();
+  const MotionTable values = kinema::analyse(model, {first});
+  const MotionTable sweep = kinema::analyse(model, kinema::plot_range(model.system, first));
+  return document(model, &values, &sweep);
+}
+
 // Every "(x,y)" of a line, in order.
 std::vector<Point> coordinates(const std::string& line) {
   std::vector<Point> found;
@@ -335,10 +343,7 @@ TEST_CASE("engine/printers/figures: plots unwrapped, without a line back to the 
                            "problem_4_4_six_bar.toml"}) {
     CAPTURE(std::string(name));
     const kinema::Model model = kinema::load_model(kinema_test::sample(name));
-    const double first = model.system.input.values.empty() ? 0.0 : model.system.input.values.front();
-    const MotionTable values = kinema::analyse(model, {first});
-    const MotionTable sweep = kinema::analyse(model, kinema::plot_range(model.system, first));
-    const std::string tex = document(model, &values, &sweep);
+    const std::string tex = document_at_first_value(model);
     const auto axes = plotted_axes(tex);
     REQUIRE(axes.size() >= 3);
     for (std::size_t a = 0; a < axes.size(); ++a) {
@@ -702,10 +707,7 @@ TEST_CASE("figures: every plot's tick labels apart at the axis's length, each it
   for (const char* name : kinema_test::kSamples) {
     CAPTURE(std::string(name));
     const kinema::Model model = kinema::load_model(kinema_test::sample(name));
-    const double first = model.system.input.values.empty() ? 0.0 : model.system.input.values.front();
-    const MotionTable values = kinema::analyse(model, {first});
-    const MotionTable sweep = kinema::analyse(model, kinema::plot_range(model.system, first));
-    const std::string tex = document(model, &values, &sweep);
+    const std::string tex = document_at_first_value(model);
     for (auto at = tex.find("\\begin{axis}["); at != std::string::npos; at = tex.find("\\begin{axis}[", at + 1)) {
       const std::string options = tex.substr(at + 13, tex.find("]\n", at) - at - 13);
       CAPTURE(options);
