@@ -7,11 +7,11 @@
 
 #include <algorithm>
 
-#include <kinema/engine/errors.hpp>
-#include <kinema/engine/input_value.hpp>
-#include <kinema/engine/model.hpp>
-#include <kinema/engine/report/diagnostics.hpp>
-#include <kinema/loops/mechanism_file.hpp>
+#include "engine/base/errors.hpp"
+#include "engine/input_value.hpp"
+#include "engine/model.hpp"
+#include "engine/report/diagnostics.hpp"
+#include "loops/mechanism_file.hpp"
 
 namespace kinema {
 

@@ -16,7 +16,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include <kinema/engine/model.hpp>
+#include "engine/model.hpp"
 
 namespace {
 

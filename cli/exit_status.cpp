@@ -1,10 +1,10 @@
-#include "exit_status.hpp"
+#include "cli/exit_status.hpp"
 
 #include <CLI/Error.hpp>
 
-#include <kinema/engine/errors.hpp>
+#include "engine/base/errors.hpp"
 
-#include "output_file.hpp"
+#include "cli/output_file.hpp"
 
 namespace kinema_cli {
 

@@ -4,13 +4,13 @@
 #include <iostream>
 #include <new>
 
-#include <kinema/engine/errors.hpp>
-#include <kinema/engine/report/user_text.hpp>
+#include "engine/base/errors.hpp"
+#include "engine/base/user_text.hpp"
 
-#include "exit_status.hpp"
-#include "output_file.hpp"
-#include "run.hpp"
-#include "stable_addresses.hpp"
+#include "cli/exit_status.hpp"
+#include "cli/output_file.hpp"
+#include "cli/run.hpp"
+#include "cli/stable_addresses.hpp"
 
 int main(int argc, char** argv) {
   kinema_cli::run_with_stable_addresses(argv);

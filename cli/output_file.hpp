@@ -5,7 +5,7 @@
 #include <string>
 #include <string_view>
 
-#include <kinema/engine/errors.hpp>
+#include "engine/base/errors.hpp"
 
 namespace kinema_cli {
 

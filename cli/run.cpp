@@ -12,29 +12,29 @@
 #include <sstream>
 #include <thread>
 
-#include <kinema/engine/errors.hpp>
-#include <kinema/engine/input_value.hpp>
-#include <kinema/engine/model.hpp>
-#include <kinema/engine/numeric/circuit.hpp>
-#include <kinema/engine/printers/code/cpp_header.hpp>
-#include <kinema/engine/printers/printer.hpp>
-#include <kinema/engine/printers/results_stream.hpp>
-#include <kinema/engine/report/chain_instant.hpp>
-#include <kinema/engine/report/diagnostics.hpp>
-#include <kinema/engine/report/number_format.hpp>
-#include <kinema/engine/report/output_scale.hpp>
-#include <kinema/engine/report/plot_range.hpp>
-#include <kinema/engine/report/structure.hpp>
-#include <kinema/engine/report/user_text.hpp>
-#include <kinema/engine/symbolic/dyad_method.hpp>
-#include <kinema/loops/linkage_loops.hpp>
-#include <kinema/loops/mechanism_file.hpp>
+#include "engine/base/errors.hpp"
+#include "engine/input_value.hpp"
+#include "engine/model.hpp"
+#include "engine/numeric/circuit.hpp"
+#include "engine/printers/code/cpp_header.hpp"
+#include "engine/printers/printer.hpp"
+#include "engine/printers/results_stream.hpp"
+#include "engine/report/chain_instant.hpp"
+#include "engine/report/diagnostics.hpp"
+#include "engine/base/number_format.hpp"
+#include "engine/report/output_scale.hpp"
+#include "engine/report/plot_range.hpp"
+#include "engine/report/structure.hpp"
+#include "engine/base/user_text.hpp"
+#include "engine/symbolic/dyad_method.hpp"
+#include "loops/linkage_loops.hpp"
+#include "loops/mechanism_file.hpp"
 
-#include "exit_status.hpp"
-#include "output_file.hpp"
-#include "progress_line.hpp"
-#include "run.hpp"
-#include "usage.hpp"
+#include "cli/exit_status.hpp"
+#include "cli/output_file.hpp"
+#include "cli/progress_line.hpp"
+#include "cli/run.hpp"
+#include "cli/usage.hpp"
 
 #ifndef KINEMA_VERSION
 #error "KINEMA_VERSION (the project version) must be defined by the build"

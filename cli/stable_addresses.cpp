@@ -1,4 +1,4 @@
-#include "stable_addresses.hpp"
+#include "cli/stable_addresses.hpp"
 
 #if defined(__linux__)
 #include <sys/personality.h>

@@ -1,10 +1,10 @@
-#include "usage.hpp"
+#include "cli/usage.hpp"
 
 #include <iostream>
 
-#include <kinema/engine/report/user_text.hpp>
+#include "engine/base/user_text.hpp"
 
-#include "exit_status.hpp"
+#include "cli/exit_status.hpp"
 
 namespace kinema_cli {
 

@@ -18,9 +18,9 @@
 # with an upward include, which must fail).
 
 # Path prefixes (from the project root) in stage order; a path takes the first prefix it
-# starts with, so the base files inside later folders come first.
+# starts with.
 set(KINEMA_STAGES
-  "base:engine/errors.hpp|loops/units.|loops/toml_ascii.|engine/report/user_text."
+  "base:engine/base/"
   "front ends:loops/"
   "constraints:engine/constraint_system.hpp"
   "symbolic:engine/symbolic/"
@@ -39,17 +39,14 @@ set(KINEMA_STAGE_ORDER_PENDING
   "engine/report/toggles.hpp -> engine/model.hpp"
   "loops/spatial_chain.cpp -> engine/symbolic/differentiate.hpp"
   "loops/spatial_chain.cpp -> engine/symbolic/naming.hpp"
-  "loops/spatial_chain.cpp -> engine/report/number_format.hpp"
   "loops/planar_loops.hpp -> engine/constraint_system.hpp"
   "loops/planar_loops.cpp -> engine/symbolic/complex_parts.hpp"
   "loops/planar_loops.cpp -> engine/symbolic/derivation.hpp"
   "loops/planar_loops.cpp -> engine/symbolic/expression_parts.hpp"
   "loops/planar_loops.cpp -> engine/symbolic/naming.hpp"
-  "loops/linkage_loops.cpp -> engine/report/number_format.hpp"
   "loops/length_power.cpp -> engine/symbolic/expression_parts.hpp"
   "loops/mechanism_file.hpp -> engine/numeric/input_values.hpp"
   "loops/spatial_chain.hpp -> engine/constraint_system.hpp"
-  "loops/mechanism_file.cpp -> engine/report/number_format.hpp"
   "loops/mechanism_file.cpp -> engine/symbolic/naming.hpp")
 
 cmake_policy(SET CMP0057 NEW)  # if(IN_LIST), in script mode too
@@ -83,7 +80,7 @@ endfunction()
 
 # Fails (FATAL_ERROR) naming every include from a stage to a later one under root, but
 # those in the pending list. Includes are read as the tree writes them: "engine/..." from
-# the root, or <kinema/engine/...> as the build tree's include folder spells it.
+# the root.
 function(kinema_check_stage_order root)
   file(GLOB_RECURSE sources RELATIVE "${root}" "${root}/engine/*" "${root}/loops/*" "${root}/cli/*" "${root}/api/*")
   set(upward "")

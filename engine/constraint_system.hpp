@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include <kinema/loops/mechanism.hpp>
-#include <kinema/loops/units.hpp>
+#include "loops/mechanism.hpp"
+#include "engine/base/units.hpp"
 
 namespace kinema {
 

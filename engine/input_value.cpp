@@ -1,13 +1,13 @@
 // Input values as users write them, and the range they are held to (input_value.hpp).
-#include <kinema/engine/input_value.hpp>
+#include "engine/input_value.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include <kinema/engine/errors.hpp>
-#include <kinema/engine/report/number_format.hpp>
-#include <kinema/engine/report/output_scale.hpp>
-#include <kinema/loops/units.hpp>
+#include "engine/base/errors.hpp"
+#include "engine/base/number_format.hpp"
+#include "engine/report/output_scale.hpp"
+#include "engine/base/units.hpp"
 
 namespace kinema {
 

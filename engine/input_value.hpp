@@ -5,8 +5,8 @@
 
 #include <string>
 
-#include <kinema/engine/constraint_system.hpp>
-#include <kinema/engine/numeric/input_values.hpp>
+#include "engine/constraint_system.hpp"
+#include "engine/numeric/input_values.hpp"
 
 namespace kinema {
 

@@ -1,10 +1,10 @@
-#include <kinema/engine/model.hpp>
+#include "engine/model.hpp"
 
-#include <kinema/engine/numeric/sweep.hpp>
-#include <kinema/engine/report/output_scale.hpp>  // check_column_names: the output columns named apart before any run
-#include <kinema/loops/mechanism_file.hpp>
-#include <kinema/loops/planar_loops.hpp>
-#include <kinema/loops/spatial_chain.hpp>
+#include "engine/numeric/sweep.hpp"
+#include "engine/report/output_scale.hpp"  // check_column_names: the output columns named apart before any run
+#include "loops/mechanism_file.hpp"
+#include "loops/planar_loops.hpp"
+#include "loops/spatial_chain.hpp"
 
 namespace kinema {
 

@@ -13,13 +13,13 @@
 #include <optional>
 #include <vector>
 
-#include <kinema/engine/constraint_system.hpp>
-#include <kinema/engine/errors.hpp>
-#include <kinema/engine/numeric/kinematics.hpp>
-#include <kinema/engine/numeric/motion_table.hpp>
-#include <kinema/engine/numeric/workspace.hpp>
-#include <kinema/engine/symbolic/derivation.hpp>
-#include <kinema/loops/mechanism.hpp>
+#include "engine/constraint_system.hpp"
+#include "engine/base/errors.hpp"
+#include "engine/numeric/kinematics.hpp"
+#include "engine/numeric/motion_table.hpp"
+#include "engine/numeric/workspace.hpp"
+#include "engine/symbolic/derivation.hpp"
+#include "loops/mechanism.hpp"
 
 namespace kinema {
 

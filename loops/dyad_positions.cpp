@@ -1,4 +1,4 @@
-#include <kinema/loops/dyad_positions.hpp>
+#include "loops/dyad_positions.hpp"
 
 #include <cmath>
 

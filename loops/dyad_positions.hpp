@@ -10,7 +10,7 @@
 #include <cstddef>
 #include <vector>
 
-#include <kinema/loops/mechanism.hpp>
+#include "loops/mechanism.hpp"
 
 namespace kinema {
 

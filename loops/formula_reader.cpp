@@ -1,4 +1,4 @@
-#include <kinema/loops/formula_reader.hpp>
+#include "loops/formula_reader.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -7,8 +7,8 @@
 #include <string_view>
 #include <vector>
 
-#include <kinema/engine/errors.hpp>
-#include <kinema/engine/report/user_text.hpp>
+#include "engine/base/errors.hpp"
+#include "engine/base/user_text.hpp"
 
 namespace kinema {
 namespace {

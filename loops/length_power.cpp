@@ -1,8 +1,8 @@
-#include <kinema/loops/length_power.hpp>
+#include "loops/length_power.hpp"
 
-#include <kinema/engine/errors.hpp>
-#include <kinema/engine/symbolic/expression_parts.hpp>
-#include <kinema/loops/units.hpp>
+#include "engine/base/errors.hpp"
+#include "engine/symbolic/expression_parts.hpp"
+#include "engine/base/units.hpp"
 
 namespace kinema {
 

@@ -1,4 +1,4 @@
-#include <kinema/loops/linkage_loops.hpp>
+#include "loops/linkage_loops.hpp"
 
 #include <algorithm>
 #include <array>
@@ -10,11 +10,11 @@
 #include <set>
 #include <sstream>
 
-#include <kinema/engine/errors.hpp>
-#include <kinema/engine/report/number_format.hpp>
-#include <kinema/engine/report/user_text.hpp>
-#include <kinema/loops/dyad_positions.hpp>
-#include <kinema/loops/formula_reader.hpp>
+#include "engine/base/errors.hpp"
+#include "engine/base/number_format.hpp"
+#include "engine/base/user_text.hpp"
+#include "loops/dyad_positions.hpp"
+#include "loops/formula_reader.hpp"
 
 namespace kinema {
 namespace {

@@ -13,7 +13,7 @@
 
 #include <string>
 
-#include <kinema/loops/mechanism.hpp>
+#include "loops/mechanism.hpp"
 
 namespace kinema {
 

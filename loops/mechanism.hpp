@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include <kinema/loops/units.hpp>
+#include "engine/base/units.hpp"
 
 namespace kinema {
 

@@ -1,4 +1,4 @@
-#include <kinema/loops/mechanism_file.hpp>
+#include "loops/mechanism_file.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -18,12 +18,12 @@
 #define TOML_ENABLE_FORMATTERS 0
 #include <toml++/toml.h>
 
-#include <kinema/engine/errors.hpp>
-#include <kinema/engine/report/number_format.hpp>
-#include <kinema/engine/report/user_text.hpp>
-#include <kinema/engine/symbolic/naming.hpp>
-#include <kinema/loops/linkage_loops.hpp>
-#include <kinema/loops/toml_ascii.hpp>
+#include "engine/base/errors.hpp"
+#include "engine/base/number_format.hpp"
+#include "engine/base/user_text.hpp"
+#include "engine/symbolic/naming.hpp"
+#include "loops/linkage_loops.hpp"
+#include "engine/base/toml_ascii.hpp"
 
 namespace kinema {
 namespace {
@@ -78,7 +78,7 @@ class FileReader {
   std::string file_;
 
   // Every key and string of the file, before anything reads them: no character that
-  // controls how text is shown (engine/report/user_text.hpp) — ESC and the like would
+  // controls how text is shown (engine/base/user_text.hpp) — ESC and the like would
   // reach the terminal, U+202E reorders a C++ comment or a message. Line breaks only in
   // the title and the description (`multi_line`); tabs anywhere.
   void check_text(const Node& node, const std::string& key, bool multi_line) const {

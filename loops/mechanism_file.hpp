@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include <kinema/loops/mechanism.hpp>
+#include "loops/mechanism.hpp"
 
-#include <kinema/engine/numeric/input_values.hpp>
+#include "engine/numeric/input_values.hpp"
 
 namespace kinema {
 

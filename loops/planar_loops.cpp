@@ -1,4 +1,4 @@
-#include <kinema/loops/planar_loops.hpp>
+#include "loops/planar_loops.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -8,13 +8,13 @@
 #include <set>
 #include <sstream>
 
-#include <kinema/engine/errors.hpp>
-#include <kinema/engine/symbolic/complex_parts.hpp>
-#include <kinema/engine/symbolic/derivation.hpp>
-#include <kinema/engine/symbolic/expression_parts.hpp>
-#include <kinema/engine/symbolic/naming.hpp>
-#include <kinema/loops/formula_reader.hpp>
-#include <kinema/loops/length_power.hpp>
+#include "engine/base/errors.hpp"
+#include "engine/symbolic/complex_parts.hpp"
+#include "engine/symbolic/derivation.hpp"
+#include "engine/symbolic/expression_parts.hpp"
+#include "engine/symbolic/naming.hpp"
+#include "loops/formula_reader.hpp"
+#include "loops/length_power.hpp"
 
 namespace kinema {
 namespace {

@@ -4,9 +4,9 @@
 // symbols are real (GiNaC realsymbol) so that those parts simplify.
 #pragma once
 
-#include <kinema/engine/constraint_system.hpp>
-#include <kinema/loops/formula_reader.hpp>  // understood_functions()
-#include <kinema/loops/mechanism.hpp>
+#include "engine/constraint_system.hpp"
+#include "loops/formula_reader.hpp"  // understood_functions()
+#include "loops/mechanism.hpp"
 
 namespace kinema {
 

@@ -1,14 +1,14 @@
-#include <kinema/loops/spatial_chain.hpp>
+#include "loops/spatial_chain.hpp"
 
 #include <optional>
 #include <set>
 
-#include <kinema/engine/errors.hpp>
-#include <kinema/engine/symbolic/differentiate.hpp>
-#include <kinema/engine/symbolic/naming.hpp>
-#include <kinema/engine/report/number_format.hpp>
-#include <kinema/loops/formula_reader.hpp>
-#include <kinema/loops/length_power.hpp>
+#include "engine/base/errors.hpp"
+#include "engine/symbolic/differentiate.hpp"
+#include "engine/symbolic/naming.hpp"
+#include "engine/base/number_format.hpp"
+#include "loops/formula_reader.hpp"
+#include "loops/length_power.hpp"
 
 namespace kinema {
 

@@ -17,8 +17,8 @@
 #include <string>
 #include <vector>
 
-#include <kinema/engine/constraint_system.hpp>
-#include <kinema/loops/mechanism.hpp>
+#include "engine/constraint_system.hpp"
+#include "loops/mechanism.hpp"
 
 namespace kinema {
 

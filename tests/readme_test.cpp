@@ -12,9 +12,9 @@
 #include <regex>
 #include <sstream>
 
-#include <kinema/engine/model.hpp>
+#include "engine/model.hpp"
 
-#include "test_support.hpp"
+#include "tests/test_support.hpp"
 
 namespace {
 

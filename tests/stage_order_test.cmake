@@ -5,8 +5,8 @@
 file(REMOVE_RECURSE "${WORK_DIR}")
 file(MAKE_DIRECTORY "${WORK_DIR}/engine/numeric" "${WORK_DIR}/engine/printers")
 file(WRITE "${WORK_DIR}/engine/printers/table.cpp"
-     "#include <kinema/engine/numeric/sweep.hpp>\n#include \"engine/errors.hpp\"\n")
-file(WRITE "${WORK_DIR}/engine/numeric/sweep.hpp" "#pragma once\n#include \"engine/errors.hpp\"\n")
+     "#include \"engine/numeric/sweep.hpp\"\n#include \"engine/base/errors.hpp\"\n")
+file(WRITE "${WORK_DIR}/engine/numeric/sweep.hpp" "#pragma once\n#include \"engine/base/errors.hpp\"\n")
 execute_process(COMMAND "${CMAKE_COMMAND}" -DROOT=${WORK_DIR} -P ${SOURCE_DIR}/cmake/stage_order.cmake
                 RESULT_VARIABLE status ERROR_VARIABLE error)
 if(NOT status EQUAL 0)

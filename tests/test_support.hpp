@@ -4,7 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include <kinema/engine/model.hpp>
+#include "engine/model.hpp"
 #include <string>
 #include <vector>
 

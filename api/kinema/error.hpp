@@ -1,6 +1,6 @@
 // What kinema throws, for a library user and for kinema's own code alike: one class,
 // whose message says what is wrong and where (file:line), as the command line prints
-// it. The engine's kinds of error (engine/errors.hpp: bad input, units, assembly)
+// it. The engine's kinds of error (engine/base/errors.hpp: bad input, units, assembly)
 // derive from it, so a program catches kinema::Error alone and needs nothing else.
 #pragma once
 

@@ -1,10 +1,10 @@
-#include <kinema/engine/numeric/batch_workspace.hpp>
+#include "engine/numeric/batch_workspace.hpp"
 
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
 
-#include <kinema/engine/numeric/solver.hpp>
+#include "engine/numeric/solver.hpp"
 
 namespace kinema {
 namespace {

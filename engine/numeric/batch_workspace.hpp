@@ -5,9 +5,9 @@
 
 #include <vector>
 
-#include <kinema/engine/numeric/kinematics.hpp>
-#include <kinema/engine/numeric/motion_table.hpp>
-#include <kinema/engine/numeric/simd_math.hpp>
+#include "engine/numeric/kinematics.hpp"
+#include "engine/numeric/motion_table.hpp"
+#include "engine/numeric/simd_math.hpp"
 
 namespace kinema {
 

@@ -1,13 +1,13 @@
-#include <kinema/engine/numeric/circuit.hpp>
+#include "engine/numeric/circuit.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
-#include <kinema/engine/errors.hpp>
-#include <kinema/engine/numeric/closed_form.hpp>
-#include <kinema/engine/numeric/workspace.hpp>
-#include <kinema/loops/dyad_positions.hpp>
+#include "engine/base/errors.hpp"
+#include "engine/numeric/closed_form.hpp"
+#include "engine/numeric/workspace.hpp"
+#include "loops/dyad_positions.hpp"
 
 namespace kinema {
 

@@ -8,8 +8,8 @@
 #include <cstddef>
 #include <cstdint>
 
-#include <kinema/engine/numeric/kinematics.hpp>
-#include <kinema/engine/numeric/motion_table.hpp>
+#include "engine/numeric/kinematics.hpp"
+#include "engine/numeric/motion_table.hpp"
 
 namespace kinema {
 

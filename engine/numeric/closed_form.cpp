@@ -1,8 +1,8 @@
-#include <kinema/engine/numeric/closed_form.hpp>
+#include "engine/numeric/closed_form.hpp"
 
 #include <cmath>
 
-#include <kinema/loops/dyad_positions.hpp>
+#include "loops/dyad_positions.hpp"
 
 namespace kinema {
 

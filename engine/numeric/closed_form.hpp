@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <vector>
 
-#include <kinema/loops/mechanism.hpp>
+#include "loops/mechanism.hpp"
 
 namespace kinema {
 

@@ -1,4 +1,4 @@
-#include <kinema/engine/numeric/kinematics.hpp>
+#include "engine/numeric/kinematics.hpp"
 
 namespace kinema {
 

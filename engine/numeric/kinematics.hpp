@@ -9,10 +9,10 @@
 #include <optional>
 #include <vector>
 
-#include <kinema/engine/constraint_system.hpp>
-#include <kinema/engine/numeric/tape.hpp>
-#include <kinema/engine/numeric/tape_layout.hpp>
-#include <kinema/engine/symbolic/derivation.hpp>
+#include "engine/constraint_system.hpp"
+#include "engine/numeric/tape.hpp"
+#include "engine/numeric/tape_layout.hpp"
+#include "engine/symbolic/derivation.hpp"
 
 namespace kinema {
 

@@ -1,4 +1,4 @@
-#include <kinema/engine/numeric/motion_table.hpp>
+#include "engine/numeric/motion_table.hpp"
 
 #include <algorithm>
 

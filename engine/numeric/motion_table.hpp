@@ -11,8 +11,8 @@
 #include <iterator>
 #include <vector>
 
-#include <kinema/engine/numeric/failure.hpp>
-#include <kinema/engine/numeric/input_values.hpp>
+#include "engine/numeric/failure.hpp"
+#include "engine/numeric/input_values.hpp"
 
 namespace kinema {
 

@@ -1,4 +1,4 @@
-#include <kinema/engine/numeric/sweep.hpp>
+#include "engine/numeric/sweep.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -6,11 +6,11 @@
 #include <memory>
 #include <thread>
 
-#include <kinema/engine/numeric/batch_workspace.hpp>
-#include <kinema/engine/numeric/closed_form.hpp>
-#include <kinema/engine/numeric/solver.hpp>
-#include <kinema/engine/numeric/workspace.hpp>
-#include <kinema/loops/dyad_positions.hpp>
+#include "engine/numeric/batch_workspace.hpp"
+#include "engine/numeric/closed_form.hpp"
+#include "engine/numeric/solver.hpp"
+#include "engine/numeric/workspace.hpp"
+#include "loops/dyad_positions.hpp"
 
 namespace kinema {
 

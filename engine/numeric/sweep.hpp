@@ -8,9 +8,9 @@
 #include <memory>
 #include <vector>
 
-#include <kinema/engine/numeric/input_values.hpp>
-#include <kinema/engine/numeric/kinematics.hpp>
-#include <kinema/engine/numeric/motion_table.hpp>
+#include "engine/numeric/input_values.hpp"
+#include "engine/numeric/kinematics.hpp"
+#include "engine/numeric/motion_table.hpp"
 
 namespace kinema {
 

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include <kinema/engine/numeric/tape_ops.hpp>
+#include "engine/numeric/tape_ops.hpp"
 
 namespace kinema {
 

@@ -1,6 +1,6 @@
 // GiNaC expressions to the register tape: value numbering, one sincos per
 // argument, instructions ordered by input level, products fused into sums.
-#include <kinema/engine/numeric/tape.hpp>
+#include "engine/numeric/tape.hpp"
 
 #include <algorithm>
 #include <cmath>

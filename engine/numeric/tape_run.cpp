@@ -1,10 +1,10 @@
 // The tape's runners: one value at a time, and kBatchLanes values side by side.
-#include <kinema/engine/numeric/tape.hpp>
+#include "engine/numeric/tape.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include <kinema/engine/numeric/simd_math.hpp>
+#include "engine/numeric/simd_math.hpp"
 
 namespace kinema {
 

@@ -1,9 +1,9 @@
-#include <kinema/engine/numeric/workspace.hpp>
+#include "engine/numeric/workspace.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include <kinema/engine/numeric/solver.hpp>
+#include "engine/numeric/solver.hpp"
 
 namespace kinema {
 

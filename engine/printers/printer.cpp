@@ -1,4 +1,4 @@
-#include <kinema/engine/printers/printer.hpp>
+#include "engine/printers/printer.hpp"
 
 namespace kinema {
 

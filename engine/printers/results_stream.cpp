@@ -1,4 +1,4 @@
-#include <kinema/engine/printers/results_stream.hpp>
+#include "engine/printers/results_stream.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -12,8 +12,8 @@
 #include <thread>
 #include <vector>
 
-#include <kinema/engine/numeric/sweep.hpp>
-#include <kinema/engine/report/output_scale.hpp>
+#include "engine/numeric/sweep.hpp"
+#include "engine/report/output_scale.hpp"
 
 namespace kinema {
 

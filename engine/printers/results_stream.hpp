@@ -9,9 +9,9 @@
 #include <optional>
 #include <string_view>
 
-#include <kinema/engine/model.hpp>
-#include <kinema/engine/numeric/input_values.hpp>
-#include <kinema/engine/printers/printer.hpp>
+#include "engine/model.hpp"
+#include "engine/numeric/input_values.hpp"
+#include "engine/printers/printer.hpp"
 
 namespace kinema {
 

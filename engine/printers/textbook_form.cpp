@@ -1,4 +1,4 @@
-#include <kinema/engine/printers/textbook_form.hpp>
+#include "engine/printers/textbook_form.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -11,10 +11,10 @@
 #include <unordered_map>
 #include <vector>
 
-#include <kinema/engine/report/number_format.hpp>
-#include <kinema/engine/symbolic/complex_parts.hpp>
-#include <kinema/engine/symbolic/differentiate.hpp>
-#include <kinema/engine/symbolic/expression_parts.hpp>
+#include "engine/base/number_format.hpp"
+#include "engine/symbolic/complex_parts.hpp"
+#include "engine/symbolic/differentiate.hpp"
+#include "engine/symbolic/expression_parts.hpp"
 
 namespace kinema {
 

@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include <kinema/engine/constraint_system.hpp>
+#include "engine/constraint_system.hpp"
 
 namespace kinema {
 

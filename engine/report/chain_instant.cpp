@@ -1,4 +1,4 @@
-#include <kinema/engine/report/chain_instant.hpp>
+#include "engine/report/chain_instant.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,11 +7,11 @@
 #include <stdexcept>
 #include <string>
 
-#include <kinema/engine/errors.hpp>
-#include <kinema/engine/report/number_format.hpp>
-#include <kinema/engine/report/output_scale.hpp>
-#include <kinema/engine/symbolic/expression_parts.hpp>
-#include <kinema/engine/symbolic/trig_simplify.hpp>
+#include "engine/base/errors.hpp"
+#include "engine/base/number_format.hpp"
+#include "engine/report/output_scale.hpp"
+#include "engine/symbolic/expression_parts.hpp"
+#include "engine/symbolic/trig_simplify.hpp"
 
 namespace kinema {
 

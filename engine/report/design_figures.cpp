@@ -1,4 +1,4 @@
-#include <kinema/engine/report/design_figures.hpp>
+#include "engine/report/design_figures.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -6,10 +6,10 @@
 #include <complex>
 #include <limits>
 
-#include <kinema/engine/report/toggles.hpp>
-#include <kinema/engine/report/number_format.hpp>
-#include <kinema/engine/report/output_scale.hpp>
-#include <kinema/engine/symbolic/expression_parts.hpp>
+#include "engine/report/toggles.hpp"
+#include "engine/base/number_format.hpp"
+#include "engine/report/output_scale.hpp"
+#include "engine/symbolic/expression_parts.hpp"
 
 namespace kinema {
 

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include <kinema/engine/model.hpp>
+#include "engine/model.hpp"
 
 namespace kinema {
 

@@ -1,11 +1,11 @@
-#include <kinema/engine/report/diagnostics.hpp>
+#include "engine/report/diagnostics.hpp"
 
 #include <cmath>
 
-#include <kinema/engine/report/number_format.hpp>
-#include <kinema/engine/numeric/solver.hpp>
-#include <kinema/engine/report/output_scale.hpp>
-#include <kinema/engine/report/structure.hpp>
+#include "engine/base/number_format.hpp"
+#include "engine/numeric/solver.hpp"
+#include "engine/report/output_scale.hpp"
+#include "engine/report/structure.hpp"
 
 namespace kinema {
 

@@ -4,8 +4,8 @@
 
 #include <string>
 
-#include <kinema/engine/constraint_system.hpp>
-#include <kinema/engine/numeric/motion_table.hpp>
+#include "engine/constraint_system.hpp"
+#include "engine/numeric/motion_table.hpp"
 
 namespace kinema {
 

@@ -1,12 +1,12 @@
-#include <kinema/engine/report/geometry.hpp>
+#include "engine/report/geometry.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include <kinema/engine/symbolic/complex_parts.hpp>
-#include <kinema/engine/symbolic/derivation.hpp>
-#include <kinema/engine/symbolic/expression_parts.hpp>
-#include <kinema/loops/dyad_positions.hpp>
+#include "engine/symbolic/complex_parts.hpp"
+#include "engine/symbolic/derivation.hpp"
+#include "engine/symbolic/expression_parts.hpp"
+#include "loops/dyad_positions.hpp"
 
 namespace kinema {
 

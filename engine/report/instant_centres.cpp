@@ -1,13 +1,13 @@
-#include <kinema/engine/report/instant_centres.hpp>
+#include "engine/report/instant_centres.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <functional>
 
-#include <kinema/engine/report/geometry.hpp>
-#include <kinema/engine/symbolic/derivation.hpp>
-#include <kinema/engine/symbolic/expression_parts.hpp>
-#include <kinema/loops/dyad_positions.hpp>
+#include "engine/report/geometry.hpp"
+#include "engine/symbolic/derivation.hpp"
+#include "engine/symbolic/expression_parts.hpp"
+#include "loops/dyad_positions.hpp"
 
 namespace kinema {
 

@@ -12,8 +12,8 @@
 
 #include <ginac/ginac.h>
 
-#include <kinema/engine/constraint_system.hpp>
-#include <kinema/engine/numeric/motion_table.hpp>
+#include "engine/constraint_system.hpp"
+#include "engine/numeric/motion_table.hpp"
 
 namespace kinema {
 

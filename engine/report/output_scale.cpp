@@ -1,4 +1,4 @@
-#include <kinema/engine/report/output_scale.hpp>
+#include "engine/report/output_scale.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -7,9 +7,9 @@
 #include <limits>
 #include <map>
 
-#include <kinema/engine/errors.hpp>
-#include <kinema/engine/report/number_format.hpp>
-#include <kinema/engine/symbolic/naming.hpp>
+#include "engine/base/errors.hpp"
+#include "engine/base/number_format.hpp"
+#include "engine/symbolic/naming.hpp"
 
 #include <cmath>
 

@@ -1,4 +1,4 @@
-#include <kinema/engine/report/plot_range.hpp>
+#include "engine/report/plot_range.hpp"
 
 #include <cmath>
 

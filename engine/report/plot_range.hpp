@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include <kinema/engine/constraint_system.hpp>
+#include "engine/constraint_system.hpp"
 
 namespace kinema {
 

@@ -1,11 +1,11 @@
-#include <kinema/engine/report/polygons.hpp>
+#include "engine/report/polygons.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include <kinema/engine/symbolic/complex_parts.hpp>
-#include <kinema/engine/symbolic/derivation.hpp>
-#include <kinema/engine/symbolic/expression_parts.hpp>
+#include "engine/symbolic/complex_parts.hpp"
+#include "engine/symbolic/derivation.hpp"
+#include "engine/symbolic/expression_parts.hpp"
 
 namespace kinema {
 

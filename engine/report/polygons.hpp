@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
-#include <kinema/engine/constraint_system.hpp>
-#include <kinema/engine/numeric/motion_table.hpp>
-#include <kinema/engine/numeric/tape.hpp>
+#include "engine/constraint_system.hpp"
+#include "engine/numeric/motion_table.hpp"
+#include "engine/numeric/tape.hpp"
 
 namespace kinema {
 

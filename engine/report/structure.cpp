@@ -1,4 +1,4 @@
-#include <kinema/engine/report/structure.hpp>
+#include "engine/report/structure.hpp"
 
 namespace kinema {
 namespace {

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include <kinema/loops/mechanism.hpp>
+#include "loops/mechanism.hpp"
 
 namespace kinema {
 

@@ -1,10 +1,10 @@
-#include <kinema/engine/report/toggles.hpp>
+#include "engine/report/toggles.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include <kinema/engine/numeric/workspace.hpp>
+#include "engine/numeric/workspace.hpp"
 
 namespace kinema {
 

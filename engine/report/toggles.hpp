@@ -9,7 +9,7 @@
 
 #include <vector>
 
-#include <kinema/engine/model.hpp>
+#include "engine/model.hpp"
 
 namespace kinema {
 

@@ -1,10 +1,10 @@
-#include <kinema/engine/symbolic/complex_parts.hpp>
+#include "engine/symbolic/complex_parts.hpp"
 
 #include <optional>
 #include <string>
 #include <vector>
 
-#include <kinema/engine/symbolic/differentiate.hpp>
+#include "engine/symbolic/differentiate.hpp"
 
 namespace kinema {
 namespace {

@@ -1,14 +1,14 @@
-#include <kinema/engine/symbolic/derivation.hpp>
+#include "engine/symbolic/derivation.hpp"
 
 #include <algorithm>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
-#include <kinema/engine/errors.hpp>
-#include <kinema/engine/symbolic/differentiate.hpp>
-#include <kinema/engine/symbolic/expression_parts.hpp>
-#include <kinema/engine/symbolic/trig_simplify.hpp>
+#include "engine/base/errors.hpp"
+#include "engine/symbolic/differentiate.hpp"
+#include "engine/symbolic/expression_parts.hpp"
+#include "engine/symbolic/trig_simplify.hpp"
 
 namespace kinema {
 namespace {

@@ -11,8 +11,8 @@
 
 #include <vector>
 
-#include <kinema/engine/constraint_system.hpp>
-#include <kinema/engine/symbolic/solving_order.hpp>
+#include "engine/constraint_system.hpp"
+#include "engine/symbolic/solving_order.hpp"
 
 namespace kinema {
 

@@ -1,10 +1,10 @@
-#include <kinema/engine/symbolic/differentiate.hpp>
+#include "engine/symbolic/differentiate.hpp"
 
 #include <cstdio>
 #include <string>
 #include <vector>
 
-#include <kinema/engine/errors.hpp>
+#include "engine/base/errors.hpp"
 
 namespace kinema {
 namespace {

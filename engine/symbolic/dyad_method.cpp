@@ -1,11 +1,11 @@
-#include <kinema/engine/symbolic/dyad_method.hpp>
+#include "engine/symbolic/dyad_method.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include <kinema/engine/errors.hpp>
-#include <kinema/engine/symbolic/differentiate.hpp>
-#include <kinema/engine/report/structure.hpp>
+#include "engine/base/errors.hpp"
+#include "engine/symbolic/differentiate.hpp"
+#include "engine/report/structure.hpp"
 
 namespace kinema {
 

@@ -20,7 +20,7 @@
 #include <string_view>
 #include <vector>
 
-#include <kinema/engine/constraint_system.hpp>
+#include "engine/constraint_system.hpp"
 
 namespace kinema {
 

@@ -1,11 +1,11 @@
-#include <kinema/engine/symbolic/naming.hpp>
+#include "engine/symbolic/naming.hpp"
 
 #include <algorithm>
 #include <cctype>
 #include <set>
 
-#include <kinema/engine/errors.hpp>
-#include <kinema/engine/report/user_text.hpp>
+#include "engine/base/errors.hpp"
+#include "engine/base/user_text.hpp"
 
 namespace kinema {
 namespace {

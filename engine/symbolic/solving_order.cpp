@@ -1,4 +1,4 @@
-#include <kinema/engine/symbolic/solving_order.hpp>
+#include "engine/symbolic/solving_order.hpp"
 
 #include <set>
 

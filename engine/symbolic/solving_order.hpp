@@ -6,7 +6,7 @@
 #include <cstddef>
 #include <vector>
 
-#include <kinema/engine/constraint_system.hpp>
+#include "engine/constraint_system.hpp"
 
 namespace kinema {
 

@@ -1,6 +1,6 @@
-#include <kinema/engine/symbolic/trig_simplify.hpp>
+#include "engine/symbolic/trig_simplify.hpp"
 
-#include <kinema/engine/symbolic/expression_parts.hpp>
+#include "engine/symbolic/expression_parts.hpp"
 
 #include <map>
 #include <vector>

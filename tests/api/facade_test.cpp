@@ -12,11 +12,11 @@
 #include <string>
 #include <vector>
 
-#include <kinema/engine/model.hpp>
-#include <kinema/engine/report/diagnostics.hpp>
-#include <kinema/loops/mechanism_file.hpp>
+#include "engine/model.hpp"
+#include "engine/report/diagnostics.hpp"
+#include "loops/mechanism_file.hpp"
 
-#include "test_support.hpp"
+#include "tests/test_support.hpp"
 
 using kinema_test::sample;
 

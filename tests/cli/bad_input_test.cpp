@@ -4,10 +4,10 @@
 
 #include <filesystem>
 
-#include <kinema/engine/numeric/circuit.hpp>
-#include <kinema/loops/mechanism_file.hpp>
+#include "engine/numeric/circuit.hpp"
+#include "loops/mechanism_file.hpp"
 
-#include "test_support.hpp"
+#include "tests/test_support.hpp"
 
 namespace {
 

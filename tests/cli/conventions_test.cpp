@@ -7,7 +7,7 @@
 #include <fstream>
 #include <set>
 
-#include "test_support.hpp"
+#include "tests/test_support.hpp"
 
 namespace {
 

@@ -7,9 +7,9 @@
 #include <filesystem>
 #include <sstream>
 
-#include <kinema/engine/report/number_format.hpp>
+#include "engine/base/number_format.hpp"
 
-#include "test_support.hpp"
+#include "tests/test_support.hpp"
 
 namespace {
 

@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include <kinema/loops/mechanism_file.hpp>
+#include "loops/mechanism_file.hpp"
 
-#include "test_support.hpp"
+#include "tests/test_support.hpp"
 
 TEST_CASE("kinema loops: the vector loops of a joints-and-links sample evaluate to the same numbers") {
   for (const char* name : {"problem_4_4_joints.toml", "example_4_1_joints.toml", "example_4_2_joints.toml",

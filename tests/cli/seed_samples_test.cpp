@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "test_support.hpp"
+#include "tests/test_support.hpp"
 
 using kinema_test::eval_json;
 using nlohmann::json;

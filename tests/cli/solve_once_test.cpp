@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
-#include <kinema/engine/numeric/sweep.hpp>
+#include "engine/numeric/sweep.hpp"
 
 #include "cli/run.hpp"
-#include "test_support.hpp"
+#include "tests/test_support.hpp"
 
 namespace {
 

@@ -10,12 +10,12 @@
 #include <stdexcept>
 #include <string>
 
-#include <kinema/engine/constraint_system.hpp>
-#include <kinema/engine/model.hpp>
-#include <kinema/engine/symbolic/expression_parts.hpp>
-#include <kinema/engine/symbolic/trig_simplify.hpp>
-#include <kinema/loops/mechanism_file.hpp>
-#include <kinema/loops/planar_loops.hpp>
+#include "engine/constraint_system.hpp"
+#include "engine/model.hpp"
+#include "engine/symbolic/expression_parts.hpp"
+#include "engine/symbolic/trig_simplify.hpp"
+#include "loops/mechanism_file.hpp"
+#include "loops/planar_loops.hpp"
 
 namespace kinema_unit {
 

@@ -14,15 +14,15 @@
 #include <string>
 #include <vector>
 
-#include <kinema/engine/errors.hpp>
-#include <kinema/engine/model.hpp>
-#include <kinema/engine/numeric/circuit.hpp>
-#include <kinema/engine/printers/printer.hpp>
-#include <kinema/engine/printers/results_stream.hpp>
-#include <kinema/engine/report/chain_instant.hpp>
-#include <kinema/engine/report/plot_range.hpp>
-#include <kinema/loops/mechanism_file.hpp>
-#include <kinema/loops/spatial_chain.hpp>
+#include "engine/base/errors.hpp"
+#include "engine/model.hpp"
+#include "engine/numeric/circuit.hpp"
+#include "engine/printers/printer.hpp"
+#include "engine/printers/results_stream.hpp"
+#include "engine/report/chain_instant.hpp"
+#include "engine/report/plot_range.hpp"
+#include "loops/mechanism_file.hpp"
+#include "loops/spatial_chain.hpp"
 
 namespace {
 

@@ -7,8 +7,8 @@
 #include <exception>
 #include <string>
 
-#include <kinema/engine/errors.hpp>
-#include <kinema/loops/mechanism_file.hpp>
+#include "engine/base/errors.hpp"
+#include "loops/mechanism_file.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size > kinema::kMaxMechanismFileBytes) return -1;  // read_mechanism_file refuses these unread

@@ -8,12 +8,12 @@
 #include <string>
 #include <vector>
 
-#include <kinema/engine/model.hpp>
-#include <kinema/engine/report/diagnostics.hpp>
-#include <kinema/loops/linkage_loops.hpp>
-#include <kinema/loops/dyad_positions.hpp>
-#include <kinema/loops/mechanism_file.hpp>
-#include "../test_support.hpp"
+#include "engine/model.hpp"
+#include "engine/report/diagnostics.hpp"
+#include "loops/linkage_loops.hpp"
+#include "loops/dyad_positions.hpp"
+#include "loops/mechanism_file.hpp"
+#include "tests/test_support.hpp"
 
 namespace {
 

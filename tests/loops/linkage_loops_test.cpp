@@ -11,12 +11,12 @@
 #include <string>
 #include <vector>
 
-#include <kinema/engine/errors.hpp>
-#include <kinema/engine/model.hpp>
-#include <kinema/engine/printers/printer.hpp>
-#include <kinema/loops/linkage_loops.hpp>
-#include <kinema/loops/mechanism_file.hpp>
-#include "../test_support.hpp"
+#include "engine/base/errors.hpp"
+#include "engine/model.hpp"
+#include "engine/printers/printer.hpp"
+#include "loops/linkage_loops.hpp"
+#include "loops/mechanism_file.hpp"
+#include "tests/test_support.hpp"
 
 using kinema::MotionTable;
 using kinema::Model;

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include <kinema/engine/errors.hpp>
-#include <kinema/loops/mechanism_file.hpp>
-#include "../test_support.hpp"
+#include "engine/base/errors.hpp"
+#include "loops/mechanism_file.hpp"
+#include "tests/test_support.hpp"
 
 using kinema::Dimension;
 using kinema::Mechanism;

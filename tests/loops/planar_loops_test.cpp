@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include <kinema/engine/errors.hpp>
-#include <kinema/loops/planar_loops.hpp>
-#include "../engine/unit_support.hpp"
-#include "../test_support.hpp"
+#include "engine/base/errors.hpp"
+#include "loops/planar_loops.hpp"
+#include "tests/engine/unit_support.hpp"
+#include "tests/test_support.hpp"
 
 using GiNaC::ex;
 using GiNaC::I;

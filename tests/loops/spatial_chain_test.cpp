@@ -10,12 +10,12 @@
 #include <filesystem>
 #include <string>
 
-#include <kinema/engine/errors.hpp>
-#include <kinema/loops/mechanism_file.hpp>
-#include <kinema/engine/report/chain_instant.hpp>
-#include <kinema/loops/spatial_chain.hpp>
+#include "engine/base/errors.hpp"
+#include "loops/mechanism_file.hpp"
+#include "engine/report/chain_instant.hpp"
+#include "loops/spatial_chain.hpp"
 
-#include "test_support.hpp"
+#include "tests/test_support.hpp"
 
 namespace {
 

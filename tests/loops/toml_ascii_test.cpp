@@ -5,10 +5,10 @@
 
 #include <string>
 
-#include <kinema/engine/errors.hpp>
-#include <kinema/loops/mechanism_file.hpp>
-#include <kinema/loops/toml_ascii.hpp>
-#include "../test_support.hpp"
+#include "engine/base/errors.hpp"
+#include "loops/mechanism_file.hpp"
+#include "engine/base/toml_ascii.hpp"
+#include "tests/test_support.hpp"
 
 using kinema::ascii_toml;
 using kinema_test::replaced;

@@ -2,9 +2,9 @@
 
 #include <cmath>
 
-#include <kinema/engine/errors.hpp>
-#include <kinema/loops/mechanism_file.hpp>
-#include <kinema/loops/units.hpp>
+#include "engine/base/errors.hpp"
+#include "loops/mechanism_file.hpp"
+#include "engine/base/units.hpp"
 
 using namespace kinema;
 

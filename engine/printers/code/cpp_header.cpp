@@ -7,11 +7,11 @@
 // `namespace NAME::solver`. The Newton loop and the singularity test written
 // here call that code the way Workspace (engine/numeric/workspace.cpp) does:
 // same constants, same column scaling, same LU, same reciprocal condition.
-#include <kinema/engine/printers/code/cpp_header.hpp>
+#include "engine/printers/code/cpp_header.hpp"
 
-#include <kinema/engine/printers/code/tape_emitter.hpp>
-#include <kinema/engine/printers/printer.hpp>
-#include <kinema/engine/report/user_text.hpp>
+#include "engine/printers/code/tape_emitter.hpp"
+#include "engine/printers/printer.hpp"
+#include "engine/base/user_text.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -65,7 +65,7 @@ bool is_cpp_reserved(const std::string& name) {
       "switch", "template", "this", "thread_local", "throw", "true", "try", "typedef", "typeid", "typename",
       "union", "unsigned", "using", "virtual", "void", "volatile", "wchar_t", "while", "xor", "xor_eq",
       "std", "posix", "linux", "unix", "i386",
-#include <kinema/engine/printers/code/c_library_macros.inc>
+#include "engine/printers/code/c_library_macros.inc"
   };
   if (reserved.count(name) > 0) return true;
   // Families of upper-case macros that other C libraries and headers add to (a header of

@@ -1,6 +1,6 @@
-#include <kinema/engine/printers/code/tape_emitter.hpp>
+#include "engine/printers/code/tape_emitter.hpp"
 
-#include <kinema/engine/report/number_format.hpp>
+#include "engine/base/number_format.hpp"
 
 #include <stdexcept>
 

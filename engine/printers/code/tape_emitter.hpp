@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include <kinema/engine/numeric/tape.hpp>
+#include "engine/numeric/tape.hpp"
 
 namespace kinema {
 

@@ -5,9 +5,9 @@
 #include <cmath>
 #include <vector>
 
-#include <kinema/engine/printers/printer.hpp>
-#include <kinema/engine/report/number_format.hpp>
-#include <kinema/engine/report/output_scale.hpp>
+#include "engine/printers/printer.hpp"
+#include "engine/base/number_format.hpp"
+#include "engine/report/output_scale.hpp"
 
 namespace kinema {
 namespace {

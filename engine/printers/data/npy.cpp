@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include <kinema/engine/printers/printer.hpp>
-#include <kinema/engine/report/output_scale.hpp>
+#include "engine/printers/printer.hpp"
+#include "engine/report/output_scale.hpp"
 
 namespace kinema {
 namespace {

@@ -1,8 +1,8 @@
-#include <kinema/engine/printers/latex/chain_latex.hpp>
+#include "engine/printers/latex/chain_latex.hpp"
 
 #include <algorithm>
 
-#include <kinema/engine/report/output_scale.hpp>
+#include "engine/report/output_scale.hpp"
 
 namespace kinema {
 namespace {

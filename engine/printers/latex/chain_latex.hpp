@@ -6,9 +6,9 @@
 
 #include <vector>
 
-#include <kinema/engine/constraint_system.hpp>
-#include <kinema/engine/printers/latex/latex_format.hpp>
-#include <kinema/engine/report/chain_instant.hpp>
+#include "engine/constraint_system.hpp"
+#include "engine/printers/latex/latex_format.hpp"
+#include "engine/report/chain_instant.hpp"
 
 namespace kinema {
 

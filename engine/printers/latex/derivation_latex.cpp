@@ -3,11 +3,11 @@
 // GiNaC syntax, so a reader (or a test) can take the formula back exactly.
 #include <algorithm>
 
-#include <kinema/engine/printers/latex/chain_latex.hpp>
-#include <kinema/engine/printers/latex/latex_format.hpp>
-#include <kinema/engine/printers/latex/method_latex.hpp>
-#include <kinema/engine/printers/printer.hpp>
-#include <kinema/engine/report/structure.hpp>
+#include "engine/printers/latex/chain_latex.hpp"
+#include "engine/printers/latex/latex_format.hpp"
+#include "engine/printers/latex/method_latex.hpp"
+#include "engine/printers/printer.hpp"
+#include "engine/report/structure.hpp"
 
 namespace kinema {
 namespace {

@@ -1,4 +1,4 @@
-#include <kinema/engine/printers/latex/label_boxes.hpp>
+#include "engine/printers/latex/label_boxes.hpp"
 
 #include <algorithm>
 #include <cctype>

@@ -1,4 +1,4 @@
-#include <kinema/engine/printers/latex/latex_format.hpp>
+#include "engine/printers/latex/latex_format.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -6,11 +6,11 @@
 #include <cmath>
 #include <sstream>
 
-#include <kinema/engine/printers/latex/latex_unicode.hpp>
-#include <kinema/engine/report/number_format.hpp>
-#include <kinema/engine/report/output_scale.hpp>
-#include <kinema/engine/report/user_text.hpp>
-#include <kinema/engine/symbolic/expression_parts.hpp>
+#include "engine/printers/latex/latex_unicode.hpp"
+#include "engine/base/number_format.hpp"
+#include "engine/report/output_scale.hpp"
+#include "engine/base/user_text.hpp"
+#include "engine/symbolic/expression_parts.hpp"
 
 namespace kinema {
 

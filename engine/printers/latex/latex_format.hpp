@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include <kinema/engine/constraint_system.hpp>
-#include <kinema/engine/printers/textbook_form.hpp>
+#include "engine/constraint_system.hpp"
+#include "engine/printers/textbook_form.hpp"
 
 namespace kinema {
 

@@ -1,4 +1,4 @@
-#include <kinema/engine/printers/latex/latex_unicode.hpp>
+#include "engine/printers/latex/latex_unicode.hpp"
 
 #include <cstdio>
 #include <map>

@@ -1,6 +1,6 @@
-#include <kinema/engine/printers/latex/method_latex.hpp>
+#include "engine/printers/latex/method_latex.hpp"
 
-#include <kinema/engine/printers/latex/latex_format.hpp>
+#include "engine/printers/latex/latex_format.hpp"
 
 namespace kinema {
 

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include <kinema/engine/printers/latex/latex_format.hpp>
-#include <kinema/engine/symbolic/dyad_method.hpp>
+#include "engine/printers/latex/latex_format.hpp"
+#include "engine/symbolic/dyad_method.hpp"
 
 namespace kinema {
 

@@ -1,14 +1,14 @@
-#include <kinema/engine/printers/latex/pgfplots.hpp>
+#include "engine/printers/latex/pgfplots.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
-#include <kinema/engine/printers/latex/label_boxes.hpp>
-#include <kinema/engine/printers/latex/latex_format.hpp>
-#include <kinema/engine/report/number_format.hpp>
-#include <kinema/engine/report/output_scale.hpp>
-#include <kinema/engine/report/plot_range.hpp>
+#include "engine/printers/latex/label_boxes.hpp"
+#include "engine/printers/latex/latex_format.hpp"
+#include "engine/base/number_format.hpp"
+#include "engine/report/output_scale.hpp"
+#include "engine/report/plot_range.hpp"
 
 namespace kinema {
 namespace {

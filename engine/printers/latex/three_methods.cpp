@@ -1,10 +1,10 @@
-#include <kinema/engine/printers/latex/three_methods.hpp>
+#include "engine/printers/latex/three_methods.hpp"
 
 #include <cmath>
 
-#include <kinema/engine/printers/latex/latex_format.hpp>
-#include <kinema/engine/printers/latex/tikz_polygons.hpp>
-#include <kinema/engine/report/output_scale.hpp>
+#include "engine/printers/latex/latex_format.hpp"
+#include "engine/printers/latex/tikz_polygons.hpp"
+#include "engine/report/output_scale.hpp"
 
 namespace kinema {
 

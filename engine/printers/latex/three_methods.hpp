@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include <kinema/engine/constraint_system.hpp>
-#include <kinema/engine/numeric/motion_table.hpp>
-#include <kinema/engine/report/instant_centres.hpp>
-#include <kinema/engine/report/polygons.hpp>
+#include "engine/constraint_system.hpp"
+#include "engine/numeric/motion_table.hpp"
+#include "engine/report/instant_centres.hpp"
+#include "engine/report/polygons.hpp"
 
 namespace kinema {
 

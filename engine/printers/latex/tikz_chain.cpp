@@ -1,14 +1,14 @@
-#include <kinema/engine/printers/latex/tikz_chain.hpp>
+#include "engine/printers/latex/tikz_chain.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <map>
 
-#include <kinema/engine/printers/latex/latex_format.hpp>
-#include <kinema/engine/report/chain_instant.hpp>
-#include <kinema/engine/report/number_format.hpp>
-#include <kinema/engine/report/output_scale.hpp>
+#include "engine/printers/latex/latex_format.hpp"
+#include "engine/report/chain_instant.hpp"
+#include "engine/base/number_format.hpp"
+#include "engine/report/output_scale.hpp"
 
 namespace kinema {
 namespace {

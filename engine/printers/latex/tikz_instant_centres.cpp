@@ -1,15 +1,15 @@
-#include <kinema/engine/printers/latex/tikz_instant_centres.hpp>
+#include "engine/printers/latex/tikz_instant_centres.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <complex>
 #include <string>
 
-#include <kinema/engine/printers/latex/label_boxes.hpp>
-#include <kinema/engine/printers/latex/latex_format.hpp>
-#include <kinema/engine/report/geometry.hpp>
-#include <kinema/engine/report/number_format.hpp>
-#include <kinema/engine/report/output_scale.hpp>
+#include "engine/printers/latex/label_boxes.hpp"
+#include "engine/printers/latex/latex_format.hpp"
+#include "engine/report/geometry.hpp"
+#include "engine/base/number_format.hpp"
+#include "engine/report/output_scale.hpp"
 
 namespace kinema {
 

@@ -6,10 +6,10 @@
 
 #include <ostream>
 
-#include <kinema/engine/constraint_system.hpp>
-#include <kinema/engine/numeric/motion_table.hpp>
-#include <kinema/engine/report/geometry.hpp>
-#include <kinema/engine/report/instant_centres.hpp>
+#include "engine/constraint_system.hpp"
+#include "engine/numeric/motion_table.hpp"
+#include "engine/report/geometry.hpp"
+#include "engine/report/instant_centres.hpp"
 
 namespace kinema {
 

@@ -1,4 +1,4 @@
-#include <kinema/engine/printers/latex/tikz_mechanism.hpp>
+#include "engine/printers/latex/tikz_mechanism.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,11 +6,11 @@
 #include <optional>
 #include <string>
 
-#include <kinema/engine/printers/latex/latex_format.hpp>
-#include <kinema/engine/report/geometry.hpp>
-#include <kinema/engine/report/number_format.hpp>
-#include <kinema/engine/report/output_scale.hpp>
-#include <kinema/engine/symbolic/naming.hpp>
+#include "engine/printers/latex/latex_format.hpp"
+#include "engine/report/geometry.hpp"
+#include "engine/base/number_format.hpp"
+#include "engine/report/output_scale.hpp"
+#include "engine/symbolic/naming.hpp"
 
 namespace kinema {
 

@@ -1,4 +1,4 @@
-#include <kinema/engine/printers/latex/tikz_polygons.hpp>
+#include "engine/printers/latex/tikz_polygons.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
-#include <kinema/engine/printers/latex/label_boxes.hpp>
-#include <kinema/engine/printers/latex/latex_format.hpp>
-#include <kinema/engine/report/number_format.hpp>
-#include <kinema/engine/report/output_scale.hpp>
+#include "engine/printers/latex/label_boxes.hpp"
+#include "engine/printers/latex/latex_format.hpp"
+#include "engine/base/number_format.hpp"
+#include "engine/report/output_scale.hpp"
 
 namespace kinema {
 

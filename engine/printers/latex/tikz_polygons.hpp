@@ -5,9 +5,9 @@
 
 #include <ostream>
 
-#include <kinema/engine/constraint_system.hpp>
-#include <kinema/engine/printers/textbook_form.hpp>
-#include <kinema/engine/report/polygons.hpp>
+#include "engine/constraint_system.hpp"
+#include "engine/printers/textbook_form.hpp"
+#include "engine/report/polygons.hpp"
 
 namespace kinema {
 

@@ -8,25 +8,25 @@
 #include <cmath>
 #include <cstdlib>
 
-#include <kinema/engine/printers/latex/chain_latex.hpp>
-#include <kinema/engine/printers/latex/latex_format.hpp>
-#include <kinema/engine/printers/latex/method_latex.hpp>
-#include <kinema/engine/printers/latex/pgfplots.hpp>
-#include <kinema/engine/printers/latex/three_methods.hpp>
-#include <kinema/engine/printers/latex/tikz_chain.hpp>
-#include <kinema/engine/printers/latex/tikz_instant_centres.hpp>
-#include <kinema/engine/printers/latex/tikz_mechanism.hpp>
-#include <kinema/engine/printers/latex/tikz_polygons.hpp>
-#include <kinema/engine/printers/printer.hpp>
-#include <kinema/engine/report/design_figures.hpp>
-#include <kinema/engine/report/diagnostics.hpp>
-#include <kinema/engine/report/geometry.hpp>
-#include <kinema/engine/report/instant_centres.hpp>
-#include <kinema/engine/report/number_format.hpp>
-#include <kinema/engine/report/output_scale.hpp>
-#include <kinema/engine/report/polygons.hpp>
-#include <kinema/engine/symbolic/expression_parts.hpp>
-#include <kinema/engine/symbolic/naming.hpp>
+#include "engine/printers/latex/chain_latex.hpp"
+#include "engine/printers/latex/latex_format.hpp"
+#include "engine/printers/latex/method_latex.hpp"
+#include "engine/printers/latex/pgfplots.hpp"
+#include "engine/printers/latex/three_methods.hpp"
+#include "engine/printers/latex/tikz_chain.hpp"
+#include "engine/printers/latex/tikz_instant_centres.hpp"
+#include "engine/printers/latex/tikz_mechanism.hpp"
+#include "engine/printers/latex/tikz_polygons.hpp"
+#include "engine/printers/printer.hpp"
+#include "engine/report/design_figures.hpp"
+#include "engine/report/diagnostics.hpp"
+#include "engine/report/geometry.hpp"
+#include "engine/report/instant_centres.hpp"
+#include "engine/base/number_format.hpp"
+#include "engine/report/output_scale.hpp"
+#include "engine/report/polygons.hpp"
+#include "engine/symbolic/expression_parts.hpp"
+#include "engine/symbolic/naming.hpp"
 
 namespace kinema {
 namespace {

@@ -1,13 +1,13 @@
 // The derivation in readable text (GiNaC's default print context).
-#include <kinema/engine/printers/printer.hpp>
-#include <kinema/engine/printers/textbook_form.hpp>
-#include <kinema/engine/report/chain_instant.hpp>
-#include <kinema/engine/report/number_format.hpp>
-#include <kinema/engine/report/output_scale.hpp>
-#include <kinema/engine/report/structure.hpp>
+#include "engine/printers/printer.hpp"
+#include "engine/printers/textbook_form.hpp"
+#include "engine/report/chain_instant.hpp"
+#include "engine/base/number_format.hpp"
+#include "engine/report/output_scale.hpp"
+#include "engine/report/structure.hpp"
 
 #include <cmath>
-#include <kinema/engine/symbolic/trig_simplify.hpp>
+#include "engine/symbolic/trig_simplify.hpp"
 
 namespace kinema {
 namespace {

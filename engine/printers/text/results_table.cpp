@@ -2,13 +2,13 @@
 // second rates, points with components and magnitudes).
 #include <sstream>
 
-#include <kinema/engine/printers/printer.hpp>
-#include <kinema/engine/symbolic/naming.hpp>
-#include <kinema/engine/report/chain_instant.hpp>
-#include <kinema/engine/report/design_figures.hpp>
-#include <kinema/engine/report/diagnostics.hpp>
-#include <kinema/engine/report/number_format.hpp>
-#include <kinema/engine/report/output_scale.hpp>
+#include "engine/printers/printer.hpp"
+#include "engine/symbolic/naming.hpp"
+#include "engine/report/chain_instant.hpp"
+#include "engine/report/design_figures.hpp"
+#include "engine/report/diagnostics.hpp"
+#include "engine/base/number_format.hpp"
+#include "engine/report/output_scale.hpp"
 
 namespace kinema {
 namespace {

@@ -6,10 +6,10 @@
 #include <cmath>
 #include <vector>
 
-#include <kinema/engine/model.hpp>
-#include <kinema/loops/linkage_loops.hpp>
-#include <kinema/loops/mechanism_file.hpp>
-#include "test_support.hpp"
+#include "engine/model.hpp"
+#include "loops/linkage_loops.hpp"
+#include "loops/mechanism_file.hpp"
+#include "tests/test_support.hpp"
 
 namespace {
 constexpr double deg = M_PI / 180.0;

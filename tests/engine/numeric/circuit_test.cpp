@@ -8,11 +8,11 @@
 #include <complex>
 #include <vector>
 
-#include <kinema/engine/numeric/circuit.hpp>
-#include <kinema/engine/numeric/sweep.hpp>
-#include <kinema/loops/dyad_positions.hpp>
+#include "engine/numeric/circuit.hpp"
+#include "engine/numeric/sweep.hpp"
+#include "loops/dyad_positions.hpp"
 
-#include "test_support.hpp"
+#include "tests/test_support.hpp"
 
 namespace {
 

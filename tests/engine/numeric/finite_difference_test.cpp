@@ -5,8 +5,8 @@
 
 #include <cmath>
 
-#include <kinema/engine/model.hpp>
-#include "test_support.hpp"
+#include "engine/model.hpp"
+#include "tests/test_support.hpp"
 
 namespace {
 

@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include <kinema/engine/numeric/motion_table.hpp>
+#include "engine/numeric/motion_table.hpp"
 
 using kinema::Failure;
 using kinema::MotionState;

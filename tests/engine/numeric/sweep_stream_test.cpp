@@ -5,9 +5,9 @@
 
 #include <cstring>
 
-#include <kinema/engine/model.hpp>
-#include <kinema/engine/numeric/sweep.hpp>
-#include "test_support.hpp"
+#include "engine/model.hpp"
+#include "engine/numeric/sweep.hpp"
+#include "tests/test_support.hpp"
 
 namespace {
 

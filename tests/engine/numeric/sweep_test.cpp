@@ -6,9 +6,9 @@
 
 #include <cmath>
 
-#include <kinema/engine/numeric/sweep.hpp>
-#include "../unit_support.hpp"
-#include "../../test_support.hpp"
+#include "engine/numeric/sweep.hpp"
+#include "tests/engine/unit_support.hpp"
+#include "tests/test_support.hpp"
 
 using kinema::Failure;
 using kinema::MotionTable;

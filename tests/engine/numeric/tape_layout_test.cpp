@@ -6,9 +6,9 @@
 
 #include <set>
 
-#include <kinema/engine/numeric/tape_layout.hpp>
-#include "../unit_support.hpp"
-#include "../../test_support.hpp"
+#include "engine/numeric/tape_layout.hpp"
+#include "tests/engine/unit_support.hpp"
+#include "tests/test_support.hpp"
 
 using kinema::TapeLayout;
 using kinema_unit::kDeg;

@@ -5,9 +5,9 @@
 #include <limits>
 #include <random>
 
-#include <kinema/engine/numeric/tape.hpp>
-#include <kinema/engine/numeric/simd_math.hpp>
-#include <kinema/engine/printers/code/tape_emitter.hpp>
+#include "engine/numeric/tape.hpp"
+#include "engine/numeric/simd_math.hpp"
+#include "engine/printers/code/tape_emitter.hpp"
 
 #include <algorithm>
 #include <map>

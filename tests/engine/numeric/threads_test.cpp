@@ -6,8 +6,8 @@
 #include <cstdlib>
 #include <sstream>
 
-#include <kinema/engine/model.hpp>
-#include "test_support.hpp"
+#include "engine/model.hpp"
+#include "tests/test_support.hpp"
 
 TEST_CASE("batch (SIMD blocks), threads and both equal the scalar one-by-one run for every sample") {
   for (const char* sample : kinema_test::kSamples) {

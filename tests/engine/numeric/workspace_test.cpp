@@ -7,9 +7,9 @@
 
 #include <cmath>
 
-#include <kinema/engine/numeric/workspace.hpp>
-#include "../unit_support.hpp"
-#include "../../test_support.hpp"
+#include "engine/numeric/workspace.hpp"
+#include "tests/engine/unit_support.hpp"
+#include "tests/test_support.hpp"
 
 using kinema::Failure;
 using kinema::MotionState;

@@ -13,10 +13,10 @@
 #include <sstream>
 #include <string>
 
-#include <kinema/engine/model.hpp>
-#include <kinema/engine/numeric/solver.hpp>
-#include <kinema/engine/printers/code/cpp_header.hpp>
-#include "test_support.hpp"
+#include "engine/model.hpp"
+#include "engine/numeric/solver.hpp"
+#include "engine/printers/code/cpp_header.hpp"
+#include "tests/test_support.hpp"
 
 using kinema_test::read_file;
 

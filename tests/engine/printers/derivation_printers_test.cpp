@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include <kinema/engine/printers/latex/latex_format.hpp>
-#include <kinema/engine/printers/printer.hpp>
-#include "../unit_support.hpp"
-#include "../../test_support.hpp"
+#include "engine/printers/latex/latex_format.hpp"
+#include "engine/printers/printer.hpp"
+#include "tests/engine/unit_support.hpp"
+#include "tests/test_support.hpp"
 
 using GiNaC::ex;
 using kinema::PrintKind;

@@ -10,14 +10,14 @@
 #include <string>
 #include <vector>
 
-#include <kinema/engine/printers/latex/label_boxes.hpp>
-#include <kinema/engine/printers/printer.hpp>
-#include <kinema/engine/report/geometry.hpp>
-#include <kinema/engine/report/instant_centres.hpp>
-#include <kinema/engine/report/plot_range.hpp>
-#include <kinema/engine/report/polygons.hpp>
-#include "../unit_support.hpp"
-#include "../../test_support.hpp"
+#include "engine/printers/latex/label_boxes.hpp"
+#include "engine/printers/printer.hpp"
+#include "engine/report/geometry.hpp"
+#include "engine/report/instant_centres.hpp"
+#include "engine/report/plot_range.hpp"
+#include "engine/report/polygons.hpp"
+#include "tests/engine/unit_support.hpp"
+#include "tests/test_support.hpp"
 
 using kinema::MotionTable;
 using kinema::PrintKind;

@@ -4,15 +4,15 @@
 // of the heading or sentence that introduces it, nothing overfull.
 #include <doctest/doctest.h>
 
-#include <kinema/engine/model.hpp>
-#include <kinema/engine/printers/printer.hpp>
-#include <kinema/engine/report/plot_range.hpp>
-#include <kinema/engine/symbolic/dyad_method.hpp>
+#include "engine/model.hpp"
+#include "engine/printers/printer.hpp"
+#include "engine/report/plot_range.hpp"
+#include "engine/symbolic/dyad_method.hpp"
 
 #include <sstream>
 
 #include "engine/printers/latex_pages.hpp"
-#include "test_support.hpp"
+#include "tests/test_support.hpp"
 
 namespace {
 

@@ -8,10 +8,10 @@
 #include <fstream>
 #include <sstream>
 
-#include <kinema/engine/errors.hpp>
-#include <kinema/engine/symbolic/dyad_method.hpp>
+#include "engine/base/errors.hpp"
+#include "engine/symbolic/dyad_method.hpp"
 
-#include "test_support.hpp"
+#include "tests/test_support.hpp"
 
 namespace kinema_test {
 namespace {

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include <kinema/engine/model.hpp>
-#include <kinema/engine/symbolic/dyad_method.hpp>
+#include "engine/model.hpp"
+#include "engine/symbolic/dyad_method.hpp"
 
 namespace kinema_test {
 

@@ -10,16 +10,16 @@
 #include <fstream>
 #include <sstream>
 
-#include <kinema/engine/errors.hpp>
-#include <kinema/engine/model.hpp>
-#include <kinema/engine/printers/latex/latex_format.hpp>
-#include <kinema/engine/printers/printer.hpp>
-#include <kinema/engine/symbolic/dyad_method.hpp>
-#include <kinema/engine/report/chain_instant.hpp>
-#include <kinema/engine/symbolic/naming.hpp>
-#include <kinema/engine/symbolic/trig_simplify.hpp>
+#include "engine/base/errors.hpp"
+#include "engine/model.hpp"
+#include "engine/printers/latex/latex_format.hpp"
+#include "engine/printers/printer.hpp"
+#include "engine/symbolic/dyad_method.hpp"
+#include "engine/report/chain_instant.hpp"
+#include "engine/symbolic/naming.hpp"
+#include "engine/symbolic/trig_simplify.hpp"
 #include "engine/printers/latex_pages.hpp"
-#include "test_support.hpp"
+#include "tests/test_support.hpp"
 
 namespace {
 

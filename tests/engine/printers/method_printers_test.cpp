@@ -9,10 +9,10 @@
 #include <fstream>
 #include <sstream>
 
-#include <kinema/engine/symbolic/dyad_method.hpp>
-#include <kinema/engine/symbolic/expression_parts.hpp>
+#include "engine/symbolic/dyad_method.hpp"
+#include "engine/symbolic/expression_parts.hpp"
 
-#include "test_support.hpp"
+#include "tests/test_support.hpp"
 
 namespace {
 

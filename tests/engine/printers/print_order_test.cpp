@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
-#include <kinema/engine/model.hpp>
-#include <kinema/engine/printers/printer.hpp>
-#include <kinema/loops/mechanism_file.hpp>
-#include "../../test_support.hpp"
+#include "engine/model.hpp"
+#include "engine/printers/printer.hpp"
+#include "loops/mechanism_file.hpp"
+#include "tests/test_support.hpp"
 
 using kinema::PrintKind;
 

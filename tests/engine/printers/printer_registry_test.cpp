@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include <kinema/engine/printers/printer.hpp>
-#include "../../test_support.hpp"
+#include "engine/printers/printer.hpp"
+#include "tests/test_support.hpp"
 
 using kinema::find_printer;
 using kinema::PrintKind;

@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include <kinema/engine/printers/printer.hpp>
-#include <kinema/engine/report/number_format.hpp>
-#include "../unit_support.hpp"
-#include "../../test_support.hpp"
+#include "engine/printers/printer.hpp"
+#include "engine/base/number_format.hpp"
+#include "tests/engine/unit_support.hpp"
+#include "tests/test_support.hpp"
 
 using kinema::MotionState;
 using kinema::MotionTable;

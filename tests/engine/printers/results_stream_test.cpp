@@ -8,10 +8,10 @@
 #include <sstream>
 #include <stdexcept>
 
-#include <kinema/engine/model.hpp>
-#include <kinema/engine/printers/results_stream.hpp>
-#include <kinema/engine/report/output_scale.hpp>
-#include "test_support.hpp"
+#include "engine/model.hpp"
+#include "engine/printers/results_stream.hpp"
+#include "engine/report/output_scale.hpp"
+#include "tests/test_support.hpp"
 
 namespace {
 

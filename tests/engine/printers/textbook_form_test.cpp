@@ -8,11 +8,11 @@
 #include <algorithm>
 #include <string>
 
-#include <kinema/engine/model.hpp>
-#include <kinema/engine/printers/textbook_form.hpp>
-#include <kinema/engine/symbolic/expression_parts.hpp>
+#include "engine/model.hpp"
+#include "engine/printers/textbook_form.hpp"
+#include "engine/symbolic/expression_parts.hpp"
 
-#include "test_support.hpp"
+#include "tests/test_support.hpp"
 
 namespace {
 

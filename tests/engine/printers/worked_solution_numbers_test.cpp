@@ -12,11 +12,11 @@
 #include <string>
 #include <vector>
 
-#include <kinema/engine/errors.hpp>
-#include <kinema/engine/printers/latex/latex_format.hpp>
-#include <kinema/engine/symbolic/dyad_method.hpp>
-#include <kinema/engine/printers/printer.hpp>
-#include "../../test_support.hpp"
+#include "engine/base/errors.hpp"
+#include "engine/printers/latex/latex_format.hpp"
+#include "engine/symbolic/dyad_method.hpp"
+#include "engine/printers/printer.hpp"
+#include "tests/test_support.hpp"
 
 using kinema::MotionTable;
 using kinema::PrintKind;

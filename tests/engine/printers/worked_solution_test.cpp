@@ -9,18 +9,18 @@
 #include <sstream>
 #include <string>
 
-#include <kinema/engine/printers/latex/latex_format.hpp>
-#include <kinema/engine/printers/latex/three_methods.hpp>
-#include <kinema/engine/printers/latex/tikz_polygons.hpp>
-#include <kinema/engine/printers/printer.hpp>
-#include <kinema/engine/report/chain_instant.hpp>
-#include <kinema/engine/report/diagnostics.hpp>
-#include <kinema/engine/report/instant_centres.hpp>
-#include <kinema/engine/report/output_scale.hpp>
-#include <kinema/engine/report/plot_range.hpp>
-#include <kinema/engine/report/polygons.hpp>
-#include "../unit_support.hpp"
-#include "../../test_support.hpp"
+#include "engine/printers/latex/latex_format.hpp"
+#include "engine/printers/latex/three_methods.hpp"
+#include "engine/printers/latex/tikz_polygons.hpp"
+#include "engine/printers/printer.hpp"
+#include "engine/report/chain_instant.hpp"
+#include "engine/report/diagnostics.hpp"
+#include "engine/report/instant_centres.hpp"
+#include "engine/report/output_scale.hpp"
+#include "engine/report/plot_range.hpp"
+#include "engine/report/polygons.hpp"
+#include "tests/engine/unit_support.hpp"
+#include "tests/test_support.hpp"
 
 using kinema::latex_number;
 using kinema::MotionTable;

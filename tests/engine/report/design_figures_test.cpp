@@ -5,12 +5,12 @@
 
 #include <cmath>
 
-#include <kinema/engine/model.hpp>
-#include <kinema/engine/report/toggles.hpp>
-#include <kinema/engine/report/design_figures.hpp>
-#include <kinema/loops/mechanism_file.hpp>
+#include "engine/model.hpp"
+#include "engine/report/toggles.hpp"
+#include "engine/report/design_figures.hpp"
+#include "loops/mechanism_file.hpp"
 
-#include "test_support.hpp"
+#include "tests/test_support.hpp"
 
 namespace {
 

@@ -3,9 +3,9 @@
 // and what to do. Failures both built by hand and from real sweeps.
 #include <doctest/doctest.h>
 
-#include <kinema/engine/report/diagnostics.hpp>
-#include "../unit_support.hpp"
-#include "../../test_support.hpp"
+#include "engine/report/diagnostics.hpp"
+#include "tests/engine/unit_support.hpp"
+#include "tests/test_support.hpp"
 
 using kinema::Failure;
 using kinema_unit::kDeg;

@@ -5,9 +5,9 @@
 
 #include <complex>
 
-#include <kinema/engine/report/geometry.hpp>
-#include "../unit_support.hpp"
-#include "../../test_support.hpp"
+#include "engine/report/geometry.hpp"
+#include "tests/engine/unit_support.hpp"
+#include "tests/test_support.hpp"
 
 using kinema::DrawingSegment;
 using kinema::MotionState;

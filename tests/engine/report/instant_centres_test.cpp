@@ -9,12 +9,12 @@
 #include <complex>
 #include <map>
 
-#include <kinema/engine/model.hpp>
-#include <kinema/engine/report/instant_centres.hpp>
-#include <kinema/engine/symbolic/derivation.hpp>
-#include <kinema/engine/symbolic/expression_parts.hpp>
+#include "engine/model.hpp"
+#include "engine/report/instant_centres.hpp"
+#include "engine/symbolic/derivation.hpp"
+#include "engine/symbolic/expression_parts.hpp"
 
-#include "test_support.hpp"
+#include "tests/test_support.hpp"
 
 namespace {
 

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include <kinema/engine/report/number_format.hpp>
+#include "engine/base/number_format.hpp"
 
 using kinema::format_fixed;
 using kinema::format_round_trip;

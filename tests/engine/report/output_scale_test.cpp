@@ -4,11 +4,11 @@
 
 #include <cmath>
 
-#include <kinema/engine/model.hpp>
-#include <kinema/engine/numeric/circuit.hpp>
-#include <kinema/engine/report/output_scale.hpp>
-#include "../unit_support.hpp"
-#include "../../test_support.hpp"
+#include "engine/model.hpp"
+#include "engine/numeric/circuit.hpp"
+#include "engine/report/output_scale.hpp"
+#include "tests/engine/unit_support.hpp"
+#include "tests/test_support.hpp"
 
 using kinema::Dimension;
 using kinema::OutputScale;

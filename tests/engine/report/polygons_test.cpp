@@ -9,10 +9,10 @@
 #include <cmath>
 #include <complex>
 
-#include <kinema/engine/model.hpp>
-#include <kinema/engine/report/polygons.hpp>
+#include "engine/model.hpp"
+#include "engine/report/polygons.hpp"
 
-#include "test_support.hpp"
+#include "tests/test_support.hpp"
 
 namespace {
 

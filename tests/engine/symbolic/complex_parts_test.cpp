@@ -2,7 +2,7 @@
 // symbols real) mean what GiNaC's real_part/imag_part give, in one pass.
 #include <doctest/doctest.h>
 
-#include <kinema/engine/symbolic/complex_parts.hpp>
+#include "engine/symbolic/complex_parts.hpp"
 
 #include <sstream>
 

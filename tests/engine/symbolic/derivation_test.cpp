@@ -5,9 +5,9 @@
 // rates. Everything compared by meaning.
 #include <doctest/doctest.h>
 
-#include <kinema/engine/symbolic/derivation.hpp>
-#include "../unit_support.hpp"
-#include "../../test_support.hpp"
+#include "engine/symbolic/derivation.hpp"
+#include "tests/engine/unit_support.hpp"
+#include "tests/test_support.hpp"
 
 using GiNaC::ex;
 using kinema::ConstraintSystem;

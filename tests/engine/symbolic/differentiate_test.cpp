@@ -3,9 +3,9 @@
 // shapes a derivation meets and on what it hands back to GiNaC.
 #include <doctest/doctest.h>
 
-#include <kinema/engine/symbolic/differentiate.hpp>
+#include "engine/symbolic/differentiate.hpp"
 
-#include <kinema/engine/errors.hpp>
+#include "engine/base/errors.hpp"
 
 #include <string>
 

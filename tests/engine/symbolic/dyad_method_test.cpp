@@ -12,10 +12,10 @@
 #include <string>
 #include <vector>
 
-#include <kinema/engine/symbolic/dyad_method.hpp>
-#include <kinema/loops/dyad_positions.hpp>
+#include "engine/symbolic/dyad_method.hpp"
+#include "loops/dyad_positions.hpp"
 
-#include "test_support.hpp"
+#include "tests/test_support.hpp"
 
 namespace {
 

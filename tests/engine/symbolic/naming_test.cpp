@@ -4,8 +4,8 @@
 
 #include <string>
 
-#include <kinema/engine/errors.hpp>
-#include <kinema/engine/symbolic/naming.hpp>
+#include "engine/base/errors.hpp"
+#include "engine/symbolic/naming.hpp"
 
 using kinema::check_latex_name;
 using kinema::default_rate_name;

@@ -2,9 +2,9 @@
 // sines and cosines combined, must vanish.
 #include <doctest/doctest.h>
 
-#include <kinema/engine/model.hpp>
-#include <kinema/engine/symbolic/trig_simplify.hpp>
-#include "test_support.hpp"
+#include "engine/model.hpp"
+#include "engine/symbolic/trig_simplify.hpp"
+#include "tests/test_support.hpp"
 
 using namespace GiNaC;
 using kinema::Model;

@@ -7,9 +7,9 @@
 #include <set>
 #include <vector>
 
-#include <kinema/engine/symbolic/solving_order.hpp>
-#include "../unit_support.hpp"
-#include "../../test_support.hpp"
+#include "engine/symbolic/solving_order.hpp"
+#include "tests/engine/unit_support.hpp"
+#include "tests/test_support.hpp"
 
 using GiNaC::ex;
 using kinema::ConstraintSystem;

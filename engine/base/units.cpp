@@ -1,4 +1,4 @@
-#include <kinema/loops/units.hpp>
+#include "engine/base/units.hpp"
 
 #include <cctype>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <limits>
 #include <map>
 
-#include <kinema/engine/errors.hpp>
+#include "engine/base/errors.hpp"
 
 namespace kinema {
 namespace {

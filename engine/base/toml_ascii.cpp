@@ -1,10 +1,10 @@
-#include <kinema/loops/toml_ascii.hpp>
+#include "engine/base/toml_ascii.hpp"
 
 #include <algorithm>
 #include <cstdio>
 
-#include <kinema/engine/errors.hpp>
-#include <kinema/engine/report/user_text.hpp>
+#include "engine/base/errors.hpp"
+#include "engine/base/user_text.hpp"
 
 namespace kinema {
 namespace {

@@ -1,4 +1,4 @@
-#include <kinema/engine/report/user_text.hpp>
+#include "engine/base/user_text.hpp"
 
 #include <cstdio>
 

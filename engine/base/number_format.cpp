@@ -1,4 +1,4 @@
-#include <kinema/engine/report/number_format.hpp>
+#include "engine/base/number_format.hpp"
 
 #include <algorithm>
 #include <array>
