@@ -12,6 +12,7 @@
 #   printers      formats only
 #   facade        the installed library API (api/kinema/)
 #   cli           the command
+#   python        the Python module (a view beside the command)
 #
 # Configure runs kinema_check_stage_order over the tree (CMakeLists.txt); so does
 # `cmake -DROOT=<tree> -P cmake/stage_order.cmake` (tests/CMakeLists.txt runs it on a tree
@@ -29,7 +30,8 @@ set(KINEMA_STAGES
   "analysis:engine/report/|engine/input_value."
   "printers:engine/printers/"
   "facade:api/"
-  "cli:cli/")
+  "cli:cli/"
+  "python:python/")
 
 # Upward includes that the reshaping of issue 34 has yet to remove: "file -> header".
 # The list only shrinks; a new upward include fails configure.
@@ -82,7 +84,7 @@ endfunction()
 # those in the pending list. Includes are read as the tree writes them: "engine/..." from
 # the root.
 function(kinema_check_stage_order root)
-  file(GLOB_RECURSE sources RELATIVE "${root}" "${root}/engine/*" "${root}/loops/*" "${root}/cli/*" "${root}/api/*")
+  file(GLOB_RECURSE sources RELATIVE "${root}" "${root}/engine/*" "${root}/loops/*" "${root}/cli/*" "${root}/api/*" "${root}/python/*")
   set(upward "")
   foreach(source IN LISTS sources)
     if(NOT source MATCHES "\\.(cpp|hpp|inc)$")
@@ -91,7 +93,7 @@ function(kinema_check_stage_order root)
     kinema_stage_of("${source}" from)
     file(STRINGS "${root}/${source}" includes REGEX "^[ \t]*#[ \t]*include[ \t]*[<\"]")
     foreach(line IN LISTS includes)
-      if(NOT line MATCHES "#[ \t]*include[ \t]*[<\"](kinema/)?((engine|loops|cli|api)/[^>\"]+)[>\"]")
+      if(NOT line MATCHES "#[ \t]*include[ \t]*[<\"](kinema/)?((engine|loops|cli|api|python)/[^>\"]+)[>\"]")
         continue()
       endif()
       set(header "${CMAKE_MATCH_2}")
