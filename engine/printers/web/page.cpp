@@ -36,7 +36,7 @@ json drawing_json(const MotionDrawing& drawing, double per_unit) {
                 : drawing.form == MotionDrawing::Form::loops ? "loops"
                                                              : "none";
   if (drawing.form == MotionDrawing::Form::linkage) {
-    out["joints"] = drawing.joint_names;
+    out["joint_names"] = drawing.joint_names;
     out["links"] = json::array();
     for (const auto& link : drawing.links)
       out["links"].push_back({{"name", link.name}, {"joints", link.joints}, {"block", link.block}});
