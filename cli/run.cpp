@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <iostream>
 #include <new>
+#include <optional>
 #include <sstream>
 #include <thread>
 
@@ -19,6 +20,8 @@
 #include "engine/printers/code/cpp_header.hpp"
 #include "engine/printers/printer.hpp"
 #include "engine/printers/results_stream.hpp"
+#include "engine/printers/web/page.hpp"
+#include "engine/report/motion_drawing.hpp"
 #include "engine/report/chain_instant.hpp"
 #include "engine/report/diagnostics.hpp"
 #include "engine/base/number_format.hpp"
@@ -58,10 +61,9 @@ const ResultsPrinter& results_printer(const std::string& format) {
   return *found;
 }
 
-// kinema eval --circuit: the whole circuit solved (it is held in memory), then printed
-// a block of rows at a time.
-void write_circuit(const Model& model, const std::string& step_text, const std::vector<double>& inputs,
-                   const std::string& format, int precision, const std::string& output_path) {
+// --circuit STEP: the whole circuit solved from the one value given (or the file's) and
+// held in memory; refused with the reason when it cannot start, move or close.
+Circuit solve_circuit_from(const Model& model, const std::string& step_text, const std::vector<double>& inputs) {
   const ConstraintSystem& m = model.system;
   const LinkageFrames* frames = model.kinematics.closed_form();
   if (frames == nullptr) {
@@ -115,6 +117,13 @@ void write_circuit(const Model& model, const std::string& step_text, const std::
       throw InputError(m.source_file + ": the circuit does not close within " + std::to_string(settings.max_rows) +
                        " rows of --circuit " + step_text + "; give a larger step");
   }
+  return circuit;
+}
+
+// kinema eval --circuit: the whole circuit solved, then printed a block of rows at a time.
+void write_circuit(const Model& model, const std::string& step_text, const std::vector<double>& inputs,
+                   const std::string& format, int precision, const std::string& output_path) {
+  const Circuit circuit = solve_circuit_from(model, step_text, inputs);
   const ResultsPrinter* results = &results_printer(format);
   PrintJob job{model, &circuit.table};
   job.circuit = true;
@@ -131,6 +140,44 @@ void write_circuit(const Model& model, const std::string& step_text, const std::
   results->tail(text, job, rows);
   output.write(text);
   output.commit();
+}
+
+// --sweep START:STOP:STEP in the input's units (deg, s, or the output length unit).
+InputValues sweep_values(const ConstraintSystem& m, const std::string& sweep, std::size_t max_values) {
+  const double unit = m.input.dimension == Dimension::angle  ? kRadiansPerDegree
+                      : m.input.dimension == Dimension::time ? 1.0
+                                                             : m.output.length_factor;
+  return parse_sweep(sweep, unit, max_values);
+}
+
+// Rows a page holds: each is drawn and plotted in the browser, and the file grows by about a
+// kilobyte a row.
+constexpr std::size_t kMaxPageRows = 20000;
+
+// kinema page: the rows solved once (a sweep, a circuit, or by default the worked solution's
+// plotting range: a turn of a crank from the file's value), the drawing's geometry at each
+// row computed here, in one place, and the page written over both.
+void write_page_file(const Model& model, const std::string& sweep, const std::string& circuit_step,
+                     const std::vector<double>& inputs, const std::string& output_path) {
+  const ConstraintSystem& m = model.system;
+  std::optional<Circuit> circuit;
+  MotionTable swept;
+  if (!circuit_step.empty()) {
+    circuit = solve_circuit_from(model, circuit_step, inputs);
+  } else {
+    if (!sweep.empty() && !inputs.empty()) throw InputError("page: give --sweep or --angle (the start of the default turn), not both");
+    const double first = !inputs.empty() ? inputs.front() : m.input.values.empty() ? 0.0 : m.input.values.front();
+    const std::vector<double> values = sweep.empty() ? plot_range(m, first) : sweep_values(m, sweep, kMaxPageRows).to_vector();
+    check_input_range(m, values);
+    swept = analyse(model, values);
+  }
+  const MotionTable& table = circuit ? circuit->table : swept;
+  const MotionDrawing drawing = motion_drawing(m, table);
+  PrintJob job{model, &table};
+  job.circuit = circuit.has_value();
+  std::ostringstream out;
+  write_page(out, job, drawing);
+  write_output(out.str(), output_path);
 }
 
 // An option given an empty value ("-o ''", a shell variable that was not set) is a
@@ -239,11 +286,24 @@ int kinema_cli::run(int argc, char** argv) {
   codegen_cmd->add_option("-o,--output", output_path, "header to write, e.g. four_bar.hpp")->required();
   codegen_cmd->add_option("--namespace", namespace_name, "namespace of the generated code (default: the header's name)");
 
+  std::string page_sweep, page_circuit;
+  auto* page_cmd = app.add_subcommand(
+      "page", "write one self-contained web page (HTML) with the mechanism animated over its solved rows, its "
+              "readout and plots");
+  page_cmd->add_option("FILE", file, kFileHelp)->required();
+  page_cmd->add_option("--sweep", page_sweep, "start:stop:step of the input, as for eval (default: a turn of a crank "
+                                              "from the file's value, 2 deg apart)");
+  page_cmd->add_option("--circuit", page_circuit, "joints and links: follow the motion through its toggles, as for eval")
+      ->option_text("STEP")
+      ->excludes(page_cmd->get_option("--sweep"));
+  page_cmd->add_option("--angle,--at", angles, "the value a circuit or the default turn starts from, as for eval");
+  page_cmd->add_option("-o,--output", output_path, "write to this file instead of stdout, e.g. mech.html");
+
   std::string chain_input;
   const std::string input_help =
       "spatial chains: a driven variable of [variables] as the input instead of time (--at and --sweep in its "
       "units; the other driven variables follow it), e.g. --input theta1";
-  for (auto* command : {derive_cmd, eval_cmd, latex_cmd, codegen_cmd})
+  for (auto* command : {derive_cmd, eval_cmd, latex_cmd, codegen_cmd, page_cmd})
     command->add_option("--input", chain_input, input_help)->option_text("VARIABLE");
   std::string basis;
   for (auto* command : {derive_cmd, latex_cmd}) {
@@ -347,6 +407,10 @@ int kinema_cli::run(int argc, char** argv) {
   std::vector<double> inputs;
   for (const std::string& angle : angles) inputs.push_back(parse_input_value(m, angle));
 
+  if (page_cmd->parsed()) {
+    write_page_file(model, page_sweep, page_circuit, inputs, output_path);
+    return 0;
+  }
   if (latex_cmd->parsed()) {
     if (inputs.empty()) inputs = m.input.values;
     check_latex_values(inputs.size(), m.input.where.line > 0 ? m.input.where.str() : file);
@@ -376,10 +440,7 @@ int kinema_cli::run(int argc, char** argv) {
   const bool is_sweep = !sweep.empty() || (inputs.empty() && m.input.values.size() > 1);
   InputValues run_inputs;
   if (!sweep.empty()) {
-    const double unit = m.input.dimension == Dimension::angle  ? kRadiansPerDegree
-                        : m.input.dimension == Dimension::time ? 1.0
-                                                               : m.output.length_factor;
-    run_inputs = parse_sweep(sweep, unit, kMaxSweepValues);
+    run_inputs = sweep_values(m, sweep, kMaxSweepValues);
     if (!inputs.empty()) {
       if (run_inputs.size() > kMaxValuesPerRun) {
         throw InputError("--sweep \"" + sweep + "\" with --angle: a list of more than " +

@@ -43,7 +43,7 @@ InputValues input_sweep(const ConstraintSystem& m, WrittenValue first, WrittenVa
     last = {last.number * last.unit, 1.0};
     step = {step.number * step.unit, 1.0};
   }
-  return sweep_values(first.number, last.number, step.number, first.unit, kMaxValuesPerRun,
+  return sweep_between(first.number, last.number, step.number, first.unit, kMaxValuesPerRun,
                       "the sweep of " + m.input.name + " from " + format_significant(first.number, 12) + " to " +
                           format_significant(last.number, 12) + " by " + format_significant(step.number, 12));
 }

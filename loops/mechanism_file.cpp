@@ -843,10 +843,10 @@ InputValues parse_sweep(const std::string& text, double unit_factor, std::size_t
       !(in >> std::ws).eof()) {
     throw InputError("sweep \"" + text + "\" is not start:stop:step (e.g. 0:360:1)");
   }
-  return sweep_values(start, stop, step, unit_factor, max_values, "sweep \"" + text + "\"");
+  return sweep_between(start, stop, step, unit_factor, max_values, "sweep \"" + text + "\"");
 }
 
-InputValues sweep_values(double start, double stop, double step, double unit_factor, std::size_t max_values,
+InputValues sweep_between(double start, double stop, double step, double unit_factor, std::size_t max_values,
                          const std::string& written) {
   if (!std::isfinite(start) || !std::isfinite(stop) || !std::isfinite(step) || step == 0 ||
       (stop - start) / step < 0) {

@@ -45,7 +45,7 @@ InputValues parse_sweep(const std::string& text, double unit_factor, std::size_t
 
 /// The values from start to stop by step (numbers in `unit_factor` units), the last
 /// within a billionth of a step of stop; `written` names the run in messages.
-InputValues sweep_values(double start, double stop, double step, double unit_factor, std::size_t max_values,
+InputValues sweep_between(double start, double stop, double step, double unit_factor, std::size_t max_values,
                          const std::string& written);
 
 }  // namespace kinema
