@@ -1,4 +1,5 @@
-#include "engine/report/polygons.hpp"
+#include "engine/analysis/polygons.hpp"
+#include "engine/base/work_count.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -61,6 +62,7 @@ ex positive_form(const ex& formula) {
 }  // namespace
 
 PolygonBuilder::PolygonBuilder(const ConstraintSystem& system) : system_(&system) {
+  count_work(Work::drawing);
   if (!system.frames.empty()) return;
   std::vector<ex> inputs, outputs;
   for (const SystemParameter& parameter : system.parameters) {
