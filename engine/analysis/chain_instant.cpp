@@ -1,5 +1,4 @@
 #include "engine/analysis/chain_instant.hpp"
-#include "engine/base/work_count.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "engine/base/work_count.hpp"
 #include "engine/base/errors.hpp"
 #include "engine/base/number_format.hpp"
 #include "engine/analysis/output_scale.hpp"

@@ -1,5 +1,4 @@
 #include "engine/analysis/design_figures.hpp"
-#include "engine/base/work_count.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -7,6 +6,7 @@
 #include <complex>
 #include <limits>
 
+#include "engine/base/work_count.hpp"
 #include "engine/analysis/toggles.hpp"
 #include "engine/base/number_format.hpp"
 #include "engine/analysis/output_scale.hpp"

@@ -1,9 +1,9 @@
 #include "engine/analysis/geometry.hpp"
-#include "engine/base/work_count.hpp"
 
 #include <algorithm>
 #include <cmath>
 
+#include "engine/base/work_count.hpp"
 #include "engine/symbolic/complex_parts.hpp"
 #include "engine/symbolic/derivation.hpp"
 #include "engine/symbolic/expression_parts.hpp"

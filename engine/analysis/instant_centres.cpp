@@ -1,10 +1,10 @@
 #include "engine/analysis/instant_centres.hpp"
-#include "engine/base/work_count.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <functional>
 
+#include "engine/base/work_count.hpp"
 #include "engine/analysis/geometry.hpp"
 #include "engine/symbolic/derivation.hpp"
 #include "engine/symbolic/expression_parts.hpp"

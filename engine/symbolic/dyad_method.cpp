@@ -1,9 +1,9 @@
 #include "engine/symbolic/dyad_method.hpp"
-#include "engine/base/work_count.hpp"
 
 #include <algorithm>
 #include <cmath>
 
+#include "engine/base/work_count.hpp"
 #include "engine/base/errors.hpp"
 #include "engine/symbolic/differentiate.hpp"
 #include "engine/analysis/structure.hpp"
