@@ -7,7 +7,7 @@
 
 #include "engine/base/errors.hpp"
 #include "engine/base/number_format.hpp"
-#include "engine/report/output_scale.hpp"
+#include "engine/analysis/output_scale.hpp"
 #include "engine/base/units.hpp"
 #include "loops/mechanism_file.hpp"
 

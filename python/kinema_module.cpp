@@ -18,8 +18,9 @@
 #include "engine/input_value.hpp"
 #include "engine/model.hpp"
 #include "engine/printers/printer.hpp"
-#include "engine/printers/results_stream.hpp"
-#include "engine/report/output_scale.hpp"
+#include "engine/run/results_stream.hpp"
+#include "engine/run/view.hpp"
+#include "engine/analysis/output_scale.hpp"
 #include "engine/symbolic/dyad_method.hpp"
 #include "loops/mechanism_file.hpp"
 
@@ -151,7 +152,7 @@ std::string derivation(const PyModel& m, const std::string& method, const std::s
   kinema::PrintJob job{*m.engine};
   job.method = *found;
   std::ostringstream out;
-  printer->print(out, job);
+  kinema::print_view(*printer, out, job);
   return out.str();
 }
 

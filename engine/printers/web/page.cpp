@@ -7,8 +7,8 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/base/number_format.hpp"
-#include "engine/report/diagnostics.hpp"
-#include "engine/report/output_scale.hpp"
+#include "engine/analysis/diagnostics.hpp"
+#include "engine/analysis/output_scale.hpp"
 
 namespace kinema {
 

@@ -1,13 +1,13 @@
 // kinema page: one self-contained HTML file that animates the mechanism over the solved
 // rows (engine/printers/web/page.js and page.css, embedded at configure time). A view
 // over results computed before it: the rows are job.values, the drawing's geometry is
-// given (engine/report/motion_drawing); nothing is solved here.
+// given (engine/analysis/motion_drawing); nothing is solved here.
 #pragma once
 
 #include <ostream>
 
 #include "engine/printers/printer.hpp"
-#include "engine/report/motion_drawing.hpp"
+#include "engine/analysis/motion_drawing.hpp"
 
 namespace kinema {
 

@@ -4,9 +4,10 @@
 // of the heading or sentence that introduces it, nothing overfull.
 #include <doctest/doctest.h>
 
+#include "engine/run/view.hpp"
 #include "engine/model.hpp"
 #include "engine/printers/printer.hpp"
-#include "engine/report/plot_range.hpp"
+#include "engine/analysis/plot_range.hpp"
 #include "engine/symbolic/dyad_method.hpp"
 
 #include <sstream>
@@ -43,7 +44,7 @@ std::string worked_solution(const kinema::Model& model, kinema::DerivationMethod
   kinema::PrintJob job{model, &values, &sweep};
   job.method = method;
   std::ostringstream out;
-  kinema::find_printer(kinema::PrintKind::document, "latex")->print(out, job);
+  kinema::print_view(*kinema::find_printer(kinema::PrintKind::document, "latex"), out, job);
   return out.str();
 }
 

@@ -1,4 +1,4 @@
-// kinema page's C++ half: the drawing's geometry at every row (engine/report/motion_drawing)
+// kinema page's C++ half: the drawing's geometry at every row (engine/analysis/motion_drawing)
 // and the page printer's escaping and policy (engine/printers/web/page). What the page does
 // with them in a browser is tests/browser/page_test.js.
 #include <doctest/doctest.h>
@@ -10,7 +10,7 @@
 
 #include "engine/model.hpp"
 #include "engine/printers/web/page.hpp"
-#include "engine/report/motion_drawing.hpp"
+#include "engine/analysis/motion_drawing.hpp"
 #include "loops/mechanism_file.hpp"
 #include "tests/test_support.hpp"
 
@@ -30,7 +30,7 @@ std::size_t occurrences(const std::string& text, const std::string& what) {
 
 }  // namespace
 
-TEST_CASE("engine/report/motion_drawing: joints where the table's points are at each assembled row, none where it does not assemble") {
+TEST_CASE("engine/analysis/motion_drawing: joints where the table's points are at each assembled row, none where it does not assemble") {
   const kinema::Model model =
       kinema::load_model(kinema_test::sample("triple_rocker_circuit.toml"), kinema::DerivationScope::evaluation);
   const kinema::MotionTable table = kinema::analyse(model, turn_in_degrees(10));

@@ -1,8 +1,9 @@
-#include "engine/report/geometry.hpp"
+#include "engine/analysis/geometry.hpp"
 
 #include <algorithm>
 #include <cmath>
 
+#include "engine/base/work_count.hpp"
 #include "engine/symbolic/complex_parts.hpp"
 #include "engine/symbolic/derivation.hpp"
 #include "engine/symbolic/expression_parts.hpp"
@@ -30,6 +31,33 @@ std::string link_label(const ConstraintSystem& system, const GiNaC::ex& angle) {
   return !number(rate).empty() ? number(rate) : name;
 }
 
+namespace {
+
+double number_at(const GiNaC::ex& e, const GiNaC::exmap& values) {
+  const GiNaC::ex v = GiNaC::evalf(e.subs(values, GiNaC::subs_options::no_pattern));
+  return GiNaC::is_a<GiNaC::numeric>(v) ? GiNaC::ex_to<GiNaC::numeric>(v).to_double() : 0.0;
+}
+
+}  // namespace
+
+std::vector<PlacedFrame> placed_frames(const ConstraintSystem& system, const MotionState& s) {
+  count_work(Work::drawing);
+  GiNaC::exmap values;
+  for (const SystemParameter& p : system.parameters) values[p.symbol] = p.value;
+  values[system.input.symbol] = s.input;
+  for (std::size_t i = 0; i < system.unknowns.size(); ++i) values[system.unknowns[i].symbol] = s.q[Eigen::Index(i)];
+  std::vector<PlacedFrame> frames;
+  for (const FrameObservable& f : system.frames) {
+    PlacedFrame placed{f.name, f.parent, {}, {}};
+    for (std::size_t r = 0; r < 3; ++r) {
+      placed.origin[r] = number_at(f.origin[r], values);
+      for (std::size_t c = 0; c < 3; ++c) placed.axes[c][r] = number_at(f.rotation[3 * r + c], values);
+    }
+    frames.push_back(placed);
+  }
+  return frames;
+}
+
 int MechanismGeometry::link_of(const ConstraintSystem& system, const GiNaC::ex& term) {
   const LinkVector link = split_link_vector(term);
   if (!link.polar) return -1;
@@ -52,6 +80,7 @@ int MechanismGeometry::link_of_angle(const ConstraintSystem& system, const GiNaC
 }
 
 MechanismGeometry::MechanismGeometry(const ConstraintSystem& system) {
+  count_work(Work::drawing);
   std::vector<GiNaC::ex> inputs, outputs, guides;
   const auto moves = [&](const GiNaC::ex& e) {
     bool moving = e.has(system.input.symbol);
@@ -273,6 +302,7 @@ std::vector<DrawingSegment> MechanismGeometry::segments(const MotionState& state
 }
 
 std::optional<LinkageDrawing> linkage_drawing(const ConstraintSystem& system, const MotionState& state) {
+  count_work(Work::drawing);
   if (!system.linkage || !system.linkage->frames.closed_form || state.status == Status::unassembled) return std::nullopt;
   const Linkage& linkage = *system.linkage;
   const LinkageFrames& frames = linkage.frames;

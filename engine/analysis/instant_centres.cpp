@@ -1,10 +1,11 @@
-#include "engine/report/instant_centres.hpp"
+#include "engine/analysis/instant_centres.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <functional>
 
-#include "engine/report/geometry.hpp"
+#include "engine/base/work_count.hpp"
+#include "engine/analysis/geometry.hpp"
 #include "engine/symbolic/derivation.hpp"
 #include "engine/symbolic/expression_parts.hpp"
 #include "loops/dyad_positions.hpp"
@@ -287,6 +288,7 @@ const InstantCentre* InstantCentres::find(std::size_t a, std::size_t b) const {
 }
 
 std::optional<InstantCentres> instant_centres(const ConstraintSystem& system, const MotionState& s) {
+  count_work(Work::drawing);
   if (s.status != Status::ok || !system.frames.empty()) return std::nullopt;
   if (!system.linkage) return centres_from_points(system, s);
   if (!system.linkage->frames.closed_form) return std::nullopt;

@@ -1,4 +1,4 @@
-// engine/report/number_format: how every number becomes text.
+// engine/base/number_format: how every number becomes text.
 #include <doctest/doctest.h>
 
 #include <charconv>
@@ -16,7 +16,7 @@ using kinema::format_fixed;
 using kinema::format_round_trip;
 using kinema::format_significant;
 
-TEST_CASE("engine/report/number_format: format_significant") {
+TEST_CASE("engine/base/number_format: format_significant") {
   CHECK(format_significant(0.12990381056766578) == "0.129904");
   CHECK(format_significant(-60.190312) == "-60.1903");
   CHECK(format_significant(6.283185307179586) == "6.28319");
@@ -35,7 +35,7 @@ TEST_CASE("engine/report/number_format: format_significant") {
   CHECK(format_significant(std::nan("")).find("nan") != std::string::npos);
 }
 
-TEST_CASE("engine/report/number_format: format_round_trip reads back the same double") {
+TEST_CASE("engine/base/number_format: format_round_trip reads back the same double") {
   for (double value : {0.1, 1.0 / 3.0, M_PI, -2.5e17, 1e-300, 4.9e-324, 0.30000000000000004, 123.456,
                        std::numeric_limits<double>::max()}) {
     CAPTURE(value);
@@ -48,7 +48,7 @@ TEST_CASE("engine/report/number_format: format_round_trip reads back the same do
   CHECK(format_round_trip(0.1) == "0.10000000000000001");
 }
 
-TEST_CASE("engine/report/number_format: format_fixed") {
+TEST_CASE("engine/base/number_format: format_fixed") {
   CHECK(format_fixed(0.12990381056766578) == "0.129904");
   CHECK(format_fixed(2.5, 2) == "2.50");
   CHECK(format_fixed(-12.3456, 1) == "-12.3");
@@ -61,7 +61,7 @@ TEST_CASE("engine/report/number_format: format_fixed") {
 // put_significant has its own path for up to 13 digits; it must give exactly what
 // std::to_chars (%g, correctly rounded) gives, including next to rounding ties,
 // powers of ten and values that round up into the next decade.
-TEST_CASE("engine/report/number_format: put_significant equals std::to_chars for every kind of double") {
+TEST_CASE("engine/base/number_format: put_significant equals std::to_chars for every kind of double") {
   std::mt19937_64 random(20261122);
   std::uniform_int_distribution<int> decade(-300, 300);
   long mismatches = 0, checked = 0;
@@ -100,7 +100,7 @@ TEST_CASE("engine/report/number_format: put_significant equals std::to_chars for
   CHECK(checked > 1000000);
 }
 
-TEST_CASE("engine/report/number_format: put_significant_list writes what put_significant writes, NaN empty") {
+TEST_CASE("engine/base/number_format: put_significant_list writes what put_significant writes, NaN empty") {
   std::mt19937_64 random(20261123);
   std::uniform_int_distribution<int> decade(-300, 300);
   std::vector<double> values;
@@ -165,7 +165,7 @@ TEST_CASE("engine/report/number_format: put_significant_list writes what put_sig
   MESSAGE("put_significant_list with vector instructions: " << std::string(kinema::vector_number_path() ? "yes" : "no"));
 }
 
-TEST_CASE("engine/report/number_format: put_shortest reads back as the same double") {
+TEST_CASE("engine/base/number_format: put_shortest reads back as the same double") {
   char text[kinema::kMaxNumberChars];
   for (double value : {0.1, 6.283185307179586, 1e-5, -2.5e300, 0.0684484038671}) {
     const std::string printed(text, kinema::put_shortest(text, value));

@@ -64,6 +64,10 @@ bool is_negative_term(const GiNaC::ex& e);
 /// The observer of a spatial chain (the parent that is not a frame).
 std::string chain_observer(const ConstraintSystem& system);
 
+/// InputError (naming the frames) unless `basis` is empty, the observer or a frame of the
+/// chain: what chain_at_instant checks first, without working the chain out.
+void check_chain_basis(const ConstraintSystem& system, const std::string& basis);
+
 /// Works a driven chain out at the instant, in the basis of frame `basis` (empty: the
 /// observer's). InputError for a basis that is not a frame of the chain (the names in
 /// the message).

@@ -1,4 +1,4 @@
-// engine/printers/results_stream: a run printed while it is solved, block by block and
+// engine/run/results_stream: a run printed while it is solved, block by block and
 // on several formatting threads, gives the bytes of the printer over the whole table
 // that analyse() solves in one piece, for every format and sample, through singular
 // and unassembled rows.
@@ -8,9 +8,10 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "engine/run/view.hpp"
 #include "engine/model.hpp"
-#include "engine/printers/results_stream.hpp"
-#include "engine/report/output_scale.hpp"
+#include "engine/run/results_stream.hpp"
+#include "engine/analysis/output_scale.hpp"
 #include "tests/test_support.hpp"
 
 namespace {
@@ -38,7 +39,7 @@ std::string streamed(const kinema::Model& model, const kinema::InputValues& inpu
 
 }  // namespace
 
-TEST_CASE("engine/printers/results_stream: streamed output equals the printer over the whole table, byte for byte") {
+TEST_CASE("engine/run/results_stream: streamed output equals the printer over the whole table, byte for byte") {
   for (const char* sample : kinema_test::kSamples) {
     const std::string name = sample;
     CAPTURE(name);
@@ -63,7 +64,7 @@ TEST_CASE("engine/printers/results_stream: streamed output equals the printer ov
         kinema::PrintJob job{model, &whole};
         job.precision = precision;
         std::ostringstream expected;
-        printer->print(expected, job);
+        kinema::print_view(*printer, expected, job);
         CHECK(expected.str().size() > 1500 * 50);
         for (const auto& [threads, block_rows] : {std::pair{1u, 37u}, std::pair{1u, 2048u}, std::pair{3u, 1u},
                                                   std::pair{3u, 100u}, std::pair{2u, 2048u},
@@ -77,7 +78,7 @@ TEST_CASE("engine/printers/results_stream: streamed output equals the printer ov
   }
 }
 
-TEST_CASE("engine/printers/results_stream: the summary, failures in order, progress, and a write error stops the run") {
+TEST_CASE("engine/run/results_stream: the summary, failures in order, progress, and a write error stops the run") {
   const kinema::Model model = kinema::load_model(kinema_test::sample("piston_driven_crank.toml"));
   const kinema::InputValues inputs = run_of(model);
   const kinema::MotionTable whole = kinema::analyse(model, inputs.to_vector());
@@ -123,7 +124,7 @@ TEST_CASE("engine/printers/results_stream: the summary, failures in order, progr
 
 // Two loads of one file in one process may order GiNaC's terms differently (its symbols'
 // hashes come from their serial numbers), so the numbers are compared within rounding.
-TEST_CASE("engine/printers/results_stream: a model derived for evaluation only gives the numbers of a full one") {
+TEST_CASE("engine/run/results_stream: a model derived for evaluation only gives the numbers of a full one") {
   for (const char* sample : kinema_test::kSamples) {
     const std::string name = sample;
     CAPTURE(name);

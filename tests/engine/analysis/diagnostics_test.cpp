@@ -1,9 +1,9 @@
-// engine/report/diagnostics: each Failure kind as a sentence that names the
+// engine/analysis/diagnostics: each Failure kind as a sentence that names the
 // input in output units, the loop and its file:line where one is to blame,
 // and what to do. Failures both built by hand and from real sweeps.
 #include <doctest/doctest.h>
 
-#include "engine/report/diagnostics.hpp"
+#include "engine/analysis/diagnostics.hpp"
 #include "tests/engine/unit_support.hpp"
 #include "tests/test_support.hpp"
 
@@ -41,7 +41,7 @@ length = "mm"
 
 }  // namespace
 
-TEST_CASE("engine/report/diagnostics: describe_input in output units") {
+TEST_CASE("engine/analysis/diagnostics: describe_input in output units") {
   const auto four_bar = kinema_unit::system_from_text(kinema_test::four_bar_text(), "fb.toml");
   CHECK(kinema::describe_input(four_bar, 40 * kDeg) == "theta2 = 40 deg");
   CHECK(kinema::describe_input(four_bar, 400 * kDeg) == "theta2 = 400 deg");  // an input is not wrapped
@@ -50,7 +50,7 @@ TEST_CASE("engine/report/diagnostics: describe_input in output units") {
   CHECK(kinema::describe_input(piston, 0.17) == "x = 170 mm");
 }
 
-TEST_CASE("engine/report/diagnostics: every kind of failure in words") {
+TEST_CASE("engine/analysis/diagnostics: every kind of failure in words") {
   const auto system = kinema_unit::system_from_text(kTwoLoops, "two.toml");
   const double at = 180 * kDeg;
 
@@ -104,7 +104,7 @@ TEST_CASE("engine/report/diagnostics: every kind of failure in words") {
   CHECK(has(text, "branch"));
 }
 
-TEST_CASE("engine/report/diagnostics: failures of real runs, in the output units of the file") {
+TEST_CASE("engine/analysis/diagnostics: failures of real runs, in the output units of the file") {
   const kinema::Model model = kinema_unit::model_from_text(kTwoLoops, "two.toml");
   const auto table = kinema::analyse(model, {90 * kDeg, 180 * kDeg});
   REQUIRE(table.status(1) == kinema::Status::unassembled);

@@ -1,4 +1,4 @@
-#include "engine/report/chain_instant.hpp"
+#include "engine/analysis/chain_instant.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,9 +7,10 @@
 #include <stdexcept>
 #include <string>
 
+#include "engine/base/work_count.hpp"
 #include "engine/base/errors.hpp"
 #include "engine/base/number_format.hpp"
-#include "engine/report/output_scale.hpp"
+#include "engine/analysis/output_scale.hpp"
 #include "engine/symbolic/expression_parts.hpp"
 #include "engine/symbolic/trig_simplify.hpp"
 
@@ -248,26 +249,36 @@ struct Instant {
 
 }  // namespace
 
+// The rotation of frame `basis` (its axes as columns), empty for the observer's basis;
+// InputError naming the frames for a basis that is not one of them.
+static std::vector<ex> basis_rotation(const ConstraintSystem& system, const std::string& basis) {
+  const std::string observer = chain_observer(system);
+  if (basis.empty() || basis == observer) return {};
+  std::string names = observer;
+  std::vector<ex> rotation;
+  for (const FrameObservable& f : system.frames) {
+    names += ", " + f.name;
+    if (f.name == basis) rotation = f.rotation;
+  }
+  if (rotation.empty()) {
+    throw InputError(system.source_file + ": --basis " + basis + ": there is no frame \"" + basis +
+                     "\" in the chain; the frames are " + names);
+  }
+  return rotation;
+}
+
+void check_chain_basis(const ConstraintSystem& system, const std::string& basis) { basis_rotation(system, basis); }
+
 ChainAtInstant chain_at_instant(const ConstraintSystem& system, const std::string& basis) {
+  count_work(Work::chain_at_instant);
   ChainAtInstant chain;
   chain.observer = chain_observer(system);
   chain.basis = basis.empty() ? chain.observer : basis;
+  // Components along the basis frame's axes: R^T v (R's columns are its axes).
+  const std::vector<ex> rotation = basis_rotation(system, basis);
   const Instant at(system);
   chain.values = at.values;
 
-  // Components along the basis frame's axes: R^T v (R's columns are its axes).
-  std::vector<ex> rotation;
-  if (chain.basis != chain.observer) {
-    std::string names = chain.observer;
-    for (const FrameObservable& f : system.frames) {
-      names += ", " + f.name;
-      if (f.name == chain.basis) rotation = f.rotation;
-    }
-    if (rotation.empty()) {
-      throw InputError(system.source_file + ": --basis " + basis + ": there is no frame \"" + basis +
-                       "\" in the chain; the frames are " + names);
-    }
-  }
   const auto vector = [&](ChainTerm term, const std::vector<ex>& v) {
     ChainVector result{term, {}, {}};
     std::vector<ex> components;

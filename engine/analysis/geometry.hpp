@@ -3,6 +3,7 @@
 // tape (no GiNaC per drawing), and classed as ground, link or slider.
 #pragma once
 
+#include <array>
 #include <complex>
 #include <optional>
 #include <string>
@@ -79,6 +80,17 @@ struct LinkageDrawing {
 /// The drawing at a state whose position is known, for a joints-and-links mechanism
 /// placed in closed form; nullopt for anything else.
 std::optional<LinkageDrawing> linkage_drawing(const ConstraintSystem& system, const MotionState& state);
+
+/// A frame of a spatial chain where a state puts it: its origin and axes (observer basis, SI).
+struct PlacedFrame {
+  std::string name, parent;
+  std::array<double, 3> origin{};
+  std::array<std::array<double, 3>, 3> axes{};  ///< x, y, z axes, each as a unit vector.
+};
+
+/// Every frame of a spatial chain at a state whose position is known, in the file's order
+/// (the frames' formulas with the parameters, the input and the coordinates put in).
+std::vector<PlacedFrame> placed_frames(const ConstraintSystem& system, const MotionState& state);
 
 class MechanismGeometry {
  public:

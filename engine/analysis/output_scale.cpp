@@ -1,4 +1,4 @@
-#include "engine/report/output_scale.hpp"
+#include "engine/analysis/output_scale.hpp"
 
 #include <algorithm>
 #include <cctype>

@@ -1,4 +1,4 @@
-// engine/report/output_scale: SI to the output units the file asks for, the
+// engine/analysis/output_scale: SI to the output units the file asks for, the
 // same for every printer; angles in degrees wrapped to (-180, 180].
 #include <doctest/doctest.h>
 
@@ -6,7 +6,7 @@
 
 #include "engine/model.hpp"
 #include "engine/numeric/circuit.hpp"
-#include "engine/report/output_scale.hpp"
+#include "engine/analysis/output_scale.hpp"
 #include "tests/engine/unit_support.hpp"
 #include "tests/test_support.hpp"
 
@@ -19,7 +19,7 @@ OutputScale scale_of(const std::string& text) { return OutputScale(kinema_unit::
 
 }  // namespace
 
-TEST_CASE("engine/report/output_scale: angles in degrees, wrapped to (-180, 180 deg)") {
+TEST_CASE("engine/analysis/output_scale: angles in degrees, wrapped to (-180, 180 deg)") {
   const OutputScale scale = scale_of(kinema_test::four_bar_text() + "[output]\nlength = \"mm\"\n");
   const auto deg = [&](double degrees) { return scale.coordinate(Dimension::angle, degrees * M_PI / 180.0); };
   CHECK(deg(40) == doctest::Approx(40).epsilon(1e-14));
@@ -53,7 +53,7 @@ TEST_CASE("engine/report/output_scale: angles in degrees, wrapped to (-180, 180 
   CHECK(scale.second_rate_unit(Dimension::angle) == "rad/s^2");
 }
 
-TEST_CASE("engine/report/output_scale: lengths in the file's unit, velocities per second") {
+TEST_CASE("engine/analysis/output_scale: lengths in the file's unit, velocities per second") {
   const OutputScale mm = scale_of(kinema_test::four_bar_text() + "[output]\nlength = \"mm\"\n");
   CHECK(mm.length == doctest::Approx(0.001).epsilon(1e-15));
   CHECK(mm.length_unit == "mm");
@@ -86,7 +86,7 @@ TEST_CASE("engine/report/output_scale: lengths in the file's unit, velocities pe
 // The tabular printers work out a block of rows column by column (result_rows) and size
 // their rows by result_column_count: both must agree with result_columns and with
 // result_values row by row, undefined rows (NaN) included.
-TEST_CASE("engine/report/output_scale: result_rows of a block = result_values row by row, for every sample") {
+TEST_CASE("engine/analysis/output_scale: result_rows of a block = result_values row by row, for every sample") {
   const auto same = [](double a, double b) { return (std::isnan(a) && std::isnan(b)) || a == b; };
   const auto check_table = [&](const kinema::ConstraintSystem& system, const kinema::MotionTable& table) {
     const OutputScale scale(system);

@@ -6,8 +6,8 @@
 #include <cmath>
 
 #include "engine/model.hpp"
-#include "engine/report/toggles.hpp"
-#include "engine/report/design_figures.hpp"
+#include "engine/analysis/toggles.hpp"
+#include "engine/analysis/design_figures.hpp"
 #include "loops/mechanism_file.hpp"
 
 #include "tests/test_support.hpp"

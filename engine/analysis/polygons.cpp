@@ -1,8 +1,9 @@
-#include "engine/report/polygons.hpp"
+#include "engine/analysis/polygons.hpp"
 
 #include <algorithm>
 #include <cmath>
 
+#include "engine/base/work_count.hpp"
 #include "engine/symbolic/complex_parts.hpp"
 #include "engine/symbolic/derivation.hpp"
 #include "engine/symbolic/expression_parts.hpp"
@@ -61,6 +62,7 @@ ex positive_form(const ex& formula) {
 }  // namespace
 
 PolygonBuilder::PolygonBuilder(const ConstraintSystem& system) : system_(&system) {
+  count_work(Work::drawing);
   if (!system.frames.empty()) return;
   std::vector<ex> inputs, outputs;
   for (const SystemParameter& parameter : system.parameters) {

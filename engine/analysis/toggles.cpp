@@ -1,4 +1,4 @@
-#include "engine/report/toggles.hpp"
+#include "engine/analysis/toggles.hpp"
 
 #include <algorithm>
 #include <cmath>

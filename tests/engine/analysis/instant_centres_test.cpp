@@ -10,7 +10,7 @@
 #include <map>
 
 #include "engine/model.hpp"
-#include "engine/report/instant_centres.hpp"
+#include "engine/analysis/instant_centres.hpp"
 #include "engine/symbolic/derivation.hpp"
 #include "engine/symbolic/expression_parts.hpp"
 

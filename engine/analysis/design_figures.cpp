@@ -1,4 +1,4 @@
-#include "engine/report/design_figures.hpp"
+#include "engine/analysis/design_figures.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -6,9 +6,10 @@
 #include <complex>
 #include <limits>
 
-#include "engine/report/toggles.hpp"
+#include "engine/base/work_count.hpp"
+#include "engine/analysis/toggles.hpp"
 #include "engine/base/number_format.hpp"
-#include "engine/report/output_scale.hpp"
+#include "engine/analysis/output_scale.hpp"
 #include "engine/symbolic/expression_parts.hpp"
 
 namespace kinema {
@@ -27,6 +28,7 @@ struct Side {
 }  // namespace
 
 std::optional<FourBarFigures> four_bar_figures(const Model& model) {
+  count_work(Work::design_figures);
   const ConstraintSystem& system = model.system;
   if (system.input.dimension != Dimension::angle || !system.frames.empty()) return std::nullopt;
   if (system.groups.size() != 1 || system.groups.front().terms.size() != 4 || system.unknowns.size() != 2)
@@ -181,6 +183,7 @@ std::string describe_four_bar(const FourBarFigures& f, const std::string& input_
 }
 
 std::vector<Strokes> slider_strokes(const Model& model) {
+  count_work(Work::design_figures);
   std::vector<Strokes> all;
   const ConstraintSystem& system = model.system;
   if (system.input.dimension != Dimension::angle || !system.frames.empty()) return all;

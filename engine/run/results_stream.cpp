@@ -1,4 +1,4 @@
-#include "engine/printers/results_stream.hpp"
+#include "engine/run/results_stream.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -13,7 +13,8 @@
 #include <vector>
 
 #include "engine/numeric/sweep.hpp"
-#include "engine/report/output_scale.hpp"
+#include "engine/analysis/output_scale.hpp"
+#include "engine/run/view.hpp"
 
 namespace kinema {
 
@@ -171,6 +172,8 @@ RunSummary stream_results(const Model& model, const InputValues& inputs, const A
     }
     return summary;
   }
+  const Analysis analysis = analyse_for_printer(*printer, job);  // what the head shows, once
+  job.analysis = &analysis;
   std::string text;
   printer->head(text, job, total);
   settings.write(text);

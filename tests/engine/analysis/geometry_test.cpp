@@ -1,11 +1,11 @@
-// engine/report/geometry: the loops' terms as segments at a solved position.
+// engine/analysis/geometry: the loops' terms as segments at a solved position.
 // Each loop's chain of link vectors ends where it starts; the joints are where
 // the closed form puts them; ground, links and sliders are told apart.
 #include <doctest/doctest.h>
 
 #include <complex>
 
-#include "engine/report/geometry.hpp"
+#include "engine/analysis/geometry.hpp"
 #include "tests/engine/unit_support.hpp"
 #include "tests/test_support.hpp"
 
@@ -21,7 +21,7 @@ bool near(std::complex<double> a, std::complex<double> b, double tolerance = 1e-
 
 }  // namespace
 
-TEST_CASE("engine/report/geometry: four-bar segments at a closed-form position") {
+TEST_CASE("engine/analysis/geometry: four-bar segments at a closed-form position") {
   const kinema::Model model = kinema::load_model(kinema_test::sample("four_bar.toml"));
   const kinema::MechanismGeometry geometry(model.system);
   const kinema_unit::FourBar four_bar;
@@ -54,7 +54,7 @@ TEST_CASE("engine/report/geometry: four-bar segments at a closed-form position")
   CHECK(geometry.segments(unassembled).empty());
 }
 
-TEST_CASE("engine/report/geometry: a slider's guide, and two loops each closing on its own") {
+TEST_CASE("engine/analysis/geometry: a slider's guide, and two loops each closing on its own") {
   const kinema::Model slider = kinema::load_model(kinema_test::sample("slider_crank.toml"));
   kinema::Workspace workspace(slider);
   Eigen::VectorXd q = slider.kinematics.guess();

@@ -1,11 +1,11 @@
-#include "engine/report/diagnostics.hpp"
+#include "engine/analysis/diagnostics.hpp"
 
 #include <cmath>
 
 #include "engine/base/number_format.hpp"
 #include "engine/numeric/solver.hpp"
-#include "engine/report/output_scale.hpp"
-#include "engine/report/structure.hpp"
+#include "engine/analysis/output_scale.hpp"
+#include "engine/analysis/structure.hpp"
 
 namespace kinema {
 

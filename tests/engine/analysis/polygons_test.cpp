@@ -10,7 +10,7 @@
 #include <complex>
 
 #include "engine/model.hpp"
-#include "engine/report/polygons.hpp"
+#include "engine/analysis/polygons.hpp"
 
 #include "tests/test_support.hpp"
 

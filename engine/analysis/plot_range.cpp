@@ -1,4 +1,4 @@
-#include "engine/report/plot_range.hpp"
+#include "engine/analysis/plot_range.hpp"
 
 #include <cmath>
 

@@ -24,7 +24,7 @@ struct FourBarFigures {
   /// angles (deg, in [0, 360)) where they are; NaN without an assembled value.
   double least_transmission = 0, least_at = 0, greatest_transmission = 0, greatest_at = 0;
   bool full_turn = false;  ///< Every value of the turn assembled.
-  /// Toggle positions (engine/report/toggles: det Phi_q = 0, solved): the input angles,
+  /// Toggle positions (engine/analysis/toggles: det Phi_q = 0, solved): the input angles,
   /// deg in [0, 360).
   std::vector<double> toggles;
 };
@@ -46,7 +46,7 @@ struct Strokes {
 constexpr std::size_t kMaxStrokeUnknowns = 128;
 
 /// The strokes of every slider coordinate of a crank-driven mechanism that has exactly two
-/// limit positions over a turn (engine/report/toggles: dq/dtheta = 0, solved); none for a
+/// limit positions over a turn (engine/analysis/toggles: dq/dtheta = 0, solved); none for a
 /// mechanism of more than kMaxStrokeUnknowns unknowns.
 std::vector<Strokes> slider_strokes(const Model& model);
 std::string describe_strokes(const Strokes& strokes, const std::string& input_name, const std::string& unit);

@@ -1,4 +1,4 @@
-#include "engine/report/motion_drawing.hpp"
+#include "engine/analysis/motion_drawing.hpp"
 
 #include <cmath>
 #include <optional>

@@ -1,4 +1,4 @@
-#include "engine/report/structure.hpp"
+#include "engine/analysis/structure.hpp"
 
 namespace kinema {
 namespace {

@@ -1,6 +1,6 @@
 // The drawing's geometry at every row of a solved table, for views that show the
 // mechanism moving (the web page): what the worked solution draws at one value
-// (engine/report/geometry.hpp), with the parts that do not change from row to row
+// (engine/analysis/geometry.hpp), with the parts that do not change from row to row
 // given once and the coordinates that do given a row at a time.
 #pragma once
 
@@ -10,7 +10,7 @@
 
 #include "engine/constraint_system.hpp"
 #include "engine/numeric/motion_table.hpp"
-#include "engine/report/geometry.hpp"
+#include "engine/analysis/geometry.hpp"
 
 namespace kinema {
 
