@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "engine/symbolic/complex_parts.hpp"
+#include "engine/constraints/complex_parts.hpp"
 #include "engine/symbolic/derivation.hpp"
-#include "engine/symbolic/expression_parts.hpp"
+#include "engine/constraints/expression_parts.hpp"
 
 namespace kinema {
 

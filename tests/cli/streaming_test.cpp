@@ -12,7 +12,7 @@
 
 #include "engine/model.hpp"
 #include "engine/printers/printer.hpp"
-#include "loops/mechanism_file.hpp"
+#include "readers/mechanism_file.hpp"
 
 #include "tests/test_support.hpp"
 

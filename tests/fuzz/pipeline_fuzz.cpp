@@ -21,8 +21,8 @@
 #include "engine/printers/results_stream.hpp"
 #include "engine/report/chain_instant.hpp"
 #include "engine/report/plot_range.hpp"
-#include "loops/mechanism_file.hpp"
-#include "loops/spatial_chain.hpp"
+#include "readers/mechanism_file.hpp"
+#include "chains/spatial_chain.hpp"
 
 namespace {
 

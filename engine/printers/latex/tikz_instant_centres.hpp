@@ -6,7 +6,7 @@
 
 #include <ostream>
 
-#include "engine/constraint_system.hpp"
+#include "engine/constraints/constraint_system.hpp"
 #include "engine/numeric/motion_table.hpp"
 #include "engine/report/geometry.hpp"
 #include "engine/report/instant_centres.hpp"

@@ -4,7 +4,7 @@
 #include "engine/report/chain_instant.hpp"
 #include "engine/base/number_format.hpp"
 #include "engine/report/output_scale.hpp"
-#include "engine/report/structure.hpp"
+#include "engine/constraints/solving_plan.hpp"
 
 #include <cmath>
 #include "engine/symbolic/trig_simplify.hpp"
@@ -23,8 +23,8 @@ std::string joined(const std::vector<std::string>& items) {
 // The solving order of a joints-and-links file: mobility, driver, dyads, the loops found.
 void print_structure(std::ostream& out, const ConstraintSystem& system) {
   out << "\n0. Structure (joints and links)\n";
-  out << "  mobility (Gruebler): " << mobility_text(*system.linkage) << "\n";
-  for (const std::string& line : structure_lines(*system.linkage)) out << "  " << line << "\n";
+  out << "  mobility (Gruebler): " << mobility_text(*system.plan) << "\n";
+  for (const std::string& line : structure_lines(*system.plan)) out << "  " << line << "\n";
   std::vector<std::string> loops;
   for (const EquationGroup& group : system.groups) loops.push_back(group.name);
   out << "  independent loops (one per joint outside a spanning tree from ground): " << joined(loops) << "\n";
@@ -158,7 +158,7 @@ class DerivationTextPrinter : public Printer {
       print_chain(out, system, job.basis);
       return;
     }
-    if (system.linkage) print_structure(out, system);
+    if (system.plan) print_structure(out, system);
     if (job.method != DerivationMethod::loops) {
       print_method(out, system, job.method);
       return;
