@@ -1,5 +1,8 @@
-// Reads a mechanism file (TOML; format in docs/mechanism-files.md) into a Mechanism.
-// Every error names file:line and the key, and says what to write instead.
+// Reads a mechanism file (TOML; format in docs/mechanism-files.md) into a Mechanism:
+// what the user wrote, in any of the three forms, as written. No front end runs here:
+// the equations (and a joints-and-links file's loops and dyads) are built as a step of
+// their own (engine/model.hpp, build_constraint_system). Every error names file:line and
+// the key, and says what to write instead.
 #pragma once
 
 #include <cstddef>
@@ -7,22 +10,12 @@
 #include <vector>
 
 #include "readers/mechanism.hpp"
-
-#include "engine/base/input_values.hpp"
+#include "readers/sweep_syntax.hpp"  // a file's sweep is written as --sweep is
 
 namespace kinema {
 
 /// Largest mechanism file read (bytes): far above any mechanism, far below trouble.
 constexpr std::size_t kMaxMechanismFileBytes = 1024 * 1024;
-
-/// Most input values a file lists or sweeps: they are held in memory (8 bytes each), and
-/// a library run of them (analyse) holds every row.
-constexpr std::size_t kMaxValuesPerRun = 10'000'000;
-
-/// Most values of a command-line sweep: streamed (computed, solved and written a block
-/// at a time), so memory stays constant; the bound only keeps a typo from asking for
-/// an output of petabytes.
-constexpr std::size_t kMaxSweepValues = 1'000'000'000;
 
 /// Most input values `kinema latex` works out: the document has a results page for each
 /// (100,001 values wrote 853 MB in 80 s); a table of many values is eval's work.
@@ -43,9 +36,5 @@ Mechanism read_mechanism_text(const std::string& text, const std::string& name);
 /// formulas): InputError at the second of two with one name. A front end that adds
 /// names asks again.
 void check_shared_names(const Mechanism& mechanism);
-
-/// Parses a sweep "start:stop:step" (numbers in `unit_factor` units) into its SI values
-/// (computed when asked); more than max_values of them are refused.
-InputValues parse_sweep(const std::string& text, double unit_factor, std::size_t max_values = kMaxValuesPerRun);
 
 }  // namespace kinema

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "engine/base/errors.hpp"
+#include "engine/model.hpp"
 #include "readers/mechanism_file.hpp"
 #include "tests/test_support.hpp"
 
@@ -295,4 +296,24 @@ TEST_CASE("readers/mechanism_file: a sweep in a unit that is not understood name
   CAPTURE(message);
   CHECK(message.find("furlongs") != std::string::npos);
   CHECK(message.find("fb.toml:9") != std::string::npos);
+}
+
+// Reading gives what the user wrote; the loops and dyads of joints and links are their
+// front end's, built as a separate step (engine/model.hpp, build_constraint_system).
+TEST_CASE("readers/mechanism_file: a joints-and-links file is read as written, and no front end runs") {
+  const Mechanism m = kinema::read_mechanism_file(kinema_test::sample("problem_4_4_joints.toml"));
+  REQUIRE(m.linkage);
+  CHECK(m.linkage->joints.size() == 7);
+  CHECK(m.input.name == "phi");  // as the file names the driver's angle
+  CHECK(m.unknowns.empty());
+  CHECK(m.loops.empty());
+  CHECK(m.points.empty());
+  const kinema::ConstraintSystem system = kinema::build_constraint_system(m);
+  REQUIRE(system.groups.size() == 2);
+  CHECK(system.groups[0].name == "ABCD");
+  CHECK(system.groups[1].name == "DEFF5");
+  CHECK(system.equations.size() == 4);
+  REQUIRE(system.plan);
+  CHECK(system.plan->closed_form);
+  CHECK(system.plan->dyads.size() == 2);
 }
