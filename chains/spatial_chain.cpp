@@ -441,20 +441,9 @@ std::size_t chain_input(const Mechanism& mechanism, const SpatialKinematics& k) 
                    (driven.empty() ? "none here" : driven) + "), or time (no input)");
 }
 
-}  // namespace
-
-ConstraintSystem build_spatial_system(const Mechanism& mechanism) {
-  const SpatialKinematics k = build_spatial_chain(mechanism);
-  ConstraintSystem system;
-  system.title = mechanism.title;
-  system.description = mechanism.description;
-  system.source_file = mechanism.source_file;
-  system.output = mechanism.output;
-  system.parameters = k.parameters;
-  double largest = 0;
-  for (const SystemParameter& p : system.parameters)
-    if (p.dimension == Dimension::length) largest = std::max(largest, std::fabs(p.value));
-  system.length_scale = largest > 0 ? largest : 1.0;
+// The system's input: time t, or the driven variable the chain names as its input.
+// Returns its index among the variables (their count for time).
+std::size_t set_chain_input(ConstraintSystem& system, const Mechanism& mechanism, const SpatialKinematics& k) {
   const std::size_t input = chain_input(mechanism, k);
   Driver& t = system.input;
   if (input == k.variables.size()) {
@@ -484,6 +473,68 @@ ConstraintSystem build_spatial_system(const Mechanism& mechanism) {
     t.rate_value = k.rates[input];
     t.second_rate_value = k.second_rates[input];
   }
+  return input;
+}
+
+// The chain's points (with the terms of their velocities and accelerations) and frames.
+void add_chain_observables(ConstraintSystem& system, const Mechanism& mechanism, const SpatialKinematics& k) {
+  for (const ChainPointMotion& p : k.points) {
+    PointObservable point;
+    point.name = p.name;
+    for (const auto& spot : mechanism.chain->points)
+      if (spot.name == p.name) point.where = spot.where;
+    point.components = {"x", "y", "z"};
+    const auto list = [](const Vector3& v) { return std::vector<ex>(v.begin(), v.end()); };
+    point.position = list(p.position);
+    RelativeMotionTerms terms;
+    terms.frame = p.frame;
+    Vector3 origin{0, 0, 0};
+    for (const ChainFrameMotion& f : k.frames)
+      if (f.name == p.frame) origin = f.origin;
+    terms.relative_position = {p.position[0] - origin[0], p.position[1] - origin[1], p.position[2] - origin[2]};
+    terms.frame_velocity = list(p.frame_velocity);
+    terms.transport = list(p.transport);
+    terms.relative_velocity = list(p.relative_velocity);
+    terms.frame_acceleration = list(p.frame_acceleration);
+    terms.tangential = list(p.tangential);
+    terms.centripetal = list(p.centripetal);
+    terms.coriolis = list(p.coriolis);
+    terms.relative_acceleration = list(p.relative_acceleration);
+    point.terms = terms;
+    system.points.push_back(point);
+  }
+  for (const ChainFrameMotion& f : k.frames) {
+    FrameObservable frame;
+    frame.name = f.name;
+    frame.parent = f.parent;
+    for (const auto& source : mechanism.chain->frames)
+      if (source.name == f.name) frame.where = source.where;
+    frame.origin.assign(f.origin.begin(), f.origin.end());
+    for (unsigned r = 0; r < 3; ++r)
+      for (unsigned c = 0; c < 3; ++c) frame.rotation.push_back(f.rotation(r, c));
+    frame.angular_velocity.assign(f.angular_velocity.begin(), f.angular_velocity.end());
+    frame.angular_velocity_terms = f.angular_velocity_terms;
+    frame.angular_acceleration.assign(f.angular_acceleration.begin(), f.angular_acceleration.end());
+    system.frames.push_back(frame);
+  }
+}
+
+}  // namespace
+
+ConstraintSystem build_spatial_system(const Mechanism& mechanism) {
+  const SpatialKinematics k = build_spatial_chain(mechanism);
+  ConstraintSystem system;
+  system.title = mechanism.title;
+  system.description = mechanism.description;
+  system.source_file = mechanism.source_file;
+  system.output = mechanism.output;
+  system.parameters = k.parameters;
+  double largest = 0;
+  for (const SystemParameter& p : system.parameters)
+    if (p.dimension == Dimension::length) largest = std::max(largest, std::fabs(p.value));
+  system.length_scale = largest > 0 ? largest : 1.0;
+  const std::size_t input = set_chain_input(system, mechanism, k);
+  Driver& t = system.input;
   const auto parameter = [&](const std::string& name, double value, Dimension dimension, const SourceLocation& where) {
     SystemParameter p;
     p.symbol = GiNaC::realsymbol(name, latex_symbol_name(name));
@@ -555,45 +606,7 @@ ConstraintSystem build_spatial_system(const Mechanism& mechanism) {
     e.component = "distance";
     system.equations.push_back(e);
   }
-  for (const ChainPointMotion& p : k.points) {
-    PointObservable point;
-    point.name = p.name;
-    for (const auto& spot : mechanism.chain->points)
-      if (spot.name == p.name) point.where = spot.where;
-    point.components = {"x", "y", "z"};
-    const auto list = [](const Vector3& v) { return std::vector<ex>(v.begin(), v.end()); };
-    point.position = list(p.position);
-    RelativeMotionTerms terms;
-    terms.frame = p.frame;
-    Vector3 origin{0, 0, 0};
-    for (const ChainFrameMotion& f : k.frames)
-      if (f.name == p.frame) origin = f.origin;
-    terms.relative_position = {p.position[0] - origin[0], p.position[1] - origin[1], p.position[2] - origin[2]};
-    terms.frame_velocity = list(p.frame_velocity);
-    terms.transport = list(p.transport);
-    terms.relative_velocity = list(p.relative_velocity);
-    terms.frame_acceleration = list(p.frame_acceleration);
-    terms.tangential = list(p.tangential);
-    terms.centripetal = list(p.centripetal);
-    terms.coriolis = list(p.coriolis);
-    terms.relative_acceleration = list(p.relative_acceleration);
-    point.terms = terms;
-    system.points.push_back(point);
-  }
-  for (const ChainFrameMotion& f : k.frames) {
-    FrameObservable frame;
-    frame.name = f.name;
-    frame.parent = f.parent;
-    for (const auto& source : mechanism.chain->frames)
-      if (source.name == f.name) frame.where = source.where;
-    frame.origin.assign(f.origin.begin(), f.origin.end());
-    for (unsigned r = 0; r < 3; ++r)
-      for (unsigned c = 0; c < 3; ++c) frame.rotation.push_back(f.rotation(r, c));
-    frame.angular_velocity.assign(f.angular_velocity.begin(), f.angular_velocity.end());
-    frame.angular_velocity_terms = f.angular_velocity_terms;
-    frame.angular_acceleration.assign(f.angular_acceleration.begin(), f.angular_acceleration.end());
-    system.frames.push_back(frame);
-  }
+  add_chain_observables(system, mechanism, k);
   return system;
 }
 

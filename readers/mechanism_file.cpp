@@ -465,6 +465,16 @@ class FileReader {
       chain.input = input.value<std::string>().value_or("");
       chain.input_where = where(input);
     }
+    read_chain_variables(root, chain);
+    read_chain_frames(root, chain);
+    read_chain_points(root, chain);
+    read_chain_closures(root, chain);
+    check_shared_names(mechanism);
+    return mechanism;
+  }
+
+  // A chain's [variables]: the joint variables that drive it, or that its closures find.
+  void read_chain_variables(const Node& root, SpatialChain& chain) const {
     if (has(root, "variables")) {
       const Node& table = at(root, "variables");
       if (!table.is_table()) fail(table, "[variables] must be a table of name = { value = \"0 deg\", rate = \"1 rad/s\" }");
@@ -502,6 +512,10 @@ class FileReader {
         chain.variables.push_back(variable);
       }
     }
+  }
+
+  // A chain's [frames]: each with its parent, origin and turns.
+  void read_chain_frames(const Node& root, SpatialChain& chain) const {
     const Node& frames = required_table(root, "frames");
     for (const auto& [name, value] : ordered(frames)) {
       check_name(*value, name, "frame");
@@ -539,6 +553,10 @@ class FileReader {
       chain.frames.push_back(frame);
     }
     if (chain.frames.empty()) fail(frames, "[frames] is empty: name each frame with its parent");
+  }
+
+  // A chain's [points], each in a frame.
+  void read_chain_points(const Node& root, SpatialChain& chain) const {
     if (has(root, "points")) {
       const Node& table = at(root, "points");
       if (!table.is_table()) fail(table, "[points] must be a table of name = { frame = \"E3\", at = [\"x\", \"y\", \"z\"] }");
@@ -556,6 +574,10 @@ class FileReader {
         chain.points.push_back(point);
       }
     }
+  }
+
+  // A chain's [closures]: two points a fixed distance apart.
+  void read_chain_closures(const Node& root, SpatialChain& chain) const {
     if (has(root, "closures")) {
       const Node& table = at(root, "closures");
       if (!table.is_table()) fail(table, "[closures] must be a table of name = { between = [\"B\", \"C\"], length = \"L3\" }");
@@ -577,8 +599,6 @@ class FileReader {
         chain.closures.push_back(closure);
       }
     }
-    check_shared_names(mechanism);
-    return mechanism;
   }
 
   // A vector in a frame's axes ["x", "y", "z"]: quantities or formulas.
