@@ -12,7 +12,7 @@
 #include "engine/input_value.hpp"
 #include "engine/model.hpp"
 #include "engine/analysis/diagnostics.hpp"
-#include "loops/mechanism_file.hpp"
+#include "readers/mechanism_file.hpp"
 
 namespace kinema {
 

@@ -1,4 +1,4 @@
-// kinema command-line tool: a thin layer over the library (engine/, loops/). main
+// kinema command-line tool: a thin layer over the library (engine/, readers/ and the front ends). main
 // fixes the addresses GiNaC hashes (so outputs are the same bytes in every run), runs
 // the command (cli/run.cpp) and turns what it throws into a message and an exit status.
 #include <iostream>

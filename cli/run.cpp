@@ -28,11 +28,11 @@
 #include "engine/base/number_format.hpp"
 #include "engine/analysis/output_scale.hpp"
 #include "engine/analysis/plot_range.hpp"
-#include "engine/analysis/structure.hpp"
+#include "engine/constraints/solving_plan.hpp"
 #include "engine/base/user_text.hpp"
 #include "engine/symbolic/dyad_method.hpp"
-#include "loops/linkage_loops.hpp"
-#include "loops/mechanism_file.hpp"
+#include "linkages/vector_loop_file.hpp"
+#include "readers/mechanism_file.hpp"
 
 #include "cli/exit_status.hpp"
 #include "cli/output_file.hpp"
@@ -66,11 +66,11 @@ const ResultsPrinter& results_printer(const std::string& format) {
 // held in memory; refused with the reason when it cannot start, move or close.
 Circuit solve_circuit_from(const Model& model, const std::string& step_text, const std::vector<double>& inputs) {
   const ConstraintSystem& m = model.system;
-  const LinkageFrames* frames = model.kinematics.closed_form();
+  const SolvingPlan* frames = model.kinematics.closed_form();
   if (frames == nullptr) {
     throw InputError(m.source_file + ": --circuit follows a mechanism described by joints and links whose links "
                      "all form dyads (solved in closed form); " +
-                     (m.linkage ? std::string("this one has a group that is not a dyad")
+                     (m.plan ? std::string("this one has a group that is not a dyad")
                                 : std::string("this file is written as vector loops")));
   }
   CircuitSettings settings;
@@ -108,11 +108,11 @@ Circuit solve_circuit_from(const Model& model, const std::string& step_text, con
     case Circuit::Stop::closed: break;
     case Circuit::Stop::start_open:
       throw AssemblyError(m.source_file + ": the circuit cannot start at " + describe_input(m, settings.start) + ": " +
-                          describe_dyad(*m.linkage, circuit.dyad) +
+                          describe_dyad(*m.plan, circuit.dyad) +
                           " cannot close there on the assembly of the sketch; give another --angle");
     case Circuit::Stop::locked:
       throw AssemblyError(m.source_file + ": the circuit cannot move from " + describe_input(m, settings.start) +
-                          ": " + describe_dyad(*m.linkage, circuit.dyad) +
+                          ": " + describe_dyad(*m.plan, circuit.dyad) +
                           " is at a toggle on both sides (the mechanism is locked); check the lengths");
     case Circuit::Stop::too_many_rows:
       throw InputError(m.source_file + ": the circuit does not close within " + std::to_string(settings.max_rows) +
@@ -522,7 +522,7 @@ int kinema_cli::run(int argc, char** argv) {
   const Model model = make_model(mechanism, prints_formulas ? DerivationScope::full : DerivationScope::evaluation);
   check_basis(model.system, line);
   if (line.loops->parsed()) {
-    write_output(vector_loop_file(mechanism), line.output_path);
+    write_output(vector_loop_file(mechanism, model.system), line.output_path);
     return 0;
   }
   if (line.derive->parsed()) return run_derive(model, line);

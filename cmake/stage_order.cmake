@@ -2,9 +2,13 @@
 # their own stage's and earlier stages' headers, never a later stage's, so that every
 # stage can be read (and tested, and reused by a new view) without the ones after it.
 #
-#   base          what every stage may use: errors, units and quantities, text safety
-#   front ends    what the user wrote: the three file forms, joints-and-links topology
-#   constraints   the hand-off: ConstraintSystem
+#   base          what every stage may use: errors, units and quantities, source locations,
+#                 text safety, a run's input values
+#   readers       what the user wrote: the three file forms and the --sweep syntax (readers/)
+#   constraints   the hand-off, ConstraintSystem with its solving plan, and the GiNaC
+#                 vocabulary that writes it: formulas read, symbols named, the chain rule
+#   front ends    what builds a ConstraintSystem from what the user wrote: vector loops
+#                 (loops/), joints and links (linkages/), spatial chains (chains/)
 #   symbolic      derivation in GiNaC
 #   numeric       per input value, no GiNaC
 #   model         the derived and compiled mechanism
@@ -23,8 +27,9 @@
 # starts with.
 set(KINEMA_STAGES
   "base:engine/base/"
-  "front ends:loops/"
-  "constraints:engine/constraint_system.hpp"
+  "readers:readers/"
+  "constraints:engine/constraints/"
+  "front ends:loops/|linkages/|chains/"
   "symbolic:engine/symbolic/"
   "numeric:engine/numeric/"
   "model:engine/model."
@@ -39,29 +44,17 @@ set(KINEMA_STAGES
 # The list only shrinks; a new upward include fails configure.
 set(KINEMA_STAGE_ORDER_PENDING
   "engine/model.cpp -> engine/analysis/output_scale.hpp"
-  "engine/symbolic/dyad_method.cpp -> engine/analysis/structure.hpp"
-  "engine/analysis/toggles.hpp -> engine/model.hpp"
-  "loops/spatial_chain.cpp -> engine/symbolic/differentiate.hpp"
-  "loops/spatial_chain.cpp -> engine/symbolic/naming.hpp"
-  "loops/planar_loops.hpp -> engine/constraint_system.hpp"
-  "loops/planar_loops.cpp -> engine/symbolic/complex_parts.hpp"
-  "loops/planar_loops.cpp -> engine/symbolic/derivation.hpp"
-  "loops/planar_loops.cpp -> engine/symbolic/expression_parts.hpp"
-  "loops/planar_loops.cpp -> engine/symbolic/naming.hpp"
-  "loops/length_power.cpp -> engine/symbolic/expression_parts.hpp"
-  "loops/mechanism_file.hpp -> engine/numeric/input_values.hpp"
-  "loops/spatial_chain.hpp -> engine/constraint_system.hpp"
-  "loops/mechanism_file.cpp -> engine/symbolic/naming.hpp")
+  "engine/analysis/toggles.hpp -> engine/model.hpp")
 
 # Headers that solve (derive, differentiate, simplify, order the equations, or solve,
 # compile or run a tape): a printer includes none of them. A printer formats what the
 # model, the results and the analysis (engine/analysis/analysis.hpp) hold; what a view
 # shows beyond the solved table is computed once, before any printer runs, by
 # analyse_for_views. The data a printer shows from such a stage has a header of its own
-# (engine/symbolic/dyad_derivation_types.hpp, engine/symbolic/expansion.hpp).
+# (engine/symbolic/dyad_derivation_types.hpp, engine/constraints/expansion.hpp).
 set(KINEMA_PRINTER_FORBIDDEN_HEADERS
   "engine/symbolic/derivation.hpp"
-  "engine/symbolic/differentiate.hpp"
+  "engine/constraints/differentiate.hpp"
   "engine/symbolic/dyad_method.hpp"
   "engine/symbolic/solving_order.hpp"
   "engine/symbolic/trig_simplify.hpp"
@@ -108,7 +101,8 @@ endfunction()
 # those in the pending list, and every include of a solving header by a printer. Includes are read as the tree writes them: "engine/..." from
 # the root.
 function(kinema_check_stage_order root)
-  file(GLOB_RECURSE sources RELATIVE "${root}" "${root}/engine/*" "${root}/loops/*" "${root}/cli/*" "${root}/api/*" "${root}/python/*")
+  file(GLOB_RECURSE sources RELATIVE "${root}" "${root}/engine/*" "${root}/readers/*" "${root}/loops/*"
+       "${root}/linkages/*" "${root}/chains/*" "${root}/cli/*" "${root}/api/*" "${root}/python/*")
   set(upward "")
   foreach(source IN LISTS sources)
     if(NOT source MATCHES "\\.(cpp|hpp|inc)$")
@@ -117,7 +111,7 @@ function(kinema_check_stage_order root)
     kinema_stage_of("${source}" from)
     file(STRINGS "${root}/${source}" includes REGEX "^[ \t]*#[ \t]*include[ \t]*[<\"]")
     foreach(line IN LISTS includes)
-      if(NOT line MATCHES "#[ \t]*include[ \t]*[<\"](kinema/)?((engine|loops|cli|api|python)/[^>\"]+)[>\"]")
+      if(NOT line MATCHES "#[ \t]*include[ \t]*[<\"](kinema/)?((engine|readers|loops|linkages|chains|cli|api|python)/[^>\"]+)[>\"]")
         continue()
       endif()
       set(header "${CMAKE_MATCH_2}")

@@ -9,7 +9,7 @@
 #include "engine/base/number_format.hpp"
 #include "engine/analysis/output_scale.hpp"
 #include "engine/base/units.hpp"
-#include "loops/mechanism_file.hpp"
+#include "readers/sweep_syntax.hpp"
 
 namespace kinema {
 

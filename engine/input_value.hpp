@@ -5,8 +5,8 @@
 
 #include <string>
 
-#include "engine/constraint_system.hpp"
-#include "engine/numeric/input_values.hpp"
+#include "engine/constraints/constraint_system.hpp"
+#include "engine/base/input_values.hpp"
 
 namespace kinema {
 

@@ -1,16 +1,26 @@
 #include "engine/model.hpp"
 
+#include "chains/spatial_chain.hpp"
+#include "engine/numeric/assemblies.hpp"
 #include "engine/numeric/sweep.hpp"
 #include "engine/analysis/output_scale.hpp"  // check_column_names: the output columns named apart before any run
-#include "loops/mechanism_file.hpp"
+#include "readers/mechanism_file.hpp"
+#include "linkages/linkage_loops.hpp"
 #include "loops/planar_loops.hpp"
-#include "loops/spatial_chain.hpp"
 
 namespace kinema {
 
+ConstraintSystem build_constraint_system(const Mechanism& mechanism) {
+  ConstraintSystem system = mechanism.chain     ? build_spatial_system(mechanism)
+                            : mechanism.linkage ? build_linkage_system(mechanism)
+                                                : build_planar_loops(mechanism);
+  settle_assemblies(system);
+  return system;
+}
+
 Model make_model(const Mechanism& mechanism, DerivationScope scope) {
   Model model;
-  model.system = mechanism.chain ? build_spatial_system(mechanism) : build_planar_loops(mechanism);
+  model.system = build_constraint_system(mechanism);
   check_column_names(model.system);
   model.derivation = derive(model.system, scope);
   model.kinematics = Kinematics(model.system, model.derivation);

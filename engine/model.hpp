@@ -4,22 +4,22 @@
 //   kinema::MotionTable table = kinema::analyse(model, {0.1, 0.2, 0.3});  // SI inputs
 //   double omega3 = table.qd(0)[0];
 //
-// load_model runs the whole pipeline once: file -> Mechanism (loops/) ->
-// ConstraintSystem (the front end) -> Derivation (symbolic) -> Kinematics
-// (compiled). A Model is immutable; Workspace holds one caller's buffers.
+// load_model runs the whole pipeline once: file -> Mechanism (readers/) ->
+// ConstraintSystem (its front end: loops/, linkages/ or chains/) -> Derivation
+// (symbolic) -> Kinematics (compiled). A Model is immutable; Workspace holds one caller's buffers.
 #pragma once
 
 #include <filesystem>
 #include <optional>
 #include <vector>
 
-#include "engine/constraint_system.hpp"
+#include "engine/constraints/constraint_system.hpp"
 #include "engine/base/errors.hpp"
 #include "engine/numeric/kinematics.hpp"
 #include "engine/numeric/motion_table.hpp"
 #include "engine/numeric/workspace.hpp"
 #include "engine/symbolic/derivation.hpp"
-#include "loops/mechanism.hpp"
+#include "readers/mechanism.hpp"
 
 namespace kinema {
 
@@ -39,8 +39,12 @@ struct Model {
 /// DerivationScope::evaluation skips the formulas only printers show (about a fifth
 /// of the time of a one-value run); such a model evaluates the same numbers.
 Model load_model(const std::filesystem::path& path, DerivationScope scope = DerivationScope::full);
-/// The same from a description already in memory (loops/mechanism_file.hpp reads one).
+/// The same from a description already in memory (readers/mechanism_file.hpp reads one).
 Model make_model(const Mechanism& mechanism, DerivationScope scope = DerivationScope::full);
+
+/// The constraint system of a mechanism as written: built by the front end of its form
+/// (vector loops, joints and links, a spatial chain), the dyads' assemblies settled.
+ConstraintSystem build_constraint_system(const Mechanism& mechanism);
 
 struct AnalysisOptions {
   std::optional<double> rate;         ///< Input rate (SI); default: the model's.

@@ -9,12 +9,11 @@
 #include <sstream>
 
 #include "engine/base/errors.hpp"
-#include "engine/symbolic/complex_parts.hpp"
-#include "engine/symbolic/derivation.hpp"
-#include "engine/symbolic/expression_parts.hpp"
-#include "engine/symbolic/naming.hpp"
-#include "loops/formula_reader.hpp"
-#include "loops/length_power.hpp"
+#include "engine/constraints/complex_parts.hpp"
+#include "engine/constraints/expression_parts.hpp"
+#include "engine/base/naming.hpp"
+#include "engine/constraints/formula_reader.hpp"
+#include "engine/constraints/length_power.hpp"
 
 namespace kinema {
 namespace {
@@ -33,7 +32,6 @@ class Builder {
     system.description = mechanism_.description;
     system.source_file = mechanism_.source_file;
     system.output = mechanism_.output;
-    system.linkage = mechanism_.linkage;
     add_parameters(system);
     add_coordinates(system);
     const LengthPower units(powers_);

@@ -4,9 +4,9 @@
 // symbols are real (GiNaC realsymbol) so that those parts simplify.
 #pragma once
 
-#include "engine/constraint_system.hpp"
-#include "loops/formula_reader.hpp"  // understood_functions()
-#include "loops/mechanism.hpp"
+#include "engine/constraints/constraint_system.hpp"
+#include "engine/constraints/formula_reader.hpp"  // understood_functions()
+#include "readers/mechanism.hpp"
 
 namespace kinema {
 

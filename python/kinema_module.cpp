@@ -22,7 +22,7 @@
 #include "engine/run/view.hpp"
 #include "engine/analysis/output_scale.hpp"
 #include "engine/symbolic/dyad_method.hpp"
-#include "loops/mechanism_file.hpp"
+#include "readers/mechanism_file.hpp"
 
 namespace py = pybind11;
 

@@ -36,7 +36,9 @@ TEST_CASE("README: docs/library.md shows examples/library_usage.cpp verbatim, an
   REQUIRE(example.find("#include <kinema/kinema.hpp>") != std::string::npos);
   REQUIRE(example.find(".rate(\"omega3\")") != std::string::npos);
   CHECK(library.find("```cpp\n" + example + "```") != std::string::npos);
-  for (const char* folder : {"loops", "engine/symbolic", "engine/numeric", "engine/analysis", "engine/run", "engine/printers/text",
+  for (const char* folder : {"readers", "loops", "linkages", "chains", "engine/base", "engine/constraints",
+                             "engine/symbolic", "engine/numeric", "engine/analysis", "engine/run", "engine/printers/text",
+                             "engine/printers/web", "python",
                              "engine/printers/data", "engine/printers/latex", "engine/printers/code", "api/kinema", "cli"}) {
     CAPTURE(folder);
     CHECK(std::filesystem::is_directory(kinema_test::sample(std::string("../") + folder)));
@@ -124,14 +126,14 @@ TEST_CASE("README's TOML snippets are lines of the samples they name") {
 }
 
 // Issue 33: the docs list every limit with the reason for it. Each kMax constant of the
-// sources (engine/, loops/, cli/) is named in docs/limits.md with its value.
+// sources (engine/, the readers and front ends, cli/) is named in docs/limits.md with its value.
 TEST_CASE("docs/limits.md names every kMax constant of the sources with its value") {
   const std::string limits = kinema_test::read_file(kinema_test::sample("../docs/limits.md"));
   REQUIRE(limits.find("| what | limit") != std::string::npos);
   const std::filesystem::path root = std::filesystem::path(kinema_test::sample("..")).lexically_normal();
   const std::regex constant(R"(constexpr[^=;(]*\b(kMax\w+)\s*=\s*([^;]+);)");
   std::map<std::string, double> values;
-  for (const char* folder : {"engine", "loops", "cli"}) {
+  for (const char* folder : {"engine", "readers", "loops", "linkages", "chains", "cli", "api", "python"}) {
     for (const auto& entry : std::filesystem::recursive_directory_iterator(root / folder)) {
       const std::string extension = entry.path().extension().string();
       if (extension != ".cpp" && extension != ".hpp" && extension != ".inc") continue;

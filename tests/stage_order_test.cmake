@@ -32,3 +32,23 @@ string(REGEX REPLACE "[ \n]+" " " error "${error}")
 if(status EQUAL 0 OR NOT error MATCHES "engine/printers/table.cpp \\(printers\\) includes engine/numeric/sweep.hpp, a solving header")
   message(FATAL_ERROR "a printer including a solving header passed the check (status ${status}):\n${error}")
 endif()
+# The front ends: a front end writes the constraints stage's types (a producer includes
+# what it produces), and a reader, which gives what the user wrote, runs no front end.
+file(MAKE_DIRECTORY "${WORK_DIR}/readers" "${WORK_DIR}/linkages" "${WORK_DIR}/engine/constraints")
+file(REMOVE "${WORK_DIR}/engine/numeric/sweep.hpp" "${WORK_DIR}/engine/printers/table.cpp")
+file(WRITE "${WORK_DIR}/engine/constraints/constraint_system.hpp" "#pragma once\n")
+file(WRITE "${WORK_DIR}/linkages/dyads.cpp"
+     "#include \"engine/constraints/constraint_system.hpp\"\n#include \"readers/mechanism.hpp\"\n")
+file(WRITE "${WORK_DIR}/readers/mechanism_file.cpp" "#include \"engine/base/errors.hpp\"\n")
+execute_process(COMMAND "${CMAKE_COMMAND}" -DROOT=${WORK_DIR} -P ${SOURCE_DIR}/cmake/stage_order.cmake
+                RESULT_VARIABLE status ERROR_VARIABLE error)
+if(NOT status EQUAL 0)
+  message(FATAL_ERROR "a front end's includes of the reader's and the constraints' headers were refused:\n${error}")
+endif()
+file(APPEND "${WORK_DIR}/readers/mechanism_file.cpp" "#include \"linkages/dyads.hpp\"\n")
+execute_process(COMMAND "${CMAKE_COMMAND}" -DROOT=${WORK_DIR} -P ${SOURCE_DIR}/cmake/stage_order.cmake
+                RESULT_VARIABLE status ERROR_VARIABLE error)
+string(REGEX REPLACE "[ \n]+" " " error "${error}")
+if(status EQUAL 0 OR NOT error MATCHES "readers/mechanism_file.cpp \\(readers\\) includes linkages/dyads.hpp \\(front ends\\)")
+  message(FATAL_ERROR "a reader that runs a front end passed the check (status ${status}):\n${error}")
+endif()

@@ -1,5 +1,7 @@
 #include "tests/test_support.hpp"
 
+#include "linkages/vector_loop_file.hpp"
+
 #include <sys/resource.h>
 #include <sys/wait.h>
 
@@ -105,6 +107,10 @@ kinema::AnalysisOptions with_rates(double rate, double second_rate, unsigned thr
 }
 
 std::string sample(const std::string& name) { return std::string(KINEMA_SAMPLES_DIR) + "/" + name; }
+
+std::string loops_file(const kinema::Mechanism& written) {
+  return kinema::vector_loop_file(written, kinema::build_constraint_system(written));
+}
 
 nlohmann::json eval_json(const std::string& sample_name, const std::vector<std::string>& extra) {
   std::vector<std::string> arguments = {"eval", sample(sample_name), "--format", "json"};

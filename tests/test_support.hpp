@@ -43,6 +43,9 @@ CommandResult run_shell(const std::string& command_line);
 std::string shell_quote(const std::string& word);
 
 std::string sample(const std::string& name);     ///< Path of samples/NAME.
+
+/// `kinema loops` of a mechanism as written (its constraint system built for the guesses).
+std::string loops_file(const kinema::Mechanism& written);
 /// Every bundled sample (file names in samples/).
 inline constexpr const char* kSamples[] = {"four_bar.toml", "slider_crank.toml", "piston_driven_crank.toml",
                                            "example_4_1_r_trr.toml", "example_4_2_r_rtr_rrt.toml",

@@ -11,7 +11,7 @@
 #include "engine/base/errors.hpp"
 #include "engine/base/number_format.hpp"
 #include "engine/analysis/output_scale.hpp"
-#include "engine/symbolic/expression_parts.hpp"
+#include "engine/constraints/expression_parts.hpp"
 #include "engine/symbolic/trig_simplify.hpp"
 
 namespace kinema {

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/constraint_system.hpp"
+#include "engine/constraints/constraint_system.hpp"
 
 namespace kinema {
 

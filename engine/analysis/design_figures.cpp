@@ -1,7 +1,6 @@
 #include "engine/analysis/design_figures.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <complex>
 #include <limits>
@@ -10,7 +9,7 @@
 #include "engine/analysis/toggles.hpp"
 #include "engine/base/number_format.hpp"
 #include "engine/analysis/output_scale.hpp"
-#include "engine/symbolic/expression_parts.hpp"
+#include "engine/constraints/expression_parts.hpp"
 
 namespace kinema {
 
@@ -69,22 +68,18 @@ std::optional<FourBarFigures> four_bar_figures(const Model& model) {
   }
   if (crank >= 4 || ground >= 4 || unknown_sides != 2) return std::nullopt;
   std::size_t coupler = 4, rocker = 4;
-  if (system.linkage) {
+  if (system.plan) {
     // Joints and links: the rocker is the link other than the crank with a fixed pivot.
-    const Linkage& linkage = *system.linkage;
-    std::string rocker_angle;
-    for (const Link& link : linkage.links) {
-      if (link.name == linkage.driver_link) continue;
-      for (const std::string& joint : link.joints)
-        for (const Joint& j : linkage.joints)
-          if (j.name == joint && j.ground && j.kind == Joint::Kind::pin) {
-            const bool numbered = !link.name.empty() && std::isdigit(static_cast<unsigned char>(link.name[0]));
-            rocker_angle = !link.angle_name.empty() ? link.angle_name : (numbered ? "theta" : "theta_") + link.name;
-          }
+    const SolvingPlan& plan = *system.plan;
+    int rocker_unknown = -1;
+    for (std::size_t b = 1; b < plan.bodies.size(); ++b) {
+      if (b == plan.driver_body && plan.driver_slider < 0) continue;
+      for (const auto& point : plan.bodies[b].points)
+        if (plan.joints[point.first].ground && !plan.joints[point.first].slider) rocker_unknown = plan.bodies[b].unknown;
     }
     for (std::size_t k = 0; k < 4; ++k) {
       if (sides[k].kind != Side::Kind::unknown) continue;
-      (system.unknowns[sides[k].unknown].name == rocker_angle ? rocker : coupler) = k;
+      (static_cast<int>(sides[k].unknown) == rocker_unknown ? rocker : coupler) = k;
     }
   } else if ((crank + 1) % 4 == ground || (ground + 1) % 4 == crank) {
     // Written round the loop: the coupler is opposite the ground, the rocker opposite the crank.

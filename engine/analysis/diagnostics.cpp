@@ -5,7 +5,7 @@
 #include "engine/base/number_format.hpp"
 #include "engine/numeric/solver.hpp"
 #include "engine/analysis/output_scale.hpp"
-#include "engine/analysis/structure.hpp"
+#include "engine/constraints/solving_plan.hpp"
 
 namespace kinema {
 
@@ -57,11 +57,11 @@ std::string describe_failure(const ConstraintSystem& system, double input, const
              ": the Jacobian Phi_q is rank-deficient (toggle or dead-centre position), so "
              "velocities and accelerations are not defined there; choose a nearby value";
     case Kind::dyad_open:
-      return (system.linkage ? describe_dyad(*system.linkage, failure.group) : "a dyad") + " cannot close at " +
+      return (system.plan ? describe_dyad(*system.plan, failure.group) : "a dyad") + " cannot close at " +
              describe_input(system, input) +
              ": its links do not reach on the assembly of the sketch; choose another input value, or check the lengths";
     case Kind::circuit_toggle:
-      return (system.linkage ? describe_dyad(*system.linkage, failure.group) : "a dyad") + " is at a toggle at " +
+      return (system.plan ? describe_dyad(*system.plan, failure.group) : "a dyad") + " is at a toggle at " +
              describe_input(system, input) +
              " (its links in line): the input reverses here and the dyad changes assembly; velocities and "
              "accelerations are not defined at the toggle itself";

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "engine/constraint_system.hpp"
+#include "engine/constraints/constraint_system.hpp"
 #include "engine/numeric/motion_table.hpp"
 
 namespace kinema {

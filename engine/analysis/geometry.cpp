@@ -4,10 +4,10 @@
 #include <cmath>
 
 #include "engine/base/work_count.hpp"
-#include "engine/symbolic/complex_parts.hpp"
+#include "engine/constraints/complex_parts.hpp"
 #include "engine/symbolic/derivation.hpp"
-#include "engine/symbolic/expression_parts.hpp"
-#include "loops/dyad_positions.hpp"
+#include "engine/constraints/expression_parts.hpp"
+#include "engine/numeric/dyad_positions.hpp"
 
 namespace kinema {
 
@@ -303,24 +303,24 @@ std::vector<DrawingSegment> MechanismGeometry::segments(const MotionState& state
 
 std::optional<LinkageDrawing> linkage_drawing(const ConstraintSystem& system, const MotionState& state) {
   count_work(Work::drawing);
-  if (!system.linkage || !system.linkage->frames.closed_form || state.status == Status::unassembled) return std::nullopt;
-  const Linkage& linkage = *system.linkage;
-  const LinkageFrames& frames = linkage.frames;
+  if (!system.plan || !system.plan->closed_form || state.status == Status::unassembled) return std::nullopt;
+  const SolvingPlan& plan = *system.plan;
+  const SolvingPlan& frames = plan;
   // The poses of this position: placed on the signs nearest its unknowns.
   const std::vector<int> signs = signs_nearest(frames, state.input, state.q.data(), system.length_scale);
   std::vector<BodyPose> poses;
   if (place_dyads(frames, state.input, poses, &signs) < frames.dyads.size()) return std::nullopt;
   LinkageDrawing drawing;
-  for (const auto& [joint, at] : frames.bodies[0].points) drawing.ground_pivots.push_back({linkage.joints[joint].name, at});
-  for (const LinkageFrames::Slider& s : frames.sliders)
+  for (const auto& [joint, at] : frames.bodies[0].points) drawing.ground_pivots.push_back({plan.joints[joint].name, at});
+  for (const SolvingPlan::Slider& s : frames.sliders)
     if (s.guide == 0) drawing.guides.push_back({s.through, std::polar(1.0, s.direction)});
   for (std::size_t b = 1; b < frames.bodies.size(); ++b) {
     LinkageDrawing::Link link;
     link.block = frames.bodies[b].guide >= 0;
     link.angle = poses[b].angle;
-    link.name = linkage.links[b - 1].name;
+    link.name = plan.links[b - 1].name;
     for (const auto& [joint, v] : frames.bodies[b].points)
-      link.joints.push_back({linkage.joints[joint].name, poses[b].origin + v * std::polar(1.0, poses[b].angle)});
+      link.joints.push_back({plan.joints[joint].name, poses[b].origin + v * std::polar(1.0, poses[b].angle)});
     link.origin = poses[b].origin;
     if (frames.bodies[b].unknown >= 0) {
       link.coordinate = frames.bodies[b].unknown + 1;

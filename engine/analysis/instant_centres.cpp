@@ -7,8 +7,8 @@
 #include "engine/base/work_count.hpp"
 #include "engine/analysis/geometry.hpp"
 #include "engine/symbolic/derivation.hpp"
-#include "engine/symbolic/expression_parts.hpp"
-#include "loops/dyad_positions.hpp"
+#include "engine/constraints/expression_parts.hpp"
+#include "engine/numeric/dyad_positions.hpp"
 
 namespace kinema {
 
@@ -290,10 +290,10 @@ const InstantCentre* InstantCentres::find(std::size_t a, std::size_t b) const {
 std::optional<InstantCentres> instant_centres(const ConstraintSystem& system, const MotionState& s) {
   count_work(Work::drawing);
   if (s.status != Status::ok || !system.frames.empty()) return std::nullopt;
-  if (!system.linkage) return centres_from_points(system, s);
-  if (!system.linkage->frames.closed_form) return std::nullopt;
-  const Linkage& linkage = *system.linkage;
-  const LinkageFrames& frames = linkage.frames;
+  if (!system.plan) return centres_from_points(system, s);
+  if (!system.plan->closed_form) return std::nullopt;
+  const SolvingPlan& plan = *system.plan;
+  const SolvingPlan& frames = plan;
   const std::vector<int> signs = signs_nearest(frames, s.input, s.q.data(), system.length_scale);
   std::vector<BodyPose> poses;
   if (place_dyads(frames, s.input, poses, &signs) < frames.dyads.size()) return std::nullopt;
@@ -302,11 +302,11 @@ std::optional<InstantCentres> instant_centres(const ConstraintSystem& system, co
   InstantCentres result;
   result.driver = frames.driver_body;
   bool zero_named = false;
-  for (const Link& link : linkage.links) zero_named = zero_named || link.name == "0";
+  for (const SolvingPlan::Link& link : plan.links) zero_named = zero_named || link.name == "0";
   result.bodies.push_back(zero_named ? "g" : "0");
-  for (std::size_t b = 1; b < n; ++b) result.bodies.push_back(linkage.links[b - 1].name);
+  for (std::size_t b = 1; b < n; ++b) result.bodies.push_back(plan.links[b - 1].name);
   const std::function<double(std::size_t)> omega = [&](std::size_t b) -> double {
-    const LinkageFrames::Body& body = frames.bodies[b];
+    const SolvingPlan::Body& body = frames.bodies[b];
     if (b == 0) return 0.0;
     if (body.unknown >= 0) return s.qd[body.unknown];
     if (body.guide >= 0) return omega(static_cast<std::size_t>(body.guide));
@@ -314,7 +314,7 @@ std::optional<InstantCentres> instant_centres(const ConstraintSystem& system, co
   };
   for (std::size_t b = 0; b < n; ++b) {
     result.angular_velocities.push_back(omega(b));
-    const LinkageFrames::Body& body = frames.bodies[b];
+    const SolvingPlan::Body& body = frames.bodies[b];
     result.rates.push_back(body.unknown >= 0                                      ? GiNaC::ex(system.unknowns[body.unknown].rate)
                            : b == frames.driver_body && frames.driver_slider < 0 ? GiNaC::ex(system.input.rate)
                                                                                  : GiNaC::ex(0));
@@ -330,18 +330,18 @@ std::optional<InstantCentres> instant_centres(const ConstraintSystem& system, co
     result.centres.push_back({a, b, infinite, at, how, {}, seen_from});
   };
   // Primary centres: pins, then sliders (at infinity across the line).
-  for (const LinkageFrames::Pin& pin : frames.pins) {
+  for (const SolvingPlan::Pin& pin : frames.pins) {
     Complex at = 0;
     for (const auto& [joint, local] : frames.bodies[pin.a].points)
       if (joint == pin.joint) at = world(pin.a, local);
-    add(pin.a, pin.b, false, at, "pin " + linkage.joints[pin.joint].name);
+    add(pin.a, pin.b, false, at, "pin " + plan.joints[pin.joint].name);
   }
-  for (const LinkageFrames::Slider& slider : frames.sliders) {
+  for (const SolvingPlan::Slider& slider : frames.sliders) {
     const double line = (slider.guide == 0 ? 0.0 : poses[slider.guide].angle) + slider.direction;
     std::optional<Complex> joint_at;  // the arrow starts at the slider's joint
     for (const auto& [joint, local] : frames.bodies[slider.block].points)
       if (joint == slider.joint) joint_at = world(slider.block, local);
-    add(slider.block, slider.guide, true, std::polar(1.0, line + M_PI / 2), "slider " + linkage.joints[slider.joint].name,
+    add(slider.block, slider.guide, true, std::polar(1.0, line + M_PI / 2), "slider " + plan.joints[slider.joint].name,
         joint_at);
   }
   // Kennedy: I_ac on the line I_ab I_bc and on the line I_ad I_dc; of all such pairs of

@@ -12,7 +12,7 @@
 
 #include <ginac/ginac.h>
 
-#include "engine/constraint_system.hpp"
+#include "engine/constraints/constraint_system.hpp"
 #include "engine/numeric/motion_table.hpp"
 
 namespace kinema {

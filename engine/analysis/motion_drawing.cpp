@@ -95,7 +95,7 @@ MotionDrawing motion_drawing(const ConstraintSystem& system, const MotionTable& 
     drawing.rows.resize(table.size());
     return drawing;
   }
-  if (system.linkage && system.linkage->frames.closed_form) {
+  if (system.plan && system.plan->closed_form) {
     drawing.form = MotionDrawing::Form::linkage;
     linkage_rows(system, table, drawing);
   } else {

@@ -9,7 +9,7 @@
 
 #include "engine/base/errors.hpp"
 #include "engine/base/number_format.hpp"
-#include "engine/symbolic/naming.hpp"
+#include "engine/base/naming.hpp"
 
 #include <cmath>
 
@@ -95,30 +95,30 @@ std::vector<ResultColumn> named_columns(const ConstraintSystem& system, const Ou
     for (const char* c : {"x", "y", "z"}) add(f.name + "_alpha_" + c, "rad/s^2", what, f.where);
   }
   for (const auto& [body, angle] : block_links(system)) {
-    const Link& link = system.linkage->links[body - 1];
+    const SolvingPlan::Link& link = system.plan->links[body - 1];
     const std::string what = "slider block link \"" + link.name + "\"";
     add(angle, "deg", what, link.where);
     add(default_rate_name(angle, 1), "rad/s", what, link.where);
     add(default_rate_name(angle, 2), "rad/s^2", what, link.where);
   }
-  if (system.linkage) {
-    for (const LinkageFrames::Slider& slider : system.linkage->frames.sliders) {
-      const Joint& joint = system.linkage->joints[slider.joint];
+  if (system.plan) {
+    for (const SolvingPlan::Slider& slider : system.plan->sliders) {
+      const SolvingPlan::Joint& joint = system.plan->joints[slider.joint];
       const std::string what = "slider \"" + joint.name + "\"";
       for (const char* part : {"_vrel_x", "_vrel_y"}) add(joint.name + part, l + "/s", what, joint.where);
       for (const char* part : {"_arel_x", "_arel_y", "_coriolis_x", "_coriolis_y"})
         add(joint.name + part, l + "/s^2", what, joint.where);
     }
     for (const GuidePoint& g : guide_points(system)) {
-      const LinkageFrames::Slider& slider = system.linkage->frames.sliders[g.slider];
-      const Joint& joint = system.linkage->joints[slider.joint];
-      const std::string what = "the point of link \"" + system.linkage->links[slider.guide - 1].name +
+      const SolvingPlan::Slider& slider = system.plan->sliders[g.slider];
+      const SolvingPlan::Joint& joint = system.plan->joints[slider.joint];
+      const std::string what = "the point of link \"" + system.plan->links[slider.guide - 1].name +
                                "\" under slider \"" + joint.name + "\"";
       for (const char* part : {"_vx", "_vy"}) add(g.name + part, l + "/s", what, joint.where);
       for (const char* part : {"_ax", "_ay"}) add(g.name + part, l + "/s^2", what, joint.where);
     }
     for (const RelativeTurning& r : relative_turnings(system)) {
-      const Joint& joint = system.linkage->joints[r.joint];
+      const SolvingPlan::Joint& joint = system.plan->joints[r.joint];
       const std::string what = "the relative turning at pin \"" + joint.name + "\"";
       add(r.rate_name, "rad/s", what, joint.where);
       add(r.second_rate_name, "rad/s^2", what, joint.where);
@@ -127,7 +127,7 @@ std::vector<ResultColumn> named_columns(const ConstraintSystem& system, const Ou
   if (circuit) {
     for (const std::string& name : dyad_inner_joints(system)) {
       SourceLocation where;
-      for (const Joint& j : system.linkage->joints) where = j.name == name ? j.where : where;
+      for (const SolvingPlan::Joint& j : system.plan->joints) where = j.name == name ? j.where : where;
       add("branch_" + name, "sign", "the assembly sign (--circuit) of joint \"" + name + "\"", where);
     }
   }
@@ -163,13 +163,11 @@ std::size_t linkage_columns_begin(const ConstraintSystem& system) {
 
 std::vector<std::pair<std::size_t, std::string>> block_links(const ConstraintSystem& system) {
   std::vector<std::pair<std::size_t, std::string>> blocks;
-  if (!system.linkage) return blocks;
-  const Linkage& linkage = *system.linkage;
-  for (std::size_t b = 1; b < linkage.frames.bodies.size(); ++b) {
-    if (linkage.frames.bodies[b].guide < 0) continue;
-    const Link& link = linkage.links[b - 1];
-    const bool numbered = !link.name.empty() && std::isdigit(static_cast<unsigned char>(link.name[0]));
-    blocks.push_back({b, !link.angle_name.empty() ? link.angle_name : (numbered ? "theta" : "theta_") + link.name});
+  if (!system.plan) return blocks;
+  const SolvingPlan& plan = *system.plan;
+  for (std::size_t b = 1; b < plan.bodies.size(); ++b) {
+    if (plan.bodies[b].guide < 0) continue;
+    blocks.push_back({b, plan.links[b - 1].angle_name});
   }
   return blocks;
 }
@@ -190,46 +188,46 @@ std::string joined_names(const std::string& first, const std::string& second) {
 
 std::vector<GuidePoint> guide_points(const ConstraintSystem& system) {
   std::vector<GuidePoint> points;
-  if (!system.linkage) return points;
-  const Linkage& linkage = *system.linkage;
-  const LinkageFrames& frames = linkage.frames;
+  if (!system.plan) return points;
+  const SolvingPlan& plan = *system.plan;
+  const SolvingPlan& frames = plan;
   const auto point_named = [&](const std::string& name) {
     for (std::size_t p = 0; p < system.points.size(); ++p)
       if (system.points[p].is_joint && system.points[p].name == name) return int(p);
     return -1;
   };
   for (std::size_t k = 0; k < frames.sliders.size(); ++k) {
-    const LinkageFrames::Slider& slider = frames.sliders[k];
+    const SolvingPlan::Slider& slider = frames.sliders[k];
     if (slider.guide == 0) continue;  // a fixed guide's point does not move
     // The slider is shown as a point of its own, or by the block's pin at its place.
-    int shown = point_named(linkage.joints[slider.joint].name);
+    int shown = point_named(plan.joints[slider.joint].name);
     const auto& on_block = frames.bodies[slider.block].points;
     std::complex<double> at;
     for (const auto& [joint, local] : on_block) at = joint == slider.joint ? local : at;
     for (const auto& [joint, local] : on_block) {
       if (shown >= 0) break;
-      if (joint != slider.joint && linkage.joints[joint].kind == Joint::Kind::pin &&
+      if (joint != slider.joint && !plan.joints[joint].slider &&
           std::abs(local - at) <= 1e-9 * system.length_scale)
-        shown = point_named(linkage.joints[joint].name);
+        shown = point_named(plan.joints[joint].name);
     }
     if (shown < 0) continue;
     points.push_back({k, std::size_t(shown), joined_names(system.points[std::size_t(shown)].name,
-                                                          linkage.links[slider.guide - 1].name)});
+                                                          plan.links[slider.guide - 1].name)});
   }
   return points;
 }
 
 std::vector<RelativeTurning> relative_turnings(const ConstraintSystem& system) {
   std::vector<RelativeTurning> turnings;
-  if (!system.linkage) return turnings;
-  const LinkageFrames& frames = system.linkage->frames;
-  for (const LinkageFrames::Pin& pin : frames.pins) {
+  if (!system.plan) return turnings;
+  const SolvingPlan& frames = *system.plan;
+  for (const SolvingPlan::Pin& pin : frames.pins) {
     const bool a_block = frames.bodies[pin.a].guide >= 0, b_block = frames.bodies[pin.b].guide >= 0;
     if (!a_block && !b_block) continue;
     const std::size_t block = a_block ? pin.a : pin.b, other = a_block ? pin.b : pin.a;
     if (other == 0 || int(other) == frames.bodies[block].guide) continue;  // its own turning, or none
-    const std::string names = joined_names(system.linkage->links[block - 1].name, system.linkage->links[other - 1].name);
-    const bool numbered = all_digits(system.linkage->links[block - 1].name);
+    const std::string names = joined_names(system.plan->links[block - 1].name, system.plan->links[other - 1].name);
+    const bool numbered = all_digits(system.plan->links[block - 1].name);
     turnings.push_back({block, other, pin.joint, (numbered ? "omega" : "omega_") + names,
                         (numbered ? "alpha" : "alpha_") + names});
   }
@@ -261,8 +259,8 @@ struct LinkageColumns {
 // A body's angle and rates: ground's are 0, an unknown's or the driver's are the
 // position's, a slider block turns with its guide.
 template <typename Vector>
-Turning turning(const LinkageFrames& frames, const Position<Vector>& at, std::size_t body) {
-  const LinkageFrames::Body& b = frames.bodies[body];
+Turning turning(const SolvingPlan& frames, const Position<Vector>& at, std::size_t body) {
+  const SolvingPlan::Body& b = frames.bodies[body];
   if (b.unknown >= 0) {
     const auto i = Eigen::Index(b.unknown);
     return {at.q[i], at.qd[i], at.qdd[i]};
@@ -283,7 +281,7 @@ struct Sliding {
 };
 
 template <typename Vector>
-Sliding sliding(const LinkageFrames& frames, const Position<Vector>& at, const LinkageFrames::Slider& slider) {
+Sliding sliding(const SolvingPlan& frames, const Position<Vector>& at, const SolvingPlan::Slider& slider) {
   const Turning guide = turning(frames, at, slider.guide);
   const std::complex<double> u = std::polar(1.0, guide.angle + slider.direction);
   double s1 = at.rate, s2 = at.second_rate;  // the driver's, unless the slider's coordinate is an unknown
@@ -298,7 +296,7 @@ Sliding sliding(const LinkageFrames& frames, const Position<Vector>& at, const L
 template <typename Vector>
 double* linkage_values(const ConstraintSystem& system, const OutputScale& scale, const LinkageColumns& columns,
                        const Position<Vector>& at, double* values) {
-  const LinkageFrames& frames = system.linkage->frames;
+  const SolvingPlan& frames = *system.plan;
   // The blocks in the order of block_links (body order), without its names: this runs per row.
   for (std::size_t body = 1; body < frames.bodies.size(); ++body) {
     if (frames.bodies[body].guide < 0) continue;
@@ -307,7 +305,7 @@ double* linkage_values(const ConstraintSystem& system, const OutputScale& scale,
     *values++ = t.rate;
     *values++ = t.second_rate;
   }
-  for (const LinkageFrames::Slider& slider : frames.sliders) {
+  for (const SolvingPlan::Slider& slider : frames.sliders) {
     const Sliding s = sliding(frames, at, slider);
     for (const std::complex<double>& c : {s.relative_velocity, s.relative_acceleration, s.coriolis}) {
       *values++ = c.real() / scale.length;
@@ -346,11 +344,11 @@ void linkage_values(const ConstraintSystem& system, const OutputScale& scale, co
 std::size_t result_column_count(const ConstraintSystem& system, bool circuit) {
   std::size_t count = kInputColumns + 3 * system.unknowns.size() + 6 * system.frames.size();
   for (const PointObservable& p : system.points) count += 3 * p.components.size() + 2;
-  if (system.linkage) {
-    for (const LinkageFrames::Body& body : system.linkage->frames.bodies) count += body.guide >= 0 ? 3 : 0;
-    count += 6 * system.linkage->frames.sliders.size();
+  if (system.plan) {
+    for (const SolvingPlan::Body& body : system.plan->bodies) count += body.guide >= 0 ? 3 : 0;
+    count += 6 * system.plan->sliders.size();
     count += 4 * guide_points(system).size() + 2 * relative_turnings(system).size();
-    if (circuit) count += system.linkage->frames.dyads.size();  // an assembly sign each
+    if (circuit) count += system.plan->dyads.size();  // an assembly sign each
   }
   return count;
 }
@@ -416,9 +414,9 @@ void write_rows(const ConstraintSystem& system, const OutputScale& scale, const 
   for (std::size_t k = 0; k < system.frames.size(); ++k) {
     for (std::size_t c = 0; c < 6; ++c) fill(Status::ok, [v = table.frame_column(k, c)](std::size_t row) { return v[row]; });
   }
-  if (!system.linkage) return;
+  if (!system.plan) return;
   // Joints and links: the blocks' and sliders' values row by row (angles of their guides).
-  const std::size_t linkage_count = stride - column - (table.is_circuit() ? system.linkage->frames.dyads.size() : 0);
+  const std::size_t linkage_count = stride - column - (table.is_circuit() ? system.plan->dyads.size() : 0);
   const LinkageColumns linkage_columns(system);
   for (std::size_t row = first; row < last; ++row) {
     double* out = values + (row - first) * stride + column;
@@ -435,7 +433,7 @@ void write_rows(const ConstraintSystem& system, const OutputScale& scale, const 
   }
   column += linkage_count;
   if (!table.is_circuit()) return;
-  for (std::size_t k = 0; k < system.linkage->frames.dyads.size(); ++k) {
+  for (std::size_t k = 0; k < system.plan->dyads.size(); ++k) {
     fill(Status::singular, [&](std::size_t row) { return double(table.assembly_sign(row, k)); });
   }
 }
@@ -463,11 +461,11 @@ void result_rows(const ConstraintSystem& system, const OutputScale& scale, const
 
 std::vector<std::string> dyad_inner_joints(const ConstraintSystem& system) {
   std::vector<std::string> names;
-  if (!system.linkage) return names;
-  for (const StructureGroup& group : system.linkage->structure) {
+  if (!system.plan) return names;
+  for (const SolvingPlan::Step& group : system.plan->steps) {
     if (group.kind != "driver" && group.joints.size() == 3) names.push_back(group.joints[1]);
   }
-  if (names.size() != system.linkage->frames.dyads.size()) names.clear();  // not all in closed form
+  if (names.size() != system.plan->dyads.size()) names.clear();  // not all in closed form
   return names;
 }
 

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/constraint_system.hpp"
+#include "engine/constraints/constraint_system.hpp"
 #include "engine/numeric/motion_table.hpp"
 
 namespace kinema {
@@ -77,7 +77,7 @@ std::size_t linkage_columns_begin(const ConstraintSystem& system);
 /// linkage_columns_begin on.
 void linkage_values(const ConstraintSystem& system, const OutputScale& scale, const MotionState& state, double* values);
 
-/// Joints and links: the links that are slider blocks (bodies of LinkageFrames) and the
+/// Joints and links: the links that are slider blocks (bodies of SolvingPlan) and the
 /// name of each one's angle, in the order of their columns.
 std::vector<std::pair<std::size_t, std::string>> block_links(const ConstraintSystem& system);
 
@@ -85,7 +85,7 @@ std::vector<std::pair<std::size_t, std::string>> block_links(const ConstraintSys
 /// now (the seed's v_B1: B on link 1), whose velocity and acceleration are the slider
 /// point's without the sliding: v = v_S - v_rel, a = a_S - a_rel - 2 w x v_rel.
 struct GuidePoint {
-  std::size_t slider = 0;  ///< Index into LinkageFrames::sliders.
+  std::size_t slider = 0;  ///< Index into SolvingPlan::sliders.
   std::size_t point = 0;   ///< Index into ConstraintSystem::points: the point that shows the slider.
   std::string name;        ///< The point's name and the guide's ("B" on link "1": "B1", on "crank": "B_crank").
 };
@@ -94,8 +94,8 @@ std::vector<GuidePoint> guide_points(const ConstraintSystem& system);
 /// Joints and links: at each pin of a slider block to a moving link, the block's turning
 /// relative to that link (the seed's omega23 = omega2 - omega3, its alpha23).
 struct RelativeTurning {
-  std::size_t block = 0, other = 0;  ///< Bodies of LinkageFrames.
-  std::size_t joint = 0;             ///< The pin (index into Linkage::joints).
+  std::size_t block = 0, other = 0;  ///< Bodies of SolvingPlan.
+  std::size_t joint = 0;             ///< The pin (index into SolvingPlan::joints).
   std::string rate_name, second_rate_name;  ///< "omega23", "alpha23" (links 2 and 3).
 };
 std::vector<RelativeTurning> relative_turnings(const ConstraintSystem& system);

@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "engine/constraint_system.hpp"
+#include "engine/constraints/constraint_system.hpp"
 
 namespace kinema {
 

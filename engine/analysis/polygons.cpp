@@ -4,9 +4,9 @@
 #include <cmath>
 
 #include "engine/base/work_count.hpp"
-#include "engine/symbolic/complex_parts.hpp"
+#include "engine/constraints/complex_parts.hpp"
 #include "engine/symbolic/derivation.hpp"
-#include "engine/symbolic/expression_parts.hpp"
+#include "engine/constraints/expression_parts.hpp"
 
 namespace kinema {
 

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/constraint_system.hpp"
+#include "engine/constraints/constraint_system.hpp"
 #include "engine/numeric/motion_table.hpp"
 #include "engine/numeric/tape.hpp"
 

@@ -37,6 +37,12 @@ std::string with_article(const std::string& word);
 /// The time derivative's dimension: angle -> angular_velocity -> angular_acceleration.
 Dimension rate_dimension(Dimension dimension);
 
+/// The unit results are printed in (lengths, and velocities per second, ...).
+struct OutputUnits {
+  std::string length = "m";  ///< Lengths in this unit, velocities in unit/s, ...
+  double length_factor = 1.0;  ///< SI metres per output unit.
+};
+
 struct Quantity {
   double si_value = 0.0;  ///< Value converted to SI.
   Dimension dimension = Dimension::number;

@@ -2,7 +2,7 @@
 // writes it out. A character that controls how text is shown rather than being shown —
 // a control character (ESC starts terminal escapes), or a bidirectional control that
 // reorders what follows it (g++ -Werror=bidi-chars refuses it in a comment) — is refused
-// in a mechanism file (loops/mechanism_file.cpp) and never copied into an output.
+// in a mechanism file (readers/mechanism_file.cpp) and never copied into an output.
 #pragma once
 
 #include <string>

@@ -7,7 +7,7 @@
 #include "engine/base/errors.hpp"
 #include "engine/numeric/closed_form.hpp"
 #include "engine/numeric/workspace.hpp"
-#include "loops/dyad_positions.hpp"
+#include "engine/numeric/dyad_positions.hpp"
 
 namespace kinema {
 
@@ -47,7 +47,7 @@ struct CircuitRow {
 // two assemblies cross, is passed as in a sweep).
 Circuit::Stop walk(const Kinematics& kinematics, const CircuitSettings& settings, std::vector<CircuitRow>& rows,
                    std::uint32_t& stuck_dyad) {
-  const LinkageFrames& frames = *kinematics.closed_form();
+  const SolvingPlan& frames = *kinematics.closed_form();
   const double scale = kinematics.length_scale(), substep = kinematics.max_continuation_step();
   const bool angle_input = frames.driver_slider < 0;
   std::vector<BodyPose> poses;
@@ -57,7 +57,7 @@ Circuit::Stop walk(const Kinematics& kinematics, const CircuitSettings& settings
     return failing == frames.dyads.size();
   };
   std::vector<int> signs;
-  for (const LinkageFrames::Dyad& d : frames.dyads) signs.push_back(d.sign);
+  for (const SolvingPlan::Dyad& d : frames.dyads) signs.push_back(d.sign);
   const std::vector<int> start_signs = signs;
   const double start = settings.start, step = settings.step;
   if (!closes(start, signs)) {
@@ -178,7 +178,7 @@ Circuit solve_circuit(const Kinematics& kinematics, const CircuitSettings& setti
   table = MotionTable(inputs, kinematics.unknown_count(), kinematics.layout().point_dimensions, settings.rate,
                       settings.second_rate, kinematics.frame_count());
   table.make_circuit();
-  const LinkageFrames& frames = *kinematics.closed_form();
+  const SolvingPlan& frames = *kinematics.closed_form();
   Workspace workspace(kinematics);
   Eigen::VectorXd q = kinematics.guess();
   MotionState state;

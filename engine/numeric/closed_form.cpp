@@ -2,11 +2,11 @@
 
 #include <cmath>
 
-#include "loops/dyad_positions.hpp"
+#include "engine/numeric/dyad_positions.hpp"
 
 namespace kinema {
 
-bool closed_form_position(const LinkageFrames& frames, double input, const std::vector<int>& signs,
+bool closed_form_position(const SolvingPlan& frames, double input, const std::vector<int>& signs,
                           Eigen::VectorXd& q, std::uint32_t& dyad) {
   std::vector<BodyPose> poses;
   const std::size_t placed = place_dyads(frames, input, poses, signs.empty() ? nullptr : &signs);
@@ -16,7 +16,7 @@ bool closed_form_position(const LinkageFrames& frames, double input, const std::
   }
   const Eigen::VectorXd near = q;
   unknowns_from_poses(frames, poses, q.data());
-  for (const LinkageFrames::Body& body : frames.bodies) {
+  for (const SolvingPlan::Body& body : frames.bodies) {
     if (body.unknown < 0) continue;
     double& angle = q[body.unknown];
     angle += 2 * M_PI * std::round((near[body.unknown] - angle) / (2 * M_PI));

@@ -22,7 +22,7 @@ Kinematics::Kinematics(const ConstraintSystem& system, const Derivation& d)
     column_scale_.push_back(q.dimension == Dimension::length ? length_scale_ : 1.0);
   }
   for (const Equation& equation : system.equations) equation_group_.push_back(equation.group);
-  if (system.linkage && system.linkage->frames.closed_form) closed_form_ = system.linkage->frames;
+  if (system.plan && system.plan->closed_form) closed_form_ = *system.plan;
 
   // Inputs in the order of TapeLayout.
   std::vector<ex> inputs;

@@ -9,7 +9,7 @@
 #include <optional>
 #include <vector>
 
-#include "engine/constraint_system.hpp"
+#include "engine/constraints/constraint_system.hpp"
 #include "engine/numeric/tape.hpp"
 #include "engine/numeric/tape_layout.hpp"
 #include "engine/symbolic/derivation.hpp"
@@ -42,8 +42,8 @@ class Kinematics {
   /// The equation group of each row of Phi (for "which loop stays open").
   std::size_t equation_group(std::size_t row) const { return equation_group_[row]; }
   /// A joints-and-links mechanism whose every link is in a dyad: its positions in
-  /// closed form (loops/dyad_positions), else nullptr (Newton alone).
-  const LinkageFrames* closed_form() const { return closed_form_ ? &*closed_form_ : nullptr; }
+  /// closed form (engine/numeric/dyad_positions), else nullptr (Newton alone).
+  const SolvingPlan* closed_form() const { return closed_form_ ? &*closed_form_ : nullptr; }
 
  private:
   TapeLayout layout_;
@@ -53,7 +53,7 @@ class Kinematics {
   std::vector<double> column_scale_;
   Eigen::VectorXd guess_;
   std::vector<std::size_t> equation_group_;
-  std::optional<LinkageFrames> closed_form_;
+  std::optional<SolvingPlan> closed_form_;
 };
 
 }  // namespace kinema

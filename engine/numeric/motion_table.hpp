@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "engine/numeric/failure.hpp"
-#include "engine/numeric/input_values.hpp"
+#include "engine/base/input_values.hpp"
 
 namespace kinema {
 

@@ -10,7 +10,7 @@
 #include "engine/numeric/closed_form.hpp"
 #include "engine/numeric/solver.hpp"
 #include "engine/numeric/workspace.hpp"
-#include "loops/dyad_positions.hpp"
+#include "engine/numeric/dyad_positions.hpp"
 
 namespace kinema {
 
@@ -41,7 +41,7 @@ struct RunCursor {
 // a jump — through a change point, where two assemblies meet (the parallelogram at 180
 // deg). Where the march cannot pass (a gap), the last ok row's signs; before any ok row,
 // the sketch's.
-void choose_signs(const Kinematics& kinematics, const LinkageFrames& frames, double input, double rate,
+void choose_signs(const Kinematics& kinematics, const SolvingPlan& frames, double input, double rate,
                   double second_rate, bool angle_input, RunCursor& at) {
   if (!at.have_last_ok) {
     at.signs.clear();
@@ -71,7 +71,7 @@ void choose_signs(const Kinematics& kinematics, const LinkageFrames& frames, dou
     if (place_dyads(frames, x, poses, &signs) < frames.dyads.size()) return;  // a gap: the last ok row's signs
     Eigen::VectorXd placed = predicted;
     unknowns_from_poses(frames, poses, placed.data());
-    for (const LinkageFrames::Body& body : frames.bodies)
+    for (const SolvingPlan::Body& body : frames.bodies)
       if (body.unknown >= 0)
         placed[body.unknown] += 2 * M_PI * std::round((predicted[body.unknown] - placed[body.unknown]) / (2 * M_PI));
     q.push_back(placed);
@@ -107,7 +107,7 @@ std::size_t solve_rows(const Kinematics& kinematics, Solvers& solvers, MotionTab
                        std::size_t stop, std::size_t limit, std::size_t history_begin, std::size_t offset,
                        RunCursor& at) {
   const double rate = table.input_rate(), second_rate = table.input_second_rate();
-  const LinkageFrames* closed_form = kinematics.closed_form();
+  const SolvingPlan* closed_form = kinematics.closed_form();
   const bool angle_input = closed_form != nullptr && closed_form->driver_slider < 0;
   MotionState state;
   Eigen::VectorXd trial, predicted(at.q.size());

@@ -8,7 +8,7 @@
 #include <memory>
 #include <vector>
 
-#include "engine/numeric/input_values.hpp"
+#include "engine/base/input_values.hpp"
 #include "engine/numeric/kinematics.hpp"
 #include "engine/numeric/motion_table.hpp"
 

@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "engine/base/number_format.hpp"
-#include "engine/symbolic/complex_parts.hpp"
-#include "engine/symbolic/expansion.hpp"
-#include "engine/symbolic/expression_parts.hpp"
+#include "engine/constraints/complex_parts.hpp"
+#include "engine/constraints/expansion.hpp"
+#include "engine/constraints/expression_parts.hpp"
 
 namespace kinema {
 

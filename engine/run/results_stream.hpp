@@ -10,7 +10,7 @@
 #include <string_view>
 
 #include "engine/model.hpp"
-#include "engine/numeric/input_values.hpp"
+#include "engine/base/input_values.hpp"
 #include "engine/printers/printer.hpp"
 
 namespace kinema {

@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "engine/base/errors.hpp"
-#include "engine/symbolic/differentiate.hpp"
-#include "engine/symbolic/expression_parts.hpp"
+#include "engine/constraints/differentiate.hpp"
+#include "engine/constraints/expression_parts.hpp"
 #include "engine/symbolic/trig_simplify.hpp"
 
 namespace kinema {
@@ -27,16 +27,6 @@ ex bounded_time_derivative(const ConstraintSystem& system, const GiNaC::exset& m
                            const std::string& what, const char* formula) {
   check_derivative_size(e, moving, what, formula);
   return time_derivative(system, e);
-}
-
-GiNaC::exset symbols_of(const ex& e) {
-  GiNaC::exset found;
-  const auto collect = [&found](const auto& self, const ex& x) -> void {
-    if (GiNaC::is_a<GiNaC::symbol>(x)) found.insert(x);
-    for (const ex& operand : x) self(self, operand);
-  };
-  collect(collect, e);
-  return found;
 }
 
 // The determinant by cofactors along the first row, left as it comes out.
@@ -212,27 +202,13 @@ std::vector<SlidingLinkTerms> sliding_links(const ConstraintSystem& system) {
 }  // namespace
 
 GiNaC::ex time_derivative(const ConstraintSystem& system, const GiNaC::ex& e) {
-  // Only the coordinates e contains are differentiated: a system of many loops has
-  // thousands of coordinates, and each of its formulas a handful.
-  const GiNaC::exset symbols = symbols_of(e);
-  GiNaC::exvector terms;
-  const auto add_chain_rule = [&](const GiNaC::symbol& s, const ex& rate) {
-    if (symbols.count(s) != 0) terms.push_back(partial(e, s) * rate);
-  };
-  add_chain_rule(system.input.symbol, system.input.rate);
-  add_chain_rule(system.input.rate, system.input.second_rate);
+  std::vector<SymbolMotion> motions{{system.input.symbol, system.input.rate}, {system.input.rate, system.input.second_rate}};
+  motions.reserve(2 * system.unknowns.size() + 2);
   for (const Coordinate& q : system.unknowns) {
-    add_chain_rule(q.symbol, q.rate);
-    add_chain_rule(q.rate, q.second_rate);
+    motions.push_back({q.symbol, q.rate});
+    motions.push_back({q.rate, q.second_rate});
   }
-  return GiNaC::add(terms);
-}
-
-void refuse_unknown_count(std::size_t count, const SourceLocation& first_past, const std::string& name) {
-  throw InputError(first_past.str() + ": unknown \"" + name + "\": the mechanism has " + std::to_string(count) +
-                   " unknowns, and kinema solves up to " + std::to_string(kMaxUnknowns) +
-                   " in one system (its solver is dense: the time per position grows as the cube of the count); "
-                   "split the file into mechanisms that do not share unknowns");
+  return time_derivative(e, motions);
 }
 
 Derivation derive(const ConstraintSystem& system, DerivationScope scope) {

@@ -11,7 +11,7 @@
 
 #include <vector>
 
-#include "engine/constraint_system.hpp"
+#include "engine/constraints/constraint_system.hpp"
 #include "engine/symbolic/solving_order.hpp"
 
 namespace kinema {
@@ -62,21 +62,6 @@ struct Derivation {
 
 /// d/dt by the chain rule through q, qd, theta, thetad.
 GiNaC::ex time_derivative(const ConstraintSystem& system, const GiNaC::ex& e);
-
-/// Most unknowns in one system: the numeric solver factorises the dense Jacobian at
-/// each position, so its time grows as the cube of the count (2,000 took minutes).
-constexpr std::size_t kMaxUnknowns = 256;
-
-/// Throws InputError at the first unknown past the limit (where, name).
-[[noreturn]] void refuse_unknown_count(std::size_t count, const SourceLocation& first_past, const std::string& name);
-
-/// Refuses more than kMaxUnknowns unknowns (each with .where and .name); a front end asks
-/// before its own work grows with the count.
-template <class Unknowns>
-void check_unknown_count(const Unknowns& unknowns) {
-  if (unknowns.size() > kMaxUnknowns)
-    refuse_unknown_count(unknowns.size(), unknowns[kMaxUnknowns].where, unknowns[kMaxUnknowns].name);
-}
 
 /// Builds the derivation of a system. Either scope checks the same: a block whose
 /// unknowns are not independent, more than kMaxUnknowns unknowns, and a formula whose

@@ -5,8 +5,8 @@
 
 #include "engine/base/work_count.hpp"
 #include "engine/base/errors.hpp"
-#include "engine/symbolic/differentiate.hpp"
-#include "engine/analysis/structure.hpp"
+#include "engine/constraints/differentiate.hpp"
+#include "engine/constraints/solving_plan.hpp"
 
 namespace kinema {
 
@@ -56,28 +56,27 @@ struct Words {
 class Writer {
  public:
   Writer(const ConstraintSystem& system, DerivationMethod method)
-      : system_(system), linkage_(*system.linkage), frames_(linkage_.frames), method_(method) {
+      : system_(system), plan_(*system.plan), method_(method) {
   }
 
   DyadDerivation run() {
     result_.method = method_;
     driver();
-    for (std::size_t k = 0; k < frames_.dyads.size(); ++k) dyad(k);
+    for (std::size_t k = 0; k < plan_.dyads.size(); ++k) dyad(k);
     return result_;
   }
 
  private:
   const ConstraintSystem& system_;
-  const Linkage& linkage_;
-  const LinkageFrames& frames_;
+  const SolvingPlan& plan_;
   DerivationMethod method_;
   DyadDerivation result_;
   std::map<std::pair<std::size_t, std::size_t>, bool> defined_;  // (joint, body): its velocity has symbols
 
   // ---- names and symbols ----------------------------------------------------------
 
-  const std::string& joint(std::size_t j) const { return linkage_.joints[j].name; }
-  std::string body(std::size_t b) const { return b == 0 ? "ground" : linkage_.links[b - 1].name; }
+  const std::string& joint(std::size_t j) const { return plan_.joints[j].name; }
+  std::string body(std::size_t b) const { return b == 0 ? "ground" : plan_.links[b - 1].name; }
 
   ex symbol(const std::string& name, const std::string& latex) {
     auto found = result_.symbols.find(name);
@@ -92,22 +91,22 @@ class Writer {
   }
 
   bool is_slider_joint(std::size_t j) const {
-    for (const auto& s : frames_.sliders)
+    for (const auto& s : plan_.sliders)
       if (s.joint == j) return true;
     return false;
   }
-  const LinkageFrames::Slider* slider_of(std::size_t j) const {
-    for (const auto& s : frames_.sliders)
+  const SolvingPlan::Slider* slider_of(std::size_t j) const {
+    for (const auto& s : plan_.sliders)
       if (s.joint == j) return &s;
     return nullptr;
   }
   // A slider joint's point on its guide is named after the guide: B_3 (seed 002's B3).
   std::string point_name(std::size_t j, std::size_t b) const {
-    const LinkageFrames::Slider* s = slider_of(j);
+    const SolvingPlan::Slider* s = slider_of(j);
     return s != nullptr && s->guide == b ? joint(j) + "_" + body(b) : joint(j);
   }
   std::string point_latex(std::size_t j, std::size_t b) const {
-    const LinkageFrames::Slider* s = slider_of(j);
+    const SolvingPlan::Slider* s = slider_of(j);
     return s != nullptr && s->guide == b ? joint(j) + "_{" + body(b) + "}" : joint(j);
   }
   Vec velocity_symbols(std::size_t j, std::size_t b) {
@@ -125,24 +124,24 @@ class Writer {
   // ---- bodies: angle and rates ---------------------------------------------------
 
   ex angle(std::size_t b) const {
-    const LinkageFrames::Body& f = frames_.bodies[b];
+    const SolvingPlan::Body& f = plan_.bodies[b];
     if (f.unknown >= 0) return system_.unknowns[std::size_t(f.unknown)].symbol;
     if (f.guide >= 0) return angle(std::size_t(f.guide)) + exact_angle(f.offset);
-    if (b != 0 && b == frames_.driver_body && frames_.driver_slider < 0) return system_.input.symbol;
+    if (b != 0 && b == plan_.driver_body && plan_.driver_slider < 0) return system_.input.symbol;
     return 0;
   }
   ex omega(std::size_t b) const {
-    const LinkageFrames::Body& f = frames_.bodies[b];
+    const SolvingPlan::Body& f = plan_.bodies[b];
     if (f.unknown >= 0) return system_.unknowns[std::size_t(f.unknown)].rate;
     if (f.guide >= 0) return omega(std::size_t(f.guide));
-    if (b != 0 && b == frames_.driver_body && frames_.driver_slider < 0) return system_.input.rate;
+    if (b != 0 && b == plan_.driver_body && plan_.driver_slider < 0) return system_.input.rate;
     return 0;
   }
   ex alpha(std::size_t b) const {
-    const LinkageFrames::Body& f = frames_.bodies[b];
+    const SolvingPlan::Body& f = plan_.bodies[b];
     if (f.unknown >= 0) return system_.unknowns[std::size_t(f.unknown)].second_rate;
     if (f.guide >= 0) return alpha(std::size_t(f.guide));
-    if (b != 0 && b == frames_.driver_body && frames_.driver_slider < 0) return system_.input.second_rate;
+    if (b != 0 && b == plan_.driver_body && plan_.driver_slider < 0) return system_.input.second_rate;
     return 0;
   }
   // Multiples of 15 deg exactly (cos(theta + Pi/2) prints as -sin(theta)).
@@ -151,14 +150,14 @@ class Writer {
     if (std::fabs(twelfths - std::round(twelfths)) < 1e-9) return GiNaC::Pi * GiNaC::numeric(long(std::lround(twelfths)), 12);
     return radians;
   }
-  Vec direction(const LinkageFrames::Slider& s) const {
+  Vec direction(const SolvingPlan::Slider& s) const {
     const ex a = angle(s.guide) + exact_angle(s.direction);
     return {GiNaC::cos(a), GiNaC::sin(a)};
   }
-  ex slide_rate(const LinkageFrames::Slider& s) const {
+  ex slide_rate(const SolvingPlan::Slider& s) const {
     return s.unknown >= 0 ? ex(system_.unknowns[std::size_t(s.unknown)].rate) : ex(system_.input.rate);
   }
-  ex slide_second_rate(const LinkageFrames::Slider& s) const {
+  ex slide_second_rate(const SolvingPlan::Slider& s) const {
     return s.unknown >= 0 ? ex(system_.unknowns[std::size_t(s.unknown)].second_rate) : ex(system_.input.second_rate);
   }
   std::string name_of(const ex& e) const { return GiNaC::ex_to<GiNaC::symbol>(e).get_name(); }
@@ -171,7 +170,7 @@ class Writer {
   // ---- known velocities ------------------------------------------------------------
 
   bool on_body(std::size_t j, std::size_t b) const {
-    for (const auto& [joint_index, at] : frames_.bodies[b].points)
+    for (const auto& [joint_index, at] : plan_.bodies[b].points)
       if (joint_index == j) return true;
     return false;
   }
@@ -191,11 +190,11 @@ class Writer {
   // slider's point on its guide only passes a point of the guide, so it never counts.
   bool coincide(std::size_t a, std::size_t b_joint, std::size_t b) const {
     if (a == b_joint) return true;
-    for (const LinkageFrames::Slider& s : frames_.sliders)
+    for (const SolvingPlan::Slider& s : plan_.sliders)
       if (s.guide == b && (s.joint == a || s.joint == b_joint)) return false;
     const std::complex<double>* pa = nullptr;
     const std::complex<double>* pb = nullptr;
-    for (const auto& [joint_index, at] : frames_.bodies[b].points) {
+    for (const auto& [joint_index, at] : plan_.bodies[b].points) {
       if (joint_index == a) pa = &at;
       if (joint_index == b_joint) pb = &at;
     }
@@ -255,8 +254,8 @@ class Writer {
   void define_rest(MethodStep& step, std::size_t b, std::size_t from) {
     // Its joints, and the points of sliders it guides without listing them.
     std::vector<std::size_t> joints;
-    for (const auto& [j, at] : frames_.bodies[b].points) joints.push_back(j);
-    for (const LinkageFrames::Slider& s : frames_.sliders)
+    for (const auto& [j, at] : plan_.bodies[b].points) joints.push_back(j);
+    for (const SolvingPlan::Slider& s : plan_.sliders)
       if (s.guide == b && !on_body(s.joint, b)) joints.push_back(s.joint);
     const bool from_rest = at_rest(from);
     for (std::size_t j : joints) {
@@ -281,12 +280,12 @@ class Writer {
 
   void driver() {
     MethodStep step;
-    step.heading = structure_lines(linkage_).front();
-    const std::size_t b = frames_.driver_body;
+    step.heading = structure_lines(plan_).front();
+    const std::size_t b = plan_.driver_body;
     std::size_t from = 0;
-    if (frames_.driver_slider >= 0) {
+    if (plan_.driver_slider >= 0) {
       // The block slides on a fixed guide: v_S = sdot u, a_S = sddot u.
-      const LinkageFrames::Slider& s = frames_.sliders[std::size_t(frames_.driver_slider)];
+      const SolvingPlan::Slider& s = plan_.sliders[std::size_t(plan_.driver_slider)];
       from = s.joint;
       const Vec u = direction(s);
       for (bool second : {false, true}) {
@@ -301,7 +300,7 @@ class Writer {
       }
       defined_[key(s.joint, s.block)] = true;
     } else {
-      for (const LinkageFrames::Pin& pin : frames_.pins)
+      for (const SolvingPlan::Pin& pin : plan_.pins)
         if ((pin.a == 0 && pin.b == b) || (pin.b == 0 && pin.a == b)) from = pin.joint;
       defined_[key(from, b)] = true;  // the fixed pivot: at rest
     }
@@ -321,14 +320,14 @@ class Writer {
   Vec side_motion(const Side& side, std::size_t j, bool second, Words& w) {
     const std::size_t L = side.link;
     if (side.edge >= 0) {
-      const LinkageFrames::Pin& pin = frames_.pins[std::size_t(side.edge)];
+      const SolvingPlan::Pin& pin = plan_.pins[std::size_t(side.edge)];
       const std::size_t known = pin.a == L ? pin.b : pin.a;
       words_transfer(w, pin.joint, known == 0 ? 0 : known, omega(L), j, second, alpha(L), true, L);
       const Vec r = arm(pin.joint, j, L);
       const Vec start = at_rest(pin.joint) ? Vec{} : (second ? acceleration(pin.joint, known) : velocity(pin.joint, known));
       return second ? start + cross(alpha(L), r) - GiNaC::pow(omega(L), 2) * r : start + cross(omega(L), r);
     }
-    const LinkageFrames::Slider& s = frames_.sliders[std::size_t(-1 - side.edge)];
+    const SolvingPlan::Slider& s = plan_.sliders[std::size_t(-1 - side.edge)];
     const bool block = s.block == L;
     const std::size_t known = block ? s.guide : s.block;
     const Vec u = direction(s);
@@ -373,15 +372,15 @@ class Writer {
   }
 
   void dyad(std::size_t k) {
-    const LinkageFrames::Dyad& d = frames_.dyads[k];
+    const SolvingPlan::Dyad& d = plan_.dyads[k];
     MethodStep step;
-    step.heading = describe_dyad(linkage_, k);
-    const std::size_t j = d.inner >= 0 ? frames_.pins[std::size_t(d.inner)].joint
-                                       : frames_.sliders[std::size_t(-1 - d.inner)].joint;
+    step.heading = describe_dyad(plan_, k);
+    const std::size_t j = d.inner >= 0 ? plan_.pins[std::size_t(d.inner)].joint
+                                       : plan_.sliders[std::size_t(-1 - d.inner)].joint;
     const Side first{d.first, d.outer_first}, second_side{d.second, d.outer_second};
     bool coordinates = method_ == DerivationMethod::joint_coordinates && d.inner >= 0;
     for (const Side& side : {first, second_side}) {
-      if (side.edge < 0 && frames_.sliders[std::size_t(-1 - side.edge)].block != side.link) coordinates = false;
+      if (side.edge < 0 && plan_.sliders[std::size_t(-1 - side.edge)].block != side.link) coordinates = false;
     }
     if (method_ == DerivationMethod::joint_coordinates && !coordinates) {
       step.note = "joint coordinates need the middle joint on two circles or guide lines; this dyad's " +
@@ -391,7 +390,7 @@ class Writer {
     // Unknown rates of the dyad: its links' own angles, its sliders' coordinates.
     std::vector<ex> rates, second_rates;
     for (std::size_t b : {d.first, d.second}) {
-      const int u = frames_.bodies[b].unknown;
+      const int u = plan_.bodies[b].unknown;
       if (u >= 0) {
         rates.push_back(system_.unknowns[std::size_t(u)].rate);
         second_rates.push_back(system_.unknowns[std::size_t(u)].second_rate);
@@ -399,7 +398,7 @@ class Writer {
     }
     for (int edge : {d.outer_first, d.inner, d.outer_second}) {
       if (edge >= 0) continue;
-      const LinkageFrames::Slider& s = frames_.sliders[std::size_t(-1 - edge)];
+      const SolvingPlan::Slider& s = plan_.sliders[std::size_t(-1 - edge)];
       if (s.unknown < 0) continue;
       rates.push_back(system_.unknowns[std::size_t(s.unknown)].rate);
       second_rates.push_back(system_.unknowns[std::size_t(s.unknown)].second_rate);
@@ -415,13 +414,13 @@ class Writer {
       define_rest(step, d.first, j);
       define_rest(step, d.second, j);
     } else {
-      for (const Side& side : {first, second_side}) define_rest(step, side.link, frames_.pins[std::size_t(side.edge)].joint);
+      for (const Side& side : {first, second_side}) define_rest(step, side.link, plan_.pins[std::size_t(side.edge)].joint);
     }
     result_.steps.push_back(step);
   }
 
   // v_J from one side = v_J from the other (+ the slide of a middle slider), in components, solved.
-  void relative(MethodStep& step, const LinkageFrames::Dyad& d, std::size_t j, const Side& first, const Side& second_side,
+  void relative(MethodStep& step, const SolvingPlan::Dyad& d, std::size_t j, const Side& first, const Side& second_side,
                 const std::vector<ex>& unknowns, bool second) {
     auto& list = second ? step.acceleration : step.velocity;
     Words left, right;
@@ -430,7 +429,7 @@ class Writer {
     Vec a = side_motion(first, j, second, left);
     Vec b = side_motion(second_side, j, second, right);
     if (d.inner < 0) {  // J on the block = J on the guide + the slide
-      const LinkageFrames::Slider& s = frames_.sliders[std::size_t(-1 - d.inner)];
+      const SolvingPlan::Slider& s = plan_.sliders[std::size_t(-1 - d.inner)];
       const Vec u = direction(s);
       const ex rate = slide_rate(s), second_rate = slide_second_rate(s);
       const Vec slide = second ? second_rate * u + 2 * cross(omega(s.guide), rate * u) : rate * u;
@@ -487,7 +486,7 @@ class Writer {
 
   // Seed 002's form: J on a circle about each pin (a link's length) or on a line of a
   // guide (at a fixed distance), differentiated in time; then each link's rates.
-  void joint_coordinates(MethodStep& step, const LinkageFrames::Dyad& d, std::size_t j, const Side& first,
+  void joint_coordinates(MethodStep& step, const SolvingPlan::Dyad& d, std::size_t j, const Side& first,
                          const Side& second_side) {
     // Time derivatives of the symbols a side's relation uses: d/dt x_O = v_Ox, d/dt theta = omega.
     GiNaC::exmap once, twice;
@@ -507,9 +506,9 @@ class Writer {
       Words w;
       ex c;
       if (side.edge >= 0) {
-        const std::size_t o = frames_.pins[std::size_t(side.edge)].joint;
-        const std::size_t known = frames_.pins[std::size_t(side.edge)].a == side.link ? frames_.pins[std::size_t(side.edge)].b
-                                                                                     : frames_.pins[std::size_t(side.edge)].a;
+        const std::size_t o = plan_.pins[std::size_t(side.edge)].joint;
+        const std::size_t known = plan_.pins[std::size_t(side.edge)].a == side.link ? plan_.pins[std::size_t(side.edge)].b
+                                                                                     : plan_.pins[std::size_t(side.edge)].a;
         const Vec r = r_j - position(o);
         c = (GiNaC::pow(r.x, 2) + GiNaC::pow(r.y, 2) - GiNaC::pow(length(o, j), 2)) / 2;
         const Vec ro = position(o);
@@ -527,7 +526,7 @@ class Writer {
                                      "})^{2} = L_{" + joint(o) + joint(j) + "}^{2}",
                                  0, 0});
       } else {
-        const LinkageFrames::Slider& s = frames_.sliders[std::size_t(-1 - side.edge)];
+        const SolvingPlan::Slider& s = plan_.sliders[std::size_t(-1 - side.edge)];
         const Vec u = direction(s), r = r_j - position(s.joint);
         // J on the block's own slide point: on the line itself (h = 0), and where the
         // derivatives leave r_S - r_J it is zero (S is J's position on the guide).
@@ -575,21 +574,21 @@ class Writer {
     // guide's about a slider; a slider's rate along its line.
     for (const Side& side : {first, second_side}) {
       if (side.edge >= 0) {
-        const std::size_t o = frames_.pins[std::size_t(side.edge)].joint;
-        const std::size_t known = frames_.pins[std::size_t(side.edge)].a == side.link ? frames_.pins[std::size_t(side.edge)].b
-                                                                                     : frames_.pins[std::size_t(side.edge)].a;
+        const std::size_t o = plan_.pins[std::size_t(side.edge)].joint;
+        const std::size_t known = plan_.pins[std::size_t(side.edge)].a == side.link ? plan_.pins[std::size_t(side.edge)].b
+                                                                                     : plan_.pins[std::size_t(side.edge)].a;
         const bool from_rest = known == 0 || at_rest(o);
         const Vec r = r_j - position(o);
         const Vec rel_v = v_j - (from_rest ? Vec{} : velocity(o, known)), rel_a = a_j - (from_rest ? Vec{} : acceleration(o, known));
         const ex l2 = GiNaC::pow(length(o, j), 2);
-        const int u = frames_.bodies[side.link].unknown;
+        const int u = plan_.bodies[side.link].unknown;
         if (u < 0) continue;
         step.velocity.push_back({MethodRelation::Kind::solution, "", "", system_.unknowns[std::size_t(u)].rate,
                                  (r.x * rel_v.y - r.y * rel_v.x) / l2});
         step.acceleration.push_back({MethodRelation::Kind::solution, "", "", system_.unknowns[std::size_t(u)].second_rate,
                                      (r.x * rel_a.y - r.y * rel_a.x) / l2});
       } else {
-        const LinkageFrames::Slider& s = frames_.sliders[std::size_t(-1 - side.edge)];
+        const SolvingPlan::Slider& s = plan_.sliders[std::size_t(-1 - side.edge)];
         if (s.unknown < 0) continue;
         const Vec u = direction(s), r = arm(s.joint, j, side.link);
         const ex w = omega(side.link), al = alpha(side.link);
@@ -620,10 +619,10 @@ class Writer {
   }
 };
 
-bool solved_dyad_by_dyad(const ConstraintSystem& system) { return system.linkage && system.linkage->frames.closed_form; }
+bool solved_dyad_by_dyad(const ConstraintSystem& system) { return system.plan && system.plan->closed_form; }
 
 [[noreturn]] void refuse_method(const ConstraintSystem& system, DerivationMethod method) {
-  const char* what = system.linkage          ? " (this one has links solved together by Newton)"
+  const char* what = system.plan          ? " (this one has links solved together by Newton)"
                      : !system.frames.empty() ? " (this file is a spatial chain of frames)"
                                               : " (this file is vector loops)";
   throw InputError(system.source_file + ": --method " + method_name(method) +

@@ -20,7 +20,7 @@
 #include <string_view>
 #include <vector>
 
-#include "engine/constraint_system.hpp"
+#include "engine/constraints/constraint_system.hpp"
 #include "engine/symbolic/dyad_derivation_types.hpp"
 
 namespace kinema {

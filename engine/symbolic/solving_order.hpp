@@ -6,7 +6,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "engine/constraint_system.hpp"
+#include "engine/constraints/constraint_system.hpp"
 
 namespace kinema {
 

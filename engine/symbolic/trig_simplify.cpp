@@ -1,6 +1,6 @@
 #include "engine/symbolic/trig_simplify.hpp"
 
-#include "engine/symbolic/expression_parts.hpp"
+#include "engine/constraints/expression_parts.hpp"
 
 #include <map>
 #include <vector>

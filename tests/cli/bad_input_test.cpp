@@ -5,7 +5,7 @@
 #include <filesystem>
 
 #include "engine/numeric/circuit.hpp"
-#include "loops/mechanism_file.hpp"
+#include "readers/mechanism_file.hpp"
 
 #include "tests/test_support.hpp"
 

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "loops/mechanism_file.hpp"
+#include "readers/mechanism_file.hpp"
 
 #include "tests/test_support.hpp"
 

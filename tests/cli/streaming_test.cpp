@@ -13,7 +13,7 @@
 #include "engine/run/view.hpp"
 #include "engine/model.hpp"
 #include "engine/printers/printer.hpp"
-#include "loops/mechanism_file.hpp"
+#include "readers/mechanism_file.hpp"
 
 #include "tests/test_support.hpp"
 

@@ -10,11 +10,11 @@
 #include <stdexcept>
 #include <string>
 
-#include "engine/constraint_system.hpp"
+#include "engine/constraints/constraint_system.hpp"
 #include "engine/model.hpp"
-#include "engine/symbolic/expression_parts.hpp"
+#include "engine/constraints/expression_parts.hpp"
 #include "engine/symbolic/trig_simplify.hpp"
-#include "loops/mechanism_file.hpp"
+#include "readers/mechanism_file.hpp"
 #include "loops/planar_loops.hpp"
 
 namespace kinema_unit {

@@ -22,8 +22,9 @@
 #include "engine/run/results_stream.hpp"
 #include "engine/analysis/chain_instant.hpp"
 #include "engine/analysis/plot_range.hpp"
-#include "loops/mechanism_file.hpp"
-#include "loops/spatial_chain.hpp"
+#include "readers/mechanism_file.hpp"
+#include "chains/spatial_chain.hpp"
+#include "engine/run/results_stream.hpp"
 
 namespace {
 

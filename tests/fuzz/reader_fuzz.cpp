@@ -1,5 +1,5 @@
 // libFuzzer target: the mechanism-file reader (TOML parse and every check in
-// loops/mechanism_file.cpp). A file may be refused (kinema::InputError); any other
+// readers/mechanism_file.cpp). A file may be refused (kinema::InputError); any other
 // exception would reach the user as an "internal error", so it stops the fuzzer.
 #include <cstddef>
 #include <cstdint>
@@ -8,7 +8,7 @@
 #include <string>
 
 #include "engine/base/errors.hpp"
-#include "loops/mechanism_file.hpp"
+#include "readers/mechanism_file.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size > kinema::kMaxMechanismFileBytes) return -1;  // read_mechanism_file refuses these unread

@@ -110,14 +110,14 @@ class JsonPrinter : public ResultsPrinter {
     const auto blocks = block_links(system);  // joints and links: once, not per row
     std::vector<std::string> guide_keys, turning_keys;
     for (const GuidePoint& g : guide_points(system)) {
-      const LinkageFrames::Slider& slider = system.linkage->frames.sliders[g.slider];
-      guide_keys.push_back(quoted(g.name) + ": {\"slider\": " + quoted(system.linkage->joints[slider.joint].name) +
-                           ", \"link\": " + quoted(system.linkage->links[slider.guide - 1].name) + ", \"velocity\": ");
+      const SolvingPlan::Slider& slider = system.plan->sliders[g.slider];
+      guide_keys.push_back(quoted(g.name) + ": {\"slider\": " + quoted(system.plan->joints[slider.joint].name) +
+                           ", \"link\": " + quoted(system.plan->links[slider.guide - 1].name) + ", \"velocity\": ");
     }
     for (const RelativeTurning& r : relative_turnings(system)) {
-      turning_keys.push_back(quoted(r.rate_name) + ": {\"links\": [" + quoted(system.linkage->links[r.block - 1].name) +
-                             ", " + quoted(system.linkage->links[r.other - 1].name) + "], \"joint\": " +
-                             quoted(system.linkage->joints[r.joint].name) + ", \"second_rate_name\": " +
+      turning_keys.push_back(quoted(r.rate_name) + ": {\"links\": [" + quoted(system.plan->links[r.block - 1].name) +
+                             ", " + quoted(system.plan->links[r.other - 1].name) + "], \"joint\": " +
+                             quoted(system.plan->joints[r.joint].name) + ", \"second_rate_name\": " +
                              quoted(r.second_rate_name) + ", \"rate\": ");
     }
     std::vector<std::string> branch_keys;
@@ -205,19 +205,19 @@ class JsonPrinter : public ResultsPrinter {
         }
         out += '}';
       }
-      if (system.linkage && status == Status::ok) {  // joints and links: blocks, then sliders
+      if (system.plan && status == Status::ok) {  // joints and links: blocks, then sliders
         out += ", \"blocks\": {";
         for (std::size_t k = 0; k < blocks.size(); ++k, v += 3) {
-          out += (k > 0 ? ", " : "") + quoted(system.linkage->links[blocks[k].first - 1].name) + ": {\"angle\": ";
+          out += (k > 0 ? ", " : "") + quoted(system.plan->links[blocks[k].first - 1].name) + ": {\"angle\": ";
           number(v[0]);
           member(", \"rate\": ", v[1]);
           member(", \"second_rate\": ", v[2]);
           out += '}';
         }
         out += "}, \"sliders\": {";
-        const auto& sliders = system.linkage->frames.sliders;
+        const auto& sliders = system.plan->sliders;
         for (std::size_t k = 0; k < sliders.size(); ++k, v += 6) {
-          out += (k > 0 ? ", " : "") + quoted(system.linkage->joints[sliders[k].joint].name) + ": ";
+          out += (k > 0 ? ", " : "") + quoted(system.plan->joints[sliders[k].joint].name) + ": ";
           member_vector("{\"relative_velocity\": ", v, 2);
           member_vector(", \"relative_acceleration\": ", v + 2, 2);
           member_vector(", \"coriolis\": ", v + 4, 2);

@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "engine/constraint_system.hpp"
+#include "engine/constraints/constraint_system.hpp"
 #include "engine/printers/latex/latex_format.hpp"
 #include "engine/analysis/chain_instant.hpp"
 

@@ -7,7 +7,7 @@
 #include "engine/printers/latex/latex_format.hpp"
 #include "engine/printers/latex/method_latex.hpp"
 #include "engine/printers/printer.hpp"
-#include "engine/analysis/structure.hpp"
+#include "engine/constraints/solving_plan.hpp"
 
 namespace kinema {
 namespace {
@@ -130,12 +130,12 @@ class DerivationLatexPrinter : public Printer {
       if (rows.empty()) return;
       out << "\\begin{align*}\n" << latex_align_rows(latex_fit_rows(rows, kPlainArticleBudget)) << "\\end{align*}\n";
     };
-    if (system.linkage) {  // joints and links: the solving order the loops come from
+    if (system.plan) {  // joints and links: the solving order the loops come from
       // Gruebler's count typeset (mobility_text writes it for a terminal: "3*5 - 2*7").
-      const int n = system.linkage->body_count, j = system.linkage->joint_count;
+      const int n = system.plan->body_count, j = system.plan->joint_count;
       out << "% structure\n\\noindent structure: mobility $3(n - 1) - 2j = 3\\cdot " << n - 1 << " - 2\\cdot " << j
           << " = " << 3 * (n - 1) - 2 * j << "$ ($n = " << n << "$ bodies with ground, $j = " << j << "$ joints)";
-      for (const std::string& line : structure_lines(*system.linkage)) out << "\\\\\n" << latex_escape_text(line);
+      for (const std::string& line : structure_lines(*system.plan)) out << "\\\\\n" << latex_escape_text(line);
       out << "\\par\n";
     }
     if (job.method != DerivationMethod::loops) {  // the seeds' methods, group by group

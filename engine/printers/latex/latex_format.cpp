@@ -10,7 +10,7 @@
 #include "engine/base/number_format.hpp"
 #include "engine/analysis/output_scale.hpp"
 #include "engine/base/user_text.hpp"
-#include "engine/symbolic/expression_parts.hpp"
+#include "engine/constraints/expression_parts.hpp"
 
 namespace kinema {
 

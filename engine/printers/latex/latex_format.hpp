@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/constraint_system.hpp"
+#include "engine/constraints/constraint_system.hpp"
 #include "engine/printers/textbook_form.hpp"
 
 namespace kinema {

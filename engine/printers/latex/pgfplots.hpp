@@ -5,7 +5,7 @@
 
 #include <ostream>
 
-#include "engine/constraint_system.hpp"
+#include "engine/constraints/constraint_system.hpp"
 #include "engine/numeric/motion_table.hpp"
 
 namespace kinema {

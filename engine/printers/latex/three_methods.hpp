@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/constraint_system.hpp"
+#include "engine/constraints/constraint_system.hpp"
 #include "engine/numeric/motion_table.hpp"
 #include "engine/analysis/instant_centres.hpp"
 #include "engine/analysis/polygons.hpp"

@@ -6,7 +6,7 @@
 
 #include <ostream>
 
-#include "engine/constraint_system.hpp"
+#include "engine/constraints/constraint_system.hpp"
 #include "engine/analysis/geometry.hpp"
 #include "engine/numeric/motion_table.hpp"
 

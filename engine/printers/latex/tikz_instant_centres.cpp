@@ -162,7 +162,7 @@ void write_tikz_instant_centres(std::ostream& out, const ConstraintSystem& syste
       << latex_figure_caption("Instant centres. Drawing scale: 1\\,cm = $" + latex_number(1.0 / cm / scale.length, 3) +
                               "\\,\\mathrm{" + scale.length_unit + "}$.")
       << kLatexFigureEnd;
-  if (system.linkage) {
+  if (system.plan) {
     out << "Instant centres: the primary ones at the pins and, for a slider, at infinity across its line; every "
            "other by the Aronhold--Kennedy theorem, where two lines of centres it shares a body with cross (dashed).";
   } else {
@@ -200,7 +200,7 @@ void write_tikz_instant_centres(std::ostream& out, const ConstraintSystem& syste
       }
       std::string how = centre.found_by;
       // Pins and sliders name their joint; the others the two lines of centres they are on.
-      if (!centre.kennedy.empty() && system.linkage) how = "Kennedy: lines " + how;
+      if (!centre.kennedy.empty() && system.plan) how = "Kennedy: lines " + how;
       out << " & " << latex_escape_text(how) << " \\\\\n";
     }
   }

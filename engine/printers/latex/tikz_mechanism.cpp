@@ -10,7 +10,7 @@
 #include "engine/analysis/geometry.hpp"
 #include "engine/base/number_format.hpp"
 #include "engine/analysis/output_scale.hpp"
-#include "engine/symbolic/naming.hpp"
+#include "engine/base/naming.hpp"
 
 namespace kinema {
 
@@ -150,7 +150,7 @@ void write_tikz_mechanism(std::ostream& out, const ConstraintSystem& system, con
   if (drawing) {
     write_links(out, *drawing, xy, {(min_x + max_x) / 2, (min_y + max_y) / 2}, size, cm);
     // Link numbers beside each link (its first two joints), as the file names them.
-    for (std::size_t k = 0; k < drawing->links.size() && system.linkage; ++k) {
+    for (std::size_t k = 0; k < drawing->links.size() && system.plan; ++k) {
       const auto& joints = drawing->links[k].joints;
       if (drawing->links[k].block && !joints.empty()) {  // a block: on the side of its guide away from the hatching
         out << "\\node[circle, draw, inner sep=1pt, font=\\scriptsize] at "

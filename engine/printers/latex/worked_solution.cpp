@@ -23,8 +23,9 @@
 #include "engine/analysis/diagnostics.hpp"
 #include "engine/base/number_format.hpp"
 #include "engine/analysis/output_scale.hpp"
-#include "engine/symbolic/expression_parts.hpp"
-#include "engine/symbolic/naming.hpp"
+#include "engine/constraints/expression_parts.hpp"
+#include "engine/base/naming.hpp"
+#include "engine/analysis/polygons.hpp"
 
 namespace kinema {
 namespace {
@@ -278,7 +279,7 @@ class DocumentWriter {
       return;
     }
     if (s.status == Status::ok && !system_.points.empty()) point_table(s);
-    if (s.status == Status::ok && system_.linkage) linkage_table(s);
+    if (s.status == Status::ok && system_.plan) linkage_table(s);
     if (s.status == Status::ok) substitution(s);
     write_tikz_mechanism(out_, system_, at, analysis_.link_labels, s);
     const auto& polygons = at.polygons;
@@ -539,22 +540,22 @@ class DocumentWriter {
       out_ << "\\medskip\n\\begin{tabular}{lrrr}\n\\toprule\nslider block & angle & $\\omega$ & $\\alpha$ \\\\\n"
               " & $^{\\circ}$ & $\\mathrm{rad/s}$ & $\\mathrm{rad/s^2}$ \\\\\n\\midrule\n";
       for (const auto& block : blocks) {
-        out_ << latex_escape_text(system_.linkage->links[block.first - 1].name) << " & $"
+        out_ << latex_escape_text(system_.plan->links[block.first - 1].name) << " & $"
              << numbers_(v[0], Dimension::angle, 0, 5) << "$ & $" << numbers_(v[1], Dimension::angle, 1, 5) << "$ & $"
              << numbers_(v[2], Dimension::angle, 2, 5) << "$ \\\\\n";
         v += 3;
       }
       out_ << "\\bottomrule\n\\end{tabular}\n\n";
     }
-    if (system_.linkage->frames.sliders.empty()) return;  // no slider: no table of empty rows
+    if (system_.plan->sliders.empty()) return;  // no slider: no table of empty rows
     const auto pair = [&](const double* c, int order) {
       return "$(" + numbers_(c[0], Dimension::length, order, 5) + ",\\ " + numbers_(c[1], Dimension::length, order, 5) + ")$";
     };
     out_ << "\\medskip\n\\begin{tabular}{lccc}\n\\toprule\nslider & relative velocity $\\mathbf{v}^r$ & relative "
             "acceleration $\\mathbf{a}^r$ & Coriolis $2\\boldsymbol{\\omega}\\times\\mathbf{v}^r$ \\\\\n & $\\mathrm{"
          << l << "/s}$ & $\\mathrm{" << l << "/s^2}$ & $\\mathrm{" << l << "/s^2}$ \\\\\n\\midrule\n";
-    for (const LinkageFrames::Slider& slider : system_.linkage->frames.sliders) {
-      out_ << latex_escape_text(system_.linkage->joints[slider.joint].name) << " & " << pair(v, 1) << " & " << pair(v + 2, 2)
+    for (const SolvingPlan::Slider& slider : system_.plan->sliders) {
+      out_ << latex_escape_text(system_.plan->joints[slider.joint].name) << " & " << pair(v, 1) << " & " << pair(v + 2, 2)
            << " & " << pair(v + 4, 2) << " \\\\\n";
       v += 6;
     }
@@ -567,9 +568,9 @@ class DocumentWriter {
               "$\\mathbf{a}$ \\\\\n & & $\\mathrm{"
            << l << "/s}$ & $\\mathrm{" << l << "/s^2}$ \\\\\n\\midrule\n";
       for (const GuidePoint& g : guides) {
-        const LinkageFrames::Slider& slider = system_.linkage->frames.sliders[g.slider];
+        const SolvingPlan::Slider& slider = system_.plan->sliders[g.slider];
         // B on link 3 is B_3, as the seed writes it (braced: the point's name may carry a subscript).
-        const std::string& link = system_.linkage->links[slider.guide - 1].name;
+        const std::string& link = system_.plan->links[slider.guide - 1].name;
         out_ << "${" << latex_symbol_name(system_.points[g.point].name) << "}_{\\mathrm{" << latex_escape_text(link)
              << "}}$ & " << latex_escape_text(link)
              << " & " << pair(v, 1) << " & " << pair(v + 2, 2) << " \\\\\n";
@@ -582,9 +583,9 @@ class DocumentWriter {
       out_ << "\\medskip\n\\begin{tabular}{llrr}\n\\toprule\nlinks & at & relative $\\omega$ & relative $\\alpha$ "
               "\\\\\n & & $\\mathrm{rad/s}$ & $\\mathrm{rad/s^2}$ \\\\\n\\midrule\n";
       for (const RelativeTurning& r : turnings) {
-        out_ << latex_escape_text(system_.linkage->links[r.block - 1].name) << ", "
-             << latex_escape_text(system_.linkage->links[r.other - 1].name) << " & "
-             << latex_escape_text(system_.linkage->joints[r.joint].name) << " & $" << latex_symbol_name(r.rate_name)
+        out_ << latex_escape_text(system_.plan->links[r.block - 1].name) << ", "
+             << latex_escape_text(system_.plan->links[r.other - 1].name) << " & "
+             << latex_escape_text(system_.plan->joints[r.joint].name) << " & $" << latex_symbol_name(r.rate_name)
              << " = " << numbers_(v[0], Dimension::angle, 1, 5) << "$ & $" << latex_symbol_name(r.second_rate_name)
              << " = " << numbers_(v[1], Dimension::angle, 2, 5) << "$ \\\\\n";
         v += 2;

@@ -4,7 +4,7 @@
 #include "engine/analysis/chain_instant.hpp"
 #include "engine/base/number_format.hpp"
 #include "engine/analysis/output_scale.hpp"
-#include "engine/analysis/structure.hpp"
+#include "engine/constraints/solving_plan.hpp"
 
 #include <cmath>
 
@@ -22,8 +22,8 @@ std::string joined(const std::vector<std::string>& items) {
 // The solving order of a joints-and-links file: mobility, driver, dyads, the loops found.
 void print_structure(std::ostream& out, const ConstraintSystem& system) {
   out << "\n0. Structure (joints and links)\n";
-  out << "  mobility (Gruebler): " << mobility_text(*system.linkage) << "\n";
-  for (const std::string& line : structure_lines(*system.linkage)) out << "  " << line << "\n";
+  out << "  mobility (Gruebler): " << mobility_text(*system.plan) << "\n";
+  for (const std::string& line : structure_lines(*system.plan)) out << "  " << line << "\n";
   std::vector<std::string> loops;
   for (const EquationGroup& group : system.groups) loops.push_back(group.name);
   out << "  independent loops (one per joint outside a spanning tree from ground): " << joined(loops) << "\n";
@@ -157,7 +157,7 @@ class DerivationTextPrinter : public Printer {
       print_chain(out, system, *analysis_of(job).chain);
       return;
     }
-    if (system.linkage) print_structure(out, system);
+    if (system.plan) print_structure(out, system);
     if (job.method != DerivationMethod::loops) {
       print_method(out, system, *analysis_of(job).dyads);
       return;

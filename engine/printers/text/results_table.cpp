@@ -3,7 +3,7 @@
 #include <sstream>
 
 #include "engine/printers/printer.hpp"
-#include "engine/symbolic/naming.hpp"
+#include "engine/base/naming.hpp"
 #include "engine/analysis/chain_instant.hpp"
 #include "engine/analysis/design_figures.hpp"
 #include "engine/analysis/diagnostics.hpp"
@@ -93,7 +93,7 @@ class ResultsTablePrinter : public ResultsPrinter {
       if (s.status != Status::ok) continue;
       if (!system.points.empty()) print_points(out, system, scale, s, digits);
       if (!system.frames.empty()) print_frames(out, system, s, digits);
-      if (system.linkage) print_sliders(out, system, scale, table, row, digits);
+      if (system.plan) print_sliders(out, system, scale, table, row, digits);
     }
     text += out.str();
   }
@@ -110,19 +110,19 @@ class ResultsTablePrinter : public ResultsPrinter {
     const auto blocks = block_links(system);
     if (!blocks.empty()) out << "  " << pad("block", 8) << pad("angle", 26) << pad("rate", 26) << "second rate\n";
     for (const auto& [body, angle] : blocks) {
-      out << "  " << pad(system.linkage->links[body - 1].name, 8) << pad(angle + " = " + number(v[0]) + " deg", 26)
+      out << "  " << pad(system.plan->links[body - 1].name, 8) << pad(angle + " = " + number(v[0]) + " deg", 26)
           << pad(default_rate_name(angle, 1) + " = " + number(v[1]) + " rad/s", 26) << default_rate_name(angle, 2)
           << " = " << number(v[2]) << " rad/s^2\n";
       v += 3;
     }
-    const auto& sliders = system.linkage->frames.sliders;
+    const auto& sliders = system.plan->sliders;
     if (sliders.empty()) return;
     const std::string& l = scale.length_unit;
     out << "  " << pad("slider", 8) << pad("v_rel (" + l + "/s)", 26) << pad("a_rel (" + l + "/s^2)", 26)
         << "Coriolis 2 w x v_rel (" << l << "/s^2)\n";
-    for (const LinkageFrames::Slider& slider : sliders) {
+    for (const SolvingPlan::Slider& slider : sliders) {
       const auto pair = [&](const double* c) { return "(" + number(c[0]) + ", " + number(c[1]) + ")"; };
-      out << "  " << pad(system.linkage->joints[slider.joint].name, 8) << pad(pair(v), 26) << pad(pair(v + 2), 26)
+      out << "  " << pad(system.plan->joints[slider.joint].name, 8) << pad(pair(v), 26) << pad(pair(v + 2), 26)
           << pair(v + 4) << "\n";
       v += 6;
     }
@@ -139,7 +139,7 @@ class ResultsTablePrinter : public ResultsPrinter {
     if (!turnings.empty()) {
       out << "  " << pad("links", 8) << pad("relative rate", 30) << "relative second rate\n";
       for (const RelativeTurning& r : turnings) {
-        out << "  " << pad(system.linkage->links[r.block - 1].name + "/" + system.linkage->links[r.other - 1].name, 8)
+        out << "  " << pad(system.plan->links[r.block - 1].name + "/" + system.plan->links[r.other - 1].name, 8)
             << pad(r.rate_name + " = " + number(v[0]) + " rad/s", 30) << r.second_rate_name << " = " << number(v[1])
             << " rad/s^2\n";
         v += 2;

@@ -8,7 +8,7 @@
 #include "engine/model.hpp"
 #include "engine/analysis/toggles.hpp"
 #include "engine/analysis/design_figures.hpp"
-#include "loops/mechanism_file.hpp"
+#include "readers/mechanism_file.hpp"
 
 #include "tests/test_support.hpp"
 

@@ -12,7 +12,7 @@
 #include "engine/model.hpp"
 #include "engine/analysis/instant_centres.hpp"
 #include "engine/symbolic/derivation.hpp"
-#include "engine/symbolic/expression_parts.hpp"
+#include "engine/constraints/expression_parts.hpp"
 
 #include "tests/test_support.hpp"
 
@@ -24,18 +24,18 @@ using Complex = std::complex<double>;
 // pivot (0) or a named point (eval's).
 std::map<std::size_t, std::pair<Complex, Complex>> body_references(const kinema::ConstraintSystem& system,
                                                                    const kinema::MotionState& s) {
-  const kinema::Linkage& linkage = *system.linkage;
+  const kinema::SolvingPlan& plan = *system.plan;
   std::map<std::size_t, std::pair<Complex, Complex>> known;  // body -> (point, velocity)
-  for (std::size_t b = 0; b < linkage.frames.bodies.size(); ++b) {
-    for (const auto& [joint, local] : linkage.frames.bodies[b].points) {
-      const kinema::Joint& j = linkage.joints[joint];
+  for (std::size_t b = 0; b < plan.bodies.size(); ++b) {
+    for (const auto& [joint, local] : plan.bodies[b].points) {
+      const kinema::SolvingPlan::Joint& j = plan.joints[joint];
       for (std::size_t p = 0; p < system.points.size(); ++p) {
         if (system.points[p].name != j.name) continue;
         const kinema::PointMotion& m = s.points[p];
         known[b] = {Complex(m.position[0], m.position[1]), Complex(m.velocity[0], m.velocity[1])};
       }
       if (!j.ground) continue;
-      for (const auto& [pivot, at] : linkage.frames.bodies[0].points)  // ground's are world positions
+      for (const auto& [pivot, at] : plan.bodies[0].points)  // ground's are world positions
         if (pivot == joint) known.emplace(b, std::pair{at, Complex()});
     }
   }
@@ -133,7 +133,7 @@ TEST_CASE("instant centres: every vector-loop sample, each centre where the two 
   for (const char* name : kinema_test::kSamples) {
     const kinema::Model model = kinema::load_model(kinema_test::sample(name));
     const kinema::ConstraintSystem& system = model.system;
-    if (system.linkage || !system.frames.empty()) continue;
+    if (system.plan || !system.frames.empty()) continue;
     CAPTURE(std::string(name));
     std::vector<double> inputs = system.input.values;
     if (inputs.empty()) inputs = {0.3};
@@ -181,7 +181,7 @@ TEST_CASE("instant centres: every joints-and-links sample, each centre where the
   int samples = 0;
   for (const char* name : kinema_test::kSamples) {
     const kinema::Model model = kinema::load_model(kinema_test::sample(name));
-    if (!model.system.linkage) continue;
+    if (!model.system.plan) continue;
     ++samples;
     CAPTURE(std::string(name));
     std::vector<double> inputs = model.system.input.values;

@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "engine/model.hpp"
-#include "loops/linkage_loops.hpp"
-#include "loops/mechanism_file.hpp"
+#include "linkages/vector_loop_file.hpp"
+#include "readers/mechanism_file.hpp"
 #include "tests/test_support.hpp"
 
 namespace {
@@ -167,7 +167,7 @@ TEST_CASE("Workspace::advance steps along the open branch and refuses to cross a
 TEST_CASE("branch: a vector-loop sweep runs on past a singular row (the parallelogram through its change point)") {
   const kinema::Mechanism drawn = kinema::read_mechanism_file(kinema_test::sample("problem_4_1_parallelogram.toml"));
   const kinema::Model joints = kinema::make_model(drawn);
-  const kinema::Model loops = kinema::make_model(kinema::read_mechanism_text(kinema::vector_loop_file(drawn), "loops.toml"));
+  const kinema::Model loops = kinema::make_model(kinema::read_mechanism_text(kinema_test::loops_file(drawn), "loops.toml"));
   REQUIRE(loops.kinematics.closed_form() == nullptr);
   std::vector<double> inputs;
   for (int d = 0; d <= 350; d += 10) inputs.push_back(d * deg);

@@ -10,7 +10,7 @@
 
 #include "engine/numeric/circuit.hpp"
 #include "engine/numeric/sweep.hpp"
-#include "loops/dyad_positions.hpp"
+#include "engine/numeric/dyad_positions.hpp"
 
 #include "tests/test_support.hpp"
 
@@ -35,7 +35,7 @@ CircuitSettings one_degree(const kinema::Model& model) {
 
 // The unknowns placed in closed form at x on a row's signs (the independent position
 // solution the finite differences are taken of).
-Eigen::VectorXd placed(const kinema::LinkageFrames& frames, double x, const std::vector<int>& signs,
+Eigen::VectorXd placed(const kinema::SolvingPlan& frames, double x, const std::vector<int>& signs,
                        const Eigen::VectorXd& near) {
   std::vector<kinema::BodyPose> poses;
   REQUIRE(kinema::place_dyads(frames, x, poses, &signs) == frames.dyads.size());
@@ -55,7 +55,7 @@ std::vector<int> row_signs(const MotionTable& table, std::size_t row, std::size_
 
 TEST_CASE("circuit: the triple rocker is followed through both toggles as one closed motion") {
   const kinema::Model model = kinema::load_model(kinema_test::sample("triple_rocker_circuit.toml"));
-  const kinema::LinkageFrames& frames = *model.kinematics.closed_form();
+  const kinema::SolvingPlan& frames = *model.kinematics.closed_form();
   const CircuitSettings settings = one_degree(model);
   const Circuit circuit = kinema::solve_circuit(model.kinematics, settings);
   REQUIRE(circuit.stop == Circuit::Stop::closed);

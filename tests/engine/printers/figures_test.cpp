@@ -471,7 +471,7 @@ TEST_CASE("engine/printers/figures: the drawing's axes, angle arcs, numbered blo
       for (const Line& g : d.guides)
         if (within(at, g, 0)) CHECK(distance_to_line(at, g) > 0.25);
     }
-    if (model.system.linkage) continue;
+    if (model.system.plan) continue;
     // Each angle that is a coordinate of a link vector drawn: an arc to its solved value.
     std::vector<double> arcs;
     for (const std::string& line : lines_starting(figure, "\\draw[->, gray] (")) {

@@ -17,7 +17,7 @@
 #include "engine/printers/printer.hpp"
 #include "engine/symbolic/dyad_method.hpp"
 #include "engine/analysis/chain_instant.hpp"
-#include "engine/symbolic/naming.hpp"
+#include "engine/base/naming.hpp"
 #include "engine/symbolic/trig_simplify.hpp"
 #include "engine/printers/latex_pages.hpp"
 #include "tests/test_support.hpp"

@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "engine/symbolic/dyad_method.hpp"
-#include "engine/symbolic/expression_parts.hpp"
+#include "engine/constraints/expression_parts.hpp"
 
 #include "tests/test_support.hpp"
 

@@ -11,7 +11,7 @@
 #include "engine/model.hpp"
 #include "engine/printers/web/page.hpp"
 #include "engine/analysis/motion_drawing.hpp"
-#include "loops/mechanism_file.hpp"
+#include "readers/mechanism_file.hpp"
 #include "tests/test_support.hpp"
 
 namespace {

@@ -10,7 +10,7 @@
 
 #include "engine/model.hpp"
 #include "engine/printers/textbook_form.hpp"
-#include "engine/symbolic/expression_parts.hpp"
+#include "engine/constraints/expression_parts.hpp"
 
 #include "tests/test_support.hpp"
 

@@ -315,7 +315,7 @@ TEST_CASE("engine/printers/worked_solution: three methods, one answer for every 
   int samples = 0;
   for (const char* name : kinema_test::kSamples) {
     const kinema::Model model = kinema::load_model(kinema_test::sample(name));
-    if (!model.system.linkage) continue;
+    if (!model.system.plan) continue;
     CAPTURE(std::string(name));
     ++samples;
     const std::vector<double> inputs =

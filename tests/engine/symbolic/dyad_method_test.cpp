@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "engine/symbolic/dyad_method.hpp"
-#include "loops/dyad_positions.hpp"
+#include "engine/numeric/dyad_positions.hpp"
 
 #include "tests/test_support.hpp"
 
@@ -41,7 +41,7 @@ std::size_t check_method(const std::string& name, DerivationMethod method) {
   const kinema::MotionTable table = kinema::analyse(model, {x});
   REQUIRE(table.status(0) == kinema::Status::ok);
   const kinema::MotionState state = table[0];
-  const kinema::LinkageFrames& frames = system.linkage->frames;
+  const kinema::SolvingPlan& frames = *system.plan;
   std::vector<kinema::BodyPose> poses;
   REQUIRE(kinema::place_dyads(frames, x, poses) == frames.dyads.size());
 
@@ -54,16 +54,16 @@ std::size_t check_method(const std::string& name, DerivationMethod method) {
   // Joint coordinates where the closed form places them; link lengths between joints
   // as the links are drawn (the frames), offsets from guide lines as placed.
   std::map<std::string, std::complex<double>> at;
-  for (std::size_t j = 0; j < system.linkage->joints.size(); ++j) {
+  for (std::size_t j = 0; j < system.plan->joints.size(); ++j) {
     std::complex<double> p;
     REQUIRE(kinema::joint_position(frames, poses, j, p));
-    at[system.linkage->joints[j].name] = p;
+    at[system.plan->joints[j].name] = p;
   }
   // A slider joint is where its block puts it (a guide that lists it only has it pass
   // by: as drawn in the sketch, its point on the guide is not where the block is now).
-  for (const kinema::LinkageFrames::Slider& s : frames.sliders)
+  for (const kinema::SolvingPlan::Slider& s : frames.sliders)
     for (const auto& [j, v] : frames.bodies[s.block].points)
-      if (j == s.joint) at[system.linkage->joints[j].name] = poses[s.block].origin + v * std::polar(1.0, poses[s.block].angle);
+      if (j == s.joint) at[system.plan->joints[j].name] = poses[s.block].origin + v * std::polar(1.0, poses[s.block].angle);
   for (const auto& [symbol_name, symbol] : derivation.symbols) {
     const std::string rest = symbol_name.substr(2);
     if (symbol_name.rfind("x_", 0) == 0) values[symbol] = at.at(rest).real();
@@ -164,7 +164,7 @@ TEST_CASE("dyad_method: no empty terms, and no term of the zero vector between t
                            "problem_3_22_joints.toml", "problem_4_1_parallelogram.toml",
                            "problem_4_1_antiparallelogram.toml", "triple_rocker_circuit.toml"}) {
     const kinema::Model model = kinema::load_model(kinema_test::sample(name));
-    const kinema::LinkageFrames& frames = model.system.linkage->frames;
+    const kinema::SolvingPlan& frames = *model.system.plan;
     // Joints at one point of a body (not a slide point on its guide, which only passes).
     std::vector<std::pair<std::string, std::string>> together;
     for (std::size_t b = 1; b < frames.bodies.size(); ++b) {
@@ -175,8 +175,8 @@ TEST_CASE("dyad_method: no empty terms, and no term of the zero vector between t
           for (const auto& s : frames.sliders)
             slides = slides || (s.guide == b && (s.joint == points[i].first || s.joint == points[k].first));
           if (!slides && std::abs(points[i].second - points[k].second) < 1e-12)
-            together.push_back({model.system.linkage->joints[points[i].first].name,
-                                model.system.linkage->joints[points[k].first].name});
+            together.push_back({model.system.plan->joints[points[i].first].name,
+                                model.system.plan->joints[points[k].first].name});
         }
     }
     for (DerivationMethod method : {DerivationMethod::relative_velocity, DerivationMethod::joint_coordinates}) {
