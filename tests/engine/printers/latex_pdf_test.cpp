@@ -513,19 +513,18 @@ TEST_CASE("the deepest nesting the formula reader accepts typesets in derive --f
 // derivatives divide, sqrt, fractional powers and divisions 3 deep) now loads, derives,
 // generates code and typesets within the bounded run; one level more is refused with
 // file:line. sin has its own test above (a document of its own).
-TEST_CASE("the deepest nest of every function the formula reader accepts is derived, generated and typeset") {
-  struct Nest {
-    const char* name;
-    const char* open;   // written around the formula once per level: open + inner + close
-    const char* close;
-    int depth;
-  };
-  const Nest nests[] = {{"cos", "cos(", ")", 32},           {"exp", "exp(0.1*", ")", 32},
-                        {"abs", "abs(1 + ", ")", 32},        {"tan", "tan(0.5*", ")", 3},
-                        {"asin", "asin(0.5*", ")", 3},       {"acos", "acos(0.5*", ")", 3},
-                        {"atan", "atan(1 + ", ")", 3},       {"atan2", "atan2(", ", 2)", 3},
-                        {"log", "log(10 + ", ")", 3},        {"sqrt", "sqrt(10 + ", ")", 3},
-                        {"power", "(1 + 0.1*", ")^1.5", 3},  {"division", "1/(2 + ", ")", 3}};
+namespace {
+
+struct Nest {
+  const char* name;
+  const char* open;   // written around the formula once per level: open + inner + close
+  const char* close;
+  int depth;
+};
+
+// Each nest loaded, derived, generated and typeset within the bounds, one level more refused;
+// the derivations in one document and the worked solutions in another (`document` names them).
+void check_deepest_nests(const std::vector<Nest>& nests, const std::string& document_name) {
   const auto nested_loop = [](const Nest& nest, int depth) {
     std::string nested = "theta3";
     for (int k = 0; k < depth; ++k) nested = nest.open + nested + nest.close;
@@ -572,9 +571,26 @@ TEST_CASE("the deepest nest of every function the formula reader accepts is deri
   // Two pdflatex runs for all of them: the derivations in one document, the worked
   // solutions' fragments in another.
   std::string log;
-  CHECK(compiles(derivations, "deepest_nests_derive", log));
+  CHECK(compiles(derivations, document_name + "_derive", log));
   document += "\\end{document}\n";
-  const int pages = compile_document(document, "deepest_nests_latex", log);
+  const int pages = compile_document(document, document_name + "_latex", log);
   INFO(log.substr(log.size() > 3000 ? log.size() - 3000 : 0));
   CHECK(pages > 0);
+}
+
+}  // namespace
+
+// Two test cases, so that ctest -j runs them side by side.
+TEST_CASE("the deepest nest of every function the formula reader accepts is derived, generated and typeset (cos, exp, abs)") {
+  check_deepest_nests({{"cos", "cos(", ")", 32}, {"exp", "exp(0.1*", ")", 32}, {"abs", "abs(1 + ", ")", 32}},
+                      "deepest_nests_32");
+}
+
+TEST_CASE("the deepest nest of every function the formula reader accepts is derived, generated and typeset (3 deep)") {
+  check_deepest_nests({{"tan", "tan(0.5*", ")", 3},     {"asin", "asin(0.5*", ")", 3},
+                       {"acos", "acos(0.5*", ")", 3},   {"atan", "atan(1 + ", ")", 3},
+                       {"atan2", "atan2(", ", 2)", 3},  {"log", "log(10 + ", ")", 3},
+                       {"sqrt", "sqrt(10 + ", ")", 3},  {"power", "(1 + 0.1*", ")^1.5", 3},
+                       {"division", "1/(2 + ", ")", 3}},
+                      "deepest_nests_3");
 }
