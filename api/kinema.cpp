@@ -7,17 +7,15 @@
 
 #include <algorithm>
 
+#include "api/engine_access.hpp"
 #include "engine/base/errors.hpp"
 #include "engine/input_value.hpp"
 #include "engine/model.hpp"
-#include "engine/report/diagnostics.hpp"
+#include "engine/analysis/diagnostics.hpp"
 #include "loops/mechanism_file.hpp"
 
 namespace kinema {
 
-struct MechanismModel::Engine {
-  Model model;
-};
 
 namespace {
 
@@ -75,17 +73,23 @@ PointResult point_result(const PointMotion& motion) {
 
 MechanismModel::MechanismModel(const std::string& path)
     // The facade prints no formulas: the evaluation scope derives what solving needs.
-    : MechanismModel(std::make_shared<const Engine>(Engine{load_model(path, DerivationScope::evaluation)})) {}
+    : MechanismModel(std::make_shared<const Engine>(Engine{std::make_shared<const Model>(load_model(path, DerivationScope::evaluation))})) {}
 
 MechanismModel MechanismModel::from_toml(const std::string& text, const std::string& name) {
   return MechanismModel(
-      std::make_shared<const Engine>(Engine{make_model(read_mechanism_text(text, name), DerivationScope::evaluation)}));
+      std::make_shared<const Engine>(Engine{std::make_shared<const Model>(make_model(read_mechanism_text(text, name), DerivationScope::evaluation))}));
 }
 
 MechanismModel::MechanismModel(std::shared_ptr<const Engine> engine)
-    : engine_(std::move(engine)), names_(std::make_shared<const Names>(names_of(engine_->model.system))) {}
+    : engine_(std::move(engine)), names_(std::make_shared<const Names>(names_of(engine_->model->system))) {}
 
-const std::string& MechanismModel::title() const { return engine_->model.system.title; }
+MechanismModel EngineAccess::facade(std::shared_ptr<const Model> model) {
+  return MechanismModel(std::make_shared<const MechanismModel::Engine>(MechanismModel::Engine{std::move(model)}));
+}
+
+const Model& EngineAccess::model(const MechanismModel& facade) { return *facade.engine_->model; }
+
+const std::string& MechanismModel::title() const { return engine_->model->system.title; }
 
 Solution MechanismModel::solve(const std::string& value) const { return solve(std::vector<std::string>{value}).front(); }
 
@@ -93,14 +97,14 @@ Solution MechanismModel::solve(double value) const { return solve(std::vector<do
 
 std::vector<Solution> MechanismModel::solve(const std::vector<std::string>& values) const {
   std::vector<double> si;
-  for (const std::string& value : values) si.push_back(parse_input_value(engine_->model.system, value));
+  for (const std::string& value : values) si.push_back(parse_input_value(engine_->model->system, value));
   return solve(si);
 }
 
 std::vector<Solution> MechanismModel::solve(const std::vector<double>& values) const {
-  const ConstraintSystem& system = engine_->model.system;
+  const ConstraintSystem& system = engine_->model->system;
   check_input_range(system, values);
-  const MotionTable table = analyse(engine_->model, values);
+  const MotionTable table = analyse(*engine_->model, values);
   std::vector<Solution> solutions;
   solutions.reserve(table.size());
   for (std::size_t row = 0; row < table.size(); ++row) {

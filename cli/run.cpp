@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <iostream>
 #include <new>
+#include <optional>
 #include <sstream>
 #include <thread>
 
@@ -18,13 +19,16 @@
 #include "engine/numeric/circuit.hpp"
 #include "engine/printers/code/cpp_header.hpp"
 #include "engine/printers/printer.hpp"
-#include "engine/printers/results_stream.hpp"
-#include "engine/report/chain_instant.hpp"
-#include "engine/report/diagnostics.hpp"
+#include "engine/printers/web/page.hpp"
+#include "engine/analysis/motion_drawing.hpp"
+#include "engine/run/results_stream.hpp"
+#include "engine/run/view.hpp"
+#include "engine/analysis/chain_instant.hpp"
+#include "engine/analysis/diagnostics.hpp"
 #include "engine/base/number_format.hpp"
-#include "engine/report/output_scale.hpp"
-#include "engine/report/plot_range.hpp"
-#include "engine/report/structure.hpp"
+#include "engine/analysis/output_scale.hpp"
+#include "engine/analysis/plot_range.hpp"
+#include "engine/analysis/structure.hpp"
 #include "engine/base/user_text.hpp"
 #include "engine/symbolic/dyad_method.hpp"
 #include "loops/linkage_loops.hpp"
@@ -58,10 +62,9 @@ const ResultsPrinter& results_printer(const std::string& format) {
   return *found;
 }
 
-// kinema eval --circuit: the whole circuit solved (it is held in memory), then printed
-// a block of rows at a time.
-void write_circuit(const Model& model, const std::string& step_text, const std::vector<double>& inputs,
-                   const std::string& format, int precision, const std::string& output_path) {
+// --circuit STEP: the whole circuit solved from the one value given (or the file's) and
+// held in memory; refused with the reason when it cannot start, move or close.
+Circuit solve_circuit_from(const Model& model, const std::string& step_text, const std::vector<double>& inputs) {
   const ConstraintSystem& m = model.system;
   const LinkageFrames* frames = model.kinematics.closed_form();
   if (frames == nullptr) {
@@ -115,10 +118,19 @@ void write_circuit(const Model& model, const std::string& step_text, const std::
       throw InputError(m.source_file + ": the circuit does not close within " + std::to_string(settings.max_rows) +
                        " rows of --circuit " + step_text + "; give a larger step");
   }
+  return circuit;
+}
+
+// kinema eval --circuit: the whole circuit solved, then printed a block of rows at a time.
+void write_circuit(const Model& model, const std::string& step_text, const std::vector<double>& inputs,
+                   const std::string& format, int precision, const std::string& output_path) {
+  const Circuit circuit = solve_circuit_from(model, step_text, inputs);
   const ResultsPrinter* results = &results_printer(format);
   PrintJob job{model, &circuit.table};
   job.circuit = true;
   job.precision = precision;
+  const Analysis analysis = analyse_for_printer(*results, job);  // what the head shows, once
+  job.analysis = &analysis;
   kinema_cli::Output output(output_path);
   const std::size_t rows = circuit.table.size();
   std::string text;
@@ -131,6 +143,44 @@ void write_circuit(const Model& model, const std::string& step_text, const std::
   results->tail(text, job, rows);
   output.write(text);
   output.commit();
+}
+
+// --sweep START:STOP:STEP in the input's units (deg, s, or the output length unit).
+InputValues sweep_values(const ConstraintSystem& m, const std::string& sweep, std::size_t max_values) {
+  const double unit = m.input.dimension == Dimension::angle  ? kRadiansPerDegree
+                      : m.input.dimension == Dimension::time ? 1.0
+                                                             : m.output.length_factor;
+  return parse_sweep(sweep, unit, max_values);
+}
+
+// Rows a page holds: each is drawn and plotted in the browser, and the file grows by about a
+// kilobyte a row.
+constexpr std::size_t kMaxPageRows = 20000;
+
+// kinema page: the rows solved once (a sweep, a circuit, or by default the worked solution's
+// plotting range: a turn of a crank from the file's value), the drawing's geometry at each
+// row computed here, in one place, and the page written over both.
+void write_page_file(const Model& model, const std::string& sweep, const std::string& circuit_step,
+                     const std::vector<double>& inputs, const std::string& output_path) {
+  const ConstraintSystem& m = model.system;
+  std::optional<Circuit> circuit;
+  MotionTable swept;
+  if (!circuit_step.empty()) {
+    circuit = solve_circuit_from(model, circuit_step, inputs);
+  } else {
+    if (!sweep.empty() && !inputs.empty()) throw InputError("page: give --sweep or --angle (the start of the default turn), not both");
+    const double first = !inputs.empty() ? inputs.front() : m.input.values.empty() ? 0.0 : m.input.values.front();
+    const std::vector<double> values = sweep.empty() ? plot_range(m, first) : sweep_values(m, sweep, kMaxPageRows).to_vector();
+    check_input_range(m, values);
+    swept = analyse(model, values);
+  }
+  const MotionTable& table = circuit ? circuit->table : swept;
+  const MotionDrawing drawing = motion_drawing(m, table);
+  PrintJob job{model, &table};
+  job.circuit = circuit.has_value();
+  std::ostringstream out;
+  write_page(out, job, drawing);
+  write_output(out.str(), output_path);
 }
 
 // An option given an empty value ("-o ''", a shell variable that was not set) is a
@@ -165,224 +215,232 @@ int write_list(const Model& model, const InputValues& inputs, const std::string&
   PrintJob job{model, &table};
   job.precision = precision;
   std::ostringstream out;  // a value past the output unit's range throws here, before anything is written
-  results_printer(format).print(out, job);
+  print_view(results_printer(format), out, job);
   write_output(out.str(), output_path);
   return 0;
 }
 
-}  // namespace
-
-int kinema_cli::run(int argc, char** argv) {
-  CLI::App app{"kinema: velocity and acceleration analysis of mechanisms written as vector loops, as joints and "
-               "links, or as spatial chains of frames",
-               "kinema"};
-  app.require_subcommand(1);
-  app.set_version_flag("--version", "kinema " KINEMA_VERSION, "print the version and exit");
-  std::string file, output_path, format = "table", sweep;
+// The command line as parsed: the subcommand given and every option's value.
+struct CommandLine {
+  CLI::App* derive = nullptr;
+  CLI::App* eval = nullptr;
+  CLI::App* latex = nullptr;
+  CLI::App* codegen = nullptr;
+  CLI::App* loops = nullptr;
+  CLI::App* page = nullptr;
+  std::string file, output_path, format = "table", sweep, derive_format = "text", method = "loops";
   std::vector<std::string> angles;
+  int precision = 0;
+  unsigned threads = 0;  // one per core: formatting on more threads changes no byte
+  std::string circuit_step, namespace_name, chain_input, basis;
+  std::string page_sweep, page_circuit;
+  bool quiet = false, fragment = false;
+};
 
-  auto* derive_cmd = app.add_subcommand("derive", "print the symbolic derivation");
-  derive_cmd->add_option("FILE", file, kFileHelp)->required();
-  derive_cmd->add_option("-o,--output", output_path, "write to this file instead of stdout");
-  std::string derive_format = "text";
-  derive_cmd->add_option("--format", derive_format, "text, or latex (an align* block for notes)")
+// Every subcommand with its options, their values read into `line`.
+void add_subcommands(CLI::App& app, CommandLine& line) {
+  line.derive = app.add_subcommand("derive", "print the symbolic derivation");
+  line.derive->add_option("FILE", line.file, kFileHelp)->required();
+  line.derive->add_option("-o,--output", line.output_path, "write to this file instead of stdout");
+  line.derive->add_option("--format", line.derive_format, "text, or latex (an align* block for notes)")
       ->check(CLI::IsMember(printer_names(PrintKind::derivation)));
-  std::string method = "loops";
   const std::string method_help =
       "loops (the loop equations in matrix form), or for joints and links dyad by dyad as the seeds work "
       "them out: relative-velocity (v_C = v_B + omega x r_BC = ...) or joint-coordinates (the joints on "
       "circles and guide lines, differentiated)";
-  derive_cmd->add_option("--method", method, method_help)->check(CLI::IsMember(method_names()));
+  line.derive->add_option("--method", line.method, method_help)->check(CLI::IsMember(method_names()));
 
-  auto* eval_cmd = app.add_subcommand("eval", "evaluate positions, velocities and accelerations");
-  eval_cmd->add_option("FILE", file, kFileHelp)->required();
-  eval_cmd->add_option("--angle,--at", angles,
-                       "input value (deg for a crank, output length unit for a slider; or with a "
-                       "unit, e.g. \"30 deg\"); repeat for a list");
-  eval_cmd->add_option("--sweep", sweep, "start:stop:step in the same units, e.g. 0:360:1");
-  eval_cmd->add_option("--format", format, "table, csv, json, or npy (a NumPy structured array)")
+  CLI::App* eval = line.eval = app.add_subcommand("eval", "evaluate positions, velocities and accelerations");
+  eval->add_option("FILE", line.file, kFileHelp)->required();
+  eval->add_option("--angle,--at", line.angles,
+                   "input value (deg for a crank, output length unit for a slider; or with a "
+                   "unit, e.g. \"30 deg\"); repeat for a list");
+  eval->add_option("--sweep", line.sweep, "start:stop:step in the same units, e.g. 0:360:1");
+  eval->add_option("--format", line.format, "table, csv, json, or npy (a NumPy structured array)")
       ->check(CLI::IsMember(printer_names(PrintKind::results)));
-  eval_cmd->add_option("-o,--output", output_path, "write to this file instead of stdout");
-  int precision = 0;
-  eval_cmd->add_option("--precision", precision,
-                       "significant digits in table, csv and json (default: 6 in the table, 12 in csv, "
-                       "round-trip in json)")
+  eval->add_option("-o,--output", line.output_path, "write to this file instead of stdout");
+  eval->add_option("--precision", line.precision,
+                   "significant digits in table, csv and json (default: 6 in the table, 12 in csv, "
+                   "round-trip in json)")
       ->check(kNotEmpty)  // before the range, whose message would not say what is wrong
       ->check(CLI::Range(1, 17));
-  unsigned threads = 0;  // one per core: formatting on more threads changes no byte
-  eval_cmd->add_option("--threads", threads,
-                       "threads formatting and writing the output of long runs, a block each in turn (default: "
-                       "one per core); the solve stays serial, so the output is the same bytes whatever the count")
+  eval->add_option("--threads", line.threads,
+                   "threads formatting and writing the output of long runs, a block each in turn (default: "
+                   "one per core); the solve stays serial, so the output is the same bytes whatever the count")
       ->check(kNotEmpty)
       ->check(CLI::Range(1u, 256u));
-  std::string circuit_step;
-  eval_cmd->add_option("--circuit", circuit_step,
-                       "joints and links: follow the motion through its toggles, where the input reverses and a "
-                       "dyad changes assembly, from the file's value (or one --angle) until it closes; rows every "
-                       "STEP of the input (as --angle: deg or the length unit), e.g. --circuit 1")
+  eval->add_option("--circuit", line.circuit_step,
+                   "joints and links: follow the motion through its toggles, where the input reverses and a "
+                   "dyad changes assembly, from the file's value (or one --angle) until it closes; rows every "
+                   "STEP of the input (as --angle: deg or the length unit), e.g. --circuit 1")
       ->option_text("STEP")
-      ->excludes(eval_cmd->get_option("--sweep"));
-  bool quiet = false;
-  eval_cmd->add_flag("-q,--quiet", quiet, "no progress line and no warnings on stderr (errors still)");
+      ->excludes(eval->get_option("--sweep"));
+  eval->add_flag("-q,--quiet", line.quiet, "no progress line and no warnings on stderr (errors still)");
 
-  bool fragment = false;
-  auto* latex_cmd = app.add_subcommand("latex", "write a worked solution in LaTeX (drawing, equations, plots)");
-  latex_cmd->add_option("FILE", file, kFileHelp)->required();
-  latex_cmd->add_option("--angle,--at", angles, "input value(s) to work out, as for eval");
-  latex_cmd->add_option("-o,--output", output_path, "write to this file instead of stdout");
-  latex_cmd->add_flag("--fragment", fragment, "no preamble, for \\input into existing notes");
-  latex_cmd->add_option("--method", method, method_help)->check(CLI::IsMember(method_names()));
+  line.latex = app.add_subcommand("latex", "write a worked solution in LaTeX (drawing, equations, plots)");
+  line.latex->add_option("FILE", line.file, kFileHelp)->required();
+  line.latex->add_option("--angle,--at", line.angles, "input value(s) to work out, as for eval");
+  line.latex->add_option("-o,--output", line.output_path, "write to this file instead of stdout");
+  line.latex->add_flag("--fragment", line.fragment, "no preamble, for \\input into existing notes");
+  line.latex->add_option("--method", line.method, method_help)->check(CLI::IsMember(method_names()));
 
-  std::string namespace_name;
-  auto* codegen_cmd = app.add_subcommand("codegen", "write a standalone C++ header (position, velocity, acceleration)");
-  codegen_cmd->add_option("FILE", file, kFileHelp)->required();
-  codegen_cmd->add_option("-o,--output", output_path, "header to write, e.g. four_bar.hpp")->required();
-  codegen_cmd->add_option("--namespace", namespace_name, "namespace of the generated code (default: the header's name)");
+  line.codegen = app.add_subcommand("codegen", "write a standalone C++ header (position, velocity, acceleration)");
+  line.codegen->add_option("FILE", line.file, kFileHelp)->required();
+  line.codegen->add_option("-o,--output", line.output_path, "header to write, e.g. four_bar.hpp")->required();
+  line.codegen->add_option("--namespace", line.namespace_name,
+                           "namespace of the generated code (default: the header's name)");
 
-  std::string chain_input;
+  CLI::App* page = line.page = app.add_subcommand(
+      "page", "write one self-contained web page (HTML) with the mechanism animated over its solved rows, its "
+              "readout and plots");
+  page->add_option("FILE", line.file, kFileHelp)->required();
+  page->add_option("--sweep", line.page_sweep, "start:stop:step of the input, as for eval (default: a turn of a crank "
+                                               "from the file's value, 2 deg apart)");
+  page->add_option("--circuit", line.page_circuit, "joints and links: follow the motion through its toggles, as for eval")
+      ->option_text("STEP")
+      ->excludes(page->get_option("--sweep"));
+  page->add_option("--angle,--at", line.angles, "the value a circuit or the default turn starts from, as for eval");
+  page->add_option("-o,--output", line.output_path, "write to this file instead of stdout, e.g. mech.html");
+
   const std::string input_help =
       "spatial chains: a driven variable of [variables] as the input instead of time (--at and --sweep in its "
       "units; the other driven variables follow it), e.g. --input theta1";
-  for (auto* command : {derive_cmd, eval_cmd, latex_cmd, codegen_cmd})
-    command->add_option("--input", chain_input, input_help)->option_text("VARIABLE");
-  std::string basis;
-  for (auto* command : {derive_cmd, latex_cmd}) {
-    command->add_option("--basis", basis,
+  for (auto* command : {line.derive, line.eval, line.latex, line.codegen, line.page})
+    command->add_option("--input", line.chain_input, input_help)->option_text("VARIABLE");
+  for (auto* command : {line.derive, line.latex}) {
+    command->add_option("--basis", line.basis,
                         "spatial chains: give the worked-out vectors along this frame's axes (default: the "
                         "observer's), e.g. --basis E2")
         ->option_text("FRAME");
   }
 
-  auto* loops_cmd = app.add_subcommand(
+  line.loops = app.add_subcommand(
       "loops", "write the mechanism as a vector-loop file (for joints and links: the loops kinema found)");
-  loops_cmd->add_option("FILE", file,
+  line.loops->add_option("FILE", line.file,
                          "mechanism file (TOML) written as vector loops or as joints and links (a spatial chain "
                          "of frames has no vector loops)")->required();
-  loops_cmd->add_option("-o,--output", output_path, "write to this file instead of stdout");
+  line.loops->add_option("-o,--output", line.output_path, "write to this file instead of stdout");
 
   for (CLI::App* command : app.get_subcommands({})) {
     for (CLI::Option* option : command->get_options()) {
       if (!option->get_positional() && option->get_type_size() != 0) option->check(kNotEmpty);
     }
   }
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& error) {
-    return kinema_cli::report_parse_error(app, error);  // help and version: 0; usage errors: one line, 2
-  }
+}
 
-  // Never replace the mechanism file with its own results.
-  std::error_code same_error;
-  if (!output_path.empty() && output_path != "-" && std::filesystem::equivalent(file, output_path, same_error)) {
-    throw InputError("-o " + output_path + " is the mechanism file itself; write the output to another file");
+// kinema latex works out each value on a page of its own: too many values are refused
+// before any symbolic work (their plots sample the turn on their own).
+void check_latex_values(std::size_t count, const std::string& where) {
+  if (count <= kMaxLatexValues) return;
+  throw InputError(where + ": kinema latex works out each input value on a results page of its own, and " +
+                   std::to_string(count) + " values are more than " + std::to_string(kMaxLatexValues) +
+                   "; give at most that many (--angle VALUE, or a coarser sweep in the file), or tabulate them with kinema eval " +
+                   "(--sweep START:STOP:STEP, --format csv)");
+}
+
+// The mechanism file read, with what the command line changes in it (--input), after
+// the checks that need no file (the output is not the file, and can be written).
+Mechanism read_mechanism(const CommandLine& line) {
+  std::error_code same_error;  // never replace the mechanism file with its own results
+  if (!line.output_path.empty() && line.output_path != "-" &&
+      std::filesystem::equivalent(line.file, line.output_path, same_error)) {
+    throw InputError("-o " + line.output_path + " is the mechanism file itself; write the output to another file");
   }
-  kinema_cli::check_output(output_path);  // as the shell refuses a > before it runs anything
-  Mechanism mechanism = read_mechanism_file(file);
-  if (!chain_input.empty()) {
+  kinema_cli::check_output(line.output_path);  // as the shell refuses a > before it runs anything
+  Mechanism mechanism = read_mechanism_file(line.file);
+  if (!line.chain_input.empty()) {
     if (!mechanism.chain) {
-      throw InputError(file + ": --input " + chain_input + " is for spatial chains (a file of [frames] and "
+      throw InputError(line.file + ": --input " + line.chain_input + " is for spatial chains (a file of [frames] and "
                        "[variables]); this file's input is set in the file");
     }
-    mechanism.chain->input = chain_input;
+    mechanism.chain->input = line.chain_input;
     mechanism.chain->input_where = {};
   }
-  // kinema latex works out each value on a page of its own: too many values are refused
-  // before any symbolic work (their plots sample the turn on their own).
-  const auto check_latex_values = [&](std::size_t count, const std::string& where) {
-    if (count <= kMaxLatexValues) return;
-    throw InputError(where + ": kinema latex works out each input value on a results page of its own, and " +
-                     std::to_string(count) + " values are more than " + std::to_string(kMaxLatexValues) +
-                     "; give at most that many (--angle VALUE, or a coarser sweep in the file), or tabulate them with kinema eval " +
-                     "(--sweep START:STOP:STEP, --format csv)");
-  };
-  if (latex_cmd->parsed()) {
+  if (line.latex->parsed()) {
+    const std::vector<std::string>& angles = line.angles;
     check_latex_values(angles.empty() ? mechanism.input.values.size() : angles.size(),
-                       angles.empty() && mechanism.input.where.line > 0 ? mechanism.input.where.str() : file);
+                       angles.empty() && mechanism.input.where.line > 0 ? mechanism.input.where.str() : line.file);
   }
-  // A file kinema cannot analyse is not written as loops either. Only derive and latex
-  // print the formulas solved in closed form: the others do without them (faster).
-  const bool prints_formulas = derive_cmd->parsed() || latex_cmd->parsed();
-  const Model model = make_model(mechanism, prints_formulas ? DerivationScope::full : DerivationScope::evaluation);
-  const ConstraintSystem& m = model.system;
-  if (!basis.empty()) {
-    if (!is_driven_chain(m)) {
-      throw InputError(file + ": --basis " + basis + " is for spatial chains driven by their joints (worked out at " +
-                       "the instant, vector by vector); " +
-                       (m.frames.empty() ? "this file is not a chain of frames" : "this chain closes a loop and is printed as its equations"));
-    }
-    chain_at_instant(m, basis);  // a basis that is not a frame: refused before anything is written
+  return mechanism;
+}
+
+// --basis: for a chain driven by its joints, and a frame of it; refused before anything
+// is worked out or written.
+void check_basis(const ConstraintSystem& m, const CommandLine& line) {
+  if (line.basis.empty()) return;
+  if (!is_driven_chain(m)) {
+    throw InputError(line.file + ": --basis " + line.basis + " is for spatial chains driven by their joints (worked out at " +
+                     "the instant, vector by vector); " +
+                     (m.frames.empty() ? "this file is not a chain of frames" : "this chain closes a loop and is printed as its equations"));
+  }
+  check_chain_basis(m, line.basis);
+}
+
+// kinema derive: the derivation in the format and method asked for.
+int run_derive(const Model& model, const CommandLine& line) {
+  PrintJob job{model};
+  job.method = *find_method(line.method);
+  check_method_applies(model.system, job.method);
+  job.basis = line.basis;
+  std::ostringstream out;
+  print_view(printer(PrintKind::derivation, line.derive_format), out, job);
+  write_output(out.str(), line.output_path);
+  return 0;
+}
+
+// kinema codegen: the header, in the namespace given or named after the header's file.
+int run_codegen(const Model& model, const CommandLine& line) {
+  PrintJob job{model};
+  if (line.namespace_name.empty()) {
+    std::string stem = line.output_path.substr(line.output_path.find_last_of('/') + 1);
+    job.code_namespace = cpp_identifier(stem.substr(0, stem.find('.')));
+  } else if (cpp_identifier(line.namespace_name) != line.namespace_name) {
+    throw InputError("--namespace \"" + line.namespace_name + "\" is not a C++ identifier (or is a C++ keyword or macro); try \"" +
+                     cpp_identifier(line.namespace_name) + "\"");
+  } else {
+    job.code_namespace = line.namespace_name;
   }
   std::ostringstream out;
+  print_view(printer(PrintKind::code, "cpp"), out, job);
+  write_output(out.str(), line.output_path);
+  return 0;
+}
 
-  if (loops_cmd->parsed()) {
-    write_output(vector_loop_file(mechanism), output_path);
-    return 0;
+// kinema latex: the worked solution at the values asked for (or the file's), with plots
+// over the input's range; refused if a value cannot be assembled.
+int run_latex(const Model& model, const CommandLine& line, std::vector<double> inputs) {
+  const ConstraintSystem& m = model.system;
+  if (inputs.empty()) inputs = m.input.values;
+  check_latex_values(inputs.size(), m.input.where.line > 0 ? m.input.where.str() : line.file);
+  if (inputs.empty()) {
+    throw InputError(m.source_file + ": no input value: give --angle VALUE or value = \"...\" under [input]");
   }
+  check_input_range(m, inputs);
+  const MotionTable at_values = analyse(model, inputs);
+  for (const MotionState& s : at_values) {
+    if (s.status == Status::unassembled) throw AssemblyError(m.source_file + ": " + describe_failure(m, s));
+  }
+  const MotionTable sweep_table = analyse(model, plot_range(m, inputs.front()));
+  PrintJob job{model, &at_values, &sweep_table};
+  job.fragment = line.fragment;
+  job.method = *find_method(line.method);
+  check_method_applies(model.system, job.method);
+  job.basis = line.basis;
+  std::ostringstream out;
+  print_view(printer(PrintKind::document, "latex"), out, job);
+  write_output(out.str(), line.output_path);
+  return 0;
+}
 
-  if (derive_cmd->parsed()) {
-    PrintJob job{model};
-    job.method = *find_method(method);
-    check_method_applies(model.system, job.method);
-    job.basis = basis;
-    printer(PrintKind::derivation, derive_format).print(out, job);
-    write_output(out.str(), output_path);
-    return 0;
-  }
-
-  if (codegen_cmd->parsed()) {
-    PrintJob job{model};
-    if (namespace_name.empty()) {
-      std::string stem = output_path.substr(output_path.find_last_of('/') + 1);
-      job.code_namespace = cpp_identifier(stem.substr(0, stem.find('.')));
-    } else if (cpp_identifier(namespace_name) != namespace_name) {
-      throw InputError("--namespace \"" + namespace_name + "\" is not a C++ identifier (or is a C++ keyword or macro); try \"" + cpp_identifier(namespace_name) + "\"");
-    } else {
-      job.code_namespace = namespace_name;
-    }
-    printer(PrintKind::code, "cpp").print(out, job);
-    write_output(out.str(), output_path);
-    return 0;
-  }
-
-  std::vector<double> inputs;
-  for (const std::string& angle : angles) inputs.push_back(parse_input_value(m, angle));
-
-  if (latex_cmd->parsed()) {
-    if (inputs.empty()) inputs = m.input.values;
-    check_latex_values(inputs.size(), m.input.where.line > 0 ? m.input.where.str() : file);
-    if (inputs.empty()) {
-      throw InputError(m.source_file + ": no input value: give --angle VALUE or value = \"...\" under [input]");
-    }
-    check_input_range(m, inputs);
-    const MotionTable at_values = analyse(model, inputs);
-    for (const MotionState& s : at_values) {
-      if (s.status == Status::unassembled) throw AssemblyError(m.source_file + ": " + describe_failure(m, s));
-    }
-    const MotionTable sweep_table = analyse(model, plot_range(m, inputs.front()));
-    PrintJob job{model, &at_values, &sweep_table};
-    job.fragment = fragment;
-    job.method = *find_method(method);
-    check_method_applies(model.system, job.method);
-    job.basis = basis;
-    printer(PrintKind::document, "latex").print(out, job);
-    write_output(out.str(), output_path);
-    return 0;
-  }
-  if (!circuit_step.empty()) {
-    write_circuit(model, circuit_step, inputs, format, precision, output_path);
-    return 0;
-  }
-  // A --sweep alone is computed value by value (a run of 10^9 holds none of them).
-  const bool is_sweep = !sweep.empty() || (inputs.empty() && m.input.values.size() > 1);
+// The values kinema eval runs over: --sweep (after any --angle), the --angle list, or the
+// file's values.
+InputValues eval_inputs(const ConstraintSystem& m, const CommandLine& line, std::vector<double> inputs) {
   InputValues run_inputs;
-  if (!sweep.empty()) {
-    const double unit = m.input.dimension == Dimension::angle  ? kRadiansPerDegree
-                        : m.input.dimension == Dimension::time ? 1.0
-                                                               : m.output.length_factor;
-    run_inputs = parse_sweep(sweep, unit, kMaxSweepValues);
+  if (!line.sweep.empty()) {
+    run_inputs = sweep_values(m, line.sweep, kMaxSweepValues);
     if (!inputs.empty()) {
       if (run_inputs.size() > kMaxValuesPerRun) {
-        throw InputError("--sweep \"" + sweep + "\" with --angle: a list of more than " +
+        throw InputError("--sweep \"" + line.sweep + "\" with --angle: a list of more than " +
                          std::to_string(kMaxValuesPerRun) +
                          " values (held in memory); give the --sweep alone (streamed) or a larger step");
       }
@@ -398,26 +456,83 @@ int kinema_cli::run(int argc, char** argv) {
                      "or value = \"...\" under [input]");
   }
   check_input_range(m, run_inputs);
+  return run_inputs;
+}
 
-  if (!is_sweep) return write_list(model, run_inputs, format, precision, output_path);
+// kinema eval over a --sweep (or the file's sweep): solved, formatted and written a block
+// at a time, with a progress line; a file appears only when complete.
+int write_sweep(const Model& model, const CommandLine& line, const InputValues& run_inputs) {
   StreamSettings settings;
-  settings.threads = threads > 0 ? threads : std::max(1u, std::thread::hardware_concurrency());
-  // Solved, formatted and written a block at a time; a file appears only when complete.
-  kinema_cli::Output output(output_path);
+  settings.threads = line.threads > 0 ? line.threads : std::max(1u, std::thread::hardware_concurrency());
+  kinema_cli::Output output(line.output_path);
   // Not when the results themselves scroll by on the same terminal.
-  const bool results_on_terminal = (output_path.empty() || output_path == "-") && ::isatty(STDOUT_FILENO) == 1;
-  kinema_cli::ProgressLine progress(!quiet && !results_on_terminal);
-  settings.printer = &results_printer(format);
-  settings.precision = precision;
+  const bool results_on_terminal =
+      (line.output_path.empty() || line.output_path == "-") && ::isatty(STDOUT_FILENO) == 1;
+  kinema_cli::ProgressLine progress(!line.quiet && !results_on_terminal);
+  settings.printer = &results_printer(line.format);
+  settings.precision = line.precision;
   settings.write = [&](std::string_view text) { output.write(text); };
   settings.progress = [&](std::size_t done, std::size_t total) { progress.update(done, total); };
   const RunSummary summary = stream_results(model, run_inputs, {}, settings);
   output.commit();
   progress.finish();
-  if (summary.failures > 0 && !quiet) {
+  if (summary.failures > 0 && !line.quiet) {
     std::cerr << "kinema: warning: " << summary.failures << " of " << summary.values
               << " input values have no rates (status singular or unassembled in the output); first: "
-              << terminal_text(describe_failure(m, summary.first_failure->input, summary.first_failure->failure)) << "\n";
+              << terminal_text(describe_failure(model.system, summary.first_failure->input, summary.first_failure->failure))
+              << "\n";
   }
   return 0;
+}
+
+// kinema eval: along a circuit, over a list of values, or over a sweep.
+int run_eval(const Model& model, const CommandLine& line, std::vector<double> inputs) {
+  const ConstraintSystem& m = model.system;
+  if (!line.circuit_step.empty()) {
+    write_circuit(model, line.circuit_step, inputs, line.format, line.precision, line.output_path);
+    return 0;
+  }
+  // A --sweep alone is computed value by value (a run of 10^9 holds none of them).
+  const bool is_sweep = !line.sweep.empty() || (inputs.empty() && m.input.values.size() > 1);
+  const InputValues run_inputs = eval_inputs(m, line, std::move(inputs));
+  if (!is_sweep) return write_list(model, run_inputs, line.format, line.precision, line.output_path);
+  return write_sweep(model, line, run_inputs);
+}
+
+}  // namespace
+
+int kinema_cli::run(int argc, char** argv) {
+  CLI::App app{"kinema: velocity and acceleration analysis of mechanisms written as vector loops, as joints and "
+               "links, or as spatial chains of frames",
+               "kinema"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "kinema " KINEMA_VERSION, "print the version and exit");
+  CommandLine line;
+  add_subcommands(app, line);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    return kinema_cli::report_parse_error(app, error);  // help and version: 0; usage errors: one line, 2
+  }
+
+  const Mechanism mechanism = read_mechanism(line);
+  // A file kinema cannot analyse is not written as loops either. Only derive and latex
+  // print the formulas solved in closed form: the others do without them (faster).
+  const bool prints_formulas = line.derive->parsed() || line.latex->parsed();
+  const Model model = make_model(mechanism, prints_formulas ? DerivationScope::full : DerivationScope::evaluation);
+  check_basis(model.system, line);
+  if (line.loops->parsed()) {
+    write_output(vector_loop_file(mechanism), line.output_path);
+    return 0;
+  }
+  if (line.derive->parsed()) return run_derive(model, line);
+  if (line.codegen->parsed()) return run_codegen(model, line);
+  std::vector<double> inputs;
+  for (const std::string& angle : line.angles) inputs.push_back(parse_input_value(model.system, angle));
+  if (line.page->parsed()) {
+    write_page_file(model, line.page_sweep, line.page_circuit, inputs, line.output_path);
+    return 0;
+  }
+  if (line.latex->parsed()) return run_latex(model, line, std::move(inputs));
+  return run_eval(model, line, std::move(inputs));
 }

@@ -9,9 +9,11 @@
 #   numeric       per input value, no GiNaC
 #   model         the derived and compiled mechanism
 #   analysis      what views show beyond the solved table
-#   printers      formats only
+#   printers      formats only: what a view shows, from the results and the analysis
+#   run           a long run solved and printed block by block (the solver and a printer)
 #   facade        the installed library API (api/kinema/)
 #   cli           the command
+#   python        the Python module (a view beside the command)
 #
 # Configure runs kinema_check_stage_order over the tree (CMakeLists.txt); so does
 # `cmake -DROOT=<tree> -P cmake/stage_order.cmake` (tests/CMakeLists.txt runs it on a tree
@@ -26,17 +28,19 @@ set(KINEMA_STAGES
   "symbolic:engine/symbolic/"
   "numeric:engine/numeric/"
   "model:engine/model."
-  "analysis:engine/report/|engine/input_value."
+  "analysis:engine/analysis/|engine/input_value."
   "printers:engine/printers/"
+  "run:engine/run/"
   "facade:api/"
-  "cli:cli/")
+  "cli:cli/"
+  "python:python/")
 
 # Upward includes that the reshaping of issue 34 has yet to remove: "file -> header".
 # The list only shrinks; a new upward include fails configure.
 set(KINEMA_STAGE_ORDER_PENDING
-  "engine/model.cpp -> engine/report/output_scale.hpp"
-  "engine/symbolic/dyad_method.cpp -> engine/report/structure.hpp"
-  "engine/report/toggles.hpp -> engine/model.hpp"
+  "engine/model.cpp -> engine/analysis/output_scale.hpp"
+  "engine/symbolic/dyad_method.cpp -> engine/analysis/structure.hpp"
+  "engine/analysis/toggles.hpp -> engine/model.hpp"
   "loops/spatial_chain.cpp -> engine/symbolic/differentiate.hpp"
   "loops/spatial_chain.cpp -> engine/symbolic/naming.hpp"
   "loops/planar_loops.hpp -> engine/constraint_system.hpp"
@@ -48,6 +52,28 @@ set(KINEMA_STAGE_ORDER_PENDING
   "loops/mechanism_file.hpp -> engine/numeric/input_values.hpp"
   "loops/spatial_chain.hpp -> engine/constraint_system.hpp"
   "loops/mechanism_file.cpp -> engine/symbolic/naming.hpp")
+
+# Headers that solve (derive, differentiate, simplify, order the equations, or solve,
+# compile or run a tape): a printer includes none of them. A printer formats what the
+# model, the results and the analysis (engine/analysis/analysis.hpp) hold; what a view
+# shows beyond the solved table is computed once, before any printer runs, by
+# analyse_for_views. The data a printer shows from such a stage has a header of its own
+# (engine/symbolic/dyad_derivation_types.hpp, engine/symbolic/expansion.hpp).
+set(KINEMA_PRINTER_FORBIDDEN_HEADERS
+  "engine/symbolic/derivation.hpp"
+  "engine/symbolic/differentiate.hpp"
+  "engine/symbolic/dyad_method.hpp"
+  "engine/symbolic/solving_order.hpp"
+  "engine/symbolic/trig_simplify.hpp"
+  "engine/numeric/sweep.hpp"
+  "engine/numeric/solver.hpp"
+  "engine/numeric/circuit.hpp"
+  "engine/numeric/closed_form.hpp"
+  "engine/numeric/kinematics.hpp"
+  "engine/numeric/workspace.hpp"
+  "engine/numeric/batch_workspace.hpp"
+  "engine/numeric/tape_ops.hpp"
+  "engine/numeric/simd_math.hpp")
 
 cmake_policy(SET CMP0057 NEW)  # if(IN_LIST), in script mode too
 
@@ -79,10 +105,10 @@ function(kinema_stage_name index out)
 endfunction()
 
 # Fails (FATAL_ERROR) naming every include from a stage to a later one under root, but
-# those in the pending list. Includes are read as the tree writes them: "engine/..." from
+# those in the pending list, and every include of a solving header by a printer. Includes are read as the tree writes them: "engine/..." from
 # the root.
 function(kinema_check_stage_order root)
-  file(GLOB_RECURSE sources RELATIVE "${root}" "${root}/engine/*" "${root}/loops/*" "${root}/cli/*" "${root}/api/*")
+  file(GLOB_RECURSE sources RELATIVE "${root}" "${root}/engine/*" "${root}/loops/*" "${root}/cli/*" "${root}/api/*" "${root}/python/*")
   set(upward "")
   foreach(source IN LISTS sources)
     if(NOT source MATCHES "\\.(cpp|hpp|inc)$")
@@ -91,10 +117,13 @@ function(kinema_check_stage_order root)
     kinema_stage_of("${source}" from)
     file(STRINGS "${root}/${source}" includes REGEX "^[ \t]*#[ \t]*include[ \t]*[<\"]")
     foreach(line IN LISTS includes)
-      if(NOT line MATCHES "#[ \t]*include[ \t]*[<\"](kinema/)?((engine|loops|cli|api)/[^>\"]+)[>\"]")
+      if(NOT line MATCHES "#[ \t]*include[ \t]*[<\"](kinema/)?((engine|loops|cli|api|python)/[^>\"]+)[>\"]")
         continue()
       endif()
       set(header "${CMAKE_MATCH_2}")
+      if(source MATCHES "^engine/printers/" AND "${header}" IN_LIST KINEMA_PRINTER_FORBIDDEN_HEADERS)
+        list(APPEND upward "${source} (printers) includes ${header}, a solving header: a printer only formats")
+      endif()
       kinema_stage_of("${header}" to)
       if(from GREATER_EQUAL 0 AND to GREATER from AND NOT "${source} -> ${header}" IN_LIST KINEMA_STAGE_ORDER_PENDING)
         kinema_stage_name(${from} from_name)
@@ -105,7 +134,7 @@ function(kinema_check_stage_order root)
   endforeach()
   if(upward)
     list(JOIN upward "\n  " lines)
-    message(FATAL_ERROR "an include from a stage to a later one (the stages: cmake/stage_order.cmake):\n  ${lines}\n"
+    message(FATAL_ERROR "an include from a stage to a later one, or of a solving header by a printer (the stages: cmake/stage_order.cmake):\n  ${lines}\n"
                         "Move what the earlier stage needs down to it (or to base), or the code up to the later stage.")
   endif()
 endfunction()

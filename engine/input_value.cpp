@@ -3,11 +3,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 
 #include "engine/base/errors.hpp"
 #include "engine/base/number_format.hpp"
-#include "engine/report/output_scale.hpp"
+#include "engine/analysis/output_scale.hpp"
 #include "engine/base/units.hpp"
+#include "loops/mechanism_file.hpp"
 
 namespace kinema {
 
@@ -22,6 +24,28 @@ double parse_input_value(const ConstraintSystem& m, const std::string& text) {
                     m.input.name + " is " + with_article(dimension_name(m.input.dimension)));
   }
   return q.si_value;
+}
+
+WrittenValue written_input_value(const ConstraintSystem& m, const std::string& text) {
+  const double si = parse_input_value(m, text);
+  char* end = nullptr;
+  const double number = std::strtod(text.c_str(), &end);
+  if (end == text.c_str() || !std::isfinite(number)) return {si, 1.0};
+  const double unit = parse_input_value(m, "1" + std::string(end));
+  // A form this split does not read as number times unit: the value in SI.
+  if (number * unit != si) return {si, 1.0};
+  return {number, unit};
+}
+
+InputValues input_sweep(const ConstraintSystem& m, WrittenValue first, WrittenValue last, WrittenValue step) {
+  if (first.unit != last.unit || last.unit != step.unit) {
+    first = {first.number * first.unit, 1.0};
+    last = {last.number * last.unit, 1.0};
+    step = {step.number * step.unit, 1.0};
+  }
+  return sweep_between(first.number, last.number, step.number, first.unit, kMaxValuesPerRun,
+                      "the sweep of " + m.input.name + " from " + format_significant(first.number, 12) + " to " +
+                          format_significant(last.number, 12) + " by " + format_significant(step.number, 12));
 }
 
 // An angle input is turned into radians and reduced by its sine and cosine: no further

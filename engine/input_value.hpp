@@ -15,6 +15,21 @@ namespace kinema {
 /// time). UnitError for a unit of another kind than the input's.
 double parse_input_value(const ConstraintSystem& system, const std::string& text);
 
+/// An input value as written: a number and its unit (SI per unit; 1 for a value given in SI).
+struct WrittenValue {
+  double number = 0.0;
+  double unit = 1.0;
+};
+
+/// "30 deg" as {30, radians per degree}, a bare "30" in the output unit of the input's
+/// kind (as parse_input_value reads it).
+WrittenValue written_input_value(const ConstraintSystem& system, const std::string& text);
+
+/// The values from first to last by step (kMaxValuesPerRun at most): counted and computed
+/// in their unit when the three share one, as `kinema eval --sweep` does in the output
+/// unit (so the same values to the last bit), else in SI.
+InputValues input_sweep(const ConstraintSystem& system, WrittenValue first, WrittenValue last, WrittenValue step);
+
 /// InputError unless every value (SI) is within kMaxAngleDegrees where it is an angle, and
 /// every angle that follows the input (a spatial chain's driven variables) is too; the
 /// values of a sweep are checked at its ends and where a follower turns back.

@@ -1,7 +1,7 @@
 #include "engine/model.hpp"
 
 #include "engine/numeric/sweep.hpp"
-#include "engine/report/output_scale.hpp"  // check_column_names: the output columns named apart before any run
+#include "engine/analysis/output_scale.hpp"  // check_column_names: the output columns named apart before any run
 #include "loops/mechanism_file.hpp"
 #include "loops/planar_loops.hpp"
 #include "loops/spatial_chain.hpp"

@@ -843,14 +843,19 @@ InputValues parse_sweep(const std::string& text, double unit_factor, std::size_t
       !(in >> std::ws).eof()) {
     throw InputError("sweep \"" + text + "\" is not start:stop:step (e.g. 0:360:1)");
   }
+  return sweep_between(start, stop, step, unit_factor, max_values, "sweep \"" + text + "\"");
+}
+
+InputValues sweep_between(double start, double stop, double step, double unit_factor, std::size_t max_values,
+                         const std::string& written) {
   if (!std::isfinite(start) || !std::isfinite(stop) || !std::isfinite(step) || step == 0 ||
       (stop - start) / step < 0) {
-    throw InputError("sweep \"" + text + "\" never reaches its stop: the step must be non-zero "
+    throw InputError(written + " never reaches its stop: the step must be non-zero "
                      "and point from start to stop");
   }
   const double count = std::floor((stop - start) / step + 1e-9);
   if (count >= static_cast<double>(max_values)) {
-    throw InputError("sweep \"" + text + "\" has more than " + std::to_string(max_values) +
+    throw InputError(written + " has more than " + std::to_string(max_values) +
                      " values; use a larger step or split the range");
   }
   return InputValues::sweep(start, step, static_cast<std::size_t>(count) + 1, unit_factor);

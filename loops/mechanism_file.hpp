@@ -43,4 +43,9 @@ Mechanism read_mechanism_text(const std::string& text, const std::string& name);
 /// (computed when asked); more than max_values of them are refused.
 InputValues parse_sweep(const std::string& text, double unit_factor, std::size_t max_values = kMaxValuesPerRun);
 
+/// The values from start to stop by step (numbers in `unit_factor` units), the last
+/// within a billionth of a step of stop; `written` names the run in messages.
+InputValues sweep_between(double start, double stop, double step, double unit_factor, std::size_t max_values,
+                         const std::string& written);
+
 }  // namespace kinema

@@ -7,7 +7,9 @@
 #   cmake -DBUILD_DIR=<kinema build> -DSOURCE_DIR=<kinema source> -DWORK_DIR=<scratch>
 #         -DCONFIG=<build type> -DCXX_COMPILER=<c++> -DGENERATOR=<generator>
 #         -DLIBDIR=<CMAKE_INSTALL_LIBDIR> -DINCLUDEDIR=<CMAKE_INSTALL_INCLUDEDIR>
-#         -DKINEMA=<the kinema program> [-DMAKE_PROGRAM=<make/ninja>] -P install_and_build_example.cmake
+#         -DKINEMA=<the kinema program> [-DMAKE_PROGRAM=<make/ninja>]
+#         [-DPYTHON=<python3> -DPYTHON_SITE=<the module's folder under the prefix>] -P install_and_build_example.cmake
+# With PYTHON, the installed Python module is imported from the prefix and solves a value.
 foreach(var BUILD_DIR SOURCE_DIR WORK_DIR CONFIG CXX_COMPILER GENERATOR LIBDIR INCLUDEDIR KINEMA)
   if(NOT DEFINED ${var} OR "${${var}}" STREQUAL "")
     message(FATAL_ERROR "install_and_build_example.cmake: -D${var}=... is required")
@@ -102,4 +104,12 @@ if(NOT eval_omega3 STREQUAL example_omega3)
   list(JOIN eval_omega3 ", " eval_omega3)
   message(FATAL_ERROR "omega3 (rad/s) at theta2 = ${angles}: library_usage printed ${example_omega3}, "
                       "kinema eval ${eval_omega3}")
+endif()
+
+# The Python module, where it was built: installed under the prefix, imported from there.
+if(DEFINED PYTHON AND NOT "${PYTHON}" STREQUAL "")
+  set(ENV{PYTHONPATH} "${prefix}/${PYTHON_SITE}")
+  step("import the installed Python module" "${PYTHON}" -c
+       "import kinema, pathlib; assert pathlib.Path(kinema.__file__).resolve().is_relative_to(pathlib.Path('${prefix}').resolve()), kinema.__file__; print(kinema.load('${SOURCE_DIR}/samples/four_bar.toml').at('30 deg')['omega3'])")
+  message("${step_output}")
 endif()

@@ -36,7 +36,7 @@ TEST_CASE("README: docs/library.md shows examples/library_usage.cpp verbatim, an
   REQUIRE(example.find("#include <kinema/kinema.hpp>") != std::string::npos);
   REQUIRE(example.find(".rate(\"omega3\")") != std::string::npos);
   CHECK(library.find("```cpp\n" + example + "```") != std::string::npos);
-  for (const char* folder : {"loops", "engine/symbolic", "engine/numeric", "engine/report", "engine/printers/text",
+  for (const char* folder : {"loops", "engine/symbolic", "engine/numeric", "engine/analysis", "engine/run", "engine/printers/text",
                              "engine/printers/data", "engine/printers/latex", "engine/printers/code", "api/kinema", "cli"}) {
     CAPTURE(folder);
     CHECK(std::filesystem::is_directory(kinema_test::sample(std::string("../") + folder)));

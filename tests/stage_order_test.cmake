@@ -1,12 +1,13 @@
 # The stage-order check itself (cmake/stage_order.cmake): on a small tree, an include
-# from a stage to a later one must fail the check and be named; includes downward, in
-# either spelling, must pass.
+# from a stage to a later one must fail the check and be named, and so must a printer's
+# include of a solving header; includes downward, in either spelling, must pass.
 #   cmake -DSOURCE_DIR=<kinema> -DWORK_DIR=<scratch> -P tests/stage_order_test.cmake
 file(REMOVE_RECURSE "${WORK_DIR}")
 file(MAKE_DIRECTORY "${WORK_DIR}/engine/numeric" "${WORK_DIR}/engine/printers")
 file(WRITE "${WORK_DIR}/engine/printers/table.cpp"
-     "#include \"engine/numeric/sweep.hpp\"\n#include \"engine/base/errors.hpp\"\n")
-file(WRITE "${WORK_DIR}/engine/numeric/sweep.hpp" "#pragma once\n#include \"engine/base/errors.hpp\"\n")
+     "#include \"engine/numeric/motion_table.hpp\"\n#include <kinema/engine/base/errors.hpp>\n")
+file(WRITE "${WORK_DIR}/engine/numeric/motion_table.hpp" "#pragma once\n#include \"engine/base/errors.hpp\"\n")
+file(WRITE "${WORK_DIR}/engine/numeric/sweep.hpp" "#pragma once\n#include \"engine/numeric/motion_table.hpp\"\n")
 execute_process(COMMAND "${CMAKE_COMMAND}" -DROOT=${WORK_DIR} -P ${SOURCE_DIR}/cmake/stage_order.cmake
                 RESULT_VARIABLE status ERROR_VARIABLE error)
 if(NOT status EQUAL 0)
@@ -19,4 +20,15 @@ execute_process(COMMAND "${CMAKE_COMMAND}" -DROOT=${WORK_DIR} -P ${SOURCE_DIR}/c
 string(REGEX REPLACE "[ \n]+" " " error "${error}")  # CMake wraps its messages
 if(status EQUAL 0 OR NOT error MATCHES "engine/numeric/sweep.hpp \\(numeric\\) includes engine/printers/table.hpp \\(printers\\)")
   message(FATAL_ERROR "an include from numeric to printers passed the check (status ${status}):\n${error}")
+endif()
+
+# A printer that includes a solving header (here the sweep, which solves values) fails:
+# a printer formats what the analysis computed, it does not solve.
+file(WRITE "${WORK_DIR}/engine/numeric/sweep.hpp" "#pragma once\n#include \"engine/numeric/motion_table.hpp\"\n")
+file(APPEND "${WORK_DIR}/engine/printers/table.cpp" "#include \"engine/numeric/sweep.hpp\"\n")
+execute_process(COMMAND "${CMAKE_COMMAND}" -DROOT=${WORK_DIR} -P ${SOURCE_DIR}/cmake/stage_order.cmake
+                RESULT_VARIABLE status ERROR_VARIABLE error)
+string(REGEX REPLACE "[ \n]+" " " error "${error}")
+if(status EQUAL 0 OR NOT error MATCHES "engine/printers/table.cpp \\(printers\\) includes engine/numeric/sweep.hpp, a solving header")
+  message(FATAL_ERROR "a printer including a solving header passed the check (status ${status}):\n${error}")
 endif()

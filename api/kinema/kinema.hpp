@@ -136,6 +136,7 @@ class MechanismModel {
   struct Engine;  ///< The engine's model (api/kinema.cpp).
 
  private:
+  friend struct EngineAccess;  ///< kinema's own views beside this one (api/engine_access.hpp).
   explicit MechanismModel(std::shared_ptr<const Engine> engine);
   std::shared_ptr<const Engine> engine_;
   std::shared_ptr<const Names> names_;

@@ -383,7 +383,7 @@ KINEMA_AVX512_VBMI char* put_chunk_vbmi(char* out, const ChunkDigits& chunk, con
 
 // std::to_chars: printf's %.*g digits without its locale and format parsing; for up to
 // 13 digits a faster path that gives the same characters (checked against to_chars
-// in tests/engine/report/number_format_test.cpp) and defers to it near a tie.
+// in tests/engine/analysis/number_format_test.cpp) and defers to it near a tie.
 char* put_significant(char* out, double value, int significant) {
   if (value == 0) {  // no "-0"
     *out = '0';

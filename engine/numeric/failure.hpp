@@ -1,5 +1,5 @@
 // What went wrong at one input value, as data: the numeric core says what
-// happened and where; the report layer (report/diagnostics) makes the sentence.
+// happened and where; the analysis stage (engine/analysis/diagnostics) makes the sentence.
 #pragma once
 
 #include <cstdint>

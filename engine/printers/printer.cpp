@@ -1,5 +1,7 @@
 #include "engine/printers/printer.hpp"
 
+#include <stdexcept>
+
 namespace kinema {
 
 // Each printer file defines its printer; this list is the registry.
@@ -40,6 +42,22 @@ void ResultsPrinter::print(std::ostream& out, const PrintJob& job) const {
   if (job.values) this->rows(text, job, *job.values, 0, rows, 0);
   tail(text, job, rows);
   out.write(text.data(), static_cast<std::streamsize>(text.size()));
+}
+
+ViewNeeds Printer::needs(const PrintJob&) const { return {}; }
+
+ViewNeeds derivation_needs(const PrintJob& job, bool by_dyads) {
+  ViewNeeds needs;
+  needs.dyad_derivation = by_dyads && job.method != DerivationMethod::loops;
+  needs.chain_at_instant = true;  // worked out only for a driven chain (analyse_for_views)
+  needs.method = job.method;
+  needs.basis = job.basis;
+  return needs;
+}
+
+const Analysis& analysis_of(const PrintJob& job) {
+  if (!job.analysis) throw std::logic_error("a printer was given no analysis: build it with analyse_for_views");
+  return *job.analysis;
 }
 
 std::vector<std::string> printer_names(PrintKind kind) {

@@ -1,6 +1,9 @@
 // Every output format is a printer over the same results: the model (its
-// constraint system and derivation) and, for the formats that show numbers,
-// the solved values. The command line finds a printer by its kind and name.
+// constraint system and derivation), for the formats that show numbers the solved
+// values, and what the analysis worked out for the view (engine/analysis/analysis.hpp:
+// design figures, polygons, ...). A printer only formats: it says what it needs
+// (Printer::needs), the caller computes that once (analyse_for_views) and passes it in.
+// The command line finds a printer by its kind and name.
 #pragma once
 
 #include <ostream>
@@ -8,8 +11,9 @@
 #include <string_view>
 #include <vector>
 
+#include "engine/analysis/analysis.hpp"
 #include "engine/model.hpp"
-#include "engine/symbolic/dyad_method.hpp"
+#include "engine/symbolic/dyad_derivation_types.hpp"
 
 namespace kinema {
 
@@ -20,6 +24,9 @@ struct PrintJob {
   const Model& model;
   const MotionTable* values = nullptr;  ///< Results at the requested input values.
   const MotionTable* sweep = nullptr;   ///< A run over the input's range (plots).
+  /// What the printer's needs() asked for, computed by analyse_for_views (engine/run/view.hpp
+  /// does both); required by a printer whose needs() asks for anything.
+  const Analysis* analysis = nullptr;
   bool fragment = false;                ///< Documents: no preamble, for \input into notes.
   int precision = 0;                    ///< Results: significant digits in text formats (0: the format's default).
   bool circuit = false;                 ///< Results: rows along a circuit (a direction and dyad signs each).
@@ -46,10 +53,21 @@ class Printer {
   virtual PrintKind kind() const = 0;
   virtual const char* name() const = 0;  ///< As --format takes it: "csv".
   virtual void print(std::ostream& out, const PrintJob& job) const = 0;
+  /// What printing `job` shows beyond the results (none by default): analyse_for_views
+  /// computes it into job.analysis before print.
+  virtual ViewNeeds needs(const PrintJob& job) const;
 };
 
+/// What a derivation shows of job beyond the model's: the relations dyad by dyad in
+/// job.method (where `by_dyads`: the printer shows them for this system) and a driven
+/// chain worked out at the instant in job.basis.
+ViewNeeds derivation_needs(const PrintJob& job, bool by_dyads);
+
+/// job.analysis; std::logic_error when a printer that needs one was given none.
+const Analysis& analysis_of(const PrintJob& job);
+
 /// A results format printed a block of rows at a time, so that a long run streams
-/// (engine/printers/results_stream.hpp): head, the rows of each block in order, tail.
+/// (engine/run/results_stream.hpp): head, the rows of each block in order, tail.
 /// print() is the three over the whole of job.values, so a streamed run and a
 /// printed table give the same bytes.
 class ResultsPrinter : public Printer {

@@ -13,7 +13,7 @@
 
 #include "engine/base/number_format.hpp"
 #include "engine/symbolic/complex_parts.hpp"
-#include "engine/symbolic/differentiate.hpp"
+#include "engine/symbolic/expansion.hpp"
 #include "engine/symbolic/expression_parts.hpp"
 
 namespace kinema {

@@ -9,6 +9,8 @@
 
 #include <ginac/ginac.h>
 
+#include "engine/symbolic/expansion.hpp"
+
 namespace kinema {
 
 /// d e / d s: the same expression as e.diff(s). The terms of sums and the factors of
@@ -29,19 +31,5 @@ double derivative_size_estimate(const GiNaC::ex& e, const GiNaC::exset& moving);
 /// factors..." when derivative_size_estimate(e, moving) is over the budget.
 void check_derivative_size(const GiNaC::ex& e, const GiNaC::exset& moving, const std::string& what,
                            const std::string& formula);
-
-/// How many terms e has once multiplied out (GiNaC's expand(), which leaves function
-/// arguments and negative or fractional powers as they are), estimated from the top and
-/// capped just past `cap`: a product of n sums of two terms has 2^n.
-double expanded_terms_estimate(const GiNaC::ex& e, double cap);
-
-/// Terms a formula is multiplied out to (its terms collected, for printing and solving);
-/// past it the formula is left as it is: the chain rule of tan nested n deep is a product
-/// of n sums 1 + tan^2(...), 2^n terms multiplied out (tan nested 10 deep never finished
-/// loading). The samples' formulas have tens of terms.
-constexpr double kMultiplyOutBudget = 256;
-
-/// e.expand() when that has at most `budget` terms (estimated first), else e.
-GiNaC::ex multiplied_out(const GiNaC::ex& e, double budget = kMultiplyOutBudget);
 
 }  // namespace kinema

@@ -3,9 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/base/work_count.hpp"
 #include "engine/base/errors.hpp"
 #include "engine/symbolic/differentiate.hpp"
-#include "engine/report/structure.hpp"
+#include "engine/analysis/structure.hpp"
 
 namespace kinema {
 
@@ -637,6 +638,7 @@ void check_method_applies(const ConstraintSystem& system, DerivationMethod metho
 }
 
 DyadDerivation derive_by_dyads(const ConstraintSystem& system, DerivationMethod method) {
+  count_work(Work::dyad_derivation);
   if (!solved_dyad_by_dyad(system)) refuse_method(system, method);
   return Writer(system, method).run();
 }

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "engine/model.hpp"
-#include "engine/report/diagnostics.hpp"
+#include "engine/analysis/diagnostics.hpp"
 #include "loops/mechanism_file.hpp"
 
 #include "tests/test_support.hpp"

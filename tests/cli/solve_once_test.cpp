@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/base/work_count.hpp"
 #include "engine/numeric/sweep.hpp"
 
 #include "cli/run.hpp"
@@ -46,4 +47,25 @@ TEST_CASE("kinema eval solves each value of an --angle list once, in every forma
       CHECK(six - three == 3);
     }
   }
+}
+
+TEST_CASE("each command works out what its view shows once: design figures, dyads, drawings") {
+  const auto directory = std::filesystem::temp_directory_path() / "kinema_tests" / "analyse_once";
+  std::filesystem::create_directories(directory);
+  const std::string out = (directory / "out").string();
+  const auto work_by = [&](kinema::Work work, const std::vector<std::string>& arguments) {
+    const std::uint64_t before = kinema::work_done_in_process(work);
+    values_solved_by(arguments);
+    return kinema::work_done_in_process(work) - before;
+  };
+  const std::string four_bar = kinema_test::sample("four_bar.toml");
+  const std::string joints = kinema_test::sample("example_4_2_joints.toml");
+  // A four-bar's figures and its sliders' strokes: once each per command that shows them,
+  // a table and a streamed sweep alike; none for a format that does not.
+  CHECK(work_by(kinema::Work::design_figures, {"eval", four_bar, "-o", out}) == 2);
+  CHECK(work_by(kinema::Work::design_figures, {"eval", four_bar, "--sweep", "0:90:1", "-q", "-o", out}) == 2);
+  CHECK(work_by(kinema::Work::design_figures, {"eval", four_bar, "--format", "csv", "-o", out}) == 0);
+  CHECK(work_by(kinema::Work::design_figures, {"latex", four_bar, "-o", out}) == 2);
+  CHECK(work_by(kinema::Work::dyad_derivation, {"derive", joints, "--method", "relative-velocity", "-o", out}) == 1);
+  CHECK(work_by(kinema::Work::dyad_derivation, {"latex", joints, "--method", "joint-coordinates", "-o", out}) == 1);
 }

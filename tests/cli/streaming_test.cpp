@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <sstream>
 
+#include "engine/run/view.hpp"
 #include "engine/model.hpp"
 #include "engine/printers/printer.hpp"
 #include "loops/mechanism_file.hpp"
@@ -29,7 +30,7 @@ std::string sweep_for(const kinema::Model& model) {
 
 }  // namespace
 
-// The library test (tests/engine/printers/results_stream_test.cpp) shows streamed ==
+// The library test (tests/engine/run/results_stream_test.cpp) shows streamed ==
 // whole table byte for byte in one process. Across processes the last bit of a number may
 // differ: GiNaC orders terms by addresses, and the command line runs with address
 // randomisation off (its own output is the same in every run) while this test does not.
@@ -79,7 +80,7 @@ TEST_CASE("kinema eval: streamed output is the printer over the whole table, on 
       CAPTURE(format);
       kinema::PrintJob job{model, &whole};
       std::ostringstream expected;
-      kinema::find_printer(kinema::PrintKind::results, format)->print(expected, job);
+      kinema::print_view(*kinema::find_printer(kinema::PrintKind::results, format), expected, job);
       std::string printed[2];
       for (int t = 0; t < 2; ++t) {
         const std::string path = directory + "/out." + format;

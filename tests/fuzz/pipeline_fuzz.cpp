@@ -14,13 +14,14 @@
 #include <string>
 #include <vector>
 
+#include "engine/run/view.hpp"
 #include "engine/base/errors.hpp"
 #include "engine/model.hpp"
 #include "engine/numeric/circuit.hpp"
 #include "engine/printers/printer.hpp"
-#include "engine/printers/results_stream.hpp"
-#include "engine/report/chain_instant.hpp"
-#include "engine/report/plot_range.hpp"
+#include "engine/run/results_stream.hpp"
+#include "engine/analysis/chain_instant.hpp"
+#include "engine/analysis/plot_range.hpp"
 #include "loops/mechanism_file.hpp"
 #include "loops/spatial_chain.hpp"
 
@@ -34,9 +35,9 @@ void print_everything(const Model& model, const MotionTable& values, const Motio
       PrintJob job{model, &values, &range};
       job.code_namespace = "fuzz";
       std::ostringstream out;
-      find_printer(kind, name)->print(out, job);
+      kinema::print_view(*find_printer(kind, name), out, job);
       job.fragment = true;
-      if (kind == PrintKind::document) find_printer(kind, name)->print(out, job);
+      if (kind == PrintKind::document) kinema::print_view(*find_printer(kind, name), out, job);
     }
   }
 }
@@ -139,7 +140,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         PrintJob job{model, &circuit.table};
         job.circuit = circuit.stop == Circuit::Stop::closed;
         std::ostringstream out;
-        find_printer(PrintKind::results, name)->print(out, job);
+        kinema::print_view(*find_printer(PrintKind::results, name), out, job);
       }
     }
   } catch (const kinema::Error&) {

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "engine/model.hpp"
-#include "engine/report/diagnostics.hpp"
+#include "engine/analysis/diagnostics.hpp"
 #include "loops/linkage_loops.hpp"
 #include "loops/dyad_positions.hpp"
 #include "loops/mechanism_file.hpp"

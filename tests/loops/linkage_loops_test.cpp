@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/run/view.hpp"
 #include "engine/base/errors.hpp"
 #include "engine/model.hpp"
 #include "engine/printers/printer.hpp"
@@ -366,8 +367,8 @@ TEST_CASE("loops/linkage_loops: the solving order is the seeds': driver, then dy
   // derive prints it, in text and LaTeX.
   const Model model = kinema::load_model(sample("problem_4_4_joints.toml"));
   std::ostringstream text, latex;
-  kinema::find_printer(kinema::PrintKind::derivation, "text")->print(text, {model});
-  kinema::find_printer(kinema::PrintKind::derivation, "latex")->print(latex, {model});
+  kinema::print_view(*kinema::find_printer(kinema::PrintKind::derivation, "text"), text, {model});
+  kinema::print_view(*kinema::find_printer(kinema::PrintKind::derivation, "latex"), latex, {model});
   CHECK(text.str().find("dyad 1, RRR: links 2, 3; joints B, C, D") != std::string::npos);
   CHECK(text.str().find("dyad 2, RRT: links 4, 5; joints E, F, F5") != std::string::npos);
   CHECK(text.str().find("3(n - 1) - 2j = 3*5 - 2*7 = 1") != std::string::npos);
@@ -377,7 +378,7 @@ TEST_CASE("loops/linkage_loops: the solving order is the seeds': driver, then dy
   CHECK(latex.str().find("\\\\\ndyad 2, RRT: links 4, 5; joints E, F, F5") != std::string::npos);
   // A vector-loop file has no structure section.
   std::ostringstream loops_text;
-  kinema::find_printer(kinema::PrintKind::derivation, "text")->print(loops_text, {kinema::load_model(sample("problem_4_4_six_bar.toml"))});
+  kinema::print_view(*kinema::find_printer(kinema::PrintKind::derivation, "text"), loops_text, {kinema::load_model(sample("problem_4_4_six_bar.toml"))});
   CHECK(loops_text.str().find("Structure") == std::string::npos);
 }
 
@@ -520,7 +521,7 @@ rate = "1 rad/s"
   CHECK_FALSE(model.system.linkage->frames.closed_form);
   CHECK(model.kinematics.closed_form() == nullptr);
   std::ostringstream text;
-  kinema::find_printer(kinema::PrintKind::derivation, "text")->print(text, {model});
+  kinema::print_view(*kinema::find_printer(kinema::PrintKind::derivation, "text"), text, {model});
   CHECK(text.str().find("not a dyad: links 3, 4, 5, 6, solved together by Newton on their loops") != std::string::npos);
   // At the sketch's input the sketch is the solution; nearby, the loops close.
   const MotionTable t = kinema::analyse(model, {M_PI / 4, 50 * M_PI / 180});
@@ -553,7 +554,7 @@ TEST_CASE("loops/linkage_loops: an assembly stated on a dyad's middle joint over
   const Model same = model_of(stated("left of B-D"));
   check_same_motion(same, kinema::load_model(sample("problem_4_1_parallelogram.toml")), degrees(10, 170, 40));
   std::ostringstream derivation;
-  kinema::find_printer(kinema::PrintKind::derivation, "text")->print(derivation, {crossed});
+  kinema::print_view(*kinema::find_printer(kinema::PrintKind::derivation, "text"), derivation, {crossed});
   CHECK(derivation.str().find("dyad 1, RRR: links 2, 3; joints B, C, D; assembly C right of B-D (stated in the file)") !=
         std::string::npos);
 

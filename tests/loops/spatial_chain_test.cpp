@@ -12,7 +12,7 @@
 
 #include "engine/base/errors.hpp"
 #include "loops/mechanism_file.hpp"
-#include "engine/report/chain_instant.hpp"
+#include "engine/analysis/chain_instant.hpp"
 #include "loops/spatial_chain.hpp"
 
 #include "tests/test_support.hpp"

@@ -7,7 +7,7 @@
 
 #include "engine/printers/printer.hpp"
 #include "engine/base/number_format.hpp"
-#include "engine/report/output_scale.hpp"
+#include "engine/analysis/output_scale.hpp"
 
 namespace kinema {
 namespace {

@@ -7,10 +7,10 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/printers/printer.hpp"
-#include "engine/report/design_figures.hpp"
-#include "engine/report/diagnostics.hpp"
+#include "engine/analysis/design_figures.hpp"
+#include "engine/analysis/diagnostics.hpp"
 #include "engine/base/number_format.hpp"
-#include "engine/report/output_scale.hpp"
+#include "engine/analysis/output_scale.hpp"
 
 namespace kinema {
 namespace {
@@ -23,6 +23,11 @@ std::string quoted(const std::string& text) { return json(text).dump(); }
 class JsonPrinter : public ResultsPrinter {
  public:
   const char* name() const override { return "json"; }
+  ViewNeeds needs(const PrintJob&) const override {
+    ViewNeeds needs;
+    needs.design_figures = true;  // the head's "strokes" and "four_bar"
+    return needs;
+  }
 
   void head(std::string& out, const PrintJob& job, std::size_t) const override {
     const ConstraintSystem& system = job.model.system;
@@ -52,7 +57,8 @@ class JsonPrinter : public ResultsPrinter {
     json points = json::array();
     for (const PointObservable& p : system.points) points.push_back(p.name);
     doc["points"] = points;
-    const std::vector<Strokes> strokes = slider_strokes(job.model);
+    const Analysis& analysis = analysis_of(job);
+    const std::vector<Strokes>& strokes = analysis.strokes;
     if (!strokes.empty()) {  // a crank-driven slider's limits and time ratio
       json list = json::array();
       for (const Strokes& s : strokes) {
@@ -64,7 +70,7 @@ class JsonPrinter : public ResultsPrinter {
       }
       doc["strokes"] = list;
     }
-    if (const auto f = four_bar_figures(job.model)) {  // design figures of a four-bar
+    if (const auto& f = analysis.four_bar) {  // design figures of a four-bar
       const auto finite = [](double x) { return std::isfinite(x) ? json(x) : json(nullptr); };
       doc["four_bar"] = {{"grashof", f->grashof},
                          {"inequality", f->inequality},

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "engine/printers/printer.hpp"
-#include "engine/report/output_scale.hpp"
+#include "engine/analysis/output_scale.hpp"
 
 namespace kinema {
 namespace {

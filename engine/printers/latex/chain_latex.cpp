@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "engine/report/output_scale.hpp"
+#include "engine/analysis/output_scale.hpp"
 
 namespace kinema {
 namespace {

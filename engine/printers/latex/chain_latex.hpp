@@ -1,4 +1,4 @@
-// A spatial chain worked out at the instant (engine/report/chain_instant) as rows of an
+// A spatial chain worked out at the instant (engine/analysis/chain_instant) as rows of an
 // amsmath align*, the way seed 000 writes it: each angular velocity as the sum of the
 // relative turnings about unit axes, then its components and numbers; each point's v and
 // a term by term, the results boxed. Shared by `derive --format latex` and `kinema latex`.
@@ -8,7 +8,7 @@
 
 #include "engine/constraint_system.hpp"
 #include "engine/printers/latex/latex_format.hpp"
-#include "engine/report/chain_instant.hpp"
+#include "engine/analysis/chain_instant.hpp"
 
 namespace kinema {
 

@@ -7,7 +7,7 @@
 #include "engine/printers/latex/latex_format.hpp"
 #include "engine/printers/latex/method_latex.hpp"
 #include "engine/printers/printer.hpp"
-#include "engine/report/structure.hpp"
+#include "engine/analysis/structure.hpp"
 
 namespace kinema {
 namespace {
@@ -106,6 +106,7 @@ class DerivationLatexPrinter : public Printer {
  public:
   PrintKind kind() const override { return PrintKind::derivation; }
   const char* name() const override { return "latex"; }
+  ViewNeeds needs(const PrintJob& job) const override { return derivation_needs(job, true); }
 
   void print(std::ostream& out, const PrintJob& job) const override {
     const ConstraintSystem& system = job.model.system;
@@ -138,7 +139,7 @@ class DerivationLatexPrinter : public Printer {
       out << "\\par\n";
     }
     if (job.method != DerivationMethod::loops) {  // the seeds' methods, group by group
-      const DyadDerivation derivation = derive_by_dyads(system, job.method);
+      const DyadDerivation& derivation = *analysis_of(job).dyads;
       for (const bool acceleration : {false, true}) {
         std::vector<LatexRow> rows = {latex_intertext(std::string(acceleration ? "Accelerations" : "Velocities") + " by " +
                                                           method_title(job.method) + ":",
@@ -150,7 +151,7 @@ class DerivationLatexPrinter : public Printer {
       }
     }
     if (is_driven_chain(system)) {  // a chain of frames worked out at the instant, as seed 000
-      const ChainAtInstant chain = chain_at_instant(system, job.basis);
+      const ChainAtInstant& chain = *analysis_of(job).chain;
       out << "% spatial chain\n\\noindent " << chain_instant_latex(system, chain) << ".\n";
       block(chain_frame_rows(chain, textbook, kPlainArticleBudget));
       block(chain_point_rows(chain, textbook, kPlainArticleBudget));

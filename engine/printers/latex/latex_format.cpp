@@ -8,7 +8,7 @@
 
 #include "engine/printers/latex/latex_unicode.hpp"
 #include "engine/base/number_format.hpp"
-#include "engine/report/output_scale.hpp"
+#include "engine/analysis/output_scale.hpp"
 #include "engine/base/user_text.hpp"
 #include "engine/symbolic/expression_parts.hpp"
 

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "engine/printers/latex/latex_format.hpp"
-#include "engine/symbolic/dyad_method.hpp"
+#include "engine/symbolic/dyad_derivation_types.hpp"
 
 namespace kinema {
 

@@ -7,8 +7,8 @@
 #include "engine/printers/latex/label_boxes.hpp"
 #include "engine/printers/latex/latex_format.hpp"
 #include "engine/base/number_format.hpp"
-#include "engine/report/output_scale.hpp"
-#include "engine/report/plot_range.hpp"
+#include "engine/analysis/output_scale.hpp"
+#include "engine/analysis/plot_range.hpp"
 
 namespace kinema {
 namespace {

@@ -4,7 +4,7 @@
 
 #include "engine/printers/latex/latex_format.hpp"
 #include "engine/printers/latex/tikz_polygons.hpp"
-#include "engine/report/output_scale.hpp"
+#include "engine/analysis/output_scale.hpp"
 
 namespace kinema {
 

@@ -10,8 +10,8 @@
 
 #include "engine/constraint_system.hpp"
 #include "engine/numeric/motion_table.hpp"
-#include "engine/report/instant_centres.hpp"
-#include "engine/report/polygons.hpp"
+#include "engine/analysis/instant_centres.hpp"
+#include "engine/analysis/polygons.hpp"
 
 namespace kinema {
 

@@ -6,43 +6,19 @@
 #include <map>
 
 #include "engine/printers/latex/latex_format.hpp"
-#include "engine/report/chain_instant.hpp"
+#include "engine/analysis/chain_instant.hpp"
 #include "engine/base/number_format.hpp"
-#include "engine/report/output_scale.hpp"
+#include "engine/analysis/output_scale.hpp"
 
 namespace kinema {
 namespace {
 
 using Point3 = std::array<double, 3>;
 
-// A frame where the state puts it: origin and axes (observer basis, SI).
-struct PlacedFrame {
-  std::string name, parent;
-  Point3 origin{};
-  std::array<Point3, 3> axes{};
-};
-
-double number(const GiNaC::ex& e, const GiNaC::exmap& values) {
-  const GiNaC::ex v = GiNaC::evalf(e.subs(values, GiNaC::subs_options::no_pattern));
-  return GiNaC::is_a<GiNaC::numeric>(v) ? GiNaC::ex_to<GiNaC::numeric>(v).to_double() : 0.0;
-}
-
 }  // namespace
 
-void write_tikz_chain(std::ostream& out, const ConstraintSystem& system, const MotionState& s) {
-  GiNaC::exmap values;
-  for (const SystemParameter& p : system.parameters) values[p.symbol] = p.value;
-  values[system.input.symbol] = s.input;
-  for (std::size_t i = 0; i < system.unknowns.size(); ++i) values[system.unknowns[i].symbol] = s.q[Eigen::Index(i)];
-  std::vector<PlacedFrame> frames;
-  for (const FrameObservable& f : system.frames) {
-    PlacedFrame placed{f.name, f.parent, {}, {}};
-    for (std::size_t r = 0; r < 3; ++r) {
-      placed.origin[r] = number(f.origin[r], values);
-      for (std::size_t c = 0; c < 3; ++c) placed.axes[c][r] = number(f.rotation[3 * r + c], values);
-    }
-    frames.push_back(placed);
-  }
+void write_tikz_chain(std::ostream& out, const ConstraintSystem& system, const std::vector<PlacedFrame>& frames,
+                      const MotionState& s) {
   const std::string observer = chain_observer(system);
   const auto origin_of = [&](const std::string& name) {
     for (const PlacedFrame& f : frames)

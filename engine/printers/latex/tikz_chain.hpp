@@ -7,10 +7,13 @@
 #include <ostream>
 
 #include "engine/constraint_system.hpp"
+#include "engine/analysis/geometry.hpp"
 #include "engine/numeric/motion_table.hpp"
 
 namespace kinema {
 
-void write_tikz_chain(std::ostream& out, const ConstraintSystem& system, const MotionState& state);
+/// The chain with its frames where the analysis placed them at `state` (placed_frames).
+void write_tikz_chain(std::ostream& out, const ConstraintSystem& system, const std::vector<PlacedFrame>& frames,
+                      const MotionState& state);
 
 }  // namespace kinema

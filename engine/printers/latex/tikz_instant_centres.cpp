@@ -7,9 +7,9 @@
 
 #include "engine/printers/latex/label_boxes.hpp"
 #include "engine/printers/latex/latex_format.hpp"
-#include "engine/report/geometry.hpp"
+#include "engine/analysis/geometry.hpp"
 #include "engine/base/number_format.hpp"
-#include "engine/report/output_scale.hpp"
+#include "engine/analysis/output_scale.hpp"
 
 namespace kinema {
 
@@ -60,14 +60,14 @@ void write_centre_marks(std::ostream& out, const InstantCentres& c, const Linkag
 
 }  // namespace
 
-void write_tikz_instant_centres(std::ostream& out, const ConstraintSystem& system, const MechanismGeometry& geometry,
+void write_tikz_instant_centres(std::ostream& out, const ConstraintSystem& system, const ValueAnalysis& at,
                                 const MotionState& s, const InstantCentres& c) {
   const OutputScale scale(system);
   // Joints and links as placed; a vector-loop file's link vectors as segments.
-  std::optional<LinkageDrawing> drawing = linkage_drawing(system, s);
+  std::optional<LinkageDrawing> drawing = at.linkage;
   if (!drawing) {
     drawing.emplace();
-    for (const DrawingSegment& segment : geometry.segments(s)) {
+    for (const DrawingSegment& segment : at.segments) {
       if (segment.kind == DrawingSegment::Kind::ground) continue;
       if (segment.kind == DrawingSegment::Kind::slider) {
         // A block on its guide; a guide on a turning link drawn as that link up to the block.

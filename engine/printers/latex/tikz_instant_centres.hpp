@@ -8,12 +8,11 @@
 
 #include "engine/constraint_system.hpp"
 #include "engine/numeric/motion_table.hpp"
-#include "engine/report/geometry.hpp"
-#include "engine/report/instant_centres.hpp"
+#include "engine/analysis/analysis.hpp"
 
 namespace kinema {
 
-void write_tikz_instant_centres(std::ostream& out, const ConstraintSystem& system, const MechanismGeometry& geometry,
+void write_tikz_instant_centres(std::ostream& out, const ConstraintSystem& system, const ValueAnalysis& at,
                                 const MotionState& state, const InstantCentres& centres);
 
 }  // namespace kinema

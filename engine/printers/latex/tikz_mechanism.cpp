@@ -7,9 +7,9 @@
 #include <string>
 
 #include "engine/printers/latex/latex_format.hpp"
-#include "engine/report/geometry.hpp"
+#include "engine/analysis/geometry.hpp"
 #include "engine/base/number_format.hpp"
-#include "engine/report/output_scale.hpp"
+#include "engine/analysis/output_scale.hpp"
 #include "engine/symbolic/naming.hpp"
 
 namespace kinema {
@@ -83,13 +83,13 @@ void write_links(std::ostream& out, const LinkageDrawing& drawing, const Xy& xy,
 
 }  // namespace
 
-void write_tikz_mechanism(std::ostream& out, const ConstraintSystem& system, const MechanismGeometry& geometry,
-                        const MotionState& s) {
+void write_tikz_mechanism(std::ostream& out, const ConstraintSystem& system, const ValueAnalysis& at,
+                          const std::vector<std::string>& link_labels, const MotionState& s) {
   const OutputScale scale(system);
   using Segment = DrawingSegment;
   // Joints and links: the links as bodies (bars, plates, blocks); vector loops: their terms.
-  const std::optional<LinkageDrawing> drawing = linkage_drawing(system, s);
-  const std::vector<Segment> segments = drawing ? std::vector<Segment>{} : geometry.segments(s);
+  const std::optional<LinkageDrawing>& drawing = at.linkage;
+  const std::vector<Segment>& segments = at.segments;
   std::vector<std::complex<double>> extent = {{0, 0}};
   for (const Segment& segment : segments) extent.push_back(segment.to);
   if (drawing) {
@@ -204,7 +204,7 @@ void write_tikz_mechanism(std::ostream& out, const ConstraintSystem& system, con
   // A point on a link of a vector-loop file drawn on it: a plate with a segment of the link
   // from where the point's own link vector starts; nothing more for a joint the loops
   // already reach; else a bar.
-  for (const PointOnLink& on : drawing ? std::vector<PointOnLink>{} : geometry.points_on_links(s)) {
+  for (const PointOnLink& on : at.points_on_links) {
     const auto near = [&](std::complex<double> a, std::complex<double> b) { return std::abs(a - b) < 1e-9 * size; };
     const Segment* base = nullptr;
     bool joint = false;
@@ -222,13 +222,13 @@ void write_tikz_mechanism(std::ostream& out, const ConstraintSystem& system, con
     }
   }
   // Link numbers beside each link's first segment.
-  std::vector<bool> numbered(geometry.link_labels().size(), false);
+  std::vector<bool> numbered(link_labels.size(), false);
   for (const Segment& g : segments) {
     if (g.link < 0 || numbered[g.link] || std::abs(g.to - g.from) < 1e-9 * size) continue;
     numbered[g.link] = true;
     const std::complex<double> across = (g.to - g.from) / std::abs(g.to - g.from) * std::complex<double>(0, 1);
     out << "\\node[circle, draw, inner sep=1pt, font=\\scriptsize] at "
-        << xy(beside((g.from + g.to) / 2.0, across)) << " {" << latex_escape_text(geometry.link_labels()[g.link])
+        << xy(beside((g.from + g.to) / 2.0, across)) << " {" << latex_escape_text(link_labels[g.link])
         << "};\n";
   }
   // A link that is only a slider's guide (a crank carrying a slot): numbered beside it.
@@ -240,7 +240,7 @@ void write_tikz_mechanism(std::ostream& out, const ConstraintSystem& system, con
     const std::complex<double> across = g.along * std::complex<double>(0, 1);
     out << "\\node[circle, draw, inner sep=1pt, font=\\scriptsize] at "
         << xy(beside((g.from + g.to) / 2.0, across)) << " {"
-        << latex_escape_text(geometry.link_labels()[g.guide_link]) << "};\n";
+        << latex_escape_text(link_labels[g.guide_link]) << "};\n";
   }
   // Every block numbered: on the side of a fixed guide away from its hatching; beside a
   // block on a turning link, on the side away from its point's label (above left).

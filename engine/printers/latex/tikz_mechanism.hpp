@@ -7,11 +7,13 @@
 
 #include "engine/constraint_system.hpp"
 #include "engine/numeric/motion_table.hpp"
-#include "engine/report/geometry.hpp"
+#include "engine/analysis/analysis.hpp"
 
 namespace kinema {
 
-void write_tikz_mechanism(std::ostream& out, const ConstraintSystem& system, const MechanismGeometry& geometry,
-                          const MotionState& state);
+/// The drawing at `state` as the analysis found it there (its bodies, or its segments
+/// and points on links numbered by `link_labels`).
+void write_tikz_mechanism(std::ostream& out, const ConstraintSystem& system, const ValueAnalysis& at,
+                          const std::vector<std::string>& link_labels, const MotionState& state);
 
 }  // namespace kinema

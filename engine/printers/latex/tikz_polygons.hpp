@@ -7,7 +7,7 @@
 
 #include "engine/constraint_system.hpp"
 #include "engine/printers/textbook_form.hpp"
-#include "engine/report/polygons.hpp"
+#include "engine/analysis/polygons.hpp"
 
 namespace kinema {
 

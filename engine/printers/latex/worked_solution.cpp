@@ -7,6 +7,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <stdexcept>
 
 #include "engine/printers/latex/chain_latex.hpp"
 #include "engine/printers/latex/latex_format.hpp"
@@ -18,13 +19,10 @@
 #include "engine/printers/latex/tikz_mechanism.hpp"
 #include "engine/printers/latex/tikz_polygons.hpp"
 #include "engine/printers/printer.hpp"
-#include "engine/report/design_figures.hpp"
-#include "engine/report/diagnostics.hpp"
-#include "engine/report/geometry.hpp"
-#include "engine/report/instant_centres.hpp"
+#include "engine/analysis/analysis.hpp"
+#include "engine/analysis/diagnostics.hpp"
 #include "engine/base/number_format.hpp"
-#include "engine/report/output_scale.hpp"
-#include "engine/report/polygons.hpp"
+#include "engine/analysis/output_scale.hpp"
 #include "engine/symbolic/expression_parts.hpp"
 #include "engine/symbolic/naming.hpp"
 
@@ -35,17 +33,14 @@ using GiNaC::ex;
 
 class DocumentWriter {
  public:
-  DocumentWriter(std::ostream& out, const Model& model)
+  DocumentWriter(std::ostream& out, const Model& model, const Analysis& analysis)
       : out_(out),
-        model_(model),
         system_(model.system),
+        analysis_(analysis),
         d_(full_derivation(model.derivation)),
         scale_(model.system),
-        geometry_(model.system),
-        polygons_(model.system),
         textbook_(model.system),
-        numbers_(model.system),
-        four_bar_(four_bar_figures(model)) {}
+        numbers_(model.system) {}
 
   void preamble() {
     out_ << "\\documentclass[11pt]{article}\n"
@@ -60,8 +55,8 @@ class DocumentWriter {
 
   // A chain of frames driven by its joints, worked out at the instant as seed 000 does:
   // the frames, their angular velocities and accelerations, each point's v and a.
-  void chain(const std::string& basis) {
-    const ChainAtInstant chain = chain_at_instant(system_, basis);
+  void chain() {
+    const ChainAtInstant& chain = *analysis_.chain;
     out_ << "\\subsection*{The chain}\nEach frame turns relative to its parent about the axes of the parent or "
             "its own (right-hand rule); a frame's angular velocity relative to the observer "
          << latex_escape_text(chain.observer)
@@ -101,10 +96,10 @@ class DocumentWriter {
                                     : ". Angles turn frames by the right-hand rule about their axes.")
          // The digits the numbers below are given to (latex_number's callers: 6, tables of vectors and substitutions 5).
          << " Results to six significant digits (five in tables of vectors and substitutions).\n\n";
-    const std::vector<Strokes> strokes = slider_strokes(model_);
-    if (four_bar_ || !strokes.empty()) {
+    const std::vector<Strokes>& strokes = analysis_.strokes;
+    if (analysis_.four_bar || !strokes.empty()) {
       out_ << "\\subsection*{Design figures}\n";
-      if (four_bar_) out_ << "A four-bar: " << four_bar_sentence(*four_bar_) << ".\n\n";
+      if (analysis_.four_bar) out_ << "A four-bar: " << four_bar_sentence(*analysis_.four_bar) << ".\n\n";
       for (const Strokes& s : strokes) out_ << "Slider: " << strokes_sentence(s) << ".\n\n";
     }
   }
@@ -222,8 +217,9 @@ class DocumentWriter {
   }
 
   // The velocity and acceleration analysis group by group, as the seeds work it out.
-  void by_method(DerivationMethod method) {
-    const DyadDerivation derivation = derive_by_dyads(system_, method);
+  void by_method() {
+    const DyadDerivation& derivation = *analysis_.dyads;
+    const DerivationMethod method = derivation.method;
     for (const bool acceleration : {false, true}) {
       out_ << "\\subsection*{" << (acceleration ? "Acceleration" : "Velocity") << " analysis by "
            << method_title(method) << "}\n"
@@ -248,7 +244,8 @@ class DocumentWriter {
     }
   }
 
-  void results(const MotionState& s) {
+  // Value `row` of the printed values, with what the analysis drew and found there.
+  void results(const MotionState& s, const ValueAnalysis& at) {
     const Driver& input = system_.input;
     const Dimension kind = input.dimension;
     out_ << kLatexPartBreak << "\\subsection*{Results at $" << to_latex(input.symbol) << " = "
@@ -277,14 +274,14 @@ class DocumentWriter {
     if (!system_.frames.empty()) {  // a spatial chain: 3-D points, the frames, a 3-D sketch
       if (s.status == Status::ok) spatial_tables(s);
       if (s.status == Status::ok && !is_driven_chain(system_)) substitution(s);
-      write_tikz_chain(out_, system_, s);
+      write_tikz_chain(out_, system_, at.frames, s);
       return;
     }
     if (s.status == Status::ok && !system_.points.empty()) point_table(s);
     if (s.status == Status::ok && system_.linkage) linkage_table(s);
     if (s.status == Status::ok) substitution(s);
-    write_tikz_mechanism(out_, system_, geometry_, s);
-    const auto polygons = polygons_.polygons(s);
+    write_tikz_mechanism(out_, system_, at, analysis_.link_labels, s);
+    const auto& polygons = at.polygons;
     if (polygons) {
       out_ << kLatexPartBreak << "\\subsubsection*{Velocity and acceleration polygons}\nEach link vector's velocity, chained from the "
               "pole $o$ in the order the loops and points are written: a turning link's relative velocity "
@@ -300,9 +297,9 @@ class DocumentWriter {
       write_tikz_polygon(out_, system_, textbook_, polygons->first);
       write_tikz_polygon(out_, system_, textbook_, polygons->second);
     }
-    if (const auto centres = instant_centres(system_, s)) {
+    if (const auto& centres = at.centres) {
       out_ << kLatexPartBreak << "\\subsubsection*{Instant centres}\n";
-      write_tikz_instant_centres(out_, system_, geometry_, s, *centres);
+      write_tikz_instant_centres(out_, system_, at, s, *centres);
       if (polygons) write_three_methods(out_, system_, three_methods(system_, polygons->first, *centres), *centres);
     }
   }
@@ -313,15 +310,12 @@ class DocumentWriter {
 
  private:
   std::ostream& out_;
-  const Model& model_;
   const ConstraintSystem& system_;
+  const Analysis& analysis_;
   const Derivation& d_;
   OutputScale scale_;
-  MechanismGeometry geometry_;
-  PolygonBuilder polygons_;
   TextbookForm textbook_;
   DocumentNumbers numbers_;
-  std::optional<FourBarFigures> four_bar_;
 
   // The loop equations' numbers as the text cites them: "(1)", "(1) and (2)", "(1)--(4)".
   std::string equation_range() const {
@@ -781,22 +775,33 @@ class WorkedSolutionPrinter : public Printer {
   PrintKind kind() const override { return PrintKind::document; }
   const char* name() const override { return "latex"; }
 
+  ViewNeeds needs(const PrintJob& job) const override {
+    ViewNeeds needs = derivation_needs(job, !is_driven_chain(job.model.system));
+    needs.design_figures = true;
+    needs.drawings = true;
+    return needs;
+  }
+
   void print(std::ostream& out, const PrintJob& job) const override {
-    DocumentWriter writer(out, job.model);
+    const Analysis& analysis = analysis_of(job);
+    DocumentWriter writer(out, job.model, analysis);
     if (!job.fragment) writer.preamble();
     writer.data();
     if (is_driven_chain(job.model.system)) {  // worked out at the instant, as seed 000
-      writer.chain(job.basis);
+      writer.chain();
     } else if (job.method == DerivationMethod::loops) {
       writer.loops();
       writer.velocity();
       writer.acceleration();
     } else {
       writer.loops();
-      writer.by_method(job.method);
+      writer.by_method();
     }
-    if (job.values)
-      for (const MotionState& s : *job.values) writer.results(s);
+    if (job.values) {
+      if (analysis.values.size() != job.values->size())
+        throw std::logic_error("a document was given no analysis of its values: build it with analyse_for_views");
+      for (std::size_t row = 0; row < job.values->size(); ++row) writer.results((*job.values)[row], analysis.values[row]);
+    }
     if (job.sweep) writer.plots(*job.sweep);
     if (!job.fragment) writer.end();
   }

@@ -1,13 +1,12 @@
 // The derivation in readable text (GiNaC's default print context).
 #include "engine/printers/printer.hpp"
 #include "engine/printers/textbook_form.hpp"
-#include "engine/report/chain_instant.hpp"
+#include "engine/analysis/chain_instant.hpp"
 #include "engine/base/number_format.hpp"
-#include "engine/report/output_scale.hpp"
-#include "engine/report/structure.hpp"
+#include "engine/analysis/output_scale.hpp"
+#include "engine/analysis/structure.hpp"
 
 #include <cmath>
-#include "engine/symbolic/trig_simplify.hpp"
 
 namespace kinema {
 namespace {
@@ -31,8 +30,8 @@ void print_structure(std::ostream& out, const ConstraintSystem& system) {
 }
 
 // The velocities and accelerations group by group, in the method asked for.
-void print_method(std::ostream& out, const ConstraintSystem& system, DerivationMethod method) {
-  const DyadDerivation derivation = derive_by_dyads(system, method);
+void print_method(std::ostream& out, const ConstraintSystem& system, const DyadDerivation& derivation) {
+  const DerivationMethod method = derivation.method;
   const TextbookForm textbook(system);
   const auto text = [&](const ex& e) { return textbook(e, TextbookForm::Style::text); };
   out << "\n1. Velocities and accelerations, group by group (" << method_name(method) << ")\n";
@@ -54,11 +53,10 @@ void print_method(std::ostream& out, const ConstraintSystem& system, DerivationM
   }
 }
 
-// A spatial chain as seed 000 works it out (engine/report/chain_instant): angular
+// A spatial chain as seed 000 works it out (engine/analysis/chain_instant): angular
 // velocities composed along the chain, angular accelerations, and each point's velocity
 // and acceleration term by term, at the instant, as formulas and as numbers.
-void print_chain(std::ostream& out, const ConstraintSystem& system, const std::string& basis) {
-  const ChainAtInstant chain = chain_at_instant(system, basis);
+void print_chain(std::ostream& out, const ConstraintSystem& system, const ChainAtInstant& chain) {
   const OutputScale scale(system);
   std::string values;
   for (const auto& [q, value] : chain.values)
@@ -133,6 +131,7 @@ class DerivationTextPrinter : public Printer {
  public:
   PrintKind kind() const override { return PrintKind::derivation; }
   const char* name() const override { return "text"; }
+  ViewNeeds needs(const PrintJob& job) const override { return derivation_needs(job, !is_driven_chain(job.model.system)); }
 
   void print(std::ostream& out, const PrintJob& job) const override {
     const ConstraintSystem& system = job.model.system;
@@ -155,12 +154,12 @@ class DerivationTextPrinter : public Printer {
 
     // A spatial chain driven by its joints alone in the seed's form; a closed loop as loops.
     if (is_driven_chain(system)) {
-      print_chain(out, system, job.basis);
+      print_chain(out, system, *analysis_of(job).chain);
       return;
     }
     if (system.linkage) print_structure(out, system);
     if (job.method != DerivationMethod::loops) {
-      print_method(out, system, job.method);
+      print_method(out, system, *analysis_of(job).dyads);
       return;
     }
 

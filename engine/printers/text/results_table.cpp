@@ -4,11 +4,11 @@
 
 #include "engine/printers/printer.hpp"
 #include "engine/symbolic/naming.hpp"
-#include "engine/report/chain_instant.hpp"
-#include "engine/report/design_figures.hpp"
-#include "engine/report/diagnostics.hpp"
+#include "engine/analysis/chain_instant.hpp"
+#include "engine/analysis/design_figures.hpp"
+#include "engine/analysis/diagnostics.hpp"
 #include "engine/base/number_format.hpp"
-#include "engine/report/output_scale.hpp"
+#include "engine/analysis/output_scale.hpp"
 
 namespace kinema {
 namespace {
@@ -20,6 +20,11 @@ std::string pad(const std::string& text, std::size_t width) {
 class ResultsTablePrinter : public ResultsPrinter {
  public:
   const char* name() const override { return "table"; }
+  ViewNeeds needs(const PrintJob&) const override {
+    ViewNeeds needs;
+    needs.design_figures = true;  // the head's four-bar and slider lines
+    return needs;
+  }
 
   void head(std::string& text, const PrintJob& job, std::size_t) const override {
     const ConstraintSystem& system = job.model.system;
@@ -27,9 +32,9 @@ class ResultsTablePrinter : public ResultsPrinter {
     text += system.title + "\n";
     text += "units: angles deg, angular rates rad/s and rad/s^2, lengths " + scale.length_unit + ", velocities " +
             scale.length_unit + "/s, accelerations " + scale.length_unit + "/s^2\n";
-    if (const auto four_bar = four_bar_figures(job.model))
-      text += "four-bar: " + describe_four_bar(*four_bar, system.input.name) + "\n";
-    for (const Strokes& strokes : slider_strokes(job.model))
+    const Analysis& analysis = analysis_of(job);
+    if (analysis.four_bar) text += "four-bar: " + describe_four_bar(*analysis.four_bar, system.input.name) + "\n";
+    for (const Strokes& strokes : analysis.strokes)
       text += "slider: " + describe_strokes(strokes, system.input.name, scale.length_unit) + "\n";
   }
 

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/run/view.hpp"
 #include "engine/printers/latex/latex_format.hpp"
 #include "engine/printers/printer.hpp"
 #include "tests/engine/unit_support.hpp"
@@ -23,7 +24,7 @@ std::string print(const char* name, const kinema::Model& model) {
   const kinema::Printer* printer = kinema::find_printer(PrintKind::derivation, name);
   REQUIRE(printer != nullptr);
   std::ostringstream out;
-  printer->print(out, kinema::PrintJob{model});
+  kinema::print_view(*printer, out, kinema::PrintJob{model});
   return out.str();
 }
 

@@ -10,12 +10,13 @@
 #include <string>
 #include <vector>
 
+#include "engine/run/view.hpp"
 #include "engine/printers/latex/label_boxes.hpp"
 #include "engine/printers/printer.hpp"
-#include "engine/report/geometry.hpp"
-#include "engine/report/instant_centres.hpp"
-#include "engine/report/plot_range.hpp"
-#include "engine/report/polygons.hpp"
+#include "engine/analysis/geometry.hpp"
+#include "engine/analysis/instant_centres.hpp"
+#include "engine/analysis/plot_range.hpp"
+#include "engine/analysis/polygons.hpp"
 #include "tests/engine/unit_support.hpp"
 #include "tests/test_support.hpp"
 
@@ -31,7 +32,7 @@ std::string document(const kinema::Model& model, const MotionTable* values, cons
   kinema::PrintJob job{model, values, sweep};
   job.fragment = true;
   std::ostringstream out;
-  printer->print(out, job);
+  kinema::print_view(*printer, out, job);
   return out.str();
 }
 

@@ -5,7 +5,7 @@
 #include <doctest/doctest.h>
 
 #include "engine/model.hpp"
-#include "engine/report/plot_range.hpp"
+#include "engine/analysis/plot_range.hpp"
 #include "engine/symbolic/dyad_method.hpp"
 
 #include "engine/printers/latex_pages.hpp"

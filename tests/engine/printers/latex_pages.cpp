@@ -10,7 +10,8 @@
 
 #include "engine/base/errors.hpp"
 #include "engine/printers/printer.hpp"
-#include "engine/report/plot_range.hpp"
+#include "engine/analysis/plot_range.hpp"
+#include "engine/run/view.hpp"
 #include "engine/symbolic/dyad_method.hpp"
 
 #include "tests/test_support.hpp"
@@ -191,7 +192,7 @@ std::string worked_solution_sparse_plots(const kinema::Model& model, kinema::Der
   kinema::PrintJob job{model, &values, &sweep};
   job.method = method;
   std::ostringstream out;
-  kinema::find_printer(kinema::PrintKind::document, "latex")->print(out, job);
+  kinema::print_view(*kinema::find_printer(kinema::PrintKind::document, "latex"), out, job);
   return out.str();
 }
 

@@ -10,12 +10,13 @@
 #include <fstream>
 #include <sstream>
 
+#include "engine/run/view.hpp"
 #include "engine/base/errors.hpp"
 #include "engine/model.hpp"
 #include "engine/printers/latex/latex_format.hpp"
 #include "engine/printers/printer.hpp"
 #include "engine/symbolic/dyad_method.hpp"
-#include "engine/report/chain_instant.hpp"
+#include "engine/analysis/chain_instant.hpp"
 #include "engine/symbolic/naming.hpp"
 #include "engine/symbolic/trig_simplify.hpp"
 #include "engine/printers/latex_pages.hpp"
@@ -453,7 +454,7 @@ TEST_CASE("derive --format latex: every sample with every method fits the page -
       kinema::PrintJob job{model};
       job.method = method;
       std::ostringstream out;
-      derivation->print(out, job);
+      kinema::print_view(*derivation, out, job);
       starts.push_back({lines_in(tex) + 1, std::string(sample) + " " + kinema::method_name(method)});
       tex += "\\clearpage\n" + out.str();
     }
@@ -466,7 +467,7 @@ TEST_CASE("derive --format latex: every sample with every method fits the page -
     const kinema::Model model = kinema::load_model(kinema_test::write_temporary("arm_turned.toml", arm));
     kinema::PrintJob job{model};
     std::ostringstream out;
-    derivation->print(out, job);
+    kinema::print_view(*derivation, out, job);
     starts.push_back({lines_in(tex) + 1, "robot_arm_seed000.toml at 30, -20, 50 deg"});
     tex += "\\clearpage\n" + out.str();
   }

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/run/view.hpp"
 #include "engine/model.hpp"
 #include "engine/printers/printer.hpp"
 #include "loops/mechanism_file.hpp"
@@ -27,7 +28,7 @@ std::vector<std::string> printed(const kinema::Model& model, const kinema::Motio
   const auto print = [&](PrintKind kind, const char* format, const kinema::PrintJob& job) {
     std::ostringstream out;
     try {
-      kinema::find_printer(kind, format)->print(out, job);
+      kinema::print_view(*kinema::find_printer(kind, format), out, job);
     } catch (const std::exception& e) {
       out << "refused: " << e.what();
     }

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/run/view.hpp"
 #include "engine/printers/printer.hpp"
 #include "tests/test_support.hpp"
 
@@ -63,13 +64,13 @@ TEST_CASE("engine/printers/printer: each printer prints something of its own fro
     for (const std::string& name : printer_names(kind)) {
       CAPTURE(name);
       std::ostringstream out;
-      find_printer(kind, name)->print(out, job);
+      kinema::print_view(*find_printer(kind, name), out, job);
       CHECK(out.str().size() > 100);
       outputs.insert(out.str());
     }
   }
   CHECK(outputs.size() == 8);  // no two printers print the same
   std::ostringstream code;
-  find_printer(PrintKind::code, "cpp")->print(code, job);
+  kinema::print_view(*find_printer(PrintKind::code, "cpp"), code, job);
   CHECK(code.str().find("namespace unit_four_bar") != std::string::npos);
 }

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/run/view.hpp"
 #include "engine/printers/printer.hpp"
 #include "engine/base/number_format.hpp"
 #include "tests/engine/unit_support.hpp"
@@ -26,7 +27,7 @@ std::string print(const char* name, const kinema::Model& model, const MotionTabl
   const kinema::Printer* printer = kinema::find_printer(PrintKind::results, name);
   REQUIRE(printer != nullptr);
   std::ostringstream out;
-  printer->print(out, kinema::PrintJob{model, &values});
+  kinema::print_view(*printer, out, kinema::PrintJob{model, &values});
   return out.str();
 }
 

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/run/view.hpp"
 #include "engine/base/errors.hpp"
 #include "engine/printers/latex/latex_format.hpp"
 #include "engine/symbolic/dyad_method.hpp"
@@ -28,7 +29,7 @@ std::string print(PrintKind kind, const kinema::Model& model, const MotionTable*
   REQUIRE(printer != nullptr);
   kinema::PrintJob job{model, values, nullptr};
   std::ostringstream out;
-  printer->print(out, job);
+  kinema::print_view(*printer, out, job);
   return out.str();
 }
 
@@ -239,7 +240,7 @@ TEST_CASE("engine/printers/latex: no round-off anywhere in a worked solution, ev
       kinema::PrintJob job{model, &values, nullptr};
       job.method = method;
       std::ostringstream out;
-      kinema::find_printer(PrintKind::document, "latex")->print(out, job);
+      kinema::print_view(*kinema::find_printer(PrintKind::document, "latex"), out, job);
       const std::string text = std::regex_replace(out.str(), std::regex(R"((^|[^\\])%[^\n]*)"), "$1");
       std::smatch found;
       if (std::regex_search(text, found, noise)) {

@@ -9,16 +9,17 @@
 #include <sstream>
 #include <string>
 
+#include "engine/run/view.hpp"
 #include "engine/printers/latex/latex_format.hpp"
 #include "engine/printers/latex/three_methods.hpp"
 #include "engine/printers/latex/tikz_polygons.hpp"
 #include "engine/printers/printer.hpp"
-#include "engine/report/chain_instant.hpp"
-#include "engine/report/diagnostics.hpp"
-#include "engine/report/instant_centres.hpp"
-#include "engine/report/output_scale.hpp"
-#include "engine/report/plot_range.hpp"
-#include "engine/report/polygons.hpp"
+#include "engine/analysis/chain_instant.hpp"
+#include "engine/analysis/diagnostics.hpp"
+#include "engine/analysis/instant_centres.hpp"
+#include "engine/analysis/output_scale.hpp"
+#include "engine/analysis/plot_range.hpp"
+#include "engine/analysis/polygons.hpp"
 #include "tests/engine/unit_support.hpp"
 #include "tests/test_support.hpp"
 
@@ -36,7 +37,7 @@ std::string document(const kinema::Model& model, const MotionTable* values, cons
   kinema::PrintJob job{model, values, sweep};
   job.fragment = fragment;
   std::ostringstream out;
-  printer->print(out, job);
+  kinema::print_view(*printer, out, job);
   return out.str();
 }
 

@@ -1,0 +1,223 @@
+#include "engine/analysis/design_figures.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <complex>
+#include <limits>
+
+#include "engine/base/work_count.hpp"
+#include "engine/analysis/toggles.hpp"
+#include "engine/base/number_format.hpp"
+#include "engine/analysis/output_scale.hpp"
+#include "engine/symbolic/expression_parts.hpp"
+
+namespace kinema {
+
+using GiNaC::ex;
+
+namespace {
+
+struct Side {
+  enum class Kind { crank, unknown, ground } kind;
+  double length;
+  int sign;            // of the written term
+  std::size_t unknown; // which unknown its angle is (kind unknown)
+};
+
+}  // namespace
+
+std::optional<FourBarFigures> four_bar_figures(const Model& model) {
+  count_work(Work::design_figures);
+  const ConstraintSystem& system = model.system;
+  if (system.input.dimension != Dimension::angle || !system.frames.empty()) return std::nullopt;
+  if (system.groups.size() != 1 || system.groups.front().terms.size() != 4 || system.unknowns.size() != 2)
+    return std::nullopt;
+  GiNaC::exmap parameters;
+  for (const SystemParameter& p : system.parameters) parameters[p.symbol] = p.value;
+  std::vector<Side> sides;
+  for (const ex& term : system.groups.front().terms) {
+    const LinkVector v = split_link_vector(term);
+    const ex length = GiNaC::evalf(v.length.subs(parameters));
+    if (!GiNaC::is_a<GiNaC::numeric>(length) || !GiNaC::ex_to<GiNaC::numeric>(length).is_real()) return std::nullopt;
+    const double l = GiNaC::ex_to<GiNaC::numeric>(length).to_double();
+    Side side{Side::Kind::ground, std::fabs(l), l < 0 ? -1 : 1, 0};
+    if (v.polar && v.angle.is_equal(system.input.symbol)) {
+      side.kind = Side::Kind::crank;
+    } else if (v.polar && !v.angle.has(system.input.symbol)) {
+      bool found = false;
+      for (std::size_t j = 0; j < 2; ++j) {
+        if (v.angle.is_equal(system.unknowns[j].symbol)) {
+          side.kind = Side::Kind::unknown;
+          side.unknown = j;
+          found = true;
+        } else if (v.angle.has(system.unknowns[j].symbol)) {
+          return std::nullopt;
+        }
+      }
+      if (!found && !GiNaC::is_a<GiNaC::numeric>(GiNaC::evalf(v.angle.subs(parameters)))) return std::nullopt;
+    } else if (v.polar) {
+      return std::nullopt;
+    }
+    sides.push_back(side);
+  }
+  std::size_t crank = 4, ground = 4, unknown_sides = 0;
+  for (std::size_t k = 0; k < 4; ++k) {
+    if (sides[k].kind == Side::Kind::crank) crank = crank == 4 ? k : 5;
+    if (sides[k].kind == Side::Kind::ground) ground = ground == 4 ? k : 5;
+    if (sides[k].kind == Side::Kind::unknown) ++unknown_sides;
+  }
+  if (crank >= 4 || ground >= 4 || unknown_sides != 2) return std::nullopt;
+  std::size_t coupler = 4, rocker = 4;
+  if (system.linkage) {
+    // Joints and links: the rocker is the link other than the crank with a fixed pivot.
+    const Linkage& linkage = *system.linkage;
+    std::string rocker_angle;
+    for (const Link& link : linkage.links) {
+      if (link.name == linkage.driver_link) continue;
+      for (const std::string& joint : link.joints)
+        for (const Joint& j : linkage.joints)
+          if (j.name == joint && j.ground && j.kind == Joint::Kind::pin) {
+            const bool numbered = !link.name.empty() && std::isdigit(static_cast<unsigned char>(link.name[0]));
+            rocker_angle = !link.angle_name.empty() ? link.angle_name : (numbered ? "theta" : "theta_") + link.name;
+          }
+    }
+    for (std::size_t k = 0; k < 4; ++k) {
+      if (sides[k].kind != Side::Kind::unknown) continue;
+      (system.unknowns[sides[k].unknown].name == rocker_angle ? rocker : coupler) = k;
+    }
+  } else if ((crank + 1) % 4 == ground || (ground + 1) % 4 == crank) {
+    // Written round the loop: the coupler is opposite the ground, the rocker opposite the crank.
+    coupler = (ground + 2) % 4;
+    rocker = (crank + 2) % 4;
+  }
+  if (coupler >= 4 || rocker >= 4 || sides[coupler].kind != Side::Kind::unknown ||
+      sides[rocker].kind != Side::Kind::unknown)
+    return std::nullopt;
+
+  FourBarFigures f;
+  f.ground = sides[ground].length;
+  f.crank = sides[crank].length;
+  f.coupler = sides[coupler].length;
+  f.rocker = sides[rocker].length;
+  const double lengths[4] = {f.ground, f.crank, f.coupler, f.rocker};
+  const double s = *std::min_element(lengths, lengths + 4), l = *std::max_element(lengths, lengths + 4);
+  const double sum = f.ground + f.crank + f.coupler + f.rocker, p_q = sum - s - l;
+  const double tolerance = 1e-9 * l;
+  const OutputScale scale(system);
+  // A side of length zero is no four-bar to classify (a crank of length zero drives
+  // nothing), and sums past the largest number in the output unit have no figures.
+  if (!(s > 0) || !std::isfinite(sum / scale.length)) return std::nullopt;
+  const auto shown = [&](double x) { return format_significant(x / scale.length); };
+  const char* relation = std::fabs(s + l - p_q) <= tolerance ? "=" : s + l < p_q ? "<" : ">";
+  f.inequality = "s + l = " + shown(s) + " + " + shown(l) + " = " + shown(s + l) + " " + relation + " p + q = " +
+                 shown(p_q) + " (" + scale.length_unit + ")";
+  if (std::string(relation) == "=") {
+    f.grashof = "change point";
+  } else if (std::string(relation) == ">") {
+    f.grashof = "non-Grashof triple rocker";
+  } else if (std::fabs(f.ground - s) <= tolerance) {
+    f.grashof = "double-crank";
+  } else if (std::fabs(f.crank - s) <= tolerance) {
+    f.grashof = "crank-rocker";
+  } else if (std::fabs(f.rocker - s) <= tolerance) {
+    f.grashof = "rocker-crank";
+  } else {
+    f.grashof = "double-rocker";
+  }
+
+  // The transmission angle from the solved positions: at the coupler-rocker joint, between
+  // the coupler (back towards the crank pin) and the rocker (on to its pivot), as the loop
+  // goes round.
+  std::vector<double> inputs;
+  const double first = system.input.values.empty() ? 0.0 : system.input.values.front();
+  for (int k = 0; k <= 360; ++k) inputs.push_back(first + k * M_PI / 180);
+  const MotionTable turn = analyse(model, inputs);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  f.least_transmission = f.greatest_transmission = f.least_at = f.greatest_at = nan;
+  f.full_turn = true;
+  for (std::size_t row = 0; row + 1 < turn.size(); ++row) {
+    if (turn.status(row) == Status::unassembled) {
+      f.full_turn = false;
+      continue;
+    }
+    // The signed terms are the edges of the loop as it goes round (crank O2-A, coupler
+    // A-B, rocker B-O4, ground O4-O2): at B, between B-A (back along the coupler) and
+    // B-O4 (on along the rocker), from the solved angles.
+    const auto edge = [&](const Side& side) {
+      return std::polar(1.0 * side.sign, turn.q(row)[Eigen::Index(side.unknown)]);
+    };
+    const std::complex<double> back = -edge(sides[coupler]), on = edge(sides[rocker]);
+    double mu = std::abs(std::arg(on / back)) * 180 / M_PI;
+    if (mu < 1e-3) mu = 0;  // folded flat (a change point solved to sqrt(eps))
+    if (mu > 180 - 1e-3) mu = 180;
+    double at = std::fmod(turn.input(row) * 180 / M_PI, 360.0);
+    if (at < 0) at += 360;
+    if (!(mu >= f.least_transmission)) {
+      f.least_transmission = mu;
+      f.least_at = at;
+    }
+    if (!(mu <= f.greatest_transmission)) {
+      f.greatest_transmission = mu;
+      f.greatest_at = at;
+    }
+  }
+  for (const Toggle& t : find_toggles(model)) f.toggles.push_back(t.input * 180 / M_PI);
+  return f;
+}
+
+std::string describe_four_bar(const FourBarFigures& f, const std::string& input_name) {
+  std::string text = (f.grashof == "change point" || f.grashof.rfind("non-", 0) == 0 ? "" : "Grashof ") + f.grashof +
+                     " (" + f.inequality + ")";
+  if (std::isfinite(f.least_transmission)) {
+    text += "; transmission angle from " + format_significant(f.least_transmission, 4) + " deg (" + input_name + " = " +
+            format_significant(f.least_at, 4) + " deg) to " + format_significant(f.greatest_transmission, 4) + " deg (" +
+            input_name + " = " + format_significant(f.greatest_at, 4) + " deg)" +
+            (f.full_turn ? "" : " where it can be assembled");
+  }
+  if (f.toggles.empty()) return text + "; no toggle position";
+  text += "; toggle positions at " + input_name + " =";
+  for (std::size_t k = 0; k < f.toggles.size(); ++k)
+    text += (k ? ", " : " ") + format_fixed(f.toggles[k], 4);
+  return text + " deg";
+}
+
+std::vector<Strokes> slider_strokes(const Model& model) {
+  count_work(Work::design_figures);
+  std::vector<Strokes> all;
+  const ConstraintSystem& system = model.system;
+  if (system.input.dimension != Dimension::angle || !system.frames.empty()) return all;
+  if (system.unknowns.size() > kMaxStrokeUnknowns) return all;
+  const OutputScale scale(system);
+  std::vector<std::size_t> lengths;
+  for (std::size_t j = 0; j < system.unknowns.size(); ++j)
+    if (system.unknowns[j].dimension == Dimension::length) lengths.push_back(j);
+  const std::vector<std::vector<Toggle>> found = find_limit_positions(model, lengths);  // one sweep for all
+  for (std::size_t w = 0; w < lengths.size(); ++w) {
+    const std::size_t j = lengths[w];
+    const std::vector<Toggle>& limits = found[w];
+    if (limits.size() != 2) continue;
+    Strokes s;
+    s.name = system.unknowns[j].name;
+    for (int k = 0; k < 2; ++k) {
+      s.limit_inputs[k] = limits[std::size_t(k)].input * 180 / M_PI;
+      s.limit_values[k] = limits[std::size_t(k)].q[Eigen::Index(j)] / scale.length;
+    }
+    // The crank turns the way its rate says: the stroke from the first limit to the second.
+    const double between = s.limit_inputs[1] - s.limit_inputs[0];
+    s.first_stroke = system.input.rate_value >= 0 ? between : 360 - between;
+    s.second_stroke = 360 - s.first_stroke;
+    s.time_ratio = std::max(s.first_stroke, s.second_stroke) / std::min(s.first_stroke, s.second_stroke);
+    all.push_back(s);
+  }
+  return all;
+}
+
+std::string describe_strokes(const Strokes& s, const std::string& input_name, const std::string& unit) {
+  return s.name + " at its limits at " + input_name + " = " + format_fixed(s.limit_inputs[0], 4) + " deg (" +
+         format_significant(s.limit_values[0]) + " " + unit + ") and " + format_fixed(s.limit_inputs[1], 4) + " deg (" +
+         format_significant(s.limit_values[1]) + " " + unit + "); strokes of " + format_significant(s.first_stroke) +
+         " and " + format_significant(s.second_stroke) + " deg of crank, time ratio " + format_significant(s.time_ratio);
+}
+
+}  // namespace kinema

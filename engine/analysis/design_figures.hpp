@@ -1,0 +1,61 @@
+// Design figures of a four-bar (issue 13): Grashof class with its inequality, and the
+// transmission angle over the crank's turn with its least and greatest values and where.
+// A vector-loop file is a four-bar when it has one loop of four link vectors of constant
+// length — the crank (its angle the input), two links whose angles are unknowns, and the
+// ground (a constant vector) — written in the order the loop goes round (crank, coupler,
+// rocker, ground, in any rotation), which tells the coupler (opposite the ground) from the
+// rocker (next to it).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/model.hpp"
+
+namespace kinema {
+
+struct FourBarFigures {
+  double ground = 0, crank = 0, coupler = 0, rocker = 0;  ///< Link lengths (SI).
+  std::string grashof;     ///< "crank-rocker", "double-crank", "rocker-crank", "double-rocker", "change point", "non-Grashof triple rocker"
+  std::string inequality;  ///< "s + l = 40 + 120 = 160 < p + q = 80 + 100 = 180 (mm)"
+  /// The transmission angle (between coupler and rocker, at their joint, 0 to 180 deg) over
+  /// a turn of the input in 1-degree steps: least and greatest, in deg, and the input
+  /// angles (deg, in [0, 360)) where they are; NaN without an assembled value.
+  double least_transmission = 0, least_at = 0, greatest_transmission = 0, greatest_at = 0;
+  bool full_turn = false;  ///< Every value of the turn assembled.
+  /// Toggle positions (engine/analysis/toggles: det Phi_q = 0, solved): the input angles,
+  /// deg in [0, 360).
+  std::vector<double> toggles;
+};
+
+/// A slider driven by a crank (an offset slider-crank, a shaper): its two limit positions
+/// over a turn and the crank angles of the strokes between them.
+struct Strokes {
+  std::string name;           ///< The slider's coordinate.
+  double limit_inputs[2]{};   ///< Crank angles of the limit positions, deg in [0, 360), increasing.
+  double limit_values[2]{};   ///< The coordinate there (output units).
+  double first_stroke = 0;    ///< Crank angle from the first limit to the second (deg, as the crank turns), ...
+  double second_stroke = 0;   ///< ... and back to the first.
+  double time_ratio = 0;      ///< The longer stroke's crank angle over the shorter's (at a constant crank rate).
+};
+
+/// Most unknowns of a mechanism whose sliders' strokes are searched: the search solves a
+/// turn in 1-degree steps (a dense solve of all unknowns at each), so a larger system has no
+/// strokes in eval's header, which would otherwise cost as much as a sweep of the turn.
+constexpr std::size_t kMaxStrokeUnknowns = 128;
+
+/// The strokes of every slider coordinate of a crank-driven mechanism that has exactly two
+/// limit positions over a turn (engine/analysis/toggles: dq/dtheta = 0, solved); none for a
+/// mechanism of more than kMaxStrokeUnknowns unknowns.
+std::vector<Strokes> slider_strokes(const Model& model);
+std::string describe_strokes(const Strokes& strokes, const std::string& input_name, const std::string& unit);
+
+/// The figures of a four-bar driven by its crank; nothing for other mechanisms.
+std::optional<FourBarFigures> four_bar_figures(const Model& model);
+
+/// One line for people: "Grashof crank-rocker (s + l = ... < p + q = ...); transmission
+/// angle from 33.6 deg (theta2 = 0 deg) to 123 deg (theta2 = 180 deg)".
+std::string describe_four_bar(const FourBarFigures& figures, const std::string& input_name);
+
+}  // namespace kinema

@@ -1,0 +1,132 @@
+// Geometry for drawings: each term of each planar loop as a segment from the
+// end of the terms before it, evaluated at a solved position with a compiled
+// tape (no GiNaC per drawing), and classed as ground, link or slider.
+#pragma once
+
+#include <array>
+#include <complex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/constraint_system.hpp"
+#include "engine/numeric/motion_table.hpp"
+#include "engine/numeric/tape.hpp"
+
+namespace kinema {
+
+struct DrawingSegment {
+  enum class Kind { ground, link, slider };
+  std::complex<double> from, to;  ///< SI.
+  Kind kind = Kind::link;
+  int link = -1;  ///< A link vector of fixed length: its link (MechanismGeometry::link_labels), else -1.
+  /// A slider's term: the slider point (its end away from the ground side) and the guide it
+  /// moves on, the line through `block` along d(term)/d(length) (unit), the way the point moves
+  /// when the length changes with the other coordinates held. fixed_guide when that direction
+  /// does not turn (a guide on the ground); else guide_link is the link it turns with, or -1.
+  std::complex<double> block, along;
+  bool fixed_guide = false;
+  int guide_link = -1;
+  /// A slider's block number: in the gaps the links' numbers leave (ground first: 1, or 0
+  /// when a link is 1), as the instant centres number it.
+  std::string block_label;
+  /// A link vector whose angle is a coordinate (the input or an unknown): that coordinate
+  /// (0: the input, k + 1: unknown k), its value, and the joint it is measured at (the end
+  /// the vector length*e^{i angle} starts from: `from`, or `to` for a term written negated).
+  int coordinate = -1;
+  double angle = 0;
+  std::complex<double> angle_at;
+};
+
+/// A named point on a link: its formula's last term is a link vector of fixed length
+/// turning with that link, drawn from `from` (the point that term starts at) to the point.
+struct PointOnLink {
+  std::size_t point = 0;
+  int link = 0;
+  std::complex<double> from, at;  ///< SI.
+};
+
+/// A link of a vector-loop file known by the angle it turns with: its number, the digits
+/// the angle's coordinate name ends in (theta3 -> "3"), else that name; empty when the
+/// angle is not a coordinate's.
+std::string link_label(const ConstraintSystem& system, const GiNaC::ex& angle);
+
+/// A joints-and-links mechanism as drawn: its links with their joints where they are,
+/// ground pivots and fixed guides (SI, world positions).
+struct LinkageDrawing {
+  struct Joint {
+    std::string name;
+    std::complex<double> at;
+  };
+  struct Link {
+    std::vector<Joint> joints;
+    bool block = false;  ///< A slider block (drawn as a block turned by `angle`).
+    double angle = 0;
+    std::string name;  ///< As the file names it.
+    /// The coordinate that is its angle (0: the input, i + 1: unknown i; -1: none), measured
+    /// at `origin` (its first joint) from the x direction; coordinate_angle its value (rad).
+    int coordinate = -1;
+    double coordinate_angle = 0;
+    std::complex<double> origin;
+  };
+  struct Guide {
+    std::complex<double> through, along;  ///< A point of a fixed guide line and its unit direction.
+  };
+  std::vector<Link> links;
+  std::vector<Joint> ground_pivots;
+  std::vector<Guide> guides;
+};
+
+/// The drawing at a state whose position is known, for a joints-and-links mechanism
+/// placed in closed form; nullopt for anything else.
+std::optional<LinkageDrawing> linkage_drawing(const ConstraintSystem& system, const MotionState& state);
+
+/// A frame of a spatial chain where a state puts it: its origin and axes (observer basis, SI).
+struct PlacedFrame {
+  std::string name, parent;
+  std::array<double, 3> origin{};
+  std::array<std::array<double, 3>, 3> axes{};  ///< x, y, z axes, each as a unit vector.
+};
+
+/// Every frame of a spatial chain at a state whose position is known, in the file's order
+/// (the frames' formulas with the parameters, the input and the coordinates put in).
+std::vector<PlacedFrame> placed_frames(const ConstraintSystem& system, const MotionState& state);
+
+class MechanismGeometry {
+ public:
+  explicit MechanismGeometry(const ConstraintSystem& system);
+  /// The loops' segments at a state whose position is known (status not unassembled). A loop's
+  /// terms are laid end to end from the origin in the order, among those that close it, that
+  /// puts its ground vectors at the origin and its corners on the most named points (the
+  /// written order when it does so already): r e^{i phi} - AC - BC e^{i phi3} is drawn
+  /// A -> B -> C -> A, not through B - AC.
+  std::vector<DrawingSegment> segments(const MotionState& state) const;
+  /// The named points that lie on a link, at a state that is ok.
+  std::vector<PointOnLink> points_on_links(const MotionState& state) const;
+  /// Each link's number, as DrawingSegment::link and PointOnLink::link index them.
+  const std::vector<std::string>& link_labels() const { return link_labels_; }
+  /// Each link's angular rate (omega3), indexed as link_labels.
+  const std::vector<GiNaC::ex>& link_rates() const { return link_rates_; }
+
+ private:
+  CompiledExpressions tape_;  ///< Inputs: parameters, input, q; outputs: x, y of each term, then of each point's last.
+  std::vector<double> parameter_values_;
+  std::vector<std::size_t> loop_term_count_;  ///< Terms of each loop, in order.
+  std::vector<DrawingSegment::Kind> kinds_;
+  std::vector<int> term_links_;                      ///< Per term: its link or -1.
+  /// Per term: where d(term)/d(length) is among the tape's outputs (x, y), or -1; whether it
+  /// turns (a guide on a link) and with which link.
+  std::vector<int> guide_outputs_;
+  std::vector<bool> guide_turns_;
+  std::vector<int> guide_links_;
+  std::vector<int> term_coordinates_;  ///< Per term: its angle's coordinate (as DrawingSegment::coordinate) or -1.
+  std::vector<std::pair<std::size_t, int>> points_;  ///< Points on links: the point, its link.
+  std::vector<GiNaC::ex> link_rates_;                ///< Per link: the rate it turns with.
+  std::vector<std::string> link_labels_;
+  /// The link a term of fixed length turning with an angle is on (added when new), or -1.
+  int link_of(const ConstraintSystem& system, const GiNaC::ex& term);
+  /// The link turning with this angle (added when new).
+  int link_of_angle(const ConstraintSystem& system, const GiNaC::ex& angle);
+};
+
+}  // namespace kinema

@@ -1,0 +1,402 @@
+#include "engine/analysis/instant_centres.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+
+#include "engine/base/work_count.hpp"
+#include "engine/analysis/geometry.hpp"
+#include "engine/symbolic/derivation.hpp"
+#include "engine/symbolic/expression_parts.hpp"
+#include "loops/dyad_positions.hpp"
+
+namespace kinema {
+
+namespace {
+
+using Complex = std::complex<double>;
+
+double cross(Complex u, Complex v) { return u.real() * v.imag() - u.imag() * v.real(); }
+
+// The line through two centres (a point and a direction); nullopt when both are at
+// infinity or they coincide (no line).
+struct Line {
+  Complex through, along;
+};
+
+std::optional<Line> line_through(const InstantCentre& p, const InstantCentre& q, double length_scale) {
+  if (p.at_infinity && q.at_infinity) return std::nullopt;
+  if (p.at_infinity) return Line{q.at, p.at};
+  if (q.at_infinity) return Line{p.at, q.at};
+  const Complex d = q.at - p.at;
+  if (std::abs(d) <= 1e-9 * length_scale) return std::nullopt;
+  return Line{p.at, d / std::abs(d)};
+}
+
+std::string centre_name(const std::vector<std::string>& bodies, std::size_t a, std::size_t b) {
+  return "I" + bodies[a] + bodies[b];
+}
+
+// omega_j / omega_d = (I_dj - I_0d) / (I_dj - I_0j), from three centres on one line.
+void add_ratios(InstantCentres& result, double length_scale) {
+  const std::size_t n = result.bodies.size();
+  const double driver_omega = result.angular_velocities[result.driver];
+  const InstantCentre* ground_driver = result.find(0, result.driver);
+  if (std::fabs(driver_omega) > 0 && ground_driver && !ground_driver->at_infinity) {
+    for (std::size_t j = 1; j < n; ++j) {
+      if (j == result.driver) continue;
+      const InstantCentre *dj = result.find(result.driver, j), *ground_j = result.find(0, j);
+      if (!dj || !ground_j) continue;
+      if (!dj->at_infinity && !ground_j->at_infinity && std::abs(dj->at - ground_j->at) <= 1e-9 * length_scale)
+        continue;
+      // A centre with the driver at infinity: they turn alike; with ground: j translates.
+      const double ratio = dj->at_infinity         ? 1.0
+                           : ground_j->at_infinity ? 0.0
+                                                   : std::real((dj->at - ground_driver->at) / (dj->at - ground_j->at));
+      result.ratios.push_back({j, ratio, result.angular_velocities[j] / driver_omega});
+    }
+  }
+}
+
+// A vector-loop file names no links: a point whose formula ends in a link vector of fixed
+// length turning with an angle is on that link (docs/outputs.md: "points that lie on a link term
+// belong to that link"). Each centre from two such points' velocities:
+// v_a(I) = v_b(I) with v(P) = v_A + i omega (P - A); where the two turn alike, at
+// infinity across their relative velocity.
+std::optional<InstantCentres> centres_from_points(const ConstraintSystem& system, const MotionState& s) {
+  // Everything an angle's rate may hold (theta3^2 turns at 2 theta3 omega3).
+  GiNaC::exmap values{{system.input.rate, s.input_rate}, {system.input.symbol, s.input}};
+  for (std::size_t j = 0; j < system.unknowns.size(); ++j) {
+    values[system.unknowns[j].rate] = s.qd[j];
+    values[system.unknowns[j].symbol] = s.q[j];
+  }
+  for (const SystemParameter& parameter : system.parameters) values[parameter.symbol] = parameter.value;
+  const auto moves = [&](const GiNaC::ex& e) {
+    if (e.has(system.input.symbol)) return true;
+    for (const Coordinate& q : system.unknowns)
+      if (e.has(q.symbol)) return true;
+    return false;
+  };
+  struct Body {
+    GiNaC::ex rate;
+    std::string name;
+    std::complex<double> point, velocity;
+    std::size_t order = 0;  ///< The driver, then the unknowns in file order.
+    double omega = 0;
+  };
+  std::vector<Body> bodies;
+  for (std::size_t p = 0; p < system.points.size(); ++p) {
+    const PointObservable& point = system.points[p];
+    if (point.written_terms.empty()) continue;
+    const LinkVector link = split_link_vector(point.written_terms.back());
+    if (!link.polar || moves(link.length) || !moves(link.angle)) continue;
+    GiNaC::ex rate, omega;
+    try {  // a formula GiNaC cannot differentiate or evaluate: the point names no link
+      rate = time_derivative(system, link.angle);
+      omega = rate.subs(values).evalf();
+    } catch (const std::exception&) {
+      continue;
+    }
+    bool known = false;
+    for (const Body& b : bodies) known = known || b.rate.is_equal(rate);
+    if (known) continue;
+    const std::string name = link_label(system, link.angle);
+    std::size_t order = system.unknowns.size() + 1;  // the driver's link first, then the unknowns'
+    for (std::size_t j = system.unknowns.size(); j-- > 0;)
+      if (link.angle.has(system.unknowns[j].symbol)) order = j + 1;
+    if (link.angle.has(system.input.symbol)) order = 0;
+    const PointMotion& m = s.points[p];
+    if (!GiNaC::is_a<GiNaC::numeric>(omega) || !GiNaC::ex_to<GiNaC::numeric>(omega).is_real()) continue;
+    const double w = GiNaC::ex_to<GiNaC::numeric>(omega).to_double();
+    if (!std::isfinite(w)) continue;
+    bodies.push_back({rate, name, {m.position[0], m.position[1]}, {m.velocity[0], m.velocity[1]}, order, w});
+  }
+  if (bodies.empty()) return std::nullopt;
+  // The loops' links no point ends on, known by a joint whose velocity is known (a named
+  // point, or a ground one), and the slider blocks (at their sliding points, turning with
+  // their guides): every body of the mechanism, as a course counts them.
+  {
+    std::vector<std::pair<Complex, Complex>> known;  // position, velocity
+    for (const PointMotion& m : s.points) known.push_back({{m.position[0], m.position[1]}, {m.velocity[0], m.velocity[1]}});
+    const MechanismGeometry geometry(system);
+    const std::vector<DrawingSegment> segments = geometry.segments(s);
+    known.push_back({0, 0});
+    for (const DrawingSegment& g : segments)
+      if (g.kind == DrawingSegment::Kind::ground) {
+        known.push_back({g.from, 0});
+        known.push_back({g.to, 0});
+      }
+    const auto velocity_at = [&](Complex p) -> std::optional<Complex> {
+      for (const auto& [at, v] : known)
+        if (std::abs(at - p) <= 1e-9 * system.length_scale) return v;
+      return std::nullopt;
+    };
+    const auto omega_of = [&](const GiNaC::ex& rate) -> std::optional<double> {
+      try {
+        const GiNaC::ex w = rate.subs(values).evalf();
+        if (!GiNaC::is_a<GiNaC::numeric>(w) || !GiNaC::ex_to<GiNaC::numeric>(w).is_real()) return std::nullopt;
+        const double d = GiNaC::ex_to<GiNaC::numeric>(w).to_double();
+        return std::isfinite(d) ? std::optional<double>(d) : std::nullopt;
+      } catch (const std::exception&) {
+        return std::nullopt;
+      }
+    };
+    for (const DrawingSegment& g : segments) {
+      if (g.kind != DrawingSegment::Kind::link || g.link < 0) continue;
+      const GiNaC::ex& rate = geometry.link_rates()[g.link];
+      bool seen = false;
+      for (const Body& b : bodies) seen = seen || b.rate.is_equal(rate);
+      const std::optional<double> w = omega_of(rate);
+      if (seen || !w) continue;
+      for (const Complex end : {g.from, g.to})
+        if (const auto v = velocity_at(end)) {
+          std::size_t order = system.unknowns.size() + 1;
+          for (std::size_t j = system.unknowns.size(); j-- > 0;)
+            if (rate.has(system.unknowns[j].rate)) order = j + 1;
+          if (rate.has(system.input.rate)) order = 0;
+          bodies.push_back({rate, geometry.link_labels()[g.link], end, *v, order, *w});
+          break;
+        }
+    }
+    // A link that is only a slider's guide (Example 4.1's crank 1), known by the term's
+    // other end when that lies on the guide line.
+    for (const DrawingSegment& g : segments) {
+      if (g.kind != DrawingSegment::Kind::slider || g.guide_link < 0) continue;
+      const GiNaC::ex& rate = geometry.link_rates()[g.guide_link];
+      bool seen = false;
+      for (const Body& b : bodies) seen = seen || b.rate.is_equal(rate);
+      const Complex other = std::abs(g.block - g.to) <= 1e-9 * system.length_scale ? g.from : g.to;
+      const std::optional<double> w = omega_of(rate);
+      const auto v = velocity_at(other);
+      if (seen || !w || !v || std::fabs(cross(other - g.block, g.along)) > 1e-9 * system.length_scale) continue;
+      std::size_t order = system.unknowns.size() + 1;
+      for (std::size_t j = system.unknowns.size(); j-- > 0;)
+        if (rate.has(system.unknowns[j].rate)) order = j + 1;
+      if (rate.has(system.input.rate)) order = 0;
+      bodies.push_back({rate, geometry.link_labels()[g.guide_link], other, *v, order, *w});
+    }
+    for (const DrawingSegment& g : segments) {
+      if (g.kind != DrawingSegment::Kind::slider || (!g.fixed_guide && g.guide_link < 0)) continue;
+      const std::optional<double> w = g.fixed_guide ? std::optional<double>(0.0) : omega_of(geometry.link_rates()[g.guide_link]);
+      const auto v = velocity_at(g.block);
+      if (!w || !v) continue;
+      bodies.push_back({0, "", g.block, *v, system.unknowns.size() + 2, *w});  // named below
+    }
+  }
+  InstantCentres result;
+  bool one_taken = false;
+  for (const Body& b : bodies) one_taken = one_taken || b.name == "1";
+  // Blocks numbered in the gaps the links leave (Example 4.2: links 1, 3, 4, blocks 2, 5).
+  {
+    std::vector<std::string> used = {one_taken ? "0" : "1"};
+    for (const Body& b : bodies) used.push_back(b.name);
+    int next = 1;
+    for (Body& b : bodies) {
+      if (!b.name.empty()) continue;
+      while (std::find(used.begin(), used.end(), std::to_string(next)) != used.end()) ++next;
+      b.name = std::to_string(next);
+      used.push_back(b.name);
+    }
+  }
+  const auto number = [](const std::string& name) {
+    return !name.empty() && name.find_first_not_of("0123456789") == std::string::npos ? std::stoi(name) : -1;
+  };
+  bool numbered = true;
+  for (const Body& b : bodies) numbered = numbered && number(b.name) >= 0;
+  std::stable_sort(bodies.begin(), bodies.end(), [&](const Body& a, const Body& b) {
+    return numbered ? number(a.name) < number(b.name) : a.order < b.order;
+  });
+  result.bodies.push_back(one_taken ? "0" : "1");
+  result.angular_velocities.push_back(0);
+  result.rates.push_back(0);
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    result.bodies.push_back(bodies[b].name);
+    result.rates.push_back(bodies[b].rate);
+    result.angular_velocities.push_back(bodies[b].omega);
+    if (bodies[b].rate.is_equal(system.input.rate)) result.driver = b + 1;
+  }
+  const std::size_t n = result.bodies.size();
+  const auto point_of = [&](std::size_t b) { return b == 0 ? std::complex<double>() : bodies[b - 1].point; };
+  const auto velocity_of = [&](std::size_t b) { return b == 0 ? std::complex<double>() : bodies[b - 1].velocity; };
+  double fastest = 0;
+  for (const PointMotion& m : s.points) fastest = std::max(fastest, m.speed());
+  for (std::size_t a = 0; a < n; ++a) {
+    for (std::size_t b = a + 1; b < n; ++b) {
+      const double wa = result.angular_velocities[a], wb = result.angular_velocities[b];
+      const std::complex<double> A = point_of(a), B = point_of(b), I(0, 1);
+      const std::string how = "velocities of the points on " + result.bodies[a] + " and " + result.bodies[b];
+      if (std::fabs(wa - wb) <= 1e-12 * (std::fabs(wa) + std::fabs(wb))) {
+        // Uniform where they turn alike: v_b(P) - v_a(P) = v_b(B) - v_a(A) + i omega (A - B).
+        const std::complex<double> relative = velocity_of(b) - velocity_of(a) + I * wa * (A - B);
+        if (std::abs(relative) <= 1e-12 * fastest) continue;  // moving as one: no centre
+        result.centres.push_back({a, b, true, I * relative / std::abs(relative), how, {}, std::nullopt});
+        continue;
+      }
+      const std::complex<double> at = (velocity_of(b) - velocity_of(a) + I * (wa * A - wb * B)) / (I * (wa - wb));
+      result.centres.push_back({a, b, false, at, how, {}, std::nullopt});
+    }
+  }
+  for (std::size_t a = 0; a < n; ++a)
+    for (std::size_t b = a + 1; b < n; ++b)
+      if (!result.find(a, b)) result.not_found.push_back({a, b});
+  for (const InstantCentre& c : result.centres)
+    if (!std::isfinite(c.at.real()) || !std::isfinite(c.at.imag())) return std::nullopt;
+  // Centres away from the joints: on the two Kennedy lines (through I_ab and I_bc for
+  // another body b) that cross there most squarely.
+  std::vector<std::complex<double>> joints = {0};
+  for (const PointMotion& m : s.points) joints.push_back({m.position[0], m.position[1]});
+  for (InstantCentre& centre : result.centres) {
+    if (centre.at_infinity) {  // the arrow from the block (rate 0, not ground), else the moving body
+      const auto block = [&](std::size_t b) { return b != 0 && result.rates[b].is_zero(); };
+      centre.seen_from = block(centre.b) || centre.a == 0 ? point_of(centre.b)
+                         : block(centre.a)                ? point_of(centre.a)
+                                                          : (point_of(centre.a) + point_of(centre.b)) / 2.0;
+      continue;
+    }
+    bool joint = false;
+    for (const auto& j : joints) joint = joint || std::abs(j - centre.at) <= 1e-9 * system.length_scale;
+    if (joint) continue;
+    std::vector<std::pair<Line, std::size_t>> lines;
+    for (std::size_t b = 0; b < n; ++b) {
+      if (b == centre.a || b == centre.b) continue;
+      const InstantCentre *ab = result.find(centre.a, b), *bc = result.find(b, centre.b);
+      if (!ab || !bc) continue;
+      if (const auto l = line_through(*ab, *bc, system.length_scale)) lines.push_back({*l, b});
+    }
+    double best = 1e-6;
+    for (std::size_t i = 0; i < lines.size(); ++i)
+      for (std::size_t j = i + 1; j < lines.size(); ++j) {
+        const double sine = std::fabs(cross(lines[i].first.along, lines[j].first.along));
+        if (sine <= best) continue;
+        best = sine;
+        const std::size_t b1 = lines[i].second, b2 = lines[j].second;
+        centre.kennedy = {std::minmax(centre.a, b1), std::minmax(b1, centre.b), std::minmax(centre.a, b2),
+                          std::minmax(b2, centre.b)};
+      }
+  }
+  if (result.driver != 0) add_ratios(result, system.length_scale);
+  return result;
+}
+
+}  // namespace
+
+const InstantCentre* InstantCentres::find(std::size_t a, std::size_t b) const {
+  if (a > b) std::swap(a, b);
+  for (const InstantCentre& c : centres)
+    if (c.a == a && c.b == b) return &c;
+  return nullptr;
+}
+
+std::optional<InstantCentres> instant_centres(const ConstraintSystem& system, const MotionState& s) {
+  count_work(Work::drawing);
+  if (s.status != Status::ok || !system.frames.empty()) return std::nullopt;
+  if (!system.linkage) return centres_from_points(system, s);
+  if (!system.linkage->frames.closed_form) return std::nullopt;
+  const Linkage& linkage = *system.linkage;
+  const LinkageFrames& frames = linkage.frames;
+  const std::vector<int> signs = signs_nearest(frames, s.input, s.q.data(), system.length_scale);
+  std::vector<BodyPose> poses;
+  if (place_dyads(frames, s.input, poses, &signs) < frames.dyads.size()) return std::nullopt;
+  const std::size_t n = frames.bodies.size();
+
+  InstantCentres result;
+  result.driver = frames.driver_body;
+  bool zero_named = false;
+  for (const Link& link : linkage.links) zero_named = zero_named || link.name == "0";
+  result.bodies.push_back(zero_named ? "g" : "0");
+  for (std::size_t b = 1; b < n; ++b) result.bodies.push_back(linkage.links[b - 1].name);
+  const std::function<double(std::size_t)> omega = [&](std::size_t b) -> double {
+    const LinkageFrames::Body& body = frames.bodies[b];
+    if (b == 0) return 0.0;
+    if (body.unknown >= 0) return s.qd[body.unknown];
+    if (body.guide >= 0) return omega(static_cast<std::size_t>(body.guide));
+    return b == frames.driver_body && frames.driver_slider < 0 ? s.input_rate : 0.0;
+  };
+  for (std::size_t b = 0; b < n; ++b) {
+    result.angular_velocities.push_back(omega(b));
+    const LinkageFrames::Body& body = frames.bodies[b];
+    result.rates.push_back(body.unknown >= 0                                      ? GiNaC::ex(system.unknowns[body.unknown].rate)
+                           : b == frames.driver_body && frames.driver_slider < 0 ? GiNaC::ex(system.input.rate)
+                                                                                 : GiNaC::ex(0));
+  }
+
+  const auto world = [&](std::size_t b, Complex local) {
+    return b == 0 ? local : poses[b].origin + local * std::polar(1.0, poses[b].angle);
+  };
+  const auto add = [&](std::size_t a, std::size_t b, bool infinite, Complex at, const std::string& how,
+                       std::optional<Complex> seen_from = std::nullopt) {
+    if (a > b) std::swap(a, b);
+    if (a == b || result.find(a, b)) return;
+    result.centres.push_back({a, b, infinite, at, how, {}, seen_from});
+  };
+  // Primary centres: pins, then sliders (at infinity across the line).
+  for (const LinkageFrames::Pin& pin : frames.pins) {
+    Complex at = 0;
+    for (const auto& [joint, local] : frames.bodies[pin.a].points)
+      if (joint == pin.joint) at = world(pin.a, local);
+    add(pin.a, pin.b, false, at, "pin " + linkage.joints[pin.joint].name);
+  }
+  for (const LinkageFrames::Slider& slider : frames.sliders) {
+    const double line = (slider.guide == 0 ? 0.0 : poses[slider.guide].angle) + slider.direction;
+    std::optional<Complex> joint_at;  // the arrow starts at the slider's joint
+    for (const auto& [joint, local] : frames.bodies[slider.block].points)
+      if (joint == slider.joint) joint_at = world(slider.block, local);
+    add(slider.block, slider.guide, true, std::polar(1.0, line + M_PI / 2), "slider " + linkage.joints[slider.joint].name,
+        joint_at);
+  }
+  // Kennedy: I_ac on the line I_ab I_bc and on the line I_ad I_dc; of all such pairs of
+  // lines the one that crosses most squarely.
+  for (bool found = true; found;) {
+    found = false;
+    for (std::size_t a = 0; a < n; ++a) {
+      for (std::size_t c = a + 1; c < n; ++c) {
+        if (result.find(a, c)) continue;
+        std::vector<std::pair<Line, std::size_t>> lines;
+        for (std::size_t b = 0; b < n; ++b) {
+          if (b == a || b == c) continue;
+          const InstantCentre *ab = result.find(a, b), *bc = result.find(b, c);
+          if (!ab || !bc) continue;
+          if (const auto l = line_through(*ab, *bc, system.length_scale)) lines.push_back({*l, b});
+        }
+        double best = 0;
+        std::optional<InstantCentre> chosen;
+        for (std::size_t i = 0; i < lines.size(); ++i) {
+          for (std::size_t j = i + 1; j < lines.size(); ++j) {
+            const Line &p = lines[i].first, &q = lines[j].first;
+            const double sine = std::fabs(cross(p.along, q.along));
+            const std::size_t b1 = lines[i].second, b2 = lines[j].second;
+            const std::vector<std::pair<std::size_t, std::size_t>> kennedy = {
+                std::minmax(a, b1), std::minmax(b1, c), std::minmax(a, b2), std::minmax(b2, c)};
+            std::string how;
+            for (std::size_t k = 0; k < 4; ++k)
+              how += (k == 0 ? "" : k == 2 ? ", " : " ") + centre_name(result.bodies, kennedy[k].first, kennedy[k].second);
+            if (sine <= 1e-9) {  // parallel lines: a centre at infinity, unless they are one line
+              if (std::fabs(cross(q.through - p.through, p.along)) > 1e-9 * system.length_scale && !chosen)
+                chosen = InstantCentre{a, c, true, p.along, how, kennedy, p.through};
+              continue;
+            }
+            if (sine <= best) continue;
+            best = sine;
+            const double t = cross(q.through - p.through, q.along) / cross(p.along, q.along);
+            chosen = InstantCentre{a, c, false, p.through + t * p.along, how, kennedy, std::nullopt};
+          }
+        }
+        if (chosen) {
+          result.centres.push_back(*chosen);
+          found = true;
+        }
+      }
+    }
+  }
+  for (std::size_t a = 0; a < n; ++a)
+    for (std::size_t b = a + 1; b < n; ++b)
+      if (!result.find(a, b)) result.not_found.push_back({a, b});
+  for (const InstantCentre& c : result.centres)
+    if (!std::isfinite(c.at.real()) || !std::isfinite(c.at.imag())) return std::nullopt;
+  std::sort(result.centres.begin(), result.centres.end(),
+            [](const InstantCentre& p, const InstantCentre& q) { return std::pair(p.a, p.b) < std::pair(q.a, q.b); });
+  add_ratios(result, system.length_scale);
+  return result;
+}
+
+}  // namespace kinema

@@ -1,0 +1,108 @@
+#include "engine/analysis/motion_drawing.hpp"
+
+#include <cmath>
+#include <optional>
+
+namespace kinema {
+
+namespace {
+
+void put(std::vector<double>& row, std::complex<double> z) {
+  row.push_back(z.real());
+  row.push_back(z.imag());
+}
+
+// Joints and links: the structure from the first row that places, then each row's joints
+// by name (a joint a row does not place is NaN) and its blocks' angles.
+void linkage_rows(const ConstraintSystem& system, const MotionTable& table, MotionDrawing& drawing) {
+  for (std::size_t r = 0; r < table.size(); ++r) {
+    const std::optional<LinkageDrawing> placed = linkage_drawing(system, table[r]);
+    if (!placed) {
+      drawing.rows.emplace_back();
+      continue;
+    }
+    if (drawing.joint_names.empty()) {
+      const auto index = [&](const std::string& name) {
+        for (std::size_t j = 0; j < drawing.joint_names.size(); ++j)
+          if (drawing.joint_names[j] == name) return j;
+        drawing.joint_names.push_back(name);
+        return drawing.joint_names.size() - 1;
+      };
+      for (const auto& pivot : placed->ground_pivots) drawing.ground_pivots.push_back(index(pivot.name));
+      for (const auto& link : placed->links) {
+        MotionDrawing::Link l{link.name, {}, link.block};
+        for (const auto& joint : link.joints) l.joints.push_back(index(joint.name));
+        drawing.links.push_back(l);
+      }
+      drawing.guides = placed->guides;
+    }
+    std::vector<std::complex<double>> at(drawing.joint_names.size(), {NAN, NAN});
+    const auto place = [&](const LinkageDrawing::Joint& joint) {
+      for (std::size_t j = 0; j < drawing.joint_names.size(); ++j)
+        if (drawing.joint_names[j] == joint.name) at[j] = joint.at;
+    };
+    for (const auto& pivot : placed->ground_pivots) place(pivot);
+    for (const auto& link : placed->links)
+      for (const auto& joint : link.joints) place(joint);
+    std::vector<double> row;
+    for (const auto& z : at) put(row, z);
+    for (const auto& link : placed->links)
+      if (link.block) row.push_back(link.angle);
+    drawing.rows.push_back(std::move(row));
+  }
+}
+
+void loop_rows(const ConstraintSystem& system, const MotionTable& table, MotionDrawing& drawing) {
+  const MechanismGeometry geometry(system);
+  drawing.link_labels = geometry.link_labels();
+  for (std::size_t r = 0; r < table.size(); ++r) {
+    if (table.status(r) == Status::unassembled) {
+      drawing.rows.emplace_back();
+      continue;
+    }
+    const MotionState state = table[r];
+    const std::vector<DrawingSegment> segments = geometry.segments(state);
+    // Points on links need the points, known only where the row is ok.
+    const std::vector<PointOnLink> on_links =
+        state.status == Status::ok ? geometry.points_on_links(state) : std::vector<PointOnLink>{};
+    if (drawing.segments.empty()) drawing.segments = segments;
+    if (drawing.points_on_links.empty()) drawing.points_on_links = on_links;
+    std::vector<double> row;
+    for (const DrawingSegment& s : segments) {
+      put(row, s.from);
+      put(row, s.to);
+      put(row, s.block);
+      put(row, s.along);
+    }
+    for (std::size_t p = 0; p < drawing.points_on_links.size(); ++p) {
+      const bool known = p < on_links.size();
+      put(row, known ? on_links[p].from : std::complex<double>(NAN, NAN));
+      put(row, known ? on_links[p].at : std::complex<double>(NAN, NAN));
+    }
+    drawing.rows.push_back(std::move(row));
+  }
+  // Rows drawn before the first ok row lack the points on links' room: padded.
+  const std::size_t width = 8 * drawing.segments.size() + 4 * drawing.points_on_links.size();
+  for (auto& row : drawing.rows)
+    if (!row.empty()) row.resize(width, NAN);
+}
+
+}  // namespace
+
+MotionDrawing motion_drawing(const ConstraintSystem& system, const MotionTable& table) {
+  MotionDrawing drawing;
+  if (!system.frames.empty()) {
+    drawing.rows.resize(table.size());
+    return drawing;
+  }
+  if (system.linkage && system.linkage->frames.closed_form) {
+    drawing.form = MotionDrawing::Form::linkage;
+    linkage_rows(system, table, drawing);
+  } else {
+    drawing.form = MotionDrawing::Form::loops;
+    loop_rows(system, table, drawing);
+  }
+  return drawing;
+}
+
+}  // namespace kinema

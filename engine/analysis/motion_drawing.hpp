@@ -1,0 +1,51 @@
+// The drawing's geometry at every row of a solved table, for views that show the
+// mechanism moving (the web page): what the worked solution draws at one value
+// (engine/analysis/geometry.hpp), with the parts that do not change from row to row
+// given once and the coordinates that do given a row at a time.
+#pragma once
+
+#include <complex>
+#include <string>
+#include <vector>
+
+#include "engine/constraint_system.hpp"
+#include "engine/numeric/motion_table.hpp"
+#include "engine/analysis/geometry.hpp"
+
+namespace kinema {
+
+struct MotionDrawing {
+  /// linkage: joints and links placed in closed form (linkage_drawing); loops: the loops'
+  /// terms (MechanismGeometry::segments); none: not drawn in the plane (spatial chains).
+  enum class Form { none, linkage, loops };
+  Form form = Form::none;
+
+  // Form::linkage. Each row: x, y of every joint (SI), then the angle (rad) of each block.
+  struct Link {
+    std::string name;
+    std::vector<std::size_t> joints;  ///< Indices into joint_names.
+    bool block = false;
+  };
+  std::vector<std::string> joint_names;
+  std::vector<Link> links;
+  std::vector<std::size_t> ground_pivots;      ///< Indices into joint_names.
+  std::vector<LinkageDrawing::Guide> guides;   ///< Fixed guides (SI).
+
+  // Form::loops. Each row: for each segment from, to, block, along (x, y each: 8 values),
+  // then for each point on a link from, at (4 values). The kinds, links, guides and
+  // labels below are the first drawn row's (the terms are the same at every row).
+  std::vector<DrawingSegment> segments;
+  std::vector<PointOnLink> points_on_links;
+  std::vector<std::string> link_labels;
+
+  /// One entry a table row: the coordinates above (SI), empty where the row has no
+  /// position (unassembled); NaN where a part is not known at that row (points on links
+  /// of a singular row).
+  std::vector<std::vector<double>> rows;
+};
+
+/// The geometry of every row of `table`, solved for `system` (nothing is solved here:
+/// the positions are the table's; joints and links are placed from them in closed form).
+MotionDrawing motion_drawing(const ConstraintSystem& system, const MotionTable& table);
+
+}  // namespace kinema

@@ -1,0 +1,192 @@
+#include "engine/printers/web/page.hpp"
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "engine/base/number_format.hpp"
+#include "engine/analysis/diagnostics.hpp"
+#include "engine/analysis/output_scale.hpp"
+
+namespace kinema {
+
+namespace {
+
+using json = nlohmann::ordered_json;
+
+// The page's script and style as written in engine/printers/web/ with their SHA-256
+// digests (hex), by CMakeLists.txt at configure time.
+#include "web_page_assets.inc"
+
+// Coordinates to the drawing's digits: 9 significant are far below a pixel at any zoom
+// the page offers and keep a long run's file small. NaN stays NaN (null in JSON).
+double drawn(double value) { return std::isfinite(value) ? round_significant(value, 9) : value; }
+
+json point_json(std::complex<double> z, double per_unit) {
+  return json::array({drawn(z.real() / per_unit), drawn(z.imag() / per_unit)});
+}
+
+// The drawing's parts that stay from row to row, and each row's coordinates, in the file's
+// output length unit (angles stay in rad).
+json drawing_json(const MotionDrawing& drawing, double per_unit) {
+  json out = json::object();
+  out["form"] = drawing.form == MotionDrawing::Form::linkage ? "linkage"
+                : drawing.form == MotionDrawing::Form::loops ? "loops"
+                                                             : "none";
+  if (drawing.form == MotionDrawing::Form::linkage) {
+    out["joint_names"] = drawing.joint_names;
+    out["links"] = json::array();
+    for (const auto& link : drawing.links)
+      out["links"].push_back({{"name", link.name}, {"joints", link.joints}, {"block", link.block}});
+    out["pivots"] = drawing.ground_pivots;
+    out["guides"] = json::array();
+    for (const auto& guide : drawing.guides)
+      out["guides"].push_back({{"through", point_json(guide.through, per_unit)}, {"along", point_json(guide.along, 1)}});
+  } else if (drawing.form == MotionDrawing::Form::loops) {
+    out["segments"] = json::array();
+    for (const DrawingSegment& s : drawing.segments) {
+      const char* kind = s.kind == DrawingSegment::Kind::ground ? "ground"
+                         : s.kind == DrawingSegment::Kind::slider ? "slider"
+                                                                  : "link";
+      out["segments"].push_back({{"kind", kind}, {"link", s.link}, {"fixed_guide", s.fixed_guide},
+                                 {"guide_link", s.guide_link}, {"block_label", s.block_label}});
+    }
+    out["points_on_links"] = json::array();
+    for (const PointOnLink& p : drawing.points_on_links) out["points_on_links"].push_back({{"point", p.point}, {"link", p.link}});
+    out["link_labels"] = drawing.link_labels;
+  }
+  // Lengths in the output unit; the loops' unit directions (along) and blocks' angles as they are.
+  const std::size_t segment_values = 8 * drawing.segments.size();
+  json rows = json::array();
+  for (const std::vector<double>& row : drawing.rows) {
+    json values = json::array();
+    for (std::size_t k = 0; k < row.size(); ++k) {
+      const bool direction = drawing.form == MotionDrawing::Form::loops && k < segment_values && k % 8 >= 6;
+      const bool angle = drawing.form == MotionDrawing::Form::linkage && k >= 2 * drawing.joint_names.size();
+      values.push_back(drawn(direction || angle ? row[k] : row[k] / per_unit));
+    }
+    rows.push_back(values.empty() ? json(nullptr) : values);
+  }
+  out["rows"] = rows;
+  return out;
+}
+
+// The CSV fields (as kinema eval --format csv writes them: the status after the input's
+// three columns) of a result column.
+std::size_t csv_field(std::size_t column) { return column < kInputColumns ? column : column + 1; }
+
+// Where each point's values are among the CSV fields, and which fields the plots show.
+json columns_json(const ConstraintSystem& system, const std::vector<ResultColumn>& columns) {
+  json out = json::object();
+  const std::size_t n = system.unknowns.size();
+  json rates = json::array(), second_rates = json::array(), speeds = json::array(), points = json::array();
+  for (std::size_t k = 0; k < n; ++k) {
+    rates.push_back(csv_field(kInputColumns + 3 * k + 1));
+    second_rates.push_back(csv_field(kInputColumns + 3 * k + 2));
+  }
+  std::size_t column = kInputColumns + 3 * n;
+  for (const PointObservable& point : system.points) {
+    const std::size_t d = point.components.size();
+    // Position (d), velocity (d), speed, acceleration (d), its magnitude.
+    json p = {{"name", point.name}, {"dimension", d}, {"position", csv_field(column)},
+              {"velocity", csv_field(column + d)}, {"speed", csv_field(column + 2 * d)},
+              {"acceleration", csv_field(column + 2 * d + 1)}};
+    speeds.push_back(csv_field(column + 2 * d));
+    points.push_back(p);
+    column += 3 * d + 2;
+  }
+  out["points"] = points;
+  out["plots"] = json::array({{{"title", "rates"}, {"fields", rates}},
+                              {{"title", "second rates"}, {"fields", second_rates}},
+                              {{"title", "point speeds"}, {"fields", speeds}}});
+  json names = json::array();
+  for (std::size_t k = 0; k < columns.size(); ++k) {
+    names.push_back({{"name", columns[k].name}, {"unit", columns[k].unit}});
+    if (k + 1 == kInputColumns) names.push_back({{"name", "status"}, {"unit", ""}});
+  }
+  names.push_back({{"name", "note"}, {"unit", ""}});
+  out["fields"] = names;
+  return out;
+}
+
+// The rows as kinema eval --format csv writes them (the same printer), one string a row.
+std::vector<std::string> csv_lines(const PrintJob& job, std::string& header) {
+  const ResultsPrinter& csv = *find_results_printer("csv");
+  const MotionTable& table = *job.values;
+  std::string text;
+  csv.head(header, job, table.size());
+  if (!header.empty() && header.back() == '\n') header.pop_back();
+  csv.rows(text, job, table, 0, table.size(), 0);
+  std::vector<std::string> lines;
+  std::size_t start = 0;
+  for (std::size_t end; (end = text.find('\n', start)) != std::string::npos; start = end + 1)
+    lines.push_back(text.substr(start, end - start));
+  return lines;
+}
+
+// Inside <script type="application/json">: no '<' at all, so no text of the file can end the
+// element ("</script>") or open a comment; JSON reads \u003c back as '<'.
+std::string script_safe(const std::string& json_text) {
+  std::string out;
+  out.reserve(json_text.size());
+  for (char c : json_text) {
+    if (c == '<') out += "\\u003c";
+    else out += c;
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string base64_of_hex(const std::string& hex) {
+  static const char* const digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::vector<unsigned char> bytes;
+  for (std::size_t i = 0; i + 1 < hex.size(); i += 2) bytes.push_back(static_cast<unsigned char>(std::stoi(hex.substr(i, 2), nullptr, 16)));
+  std::string out;
+  for (std::size_t i = 0; i < bytes.size(); i += 3) {
+    const unsigned value = (bytes[i] << 16) | (i + 1 < bytes.size() ? bytes[i + 1] << 8 : 0) | (i + 2 < bytes.size() ? bytes[i + 2] : 0);
+    out += digits[(value >> 18) & 63];
+    out += digits[(value >> 12) & 63];
+    out += i + 1 < bytes.size() ? digits[(value >> 6) & 63] : '=';
+    out += i + 2 < bytes.size() ? digits[value & 63] : '=';
+  }
+  return out;
+}
+
+void write_page(std::ostream& out, const PrintJob& job, const MotionDrawing& drawing) {
+  const ConstraintSystem& system = job.model.system;
+  const MotionTable& table = *job.values;
+  const OutputScale scale(system);
+  const std::vector<ResultColumn> columns = result_columns(system, scale, job.circuit);
+  json data = json::object();
+  data["title"] = system.title;
+  data["description"] = system.description;
+  data["file"] = system.source_file;
+  data["input"] = {{"name", columns[0].name}, {"unit", columns[0].unit}};
+  data["length_unit"] = scale.length_unit;
+  data["circuit"] = job.circuit;
+  data["spatial"] = !system.frames.empty();
+  data["columns"] = columns_json(system, columns);
+  std::string header;
+  data["rows"] = csv_lines(job, header);
+  data["header"] = header;
+  json reasons = json::array();
+  for (std::size_t r = 0; r < table.size(); ++r)
+    reasons.push_back(table.status(r) == Status::ok ? std::string() : describe_failure(system, table.input(r), table.failure(r)));
+  data["reasons"] = reasons;
+  data["drawing"] = drawing_json(drawing, scale.length);
+
+  const std::string script_hash = base64_of_hex(kPageScriptSha256), style_hash = base64_of_hex(kPageStyleSha256);
+  // Nothing but the page's own script and style runs or loads: no fetch, no frame, no form.
+  out << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+      << "<meta http-equiv=\"Content-Security-Policy\" content=\"default-src 'none'; script-src 'sha256-" << script_hash
+      << "'; style-src 'sha256-" << style_hash << "'; img-src data:; base-uri 'none'; form-action 'none'\">\n"
+      << "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
+      << "<title>kinema page</title>\n<style>" << kPageStyle << "</style>\n</head>\n<body>\n"
+      << "<script type=\"application/json\" id=\"kinema-data\">" << script_safe(data.dump(-1, ' ', false, json::error_handler_t::replace))
+      << "</script>\n<script>" << kPageScript << "</script>\n</body>\n</html>\n";
+}
+
+}  // namespace kinema

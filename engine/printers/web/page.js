@@ -1,0 +1,519 @@
+// kinema page: the mechanism animated over rows kinema solved (the JSON in #kinema-data,
+// written by engine/printers/web/page.cpp). Nothing is solved here: the page draws, plays
+// and reads out the rows. Every string of the file is set as text (textContent), never as
+// markup.
+'use strict';
+(function () {
+  const data = JSON.parse(document.getElementById('kinema-data').textContent);
+  const SVG = 'http://www.w3.org/2000/svg';
+  const rows = data.rows.map(function (line) { return line.split(','); });
+  const numbers = rows.map(function (fields) { return fields.map(parseFloat); });
+  const drawing = data.drawing;
+  const points = data.columns.points;
+  const count = rows.length;
+  let row = 0;
+
+  // Elements, their text always through textContent.
+  function node(tag, className, parent, text) {
+    const e = document.createElement(tag);
+    if (className) e.className = className;
+    if (text !== undefined) e.textContent = text;
+    if (parent) parent.appendChild(e);
+    return e;
+  }
+  function svg(tag, attributes, parent, text) {
+    const e = document.createElementNS(SVG, tag);
+    for (const name in attributes) e.setAttribute(name, attributes[name]);
+    if (text !== undefined) e.textContent = text;
+    if (parent) parent.appendChild(e);
+    return e;
+  }
+  function status(r) { return rows[r][3]; }
+  function fixed(v) { return Math.round(v * 1000) / 1000; }
+
+  // Header and controls.
+  document.title = (data.title || data.file) + ' (kinema page)';
+  const header = node('header', '', document.body);
+  node('h1', '', header, data.title || data.file);
+  if (data.description) node('p', '', header, data.description);
+  node('p', '', header, data.file + (data.circuit ? ' (along its circuit through the toggles)' : ''));
+  const controls = node('div', 'controls', document.body);
+  const play = node('button', '', controls, 'Play');
+  play.id = 'play';
+  play.title = 'play or pause (space)';
+  const back = node('button', '', controls, '\u25c0');
+  back.title = 'one value back (left arrow)';
+  const forward = node('button', '', controls, '\u25b6');
+  forward.title = 'one value on (right arrow)';
+  const speedLabel = node('label', '', controls, 'speed ');
+  const speed = node('select', '', speedLabel);
+  speed.id = 'speed';
+  [['values/s: 15', 15], ['values/s: 30', 30], ['values/s: 60', 60], ['values/s: 120', 120]].forEach(function (o) {
+    const option = node('option', '', speed, o[0]);
+    option.value = o[1];
+  });
+  speed.value = '30';
+  const scrub = node('div', 'scrub', controls);
+  const scrubber = node('input', '', scrub);
+  scrubber.id = 'scrubber';
+  scrubber.type = 'range';
+  scrubber.min = 0;
+  scrubber.max = Math.max(0, count - 1);
+  scrubber.step = 1;
+  scrubber.value = 0;
+  const marks = svg('svg', { id: 'marks', viewBox: '0 0 1000 8', preserveAspectRatio: 'none' }, scrub);
+  for (let r = 0; r < count; ++r) {
+    if (status(r) === 'ok') continue;
+    const x = count > 1 ? r / (count - 1) * 1000 : 0;
+    svg('rect', { x: x - 1.5, y: 0, width: 3, height: 8, class: 'mark-' + status(r), 'data-row': r }, marks);
+  }
+  const value = node('span', 'value', controls);
+  value.id = 'value';
+  const toggles = {};
+  [['velocity', 'velocity arrows'], ['acceleration', 'acceleration arrows'], ['traces', 'paths of points']].forEach(function (t) {
+    const label = node('label', '', controls);
+    const box = node('input', '', label);
+    box.type = 'checkbox';
+    box.id = 'show-' + t[0];
+    box.checked = t[0] !== 'acceleration';
+    node('span', '', label, ' ' + t[1]);
+    toggles[t[0]] = box;
+  });
+
+  // The drawing beside the readout.
+  const main = node('main', '', document.body);
+  const stage = node('div', 'stage', main);
+  const picture = svg('svg', { id: 'mechanism' }, stage);
+  const defs = svg('defs', {}, picture);
+  const hatch = svg('pattern', { id: 'hatch', width: 6, height: 6, patternUnits: 'userSpaceOnUse',
+    patternTransform: 'rotate(45)' }, defs);
+  svg('line', { x1: 0, y1: 0, x2: 0, y2: 6, stroke: '#555', 'stroke-width': 1.2 }, hatch);
+  ['velocity', 'acceleration'].forEach(function (kind) {
+    const marker = svg('marker', { id: 'head-' + kind, viewBox: '0 0 10 10', refX: 9, refY: 5, markerWidth: 7,
+      markerHeight: 7, orient: 'auto-start-reverse' }, defs);
+    svg('path', { d: 'M0,0 L10,5 L0,10 z', fill: kind === 'velocity' ? '#c62828' : '#2e7d32' }, marker);
+  });
+  const traceLayer = svg('g', { id: 'traces' }, picture);
+  const layer = svg('g', { id: 'drawing' }, picture);
+  const overlay = svg('g', { id: 'overlay' }, picture);
+  const statusBox = node('div', '', stage);
+  statusBox.id = 'status';
+  const key = node('p', 'key', stage);
+  const aside = node('aside', '', main);
+  const readout = node('table', '', aside);
+  readout.id = 'readout';
+  const copy = node('button', '', aside, 'Copy the readout');
+  const readoutText = node('textarea', '', aside);
+  readoutText.id = 'readout-text';
+  readoutText.readOnly = true;
+  const plotArea = node('div', 'plots', document.body);
+
+  // The geometry of a row, in the file's length unit: joints (name, x, y), and what to draw.
+  function rowGeometry(r) {
+    const g = drawing.rows[r];
+    if (!g) return null;
+    const out = { joints: [], parts: [] };
+    if (drawing.form === 'linkage') {
+      const at = function (j) { return [g[2 * j], g[2 * j + 1]]; };
+      drawing.joint_names.forEach(function (name, j) { out.joints.push({ name: name, at: at(j) }); });
+      drawing.guides.forEach(function (guide) { out.parts.push({ kind: 'guide', through: guide.through, along: guide.along }); });
+      let block = 2 * drawing.joint_names.length;
+      drawing.links.forEach(function (link) {
+        const ends = link.joints.map(at);
+        if (link.block) out.parts.push({ kind: 'block', at: ends[0], angle: g[block++], label: link.name });
+        else out.parts.push({ kind: ends.length >= 3 ? 'plate' : 'bar', ends: ends, label: link.name });
+      });
+      drawing.pivots.forEach(function (j) { out.parts.push({ kind: 'pivot', at: at(j) }); });
+    } else if (drawing.form === 'loops') {
+      const numbered = {};
+      const ends = [];
+      drawing.segments.forEach(function (s, k) {
+        const v = g.slice(8 * k, 8 * k + 8);
+        const from = [v[0], v[1]], to = [v[2], v[3]];
+        if (s.kind === 'ground') {
+          out.parts.push({ kind: 'ground', ends: [from, to] });
+          out.parts.push({ kind: 'pivot', at: from });
+          out.parts.push({ kind: 'pivot', at: to });
+        } else if (s.kind === 'slider') {
+          const angle = Math.atan2(v[7], v[6]);
+          if (s.fixed_guide) out.parts.push({ kind: 'guide', through: [v[4], v[5]], along: [v[6], v[7]] });
+          else out.parts.push({ kind: 'bar', ends: [from, to], label: null });
+          out.parts.push({ kind: 'block', at: [v[4], v[5]], angle: angle, label: s.block_label });
+        } else {
+          const label = s.link >= 0 && !numbered[s.link] ? drawing.link_labels[s.link] : null;
+          if (s.link >= 0) numbered[s.link] = true;
+          out.parts.push({ kind: 'bar', ends: [from, to], label: label });
+        }
+        ends.push(from, to);
+      });
+      const base = 8 * drawing.segments.length;
+      drawing.points_on_links.forEach(function (p, k) {
+        const from = [g[base + 4 * k], g[base + 4 * k + 1]], at = [g[base + 4 * k + 2], g[base + 4 * k + 3]];
+        if (isFinite(at[0])) out.parts.push({ kind: 'bar', ends: [from, at], label: null });
+      });
+      // A loop's joint is named by the point of the file drawn at it, if any.
+      const size = extent.size;
+      const seen = [];
+      ends.forEach(function (e) {
+        if (!isFinite(e[0]) || seen.some(function (s) { return Math.hypot(s[0] - e[0], s[1] - e[1]) < 1e-9 * size; })) return;
+        seen.push(e);
+        let name = '';
+        points.forEach(function (p) {
+          const x = numbers[r][p.position], y = numbers[r][p.position + 1];
+          if (!name && Math.hypot(x - e[0], y - e[1]) < 1e-6 * size) name = p.name;
+        });
+        out.joints.push({ name: name, at: e });
+      });
+    }
+    return out;
+  }
+
+  // The extent of every row's drawing and points: the view fits the whole motion.
+  const extent = (function () {
+    let minX = Infinity, minY = Infinity, maxX = -Infinity, maxY = -Infinity;
+    const add = function (x, y) {
+      if (!isFinite(x) || !isFinite(y)) return;
+      minX = Math.min(minX, x); maxX = Math.max(maxX, x); minY = Math.min(minY, y); maxY = Math.max(maxY, y);
+    };
+    // Positions only: a loop segment's last pair is its guide's unit direction; a linkage
+    // row ends with its blocks' angles.
+    const segmentValues = drawing.form === 'loops' ? 8 * drawing.segments.length : 0;
+    drawing.rows.forEach(function (g) {
+      if (!g) return;
+      const limit = drawing.form === 'linkage' ? 2 * drawing.joint_names.length : g.length;
+      for (let k = 0; k + 1 < limit; k += 2) if (k >= segmentValues || k % 8 < 6) add(g[k], g[k + 1]);
+    });
+    if (!data.spatial) numbers.forEach(function (n) { points.forEach(function (p) { add(n[p.position], n[p.position + 1]); }); });
+    if (!isFinite(minX)) { minX = -1; maxX = 1; minY = -1; maxY = 1; }
+    return { minX: minX, minY: minY, maxX: maxX, maxY: maxY, size: Math.max(maxX - minX, maxY - minY, 1e-9) };
+  })();
+
+  // The view: model (x, y) to pixels (ox + x s, oy - y s); fitted, zoomed by the wheel, panned by dragging.
+  const view = { scale: 1, ox: 0, oy: 0 };
+  function fit() {
+    const box = picture.getBoundingClientRect();
+    const w = Math.max(box.width, 100), h = Math.max(box.height, 100);
+    const sx = (extent.maxX - extent.minX) || extent.size, sy = (extent.maxY - extent.minY) || extent.size;
+    view.scale = 0.8 * Math.min(w / sx, h / sy);
+    view.ox = w / 2 - view.scale * (extent.minX + extent.maxX) / 2;
+    view.oy = h / 2 + view.scale * (extent.minY + extent.maxY) / 2;
+  }
+  function px(p) { return [view.ox + p[0] * view.scale, view.oy - p[1] * view.scale]; }
+  function xy(p) { const q = px(p); return fixed(q[0]) + ',' + fixed(q[1]); }
+  function line(a, b, className, parent) {
+    const p = px(a), q = px(b);
+    return svg('line', { x1: p[0], y1: p[1], x2: q[0], y2: q[1], class: className }, parent);
+  }
+
+  // Arrows to one scale over the whole run, stated in the key: a point at the run's 95th
+  // percentile of magnitudes gets an arrow a fifth of the drawing (near a toggle the rates
+  // grow without bound; the largest would shrink every other arrow to nothing).
+  function largest(field) {
+    const all = [];
+    numbers.forEach(function (n) { points.forEach(function (p) { if (isFinite(n[p[field]])) all.push(Math.abs(n[p[field]])); }); });
+    all.sort(function (a, b) { return a - b; });
+    return all.length ? all[Math.floor(0.95 * (all.length - 1))] : 0;
+  }
+  const velocityScale = largest('speed') > 0 ? 0.2 * extent.size / largest('speed') : 0;
+  const accelerationScale = largest('acceleration') > 0 ? 0.2 * extent.size / largest('acceleration') : 0;
+
+  function drawPart(part, parent) {
+    if (part.kind === 'bar') {
+      line(part.ends[0], part.ends[1], 'bar-body', parent);
+      line(part.ends[0], part.ends[1], 'bar-line', parent);
+    } else if (part.kind === 'plate') {
+      svg('polygon', { points: part.ends.map(xy).join(' '), class: 'plate' }, parent);
+    } else if (part.kind === 'ground') {
+      line(part.ends[0], part.ends[1], 'ground-line', parent);
+    } else if (part.kind === 'guide') {
+      const reach = 0.7 * extent.size;
+      const centre = [(extent.minX + extent.maxX) / 2, (extent.minY + extent.maxY) / 2];
+      const t = (centre[0] - part.through[0]) * part.along[0] + (centre[1] - part.through[1]) * part.along[1];
+      const a = [part.through[0] + part.along[0] * (t - reach), part.through[1] + part.along[1] * (t - reach)];
+      const b = [part.through[0] + part.along[0] * (t + reach), part.through[1] + part.along[1] * (t + reach)];
+      const p = px(a), q = px(b);
+      const angle = Math.atan2(q[1] - p[1], q[0] - p[0]) * 180 / Math.PI;
+      svg('rect', { x: p[0], y: p[1] + 1, width: Math.hypot(q[0] - p[0], q[1] - p[1]), height: 8, class: 'hatch',
+        transform: 'rotate(' + fixed(angle) + ' ' + fixed(p[0]) + ' ' + fixed(p[1]) + ')' }, parent);
+      line(a, b, 'guide', parent);
+    } else if (part.kind === 'block') {
+      const p = px(part.at);
+      svg('rect', { x: p[0] - 16, y: p[1] - 10, width: 32, height: 20, class: 'block',
+        transform: 'rotate(' + fixed(-part.angle * 180 / Math.PI) + ' ' + fixed(p[0]) + ' ' + fixed(p[1]) + ')' }, parent);
+    } else if (part.kind === 'pivot') {
+      const p = px(part.at);
+      svg('rect', { x: p[0] - 14, y: p[1] + 12, width: 28, height: 7, class: 'hatch' }, parent);
+      svg('line', { x1: p[0] - 14, y1: p[1] + 12, x2: p[0] + 14, y2: p[1] + 12, class: 'guide' }, parent);
+      svg('path', { d: 'M' + xy(part.at) + ' l-8,12 l16,0 z', class: 'pivot' }, parent);
+    }
+  }
+
+  // Link numbers in circles beside each link, and the blocks' numbers above them.
+  function drawLinkNumber(part, parent) {
+    if (!part.label) return;
+    let at;
+    if (part.kind === 'block') {
+      const p = px(part.at);
+      at = [p[0] - 22 * Math.sin(part.angle), p[1] - 22 * Math.cos(part.angle)];
+    } else {
+      const p = px(part.ends[0]), q = px(part.ends[1]);
+      const length = Math.hypot(q[0] - p[0], q[1] - p[1]);
+      if (!(length > 1)) return;
+      at = [(p[0] + q[0]) / 2 - 16 * (q[1] - p[1]) / length, (p[1] + q[1]) / 2 + 16 * (q[0] - p[0]) / length];
+    }
+    const g = svg('g', { class: 'link-number', transform: 'translate(' + fixed(at[0]) + ',' + fixed(at[1]) + ')' }, parent);
+    svg('circle', { r: 8 }, g);
+    svg('text', {}, g, part.label);
+  }
+
+  function arrow(from, vector, factor, className, parent) {
+    if (!(factor > 0) || !isFinite(vector[0]) || Math.hypot(vector[0], vector[1]) === 0) return;
+    const tip = [from[0] + vector[0] * factor, from[1] + vector[1] * factor];
+    line(from, tip, className, parent).setAttribute('marker-end', 'url(#head-' + className + ')');
+  }
+
+  function message(text, parent) {
+    const box = picture.getBoundingClientRect();
+    svg('text', { x: box.width / 2, y: box.height / 2, class: 'message' }, parent, text);
+  }
+
+  function drawScaleBar(parent) {
+    const box = picture.getBoundingClientRect();
+    const target = 120 / view.scale;
+    const power = Math.pow(10, Math.floor(Math.log10(target)));
+    const length = [1, 2, 5, 10].map(function (m) { return m * power; }).filter(function (l) { return l <= target; }).pop() || power;
+    const x = 16, y = box.height - 18, w = length * view.scale;
+    const bar = svg('g', { id: 'scale-bar', 'data-length': length }, parent);
+    svg('path', { d: 'M' + x + ',' + (y - 5) + ' v5 h' + fixed(w) + ' v-5', class: 'scale-bar', fill: 'none' }, bar);
+    svg('text', { x: x + w / 2, y: y - 8, class: 'tick', 'text-anchor': 'middle' }, bar, String(length) + ' ' + data.length_unit);
+  }
+
+  function drawTraces() {
+    traceLayer.textContent = '';
+    if (!toggles.traces.checked || data.spatial) return;
+    points.forEach(function (p) {
+      let path = '', pen = false;
+      numbers.forEach(function (n, r) {
+        const x = n[p.position], y = n[p.position + 1];
+        if (status(r) !== 'ok' || !isFinite(x)) { pen = false; return; }
+        path += (pen ? ' L' : ' M') + xy([x, y]);
+        pen = true;
+      });
+      if (path) svg('path', { d: path, class: 'trace', 'data-point': p.name }, traceLayer);
+    });
+  }
+
+  function draw() {
+    layer.textContent = '';
+    overlay.textContent = '';
+    picture.setAttribute('data-scale', view.scale);
+    picture.setAttribute('data-ox', view.ox);
+    picture.setAttribute('data-oy', view.oy);
+    const s = status(row);
+    picture.setAttribute('data-status', s);
+    if (data.spatial || drawing.form === 'none') {
+      message('3-D chains are not drawn yet: the readout and the plots show the solved rows.', overlay);
+      return;
+    }
+    const geometry = rowGeometry(row);
+    if (!geometry || s === 'unassembled') {
+      message('Not assembled at this value: nothing is drawn.', overlay);
+      drawScaleBar(overlay);
+      return;
+    }
+    const body = svg('g', { class: s === 'ok' ? '' : 'singular-drawing' }, layer);
+    geometry.parts.forEach(function (part) { if (part.kind === 'guide' || part.kind === 'ground') drawPart(part, body); });
+    geometry.parts.forEach(function (part) { if (part.kind === 'bar' || part.kind === 'plate') drawPart(part, body); });
+    geometry.parts.forEach(function (part) { if (part.kind === 'block' || part.kind === 'pivot') drawPart(part, body); });
+    geometry.parts.forEach(function (part) { drawLinkNumber(part, body); });
+    geometry.joints.forEach(function (joint) {
+      if (!isFinite(joint.at[0])) return;
+      const p = px(joint.at);
+      const g = svg('g', { class: 'joint-mark', 'data-joint': '', 'data-name': joint.name, 'data-x': joint.at[0],
+        'data-y': joint.at[1], transform: 'translate(' + p[0] + ',' + p[1] + ')' }, body);
+      svg('circle', { r: 4, class: 'joint' }, g);
+      if (joint.name) svg('text', { x: 7, y: -7, class: 'label' }, g, joint.name);
+    });
+    if (s !== 'ok') return;
+    const n = numbers[row];
+    points.forEach(function (p) {
+      const at = [n[p.position], n[p.position + 1]];
+      if (!isFinite(at[0])) return;
+      const q = px(at);
+      const named = geometry.joints.some(function (j) { return j.name === p.name; });
+      const g = svg('g', { 'data-point': p.name, transform: 'translate(' + q[0] + ',' + q[1] + ')' }, overlay);
+      svg('circle', { r: 2.5, class: 'point' }, g);
+      if (!named) svg('text', { x: 6, y: -6, class: 'label' }, g, p.name);
+      if (toggles.velocity.checked) arrow(at, [n[p.velocity], n[p.velocity + 1]], velocityScale, 'velocity', overlay);
+      if (toggles.acceleration.checked) {
+        arrow(at, [n[p.acceleration], n[p.acceleration + 1]], accelerationScale, 'acceleration', overlay);
+      }
+    });
+    drawScaleBar(overlay);
+  }
+
+  function showKey() {
+    let text = 'Drag to pan, wheel to zoom, double-click to fit.';
+    const unit = data.length_unit;
+    if (velocityScale > 0) text += ' Velocity arrows (red): 1 ' + unit + ' of drawing = ' + (1 / velocityScale).toPrecision(3) + ' ' + unit + '/s.';
+    if (accelerationScale > 0) {
+      text += ' Acceleration arrows (green, dashed): 1 ' + unit + ' = ' + (1 / accelerationScale).toPrecision(3) + ' ' + unit + '/s^2.';
+    }
+    key.textContent = text;
+  }
+
+  // The readout: every field of the row as kinema eval --format csv writes it.
+  const readoutCells = data.columns.fields.map(function (field) {
+    const tr = node('tr', '', readout);
+    node('th', '', tr, field.name + (field.unit ? ' [' + field.unit + ']' : ''));
+    return node('td', '', tr);
+  });
+  function showReadout() {
+    const fields = rows[row];
+    let text = '';
+    readoutCells.forEach(function (cell, k) {
+      cell.textContent = fields[k] === undefined ? '' : fields[k];
+      const f = data.columns.fields[k];
+      text += f.name + (f.unit ? ' [' + f.unit + ']' : '') + '\t' + cell.textContent + '\n';
+    });
+    readoutText.value = text;
+    const s = status(row);
+    statusBox.className = s === 'ok' ? '' : s;
+    statusBox.textContent = s === 'ok' ? '' : (s === 'singular' ? 'Singular: ' : 'Not assembled: ') + data.reasons[row];
+    value.textContent = data.input.name + ' = ' + fields[0] + ' ' + data.input.unit + '  (' + (row + 1) + ' of ' + count + ')';
+  }
+  copy.addEventListener('click', function () {
+    readoutText.select();
+    if (navigator.clipboard) navigator.clipboard.writeText(readoutText.value).catch(function () {});
+  });
+
+  // Plots of rates, second rates and point speeds against the input (along a circuit:
+  // against the row, the input going back and forth); a cursor at the row; a click moves there.
+  const colours = ['#1c3f94', '#c62828', '#2e7d32', '#d98b00', '#8e44ad', '#00838f', '#6d4c41', '#ad1457'];
+  const plots = data.columns.plots.filter(function (p) { return p.fields.length > 0; }).map(function (plot) {
+    const box = node('div', 'plot', plotArea);
+    node('h2', '', box, plot.title + (data.circuit ? ' along the circuit' : ' against ' + data.input.name));
+    const chart = svg('svg', { viewBox: '0 0 400 200', preserveAspectRatio: 'none', class: 'chart' }, box);
+    const legend = node('div', 'legend', box);
+    const xs = numbers.map(function (n, r) { return data.circuit ? r : n[0]; });
+    let lo = Infinity, hi = -Infinity;
+    plot.fields.forEach(function (f) { numbers.forEach(function (n) { if (isFinite(n[f])) { lo = Math.min(lo, n[f]); hi = Math.max(hi, n[f]); } }); });
+    if (!isFinite(lo)) { lo = -1; hi = 1; }
+    if (hi - lo < 1e-12 * Math.max(1, Math.abs(hi))) { lo -= 1; hi += 1; }
+    const x0 = Math.min.apply(null, xs), x1 = Math.max.apply(null, xs);
+    const X = function (x) { return 40 + (x - x0) / ((x1 - x0) || 1) * 350; };
+    const Y = function (y) { return 185 - (y - lo) / (hi - lo) * 175; };
+    svg('line', { x1: 40, y1: 185, x2: 390, y2: 185, class: 'axis' }, chart);
+    svg('line', { x1: 40, y1: 10, x2: 40, y2: 185, class: 'axis' }, chart);
+    if (lo < 0 && hi > 0) svg('line', { x1: 40, y1: Y(0), x2: 390, y2: Y(0), class: 'axis' }, chart);
+    svg('text', { x: 36, y: 14, class: 'tick', 'text-anchor': 'end' }, chart, hi.toPrecision(3));
+    svg('text', { x: 36, y: 185, class: 'tick', 'text-anchor': 'end' }, chart, lo.toPrecision(3));
+    plot.fields.forEach(function (f, k) {
+      let path = '', pen = false;
+      numbers.forEach(function (n, r) {
+        if (!isFinite(n[f])) { pen = false; return; }
+        path += (pen ? ' L' : ' M') + fixed(X(xs[r])) + ',' + fixed(Y(n[f]));
+        pen = true;
+      });
+      const colour = colours[k % colours.length];
+      if (path) svg('path', { d: path, fill: 'none', stroke: colour, 'stroke-width': 1.3, 'vector-effect': 'non-scaling-stroke' }, chart);
+      const field = data.columns.fields[f];
+      node('span', '', legend, '\u25a0 ' + field.name + ' [' + field.unit + ']').style.color = colour;
+    });
+    const cursor = svg('line', { y1: 10, y2: 185, class: 'cursor', 'vector-effect': 'non-scaling-stroke' }, chart);
+    chart.addEventListener('click', function (event) {
+      const b = chart.getBoundingClientRect();
+      const x = x0 + ((event.clientX - b.left) / b.width * 400 - 40) / 350 * ((x1 - x0) || 1);
+      let best = 0;
+      xs.forEach(function (v, r) { if (Math.abs(v - x) < Math.abs(xs[best] - x)) best = r; });
+      setRow(best);
+    });
+    return { cursor: cursor, x: function () { return X(xs[row]); } };
+  });
+
+  function setRow(r) {
+    row = Math.max(0, Math.min(count - 1, r));
+    scrubber.value = row;
+    showReadout();
+    plots.forEach(function (p) { p.cursor.setAttribute('x1', p.x()); p.cursor.setAttribute('x2', p.x()); });
+    draw();
+  }
+
+  // Playing: rows at the chosen rate, looping; frame times kept for measuring.
+  let playing = false, last = 0, carry = 0;
+  const frameTimes = [], drawTimes = [];
+  function frame(time) {
+    if (!playing) return;
+    if (last) {
+      frameTimes.push(time - last);
+      if (frameTimes.length > 600) frameTimes.shift();
+      carry += (time - last) / 1000 * Number(speed.value);
+      const steps = Math.floor(carry);
+      carry -= steps;
+      if (steps > 0) {
+        const begun = performance.now();
+        setRow((row + steps) % count);
+        drawTimes.push(performance.now() - begun);
+        if (drawTimes.length > 600) drawTimes.shift();
+      }
+    }
+    last = time;
+    requestAnimationFrame(frame);
+  }
+  function setPlaying(on) {
+    playing = on && count > 1;
+    play.textContent = playing ? 'Pause' : 'Play';
+    last = 0;
+    if (playing) requestAnimationFrame(frame);
+  }
+  play.addEventListener('click', function () { setPlaying(!playing); });
+  back.addEventListener('click', function () { setRow(row - 1); });
+  forward.addEventListener('click', function () { setRow(row + 1); });
+  scrubber.addEventListener('input', function () { setRow(Number(scrubber.value)); });
+  Object.keys(toggles).forEach(function (k) { toggles[k].addEventListener('change', function () { drawTraces(); draw(); }); });
+  document.addEventListener('keydown', function (event) {
+    if (event.target && (event.target.tagName === 'TEXTAREA' || event.target.tagName === 'SELECT')) return;
+    const moves = { ArrowRight: row + 1, ArrowLeft: row - 1, Home: 0, End: count - 1 };
+    if (event.key === ' ') setPlaying(!playing);
+    else if (event.key in moves) setRow(moves[event.key]);
+    else return;
+    event.preventDefault();
+  });
+
+  // Zoom about the pointer; pan by dragging.
+  picture.addEventListener('wheel', function (event) {
+    event.preventDefault();
+    const b = picture.getBoundingClientRect();
+    const mx = event.clientX - b.left, my = event.clientY - b.top;
+    const factor = Math.exp(-event.deltaY * 0.0015);
+    view.ox = mx - (mx - view.ox) * factor;
+    view.oy = my - (my - view.oy) * factor;
+    view.scale *= factor;
+    drawTraces();
+    draw();
+  }, { passive: false });
+  let drag = null;
+  picture.addEventListener('pointerdown', function (event) {
+    drag = { x: event.clientX, y: event.clientY };
+    picture.setPointerCapture(event.pointerId);
+  });
+  picture.addEventListener('pointermove', function (event) {
+    if (!drag) return;
+    view.ox += event.clientX - drag.x;
+    view.oy += event.clientY - drag.y;
+    drag = { x: event.clientX, y: event.clientY };
+    drawTraces();
+    draw();
+  });
+  picture.addEventListener('pointerup', function () { drag = null; });
+  picture.addEventListener('dblclick', function () { fit(); drawTraces(); draw(); });
+  window.addEventListener('resize', function () { fit(); drawTraces(); draw(); });
+
+  // What a measurement reads (bench/page_timing.js): the times between frames while playing,
+  // and the time each frame's drawing took.
+  window.kinemaPage = { frameTimes: frameTimes, drawTimes: drawTimes, setPlaying: setPlaying };
+  fit();
+  showKey();
+  drawTraces();
+  setRow(0);
+})();

@@ -1,0 +1,271 @@
+// kinema as a Python module: one more view over the library. It reads names and solves
+// single values through the facade (<kinema/kinema.hpp>) and prints derivations and
+// sweeps with the engine's own printers (the sweep is the npy printer's bytes, read by
+// NumPy), so that every number and formula is the one the program prints.
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <kinema/kinema.hpp>
+
+#include <algorithm>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <variant>
+
+#include "api/engine_access.hpp"
+#include "engine/base/errors.hpp"
+#include "engine/input_value.hpp"
+#include "engine/model.hpp"
+#include "engine/printers/printer.hpp"
+#include "engine/run/results_stream.hpp"
+#include "engine/run/view.hpp"
+#include "engine/analysis/output_scale.hpp"
+#include "engine/symbolic/dyad_method.hpp"
+#include "loops/mechanism_file.hpp"
+
+namespace py = pybind11;
+
+namespace {
+
+using Value = std::variant<double, std::string>;
+
+/// A model as Python holds it: the engine's model (full derivation: derive() prints its
+/// formulas) and the facade over that same model.
+struct PyModel {
+  std::shared_ptr<const kinema::Model> engine;
+  kinema::MechanismModel facade;
+};
+
+/// A result keeps its model (names) alive.
+struct PyResult {
+  kinema::Solution solution;
+  PyModel model;
+};
+
+PyModel model_of(kinema::Model model) {
+  auto shared = std::make_shared<const kinema::Model>(std::move(model));
+  return PyModel{shared, kinema::EngineAccess::facade(shared)};
+}
+
+kinema::Solution solve(const PyModel& m, const Value& value) {
+  if (const double* number = std::get_if<double>(&value)) return m.facade.solve(*number);
+  return m.facade.solve(std::get<std::string>(value));
+}
+
+std::vector<kinema::Solution> solve_list(const PyModel& m, const std::vector<Value>& values) {
+  std::vector<double> si;
+  for (const Value& value : values) {
+    const double* number = std::get_if<double>(&value);
+    si.push_back(number ? *number : kinema::parse_input_value(m.engine->system, std::get<std::string>(value)));
+  }
+  return m.facade.solve(si);
+}
+
+/// The output unit of each field of sweep() (the CSV's column units).
+py::dict field_units(const PyModel& m) {
+  const kinema::ConstraintSystem& system = m.engine->system;
+  py::dict units;
+  for (const kinema::ResultColumn& column : kinema::result_columns(system, kinema::OutputScale(system)))
+    units[py::str(column.name)] = column.unit;
+  return units;
+}
+
+py::list parameters(const PyModel& m) {
+  py::list list;
+  for (const kinema::SystemParameter& p : m.engine->system.parameters) {
+    py::dict entry;
+    entry["name"] = p.symbol.get_name();
+    entry["value"] = p.value;
+    entry["dimension"] = kinema::dimension_name(p.dimension);
+    entry["text"] = p.text;
+    list.append(entry);
+  }
+  return list;
+}
+
+/// result["omega3"]: a coordinate, rate or second rate by the name the file gives it.
+double named(const kinema::Solution& s, const kinema::Names& names, const std::string& name) {
+  const auto in = [&name](const std::vector<std::string>& list) {
+    return std::find(list.begin(), list.end(), name) != list.end();
+  };
+  if (name == names.input || in(names.unknowns)) return s.value(name);
+  if (name == names.input_rate || in(names.rates)) return s.rate(name);
+  if (name == names.input_second_rate || in(names.second_rates)) return s.second_rate(name);
+  throw py::key_error("no coordinate, rate or second rate named \"" + name + "\"");
+}
+
+std::vector<std::string> result_names(const kinema::Names& names) {
+  std::vector<std::string> all{names.input, names.input_rate, names.input_second_rate};
+  for (std::size_t i = 0; i < names.unknowns.size(); ++i) {
+    all.insert(all.end(), {names.unknowns[i], names.rates[i], names.second_rates[i]});
+  }
+  return all;
+}
+
+const char* status_name(kinema::SolutionStatus status) {
+  switch (status) {
+    case kinema::SolutionStatus::ok: return "ok";
+    case kinema::SolutionStatus::singular: return "singular";
+    default: return "unassembled";
+  }
+}
+
+std::string escaped(const std::string& text) {
+  return py::module_::import("html").attr("escape")(text).cast<std::string>();
+}
+
+/// A result as a table in a notebook: the input and each coordinate with its rate and
+/// second rate (SI), a dash for what the status leaves unknown.
+std::string result_html(const PyResult& r) {
+  const kinema::Names& names = r.model.facade.names();
+  const auto cell = [&](const std::string& name) {
+    std::string value = "&mdash;";
+    try {
+      value = py::repr(py::float_(named(r.solution, names, name))).cast<std::string>();
+    } catch (const kinema::Error&) {  // not known at this status: shown as a dash
+    }
+    return "<td>" + escaped(name) + " = " + value + "</td>";
+  };
+  std::string html = "<table><tr><th>value</th><th>rate</th><th>second rate</th></tr><tr>" + cell(names.input) +
+                     cell(names.input_rate) + cell(names.input_second_rate) + "</tr>";
+  if (!r.solution.ok()) html += "<tr><td colspan=\"3\">" + escaped(r.solution.message()) + "</td></tr>";
+  for (std::size_t i = 0; i < names.unknowns.size(); ++i)
+    html += "<tr>" + cell(names.unknowns[i]) + cell(names.rates[i]) + cell(names.second_rates[i]) + "</tr>";
+  return html + "</table>";
+}
+
+py::tuple components(const std::array<double, 3>& v, std::size_t dimension) {
+  return dimension == 3 ? py::make_tuple(v[0], v[1], v[2]) : py::make_tuple(v[0], v[1]);
+}
+
+/// The derivation as `kinema derive --method METHOD --format FORMAT` prints it.
+std::string derivation(const PyModel& m, const std::string& method, const std::string& format) {
+  const kinema::Printer* printer = kinema::find_printer(kinema::PrintKind::derivation, format);
+  if (!printer) throw kinema::InputError("derive: no format \"" + format + "\" (there are: text, latex)");
+  const std::optional<kinema::DerivationMethod> found = kinema::find_method(method);
+  if (!found) {
+    throw kinema::InputError("derive: no method \"" + method +
+                             "\" (there are: loops, relative-velocity, joint-coordinates)");
+  }
+  kinema::check_method_applies(m.engine->system, *found);
+  kinema::PrintJob job{*m.engine};
+  job.method = *found;
+  std::ostringstream out;
+  kinema::print_view(*printer, out, job);
+  return out.str();
+}
+
+/// The npy printer's bytes for the values from `first` to `last` by `step` (the
+/// program's `kinema eval --sweep ... --format npy`), solved without the GIL.
+py::bytes npy_sweep(const PyModel& m, const Value& first, const Value& last, const Value& step) {
+  const kinema::ConstraintSystem& system = m.engine->system;
+  const auto written = [&](const Value& value) {
+    if (const double* number = std::get_if<double>(&value)) return kinema::WrittenValue{*number, 1.0};
+    return kinema::written_input_value(system, std::get<std::string>(value));
+  };
+  const kinema::InputValues inputs = kinema::input_sweep(system, written(first), written(last), written(step));
+  kinema::check_input_range(system, inputs);
+  std::string bytes;
+  {
+    py::gil_scoped_release unlocked;
+    kinema::StreamSettings settings;
+    settings.printer = kinema::find_results_printer("npy");
+    settings.write = [&bytes](std::string_view text) { bytes.append(text); };
+    kinema::stream_results(*m.engine, inputs, kinema::AnalysisOptions{}, settings);
+  }
+  return py::bytes(bytes);
+}
+
+}  // namespace
+
+PYBIND11_MODULE(kinema, module) {
+  module.doc() = "kinema: velocities and accelerations of mechanisms, derived symbolically and solved fast";
+  // Translators are tried last registered first: the kinds after their base.
+  static py::exception<kinema::Error> error(module, "Error");
+  static py::exception<kinema::InputError> input_error(module, "InputError", error.ptr());
+  static py::exception<kinema::UnitError> unit_error(module, "UnitError", input_error.ptr());
+  static py::exception<kinema::AssemblyError> assembly_error(module, "AssemblyError", error.ptr());
+  py::register_exception_translator([](std::exception_ptr thrown) {
+    try {
+      if (thrown) std::rethrow_exception(thrown);
+    } catch (const kinema::UnitError& e) {
+      unit_error(e.what());
+    } catch (const kinema::InputError& e) {
+      input_error(e.what());
+    } catch (const kinema::AssemblyError& e) {
+      assembly_error(e.what());
+    } catch (const kinema::Error& e) {
+      error(e.what());
+    }
+  });
+
+  py::class_<kinema::PointResult>(module, "Point", "A point's position, velocity and acceleration (SI).")
+      .def_property_readonly("position", [](const kinema::PointResult& p) { return components(p.position, p.dimension); })
+      .def_property_readonly("velocity", [](const kinema::PointResult& p) { return components(p.velocity, p.dimension); })
+      .def_property_readonly("acceleration",
+                             [](const kinema::PointResult& p) { return components(p.acceleration, p.dimension); })
+      .def("__repr__", [](const kinema::PointResult& p) {
+        return "Point(position=" + py::repr(components(p.position, p.dimension)).cast<std::string>() + ", velocity=" +
+               py::repr(components(p.velocity, p.dimension)).cast<std::string>() + ", acceleration=" +
+               py::repr(components(p.acceleration, p.dimension)).cast<std::string>() + ")";
+      });
+
+  py::class_<PyResult>(module, "Result", "The mechanism at one input value (SI), read by name.")
+      .def_property_readonly("input", [](const PyResult& r) { return r.solution.input(); })
+      .def_property_readonly("status", [](const PyResult& r) { return status_name(r.solution.status()); })
+      .def_property_readonly("ok", [](const PyResult& r) { return r.solution.ok(); })
+      .def_property_readonly("message", [](const PyResult& r) { return r.solution.message(); })
+      .def("__getitem__", [](const PyResult& r, const std::string& name) {
+        return named(r.solution, r.model.facade.names(), name);
+      })
+      .def("keys", [](const PyResult& r) { return result_names(r.model.facade.names()); })
+      .def("point", [](const PyResult& r, const std::string& name) { return r.solution.point(name); }, py::arg("name"))
+      .def("_repr_html_", &result_html)
+      .def("__repr__", [](const PyResult& r) {
+        return std::string("<kinema.Result ") + r.model.facade.names().input + " = " +
+               py::repr(py::float_(r.solution.input())).cast<std::string>() + ": " +
+               status_name(r.solution.status()) + ">";
+      });
+
+  py::class_<PyModel>(module, "Model", "A mechanism read, derived and compiled once.")
+      .def_property_readonly("title", [](const PyModel& m) { return m.engine->system.title; })
+      .def_property_readonly("input", [](const PyModel& m) { return m.facade.names().input; })
+      .def_property_readonly("unknowns", [](const PyModel& m) { return m.facade.names().unknowns; })
+      .def_property_readonly("rates", [](const PyModel& m) { return m.facade.names().rates; })
+      .def_property_readonly("second_rates", [](const PyModel& m) { return m.facade.names().second_rates; })
+      .def_property_readonly("points", [](const PyModel& m) { return m.facade.names().points; })
+      .def_property_readonly("parameters", &parameters, "Name, SI value, dimension and text as written, in file order.")
+      .def_property_readonly("units", &field_units, "The output unit of each field of sweep().")
+      .def("at", [](const PyModel& m, const Value& value) { return PyResult{solve(m, value), m}; }, py::arg("value"),
+           "At one input value: \"30 deg\", \"120 mm\", or a number in SI (rad, m, s).")
+      .def(
+          "at",
+          [](const PyModel& m, const std::vector<Value>& values) {
+            std::vector<PyResult> results;
+            for (kinema::Solution& s : solve_list(m, values)) results.push_back(PyResult{std::move(s), m});
+            return results;
+          },
+          py::arg("values"), "At each value in order, each continued from the one before (as `kinema eval` solves a list).")
+      .def("derive", &derivation, py::arg("method") = "loops", py::arg("format") = "text",
+           "The derivation as `kinema derive` prints it (format \"text\" or \"latex\").")
+      .def(
+          "sweep",
+          [](const PyModel& m, const Value& first, const Value& last, const Value& step) {
+            const py::bytes npy = npy_sweep(m, first, last, step);
+            return py::module_::import("numpy").attr("load")(py::module_::import("io").attr("BytesIO")(npy));
+          },
+          py::arg("first"), py::arg("last"), py::arg("step"),
+          "From first to last by step (\"0 deg\", \"360 deg\", \"1 deg\"; or numbers in SI): a NumPy structured array "
+          "with the fields and output units of `kinema eval --format npy` (units: Model.units).")
+      .def("__repr__", [](const PyModel& m) { return "<kinema.Model \"" + m.engine->system.title + "\">"; });
+
+  module.def("load", [](const std::string& path) { return model_of(kinema::load_model(path)); }, py::arg("path"),
+             "Reads a mechanism file (any of the three forms).");
+  module.def(
+      "loads",
+      [](const std::string& text, const std::string& name) {
+        return model_of(kinema::make_model(kinema::read_mechanism_text(text, name)));
+      },
+      py::arg("text"), py::arg("name") = "mechanism.toml", "The same from TOML text; name stands for the file in messages.");
+}

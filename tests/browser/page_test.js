@@ -1,0 +1,220 @@
+// kinema page in a real browser (Debian's chromium, driven by npm's playwright-core): for
+// every sample, the page kinema writes loads with no console error and no request but the
+// file itself; at three values set through the scrubber each joint is drawn where
+// `kinema eval --format csv` puts it (within 0.1 px) and the readout is eval's CSV row;
+// the drawing at two values differs and is not blank. A singular row and an unassembled
+// range show as such; a hostile title, description and file name run no script.
+//
+//   node page_test.js KINEMA SAMPLES_DIR WORK_DIR CHROMIUM MODULES_DIR
+'use strict';
+const { execFileSync } = require('child_process');
+const fs = require('fs');
+const path = require('path');
+const assert = require('assert');
+
+const [kinema, samplesDir, workDir, chromiumPath, modulesDir] = process.argv.slice(2);
+const { chromium } = require(path.join(modulesDir, 'playwright-core'));
+fs.mkdirSync(workDir, { recursive: true });
+
+// The same values for the page and for eval: a turn in 4 deg steps, two seconds of a
+// timed chain, the piston's stroke and beyond (its last values do not assemble).
+function sweepFor(header) {
+  const input = header.split(',')[0];
+  if (input.endsWith('[deg]')) return '0:356:4';
+  if (input.endsWith('[s]')) return '0:2:0.05';
+  return '120:220:2';
+}
+
+function run(args) { return execFileSync(kinema, args, { encoding: 'utf8' }); }
+
+function pageAndCsv(file, name) {
+  const sweep = sweepFor(run(['eval', file, '--format', 'csv']).split('\n')[0]);
+  const html = path.join(workDir, name + '.html');
+  run(['page', file, '--sweep', sweep, '-o', html]);
+  const csv = run(['eval', file, '--sweep', sweep, '--format', 'csv', '-q']).trimEnd().split('\n');
+  return { html: html, header: csv[0].split(','), rows: csv.slice(1) };
+}
+
+// One tab for every page (a new tab costs more than the page): each file opened in it with
+// what it logs, requests and asks collected from then on.
+let tab = null;
+const seen = { errors: [], requests: [], dialogs: [] };
+async function open(browser, html) {
+  if (!tab) {
+    tab = await browser.newPage({ viewport: { width: 1100, height: 800 } });
+    tab.on('console', (m) => { if (m.type() === 'error' || m.type() === 'warning') seen.errors.push(m.text()); });
+    tab.on('pageerror', (e) => seen.errors.push(e.message));
+    tab.on('request', (r) => seen.requests.push(r.url()));
+    tab.on('dialog', (d) => { seen.dialogs.push(d.message()); d.dismiss(); });
+  }
+  for (const list of Object.values(seen)) list.length = 0;
+  await tab.goto('file://' + html);
+  return { page: tab, seen: seen };
+}
+
+async function scrubTo(page, row) {
+  await page.evaluate((r) => {
+    const s = document.getElementById('scrubber');
+    s.value = r;
+    s.dispatchEvent(new Event('input'));
+  }, row);
+}
+
+// What the page shows at the current row: the readout, the view, the joints drawn.
+function shown(page) {
+  return page.evaluate(() => {
+    const svg = document.getElementById('mechanism');
+    return {
+      readout: Array.from(document.querySelectorAll('#readout td')).map((td) => td.textContent).join(','),
+      scale: Number(svg.getAttribute('data-scale')),
+      ox: Number(svg.getAttribute('data-ox')),
+      oy: Number(svg.getAttribute('data-oy')),
+      status: svg.getAttribute('data-status'),
+      statusText: document.getElementById('status').textContent,
+      joints: Array.from(svg.querySelectorAll('[data-joint]')).map((j) => {
+        const m = /translate\(([^,]+),([^)]+)\)/.exec(j.getAttribute('transform'));
+        return { name: j.getAttribute('data-name'), x: Number(j.getAttribute('data-x')), y: Number(j.getAttribute('data-y')),
+                 px: Number(m[1]), py: Number(m[2]) };
+      }),
+    };
+  });
+}
+
+// Each named joint at the CSV's position of its point, read back in pixels.
+function checkJoints(name, header, csvRow, view) {
+  const fields = csvRow.split(',');
+  let checked = 0;
+  for (const joint of view.joints) {
+    const column = header.findIndex((h) => h.startsWith(joint.name + '_x ['));
+    if (!joint.name || column < 0) continue;
+    const x = Number(fields[column]), y = Number(fields[column + 1]);
+    const px = view.ox + x * view.scale, py = view.oy - y * view.scale;
+    assert(Math.abs(joint.px - px) <= 0.1 && Math.abs(joint.py - py) <= 0.1,
+      `${name}: joint ${joint.name} drawn at (${joint.px}, ${joint.py}) px, eval puts it at (${px}, ${py})`);
+    assert(Math.abs(joint.x - x) * view.scale <= 0.1 && Math.abs(joint.y - y) * view.scale <= 0.1,
+      `${name}: joint ${joint.name}'s data-x/y (${joint.x}, ${joint.y}) is not eval's (${x}, ${y})`);
+    ++checked;
+  }
+  return checked;
+}
+
+// The drawing's pixels (a clip of the tab: quicker than an element's screenshot, which waits
+// for the element to be still and scrolled into view).
+async function drawingShot(page) {
+  const box = await page.evaluate(() => {
+    const r = document.getElementById('mechanism').getBoundingClientRect();
+    return { x: r.left, y: r.top, width: r.width, height: r.height };
+  });
+  return page.screenshot({ clip: box, animations: 'disabled', caret: 'initial' });
+}
+
+async function checkSample(browser, file) {
+  const name = path.basename(file, '.toml');
+  const { html, header, rows } = pageAndCsv(file, name);
+  const { page, seen } = await open(browser, html);
+  const spatial = header.some((h) => /_z \[/.test(h));
+  const count = await page.evaluate(() => Number(document.getElementById('scrubber').max) + 1);
+  assert.strictEqual(count, rows.length, `${name}: the scrubber has ${count} values, eval ${rows.length} rows`);
+  // Three values where the mechanism is assembled and regular, spread over the run.
+  const ok = rows.map((r, k) => (r.split(',')[3] === 'ok' ? k : -1)).filter((k) => k >= 0);
+  const picks = [ok[Math.floor(ok.length / 6)], ok[Math.floor(ok.length / 2)], ok[Math.floor((5 * ok.length) / 6)]];
+  let joints = 0;
+  for (const row of picks) {
+    await scrubTo(page, row);
+    const view = await shown(page);
+    assert.strictEqual(view.readout, rows[row], `${name}: the readout at row ${row} is not eval's CSV row`);
+    if (!spatial) joints += checkJoints(name, header, rows[row], view);
+  }
+  if (!spatial) {
+    assert(joints >= 3, `${name}: no joint of the drawing is named by a point of eval's rows`);
+    await scrubTo(page, picks[0]);
+    const first = await drawingShot(page);
+    await scrubTo(page, picks[2]);
+    const second = await drawingShot(page);
+    await page.evaluate(() => { for (const id of ['drawing', 'overlay', 'traces']) document.getElementById(id).style.display = 'none'; });
+    const blank = await drawingShot(page);
+    assert(!first.equals(second), `${name}: the drawing is the same at two values`);
+    assert(!first.equals(blank) && !second.equals(blank), `${name}: a drawing is blank`);
+  } else {
+    const text = await page.locator('#mechanism').textContent();
+    assert(/3-D chains are not drawn yet/.test(text), `${name}: a spatial chain's page does not say it is not drawn`);
+  }
+  assert.deepStrictEqual(seen.errors, [], `${name}: console errors`);
+  assert.deepStrictEqual(seen.requests, ['file://' + html], `${name}: requests other than the file`);
+}
+
+// Rows that are singular or unassembled: marked on the scrubber at exactly those rows, said in
+// words when scrubbed to, and not drawn as if assembled.
+async function checkFailedRows(browser, file, status) {
+  const name = path.basename(file, '.toml');
+  const { html, rows } = pageAndCsv(file, name + '_' + status);
+  const { page, seen } = await open(browser, html);
+  const expected = rows.map((r, k) => (r.split(',')[3] === status ? k : -1)).filter((k) => k >= 0);
+  assert(expected.length > 0, `${name}: no ${status} row to show`);
+  const marked = await page.evaluate((s) => Array.from(document.querySelectorAll('.mark-' + s)).map((m) => Number(m.getAttribute('data-row'))), status);
+  assert.deepStrictEqual(marked, expected, `${name}: the scrubber's ${status} marks`);
+  await scrubTo(page, expected[0]);
+  const view = await shown(page);
+  assert.strictEqual(view.status, status);
+  assert.strictEqual(view.readout, rows[expected[0]], `${name}: the readout of a ${status} row`);
+  assert(view.statusText.startsWith(status === 'singular' ? 'Singular: ' : 'Not assembled: ') && view.statusText.length > 20,
+    `${name}: the ${status} row's reason in words: "${view.statusText}"`);
+  if (status === 'unassembled') {
+    assert.strictEqual(view.joints.length, 0, `${name}: an unassembled row is drawn`);
+  } else {
+    const faded = await page.evaluate(() => document.querySelectorAll('#drawing .singular-drawing').length);
+    assert(faded > 0, `${name}: a singular row is drawn as if regular`);
+  }
+  assert.deepStrictEqual(seen.errors, [], `${name}: console errors`);
+}
+
+// A title, description and file name written to run script: shown as text, nothing runs.
+async function checkHostile(browser) {
+  const hostile = '</script><script>alert(1)</script><img src=x onerror=alert(2)>';
+  const dir = path.join(workDir, '</script><script>alert(3)<');
+  fs.mkdirSync(dir, { recursive: true });
+  const file = path.join(dir, 'script><img src=x onerror=alert(4)>.toml');
+  const sample = fs.readFileSync(path.join(samplesDir, 'four_bar.toml'), 'utf8')
+    .replace(/^title = .*$/m, 'title = ' + JSON.stringify(hostile) + '\ndescription = ' + JSON.stringify('<b>' + hostile + '</b>'));
+  fs.writeFileSync(file, sample);
+  const html = path.join(workDir, 'hostile.html');
+  run(['page', file, '--sweep', '0:350:10', '-o', html]);
+  const { page, seen } = await open(browser, html);
+  await scrubTo(page, 3);
+  const text = await page.evaluate(() => ({
+    title: document.querySelector('h1').textContent,
+    paragraphs: Array.from(document.querySelectorAll('header p')).map((p) => p.textContent),
+    images: document.querySelectorAll('img, b').length,
+    scripts: document.querySelectorAll('script').length,
+  }));
+  assert.deepStrictEqual(seen.dialogs, [], 'a hostile string ran script');
+  assert.strictEqual(text.title, hostile);
+  assert.strictEqual(text.paragraphs[0], '<b>' + hostile + '</b>');
+  assert.strictEqual(text.paragraphs[1], file);
+  assert.strictEqual(text.images, 0, 'a hostile string made elements');
+  assert.strictEqual(text.scripts, 2, 'a hostile string made a script element');
+  assert.deepStrictEqual(seen.errors, [], 'console errors');
+}
+
+(async () => {
+  const started = Date.now();
+  const args = typeof process.getuid === 'function' && process.getuid() === 0 ? ['--no-sandbox'] : [];
+  const browser = await chromium.launch({ executablePath: chromiumPath, args: args });
+  try {
+    const samples = fs.readdirSync(samplesDir).filter((f) => f.endsWith('.toml')).sort();
+    for (const sample of samples) {
+      const t = Date.now();
+      await checkSample(browser, path.join(samplesDir, sample));
+      if (process.env.KINEMA_PAGE_TEST_TIMES) console.log(sample, Date.now() - t);
+    }
+    await checkFailedRows(browser, path.join(samplesDir, 'problem_4_1_parallelogram.toml'), 'singular');
+    await checkFailedRows(browser, path.join(samplesDir, 'triple_rocker_circuit.toml'), 'unassembled');
+    await checkHostile(browser);
+    console.log(`page: ${samples.length} samples, failed rows and hostile strings checked in chromium in ${Date.now() - started} ms`);
+  } finally {
+    await browser.close();
+  }
+})().catch((error) => {
+  console.error(error && error.stack ? error.stack : String(error));
+  process.exit(1);
+});

@@ -1,0 +1,92 @@
+// engine/analysis/geometry: the loops' terms as segments at a solved position.
+// Each loop's chain of link vectors ends where it starts; the joints are where
+// the closed form puts them; ground, links and sliders are told apart.
+#include <doctest/doctest.h>
+
+#include <complex>
+
+#include "engine/analysis/geometry.hpp"
+#include "tests/engine/unit_support.hpp"
+#include "tests/test_support.hpp"
+
+using kinema::DrawingSegment;
+using kinema::MotionState;
+using kinema_unit::kDeg;
+
+namespace {
+
+bool near(std::complex<double> a, std::complex<double> b, double tolerance = 1e-12) {
+  return std::abs(a - b) <= tolerance;
+}
+
+}  // namespace
+
+TEST_CASE("engine/analysis/geometry: four-bar segments at a closed-form position") {
+  const kinema::Model model = kinema::load_model(kinema_test::sample("four_bar.toml"));
+  const kinema::MechanismGeometry geometry(model.system);
+  const kinema_unit::FourBar four_bar;
+  for (double degrees : {40.0, 150.0, 290.0}) {
+    CAPTURE(degrees);
+    const double t2 = degrees * kDeg, t3 = four_bar.theta3(t2), t4 = four_bar.theta4(t2);
+    MotionState state;
+    state.input = t2;
+    state.status = kinema::Status::ok;
+    state.q = Eigen::Vector2d(t3, t4);
+    const auto segments = geometry.segments(state);
+    REQUIRE(segments.size() == 4);  // a, b, -c, -d as written
+    const std::complex<double> A = std::polar(0.04, t2), B = A + std::polar(0.12, t3), D(0.1, 0);
+    CHECK(near(segments[0].from, 0));
+    CHECK(near(segments[0].to, A));
+    CHECK(near(segments[1].to, B));
+    CHECK(near(segments[2].to, D));  // B - c e^{i t4} is the rocker's pivot
+    CHECK(near(B, D + std::polar(0.08, t4)));
+    // A chain: each segment starts where the one before ends, and the last ends at the start.
+    for (std::size_t k = 1; k < segments.size(); ++k) CHECK(segments[k].from == segments[k - 1].to);
+    CHECK(near(segments.back().to, segments.front().from, 1e-15));
+    CHECK(segments[0].kind == DrawingSegment::Kind::link);
+    CHECK(segments[1].kind == DrawingSegment::Kind::link);
+    CHECK(segments[2].kind == DrawingSegment::Kind::link);
+    CHECK(segments[3].kind == DrawingSegment::Kind::ground);
+  }
+  // No position, no drawing.
+  MotionState unassembled;
+  unassembled.input = 0.3;
+  CHECK(geometry.segments(unassembled).empty());
+}
+
+TEST_CASE("engine/analysis/geometry: a slider's guide, and two loops each closing on its own") {
+  const kinema::Model slider = kinema::load_model(kinema_test::sample("slider_crank.toml"));
+  kinema::Workspace workspace(slider);
+  Eigen::VectorXd q = slider.kinematics.guess();
+  REQUIRE(workspace.solve_position(60 * kDeg, q));
+  MotionState state = workspace.motion(60 * kDeg, 1.0, 0.0, q);
+  const auto segments = kinema::MechanismGeometry(slider.system).segments(state);
+  REQUIRE(segments.size() == 3);  // a e^{i t2}, b e^{i t3}, -(x + i e)
+  CHECK(segments[0].kind == DrawingSegment::Kind::link);
+  CHECK(segments[1].kind == DrawingSegment::Kind::link);
+  CHECK(segments[2].kind == DrawingSegment::Kind::slider);
+  // The rod ends at the piston pin (x, e).
+  CHECK(near(segments[1].to, std::complex<double>(q[1], 0.01)));
+  CHECK(near(segments[2].to, 0, 1e-15));
+
+  // Problem 4.4: ABCD (4 terms) then DEF (5 terms), each starting at the origin and closing.
+  const kinema::Model six = kinema::load_model(kinema_test::sample("problem_4_4_six_bar.toml"));
+  const auto table = kinema::analyse(six, {30 * kDeg});
+  REQUIRE(table.status(0) == kinema::Status::ok);
+  const auto drawn = kinema::MechanismGeometry(six.system).segments(table[0]);
+  REQUIRE(drawn.size() == 4 + 5);
+  CHECK(near(drawn[0].from, 0));
+  CHECK(near(drawn[3].to, 0, 1e-14));
+  CHECK(near(drawn[4].from, 0));
+  CHECK(near(drawn[8].to, 0, 1e-14));
+  // The joints the points name: B = AB e^{i phi} ends the first segment; C ends the second.
+  const auto& points = table[0].points;
+  CHECK(near(drawn[0].to, {points[0].position[0], points[0].position[1]}));
+  CHECK(near(drawn[1].to, {points[1].position[0], points[1].position[1]}));
+  // In DEF, E ends the third term and F is where the slider's vector starts.
+  CHECK(near(drawn[6].to, {points[2].position[0], points[2].position[1]}));
+  CHECK(near(drawn[7].to, {points[3].position[0], points[3].position[1]}));
+  CHECK(drawn[4].kind == DrawingSegment::Kind::ground);
+  CHECK(drawn[5].kind == DrawingSegment::Kind::ground);
+  CHECK(drawn[8].kind == DrawingSegment::Kind::slider);
+}

@@ -1,0 +1,252 @@
+// Instant centres (issue 13) of every joints-and-links sample against the analytic
+// solution: at each centre the two bodies' velocity fields agree (v_a(I) = v_b(I), each
+// field from a joint of the body whose velocity eval gives, v(P) = v(J) + omega x (P - J));
+// a centre at infinity is where the two bodies turn alike, across their relative
+// velocity; the ratios omega_j / omega_driver from three centres equal the solved ones.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <complex>
+#include <map>
+
+#include "engine/model.hpp"
+#include "engine/analysis/instant_centres.hpp"
+#include "engine/symbolic/derivation.hpp"
+#include "engine/symbolic/expression_parts.hpp"
+
+#include "tests/test_support.hpp"
+
+namespace {
+
+using Complex = std::complex<double>;
+
+// Each body's velocity field from one of its joints whose velocity is known: a fixed
+// pivot (0) or a named point (eval's).
+std::map<std::size_t, std::pair<Complex, Complex>> body_references(const kinema::ConstraintSystem& system,
+                                                                   const kinema::MotionState& s) {
+  const kinema::Linkage& linkage = *system.linkage;
+  std::map<std::size_t, std::pair<Complex, Complex>> known;  // body -> (point, velocity)
+  for (std::size_t b = 0; b < linkage.frames.bodies.size(); ++b) {
+    for (const auto& [joint, local] : linkage.frames.bodies[b].points) {
+      const kinema::Joint& j = linkage.joints[joint];
+      for (std::size_t p = 0; p < system.points.size(); ++p) {
+        if (system.points[p].name != j.name) continue;
+        const kinema::PointMotion& m = s.points[p];
+        known[b] = {Complex(m.position[0], m.position[1]), Complex(m.velocity[0], m.velocity[1])};
+      }
+      if (!j.ground) continue;
+      for (const auto& [pivot, at] : linkage.frames.bodies[0].points)  // ground's are world positions
+        if (pivot == joint) known.emplace(b, std::pair{at, Complex()});
+    }
+  }
+  return known;
+}
+
+// The Aronhold-Kennedy theorem: the three centres of any three bodies lie on one line
+// (through a centre at infinity: parallel to its direction).
+void check_kennedy(const kinema::InstantCentres& centres, double length_scale) {
+  const std::size_t n = centres.bodies.size();
+  int triples = 0;
+  for (std::size_t a = 0; a < n; ++a)
+    for (std::size_t b = a + 1; b < n; ++b)
+      for (std::size_t c = b + 1; c < n; ++c) {
+        const kinema::InstantCentre *ab = centres.find(a, b), *bc = centres.find(b, c), *ac = centres.find(a, c);
+        if (!ab || !bc || !ac) continue;
+        std::vector<const kinema::InstantCentre*> finite, infinite;
+        for (const auto* centre : {ab, bc, ac}) (centre->at_infinity ? infinite : finite).push_back(centre);
+        CAPTURE(centres.bodies[a] + centres.bodies[b] + centres.bodies[c]);
+        if (finite.size() == 3) {
+          const Complex u = finite[1]->at - finite[0]->at, v = finite[2]->at - finite[0]->at;
+          const double size = std::max({std::abs(u), std::abs(v), length_scale});
+          CHECK(std::fabs(u.real() * v.imag() - u.imag() * v.real()) <= 1e-7 * size * size);
+        } else if (finite.size() == 2) {
+          const Complex u = finite[1]->at - finite[0]->at, d = infinite[0]->at;
+          CHECK(std::fabs(u.real() * d.imag() - u.imag() * d.real()) <= 1e-7 * std::max(std::abs(u), length_scale));
+        }
+        ++triples;
+      }
+  CHECK(triples == static_cast<int>(n * (n - 1) * (n - 2) / 6));
+}
+
+}  // namespace
+
+TEST_CASE("instant centres: a vector-loop file's links known by the points on them") {
+  // The four-bar: A on the crank (theta2), P on the coupler (theta3), B on the rocker (theta4).
+  const kinema::Model model = kinema::load_model(kinema_test::sample("four_bar.toml"));
+  const kinema::MotionTable table = kinema::analyse(model, {40 * M_PI / 180, 200 * M_PI / 180});
+  for (const kinema::MotionState& s : table) {
+    const auto centres = kinema::instant_centres(model.system, s);
+    REQUIRE(centres);
+    REQUIRE(centres->bodies == std::vector<std::string>{"1", "2", "3", "4"});
+    CHECK(centres->centres.size() == 6);
+    check_kennedy(*centres, model.system.length_scale);
+    // The pins are where a textbook puts them: O2, A, B, O4 (d = 100 mm).
+    const auto point = [&](const char* name) {
+      for (std::size_t p = 0; p < model.system.points.size(); ++p)
+        if (model.system.points[p].name == name) return Complex(s.points[p].position[0], s.points[p].position[1]);
+      return Complex(NAN, NAN);
+    };
+    CHECK(std::abs(centres->find(0, 1)->at) < 1e-12);
+    CHECK(std::abs(centres->find(1, 2)->at - point("A")) < 1e-12);
+    CHECK(std::abs(centres->find(2, 3)->at - point("B")) < 1e-12);
+    CHECK(std::abs(centres->find(0, 3)->at - Complex(0.1, 0)) < 1e-12);
+    // I13 where O2-A meets O4-B (Kennedy), I24 on the ground line where A-B meets it.
+    const Complex I13 = centres->find(0, 2)->at, I24 = centres->find(1, 3)->at;
+    CHECK(std::fabs(std::imag((I13 - 0.0) / point("A"))) < 1e-9);
+    CHECK(std::fabs(std::imag((I13 - Complex(0.1, 0)) / (point("B") - Complex(0.1, 0)))) < 1e-9);
+    CHECK(std::fabs(I24.imag()) < 1e-12);
+    REQUIRE(centres->ratios.size() == 2);
+    for (const kinema::VelocityRatio& r : centres->ratios) CHECK(r.from_centres == doctest::Approx(r.analytic).epsilon(1e-9));
+  }
+  // A slider-crank's block is a body: ground 1, crank 2, rod 3, block 4 (numbered in the
+  // gap the links leave), its centre with ground at infinity across the line y = e.
+  const kinema::Model slider = kinema::load_model(kinema_test::sample("slider_crank.toml"));
+  const kinema::MotionTable one = kinema::analyse(slider, slider.system.input.values);
+  const auto centres = kinema::instant_centres(slider.system, one[0]);
+  REQUIRE(centres);
+  CHECK(centres->bodies == std::vector<std::string>{"1", "2", "3", "4"});
+  CHECK(centres->centres.size() == 6);
+  REQUIRE(centres->find(0, 3));
+  CHECK(centres->find(0, 3)->at_infinity);
+  CHECK(std::fabs(centres->find(0, 3)->at.real()) < 1e-12);
+  check_kennedy(*centres, slider.system.length_scale);
+  // The crank-shaper: ground 1, crank 2, block 3 in the rocker's slot, rocker 4, link 5 and
+  // ram 6: all 15 centres (issue 32: 3 of them before).
+  const kinema::Model shaper = kinema::load_model(kinema_test::sample("crank_shaper.toml"));
+  const kinema::MotionTable at = kinema::analyse(shaper, shaper.system.input.values);
+  const auto all = kinema::instant_centres(shaper.system, at[0]);
+  REQUIRE(all);
+  CHECK(all->bodies == std::vector<std::string>{"1", "2", "3", "4", "5", "6"});
+  CHECK(all->centres.size() == 15);
+  check_kennedy(*all, shaper.system.length_scale);
+  // Example 4.2 as loops: blocks 2 (on link 3) and 5 (on the x axis), as the seed numbers them.
+  const kinema::Model e42 = kinema::load_model(kinema_test::sample("example_4_2_r_rtr_rrt.toml"));
+  const kinema::MotionTable e42_at = kinema::analyse(e42, e42.system.input.values);
+  const auto e42_centres = kinema::instant_centres(e42.system, e42_at[0]);
+  REQUIRE(e42_centres);
+  CHECK(e42_centres->bodies == std::vector<std::string>{"0", "1", "2", "3", "4", "5"});
+  CHECK(e42_centres->centres.size() == 15);
+}
+
+TEST_CASE("instant centres: every vector-loop sample, each centre where the two links' velocities agree") {
+  int with_centres = 0;
+  for (const char* name : kinema_test::kSamples) {
+    const kinema::Model model = kinema::load_model(kinema_test::sample(name));
+    const kinema::ConstraintSystem& system = model.system;
+    if (system.linkage || !system.frames.empty()) continue;
+    CAPTURE(std::string(name));
+    std::vector<double> inputs = system.input.values;
+    if (inputs.empty()) inputs = {0.3};
+    const kinema::MotionTable table = kinema::analyse(model, inputs);
+    for (const kinema::MotionState& s : table) {
+      if (s.status != kinema::Status::ok) continue;
+      const auto centres = kinema::instant_centres(system, s);
+      if (!centres) continue;  // no point of the file lies on a link
+      ++with_centres;
+      check_kennedy(*centres, system.length_scale);
+      double fastest = 0;
+      for (const kinema::PointMotion& p : s.points) fastest = std::max(fastest, p.speed());
+      // Every point on a link (its formula's last term a link vector of fixed length):
+      // its velocity is omega x (P - I) about the link's centre with ground.
+      for (std::size_t p = 0; p < system.points.size(); ++p) {
+        const GiNaC::ex last = system.points[p].written_terms.back();
+        for (std::size_t b = 1; b < centres->bodies.size(); ++b) {
+          const GiNaC::ex angle_rate = centres->rates[b];
+          // On body b: the last term turns at its rate and has a fixed length.
+          const kinema::LinkVector link = kinema::split_link_vector(last);
+          if (!link.polar || !kinema::time_derivative(system, link.angle).is_equal(angle_rate)) continue;
+          bool fixed = true;
+          for (const kinema::Coordinate& q : system.unknowns) fixed = fixed && !link.length.has(q.symbol);
+          if (!fixed || link.length.has(system.input.symbol)) continue;
+          const kinema::InstantCentre* ground = centres->find(0, b);
+          REQUIRE(ground);
+          const kinema::PointMotion& m = s.points[p];
+          const Complex at(m.position[0], m.position[1]), v(m.velocity[0], m.velocity[1]);
+          CAPTURE(system.points[p].name);
+          if (ground->at_infinity) {
+            CHECK(std::fabs(centres->angular_velocities[b]) <= 1e-12);
+          } else {
+            CHECK(std::abs(v - Complex(0, centres->angular_velocities[b]) * (at - ground->at)) <= 1e-9 * fastest);
+          }
+        }
+      }
+      for (const kinema::VelocityRatio& r : centres->ratios)
+        CHECK(r.from_centres == doctest::Approx(r.analytic).epsilon(1e-7).scale(1));
+    }
+  }
+  CHECK(with_centres >= 6);
+}
+
+TEST_CASE("instant centres: every joints-and-links sample, each centre where the bodies' velocities agree") {
+  int samples = 0;
+  for (const char* name : kinema_test::kSamples) {
+    const kinema::Model model = kinema::load_model(kinema_test::sample(name));
+    if (!model.system.linkage) continue;
+    ++samples;
+    CAPTURE(std::string(name));
+    std::vector<double> inputs = model.system.input.values;
+    if (inputs.empty()) inputs = {0.3};
+    inputs.push_back(inputs.back() + (model.system.input.dimension == kinema::Dimension::angle ? 0.5 : 0.05 * model.system.length_scale));
+    const kinema::MotionTable table = kinema::analyse(model, inputs);
+    for (const kinema::MotionState& s : table) {
+      if (s.status != kinema::Status::ok) continue;
+      CAPTURE(s.input);
+      const auto centres = kinema::instant_centres(model.system, s);
+      REQUIRE(centres);
+      const std::size_t n = centres->bodies.size();
+      // Every centre found: n (n - 1) / 2 of them.
+      CHECK(centres->centres.size() == n * (n - 1) / 2);
+      CHECK(centres->not_found.empty());
+      const auto references = body_references(model.system, s);
+      double fastest = 0;
+      for (const kinema::PointMotion& p : s.points) fastest = std::max(fastest, p.speed());
+      const auto field = [&](std::size_t b, Complex at) {
+        const auto& [point, velocity] = references.at(b);
+        return velocity + Complex(0, centres->angular_velocities[b]) * (at - point);
+      };
+      for (const kinema::InstantCentre& c : centres->centres) {
+        CAPTURE(c.found_by);
+        CAPTURE(centres->bodies[c.a] + centres->bodies[c.b]);
+        REQUIRE(references.count(c.a));
+        REQUIRE(references.count(c.b));
+        const double wa = centres->angular_velocities[c.a], wb = centres->angular_velocities[c.b];
+        if (!c.at_infinity) {
+          CHECK(std::abs(field(c.a, c.at) - field(c.b, c.at)) <= 1e-7 * fastest);
+        } else {
+          // The bodies turn alike and their relative velocity is across the direction.
+          CHECK(std::fabs(wa - wb) <= 1e-9 * (std::fabs(wa) + std::fabs(wb) + 1));
+          const Complex relative = field(c.a, 0) - field(c.b, 0);
+          CHECK(std::fabs(std::real(relative * std::conj(c.at))) <= 1e-7 * fastest);
+        }
+      }
+      check_kennedy(*centres, model.system.length_scale);
+      // A secondary centre is on both lines it was found on (each through two known centres).
+      for (const kinema::InstantCentre& c : centres->centres) {
+        if (c.kennedy.empty()) {
+          CHECK((c.found_by.rfind("pin ", 0) == 0 || c.found_by.rfind("slider ", 0) == 0));
+          continue;
+        }
+        REQUIRE(c.kennedy.size() == 4);
+        for (std::size_t line = 0; line < 2; ++line) {
+          const kinema::InstantCentre* p = centres->find(c.kennedy[2 * line].first, c.kennedy[2 * line].second);
+          const kinema::InstantCentre* q = centres->find(c.kennedy[2 * line + 1].first, c.kennedy[2 * line + 1].second);
+          REQUIRE(p);
+          REQUIRE(q);
+          if (c.at_infinity || (p->at_infinity && q->at_infinity)) continue;
+          // The direction of the line: p to q, or a centre at infinity's own.
+          const Complex along = p->at_infinity ? p->at : q->at_infinity ? q->at : q->at - p->at;
+          const Complex through = p->at_infinity ? q->at : p->at;
+          const Complex to = c.at - through;
+          CHECK(std::fabs(along.real() * to.imag() - along.imag() * to.real()) <=
+                1e-7 * std::abs(along) * std::max(std::abs(to), model.system.length_scale));
+        }
+      }
+      for (const kinema::VelocityRatio& r : centres->ratios) {
+        CAPTURE(centres->bodies[r.body]);
+        CHECK(r.from_centres == doctest::Approx(r.analytic).epsilon(1e-7).scale(1));
+      }
+      CHECK(centres->ratios.size() >= 1);
+    }
+  }
+  CHECK(samples >= 6);
+}

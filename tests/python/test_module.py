@@ -1,0 +1,129 @@
+"""The Python module against the program: the same numbers, names, formulas and errors.
+
+Run by ctest ("python: ..."), which sets KINEMA_PROGRAM (the kinema program), KINEMA_SAMPLES
+(samples/) and PYTHONPATH (the built module).
+"""
+import math
+import os
+import pathlib
+import subprocess
+import tomllib
+
+import numpy as np
+import pytest
+
+import kinema
+
+PROGRAM = os.environ["KINEMA_PROGRAM"]
+SAMPLES = pathlib.Path(os.environ["KINEMA_SAMPLES"])
+ALL_SAMPLES = sorted(SAMPLES.glob("*.toml"))
+# A run of each kind of input: numbers in the input's output unit, as --sweep takes them.
+RUNS = {"deg": (0, 360, 15), "s": (0, 2, 0.25), "mm": (110, 190, 10), "in": (1, 9, 1), "m": (0.11, 0.19, 0.01)}
+LENGTH_UNITS = {"m": 1.0, "mm": 1e-3, "cm": 1e-2, "in": 0.0254, "ft": 0.3048}
+
+
+def program(*arguments):
+    return subprocess.run([PROGRAM, *arguments], check=True, capture_output=True).stdout
+
+
+def run_of(model):
+    return RUNS[model.units[model.input]]
+
+
+@pytest.mark.parametrize("sample", ALL_SAMPLES, ids=lambda path: path.stem)
+def test_sweep_equals_the_programs_npy_field_by_field(sample, tmp_path):
+    model = kinema.load(str(sample))
+    unit = model.units[model.input]
+    first, last, step = run_of(model)
+    table = model.sweep(f"{first} {unit}", f"{last} {unit}", f"{step} {unit}")
+    program("eval", str(sample), "--sweep", f"{first}:{last}:{step}", "--format", "npy", "-o", str(tmp_path / "run.npy"))
+    expected = np.load(tmp_path / "run.npy")
+    assert table.dtype == expected.dtype
+    assert len(table) == len(expected) > 1
+    assert (table["status"] == 0).any(), "the run should assemble somewhere"
+    for field in expected.dtype.names:
+        assert np.array_equal(table[field], expected[field], equal_nan=True), field
+
+
+def test_sweep_in_si_numbers_gives_the_same_rows_within_rounding():
+    model = kinema.load(str(SAMPLES / "four_bar.toml"))
+    in_degrees = model.sweep("0 deg", "90 deg", "10 deg")
+    in_radians = model.sweep(0.0, math.pi / 2, math.pi / 18)
+    assert len(in_radians) == len(in_degrees) == 10
+    assert np.allclose(in_radians["omega3"], in_degrees["omega3"], rtol=1e-12, atol=0)
+
+
+def test_named_access_equals_the_programs_row():
+    model = kinema.load(str(SAMPLES / "four_bar.toml"))
+    result = model.at("30 deg")
+    assert result.ok and result.status == "ok" and result.message == ""
+    row = model.sweep("30 deg", "30 deg", "1 deg")[0]
+    length = LENGTH_UNITS[model.units["P_x"]]
+    assert result["theta2"] == pytest.approx(math.radians(30), rel=1e-15)
+    assert result["theta3"] == pytest.approx(math.radians(row["theta3"]), rel=1e-12)
+    assert result["omega3"] == pytest.approx(row["omega3"], rel=1e-12)
+    assert result["alpha4"] == pytest.approx(row["alpha4"], rel=1e-12)
+    p = result.point("P")
+    assert p.velocity == pytest.approx((row["P_vx"] * length, row["P_vy"] * length), rel=1e-12)
+    assert p.acceleration == pytest.approx((row["P_ax"] * length, row["P_ay"] * length), rel=1e-12)
+    assert set(result.keys()) >= {"theta2", "omega2", "alpha2", "theta3", "omega3", "alpha3"}
+    assert "omega3" in result._repr_html_()
+    # A list is solved as `kinema eval` solves one, each value from the one before.
+    listed = model.at(["30 deg", math.radians(40)])
+    assert [r.input for r in listed] == pytest.approx([math.radians(30), math.radians(40)], rel=1e-15)
+
+
+def test_a_spatial_chain_reads_its_points_in_three_dimensions():
+    model = kinema.load(str(SAMPLES / "robot_arm_seed000.toml"))
+    result = model.at(0.0)
+    point = result.point(model.points[-1])
+    assert len(point.position) == len(point.velocity) == len(point.acceleration) == 3
+
+
+def test_parameters_are_the_files_in_si():
+    sample = SAMPLES / "four_bar.toml"
+    model = kinema.load(str(sample))
+    written = tomllib.loads(sample.read_text())["parameters"]
+    assert [p["name"] for p in model.parameters] == list(written)
+    for p in model.parameters:
+        assert p["text"] == written[p["name"]]
+        if p["text"].endswith(" mm"):
+            assert p["value"] == pytest.approx(float(p["text"][:-3]) * 1e-3, rel=1e-15)
+            assert p["dimension"] == "length"
+
+
+@pytest.mark.parametrize("method", ["loops", "relative-velocity", "joint-coordinates"])
+@pytest.mark.parametrize("form", ["text", "latex"])
+def test_derive_prints_what_the_program_prints(method, form):
+    sample = SAMPLES / "example_4_1_joints.toml"
+    model = kinema.load(str(sample))
+    printed = program("derive", str(sample), "--method", method, "--format", form).decode()
+    assert model.derive(method=method, format=form) == printed
+
+
+def test_errors_are_kinema_errors_with_file_and_line():
+    with pytest.raises(kinema.InputError) as missing:
+        kinema.load("no_such_file.toml")
+    assert "no_such_file.toml" in str(missing.value)
+    assert issubclass(kinema.InputError, kinema.Error) and issubclass(kinema.UnitError, kinema.InputError)
+    text = '[parameters]\na = "10 mm"\nb = "20 parsecs"\n'
+    with pytest.raises(kinema.Error) as bad:
+        kinema.loads(text, "bad.toml")
+    assert "bad.toml:3" in str(bad.value)
+    model = kinema.load(str(SAMPLES / "four_bar.toml"))
+    with pytest.raises(kinema.UnitError) as unit:
+        model.at("30 mm")
+    assert "theta2" in str(unit.value)
+    with pytest.raises(KeyError):
+        model.at("30 deg")["omega9"]
+    with pytest.raises(kinema.Error):
+        model.derive(method="no-such-method")
+
+
+def test_a_singular_value_says_why_and_gives_no_rates():
+    model = kinema.load(str(SAMPLES / "piston_driven_crank.toml"))
+    result = model.at("200 mm")  # top dead centre: Phi_q singular
+    assert result.status == "singular" and not result.ok
+    assert "singular" in result.message or "dead" in result.message
+    with pytest.raises(kinema.Error):
+        result["omega2"]
