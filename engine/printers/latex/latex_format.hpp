@@ -43,7 +43,13 @@ bool is_intertext(const std::string& row);
 /// be broken stays whole).
 std::vector<LatexRow> latex_fit_rows(const std::vector<LatexRow>& rows, double budget);
 
-/// The rows of an align*, each ended by \\ but the last and an \intertext, comments after.
+/// Rows an align* holds before latex_align_rows closes it and opens another (more than any
+/// sample's block: a long derivation only).
+constexpr std::size_t kAlignBlockRows = 200;
+
+/// The rows of an align*, each ended by \\ but the last and an \intertext, comments after;
+/// every kAlignBlockRows rows "\end{align*}\begin{align*}" (the caller writes the first
+/// \begin and the last \end).
 std::string latex_align_rows(const std::vector<LatexRow>& rows);
 
 /// User text (titles, descriptions) for LaTeX text mode: every special character

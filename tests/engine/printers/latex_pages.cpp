@@ -9,6 +9,9 @@
 #include <sstream>
 
 #include "engine/base/errors.hpp"
+#include "engine/printers/printer.hpp"
+#include "engine/analysis/plot_range.hpp"
+#include "engine/run/view.hpp"
 #include "engine/symbolic/dyad_method.hpp"
 
 #include "tests/test_support.hpp"
@@ -176,6 +179,21 @@ void check_layout(const std::string& name, const MarkedFigures& marked, int page
     INFO(box.text);
     CHECK(box.points <= 1.0);
   }
+}
+
+std::string worked_solution_sparse_plots(const kinema::Model& model, kinema::DerivationMethod method,
+                                         const std::vector<double>& inputs) {
+  const kinema::MotionTable values = kinema::analyse(model, inputs);
+  const std::vector<double> range = kinema::plot_range(model.system, inputs.front());
+  std::vector<double> sparse;
+  for (std::size_t k = 0; k < range.size(); k += 6) sparse.push_back(range[k]);
+  if (sparse.back() != range.back()) sparse.push_back(range.back());  // the run's last value kept
+  const kinema::MotionTable sweep = kinema::analyse(model, sparse);
+  kinema::PrintJob job{model, &values, &sweep};
+  job.method = method;
+  std::ostringstream out;
+  kinema::print_view(*kinema::find_printer(kinema::PrintKind::document, "latex"), out, job);
+  return out.str();
 }
 
 std::vector<kinema::DerivationMethod> methods_of(const kinema::Model& model) {

@@ -52,6 +52,12 @@ std::map<std::string, int> label_pages(const std::string& name);
 /// introduces it (or after another figure), no overfull box over 1 pt.
 void check_layout(const std::string& name, const MarkedFigures& marked, int pages, const std::string& log);
 
+/// kinema latex in process (for tests whose subject is not the program): the document the
+/// CLI writes at `inputs`, its plots from every sixth value of the run (the same boxes, each
+/// plot the size it is in the full run; pgfplots takes half of a pdflatex run over 181 values).
+std::string worked_solution_sparse_plots(const kinema::Model& model, kinema::DerivationMethod method,
+                                         const std::vector<double>& inputs);
+
 /// The methods a sample takes: dyad by dyad only for joints and links solved in dyads.
 std::vector<kinema::DerivationMethod> methods_of(const kinema::Model& model);
 

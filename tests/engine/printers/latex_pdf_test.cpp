@@ -111,6 +111,29 @@ TEST_CASE("symbol names are typeset as a reader expects") {
   CHECK(kinema::latex_symbol_name("theta2_given") == "\\theta_{2,\\mathrm{given}}");
 }
 
+// pdflatex's time grows with the square of an align*'s rows: a long one is written as
+// several of kAlignBlockRows rows, each closed without an empty row; a short one stays whole.
+TEST_CASE("a long align* is written as blocks of kAlignBlockRows rows, a short one whole") {
+  const auto rows_of = [](std::size_t count) {
+    std::vector<kinema::LatexRow> rows;
+    for (std::size_t k = 0; k < count; ++k) rows.push_back({k % 3 == 0 ? "x_{" + std::to_string(k) + "} &= 1" : "&\\quad + 1", ""});
+    return rows;
+  };
+  const auto count = [](const std::string& text, const std::string& part) {
+    std::size_t n = 0;
+    for (auto at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) ++n;
+    return n;
+  };
+  const std::string split = "\n\\end{align*}\n\\begin{align*}\n";
+  const std::string whole = kinema::latex_align_rows(rows_of(kinema::kAlignBlockRows));
+  CHECK(count(whole, split) == 0);
+  CHECK(count(whole, " \\\\\n") == kinema::kAlignBlockRows - 1);
+  const std::string blocks = kinema::latex_align_rows(rows_of(2 * kinema::kAlignBlockRows + 1));
+  CHECK(count(blocks, split) == 2);
+  CHECK(count(blocks, "\\\\" + split) == 0);  // no empty row at a block's end
+  CHECK(count(blocks, " \\\\\n") == 2 * kinema::kAlignBlockRows + 1 - 3);  // every row ended but each block's last
+}
+
 TEST_CASE("user text is escaped and LaTeX names from files are checked") {
   CHECK(kinema::latex_escape_text("\\input{/etc/passwd} 100% & $x$ #1 a_b ^ ~") ==
         "\\textbackslash{}input\\{/etc/passwd\\} 100\\% \\& \\$x\\$ \\#1 a\\_b \\textasciicircum{} "
@@ -188,10 +211,10 @@ int documented_pages(const std::string& sample) {
   return at == std::string::npos ? -1 : std::atoi(outputs.c_str() + at + cell.size());
 }
 
-}  // namespace
-
-TEST_CASE("kinema latex: every sample's worked solution compiles, with its pages and the engine's formulas") {
-  for (const char* sample : kSamples) {
+// The samples [first, last): the check is two test cases, so that ctest -j runs them side by side.
+void check_worked_solutions(std::size_t first, std::size_t last) {
+  for (std::size_t k = first; k < last; ++k) {
+    const char* sample = kSamples[k];
     const std::string name = sample;
     CAPTURE(name);
     const auto result = kinema_test::run_kinema({"latex", kinema_test::sample(sample)});
@@ -231,6 +254,16 @@ TEST_CASE("kinema latex: every sample's worked solution compiles, with its pages
     // No near-empty page, each figure with its caption and its introduction, nothing overfull.
     kinema_test::check_layout(document, marked, pages, log);
   }
+}
+
+}  // namespace
+
+TEST_CASE("kinema latex: every sample's worked solution compiles, with its pages and the engine's formulas (first half)") {
+  check_worked_solutions(0, std::size(kSamples) / 2);
+}
+
+TEST_CASE("kinema latex: every sample's worked solution compiles, with its pages and the engine's formulas (second half)") {
+  check_worked_solutions(std::size(kSamples) / 2, std::size(kSamples));
 }
 
 TEST_CASE("kinema latex: one results page per requested value, fragments and hostile titles") {
@@ -481,19 +514,18 @@ TEST_CASE("the deepest nesting the formula reader accepts typesets in derive --f
 // derivatives divide, sqrt, fractional powers and divisions 3 deep) now loads, derives,
 // generates code and typesets within the bounded run; one level more is refused with
 // file:line. sin has its own test above (a document of its own).
-TEST_CASE("the deepest nest of every function the formula reader accepts is derived, generated and typeset") {
-  struct Nest {
-    const char* name;
-    const char* open;   // written around the formula once per level: open + inner + close
-    const char* close;
-    int depth;
-  };
-  const Nest nests[] = {{"cos", "cos(", ")", 32},           {"exp", "exp(0.1*", ")", 32},
-                        {"abs", "abs(1 + ", ")", 32},        {"tan", "tan(0.5*", ")", 3},
-                        {"asin", "asin(0.5*", ")", 3},       {"acos", "acos(0.5*", ")", 3},
-                        {"atan", "atan(1 + ", ")", 3},       {"atan2", "atan2(", ", 2)", 3},
-                        {"log", "log(10 + ", ")", 3},        {"sqrt", "sqrt(10 + ", ")", 3},
-                        {"power", "(1 + 0.1*", ")^1.5", 3},  {"division", "1/(2 + ", ")", 3}};
+namespace {
+
+struct Nest {
+  const char* name;
+  const char* open;   // written around the formula once per level: open + inner + close
+  const char* close;
+  int depth;
+};
+
+// Each nest loaded, derived, generated and typeset within the bounds, one level more refused;
+// the derivations in one document and the worked solutions in another (`document` names them).
+void check_deepest_nests(const std::vector<Nest>& nests, const std::string& document_name) {
   const auto nested_loop = [](const Nest& nest, int depth) {
     std::string nested = "theta3";
     for (int k = 0; k < depth; ++k) nested = nest.open + nested + nest.close;
@@ -520,11 +552,16 @@ TEST_CASE("the deepest nest of every function the formula reader accepts is deri
       const auto refused = kinema_test::run_kinema_bounded({"derive", "--format", "latex", "--method", method, path});
       CHECK(refused.exit_status == 2);
     }
-    const auto full = bounded({"latex", path});
-    if (document.empty()) document = full.out.substr(0, full.out.find("\\begin{document}") + 17);
-    // Its body into the shared document (one pdflatex run for all).
-    const std::size_t body = full.out.find("\\begin{document}") + 17;
-    document += "\\clearpage\n" + full.out.substr(body, full.out.rfind("\\end{document}") - body);
+    bounded({"latex", path});
+    // Its worked solution's body into the shared document (one pdflatex run for all), made
+    // in process with sparse plots: what is typeset is the nest's formulas (the plots are
+    // the four-bar's, compiled in full with every sample's document).
+    const kinema::Model model = kinema::load_model(path);
+    const std::string full = kinema_test::worked_solution_sparse_plots(model, kinema::DerivationMethod::loops,
+                                                                      {model.system.input.values.front()});
+    if (document.empty()) document = full.substr(0, full.find("\\begin{document}") + 17);
+    const std::size_t body = full.find("\\begin{document}") + 17;
+    document += "\\clearpage\n" + full.substr(body, full.rfind("\\end{document}") - body);
     // One level more is refused before any work.
     const auto deeper = kinema_test::run_kinema_bounded(
         {"latex", kinema_test::write_temporary(name + "_deeper.toml", nested_loop(nest, nest.depth + 1))});
@@ -535,9 +572,26 @@ TEST_CASE("the deepest nest of every function the formula reader accepts is deri
   // Two pdflatex runs for all of them: the derivations in one document, the worked
   // solutions' fragments in another.
   std::string log;
-  CHECK(compiles(derivations, "deepest_nests_derive", log));
+  CHECK(compiles(derivations, document_name + "_derive", log));
   document += "\\end{document}\n";
-  const int pages = compile_document(document, "deepest_nests_latex", log);
+  const int pages = compile_document(document, document_name + "_latex", log);
   INFO(log.substr(log.size() > 3000 ? log.size() - 3000 : 0));
   CHECK(pages > 0);
+}
+
+}  // namespace
+
+// Two test cases, so that ctest -j runs them side by side.
+TEST_CASE("the deepest nest of every function the formula reader accepts is derived, generated and typeset (cos, exp, abs)") {
+  check_deepest_nests({{"cos", "cos(", ")", 32}, {"exp", "exp(0.1*", ")", 32}, {"abs", "abs(1 + ", ")", 32}},
+                      "deepest_nests_32");
+}
+
+TEST_CASE("the deepest nest of every function the formula reader accepts is derived, generated and typeset (3 deep)") {
+  check_deepest_nests({{"tan", "tan(0.5*", ")", 3},     {"asin", "asin(0.5*", ")", 3},
+                       {"acos", "acos(0.5*", ")", 3},   {"atan", "atan(1 + ", ")", 3},
+                       {"atan2", "atan2(", ", 2)", 3},  {"log", "log(10 + ", ")", 3},
+                       {"sqrt", "sqrt(10 + ", ")", 3},  {"power", "(1 + 0.1*", ")^1.5", 3},
+                       {"division", "1/(2 + ", ")", 3}},
+                      "deepest_nests_3");
 }

@@ -4,14 +4,14 @@
 // engine derived (engine/symbolic/dyad_method, checked there by meaning).
 #include <doctest/doctest.h>
 
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
+#include <map>
 #include <sstream>
+#include <vector>
 
 #include "engine/symbolic/dyad_method.hpp"
 #include "engine/constraints/expression_parts.hpp"
 
+#include "engine/printers/latex_pages.hpp"
 #include "tests/test_support.hpp"
 
 namespace {
@@ -20,23 +20,6 @@ const char* const kJointSamples[] = {"problem_4_4_joints.toml",      "example_4_
                                      "example_4_2_joints.toml",      "problem_3_22_joints.toml",
                                      "problem_4_1_parallelogram.toml", "problem_4_1_antiparallelogram.toml",
                                      "triple_rocker_circuit.toml"};
-
-// pdflatex on a document; its page count, 0 when it does not compile cleanly.
-int pages_of(const std::string& tex, const std::string& name) {
-  const auto directory = std::filesystem::temp_directory_path() / "kinema_tests" / "method_latex";
-  std::filesystem::create_directories(directory);
-  std::ofstream(directory / (name + ".tex")) << tex;
-  std::filesystem::remove(directory / (name + ".pdf"));
-  const std::string in = "cd '" + directory.string() + "' && ";
-  if (std::system((in + "pdflatex -interaction=batchmode -halt-on-error '" + name + ".tex' > /dev/null 2>&1").c_str()) != 0)
-    return 0;
-  const std::string log = kinema_test::read_file((directory / (name + ".log")).string());
-  if (log.find("Undefined control sequence") != std::string::npos) return 0;
-  std::system((in + "pdfinfo '" + name + ".pdf' > '" + name + ".info' 2>/dev/null").c_str());
-  const std::string info = kinema_test::read_file((directory / (name + ".info")).string());
-  const auto at = info.find("Pages:");
-  return at == std::string::npos ? 0 : std::stoi(info.substr(at + 6));
-}
 
 // Every "% kinema: name = formula" comment read back equals a solution the engine
 // derived for that name (by meaning); returns how many were read.
@@ -77,6 +60,11 @@ std::size_t comments_read_back(const std::string& output, const kinema::Model& m
 }  // namespace
 
 TEST_CASE("derive --method: the seeds' forms in text and LaTeX, for every joints-and-links sample") {
+  // Two pdflatex runs for all: the derivations in one plain article, the documents' bodies
+  // in one document, each starting a page at a label (its pages: to the next one's).
+  std::string derivations = "\\documentclass{article}\n\\usepackage{amsmath}\n\\begin{document}\n";
+  std::string preamble, documents;
+  std::vector<std::string> parts;
   for (const char* sample : kJointSamples) {
     for (const char* method : {"relative-velocity", "joint-coordinates"}) {
       CAPTURE(sample);
@@ -92,16 +80,31 @@ TEST_CASE("derive --method: the seeds' forms in text and LaTeX, for every joints
       REQUIRE(latex.exit_status == 0);
       CHECK(comments_read_back(latex.out, model, d) >= 2 * model.system.unknowns.size());
       const std::string name = std::string(sample).substr(0, std::string(sample).find('.')) + "_" + method;
-      CHECK(pages_of("\\documentclass{article}\n\\usepackage{amsmath}\n\\begin{document}\n" + latex.out + "\\end{document}\n",
-                     "derive_" + name) >= 1);
+      parts.push_back(name);
+      derivations += "\\clearpage\n% part " + name + "\n" + latex.out;
       const auto document = kinema_test::run_kinema({"latex", kinema_test::sample(sample), "--method", method});
       REQUIRE(document.exit_status == 0);
       const std::string title = std::string(method) == "relative-velocity" ? "relative velocities" : "joint coordinates";
       CHECK(document.out.find("\\subsection*{Velocity analysis by " + title + "}") != std::string::npos);
       CHECK(document.out.find("\\subsection*{Acceleration analysis by " + title + "}") != std::string::npos);
       CHECK(comments_read_back(document.out, model, d) >= 2 * model.system.unknowns.size());
-      CHECK(pages_of(document.out, "document_" + name) >= 3);
+      const std::size_t body = document.out.find("\\begin{document}") + 16;
+      if (preamble.empty()) preamble = document.out.substr(0, body);
+      CHECK(document.out.substr(0, body) == preamble);  // one preamble for all
+      documents += "\\clearpage\\label{kinema-part-" + name + "}\n" +
+                   document.out.substr(body, document.out.rfind("\\end{document}") - body);
     }
+  }
+  std::string log;
+  CHECK(kinema_test::compile_document(derivations + "\\end{document}\n", "derive_methods", log) >= 1);
+  const int pages = kinema_test::compile_document(preamble + documents + "\\end{document}\n", "documents_methods", log);
+  INFO(log.substr(log.size() > 3000 ? log.size() - 3000 : 0));
+  REQUIRE(pages > 0);
+  std::map<std::string, int> starts = kinema_test::label_pages("documents_methods");
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    CAPTURE(parts[k]);
+    const int end = k + 1 < parts.size() ? starts["kinema-part-" + parts[k + 1]] : pages + 1;
+    CHECK(end - starts["kinema-part-" + parts[k]] >= 3);  // data and equations, results, plots
   }
 }
 
