@@ -39,6 +39,7 @@
 #include "cli/progress_line.hpp"
 #include "cli/run.hpp"
 #include "cli/usage.hpp"
+#include "engine/base/units.hpp"
 
 #ifndef KINEMA_VERSION
 #error "KINEMA_VERSION (the project version) must be defined by the build"
@@ -94,9 +95,9 @@ Circuit solve_circuit_from(const Model& model, const std::string& step_text, con
   // refused before the walk (its rows would be computed first).
   const std::size_t unknowns = std::max<std::size_t>(1, m.unknowns.size());
   settings.max_rows = std::min(kMaxCircuitRows, kMaxCircuitRowUnknowns / unknowns);
-  if (m.input.dimension == Dimension::angle && 2 * M_PI / settings.step > double(settings.max_rows)) {
+  if (m.input.dimension == Dimension::angle && 2 * kPi / settings.step > double(settings.max_rows)) {
     throw InputError("--circuit " + step_text + ": a turn of the input is " +
-                     std::to_string(static_cast<unsigned long long>(std::min(std::ceil(2 * M_PI / settings.step), 1e18))) +
+                     std::to_string(static_cast<unsigned long long>(std::min(std::ceil(2 * kPi / settings.step), 1e18))) +
                      " rows, more than the " +
                      std::to_string(settings.max_rows) + " rows a circuit of " + std::to_string(unknowns) +
                      " unknowns may have (" + std::to_string(kMaxCircuitRowUnknowns) +

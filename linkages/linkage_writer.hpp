@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "engine/base/errors.hpp"
+#include "engine/base/units.hpp"
 #include "engine/base/number_format.hpp"
 #include "engine/base/user_text.hpp"
 #include "engine/constraints/formula_reader.hpp"
@@ -24,7 +25,6 @@
 namespace kinema::linkage_detail {
 
 using Point2 = std::complex<double>;
-constexpr double kPi = 3.14159265358979323846;
 
 // A given length may differ from the sketch by this much (relative): sketches are
 // drawn to a few digits (Example 4.1 gives x_B = y_B = 0.256 m for |BC| = 0.3 m);

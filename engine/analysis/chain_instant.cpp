@@ -13,6 +13,7 @@
 #include "engine/analysis/output_scale.hpp"
 #include "engine/constraints/expression_parts.hpp"
 #include "engine/symbolic/trig_simplify.hpp"
+#include "engine/base/units.hpp"
 
 namespace kinema {
 
@@ -47,7 +48,7 @@ namespace {
 // them (sin(Pi/6) = 1/2); anything else as the float it is.
 ex exact_angle(double radians) {
   if (radians == 0) return 0;
-  const double degrees = radians * 180 / M_PI;
+  const double degrees = radians * 180 / kPi;
   for (long denominator = 1; denominator <= 1000; ++denominator) {
     const double scaled = degrees * double(denominator);
     if (std::fabs(scaled) > 1e12) break;
@@ -164,7 +165,7 @@ struct Instant {
   explicit Instant(const ConstraintSystem& system) : source_file(system.source_file) {
     for (const SystemParameter& p : system.parameters) {
       numbers[p.symbol] = p.value;
-      const double quarters = p.value / (M_PI / 2);
+      const double quarters = p.value / (kPi / 2);
       if (p.dimension == Dimension::angle && !p.formula && std::fabs(quarters - std::round(quarters)) < 1e-12)
         angles[p.symbol] = GiNaC::numeric(static_cast<long>(std::round(quarters))) * GiNaC::Pi / 2;
     }

@@ -10,6 +10,7 @@
 #include "engine/base/number_format.hpp"
 #include "engine/analysis/output_scale.hpp"
 #include "engine/constraints/expression_parts.hpp"
+#include "engine/base/units.hpp"
 
 namespace kinema {
 
@@ -126,7 +127,7 @@ std::optional<FourBarFigures> four_bar_figures(const Model& model) {
   // goes round.
   std::vector<double> inputs;
   const double first = system.input.values.empty() ? 0.0 : system.input.values.front();
-  for (int k = 0; k <= 360; ++k) inputs.push_back(first + k * M_PI / 180);
+  for (int k = 0; k <= 360; ++k) inputs.push_back(first + k * kPi / 180);
   const MotionTable turn = analyse(model, inputs);
   const double nan = std::numeric_limits<double>::quiet_NaN();
   f.least_transmission = f.greatest_transmission = f.least_at = f.greatest_at = nan;
@@ -143,10 +144,10 @@ std::optional<FourBarFigures> four_bar_figures(const Model& model) {
       return std::polar(1.0 * side.sign, turn.q(row)[Eigen::Index(side.unknown)]);
     };
     const std::complex<double> back = -edge(sides[coupler]), on = edge(sides[rocker]);
-    double mu = std::abs(std::arg(on / back)) * 180 / M_PI;
+    double mu = std::abs(std::arg(on / back)) * 180 / kPi;
     if (mu < 1e-3) mu = 0;  // folded flat (a change point solved to sqrt(eps))
     if (mu > 180 - 1e-3) mu = 180;
-    double at = std::fmod(turn.input(row) * 180 / M_PI, 360.0);
+    double at = std::fmod(turn.input(row) * 180 / kPi, 360.0);
     if (at < 0) at += 360;
     if (!(mu >= f.least_transmission)) {
       f.least_transmission = mu;
@@ -157,7 +158,7 @@ std::optional<FourBarFigures> four_bar_figures(const Model& model) {
       f.greatest_at = at;
     }
   }
-  for (const Toggle& t : find_toggles(model)) f.toggles.push_back(t.input * 180 / M_PI);
+  for (const Toggle& t : find_toggles(model)) f.toggles.push_back(t.input * 180 / kPi);
   return f;
 }
 
@@ -195,7 +196,7 @@ std::vector<Strokes> slider_strokes(const Model& model) {
     Strokes s;
     s.name = system.unknowns[j].name;
     for (int k = 0; k < 2; ++k) {
-      s.limit_inputs[k] = limits[std::size_t(k)].input * 180 / M_PI;
+      s.limit_inputs[k] = limits[std::size_t(k)].input * 180 / kPi;
       s.limit_values[k] = limits[std::size_t(k)].q[Eigen::Index(j)] / scale.length;
     }
     // The crank turns the way its rate says: the stroke from the first limit to the second.

@@ -9,6 +9,7 @@
 #include "engine/symbolic/derivation.hpp"
 #include "engine/constraints/expression_parts.hpp"
 #include "engine/numeric/dyad_positions.hpp"
+#include "engine/base/units.hpp"
 
 namespace kinema {
 
@@ -341,7 +342,7 @@ std::optional<InstantCentres> instant_centres(const ConstraintSystem& system, co
     std::optional<Complex> joint_at;  // the arrow starts at the slider's joint
     for (const auto& [joint, local] : frames.bodies[slider.block].points)
       if (joint == slider.joint) joint_at = world(slider.block, local);
-    add(slider.block, slider.guide, true, std::polar(1.0, line + M_PI / 2), "slider " + plan.joints[slider.joint].name,
+    add(slider.block, slider.guide, true, std::polar(1.0, line + kPi / 2), "slider " + plan.joints[slider.joint].name,
         joint_at);
   }
   // Kennedy: I_ac on the line I_ab I_bc and on the line I_ad I_dc; of all such pairs of

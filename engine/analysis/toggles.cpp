@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "engine/numeric/workspace.hpp"
+#include "engine/base/units.hpp"
 
 namespace kinema {
 
@@ -20,7 +21,7 @@ double scaled_determinant(const Eigen::MatrixXd& phi_q, const Kinematics& k) {
 
 // In [0, 2 pi); within the solver's precision of a full turn, 0.
 double wrapped(double angle) {
-  const double turn = 2 * M_PI;
+  const double turn = 2 * kPi;
   double a = std::fmod(angle, turn);
   if (a < 0) a += turn;
   return a < 1e-8 || turn - a < 1e-8 ? 0.0 : a;
@@ -51,7 +52,7 @@ std::vector<Toggle> solve_with(const Model& model, Extra extra) {
   };
   const double first = system.input.values.empty() ? 0.0 : system.input.values.front();
   std::vector<double> starts;
-  for (int i = 0; i < 36; ++i) starts.push_back(first + i * M_PI / 18);
+  for (int i = 0; i < 36; ++i) starts.push_back(first + i * kPi / 18);
   const MotionTable solved = analyse(model, starts);
   for (std::size_t row = 0; row < solved.size(); ++row) {
     if (solved.status(row) == Status::unassembled) continue;
@@ -82,7 +83,7 @@ std::vector<Toggle> solve_with(const Model& model, Extra extra) {
       double largest = 0;
       for (Eigen::Index j = 0; j <= n; ++j) {
         const bool length = j < n && k.column_scale()[std::size_t(j)] != 1.0;
-        largest = std::max(largest, std::fabs(step[j]) / (length ? 0.05 * scale : 3 * M_PI / 180));
+        largest = std::max(largest, std::fabs(step[j]) / (length ? 0.05 * scale : 3 * kPi / 180));
       }
       if (largest > 1) step /= largest;
       z += step;
@@ -94,7 +95,7 @@ std::vector<Toggle> solve_with(const Model& model, Extra extra) {
     const double at = wrapped(z[n]);
     const bool known = std::any_of(found.begin(), found.end(), [&](const Toggle& t) {
       const double d = std::fabs(t.input - at);
-      return std::min(d, 2 * M_PI - d) < 1e-7;
+      return std::min(d, 2 * kPi - d) < 1e-7;
     });
     if (!known) found.push_back({at, z.head(n)});
   }
@@ -120,7 +121,7 @@ std::vector<std::vector<Toggle>> find_limit_positions(const Model& model, const 
   if (system.input.dimension != Dimension::angle || system.unknowns.empty() || unknowns.empty()) return limits;
   const double first = system.input.values.empty() ? 0.0 : system.input.values.front();
   std::vector<double> inputs;
-  for (int k = 0; k <= 360; ++k) inputs.push_back(first + k * M_PI / 180);
+  for (int k = 0; k <= 360; ++k) inputs.push_back(first + k * kPi / 180);
   // The mechanism's own assembly, by continuation from its file value.
   const MotionTable turn = analyse(model, inputs);
   Workspace workspace(model);
@@ -137,7 +138,7 @@ std::vector<std::vector<Toggle>> find_limit_positions(const Model& model, const 
       const double at = wrapped(input);
       const bool known = std::any_of(found.begin(), found.end(), [&](const Toggle& t) {
         const double d = std::fabs(t.input - at);
-        return std::min(d, 2 * M_PI - d) < 1e-7;
+        return std::min(d, 2 * kPi - d) < 1e-7;
       });
       if (!known) found.push_back({at, q});
     };

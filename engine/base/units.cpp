@@ -153,7 +153,7 @@ Quantity parse_quantity_as_written(const std::string& text) {
   std::string unit = trim(std::string(end));
   if (unit.empty()) return {number, Dimension::number};
   if (unit == "rpm" || unit == "rev/min") {
-    return {number * 2.0 * M_PI / 60.0, Dimension::angular_velocity};
+    return {number * 2.0 * kPi / 60.0, Dimension::angular_velocity};
   }
   if (unit == "°") unit = "deg";
 

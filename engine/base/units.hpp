@@ -19,9 +19,12 @@ enum class Dimension {
 };
 
 /// Degrees and radians, converted here and nowhere else.
-constexpr double kRadiansPerDegree = 3.14159265358979323846 / 180.0;
+/// pi, written once for the engine (the installed facade, which includes no engine header,
+/// writes it in kinema::degrees).
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kRadiansPerDegree = kPi / 180.0;
 inline double from_degrees(double degrees) { return degrees * kRadiansPerDegree; }
-inline double to_degrees(double radians) { return radians * 180.0 / 3.14159265358979323846; }
+inline double to_degrees(double radians) { return radians * 180.0 / kPi; }
 
 /// The largest angle kinema takes (the input's values, a slider's direction): past it a
 /// double's rounding moves the angle by more than the printed digits (1e15 deg was

@@ -7,6 +7,7 @@
 
 #include "engine/base/errors.hpp"
 #include "engine/numeric/dyad_positions.hpp"
+#include "engine/base/units.hpp"
 
 namespace kinema {
 namespace {
@@ -74,7 +75,7 @@ void guess_stated_assemblies(ConstraintSystem& system, const std::vector<int>& s
   unknowns_from_poses(plan, poses, q.data());
   for (std::size_t i = 0; i < q.size(); ++i) {
     Coordinate& u = system.unknowns[i];
-    u.guess = u.dimension == Dimension::angle ? u.guess + std::remainder(q[i] - u.guess, 2 * M_PI) : q[i];
+    u.guess = u.dimension == Dimension::angle ? u.guess + std::remainder(q[i] - u.guess, 2 * kPi) : q[i];
   }
 }
 

@@ -8,6 +8,7 @@
 #include "engine/numeric/closed_form.hpp"
 #include "engine/numeric/workspace.hpp"
 #include "engine/numeric/dyad_positions.hpp"
+#include "engine/base/units.hpp"
 
 namespace kinema {
 
@@ -81,8 +82,8 @@ Circuit::Stop walk(const Kinematics& kinematics, const CircuitSettings& settings
     const long next = grid + direction;
     double target = start + static_cast<double>(next) * step;
     bool last = false;
-    if (angle_input && std::fabs(target - start) >= 2 * M_PI) {  // a whole turn without a toggle
-      target = start + direction * 2 * M_PI;
+    if (angle_input && std::fabs(target - start) >= 2 * kPi) {  // a whole turn without a toggle
+      target = start + direction * 2 * kPi;
       last = true;
     }
     // To the target in equal substeps, each on the signs continuity gives.

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "engine/numeric/dyad_positions.hpp"
+#include "engine/base/units.hpp"
 
 namespace kinema {
 
@@ -19,7 +20,7 @@ bool closed_form_position(const SolvingPlan& frames, double input, const std::ve
   for (const SolvingPlan::Body& body : frames.bodies) {
     if (body.unknown < 0) continue;
     double& angle = q[body.unknown];
-    angle += 2 * M_PI * std::round((near[body.unknown] - angle) / (2 * M_PI));
+    angle += 2 * kPi * std::round((near[body.unknown] - angle) / (2 * kPi));
   }
   return true;
 }

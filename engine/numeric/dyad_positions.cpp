@@ -1,4 +1,5 @@
 #include "engine/numeric/dyad_positions.hpp"
+#include "engine/base/units.hpp"
 
 #include <cmath>
 
@@ -224,7 +225,7 @@ std::vector<int> signs_nearest(const SolvingPlan& frames, double input, const do
       double miss = 0;
       for (std::size_t b : {d.first, d.second}) {
         const int u = frames.bodies[b].unknown;
-        if (u >= 0) miss += std::fabs(std::remainder(trial[b].angle - q[u], 2 * M_PI));
+        if (u >= 0) miss += std::fabs(std::remainder(trial[b].angle - q[u], 2 * kPi));
       }
       for (const SolvingPlan::Slider& s : frames.sliders) {
         if (s.unknown < 0 || !trial[s.guide].placed || !trial[s.block].placed) continue;
@@ -265,7 +266,7 @@ std::vector<int> dyad_signs(const SolvingPlan& frames, const std::vector<BodyPos
       double miss = 0;
       for (std::size_t b : {d.first, d.second}) {
         miss += std::abs(trial[b].origin - configuration[b].origin) +
-                std::abs(std::remainder(trial[b].angle - configuration[b].angle, 2 * M_PI));
+                std::abs(std::remainder(trial[b].angle - configuration[b].angle, 2 * kPi));
       }
       if (miss < best) {
         best = miss;

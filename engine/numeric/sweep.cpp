@@ -11,6 +11,7 @@
 #include "engine/numeric/solver.hpp"
 #include "engine/numeric/workspace.hpp"
 #include "engine/numeric/dyad_positions.hpp"
+#include "engine/base/units.hpp"
 
 namespace kinema {
 
@@ -50,7 +51,7 @@ void choose_signs(const Kinematics& kinematics, const SolvingPlan& frames, doubl
   const double scale = kinematics.length_scale();
   at.signs = signs_nearest(frames, at.last_ok_input, at.last_ok_q.data(), scale);
   double total = input - at.last_ok_input;
-  if (angle_input) total = std::remainder(total, 2 * M_PI);  // the same position, the short way
+  if (angle_input) total = std::remainder(total, 2 * kPi);  // the same position, the short way
   const int steps = static_cast<int>(std::ceil(std::fabs(total) / (0.5 * kinematics.max_continuation_step())));
   if (steps > 100000) return;
   const double h = total / std::max(steps, 1);
@@ -73,7 +74,7 @@ void choose_signs(const Kinematics& kinematics, const SolvingPlan& frames, doubl
     unknowns_from_poses(frames, poses, placed.data());
     for (const SolvingPlan::Body& body : frames.bodies)
       if (body.unknown >= 0)
-        placed[body.unknown] += 2 * M_PI * std::round((predicted[body.unknown] - placed[body.unknown]) / (2 * M_PI));
+        placed[body.unknown] += 2 * kPi * std::round((predicted[body.unknown] - placed[body.unknown]) / (2 * kPi));
     q.push_back(placed);
     if (q.size() > 3) q.erase(q.begin());
   }

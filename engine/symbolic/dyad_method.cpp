@@ -7,6 +7,7 @@
 #include "engine/base/errors.hpp"
 #include "engine/constraints/differentiate.hpp"
 #include "engine/constraints/solving_plan.hpp"
+#include "engine/base/units.hpp"
 
 namespace kinema {
 
@@ -146,7 +147,7 @@ class Writer {
   }
   // Multiples of 15 deg exactly (cos(theta + Pi/2) prints as -sin(theta)).
   static ex exact_angle(double radians) {
-    const double twelfths = radians / (M_PI / 12);
+    const double twelfths = radians / (kPi / 12);
     if (std::fabs(twelfths - std::round(twelfths)) < 1e-9) return GiNaC::Pi * GiNaC::numeric(long(std::lround(twelfths)), 12);
     return radians;
   }

@@ -1,4 +1,5 @@
 #include "engine/printers/latex/label_boxes.hpp"
+#include "engine/base/units.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -133,7 +134,7 @@ LabelBox LabelBoxes::place_near(std::complex<double> at, const LabelBox& size, d
   const double reach = label_reach(size);
   for (double gap : {0.12, 0.4, 0.7, 0.95}) {
     for (int k = 0; k < 24; ++k) {
-      const double angle = preferred + (k % 2 ? 1 : -1) * ((k + 1) / 2) * M_PI / 12;
+      const double angle = preferred + (k % 2 ? 1 : -1) * ((k + 1) / 2) * kPi / 12;
       const std::complex<double> along(std::cos(angle), std::sin(angle));
       // The distance out along `along` at which the box stands `gap` label heights off `at`.
       double lo = 0, hi = size.half_width + size.half_height + reach;

@@ -11,6 +11,7 @@
 #include "engine/analysis/output_scale.hpp"
 #include "engine/base/user_text.hpp"
 #include "engine/constraints/expression_parts.hpp"
+#include "engine/base/units.hpp"
 
 namespace kinema {
 
@@ -75,7 +76,7 @@ double DocumentNumbers::zero_below(Dimension dimension, int order) const {
   const double time = order == 0 ? 1 : order == 1 ? rate_ : second_rate_;
   switch (dimension) {
     case Dimension::length: return accuracy * length_ * time;
-    case Dimension::angle: return accuracy * time * (order == 0 ? 180 / M_PI : 1);  // values in deg, rates in rad/s
+    case Dimension::angle: return accuracy * time * (order == 0 ? 180 / kPi : 1);  // values in deg, rates in rad/s
     default: return 0;
   }
 }

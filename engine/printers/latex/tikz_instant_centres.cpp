@@ -10,6 +10,7 @@
 #include "engine/analysis/geometry.hpp"
 #include "engine/base/number_format.hpp"
 #include "engine/analysis/output_scale.hpp"
+#include "engine/base/units.hpp"
 
 namespace kinema {
 
@@ -50,7 +51,7 @@ void write_centre_marks(std::ostream& out, const InstantCentres& c, const Linkag
     const std::string label = centre_latex(c, c.centres[k]) + (c.centres[k].at_infinity ? "\\to\\infty" : "");
     const LabelBox box = label_box("$" + label + "$", 8, 0);
     // A dot's label above right, as a figure letters its points; an arrow's beyond its tip.
-    const LabelBox chosen = placed.place_near(m.to, box, m.dot ? M_PI / 4 : std::arg(m.to - m.from));
+    const LabelBox chosen = placed.place_near(m.to, box, m.dot ? kPi / 4 : std::arg(m.to - m.from));
     out << (m.dot ? "\\filldraw[red!75!black, fill=white] " + cm_xy(m.to) + " circle (0.07)"
                   : std::string("\\draw[->, red!75!black") + (c.centres[k].at_infinity ? "" : ", dashed") + "] " +
                         cm_xy(m.from) + " -- " + cm_xy(m.to))

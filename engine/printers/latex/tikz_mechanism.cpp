@@ -11,6 +11,7 @@
 #include "engine/base/number_format.hpp"
 #include "engine/analysis/output_scale.hpp"
 #include "engine/base/naming.hpp"
+#include "engine/base/units.hpp"
 
 namespace kinema {
 
@@ -32,7 +33,7 @@ void write_bar(std::ostream& out, const std::string& path) {
 
 // The anchor that puts an arrow's label beyond its tip, away from the arrow.
 std::string anchor_beyond(std::complex<double> direction) {
-  const double a = std::arg(direction) * 180 / M_PI;
+  const double a = std::arg(direction) * 180 / kPi;
   if (a > -22.5 && a <= 22.5) return "west";
   if (a > 22.5 && a <= 67.5) return "south west";
   if (a > 67.5 && a <= 112.5) return "south";
@@ -154,7 +155,7 @@ void write_tikz_mechanism(std::ostream& out, const ConstraintSystem& system, con
       const auto& joints = drawing->links[k].joints;
       if (drawing->links[k].block && !joints.empty()) {  // a block: on the side of its guide away from the hatching
         out << "\\node[circle, draw, inner sep=1pt, font=\\scriptsize] at "
-            << xy(joints.front().at + std::polar(0.55 / cm, drawing->links[k].angle + M_PI / 2)) << " {"
+            << xy(joints.front().at + std::polar(0.55 / cm, drawing->links[k].angle + kPi / 2)) << " {"
             << latex_escape_text(drawing->links[k].name) << "};\n";
         continue;
       }

@@ -11,6 +11,7 @@
 #include "engine/printers/latex/latex_format.hpp"
 #include "engine/base/number_format.hpp"
 #include "engine/analysis/output_scale.hpp"
+#include "engine/base/units.hpp"
 
 namespace kinema {
 
@@ -129,7 +130,7 @@ void write_tikz_polygon(std::ostream& out, const ConstraintSystem& system, const
       start = comma + 2;
     }
     // Away from the polygon's middle, else the next free way round, within a label's height.
-    const double away = std::abs(at - middle) > 0 ? std::arg(at - middle) : M_PI / 4;
+    const double away = std::abs(at - middle) > 0 ? std::arg(at - middle) : kPi / 4;
     const LabelBox chosen = placed.place_near(at, label_box(label, 10, 0), away);
     vertex_lines.push_back("\\fill (" + format_fixed(at.real(), 3) + "," + format_fixed(at.imag(), 3) +
                            ") circle (0.05);\n\\node[font=\\small, inner sep=0pt] at (" +
