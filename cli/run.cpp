@@ -19,8 +19,6 @@
 #include "engine/numeric/circuit.hpp"
 #include "engine/printers/code/cpp_header.hpp"
 #include "engine/printers/printer.hpp"
-#include "engine/printers/web/page.hpp"
-#include "engine/analysis/motion_drawing.hpp"
 #include "engine/run/results_stream.hpp"
 #include "engine/run/view.hpp"
 #include "engine/analysis/chain_instant.hpp"
@@ -159,8 +157,7 @@ InputValues sweep_values(const ConstraintSystem& m, const std::string& sweep, st
 constexpr std::size_t kMaxPageRows = 20000;
 
 // kinema page: the rows solved once (a sweep, a circuit, or by default the worked solution's
-// plotting range: a turn of a crank from the file's value), the drawing's geometry at each
-// row computed here, in one place, and the page written over both.
+// plotting range: a turn of a crank from the file's value), then the page printed over them.
 void write_page_file(const Model& model, const std::string& sweep, const std::string& circuit_step,
                      const std::vector<double>& inputs, const std::string& output_path) {
   const ConstraintSystem& m = model.system;
@@ -175,12 +172,8 @@ void write_page_file(const Model& model, const std::string& sweep, const std::st
     check_input_range(m, values);
     swept = analyse(model, values);
   }
-  const MotionTable& table = circuit ? circuit->table : swept;
-  const MotionDrawing drawing = motion_drawing(m, table);
-  PrintJob job{model, &table};
-  job.circuit = circuit.has_value();
   std::ostringstream out;
-  write_page(out, job, drawing);
+  print_page(out, model, circuit ? circuit->table : swept, circuit.has_value());
   write_output(out.str(), output_path);
 }
 

@@ -21,6 +21,7 @@
 #include "engine/run/results_stream.hpp"
 #include "engine/run/view.hpp"
 #include "engine/analysis/output_scale.hpp"
+#include "engine/analysis/plot_range.hpp"
 #include "engine/symbolic/dyad_method.hpp"
 #include "readers/mechanism_file.hpp"
 
@@ -177,6 +178,20 @@ py::bytes npy_sweep(const PyModel& m, const Value& first, const Value& last, con
   return py::bytes(bytes);
 }
 
+/// `kinema page FILE`'s page: the worked solution's plotting range from the file's value
+/// (a turn of a crank), solved once, printed by the engine.
+std::string page(const PyModel& m) {
+  const kinema::ConstraintSystem& system = m.engine->system;
+  const std::vector<double> values = kinema::plot_range(system, system.input.values.empty() ? 0.0 : system.input.values.front());
+  kinema::check_input_range(system, values);
+  std::ostringstream out;
+  {
+    py::gil_scoped_release unlocked;
+    kinema::print_page(out, *m.engine, kinema::analyse(*m.engine, values), false);
+  }
+  return out.str();
+}
+
 }  // namespace
 
 PYBIND11_MODULE(kinema, module) {
@@ -258,6 +273,16 @@ PYBIND11_MODULE(kinema, module) {
           py::arg("first"), py::arg("last"), py::arg("step"),
           "From first to last by step (\"0 deg\", \"360 deg\", \"1 deg\"; or numbers in SI): a NumPy structured array "
           "with the fields and output units of `kinema eval --format npy` (units: Model.units).")
+      .def("page", &page, "The page `kinema page FILE` writes (one self-contained HTML file).")
+      .def(
+          "_repr_html_",
+          [](const PyModel& m) {
+            // In a notebook the page runs in a frame of its own, under its own policy. Not
+            // sandboxed: a sandboxed frame drew nothing in Chromium.
+            const std::string html = escaped(page(m));
+            return "<iframe style=\"width: 100%; height: 720px; border: 0\" srcdoc=\"" +
+                   html + "\"></iframe>";
+          })
       .def("__repr__", [](const PyModel& m) { return "<kinema.Model \"" + m.engine->system.title + "\">"; });
 
   module.def("load", [](const std::string& path) { return model_of(kinema::load_model(path)); }, py::arg("path"),

@@ -16,4 +16,9 @@ Analysis analyse_for_printer(const Printer& printer, const PrintJob& job);
 /// Prints job with `printer`, its analysis computed first (job.analysis is replaced).
 void print_view(const Printer& printer, std::ostream& out, PrintJob job);
 
+/// The page (engine/printers/web/page) over `table`, solved already (rows along a circuit
+/// when `circuit`), its drawing's geometry computed here once: `kinema page` and the Python
+/// module's Model.page() print it the one way.
+void print_page(std::ostream& out, const Model& model, const MotionTable& table, bool circuit);
+
 }  // namespace kinema

@@ -3,6 +3,7 @@
 Run by ctest ("python: ..."), which sets KINEMA_PROGRAM (the kinema program), KINEMA_SAMPLES
 (samples/) and PYTHONPATH (the built module).
 """
+import html
 import math
 import os
 import pathlib
@@ -127,3 +128,17 @@ def test_a_singular_value_says_why_and_gives_no_rates():
     assert "singular" in result.message or "dead" in result.message
     with pytest.raises(kinema.Error):
         result["omega2"]
+
+
+def test_page_is_the_programs_and_shows_inline_in_a_frame(tmp_path):
+    sample = SAMPLES / "problem_4_4_joints.toml"
+    model = kinema.load(str(sample))
+    page = model.page()
+    program("page", str(sample), "-o", str(tmp_path / "page.html"))
+    assert page == (tmp_path / "page.html").read_text()
+    assert page.startswith("<!DOCTYPE html>") and "Content-Security-Policy" in page
+    inline = model._repr_html_()
+    assert inline.startswith("<iframe") and inline.endswith("</iframe>")
+    framed = inline[inline.index('srcdoc="') + len('srcdoc="'):-len('"></iframe>')]
+    assert "<" not in framed and '"' not in framed  # the whole page as the attribute's text
+    assert html.unescape(framed) == page
