@@ -2,7 +2,9 @@
 // every sample, the page kinema writes loads with no console error and no request but the
 // file itself; at three values set through the scrubber each joint is drawn where
 // `kinema eval --format csv` puts it (within 0.1 px) and the readout is eval's CSV row;
-// the drawing at two values differs and is not blank. A singular row and an unassembled
+// the drawing at two values differs and is not blank; each point's image in the velocity and
+// acceleration polygons is its velocity and acceleration in eval's row, and every pair of bodies
+// has its instant centre drawn (or listed as not found). A singular row and an unassembled
 // range show as such; a hostile title, description and file name run no script.
 //
 //   node page_test.js KINEMA SAMPLES_DIR WORK_DIR CHROMIUM MODULES_DIR
@@ -98,6 +100,65 @@ function checkJoints(name, header, csvRow, view) {
   return checked;
 }
 
+// The polygons of the row: the image of each named point in the velocity polygon is its
+// velocity in eval's row, in the acceleration polygon its acceleration (to the 5 digits the
+// page draws them with). Returns how many images were checked.
+async function checkPolygons(page, name, header, csvRow) {
+  const fields = csvRow.split(',').map(Number);
+  const polygons = await page.evaluate(() => ['velocity-polygon', 'acceleration-polygon'].map((id) => {
+    const panel = document.getElementById(id);
+    return panel ? Array.from(panel.querySelectorAll('[data-vertex]')).map((v) => ({
+      name: v.getAttribute('data-vertex'), x: Number(v.getAttribute('data-x')), y: Number(v.getAttribute('data-y')) })) : null;
+  }));
+  if (!polygons[0]) return 0;
+  let checked = 0;
+  [['_vx [', polygons[0]], ['_ax [', polygons[1]]].forEach(([suffix, vertices]) => {
+    const size = Math.max(...vertices.map((v) => Math.hypot(v.x, v.y)));
+    assert(vertices.some((v) => v.name === 'o' && v.x === 0 && v.y === 0), `${name}: a polygon without its pole o at 0`);
+    for (const v of vertices) {
+      const column = header.findIndex((h) => h.startsWith(v.name + suffix));
+      if (column < 0) continue;
+      const x = fields[column], y = fields[column + 1];
+      assert(Math.abs(v.x - x) <= 1e-4 * size && Math.abs(v.y - y) <= 1e-4 * size,
+        `${name}: ${v.name} of the ${suffix === '_vx [' ? 'velocity' : 'acceleration'} polygon at (${v.x}, ${v.y}), eval's (${x}, ${y})`);
+      ++checked;
+    }
+  });
+  return checked;
+}
+
+// The instant centres with the toggle on: every pair of bodies has its centre drawn (a mark,
+// or an arrow toward one at infinity) or is listed as not found; a centre at a joint is there.
+async function checkCentres(page, name) {
+  const found = await page.evaluate(() => {
+    const box = document.getElementById('show-centres');
+    if (!box) return null;
+    box.click();
+    const svg = document.getElementById('mechanism');
+    const joints = {};
+    svg.querySelectorAll('[data-joint]').forEach((j) => { joints[j.getAttribute('data-name')] = [Number(j.getAttribute('data-x')), Number(j.getAttribute('data-y'))]; });
+    const drawn = Array.from(svg.querySelectorAll('#centres [data-centre]')).map((c) => ({
+      name: c.getAttribute('data-centre'), x: Number(c.getAttribute('data-x')), y: Number(c.getAttribute('data-y')) }));
+    const data = JSON.parse(document.getElementById('kinema-data').textContent);
+    const row = Number(document.getElementById('scrubber').value);
+    const structure = data.constructions.centre_structures[data.constructions.rows[row].centres[0]];
+    box.click();
+    return { drawn: drawn, joints: joints, structure: structure, jointNames: data.drawing.joint_names };
+  });
+  if (!found) return false;
+  const n = found.structure.bodies.length;
+  const names = new Set(found.drawn.map((c) => c.name));
+  assert.strictEqual(names.size + found.structure.not_found.length, (n * (n - 1)) / 2,
+    `${name}: ${names.size} centres drawn and ${found.structure.not_found.length} not found of ${(n * (n - 1)) / 2}`);
+  for (const c of found.structure.centres) {
+    if (c.joint === null) continue;
+    const at = found.joints[found.jointNames[c.joint]];
+    const mark = found.drawn.find((d) => d.name === c.name);
+    assert(mark && at && mark.x === at[0] && mark.y === at[1], `${name}: ${c.name} is not drawn at joint ${found.jointNames[c.joint]}`);
+  }
+  return true;
+}
+
 // The drawing's pixels (a clip of the tab: quicker than an element's screenshot, which waits
 // for the element to be still and scrolled into view).
 async function drawingShot(page) {
@@ -123,7 +184,10 @@ async function checkSample(browser, file) {
     await scrubTo(page, row);
     const view = await shown(page);
     assert.strictEqual(view.readout, rows[row], `${name}: the readout at row ${row} is not eval's CSV row`);
-    if (!spatial) joints += checkJoints(name, header, rows[row], view);
+    if (spatial) continue;
+    joints += checkJoints(name, header, rows[row], view);
+    constructions.images += await checkPolygons(page, name, header, rows[row]);
+    if (await checkCentres(page, name)) constructions.centres.add(name);
   }
   if (!spatial) {
     assert(joints >= 3, `${name}: no joint of the drawing is named by a point of eval's rows`);
@@ -168,6 +232,10 @@ async function checkFailedRows(browser, file, status) {
   assert.deepStrictEqual(seen.errors, [], `${name}: console errors`);
 }
 
+// What the samples' constructions showed (each planar sample has polygons; joints-and-links
+// ones have centres), checked after all ran.
+const constructions = { images: 0, centres: new Set() };
+
 // A title, description and file name written to run script: shown as text, nothing runs.
 async function checkHostile(browser) {
   const hostile = '</script><script>alert(1)</script><img src=x onerror=alert(2)>';
@@ -210,6 +278,9 @@ async function checkHostile(browser) {
     await checkFailedRows(browser, path.join(samplesDir, 'problem_4_1_parallelogram.toml'), 'singular');
     await checkFailedRows(browser, path.join(samplesDir, 'triple_rocker_circuit.toml'), 'unassembled');
     await checkHostile(browser);
+    assert(constructions.images >= 20, `only ${constructions.images} polygon images checked against eval`);
+    for (const joints of ['problem_4_4_joints', 'crank_shaper', 'example_4_2_joints', 'triple_rocker_circuit'])
+      assert(constructions.centres.has(joints), `${joints}: no instant centres shown`);
     console.log(`page: ${samples.length} samples, failed rows and hostile strings checked in chromium in ${Date.now() - started} ms`);
   } finally {
     await browser.close();

@@ -1,6 +1,7 @@
 #include "engine/printers/web/page.hpp"
 
 #include <cmath>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -9,6 +10,7 @@
 #include "engine/base/number_format.hpp"
 #include "engine/analysis/diagnostics.hpp"
 #include "engine/analysis/output_scale.hpp"
+#include "engine/printers/web/page_constructions.hpp"
 
 namespace kinema {
 
@@ -20,9 +22,9 @@ using json = nlohmann::ordered_json;
 // digests (hex), by CMakeLists.txt at configure time.
 #include "web_page_assets.inc"
 
-// Coordinates to the drawing's digits: 9 significant are far below a pixel at any zoom
+// Coordinates to the drawing's digits: 7 significant are far below a pixel at any zoom
 // the page offers and keep a long run's file small. NaN stays NaN (null in JSON).
-double drawn(double value) { return std::isfinite(value) ? round_significant(value, 9) : value; }
+double drawn(double value) { return std::isfinite(value) ? round_significant(value, 7) : value; }
 
 json point_json(std::complex<double> z, double per_unit) {
   return json::array({drawn(z.real() / per_unit), drawn(z.imag() / per_unit)});
@@ -155,7 +157,10 @@ std::string base64_of_hex(const std::string& hex) {
   return out;
 }
 
-void write_page(std::ostream& out, const PrintJob& job, const MotionDrawing& drawing) {
+void write_page(std::ostream& out, const PrintJob& job) {
+  if (!job.analysis || !job.analysis->motion)
+    throw std::logic_error("write_page: the job's analysis holds no motion (analyse it with ViewNeeds::motion)");
+  const MotionDrawing& drawing = *job.analysis->motion;
   const ConstraintSystem& system = job.model.system;
   const MotionTable& table = *job.values;
   const OutputScale scale(system);
@@ -177,6 +182,7 @@ void write_page(std::ostream& out, const PrintJob& job, const MotionDrawing& dra
     reasons.push_back(table.status(r) == Status::ok ? std::string() : describe_failure(system, table.input(r), table.failure(r)));
   data["reasons"] = reasons;
   data["drawing"] = drawing_json(drawing, scale.length);
+  data["constructions"] = constructions_json(job.analysis->values, drawing, scale.length);
 
   const std::string script_hash = base64_of_hex(kPageScriptSha256), style_hash = base64_of_hex(kPageStyleSha256);
   // Nothing but the page's own script and style runs or loads: no fetch, no frame, no form.
