@@ -11,7 +11,7 @@ std::vector<ValueAnalysis> analyse_values(const ConstraintSystem& system, const 
                                           std::vector<std::string>& link_labels, bool one_value_geometry) {
   std::vector<ValueAnalysis> analysed(values.size());
   if (!system.frames.empty()) {  // a spatial chain: its frames placed
-    for (std::size_t row = 0; row < values.size(); ++row) {
+    for (std::size_t row = 0; one_value_geometry && row < values.size(); ++row) {
       const MotionState s = values[row];
       if (s.status != Status::unassembled) analysed[row].frames = placed_frames(system, s);
     }

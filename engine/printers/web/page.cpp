@@ -36,6 +36,7 @@ json drawing_json(const MotionDrawing& drawing, double per_unit) {
   json out = json::object();
   out["form"] = drawing.form == MotionDrawing::Form::linkage ? "linkage"
                 : drawing.form == MotionDrawing::Form::loops ? "loops"
+                : drawing.form == MotionDrawing::Form::chain ? "chain"
                                                              : "none";
   if (drawing.form == MotionDrawing::Form::linkage) {
     out["joint_names"] = drawing.joint_names;
@@ -58,6 +59,9 @@ json drawing_json(const MotionDrawing& drawing, double per_unit) {
     out["points_on_links"] = json::array();
     for (const PointOnLink& p : drawing.points_on_links) out["points_on_links"].push_back({{"point", p.point}, {"link", p.link}});
     out["link_labels"] = drawing.link_labels;
+  } else if (drawing.form == MotionDrawing::Form::chain) {
+    out["frames"] = drawing.frame_names;
+    out["parents"] = drawing.frame_parents;
   }
   // Lengths in the output unit; the loops' unit directions (along) and blocks' angles as they are.
   const std::size_t segment_values = 8 * drawing.segments.size();
@@ -66,7 +70,8 @@ json drawing_json(const MotionDrawing& drawing, double per_unit) {
     json values = json::array();
     for (std::size_t k = 0; k < row.size(); ++k) {
       const bool direction = drawing.form == MotionDrawing::Form::loops && k < segment_values && k % 8 >= 6;
-      const bool angle = drawing.form == MotionDrawing::Form::linkage && k >= 2 * drawing.joint_names.size();
+      const bool angle = (drawing.form == MotionDrawing::Form::linkage && k >= 2 * drawing.joint_names.size()) ||
+                         (drawing.form == MotionDrawing::Form::chain && k % 12 >= 3);  // unit axes
       values.push_back(drawn(direction || angle ? row[k] : row[k] / per_unit));
     }
     rows.push_back(values.empty() ? json(nullptr) : values);

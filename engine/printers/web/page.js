@@ -180,8 +180,31 @@
     return out;
   }
 
-  // The extent of every row's drawing and points: the view fits the whole motion.
-  const extent = (function () {
+  // A spatial chain seen from a direction turned by dragging: the world turned about the
+  // motion's centre by yaw (about z, up) and pitch (looking down), projected along the view.
+  const camera = { yaw: -0.6, pitch: 0.45, centre: [0, 0, 0] };
+  function projectVector(v) {
+    const cy = Math.cos(camera.yaw), sy = Math.sin(camera.yaw), cp = Math.cos(camera.pitch), sp = Math.sin(camera.pitch);
+    return [cy * v[0] - sy * v[1], cp * v[2] + sp * (sy * v[0] + cy * v[1])];
+  }
+  function project(p) { return projectVector([p[0] - camera.centre[0], p[1] - camera.centre[1], p[2] - camera.centre[2]]); }
+  function chainPoint(n, p) { return [n[p.position], n[p.position + 1], p.dimension === 3 ? n[p.position + 2] : 0]; }
+
+  // The extent of every row's drawing and points: the view fits the whole motion (a chain's:
+  // the sphere about its centre that holds it, whichever way it is turned).
+  const extent = drawing.form === 'chain' ? (function () {
+    const all = [[0, 0, 0]];
+    drawing.rows.forEach(function (g) { if (g) for (let k = 0; k + 2 < g.length; k += 12) all.push(g.slice(k, k + 3)); });
+    numbers.forEach(function (n) { points.forEach(function (p) { all.push(chainPoint(n, p)); }); });
+    const finite = all.filter(function (p) { return p.every(isFinite); });
+    const lo = [0, 1, 2].map(function (k) { return Math.min.apply(null, finite.map(function (p) { return p[k]; })); });
+    const hi = [0, 1, 2].map(function (k) { return Math.max.apply(null, finite.map(function (p) { return p[k]; })); });
+    camera.centre = [0, 1, 2].map(function (k) { return (lo[k] + hi[k]) / 2; });
+    const r = Math.max.apply(null, finite.map(function (p) {
+      return Math.hypot(p[0] - camera.centre[0], p[1] - camera.centre[1], p[2] - camera.centre[2]);
+    })) || 1;
+    return { minX: -r, minY: -r, maxX: r, maxY: r, size: 2 * r };
+  })() : (function () {
     let minX = Infinity, minY = Infinity, maxX = -Infinity, maxY = -Infinity;
     const add = function (x, y) {
       if (!isFinite(x) || !isFinite(y)) return;
@@ -302,13 +325,13 @@
 
   function drawTraces() {
     traceLayer.textContent = '';
-    if (!toggles.traces.checked || data.spatial) return;
+    if (!toggles.traces.checked) return;
     points.forEach(function (p) {
       let path = '', pen = false;
       numbers.forEach(function (n, r) {
         const x = n[p.position], y = n[p.position + 1];
         if (status(r) !== 'ok' || !isFinite(x)) { pen = false; return; }
-        path += (pen ? ' L' : ' M') + xy([x, y]);
+        path += (pen ? ' L' : ' M') + xy(drawing.form === 'chain' ? project(chainPoint(n, p)) : [x, y]);
         pen = true;
       });
       if (path) svg('path', { d: path, class: 'trace', 'data-point': p.name }, traceLayer);
@@ -323,8 +346,11 @@
     picture.setAttribute('data-oy', view.oy);
     const s = status(row);
     picture.setAttribute('data-status', s);
-    if (data.spatial || drawing.form === 'none') {
-      message('3-D chains are not drawn yet: the readout and the plots show the solved rows.', overlay);
+    picture.setAttribute('data-yaw', camera.yaw);
+    picture.setAttribute('data-pitch', camera.pitch);
+    picture.setAttribute('data-centre', camera.centre.join(','));
+    if (drawing.form === 'chain') {
+      drawChain(s);
       return;
     }
     const geometry = rowGeometry(row);
@@ -497,8 +523,60 @@
     drawLabelled(finite, px, g, 'centre', 'data-centre', ', ');
   }
 
+  // A spatial chain: the observer's axes at the origin, each frame's origin joined to its
+  // parent's and its triad (x red, y green, z blue), the points with their arrows.
+  function drawChain(s) {
+    const g = drawing.rows[row];
+    if (!g || !g.length || s === 'unassembled') {
+      message('Not assembled at this value: nothing is drawn.', overlay);
+      return;
+    }
+    const body = svg('g', { class: s === 'ok' ? '' : 'singular-drawing' }, layer);
+    const axisLength = 0.2 * extent.size, triad = 0.08 * extent.size;
+    ['x', 'y', 'z'].forEach(function (name, k) {
+      const tip = [0, 0, 0];
+      tip[k] = axisLength;
+      line(project([0, 0, 0]), project(tip), 'world-axis', body);
+      const q = px(project(tip));
+      svg('text', { x: fixed(q[0] + 4), y: fixed(q[1] - 4), class: 'tick' }, body, name);
+    });
+    const origin = function (name) {
+      const k = drawing.frames.indexOf(name);
+      return k < 0 ? [0, 0, 0] : g.slice(12 * k, 12 * k + 3);
+    };
+    drawing.frames.forEach(function (name, k) {
+      const o = g.slice(12 * k, 12 * k + 3);
+      line(project(origin(drawing.parents[k])), project(o), 'chain-link', body);
+      ['x', 'y', 'z'].forEach(function (axis, a) {
+        const d = g.slice(12 * k + 3 + 3 * a, 12 * k + 6 + 3 * a);
+        line(project(o), project([o[0] + triad * d[0], o[1] + triad * d[1], o[2] + triad * d[2]]), 'triad-' + axis, body);
+      });
+      const q = px(project(o));
+      const mark = svg('g', { 'data-frame': name, transform: 'translate(' + fixed(q[0]) + ',' + fixed(q[1]) + ')' }, body);
+      svg('circle', { r: 3, class: 'joint' }, mark);
+      svg('text', { x: -8, y: 16, class: 'label frame-label' }, mark, name);
+    });
+    if (s !== 'ok') return;
+    const n = numbers[row];
+    points.forEach(function (p) {
+      const at = chainPoint(n, p);
+      if (!at.every(isFinite)) return;
+      const flat = project(at), q = px(flat);
+      const mark = svg('g', { 'data-point': p.name, 'data-x': at[0], 'data-y': at[1], 'data-z': at[2],
+        transform: 'translate(' + q[0] + ',' + q[1] + ')' }, overlay);
+      svg('circle', { r: 3, class: 'point' }, mark);
+      svg('text', { x: 6, y: -6, class: 'label' }, mark, p.name);
+      const d = p.dimension;
+      const vector = function (k) { return projectVector([n[k], n[k + 1], d === 3 ? n[k + 2] : 0]); };
+      if (toggles.velocity.checked) arrow(flat, vector(p.velocity), velocityScale, 'velocity', overlay);
+      if (toggles.acceleration.checked) arrow(flat, vector(p.acceleration), accelerationScale, 'acceleration', overlay);
+    });
+    drawScaleBar(overlay);
+  }
+
   function showKey() {
-    let text = 'Drag to pan, wheel to zoom, double-click to fit.';
+    let text = drawing.form === 'chain' ? 'Drag to turn (shift-drag to pan), wheel to zoom, double-click to fit. Frames: x red, y green, z blue.'
+      : 'Drag to pan, wheel to zoom, double-click to fit.';
     const unit = data.length_unit;
     if (velocityScale > 0) text += ' Velocity arrows (red): 1 ' + unit + ' of drawing = ' + (1 / velocityScale).toPrecision(3) + ' ' + unit + '/s.';
     if (accelerationScale > 0) {
@@ -647,8 +725,13 @@
   });
   picture.addEventListener('pointermove', function (event) {
     if (!drag) return;
-    view.ox += event.clientX - drag.x;
-    view.oy += event.clientY - drag.y;
+    if (drawing.form === 'chain' && !event.shiftKey) {  // a chain turns (shift-drag pans)
+      camera.yaw += (event.clientX - drag.x) * 0.01;
+      camera.pitch = Math.max(-1.5, Math.min(1.5, camera.pitch + (event.clientY - drag.y) * 0.01));
+    } else {
+      view.ox += event.clientX - drag.x;
+      view.oy += event.clientY - drag.y;
+    }
     drag = { x: event.clientX, y: event.clientY };
     drawTraces();
     draw();
