@@ -510,9 +510,9 @@ int kinema_cli::run(int argc, char** argv) {
   }
 
   const Mechanism mechanism = read_mechanism(line);
-  // A file kinema cannot analyse is not written as loops either. Only derive and latex
-  // print the formulas solved in closed form: the others do without them (faster).
-  const bool prints_formulas = line.derive->parsed() || line.latex->parsed();
+  // A file kinema cannot analyse is not written as loops either. Only derive, latex and
+  // page print the formulas solved in closed form: the others do without them (faster).
+  const bool prints_formulas = line.derive->parsed() || line.latex->parsed() || line.page->parsed();
   const Model model = make_model(mechanism, prints_formulas ? DerivationScope::full : DerivationScope::evaluation);
   check_basis(model.system, line);
   if (line.loops->parsed()) {

@@ -17,7 +17,8 @@ void print_view(const Printer& printer, std::ostream& out, PrintJob job) {
 void print_page(std::ostream& out, const Model& model, const MotionTable& table, bool circuit) {
   PrintJob job{model, &table};
   job.circuit = circuit;
-  ViewNeeds needs;
+  // The page shows the derivation as `kinema derive --format latex` prints it (in MathML).
+  ViewNeeds needs = find_printer(PrintKind::derivation, "latex")->needs(job);
   needs.motion = true;
   const Analysis analysis = analyse_for_views(model, &table, needs);
   job.analysis = &analysis;

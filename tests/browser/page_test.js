@@ -5,7 +5,8 @@
 // the drawing at two values differs and is not blank; each point's image in the velocity and
 // acceleration polygons is its velocity and acceleration in eval's row, and every pair of bodies
 // has its instant centre drawn (or listed as not found); a spatial chain's points are drawn in
-// 3-D where eval puts them, projected, and dragging turns it. A singular row and an unassembled
+// 3-D where eval puts them, projected, and dragging turns it; the derivation is laid out as
+// MathML. A singular row and an unassembled
 // range show as such; a hostile title, description and file name run no script.
 //
 //   node page_test.js KINEMA SAMPLES_DIR WORK_DIR CHROMIUM MODULES_DIR
@@ -249,6 +250,21 @@ async function checkSample(browser, file) {
   } else {
     await checkChain(page, name, header, rows, picks);
   }
+  // The derivation, opened: MathML laid out as formulas (a block as high as its rows), the
+  // symbols as kinema derive writes them.
+  const derivation = await page.evaluate(() => {
+    const details = document.getElementById('derivation');
+    details.open = true;
+    const blocks = Array.from(details.querySelectorAll('math[display="block"]'));
+    const rows = details.querySelectorAll('math[display="block"] > mtable > mtr').length;
+    const box = blocks.length ? blocks[0].getBoundingClientRect() : { width: 0, height: 0 };
+    const text = details.textContent;
+    details.open = false;
+    return { blocks: blocks.length, rows: rows, width: box.width, height: box.height, text: text };
+  });
+  assert(derivation.blocks >= 1 && derivation.rows >= 3, `${name}: the derivation has ${derivation.blocks} formulas, ${derivation.rows} rows`);
+  assert(derivation.width > 100 && derivation.height > 10 * Math.min(derivation.rows, 3), `${name}: the derivation is not laid out (${derivation.width} x ${derivation.height})`);
+  assert(/[θωφα]/.test(derivation.text), `${name}: the derivation shows no Greek symbol`);
   assert.deepStrictEqual(seen.errors, [], `${name}: console errors`);
   assert.deepStrictEqual(seen.requests, ['file://' + html], `${name}: requests other than the file`);
 }

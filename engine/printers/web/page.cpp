@@ -1,6 +1,7 @@
 #include "engine/printers/web/page.hpp"
 
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -10,6 +11,7 @@
 #include "engine/base/number_format.hpp"
 #include "engine/analysis/diagnostics.hpp"
 #include "engine/analysis/output_scale.hpp"
+#include "engine/printers/web/mathml.hpp"
 #include "engine/printers/web/page_constructions.hpp"
 
 namespace kinema {
@@ -187,7 +189,15 @@ void write_page(std::ostream& out, const PrintJob& job) {
     reasons.push_back(table.status(r) == Status::ok ? std::string() : describe_failure(system, table.input(r), table.failure(r)));
   data["reasons"] = reasons;
   data["drawing"] = drawing_json(drawing, scale.length);
-  data["constructions"] = constructions_json(job.analysis->values, drawing, scale.length);
+  PointFields point_fields;
+  for (const auto& point : data["columns"]["points"])
+    if (point["dimension"] == 2) point_fields[point["name"]] = {point["velocity"], point["acceleration"]};
+  data["constructions"] = constructions_json(job.analysis->values, drawing, scale.length, point_fields);
+
+  // The derivation as the notes print it, in MathML (markup of kinema's own, every text escaped).
+  std::ostringstream latex;
+  find_printer(PrintKind::derivation, "latex")->print(latex, job);
+  const std::string derivation = mathml_of_latex(latex.str());
 
   const std::string script_hash = base64_of_hex(kPageScriptSha256), style_hash = base64_of_hex(kPageStyleSha256);
   // Nothing but the page's own script and style runs or loads: no fetch, no frame, no form.
@@ -196,6 +206,8 @@ void write_page(std::ostream& out, const PrintJob& job) {
       << "'; style-src 'sha256-" << style_hash << "'; img-src data:; base-uri 'none'; form-action 'none'\">\n"
       << "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
       << "<title>kinema page</title>\n<style>" << kPageStyle << "</style>\n</head>\n<body>\n"
+      << "<details id=\"derivation\"><summary>The derivation (as kinema derive --format latex prints it)</summary>\n"
+      << derivation << "</details>\n"
       << "<script type=\"application/json\" id=\"kinema-data\">" << script_safe(data.dump(-1, ' ', false, json::error_handler_t::replace))
       << "</script>\n<script>" << kPageScript << "</script>\n</body>\n</html>\n";
 }

@@ -398,9 +398,14 @@
     if (!c || !c.polygons) return null;
     return c.polygons.map(function (p) {
       const s = constructions.polygon_structures[p[0]];
-      const at = function (k) { return [p[1 + 2 * k], p[2 + 2 * k]]; };
-      return { order: s.order, vertices: s.vertices.map(function (name, k) { return { name: name, at: at(k) }; }),
-        arrows: s.arrows.map(function (a) { return { kind: a[0], name: a[1], from: at(a[2]), to: at(a[3]) }; }) };
+      let k = 1;
+      const next = function () { const q = [p[k], p[k + 1]]; k += 2; return q; };
+      const ends = s.vertices.map(function (v) {
+        return v.pole ? [0, 0] : v.field !== undefined ? [numbers[r][v.field], numbers[r][v.field + 1]] : next();
+      });
+      while (k + 1 < p.length) ends.push(next());
+      return { order: s.order, vertices: s.vertices.map(function (v, j) { return { name: v.name, at: ends[j] }; }),
+        arrows: s.arrows.map(function (a) { return { kind: a[0], name: a[1], from: ends[a[2]], to: ends[a[3]] }; }) };
     });
   }
   function rowCentres(r) {
@@ -743,6 +748,8 @@
   // What a measurement reads (bench/page_timing.js): the times between frames while playing,
   // and the time each frame's drawing took.
   window.kinemaPage = { frameTimes: frameTimes, drawTimes: drawTimes, setPlaying: setPlaying };
+  // The derivation (static MathML written by kinema) under everything the script made.
+  document.body.appendChild(document.getElementById('derivation'));
   fit();
   showKey();
   drawTraces();

@@ -50,18 +50,29 @@ class Structures {
   std::map<std::string, std::size_t> index_;
 };
 
-// An arrow's ends are indices into the row's points: the vertices, then the points a
-// construction adds (a normal part's tip, where the tangential part starts).
-json polygon_json(const Polygon& polygon, double per_unit, Structures& structures) {
+// A vertex is written as where the row's numbers have it: the pole at 0; a named point's
+// image in the velocity (acceleration) polygon is the point's velocity (acceleration), a
+// CSV field of the row already ("field": its x); any other vertex by its coordinates here.
+// An arrow's ends are indices into the vertices, then the points a construction adds (a
+// normal part's tip, where the tangential part starts), given after the vertices.
+json polygon_json(const Polygon& polygon, double per_unit, const PointFields& fields, Structures& structures) {
   json structure = {{"order", polygon.order}, {"vertices", json::array()}, {"arrows", json::array()}};
   json row = json::array({0});
   double size = 0;
   for (const PolygonVertex& v : polygon.vertices) size = std::max(size, std::abs(v.at));
   for (const PolygonVertex& v : polygon.vertices) {
-    structure["vertices"].push_back(v.name);
-    push_point(row, v.at, per_unit, size);
+    json vertex = {{"name", v.name}};
+    const auto field = fields.find(v.name);
+    if (std::abs(v.at) <= 1e-12 * size && v.name == "o") {
+      vertex["pole"] = true;
+    } else if (field != fields.end()) {
+      vertex["field"] = polygon.order == 1 ? field->second.first : field->second.second;
+    } else {
+      push_point(row, v.at, per_unit, size);
+    }
+    structure["vertices"].push_back(vertex);
   }
-  std::vector<std::complex<double>> ends;  // the vertices, then the construction's own points
+  std::vector<std::complex<double>> ends;
   for (const PolygonVertex& v : polygon.vertices) ends.push_back(v.at);
   const auto end = [&](std::complex<double> z) -> std::size_t {
     for (std::size_t k = 0; k < ends.size(); ++k)
@@ -122,7 +133,8 @@ json centres_json(const InstantCentres& centres, const std::vector<double>& join
 
 }  // namespace
 
-json constructions_json(const std::vector<ValueAnalysis>& values, const MotionDrawing& drawing, double per_unit) {
+json constructions_json(const std::vector<ValueAnalysis>& values, const MotionDrawing& drawing, double per_unit,
+                        const PointFields& point_fields) {
   Structures polygon_structures, centre_structures;
   json rows = json::array();
   for (std::size_t r = 0; r < values.size(); ++r) {
@@ -133,8 +145,8 @@ json constructions_json(const std::vector<ValueAnalysis>& values, const MotionDr
     }
     json row = json::object();
     if (value.polygons)
-      row["polygons"] = json::array({polygon_json(value.polygons->first, per_unit, polygon_structures),
-                                     polygon_json(value.polygons->second, per_unit, polygon_structures)});
+      row["polygons"] = json::array({polygon_json(value.polygons->first, per_unit, point_fields, polygon_structures),
+                                     polygon_json(value.polygons->second, per_unit, point_fields, polygon_structures)});
     if (value.centres) {
       // The joints' places (SI) of a drawing of joints and links; none otherwise.
       std::vector<double> joints;
