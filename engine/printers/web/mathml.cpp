@@ -33,7 +33,9 @@ const std::map<std::string, std::string>& greek() {
 const std::map<std::string, std::string>& operators() {
   static const std::map<std::string, std::string> symbols = {
       {"times", "×"}, {"cdot", "⋅"}, {"circ", "∘"}, {"pm", "±"}, {"mp", "∓"}, {"to", "→"},
-      {"leq", "≤"},  {"geq", "≥"},  {"neq", "≠"},  {"approx", "≈"}, {"infty", "∞"}, {"partial", "∂"}};
+      {"leq", "≤"},  {"geq", "≥"},  {"neq", "≠"},  {"approx", "≈"}, {"infty", "∞"}, {"partial", "∂"},
+      {"rightarrow", "→"}, {"nabla", "∇"}, {"sum", "∑"}, {"prime", "′"}, {"surd", "√"}, {"lvert", "|"}, {"rvert", "|"},
+      {"vert", "|"}};
   return symbols;
 }
 
@@ -229,15 +231,22 @@ class MathReader {
       return identifier(letter->second, Style{capital || style.upright, style.bold}, true);
     }
     if (const auto symbol = operators().find(name); symbol != operators().end()) return "<mo>" + symbol->second + "</mo>";
-    if (name == "sin" || name == "cos" || name == "tan" || name == "exp" || name == "log" || name == "ln")
+    if (name == "sin" || name == "cos" || name == "tan" || name == "exp" || name == "log" || name == "ln" || name == "arcsin" ||
+        name == "arccos" || name == "arctan" || name == "sinh" || name == "cosh" || name == "tanh")
       return "<mspace width=\"0.1667em\"></mspace><mi>" + name + "</mi><mo>&#x2061;</mo><mspace width=\"0.1667em\"></mspace>";
+    if (name == "operatorname")
+      return "<mspace width=\"0.1667em\"></mspace><mi>" + escaped(braced_text()) + "</mi><mo>&#x2061;</mo>";
+    if (name == "sqrt") return "<msqrt>" + argument(style) + "</msqrt>";
+    if (name == "ensuremath") return group(argument(style));
     if (name == "mathit") return "<mi class=\"it\">" + escaped(braced_text()) + "</mi>";
     if (name == "text") return "<mtext>" + escaped(braced_text()) + "</mtext>";
     if (name == "mathrm") return group(argument(Style{true, style.bold}));
     if (name == "mathbf") return group(argument(Style{true, true}));
     if (name == "boldsymbol") return group(argument(Style{style.upright, true}));
-    if (name == "hat" || name == "dot" || name == "ddot") {
-      const char* accent = name == "hat" ? "^" : name == "dot" ? "˙" : "¨";
+    if (name == "hat" || name == "dot" || name == "ddot" || name == "vec" || name == "tilde" || name == "bar") {
+      const std::map<std::string, const char*> accents = {{"hat", "^"}, {"dot", "˙"}, {"ddot", "¨"},
+                                                          {"vec", "→"}, {"tilde", "~"}, {"bar", "¯"}};
+      const char* accent = accents.at(name);
       return "<mover accent=\"true\">" + group(argument(style)) + "<mo>" + accent + "</mo></mover>";
     }
     if (name == "frac" || name == "tfrac") {
@@ -290,6 +299,15 @@ std::string text_with_math(const std::string& text) {
       std::size_t end = i + 1;
       while (end < text.size() && std::isalpha(static_cast<unsigned char>(text[end]))) ++end;
       const std::string name = text.substr(i + 1, end - i - 1);
+      static const std::map<std::string, std::string> characters = {
+          {"textless", "<"}, {"textgreater", ">"}, {"textbar", "|"}, {"textbackslash", "\\"},
+          {"textasciitilde", "~"}, {"textasciicircum", "^"}};
+      if (const auto character = characters.find(name); character != characters.end()) {
+        out += escaped(character->second);
+        i = end;
+        if (i + 1 < text.size() && text[i] == '{' && text[i + 1] == '}') i += 2;
+        continue;
+      }
       if (name != "noindent" && name != "par" && name != "begingroup" && name != "endgroup" && name != "allowdisplaybreaks")
         throw MathmlError("MathML: the text command \\" + name + " is not read");
       i = end;

@@ -197,7 +197,13 @@ void write_page(std::ostream& out, const PrintJob& job) {
   // The derivation as the notes print it, in MathML (markup of kinema's own, every text escaped).
   std::ostringstream latex;
   find_printer(PrintKind::derivation, "latex")->print(latex, job);
-  const std::string derivation = mathml_of_latex(latex.str());
+  std::string derivation;
+  try {
+    derivation = mathml_of_latex(latex.str());
+  } catch (const MathmlError&) {
+    // A formula whose LaTeX the page does not read yet: the page says so, and where to read it.
+    derivation = "<p>This derivation uses LaTeX the page does not show yet: <code>kinema derive FILE --format latex</code> prints it.</p>\n";
+  }
 
   const std::string script_hash = base64_of_hex(kPageScriptSha256), style_hash = base64_of_hex(kPageStyleSha256);
   // Nothing but the page's own script and style runs or loads: no fetch, no frame, no form.
