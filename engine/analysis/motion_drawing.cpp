@@ -52,8 +52,8 @@ void linkage_rows(const ConstraintSystem& system, const MotionTable& table, Moti
   }
 }
 
-void loop_rows(const ConstraintSystem& system, const MotionTable& table, MotionDrawing& drawing) {
-  const MechanismGeometry geometry(system);
+void loop_rows(const Model& model, const MotionTable& table, MotionDrawing& drawing) {
+  const MechanismGeometry geometry(model);
   drawing.link_labels = geometry.link_labels();
   for (std::size_t r = 0; r < table.size(); ++r) {
     if (table.status(r) == Status::unassembled) {
@@ -89,7 +89,8 @@ void loop_rows(const ConstraintSystem& system, const MotionTable& table, MotionD
 
 }  // namespace
 
-MotionDrawing motion_drawing(const ConstraintSystem& system, const MotionTable& table) {
+MotionDrawing motion_drawing(const Model& model, const MotionTable& table) {
+  const ConstraintSystem& system = model.system;
   MotionDrawing drawing;
   if (!system.frames.empty()) {
     drawing.rows.resize(table.size());
@@ -100,7 +101,7 @@ MotionDrawing motion_drawing(const ConstraintSystem& system, const MotionTable& 
     linkage_rows(system, table, drawing);
   } else {
     drawing.form = MotionDrawing::Form::loops;
-    loop_rows(system, table, drawing);
+    loop_rows(model, table, drawing);
   }
   return drawing;
 }

@@ -13,6 +13,9 @@ enum class Work {
   dyad_derivation,  ///< derive_by_dyads.
   chain_at_instant, ///< chain_at_instant: a chain's formulas at the instant.
   drawing,          ///< Drawing geometry, polygons, instant centres, a chain's frames placed (each call).
+  tape_compile,     ///< A register tape compiled (CompiledExpressions built).
+  differentiation,  ///< A partial or time derivative taken (engine/constraints/differentiate), each call.
+  kCount
 };
 
 void count_work(Work work);

@@ -16,7 +16,7 @@ void print_view(const Printer& printer, std::ostream& out, PrintJob job) {
 }
 
 void print_page(std::ostream& out, const Model& model, const MotionTable& table, bool circuit) {
-  const MotionDrawing drawing = motion_drawing(model.system, table);
+  const MotionDrawing drawing = motion_drawing(model, table);
   PrintJob job{model, &table};
   job.circuit = circuit;
   write_page(out, job, drawing);

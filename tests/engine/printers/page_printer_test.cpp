@@ -34,7 +34,7 @@ TEST_CASE("engine/analysis/motion_drawing: joints where the table's points are a
   const kinema::Model model =
       kinema::load_model(kinema_test::sample("triple_rocker_circuit.toml"), kinema::DerivationScope::evaluation);
   const kinema::MotionTable table = kinema::analyse(model, turn_in_degrees(10));
-  const kinema::MotionDrawing drawing = kinema::motion_drawing(model.system, table);
+  const kinema::MotionDrawing drawing = kinema::motion_drawing(model, table);
   REQUIRE(drawing.form == kinema::MotionDrawing::Form::linkage);
   REQUIRE(drawing.rows.size() == table.size());
   std::size_t unassembled = 0, compared = 0;
@@ -69,7 +69,7 @@ TEST_CASE("engine/printers/web/page: the file's strings stay data inside their s
   const kinema::MotionTable table = kinema::analyse(model, turn_in_degrees(30));
   kinema::PrintJob job{model, &table};
   std::ostringstream out;
-  kinema::write_page(out, job, kinema::motion_drawing(model.system, table));
+  kinema::write_page(out, job, kinema::motion_drawing(model, table));
   const std::string page = out.str();
   CHECK(occurrences(page, "<script") == 2);  // the data and the page's own script
   CHECK(occurrences(page, "</script>") == 2);
