@@ -66,7 +66,7 @@ class PolygonBuilder {
   /// A link vector's parts' lengths as shown (positive where the sign is the direction's),
   /// in textbook order (LinkVectorPart); and the angle's rate of a polar vector.
   struct LinkVectorParts {
-    std::array<GiNaC::ex, 6> formulas;
+    std::array<GiNaC::ex, kLinkVectorParts> formulas;
     GiNaC::ex turning = 0;
   };
   struct Chain {
