@@ -5,20 +5,23 @@
 namespace kinema {
 namespace {
 
-// The drawings and figures of the printed values, each built once for the run: the
-// geometry's and the polygons' tapes are compiled here, not per value or per printer.
-std::vector<ValueAnalysis> analyse_values(const ConstraintSystem& system, const MotionTable& values,
+// The drawings and figures of the printed values: the geometry and the polygons read the
+// model's link vectors, derived and compiled with it (nothing is derived or compiled here).
+// Without `one_value_geometry` (a view of every row, which has the drawing's geometry of
+// the whole motion) only the polygons and the instant centres.
+std::vector<ValueAnalysis> analyse_values(const Model& model, const MotionTable& values,
                                           std::vector<std::string>& link_labels, bool one_value_geometry) {
+  const ConstraintSystem& system = model.system;
   std::vector<ValueAnalysis> analysed(values.size());
   if (!system.frames.empty()) {  // a spatial chain: its frames placed
     for (std::size_t row = 0; one_value_geometry && row < values.size(); ++row) {
       const MotionState s = values[row];
-      if (s.status != Status::unassembled) analysed[row].frames = placed_frames(system, s);
+      if (s.status != Status::unassembled) analysed[row].frames = placed_frames(model, s);
     }
     return analysed;
   }
-  const MechanismGeometry geometry(system);
-  const PolygonBuilder polygons(system);
+  const MechanismGeometry geometry(model);
+  const PolygonBuilder polygons(model);
   link_labels = geometry.link_labels();
   for (std::size_t row = 0; row < values.size(); ++row) {
     const MotionState s = values[row];
@@ -48,8 +51,8 @@ Analysis analyse_for_views(const Model& model, const MotionTable* values, const 
     analysis.dyads = derive_by_dyads(system, needs.method);
   if (needs.chain_at_instant && is_driven_chain(system)) analysis.chain = chain_at_instant(system, needs.basis);
   if ((needs.drawings || needs.motion) && values)
-    analysis.values = analyse_values(system, *values, analysis.link_labels, needs.drawings);
-  if (needs.motion && values) analysis.motion = motion_drawing(system, *values);
+    analysis.values = analyse_values(model, *values, analysis.link_labels, needs.drawings);
+  if (needs.motion && values) analysis.motion = motion_drawing(model, *values);
   return analysis;
 }
 

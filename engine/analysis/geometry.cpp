@@ -4,10 +4,8 @@
 #include <cmath>
 
 #include "engine/base/work_count.hpp"
-#include "engine/constraints/complex_parts.hpp"
-#include "engine/symbolic/derivation.hpp"
-#include "engine/constraints/expression_parts.hpp"
 #include "engine/numeric/dyad_positions.hpp"
+#include "engine/symbolic/link_vectors.hpp"
 
 namespace kinema {
 
@@ -31,157 +29,114 @@ std::string link_label(const ConstraintSystem& system, const GiNaC::ex& angle) {
   return !number(rate).empty() ? number(rate) : name;
 }
 
-namespace {
-
-double number_at(const GiNaC::ex& e, const GiNaC::exmap& values) {
-  const GiNaC::ex v = GiNaC::evalf(e.subs(values, GiNaC::subs_options::no_pattern));
-  return GiNaC::is_a<GiNaC::numeric>(v) ? GiNaC::ex_to<GiNaC::numeric>(v).to_double() : 0.0;
-}
-
-}  // namespace
-
-std::vector<PlacedFrame> placed_frames(const ConstraintSystem& system, const MotionState& s) {
+std::vector<PlacedFrame> placed_frames(const Model& model, const MotionState& s) {
   count_work(Work::drawing);
-  GiNaC::exmap values;
-  for (const SystemParameter& p : system.parameters) values[p.symbol] = p.value;
-  values[system.input.symbol] = s.input;
-  for (std::size_t i = 0; i < system.unknowns.size(); ++i) values[system.unknowns[i].symbol] = s.q[Eigen::Index(i)];
+  const std::vector<double> values = model.kinematics.drawing_values(s);
+  const TapeLayout& layout = model.kinematics.layout();
   std::vector<PlacedFrame> frames;
-  for (const FrameObservable& f : system.frames) {
-    PlacedFrame placed{f.name, f.parent, {}, {}};
-    for (std::size_t r = 0; r < 3; ++r) {
-      placed.origin[r] = number_at(f.origin[r], values);
-      for (std::size_t c = 0; c < 3; ++c) placed.axes[c][r] = number_at(f.rotation[3 * r + c], values);
+  for (std::size_t f = 0; f < model.system.frames.size(); ++f) {
+    PlacedFrame placed{model.system.frames[f].name, model.system.frames[f].parent, {}, {}};
+    if (!values.empty()) {
+      const double* v = values.data() + layout.frame_placement_output(f);
+      // + 0.0: -sin(0) is -0.0 on the tape and 0 in GiNaC; a drawing shows no signed zero.
+      for (std::size_t r = 0; r < 3; ++r) {
+        placed.origin[r] = v[r] + 0.0;
+        for (std::size_t c = 0; c < 3; ++c) placed.axes[c][r] = v[3 + 3 * r + c] + 0.0;
+      }
     }
     frames.push_back(placed);
   }
   return frames;
 }
 
-int MechanismGeometry::link_of(const ConstraintSystem& system, const GiNaC::ex& term) {
-  const LinkVector link = split_link_vector(term);
-  if (!link.polar) return -1;
-  const auto moves = [&](const GiNaC::ex& e) {
-    bool moving = e.has(system.input.symbol);
-    for (const Coordinate& q : system.unknowns) moving = moving || e.has(q.symbol);
-    return moving;
-  };
-  if (moves(link.length) || !moves(link.angle)) return -1;
-  return link_of_angle(system, link.angle);
+namespace {
+
+// True for an expression that changes with the input or an unknown.
+bool moves(const ConstraintSystem& system, const GiNaC::ex& e) {
+  bool moving = e.has(system.input.symbol);
+  for (const Coordinate& q : system.unknowns) moving = moving || e.has(q.symbol);
+  return moving;
 }
 
-int MechanismGeometry::link_of_angle(const ConstraintSystem& system, const GiNaC::ex& angle) {
-  const GiNaC::ex rate = time_derivative(system, angle);
+// A link vector turning with a coordinate itself (theta3, not theta3 + beta): that
+// coordinate (0: the input, k + 1: unknown k), else -1.
+int angle_coordinate(const ConstraintSystem& system, const LinkVector& v) {
+  int coordinate = -1;
+  if (!v.polar) return coordinate;
+  if (v.angle.is_equal(system.input.symbol) && system.input.dimension == Dimension::angle) coordinate = 0;
+  for (std::size_t j = 0; j < system.unknowns.size(); ++j)
+    if (v.angle.is_equal(system.unknowns[j].symbol)) coordinate = static_cast<int>(j) + 1;
+  return coordinate;
+}
+
+}  // namespace
+
+int MechanismGeometry::link_of(const ConstraintSystem& system, const LinkVectorMotion& term) {
+  if (!term.link.polar || moves(system, term.link.length) || !moves(system, term.link.angle)) return -1;
+  return link_of_angle(system, term);
+}
+
+int MechanismGeometry::link_of_angle(const ConstraintSystem& system, const LinkVectorMotion& term) {
+  if (!term.derived) return -1;  // drawn as a plain segment when GiNaC cannot differentiate the term
   for (std::size_t k = 0; k < link_rates_.size(); ++k)
-    if (link_rates_[k].is_equal(rate)) return static_cast<int>(k);
-  link_rates_.push_back(rate);
-  link_labels_.push_back(link_label(system, angle));
+    if (link_rates_[k].is_equal(term.angle_rate)) return static_cast<int>(k);
+  link_rates_.push_back(term.angle_rate);
+  link_labels_.push_back(link_label(system, term.link.angle));
   return static_cast<int>(link_rates_.size() - 1);
+}
+
+MechanismGeometry::MechanismGeometry(const Model& model) : kinematics_(&model.kinematics) {
+  count_work(Work::drawing);
+  classify(model.system, model.derivation.link_vectors);
 }
 
 MechanismGeometry::MechanismGeometry(const ConstraintSystem& system) {
   count_work(Work::drawing);
-  std::vector<GiNaC::ex> inputs, outputs, guides;
-  const auto moves = [&](const GiNaC::ex& e) {
-    bool moving = e.has(system.input.symbol);
-    for (const Coordinate& q : system.unknowns) moving = moving || e.has(q.symbol);
-    return moving;
-  };
-  for (const SystemParameter& parameter : system.parameters) {
-    inputs.push_back(parameter.symbol);
-    parameter_values_.push_back(parameter.value);
-  }
-  inputs.push_back(system.input.symbol);
-  for (const Coordinate& q : system.unknowns) inputs.push_back(q.symbol);
-  for (const EquationGroup& group : system.groups) {
-    if (!group.vector) continue;
-    loop_term_count_.push_back(group.terms.size());
-    for (const GiNaC::ex& term : group.terms) {
-      outputs.push_back(real_part_of(term));
-      outputs.push_back(imag_part_of(term));
-      // A term that moves is a link; one whose length moves is a slider's guide.
-      bool moving = term.has(system.input.symbol);
-      bool sliding = moving && system.input.dimension == Dimension::length;
-      std::optional<GiNaC::ex> length;  // the length that slides: the first in the term
-      if (sliding) length = system.input.symbol;
-      for (const Coordinate& q : system.unknowns) {
-        if (!term.has(q.symbol)) continue;
-        moving = true;
-        if (q.dimension == Dimension::length && !length) length = q.symbol;
-        sliding = sliding || q.dimension == Dimension::length;
-      }
-      // A slider's guide: the way the term moves as its length changes, the others held.
-      int guide_output = -1, guide_link = -1;
-      bool guide_turns = false;
-      if (sliding && length) {
-        try {
-          const GiNaC::ex along = term.diff(GiNaC::ex_to<GiNaC::symbol>(*length));
-          guide_output = static_cast<int>(guides.size());
-          guides.push_back(real_part_of(along));
-          guides.push_back(imag_part_of(along));
-          guide_turns = moves(along);
-          const LinkVector v = split_link_vector(term);
-          if (guide_turns && v.polar && moves(v.angle)) guide_link = link_of_angle(system, v.angle);
-        } catch (const std::exception&) {
-          guide_output = -1;
-        }
-      }
-      // A link vector turning with a coordinate itself (theta3, not theta3 + beta).
-      int coordinate = -1;
-      if (const LinkVector v = split_link_vector(term); v.polar) {
-        if (v.angle.is_equal(system.input.symbol) && system.input.dimension == Dimension::angle) coordinate = 0;
-        for (std::size_t j = 0; j < system.unknowns.size(); ++j)
-          if (v.angle.is_equal(system.unknowns[j].symbol)) coordinate = static_cast<int>(j) + 1;
-      }
-      term_coordinates_.push_back(coordinate);
-      guide_outputs_.push_back(guide_output);
+  const PlanarLinkVectors link_vectors = planar_link_vectors(system);
+  own_ = std::make_shared<const Kinematics>(Kinematics::drawing_only(system, link_vectors));
+  kinematics_ = own_.get();
+  classify(system, link_vectors);
+}
+
+void MechanismGeometry::classify(const ConstraintSystem& system, const PlanarLinkVectors& link_vectors) {
+  for (const PlanarLinkVectors::Chain& chain : link_vectors.chains) {
+    if (!chain.group) continue;
+    loop_term_count_.push_back(chain.vectors.size());
+    for (std::size_t v : chain.vectors) {
+      const LinkVectorMotion& term = link_vectors.vectors[v];
+      // A term that moves is a link; one whose length moves is a slider's guide, along
+      // the way the term moves as its length changes, the others held.
+      const bool sliding = sliding_length(system, term.term).has_value();
+      int guide_link = -1;
+      const bool guide_turns = term.guide && moves(system, *term.guide);
+      if (guide_turns && term.link.polar && moves(system, term.link.angle)) guide_link = link_of_angle(system, term);
+      term_coordinates_.push_back(angle_coordinate(system, term.link));
+      has_guide_.push_back(term.guide.has_value());
       guide_turns_.push_back(guide_turns);
       guide_links_.push_back(guide_link);
-      kinds_.push_back(!moving ? DrawingSegment::Kind::ground
-                               : sliding ? DrawingSegment::Kind::slider : DrawingSegment::Kind::link);
-      int link = -1;
-      try {  // drawn as a plain segment when GiNaC cannot differentiate the term alone
-        link = link_of(system, term);
-      } catch (const std::exception&) {
-      }
-      term_links_.push_back(link);
+      kinds_.push_back(!moves(system, term.term) ? DrawingSegment::Kind::ground
+                       : sliding                 ? DrawingSegment::Kind::slider
+                                                 : DrawingSegment::Kind::link);
+      term_links_.push_back(link_of(system, term));
     }
   }
-  if (system.frames.empty()) {
-    for (std::size_t p = 0; p < system.points.size(); ++p) {
-      if (system.points[p].written_terms.empty()) continue;
-      const GiNaC::ex& last = system.points[p].written_terms.back();
-      try {  // a term GiNaC cannot differentiate (a power of 0): the point is just not drawn on a link
-        const int link = link_of(system, last);
-        if (link < 0) continue;
-        const GiNaC::ex x = real_part_of(last), y = imag_part_of(last);
-        points_.push_back({p, link});
-        outputs.push_back(x);
-        outputs.push_back(y);
-      } catch (const std::exception&) {
-        continue;
-      }
-    }
+  for (const PlanarLinkVectors::Chain& chain : link_vectors.chains) {
+    if (!chain.point) continue;
+    const int link = link_of(system, link_vectors.vectors[chain.vectors.back()]);
+    if (link >= 0) points_.push_back({*chain.point, chain.vectors.back(), link});
   }
-  outputs.insert(outputs.end(), guides.begin(), guides.end());
-  tape_ = CompiledExpressions(inputs, outputs);
 }
 
 std::vector<PointOnLink> MechanismGeometry::points_on_links(const MotionState& state) const {
   std::vector<PointOnLink> found;
   if (state.status != Status::ok || points_.empty()) return found;
-  std::vector<double> inputs(parameter_values_);
-  inputs.push_back(state.input);
-  for (Eigen::Index i = 0; i < state.q.size(); ++i) inputs.push_back(state.q[i]);
-  std::vector<double> values(tape_.output_count()), registers = tape_.make_workspace();
-  if (inputs.size() != tape_.input_count()) return found;
-  tape_.evaluate(inputs.data(), values.data(), registers);
-  const double* xy = values.data() + 2 * kinds_.size();  // after the loops' terms
-  for (const auto& [point, link] : points_) {
-    const PointMotion& m = state.points[point];
+  const std::vector<double> values = kinematics_->drawing_values(state);
+  if (values.empty()) return found;
+  for (const OnLink& on : points_) {
+    const double* xy = values.data() + kinematics_->layout().link_vector_output(on.vector) + TapeLayout::kVectorPositionAt;
+    const PointMotion& m = state.points[on.point];
     const std::complex<double> at(m.position[0], m.position[1]), term(xy[0], xy[1]);
-    xy += 2;
-    if (std::isfinite(term.real()) && std::isfinite(term.imag())) found.push_back({point, link, at - term, at});
+    if (std::isfinite(term.real()) && std::isfinite(term.imag())) found.push_back({on.point, on.link, at - term, at});
   }
   return found;
 }
@@ -223,12 +178,13 @@ std::vector<std::size_t> drawing_order(const std::vector<std::complex<double>>& 
 }  // namespace
 
 std::vector<DrawingSegment> MechanismGeometry::segments(const MotionState& state) const {
-  std::vector<double> inputs(parameter_values_);
-  inputs.push_back(state.input);
-  for (Eigen::Index i = 0; i < state.q.size(); ++i) inputs.push_back(state.q[i]);
-  std::vector<double> values(tape_.output_count()), registers = tape_.make_workspace();
-  if (inputs.size() != tape_.input_count()) return {};
-  tape_.evaluate(inputs.data(), values.data(), registers);
+  const std::vector<double> values = kinematics_->drawing_values(state);
+  if (values.empty()) return {};
+  const TapeLayout& layout = kinematics_->layout();
+  const auto vector_at = [&](std::size_t k, std::size_t at) {
+    const double* v = values.data() + layout.link_vector_output(k) + at;
+    return std::complex<double>(v[0], v[1]);
+  };
   std::vector<std::complex<double>> named;
   double size = 0;
   for (const PointMotion& p : state.points) {
@@ -236,13 +192,12 @@ std::vector<DrawingSegment> MechanismGeometry::segments(const MotionState& state
     named.push_back({p.position[0], p.position[1]});
     size = std::max(size, std::abs(named.back()));
   }
-  const double* guide_xy = values.data() + 2 * (kinds_.size() + points_.size());
   std::vector<DrawingSegment> segments;
   std::size_t first = 0;  // the loop's first term
   for (std::size_t count : loop_term_count_) {
     std::vector<std::complex<double>> terms;
     std::vector<DrawingSegment::Kind> kinds(kinds_.begin() + first, kinds_.begin() + first + count);
-    for (std::size_t k = 0; k < count; ++k) terms.push_back({values[2 * (first + k)], values[2 * (first + k) + 1]});
+    for (std::size_t k = 0; k < count; ++k) terms.push_back(vector_at(first + k, TapeLayout::kVectorPositionAt));
     for (const auto& v : terms) size = std::max(size, std::abs(v));
     const std::size_t begin = segments.size();
     std::complex<double> at = 0;
@@ -278,8 +233,8 @@ std::vector<DrawingSegment> MechanismGeometry::segments(const MotionState& state
       const std::size_t term = term_of[j - begin];
       g.block = grounded(g.to) && !grounded(g.from) ? g.from : g.to;
       g.along = g.to - g.from;
-      if (guide_outputs_[term] >= 0) {
-        const std::complex<double> d(guide_xy[guide_outputs_[term]], guide_xy[guide_outputs_[term] + 1]);
+      if (has_guide_[term]) {
+        const std::complex<double> d = vector_at(term, TapeLayout::kVectorGuideAt);
         if (std::abs(d) > 0 && std::isfinite(std::abs(d))) g.along = d;
         g.fixed_guide = !guide_turns_[term];
         g.guide_link = guide_links_[term];

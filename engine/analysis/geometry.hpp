@@ -1,17 +1,16 @@
 // Geometry for drawings: each term of each planar loop as a segment from the
-// end of the terms before it, evaluated at a solved position with a compiled
-// tape (no GiNaC per drawing), and classed as ground, link or slider.
+// end of the terms before it, evaluated at a solved position by the model's tape
+// (no GiNaC per drawing, nothing derived again), and classed as ground, link or slider.
 #pragma once
 
 #include <array>
 #include <complex>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "engine/constraints/constraint_system.hpp"
-#include "engine/numeric/motion_table.hpp"
-#include "engine/numeric/tape.hpp"
+#include "engine/model.hpp"
 
 namespace kinema {
 
@@ -89,11 +88,17 @@ struct PlacedFrame {
 };
 
 /// Every frame of a spatial chain at a state whose position is known, in the file's order
-/// (the frames' formulas with the parameters, the input and the coordinates put in).
-std::vector<PlacedFrame> placed_frames(const ConstraintSystem& system, const MotionState& state);
+/// (the frames' formulas as the model's tape evaluates them).
+std::vector<PlacedFrame> placed_frames(const Model& model, const MotionState& state);
 
+/// The loops' terms of a vector-loop file as segments, and its named points on links, at
+/// a state: each term as the model derived and compiled it (its link vectors and their
+/// guides, TapeLayout::kDrawingStage), classed and numbered here.
 class MechanismGeometry {
  public:
+  explicit MechanismGeometry(const Model& model);
+  /// For a caller that has the system without its model (instant_centres): the link
+  /// vectors derived and the drawing stage compiled alone, as a model's.
   explicit MechanismGeometry(const ConstraintSystem& system);
   /// The loops' segments at a state whose position is known (status not unassembled). A loop's
   /// terms are laid end to end from the origin in the order, among those that close it, that
@@ -109,24 +114,31 @@ class MechanismGeometry {
   const std::vector<GiNaC::ex>& link_rates() const { return link_rates_; }
 
  private:
-  CompiledExpressions tape_;  ///< Inputs: parameters, input, q; outputs: x, y of each term, then of each point's last.
-  std::vector<double> parameter_values_;
+  /// Classes each loop term and finds the points on links.
+  void classify(const ConstraintSystem& system, const PlanarLinkVectors& link_vectors);
+  /// The link a term of fixed length turning with an angle is on (added when new), or -1.
+  int link_of(const ConstraintSystem& system, const LinkVectorMotion& term);
+  /// The link turning with this vector's angle (added when new).
+  int link_of_angle(const ConstraintSystem& system, const LinkVectorMotion& term);
+
+  std::shared_ptr<const Kinematics> own_;  ///< The drawing stage compiled alone (no model).
+  const Kinematics* kinematics_ = nullptr;  ///< The model's, or own_.
+  /// Per loop term (the first link vectors of the model, in order): its kind, its link or
+  /// -1, whether it has a guide that turns (a guide on a link) and with which link, its
+  /// angle's coordinate (as DrawingSegment::coordinate) or -1.
   std::vector<std::size_t> loop_term_count_;  ///< Terms of each loop, in order.
   std::vector<DrawingSegment::Kind> kinds_;
-  std::vector<int> term_links_;                      ///< Per term: its link or -1.
-  /// Per term: where d(term)/d(length) is among the tape's outputs (x, y), or -1; whether it
-  /// turns (a guide on a link) and with which link.
-  std::vector<int> guide_outputs_;
-  std::vector<bool> guide_turns_;
+  std::vector<int> term_links_;
+  std::vector<bool> has_guide_, guide_turns_;
   std::vector<int> guide_links_;
-  std::vector<int> term_coordinates_;  ///< Per term: its angle's coordinate (as DrawingSegment::coordinate) or -1.
-  std::vector<std::pair<std::size_t, int>> points_;  ///< Points on links: the point, its link.
-  std::vector<GiNaC::ex> link_rates_;                ///< Per link: the rate it turns with.
+  std::vector<int> term_coordinates_;
+  struct OnLink {
+    std::size_t point = 0, vector = 0;  ///< The point and its last term's link vector.
+    int link = 0;
+  };
+  std::vector<OnLink> points_;
+  std::vector<GiNaC::ex> link_rates_;  ///< Per link: the rate it turns with.
   std::vector<std::string> link_labels_;
-  /// The link a term of fixed length turning with an angle is on (added when new), or -1.
-  int link_of(const ConstraintSystem& system, const GiNaC::ex& term);
-  /// The link turning with this angle (added when new).
-  int link_of_angle(const ConstraintSystem& system, const GiNaC::ex& angle);
 };
 
 }  // namespace kinema

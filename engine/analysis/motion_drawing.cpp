@@ -52,8 +52,8 @@ void linkage_rows(const ConstraintSystem& system, const MotionTable& table, Moti
   }
 }
 
-void loop_rows(const ConstraintSystem& system, const MotionTable& table, MotionDrawing& drawing) {
-  const MechanismGeometry geometry(system);
+void loop_rows(const Model& model, const MotionTable& table, MotionDrawing& drawing) {
+  const MechanismGeometry geometry(model);
   drawing.link_labels = geometry.link_labels();
   for (std::size_t r = 0; r < table.size(); ++r) {
     if (table.status(r) == Status::unassembled) {
@@ -88,15 +88,15 @@ void loop_rows(const ConstraintSystem& system, const MotionTable& table, MotionD
 }
 
 // A spatial chain: each row's frames where it puts them (origin, then the x, y, z axes).
-void chain_rows(const ConstraintSystem& system, const MotionTable& table, MotionDrawing& drawing) {
-  for (const FrameObservable& frame : system.frames) {
+void chain_rows(const Model& model, const MotionTable& table, MotionDrawing& drawing) {
+  for (const FrameObservable& frame : model.system.frames) {
     drawing.frame_names.push_back(frame.name);
     drawing.frame_parents.push_back(frame.parent);
   }
   for (std::size_t r = 0; r < table.size(); ++r) {
     std::vector<double> row;
     if (table.status(r) != Status::unassembled) {
-      for (const PlacedFrame& frame : placed_frames(system, table[r])) {
+      for (const PlacedFrame& frame : placed_frames(model, table[r])) {
         row.insert(row.end(), frame.origin.begin(), frame.origin.end());
         for (const auto& axis : frame.axes) row.insert(row.end(), axis.begin(), axis.end());
       }
@@ -107,11 +107,12 @@ void chain_rows(const ConstraintSystem& system, const MotionTable& table, Motion
 
 }  // namespace
 
-MotionDrawing motion_drawing(const ConstraintSystem& system, const MotionTable& table) {
+MotionDrawing motion_drawing(const Model& model, const MotionTable& table) {
+  const ConstraintSystem& system = model.system;
   MotionDrawing drawing;
   if (!system.frames.empty()) {
     drawing.form = MotionDrawing::Form::chain;
-    chain_rows(system, table, drawing);
+    chain_rows(model, table, drawing);
     return drawing;
   }
   if (system.plan && system.plan->closed_form) {
@@ -119,7 +120,7 @@ MotionDrawing motion_drawing(const ConstraintSystem& system, const MotionTable& 
     linkage_rows(system, table, drawing);
   } else {
     drawing.form = MotionDrawing::Form::loops;
-    loop_rows(system, table, drawing);
+    loop_rows(model, table, drawing);
   }
   return drawing;
 }

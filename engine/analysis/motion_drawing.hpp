@@ -8,8 +8,6 @@
 #include <string>
 #include <vector>
 
-#include "engine/constraints/constraint_system.hpp"
-#include "engine/numeric/motion_table.hpp"
 #include "engine/analysis/geometry.hpp"
 
 namespace kinema {
@@ -48,8 +46,8 @@ struct MotionDrawing {
   std::vector<std::vector<double>> rows;
 };
 
-/// The geometry of every row of `table`, solved for `system` (nothing is solved here:
+/// The geometry of every row of `table`, solved for `model` (nothing is solved here:
 /// the positions are the table's; joints and links are placed from them in closed form).
-MotionDrawing motion_drawing(const ConstraintSystem& system, const MotionTable& table);
+MotionDrawing motion_drawing(const Model& model, const MotionTable& table);
 
 }  // namespace kinema

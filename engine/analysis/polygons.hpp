@@ -13,9 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/constraints/constraint_system.hpp"
-#include "engine/numeric/motion_table.hpp"
-#include "engine/numeric/tape.hpp"
+#include "engine/model.hpp"
 
 namespace kinema {
 
@@ -52,32 +50,32 @@ struct Polygon {
   double closure_error = 0;
 };
 
-/// Compiles, once per system, each link vector's position and the parts of its first and
-/// second time derivatives; polygons() evaluates them at a state. Planar systems only.
+/// Reads, per link vector, its position and the parts of its first and second time
+/// derivatives from the model (derived with it, evaluated by its tape's drawing stage):
+/// polygons() lays them end to end at a state. Planar systems only.
 class PolygonBuilder {
  public:
-  explicit PolygonBuilder(const ConstraintSystem& system);
-  /// False for a spatial chain or a system without planar loops and points.
+  explicit PolygonBuilder(const Model& model);
+  /// False for a spatial chain, a system without planar loops and points, and one whose
+  /// link vectors GiNaC could not differentiate.
   bool available() const { return !chains_.empty(); }
   /// The velocity and the acceleration polygon at a state that is ok; nullopt otherwise.
   std::optional<std::pair<Polygon, Polygon>> polygons(const MotionState& state) const;
 
  private:
-  /// A link vector's parts in textbook order: velocity (rotation, sliding), then
-  /// acceleration (normal, tangential, Coriolis, relative); their lengths' formulas.
+  /// A link vector's parts' lengths as shown (positive where the sign is the direction's),
+  /// in textbook order (LinkVectorPart); and the angle's rate of a polar vector.
   struct LinkVectorParts {
-    std::array<GiNaC::ex, 6> formulas;
-    GiNaC::ex turning = 0;  ///< The angle's rate (polar vectors).
+    std::array<GiNaC::ex, kLinkVectorParts> formulas;
+    GiNaC::ex turning = 0;
   };
   struct Chain {
     std::string point;  ///< The named point at its end (points' chains), or empty (a loop).
-    std::vector<std::size_t> vectors;  ///< Into parts_.
+    std::vector<std::size_t> vectors;  ///< Into the model's link vectors (and parts_).
   };
-  const ConstraintSystem* system_ = nullptr;
-  CompiledExpressions tape_;  ///< Per link vector: x, y, v_rot, v_slide, a_n, a_t, a_c, a_rel (x, y each), |parts|.
-  std::vector<double> parameter_values_;
-  std::vector<LinkVectorParts> parts_;
-  std::vector<Chain> chains_;
+  const Model* model_ = nullptr;
+  std::vector<LinkVectorParts> parts_;  ///< Per link vector of the model.
+  std::vector<Chain> chains_;           ///< The points' chains, then the loops'.
 };
 
 }  // namespace kinema

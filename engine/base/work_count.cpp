@@ -5,7 +5,7 @@
 namespace kinema {
 namespace {
 
-std::atomic<std::uint64_t> counts[static_cast<int>(Work::count_)];
+std::atomic<std::uint64_t> counts[static_cast<int>(Work::kCount)];
 
 }  // namespace
 

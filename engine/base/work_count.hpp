@@ -14,7 +14,9 @@ enum class Work {
   chain_at_instant, ///< chain_at_instant: a chain's formulas at the instant.
   drawing,          ///< Drawing geometry, polygons, instant centres, a chain's frames placed (each call).
   formula_read,     ///< FormulaReader::read: a formula's text parsed by GiNaC.
-  count_            ///< The number of kinds (not a kind of work).
+  tape_compile,     ///< A register tape compiled (CompiledExpressions built).
+  differentiation,  ///< A partial or time derivative taken (engine/constraints/differentiate), each call.
+  kCount            ///< The number of kinds (not a kind of work).
 };
 
 void count_work(Work work);

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "engine/base/errors.hpp"
+#include "engine/base/work_count.hpp"
 
 namespace kinema {
 namespace {
@@ -44,14 +45,13 @@ SizeEstimate estimate_sizes(const ex& e, const GiNaC::exset& moving) {
   return total;
 }
 
-}  // namespace
-
-GiNaC::ex partial(const GiNaC::ex& e, const GiNaC::symbol& s) {
+// d e / d s, term by term and factor by factor (partial's recursion, not counted again).
+ex partial_derivative(const ex& e, const GiNaC::symbol& s) {
   if (!e.has(s)) return 0;
   if (GiNaC::is_a<GiNaC::add>(e)) {  // the terms with s, each differentiated
     GiNaC::exvector terms;
     for (const ex& term : e) {
-      const ex derivative = partial(term, s);  // 0 at once where s is absent
+      const ex derivative = partial_derivative(term, s);  // 0 at once where s is absent
       if (!derivative.is_zero()) terms.push_back(derivative);
     }
     return GiNaC::add(terms);
@@ -59,7 +59,7 @@ GiNaC::ex partial(const GiNaC::ex& e, const GiNaC::symbol& s) {
   if (GiNaC::is_a<GiNaC::mul>(e)) {  // product rule over the factors with s
     GiNaC::exvector terms;
     for (std::size_t i = 0; i < e.nops(); ++i) {
-      const ex derivative = partial(e.op(i), s);
+      const ex derivative = partial_derivative(e.op(i), s);
       if (derivative.is_zero()) continue;
       GiNaC::exvector factors;
       factors.reserve(e.nops());
@@ -71,11 +71,18 @@ GiNaC::ex partial(const GiNaC::ex& e, const GiNaC::symbol& s) {
   // GiNaC's chain rule for these: the registered derivative times the argument's.
   if (GiNaC::is_a<GiNaC::function>(e) && e.nops() == 1) {
     const std::string& name = GiNaC::ex_to<GiNaC::function>(e).get_name();
-    if (name == "sin") return GiNaC::cos(e.op(0)) * partial(e.op(0), s);
-    if (name == "cos") return -GiNaC::sin(e.op(0)) * partial(e.op(0), s);
-    if (name == "exp") return e * partial(e.op(0), s);
+    if (name == "sin") return GiNaC::cos(e.op(0)) * partial_derivative(e.op(0), s);
+    if (name == "cos") return -GiNaC::sin(e.op(0)) * partial_derivative(e.op(0), s);
+    if (name == "exp") return e * partial_derivative(e.op(0), s);
   }
   return e.diff(s);
+}
+
+}  // namespace
+
+GiNaC::ex partial(const GiNaC::ex& e, const GiNaC::symbol& s) {
+  count_work(Work::differentiation);
+  return partial_derivative(e, s);
 }
 
 double derivative_size_estimate(const GiNaC::ex& e, const GiNaC::exset& moving) {
@@ -104,10 +111,11 @@ GiNaC::exset symbols_of(const GiNaC::ex& e) {
 GiNaC::ex time_derivative(const GiNaC::ex& e, const std::vector<SymbolMotion>& motions) {
   // Only the symbols e contains are differentiated: a system of many loops has thousands
   // of coordinates, and each of its formulas a handful.
+  count_work(Work::differentiation);
   const GiNaC::exset symbols = symbols_of(e);
   GiNaC::exvector terms;
   for (const SymbolMotion& m : motions)
-    if (symbols.count(m.symbol) != 0) terms.push_back(partial(e, GiNaC::ex_to<GiNaC::symbol>(m.symbol)) * m.rate);
+    if (symbols.count(m.symbol) != 0) terms.push_back(partial_derivative(e, GiNaC::ex_to<GiNaC::symbol>(m.symbol)) * m.rate);
   return GiNaC::add(terms);
 }
 

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "engine/constraints/constraint_system.hpp"
+#include "engine/numeric/motion_table.hpp"
 #include "engine/numeric/tape.hpp"
 #include "engine/numeric/tape_layout.hpp"
 #include "engine/symbolic/derivation.hpp"
@@ -20,6 +21,9 @@ class Kinematics {
  public:
   Kinematics() = default;
   Kinematics(const ConstraintSystem& system, const Derivation& derivation);
+  /// The drawing stage alone, the solving stages empty (the same formulas and inputs in the
+  /// same order as a model's): for an analysis that has the system and not its model.
+  static Kinematics drawing_only(const ConstraintSystem& system, const PlanarLinkVectors& link_vectors);
 
   std::size_t unknown_count() const { return layout_.unknown_count; }
   std::size_t point_count() const { return layout_.point_dimensions.size(); }
@@ -29,6 +33,10 @@ class Kinematics {
   /// sin/cos and every other subexpression computed once per input value.
   const CompiledExpressions& evaluator() const { return evaluator_; }
   const std::vector<double>& parameter_values() const { return parameter_values_; }
+  /// The drawing stage's outputs (TapeLayout::link_vector_output, frame_placement_output)
+  /// at a state whose position is known: rates NaN where the state has none. Empty for a
+  /// state of another system, and where the drawing formulas could not be compiled.
+  std::vector<double> drawing_values(const MotionState& state) const;
 
   /// Typical length (largest length parameter), for tolerances and scaling.
   double length_scale() const { return length_scale_; }
@@ -46,6 +54,11 @@ class Kinematics {
   const SolvingPlan* closed_form() const { return closed_form_ ? &*closed_form_ : nullptr; }
 
  private:
+  /// The layout, scales and guesses; no tape yet.
+  explicit Kinematics(const ConstraintSystem& system);
+  /// The tape: the solving stages, then the drawing stage apart (TapeLayout::kDrawingStage).
+  void compile(const ConstraintSystem& system, const std::vector<std::vector<GiNaC::ex>>& solving,
+               const PlanarLinkVectors& link_vectors);
   TapeLayout layout_;
   CompiledExpressions evaluator_;
   std::vector<double> parameter_values_;
@@ -54,6 +67,7 @@ class Kinematics {
   Eigen::VectorXd guess_;
   std::vector<std::size_t> equation_group_;
   std::optional<SolvingPlan> closed_form_;
+  bool drawable_ = true;  ///< The drawing stage compiled.
 };
 
 }  // namespace kinema

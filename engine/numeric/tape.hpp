@@ -35,6 +35,11 @@ class CompiledExpressions {
   /// and those of level 0 run once (prepare).
   CompiledExpressions(const std::vector<GiNaC::ex>& inputs, const std::vector<int>& input_levels,
                       const std::vector<std::vector<GiNaC::ex>>& stages);
+  /// The same with a last stage apart: it reads the earlier stages' registers but changes
+  /// none of their instructions (they are those of the tape without it), so what only a
+  /// view needs rides on the tape without costing the solvers anything.
+  CompiledExpressions(const std::vector<GiNaC::ex>& inputs, const std::vector<int>& input_levels,
+                      const std::vector<std::vector<GiNaC::ex>>& stages, const std::vector<GiNaC::ex>& apart);
 
   /// Runs every level-0 instruction of every stage (once the level-0 inputs are set).
   void prepare(std::vector<double>& workspace) const;
@@ -97,7 +102,14 @@ class CompiledExpressions {
  private:
   /// Fuses a product used only by the sum right after it in the same stage and level
   /// into one instruction (fewer dispatches for the interpreter).
-  void fuse_multiply_adds(const std::vector<int>& register_levels);
+  /// Compiles `stages`, those from `apart_from` on apart (see the constructor with `apart`).
+  void build(const std::vector<GiNaC::ex>& inputs, const std::vector<int>& input_levels,
+             const std::vector<std::vector<GiNaC::ex>>& stages, std::size_t apart_from);
+  /// Stages from `apart_from` on do not keep an earlier stage's product from being fused:
+  /// a product they read is computed again at the start of its level in the last stage.
+  void fuse_multiply_adds(const std::vector<int>& register_levels, std::size_t apart_from);
+  /// Puts the last stage's instructions in level order again (after fusing moved some in).
+  void sort_last_stage(const std::vector<int>& register_levels);
   friend class TapeBuilder;
   void run(std::size_t begin, std::size_t end, double* registers) const;
 

@@ -2,6 +2,8 @@
 // argument, instructions ordered by input level, products fused into sums.
 #include "engine/numeric/tape.hpp"
 
+#include "engine/base/work_count.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -295,6 +297,20 @@ CompiledExpressions::CompiledExpressions(const std::vector<GiNaC::ex>& inputs,
 
 CompiledExpressions::CompiledExpressions(const std::vector<GiNaC::ex>& inputs, const std::vector<int>& input_levels,
                                          const std::vector<std::vector<GiNaC::ex>>& stages) {
+  build(inputs, input_levels, stages, stages.size());
+}
+
+CompiledExpressions::CompiledExpressions(const std::vector<GiNaC::ex>& inputs, const std::vector<int>& input_levels,
+                                         const std::vector<std::vector<GiNaC::ex>>& stages,
+                                         const std::vector<GiNaC::ex>& apart) {
+  std::vector<std::vector<GiNaC::ex>> all(stages);
+  all.push_back(apart);
+  build(inputs, input_levels, all, stages.size());
+}
+
+void CompiledExpressions::build(const std::vector<GiNaC::ex>& inputs, const std::vector<int>& input_levels,
+                                const std::vector<std::vector<GiNaC::ex>>& stages, std::size_t apart_from) {
+  count_work(Work::tape_compile);
   if (input_levels.size() != inputs.size()) throw std::invalid_argument("one level per input");
   TapeBuilder builder(*this);
   input_count_ = inputs.size();
@@ -319,25 +335,35 @@ CompiledExpressions::CompiledExpressions(const std::vector<GiNaC::ex>& inputs, c
     stage_end_.push_back(stage_begin);
     stage_outputs_.push_back(output_registers_.size());
   }
-  fuse_multiply_adds(builder.level_);
+  fuse_multiply_adds(builder.level_, apart_from);
 }
 
-void CompiledExpressions::fuse_multiply_adds(const std::vector<int>& register_levels) {
+void CompiledExpressions::fuse_multiply_adds(const std::vector<int>& register_levels, std::size_t apart_from) {
   const std::size_t registers = initial_registers_.size();
-  std::vector<int> uses(registers, 0);
-  std::vector<std::size_t> producer(registers, instructions_.size());
-  for (std::size_t k = 0; k < instructions_.size(); ++k) {
-    const Instruction& in = instructions_[k];
-    producer[in.out] = k;
-    ++uses[in.a];
-    if (operand_count(in.op) >= 2) ++uses[in.b];
-    if (operand_count(in.op) >= 3) ++uses[in.c];
-  }
-  for (std::uint32_t reg : output_registers_) uses[reg] += 2;  // outputs are read by the caller
   // Stage of each instruction (fusing across stages would move work between them).
   std::vector<std::size_t> stage_of(instructions_.size());
   for (std::size_t stage = 0, k = 0; stage < stage_end_.size(); ++stage)
     for (; k < stage_end_[stage]; ++k) stage_of[k] = stage;
+  std::vector<std::size_t> producer(registers, instructions_.size());
+  for (std::size_t k = 0; k < instructions_.size(); ++k) producer[instructions_[k].out] = k;
+  // A read from a stage apart of an earlier stage's register is noted, not counted.
+  std::vector<int> uses(registers, 0);
+  std::vector<bool> read_apart(registers, false);
+  const auto read = [&](std::uint32_t reg, std::size_t stage, int count) {
+    const std::size_t k = producer[reg];
+    if (stage >= apart_from && k < instructions_.size() && stage_of[k] < apart_from)
+      read_apart[reg] = true;
+    else
+      uses[reg] += count;
+  };
+  for (std::size_t k = 0; k < instructions_.size(); ++k) {
+    const Instruction& in = instructions_[k];
+    read(in.a, stage_of[k], 1);
+    if (operand_count(in.op) >= 2) read(in.b, stage_of[k], 1);
+    if (operand_count(in.op) >= 3) read(in.c, stage_of[k], 1);
+  }
+  for (std::size_t stage = 0; stage < stage_end_.size(); ++stage)  // outputs are read by the caller
+    for (std::size_t k = stage_outputs_[stage]; k < stage_outputs_[stage + 1]; ++k) read(output_registers_[k], stage, 2);
   std::vector<bool> removed(instructions_.size(), false);
   auto fusable = [&](std::uint32_t reg, std::size_t user) {
     const std::size_t k = producer[reg];
@@ -364,6 +390,10 @@ void CompiledExpressions::fuse_multiply_adds(const std::vector<int>& register_le
     removed[producer[product]] = true;
     in = {fused, in.out, multiply.a, multiply.b, 0, other};
   }
+  // A fused product that a stage apart reads is computed again there.
+  std::vector<Instruction> recomputed;
+  for (std::size_t k = 0; k < instructions_.size(); ++k)
+    if (removed[k] && read_apart[instructions_[k].out]) recomputed.push_back(instructions_[k]);
   // Compact, moving the stage and level boundaries with it.
   std::vector<std::size_t> kept_before(instructions_.size() + 1, 0);
   for (std::size_t k = 0; k < instructions_.size(); ++k) kept_before[k + 1] = kept_before[k] + (removed[k] ? 0 : 1);
@@ -373,6 +403,25 @@ void CompiledExpressions::fuse_multiply_adds(const std::vector<int>& register_le
   instructions_.resize(next);
   for (std::size_t& end : stage_end_) end = kept_before[end];
   for (std::size_t& begin : level_begin_) begin = kept_before[begin];
+  if (recomputed.empty()) return;
+  const std::size_t last = stage_end_.size() - 1;
+  instructions_.insert(instructions_.begin() + static_cast<std::ptrdiff_t>(last == 0 ? 0 : stage_end_[last - 1]),
+                       recomputed.begin(), recomputed.end());
+  stage_end_[last] = instructions_.size();
+  sort_last_stage(register_levels);
+}
+
+void CompiledExpressions::sort_last_stage(const std::vector<int>& register_levels) {
+  const std::size_t last = stage_end_.size() - 1;
+  const auto begin = instructions_.begin() + static_cast<std::ptrdiff_t>(last == 0 ? 0 : stage_end_[last - 1]);
+  // Stable: what was put first stays first in its level, ahead of its readers.
+  const auto level_of = [&](const Instruction& in) { return register_levels[in.out]; };
+  std::stable_sort(begin, instructions_.end(),
+                   [&](const Instruction& x, const Instruction& y) { return level_of(x) < level_of(y); });
+  for (int level = 0; level <= levels_; ++level)
+    level_begin_[last * static_cast<std::size_t>(levels_ + 1) + static_cast<std::size_t>(level)] = static_cast<std::size_t>(
+        std::find_if(begin, instructions_.end(), [&](const Instruction& in) { return level_of(in) >= level; }) -
+        instructions_.begin());
 }
 
 

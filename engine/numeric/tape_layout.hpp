@@ -13,6 +13,7 @@ struct TapeLayout {
   std::size_t unknown_count = 0;
   std::vector<std::size_t> point_dimensions;  ///< 2 or 3 per point.
   std::size_t frame_count = 0;                ///< Frames of a spatial chain (angular velocity and acceleration).
+  std::size_t link_vector_count = 0;          ///< A planar system's link vectors (Derivation::link_vectors).
 
   // Input registers: [parameters, theta, thetad, thetadd, q, qd, qdd].
   std::size_t parameter(std::size_t p) const { return p; }
@@ -30,7 +31,11 @@ struct TapeLayout {
   /// Each point: position, velocity, acceleration; then each frame: angular velocity and
   /// angular acceleration (3 + 3, observer basis).
   static constexpr std::size_t kPointStage = 2;
-  static constexpr std::size_t kStageCount = 3;
+  /// What the drawings and polygons show, run only for a printed value: each link vector,
+  /// then each frame's placement. It reads the earlier stages' registers but changes none
+  /// of their instructions (the solvers and the exported code are the same without it).
+  static constexpr std::size_t kDrawingStage = 3;
+  static constexpr std::size_t kStageCount = 4;
 
   // Outputs of the position stage.
   std::size_t phi(std::size_t i) const { return i; }
@@ -49,6 +54,19 @@ struct TapeLayout {
   std::size_t frame_output(std::size_t f) const { return point_output_count() + 6 * f; }
   /// Everything the point stage computes: points, then frames.
   std::size_t observable_output_count() const { return frame_output(frame_count); }
+
+  // Outputs of the drawing stage: link vector k's x, y; its parts' x, y in the order of
+  // LinkVectorPart; its parts' lengths as derived; its guide's x, y (0 for none). Then
+  // frame f's origin (x, y, z) and its rotation (row-major, observer basis).
+  static constexpr std::size_t kVectorPartCount = 6;
+  static constexpr std::size_t kVectorPositionAt = 0, kVectorPartsAt = 2, kVectorMagnitudesAt = 2 + 2 * kVectorPartCount,
+                               kVectorGuideAt = kVectorMagnitudesAt + kVectorPartCount, kVectorOutputs = kVectorGuideAt + 2,
+                               kFramePlacementOutputs = 12;
+  std::size_t link_vector_output(std::size_t k) const { return kVectorOutputs * k; }
+  std::size_t frame_placement_output(std::size_t f) const {
+    return link_vector_output(link_vector_count) + kFramePlacementOutputs * f;
+  }
+  std::size_t drawing_output_count() const { return frame_placement_output(frame_count); }
 
   // Input levels (how often an input changes): work on level-0 inputs runs once,
   // on the input and its rates once per value, on q once per Newton iterate.

@@ -187,13 +187,12 @@ std::vector<SlidingLinkTerms> sliding_links(const ConstraintSystem& system) {
       terms.push_back(loop);
     }
     for (const ex& term : terms) {
-      const LinkVector link = split_link_vector(term);
-      if (!link.polar) continue;
-      const ex length_rate = time_derivative(system, link.length);
-      const ex angle_rate = time_derivative(system, link.angle);
-      if (length_rate.is_zero() || angle_rate.is_zero()) continue;
-      found.push_back({k, link.length, link.angle, time_derivative(system, length_rate), length_rate * angle_rate,
-                       link.length * time_derivative(system, angle_rate), link.length * angle_rate * angle_rate});
+      if (!split_link_vector(term).polar) continue;
+      const LinkVectorMotion m = link_vector_motion(system, term);
+      if (m.length_rate.is_zero() || m.angle_rate.is_zero()) continue;
+      const ex& length = m.link.length;
+      found.push_back({k, length, m.link.angle, m.length_second_rate, m.length_rate * m.angle_rate,
+                       length * m.angle_second_rate, length * m.angle_rate * m.angle_rate});
     }
   }
   return found;
@@ -254,6 +253,7 @@ Derivation derive(const ConstraintSystem& system, DerivationScope scope) {
     d.points.push_back(motion);
   }
   if (full) d.sliding_links = sliding_links(system);
+  d.link_vectors = planar_link_vectors(system);
   return d;
 }
 

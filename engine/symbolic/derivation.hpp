@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "engine/constraints/constraint_system.hpp"
+#include "engine/symbolic/link_vectors.hpp"
 #include "engine/symbolic/solving_order.hpp"
 
 namespace kinema {
@@ -58,6 +59,9 @@ struct Derivation {
 
   std::vector<PointMotionFormulas> points;  ///< As ConstraintSystem::points.
   std::vector<SlidingLinkTerms> sliding_links;
+  /// Every link vector of a planar system with its motion (either scope: the drawings and
+  /// polygons of any view read them, evaluated by the compiled model).
+  PlanarLinkVectors link_vectors;
 };
 
 /// d/dt by the chain rule through q, qd, theta, thetad.

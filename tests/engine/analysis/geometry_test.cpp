@@ -23,7 +23,7 @@ bool near(std::complex<double> a, std::complex<double> b, double tolerance = 1e-
 
 TEST_CASE("engine/analysis/geometry: four-bar segments at a closed-form position") {
   const kinema::Model model = kinema::load_model(kinema_test::sample("four_bar.toml"));
-  const kinema::MechanismGeometry geometry(model.system);
+  const kinema::MechanismGeometry geometry(model);
   const kinema_unit::FourBar four_bar;
   for (double degrees : {40.0, 150.0, 290.0}) {
     CAPTURE(degrees);
@@ -60,7 +60,7 @@ TEST_CASE("engine/analysis/geometry: a slider's guide, and two loops each closin
   Eigen::VectorXd q = slider.kinematics.guess();
   REQUIRE(workspace.solve_position(60 * kDeg, q));
   MotionState state = workspace.motion(60 * kDeg, 1.0, 0.0, q);
-  const auto segments = kinema::MechanismGeometry(slider.system).segments(state);
+  const auto segments = kinema::MechanismGeometry(slider).segments(state);
   REQUIRE(segments.size() == 3);  // a e^{i t2}, b e^{i t3}, -(x + i e)
   CHECK(segments[0].kind == DrawingSegment::Kind::link);
   CHECK(segments[1].kind == DrawingSegment::Kind::link);
@@ -73,7 +73,7 @@ TEST_CASE("engine/analysis/geometry: a slider's guide, and two loops each closin
   const kinema::Model six = kinema::load_model(kinema_test::sample("problem_4_4_six_bar.toml"));
   const auto table = kinema::analyse(six, {30 * kDeg});
   REQUIRE(table.status(0) == kinema::Status::ok);
-  const auto drawn = kinema::MechanismGeometry(six.system).segments(table[0]);
+  const auto drawn = kinema::MechanismGeometry(six).segments(table[0]);
   REQUIRE(drawn.size() == 4 + 5);
   CHECK(near(drawn[0].from, 0));
   CHECK(near(drawn[3].to, 0, 1e-14));

@@ -29,7 +29,7 @@ const PolygonArrow* find_arrow(const kinema::Polygon& polygon, const std::string
 TEST_CASE("polygons: every named point's image is its velocity and acceleration, every loop closes") {
   for (const char* name : kinema_test::kSamples) {
     const kinema::Model model = kinema::load_model(kinema_test::sample(name));
-    const kinema::PolygonBuilder builder(model.system);
+    const kinema::PolygonBuilder builder(model);
     if (!model.system.frames.empty()) {
       CHECK_FALSE(builder.available());
       continue;
@@ -108,7 +108,7 @@ TEST_CASE("polygons: every named point's image is its velocity and acceleration,
 
 TEST_CASE("polygons: the four-bar's polygon as a textbook draws it") {
   const kinema::Model model = kinema::load_model(kinema_test::sample("four_bar.toml"));
-  const kinema::PolygonBuilder builder(model.system);
+  const kinema::PolygonBuilder builder(model);
   const double theta2 = 40 * M_PI / 180;
   const kinema::MotionTable table = kinema::analyse(model, {theta2});
   const kinema::MotionState s = table[0];
@@ -161,7 +161,7 @@ TEST_CASE("polygons: the four-bar's polygon as a textbook draws it") {
 TEST_CASE("polygons: a block sliding on a turning link has its Coriolis part 2 omega v_rel") {
   // Example 4.1 (R-TRR): the block B slides along the driver (AB = r), which turns at omega1.
   const kinema::Model model = kinema::load_model(kinema_test::sample("example_4_1_r_trr.toml"));
-  const kinema::PolygonBuilder builder(model.system);
+  const kinema::PolygonBuilder builder(model);
   const kinema::MotionTable table = kinema::analyse(model, model.system.input.values);
   const kinema::MotionState s = table[0];
   const auto polygons = builder.polygons(s);

@@ -146,3 +146,39 @@ TEST_CASE("the tape is the same whatever order GiNaC keeps the terms in") {
   }
   CHECK(orders_differed);  // else this test would show nothing
 }
+
+TEST_CASE("a stage apart reads the earlier stages' registers and changes none of their instructions") {
+  realsymbol t("t"), w("w"), a("a"), b("b");
+  const std::vector<ex> inputs{a, b, t, w};
+  const std::vector<int> levels{0, 0, 1, 2};
+  // a*cos(t) is used once in the first stage (fused into its sum there); the stage apart
+  // reads it again, alone and times w.
+  const std::vector<std::vector<ex>> solving{{a * cos(t) + b}, {a * sin(t) * w}};
+  const kinema::CompiledExpressions plain(inputs, levels, solving);
+  const kinema::CompiledExpressions with(inputs, levels, solving, {a * cos(t), a * cos(t) * w, sin(t) * b});
+  REQUIRE(with.stage_count() == 3);
+  for (std::size_t stage = 0; stage < 2; ++stage) {
+    CAPTURE(stage);
+    REQUIRE(with.stage_end(stage) == plain.stage_end(stage));
+    std::ostringstream plain_code, with_code;
+    kinema::write_tape_stage_cpp(plain_code, plain, {"a", "b", "t", "w"}, stage, {"out[0]"}, "");
+    kinema::write_tape_stage_cpp(with_code, with, {"a", "b", "t", "w"}, stage, {"out[0]"}, "");
+    CHECK(with_code.str() == plain_code.str());
+  }
+  std::vector<double> workspace = with.make_workspace();
+  const double av = 2.0, bv = 0.5, tv = 0.7, wv = 3.0;
+  workspace[0] = av;
+  workspace[1] = bv;
+  workspace[2] = tv;
+  workspace[3] = wv;
+  double out[3] = {0, 0, 0};
+  for (std::size_t stage = 0; stage < 3; ++stage) with.evaluate_stage(stage, workspace, out);
+  CHECK(out[0] == doctest::Approx(av * std::cos(tv)));
+  CHECK(out[1] == doctest::Approx(av * std::cos(tv) * wv));
+  CHECK(out[2] == doctest::Approx(std::sin(tv) * bv));
+  // Rerunning from the rate level only (its lower levels kept) gives the same.
+  workspace[3] = 2 * wv;
+  with.evaluate_stage_from(2, 2, workspace, out);
+  CHECK(out[0] == doctest::Approx(av * std::cos(tv)));
+  CHECK(out[1] == doctest::Approx(av * std::cos(tv) * 2 * wv));
+}

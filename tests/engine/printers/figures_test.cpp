@@ -381,7 +381,7 @@ TEST_CASE("engine/printers/figures: polygons fill the width at a round scale, ev
     const kinema::Model model = kinema::load_model(kinema_test::sample(name));
     const MotionTable values = kinema::analyse(model, model.system.input.values.empty() ? std::vector<double>{0.5}
                                                                                         : model.system.input.values);
-    const auto polygons = kinema::PolygonBuilder(model.system).polygons(values[0]);
+    const auto polygons = kinema::PolygonBuilder(model).polygons(values[0]);
     REQUIRE(polygons);
     const std::string tex = document(model, &values);
     std::size_t at = tex.find("\\subsubsection*{Velocity and acceleration polygons}");
@@ -478,7 +478,7 @@ TEST_CASE("engine/printers/figures: the drawing's axes, angle arcs, numbered blo
       const auto at = line.find("end angle=");
       if (at != std::string::npos) arcs.push_back(std::stod(line.substr(at + 10)));
     }
-    const kinema::MechanismGeometry geometry(model.system);
+    const kinema::MechanismGeometry geometry(model);
     for (const kinema::DrawingSegment& g : geometry.segments(values[0])) {
       if (g.coordinate < 0 || g.kind != kinema::DrawingSegment::Kind::link) continue;
       const double degrees = std::remainder(g.angle * 180 / M_PI, 360.0);

@@ -36,7 +36,7 @@ TEST_CASE("engine/analysis/motion_drawing: joints where the table's points are a
   const kinema::Model model =
       kinema::load_model(kinema_test::sample("triple_rocker_circuit.toml"), kinema::DerivationScope::evaluation);
   const kinema::MotionTable table = kinema::analyse(model, turn_in_degrees(10));
-  const kinema::MotionDrawing drawing = kinema::motion_drawing(model.system, table);
+  const kinema::MotionDrawing drawing = kinema::motion_drawing(model, table);
   REQUIRE(drawing.form == kinema::MotionDrawing::Form::linkage);
   REQUIRE(drawing.rows.size() == table.size());
   std::size_t unassembled = 0, compared = 0;

@@ -260,7 +260,7 @@ TEST_CASE("engine/printers/worked_solution: polygons drawn to scale read off the
         model.system.input.values.empty() ? std::vector<double>{0.3} : model.system.input.values;
     const MotionTable values = kinema::analyse(model, inputs);
     const std::string tex = document(model, &values, nullptr, true);
-    const kinema::PolygonBuilder builder(model.system);
+    const kinema::PolygonBuilder builder(model);
     const kinema::OutputScale scale(model.system);
     std::size_t at = 0;
     int figures = 0;
@@ -321,7 +321,7 @@ TEST_CASE("engine/printers/worked_solution: three methods, one answer for every 
     const std::vector<double> inputs =
         model.system.input.values.empty() ? std::vector<double>{0.3} : model.system.input.values;
     const MotionTable values = kinema::analyse(model, inputs);
-    const kinema::PolygonBuilder builder(model.system);
+    const kinema::PolygonBuilder builder(model);
     const kinema::OutputScale scale(model.system);
     const std::string tex = document(model, &values, nullptr, true);
     CHECK(has(tex, "\\subsubsection*{Instant centres}"));
@@ -350,7 +350,7 @@ TEST_CASE("engine/printers/worked_solution: three methods, one answer for every 
   const MotionTable one = kinema::analyse(loops, {40 * kDeg});
   const std::string tex = document(loops, &one, nullptr, true);
   CHECK(has(tex, "\\subsubsection*{Three methods, one answer}"));
-  const auto polygons = kinema::PolygonBuilder(loops.system).polygons(one[0]);
+  const auto polygons = kinema::PolygonBuilder(loops).polygons(one[0]);
   const auto centres = kinema::instant_centres(loops.system, one[0]);
   REQUIRE(polygons);
   REQUIRE(centres);

@@ -24,10 +24,12 @@ namespace {
 // Every counter the engine keeps of its work, in one snapshot.
 struct WorkDone {
   std::uint64_t values_solved = kinema::values_solved_in_process();
-  std::array<std::uint64_t, 4> work{kinema::work_done_in_process(Work::design_figures),
-                                    kinema::work_done_in_process(Work::dyad_derivation),
-                                    kinema::work_done_in_process(Work::chain_at_instant),
-                                    kinema::work_done_in_process(Work::drawing)};
+  std::array<std::uint64_t, static_cast<std::size_t>(Work::kCount)> work = counts();
+  static std::array<std::uint64_t, static_cast<std::size_t>(Work::kCount)> counts() {
+    std::array<std::uint64_t, static_cast<std::size_t>(Work::kCount)> done{};
+    for (std::size_t w = 0; w < done.size(); ++w) done[w] = kinema::work_done_in_process(static_cast<Work>(w));
+    return done;
+  }
   std::uint64_t operator[](Work w) const { return work[static_cast<std::size_t>(w)]; }
   bool operator==(const WorkDone& other) const { return values_solved == other.values_solved && work == other.work; }
 };
