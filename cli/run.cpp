@@ -19,6 +19,7 @@
 #include "engine/numeric/circuit.hpp"
 #include "engine/printers/code/cpp_header.hpp"
 #include "engine/printers/printer.hpp"
+#include "engine/run/circuit_run.hpp"
 #include "engine/run/results_stream.hpp"
 #include "engine/run/view.hpp"
 #include "engine/analysis/chain_instant.hpp"
@@ -55,75 +56,19 @@ const Printer& printer(PrintKind kind, const std::string& name) {
   return *found;
 }
 
+// A circuit as the command line asks for it (engine/run/circuit_run words its messages so).
+const CircuitAsked kCommandLineCircuit{"--circuit", "--circuit 1", "--angle"};
+
 const ResultsPrinter& results_printer(const std::string& format) {
   const ResultsPrinter* found = find_results_printer(format);
   if (!found) throw InputError("no output format \"" + format + "\"");
   return *found;
 }
 
-// --circuit STEP: the whole circuit solved from the one value given (or the file's) and
-// held in memory; refused with the reason when it cannot start, move or close.
-Circuit solve_circuit_from(const Model& model, const std::string& step_text, const std::vector<double>& inputs) {
-  const ConstraintSystem& m = model.system;
-  const SolvingPlan* frames = model.kinematics.closed_form();
-  if (frames == nullptr) {
-    throw InputError(m.source_file + ": --circuit follows a mechanism described by joints and links whose links "
-                     "all form dyads (solved in closed form); " +
-                     (m.plan ? std::string("this one has a group that is not a dyad")
-                                : std::string("this file is written as vector loops")));
-  }
-  CircuitSettings settings;
-  try {
-    settings.step = parse_input_value(m, step_text);
-  } catch (const Error& error) {
-    throw InputError("--circuit " + step_text + ": " + error.what());
-  }
-  if (!(settings.step > 0) || !std::isfinite(settings.step)) {
-    throw InputError("--circuit " + step_text + ": the step must be a positive number, e.g. --circuit 1");
-  }
-  if (inputs.size() > 1) throw InputError("--circuit starts at one value: give one --angle (or none: the file's)");
-  if (inputs.empty() && m.input.values.empty()) {
-    throw InputError(m.source_file + ": no input value to start the circuit at: give --angle VALUE or value = "
-                     "\"...\" under [input]");
-  }
-  settings.start = inputs.empty() ? m.input.values.front() : inputs.front();
-  settings.rate = m.input.rate_value;
-  settings.second_rate = m.input.second_rate_value;
-  // Rows are bounded by the chain's size too, and a crank's turn that cannot fit in them is
-  // refused before the walk (its rows would be computed first).
-  const std::size_t unknowns = std::max<std::size_t>(1, m.unknowns.size());
-  settings.max_rows = std::min(kMaxCircuitRows, kMaxCircuitRowUnknowns / unknowns);
-  if (m.input.dimension == Dimension::angle && 2 * kPi / settings.step > double(settings.max_rows)) {
-    throw InputError("--circuit " + step_text + ": a turn of the input is " +
-                     std::to_string(static_cast<unsigned long long>(std::min(std::ceil(2 * kPi / settings.step), 1e18))) +
-                     " rows, more than the " +
-                     std::to_string(settings.max_rows) + " rows a circuit of " + std::to_string(unknowns) +
-                     " unknowns may have (" + std::to_string(kMaxCircuitRowUnknowns) +
-                     " rows times unknowns: each row solves them all); give a step of at least " +
-                     format_significant(1.005 * 360.0 / double(settings.max_rows), 3) + " deg");
-  }
-  const Circuit circuit = solve_circuit(model.kinematics, settings);
-  switch (circuit.stop) {
-    case Circuit::Stop::closed: break;
-    case Circuit::Stop::start_open:
-      throw AssemblyError(m.source_file + ": the circuit cannot start at " + describe_input(m, settings.start) + ": " +
-                          describe_dyad(*m.plan, circuit.dyad) +
-                          " cannot close there on the assembly of the sketch; give another --angle");
-    case Circuit::Stop::locked:
-      throw AssemblyError(m.source_file + ": the circuit cannot move from " + describe_input(m, settings.start) +
-                          ": " + describe_dyad(*m.plan, circuit.dyad) +
-                          " is at a toggle on both sides (the mechanism is locked); check the lengths");
-    case Circuit::Stop::too_many_rows:
-      throw InputError(m.source_file + ": the circuit does not close within " + std::to_string(settings.max_rows) +
-                       " rows of --circuit " + step_text + "; give a larger step");
-  }
-  return circuit;
-}
-
 // kinema eval --circuit: the whole circuit solved, then printed a block of rows at a time.
 void write_circuit(const Model& model, const std::string& step_text, const std::vector<double>& inputs,
                    const std::string& format, int precision, const std::string& output_path) {
-  const Circuit circuit = solve_circuit_from(model, step_text, inputs);
+  const Circuit circuit = solve_circuit_from(model, step_text, inputs, kCommandLineCircuit);
   const ResultsPrinter* results = &results_printer(format);
   PrintJob job{model, &circuit.table};
   job.circuit = true;
@@ -164,7 +109,7 @@ void write_page_file(const Model& model, const std::string& sweep, const std::st
   std::optional<Circuit> circuit;
   MotionTable swept;
   if (!circuit_step.empty()) {
-    circuit = solve_circuit_from(model, circuit_step, inputs);
+    circuit = solve_circuit_from(model, circuit_step, inputs, kCommandLineCircuit);
   } else {
     if (!sweep.empty() && !inputs.empty()) throw InputError("page: give --sweep or --angle (the start of the default turn), not both");
     const double first = !inputs.empty() ? inputs.front() : m.input.values.empty() ? 0.0 : m.input.values.front();

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <variant>
@@ -19,6 +20,7 @@
 #include "engine/model.hpp"
 #include "engine/printers/printer.hpp"
 #include "engine/run/results_stream.hpp"
+#include "engine/run/circuit_run.hpp"
 #include "engine/run/view.hpp"
 #include "engine/analysis/output_scale.hpp"
 #include "engine/analysis/plot_range.hpp"
@@ -178,6 +180,54 @@ py::bytes npy_sweep(const PyModel& m, const Value& first, const Value& last, con
   return py::bytes(bytes);
 }
 
+/// The npy printer's bytes for a circuit (the program's `kinema eval --circuit STEP --format
+/// npy`: a direction and each dyad's sign a row), solved without the GIL.
+py::bytes npy_circuit(const PyModel& m, const std::string& step, const std::optional<Value>& start) {
+  std::vector<double> inputs;
+  if (start) {
+    const double* number = std::get_if<double>(&*start);
+    inputs.push_back(number ? *number : kinema::parse_input_value(m.engine->system, std::get<std::string>(*start)));
+  }
+  std::string bytes;
+  {
+    py::gil_scoped_release unlocked;
+    const kinema::Circuit circuit = kinema::solve_circuit_from(*m.engine, step, inputs, {"circuit step", "circuit(\"1 deg\")", "start="});
+    kinema::PrintJob job{*m.engine, &circuit.table};
+    job.circuit = true;
+    std::ostringstream out;
+    kinema::print_view(*kinema::find_results_printer("npy"), out, job);
+    bytes = out.str();
+  }
+  return py::bytes(bytes);
+}
+
+py::object numpy_array(const py::bytes& npy) {
+  return py::module_::import("numpy").attr("load")(py::module_::import("io").attr("BytesIO")(npy));
+}
+
+/// The derivation in a notebook (Jupyter renders it with MathJax): the align* blocks of
+/// `kinema derive --format latex`, each in $$...$$, without what MathJax does not read (the
+/// comments, \begingroup, the structure's text).
+std::string notebook_latex(const PyModel& m) {
+  const std::string latex = derivation(m, "loops", "latex");
+  const std::string begin = "\\begin{align*}", end = "\\end{align*}";
+  std::string shown;
+  for (std::size_t at = latex.find(begin); at != std::string::npos; at = latex.find(begin, at)) {
+    const std::size_t stop = latex.find(end, at) + end.size();
+    std::string block;
+    for (std::size_t i = at; i < stop; ++i) {
+      if (latex[i] == '%' && latex[i - 1] != '\\') {
+        while (i < stop && latex[i] != '\n') ++i;  // a comment, to the line's end
+        if (block.size() && block.back() == ' ') block.pop_back();
+      }
+      if (i < stop) block += latex[i];
+    }
+    shown += "$$" + block + "$$\n";
+    at = stop;
+  }
+  return shown;
+}
+
 /// `kinema page FILE`'s page: the worked solution's plotting range from the file's value
 /// (a turn of a crank), solved once, printed by the engine.
 std::string page(const PyModel& m) {
@@ -267,13 +317,21 @@ PYBIND11_MODULE(kinema, module) {
       .def(
           "sweep",
           [](const PyModel& m, const Value& first, const Value& last, const Value& step) {
-            const py::bytes npy = npy_sweep(m, first, last, step);
-            return py::module_::import("numpy").attr("load")(py::module_::import("io").attr("BytesIO")(npy));
+            return numpy_array(npy_sweep(m, first, last, step));
           },
           py::arg("first"), py::arg("last"), py::arg("step"),
           "From first to last by step (\"0 deg\", \"360 deg\", \"1 deg\"; or numbers in SI): a NumPy structured array "
           "with the fields and output units of `kinema eval --format npy` (units: Model.units).")
+      .def(
+          "circuit", [](const PyModel& m, const std::string& step, const std::optional<Value>& start) {
+            return numpy_array(npy_circuit(m, step, start));
+          },
+          py::arg("step"), py::arg("start") = py::none(),
+          "The whole circuit of a joints-and-links mechanism through its toggles by step (\"1 deg\"), from start (or "
+          "the file's value): the structured array of `kinema eval --circuit STEP --format npy` (a direction and each "
+          "dyad's sign a row).")
       .def("page", &page, "The page `kinema page FILE` writes (one self-contained HTML file).")
+      .def("_repr_latex_", &notebook_latex)
       .def(
           "_repr_html_",
           [](const PyModel& m) {
@@ -285,6 +343,13 @@ PYBIND11_MODULE(kinema, module) {
           })
       .def("__repr__", [](const PyModel& m) { return "<kinema.Model \"" + m.engine->system.title + "\">"; });
 
+  module.def(
+      "to_dataframe",
+      [](const py::object& table) {
+        const py::module_ pandas = py::module_::import("pandas");  // ImportError when pandas is not installed
+        return pandas.attr("DataFrame")(table);
+      },
+      py::arg("table"), "A sweep's or a circuit's structured array as a pandas DataFrame (a column a field).");
   module.def("load", [](const std::string& path) { return model_of(kinema::load_model(path)); }, py::arg("path"),
              "Reads a mechanism file (any of the three forms).");
   module.def(

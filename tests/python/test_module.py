@@ -142,3 +142,42 @@ def test_page_is_the_programs_and_shows_inline_in_a_frame(tmp_path):
     framed = inline[inline.index('srcdoc="') + len('srcdoc="'):-len('"></iframe>')]
     assert "<" not in framed and '"' not in framed  # the whole page as the attribute's text
     assert html.unescape(framed) == page
+
+
+def test_circuit_equals_the_programs_npy_field_by_field(tmp_path):
+    sample = SAMPLES / "triple_rocker_circuit.toml"
+    table = kinema.load(str(sample)).circuit("1 deg")
+    program("eval", str(sample), "--circuit", "1", "--format", "npy", "-o", str(tmp_path / "circuit.npy"))
+    expected = np.load(tmp_path / "circuit.npy")
+    assert table.dtype == expected.dtype
+    assert len(table) == len(expected) > 360  # through the toggles and back
+    for field in expected.dtype.names:
+        assert np.array_equal(table[field], expected[field], equal_nan=True), field
+
+
+def test_circuit_errors_say_why_in_the_modules_words():
+    with pytest.raises(kinema.InputError, match="four_bar.toml: circuit step follows a mechanism described by joints"):
+        kinema.load(str(SAMPLES / "four_bar.toml")).circuit("1 deg")
+    with pytest.raises(kinema.InputError, match=r'the step must be a positive number, e.g. circuit\("1 deg"\)'):
+        kinema.load(str(SAMPLES / "triple_rocker_circuit.toml")).circuit("-1 deg")
+
+
+def test_a_model_shows_its_derivation_in_a_notebook_as_the_programs_latex():
+    sample = SAMPLES / "four_bar.toml"
+    shown = kinema.load(str(sample))._repr_latex_()
+    latex = program("derive", str(sample), "--format", "latex").decode()
+    blocks = shown.split("$$")[1::2]
+    assert len(blocks) == latex.count("\\begin{align*}") >= 1
+    for block in blocks:
+        assert block.startswith("\\begin{align*}") and block.endswith("\\end{align*}")
+        assert "%" not in block  # MathJax reads no comments
+        for line in block.splitlines()[1:-1]:  # every row as the program prints it, its comment gone
+            assert any(line.strip() and printed.split(" % ")[0].rstrip() == line.rstrip() for printed in latex.splitlines()), line
+
+
+def test_to_dataframe_has_a_column_a_field():
+    table = kinema.load(str(SAMPLES / "four_bar.toml")).sweep("0 deg", "90 deg", "10 deg")
+    frame = kinema.to_dataframe(table)
+    assert list(frame.columns) == list(table.dtype.names)
+    assert len(frame) == len(table)
+    assert np.array_equal(frame["omega3"].to_numpy(), table["omega3"], equal_nan=True)
