@@ -20,6 +20,186 @@ using json = nlohmann::ordered_json;
 // A JSON string literal (quotes and escapes).
 std::string quoted(const std::string& text) { return json(text).dump(); }
 
+// One block's rows as JSON objects, the keys built once: the members of a row in order
+// (input, status, coordinates, points, frames, a linkage's blocks and sliders, a circuit's
+// branch), each number so that it reads back exactly (or to --precision digits), never NaN.
+class JsonRowWriter {
+ public:
+  JsonRowWriter(std::string& out, const PrintJob& job) : out_(out), job_(job), system_(job.model.system) {
+    for (const Coordinate& q : system_.unknowns) coordinate_keys_.push_back(quoted(q.name) + ": {\"value\": ");
+    for (const PointObservable& p : system_.points) point_keys_.push_back(quoted(p.name) + ": {\"position\": ");
+    for (const FrameObservable& f : system_.frames) frame_keys_.push_back(quoted(f.name) + ": {\"angular_velocity\": ");
+    blocks_ = block_links(system_);  // joints and links: once, not per row
+    for (const GuidePoint& g : guide_points(system_)) {
+      const SolvingPlan::Slider& slider = system_.plan->sliders[g.slider];
+      guide_keys_.push_back(quoted(g.name) + ": {\"slider\": " + quoted(system_.plan->joints[slider.joint].name) +
+                            ", \"link\": " + quoted(system_.plan->links[slider.guide - 1].name) + ", \"velocity\": ");
+    }
+    for (const RelativeTurning& r : relative_turnings(system_)) {
+      turning_keys_.push_back(quoted(r.rate_name) + ": {\"links\": [" + quoted(system_.plan->links[r.block - 1].name) +
+                              ", " + quoted(system_.plan->links[r.other - 1].name) + "], \"joint\": " +
+                              quoted(system_.plan->joints[r.joint].name) + ", \"second_rate_name\": " +
+                              quoted(r.second_rate_name) + ", \"rate\": ");
+    }
+    if (job.circuit)
+      for (const std::string& joint : dyad_inner_joints(system_)) branch_keys_.push_back(quoted(joint) + ": ");
+  }
+
+  /// A row's members after its "input" key: `values` are its result columns.
+  void row(const MotionTable& table, std::size_t row, const double* values, std::size_t columns, const OutputScale& scale) {
+    const Status status = table.status(row);
+    number(values[0]);
+    member(", \"input_rate\": ", values[1]);
+    member(", \"input_second_rate\": ", values[2]);
+    out_ += ", \"status\": \"";
+    out_ += status_name(status);
+    out_ += '"';
+    const std::string message = describe_failure(system_, table.input(row), table.failure(row));
+    if (!message.empty()) out_ += ", \"message\": " + quoted(message);
+    const double* v = coordinates(values + kInputColumns, status);
+    if (status != Status::unassembled) member(", \"loop_residual\": ", table.loop_residual(row) / scale.length);
+    v = points(v, status);
+    if (!system_.frames.empty()) v = frames(v, status);
+    if (system_.plan && status == Status::ok) linkage(v);
+    if (job_.circuit && status != Status::unassembled) branch(values + columns - branch_keys_.size());
+  }
+
+ private:
+  std::string& out_;
+  const PrintJob& job_;
+  const ConstraintSystem& system_;
+  std::vector<std::string> coordinate_keys_, point_keys_, frame_keys_, guide_keys_, turning_keys_, branch_keys_;
+  std::vector<std::pair<std::size_t, std::string>> blocks_;
+  char buffer_[kMaxNumberChars];
+
+  void number(double value) {
+    if (!std::isfinite(value)) {
+      out_ += "null";
+      return;
+    }
+    if (job_.precision > 0) value = round_significant(value, job_.precision);
+    out_.append(buffer_, put_shortest(buffer_, value));
+  }
+  void vector(const double* v, std::size_t dimension) {
+    out_ += '[';
+    for (std::size_t c = 0; c < dimension; ++c) {
+      if (c > 0) out_ += ", ";
+      number(v[c]);
+    }
+    out_ += ']';
+  }
+  // `text` (separator and key) then a number or a vector.
+  void member(const char* text, double value) {
+    out_ += text;
+    number(value);
+  }
+  void member_vector(const char* text, const double* v, std::size_t dimension) {
+    out_ += text;
+    vector(v, dimension);
+  }
+
+  const double* coordinates(const double* v, Status status) {
+    out_ += ", \"coordinates\": {";
+    for (std::size_t i = 0; i < system_.unknowns.size(); ++i, v += 3) {
+      if (status == Status::unassembled) continue;
+      if (i > 0) out_ += ", ";
+      out_ += coordinate_keys_[i];
+      number(v[0]);
+      member(", \"rate\": ", v[1]);
+      member(", \"second_rate\": ", v[2]);
+      out_ += '}';
+    }
+    out_ += '}';
+    return v;
+  }
+
+  const double* points(const double* v, Status status) {
+    out_ += ", \"points\": {";
+    for (std::size_t p = 0; p < system_.points.size(); ++p) {
+      const std::size_t d = system_.points[p].components.size();
+      if (status == Status::ok) {
+        if (p > 0) out_ += ", ";
+        out_ += point_keys_[p];
+        vector(v, d);
+        member_vector(", \"velocity\": ", v + d, d);
+        member(", \"speed\": ", v[2 * d]);
+        member_vector(", \"acceleration\": ", v + 2 * d + 1, d);
+        member(", \"acceleration_magnitude\": ", v[3 * d + 1]);
+        out_ += '}';
+      }
+      v += 3 * d + 2;
+    }
+    out_ += '}';
+    return v;
+  }
+
+  // Spatial chains: each frame's w and alpha.
+  const double* frames(const double* v, Status status) {
+    out_ += ", \"frames\": {";
+    for (std::size_t f = 0; f < system_.frames.size(); ++f, v += 6) {
+      if (status != Status::ok) continue;
+      out_ += (f > 0 ? ", " : "") + frame_keys_[f];
+      vector(v, 3);
+      member_vector(", \"angular_acceleration\": ", v + 3, 3);
+      out_ += '}';
+    }
+    out_ += '}';
+    return v;
+  }
+
+  // Joints and links: blocks, then sliders, then the guides' points and the relative turnings.
+  void linkage(const double* v) {
+    out_ += ", \"blocks\": {";
+    for (std::size_t k = 0; k < blocks_.size(); ++k, v += 3) {
+      out_ += (k > 0 ? ", " : "") + quoted(system_.plan->links[blocks_[k].first - 1].name) + ": {\"angle\": ";
+      number(v[0]);
+      member(", \"rate\": ", v[1]);
+      member(", \"second_rate\": ", v[2]);
+      out_ += '}';
+    }
+    out_ += "}, \"sliders\": {";
+    const auto& sliders = system_.plan->sliders;
+    for (std::size_t k = 0; k < sliders.size(); ++k, v += 6) {
+      out_ += (k > 0 ? ", " : "") + quoted(system_.plan->joints[sliders[k].joint].name) + ": ";
+      member_vector("{\"relative_velocity\": ", v, 2);
+      member_vector(", \"relative_acceleration\": ", v + 2, 2);
+      member_vector(", \"coriolis\": ", v + 4, 2);
+      out_ += '}';
+    }
+    out_ += '}';
+    if (!guide_keys_.empty()) {  // the guide's point under each slider on a moving guide
+      out_ += ", \"guide_points\": {";
+      for (std::size_t k = 0; k < guide_keys_.size(); ++k, v += 4) {
+        out_ += (k > 0 ? ", " : "") + guide_keys_[k];
+        vector(v, 2);
+        member_vector(", \"acceleration\": ", v + 2, 2);
+        out_ += '}';
+      }
+      out_ += '}';
+    }
+    if (!turning_keys_.empty()) {  // each slider block relative to a link it is pinned to
+      out_ += ", \"relative_turnings\": {";
+      for (std::size_t k = 0; k < turning_keys_.size(); ++k, v += 2) {
+        out_ += (k > 0 ? ", " : "") + turning_keys_[k];
+        number(v[0]);
+        member(", \"second_rate\": ", v[1]);
+        out_ += '}';
+      }
+      out_ += '}';
+    }
+  }
+
+  // Each dyad's assembly sign along a circuit, by its inner joint.
+  void branch(const double* signs) {
+    out_ += ", \"branch\": {";
+    for (std::size_t k = 0; k < branch_keys_.size(); ++k) {
+      out_ += (k > 0 ? ", " : "") + branch_keys_[k];
+      number(signs[k]);
+    }
+    out_ += '}';
+  }
+};
+
 class JsonPrinter : public ResultsPrinter {
  public:
   const char* name() const override { return "json"; }
@@ -103,157 +283,10 @@ class JsonPrinter : public ResultsPrinter {
     const std::size_t columns = result_column_count(system, job.circuit);
     std::vector<double> block((last - first) * columns);
     result_rows(system, scale, table, first, last, block.data());
-    std::vector<std::string> coordinate_keys, point_keys, frame_keys;
-    for (const Coordinate& q : system.unknowns) coordinate_keys.push_back(quoted(q.name) + ": {\"value\": ");
-    for (const PointObservable& p : system.points) point_keys.push_back(quoted(p.name) + ": {\"position\": ");
-    for (const FrameObservable& f : system.frames) frame_keys.push_back(quoted(f.name) + ": {\"angular_velocity\": ");
-    const auto blocks = block_links(system);  // joints and links: once, not per row
-    std::vector<std::string> guide_keys, turning_keys;
-    for (const GuidePoint& g : guide_points(system)) {
-      const SolvingPlan::Slider& slider = system.plan->sliders[g.slider];
-      guide_keys.push_back(quoted(g.name) + ": {\"slider\": " + quoted(system.plan->joints[slider.joint].name) +
-                           ", \"link\": " + quoted(system.plan->links[slider.guide - 1].name) + ", \"velocity\": ");
-    }
-    for (const RelativeTurning& r : relative_turnings(system)) {
-      turning_keys.push_back(quoted(r.rate_name) + ": {\"links\": [" + quoted(system.plan->links[r.block - 1].name) +
-                             ", " + quoted(system.plan->links[r.other - 1].name) + "], \"joint\": " +
-                             quoted(system.plan->joints[r.joint].name) + ", \"second_rate_name\": " +
-                             quoted(r.second_rate_name) + ", \"rate\": ");
-    }
-    std::vector<std::string> branch_keys;
-    if (job.circuit)
-      for (const std::string& joint : dyad_inner_joints(system)) branch_keys.push_back(quoted(joint) + ": ");
-    char buffer[kMaxNumberChars];
-    // Every double so that it reads back exactly, or rounded to --precision digits;
-    // never NaN or infinity (not JSON): null.
-    const auto number = [&](double value) {
-      if (!std::isfinite(value)) {
-        out += "null";
-        return;
-      }
-      if (job.precision > 0) value = round_significant(value, job.precision);
-      out.append(buffer, put_shortest(buffer, value));
-    };
-    const auto vector = [&](const double* v, std::size_t dimension) {
-      out += '[';
-      for (std::size_t c = 0; c < dimension; ++c) {
-        if (c > 0) out += ", ";
-        number(v[c]);
-      }
-      out += ']';
-    };
-    // `text` (separator and key) then a number or a vector.
-    const auto member = [&](const char* text, double value) {
-      out += text;
-      number(value);
-    };
-    const auto member_vector = [&](const char* text, const double* v, std::size_t dimension) {
-      out += text;
-      vector(v, dimension);
-    };
+    JsonRowWriter writer(out, job);
     for (std::size_t row = first; row < last; ++row) {
-      const double* values = block.data() + (row - first) * columns;
-      const Status status = table.status(row);
       out += run_row + (row - first) == 0 ? "\n    {\"input\": " : ",\n    {\"input\": ";
-      number(values[0]);
-      member(", \"input_rate\": ", values[1]);
-      member(", \"input_second_rate\": ", values[2]);
-      out += ", \"status\": \"";
-      out += status_name(status);
-      out += '"';
-      const std::string message = describe_failure(system, table.input(row), table.failure(row));
-      if (!message.empty()) out += ", \"message\": " + quoted(message);
-      out += ", \"coordinates\": {";
-      const double* v = values + kInputColumns;
-      for (std::size_t i = 0; i < system.unknowns.size(); ++i, v += 3) {
-        if (status == Status::unassembled) continue;
-        if (i > 0) out += ", ";
-        out += coordinate_keys[i];
-        number(v[0]);
-        member(", \"rate\": ", v[1]);
-        member(", \"second_rate\": ", v[2]);
-        out += '}';
-      }
-      out += '}';
-      if (status != Status::unassembled) {
-        member(", \"loop_residual\": ", table.loop_residual(row) / scale.length);
-      }
-      out += ", \"points\": {";
-      for (std::size_t p = 0; p < system.points.size(); ++p) {
-        const std::size_t d = system.points[p].components.size();
-        if (status == Status::ok) {
-          if (p > 0) out += ", ";
-          out += point_keys[p];
-          vector(v, d);
-          member_vector(", \"velocity\": ", v + d, d);
-          member(", \"speed\": ", v[2 * d]);
-          member_vector(", \"acceleration\": ", v + 2 * d + 1, d);
-          member(", \"acceleration_magnitude\": ", v[3 * d + 1]);
-          out += '}';
-        }
-        v += 3 * d + 2;
-      }
-      out += '}';
-      if (!system.frames.empty()) {  // spatial chains: each frame's w and alpha
-        out += ", \"frames\": {";
-        for (std::size_t f = 0; f < system.frames.size(); ++f, v += 6) {
-          if (status != Status::ok) continue;
-          out += (f > 0 ? ", " : "") + frame_keys[f];
-          vector(v, 3);
-          member_vector(", \"angular_acceleration\": ", v + 3, 3);
-          out += '}';
-        }
-        out += '}';
-      }
-      if (system.plan && status == Status::ok) {  // joints and links: blocks, then sliders
-        out += ", \"blocks\": {";
-        for (std::size_t k = 0; k < blocks.size(); ++k, v += 3) {
-          out += (k > 0 ? ", " : "") + quoted(system.plan->links[blocks[k].first - 1].name) + ": {\"angle\": ";
-          number(v[0]);
-          member(", \"rate\": ", v[1]);
-          member(", \"second_rate\": ", v[2]);
-          out += '}';
-        }
-        out += "}, \"sliders\": {";
-        const auto& sliders = system.plan->sliders;
-        for (std::size_t k = 0; k < sliders.size(); ++k, v += 6) {
-          out += (k > 0 ? ", " : "") + quoted(system.plan->joints[sliders[k].joint].name) + ": ";
-          member_vector("{\"relative_velocity\": ", v, 2);
-          member_vector(", \"relative_acceleration\": ", v + 2, 2);
-          member_vector(", \"coriolis\": ", v + 4, 2);
-          out += '}';
-        }
-        out += '}';
-        if (!guide_keys.empty()) {  // the guide's point under each slider on a moving guide
-          out += ", \"guide_points\": {";
-          for (std::size_t k = 0; k < guide_keys.size(); ++k, v += 4) {
-            out += (k > 0 ? ", " : "") + guide_keys[k];
-            vector(v, 2);
-            member_vector(", \"acceleration\": ", v + 2, 2);
-            out += '}';
-          }
-          out += '}';
-        }
-        if (!turning_keys.empty()) {  // each slider block relative to a link it is pinned to
-          out += ", \"relative_turnings\": {";
-          for (std::size_t k = 0; k < turning_keys.size(); ++k, v += 2) {
-            out += (k > 0 ? ", " : "") + turning_keys[k];
-            number(v[0]);
-            member(", \"second_rate\": ", v[1]);
-            out += '}';
-          }
-          out += '}';
-        }
-      }
-      if (job.circuit && status != Status::unassembled) {  // each dyad's assembly sign, by its inner joint
-        const double* signs = values + columns - branch_keys.size();
-        out += ", \"branch\": {";
-        for (std::size_t k = 0; k < branch_keys.size(); ++k) {
-          out += (k > 0 ? ", " : "") + branch_keys[k];
-          number(signs[k]);
-        }
-        out += '}';
-      }
+      writer.row(table, row, block.data() + (row - first) * columns, columns, scale);
       out += '}';
     }
   }
