@@ -2,6 +2,7 @@
 // it names: the polygons' and the instant centres' figures share this one placing.
 #pragma once
 
+#include <cmath>
 #include <complex>
 #include <string>
 #include <vector>
@@ -24,6 +25,12 @@ struct LabelBox {
 /// its glyphs estimated from the Computer Modern widths, never much under them (sub- and
 /// superscripts stacked, markup not counted).
 LabelBox label_box(const std::string& latex, double font_pt, double pad_pt, std::complex<double> centre = 0);
+
+/// A circled label's box (a link's number): the circle round `text`'s box, as TikZ draws it.
+inline LabelBox circled(LabelBox text) {
+  text.half_width = text.half_height = std::hypot(text.half_width, text.half_height);
+  return text;
+}
 
 /// How far a label may stand from what it names: one label height.
 inline double label_reach(const LabelBox& box) { return 2 * box.half_height; }

@@ -1,0 +1,120 @@
+// The labels of the worked solution's figures read back from the TikZ every sample's
+// document writes: each label's box from its text at its font, the lines and areas as drawn.
+#include <doctest/doctest.h>
+
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "engine/analysis/plot_range.hpp"
+#include "engine/printers/printer.hpp"
+#include "engine/run/view.hpp"
+#include "tests/engine/printers/tikz_reader.hpp"
+#include "tests/engine/unit_support.hpp"
+#include "tests/test_support.hpp"
+
+namespace {
+
+using kinema_test::TikzFigure;
+
+// Coordinates are written to 0.001 cm and boxes are estimates: a touch this deep is no overlap.
+constexpr double kSlack = 0.005;
+
+kinema::LabelBox shrunk(kinema::LabelBox box) {
+  box.half_width -= kSlack;
+  box.half_height -= kSlack;
+  return box;
+}
+
+std::string where(const kinema::LabelBox& box) {
+  std::ostringstream s;
+  s << "(" << box.centre.real() << "," << box.centre.imag() << ")";
+  return s.str();
+}
+
+// What is wrong with each label of a figure: on another label, crossed by a line it does
+// not label (a label on an arrow's own statement names that arrow), or on a hatching, a
+// block or a dot.
+std::vector<std::string> label_problems(const TikzFigure& figure) {
+  std::vector<std::string> problems;
+  for (std::size_t i = 0; i < figure.labels.size(); ++i) {
+    const kinema_test::TikzLabel& label = figure.labels[i];
+    const kinema::LabelBox box = shrunk(label.box);
+    const std::string name = label.text + " at " + where(label.box);
+    for (std::size_t j = 0; j < i; ++j)
+      if (box.overlaps(shrunk(figure.labels[j].box))) problems.push_back(name + " on label " + figure.labels[j].text);
+    for (const kinema_test::TikzLine& line : figure.lines) {
+      if (line.statement == label.statement || box.distance_to_segment(line.a, line.b) >= line.half_width) continue;
+      std::ostringstream s;
+      s << name << " crossed by the line " << line.a << "-" << line.b;
+      problems.push_back(s.str());
+    }
+    for (const kinema_test::TikzArea& area : figure.areas)
+      if (area.statement != label.statement && kinema_test::box_meets_area(box, area, 0))
+        problems.push_back(name + " on a " + area.kind);
+  }
+  return problems;
+}
+
+std::string document_at_first_value(const kinema::Model& model) {
+  const kinema::Printer* printer = kinema::find_printer(kinema::PrintKind::document, "latex");
+  REQUIRE(printer != nullptr);
+  const kinema::MotionTable values =
+      kinema::analyse(model, {model.system.input.values.empty() ? 0.5 : model.system.input.values.front()});
+  kinema::PrintJob job{model, &values, nullptr};
+  job.fragment = true;
+  std::ostringstream out;
+  kinema::print_view(*printer, out, job);
+  return out.str();
+}
+
+}  // namespace
+
+// Issue 32: labels lay on links, guides, Kennedy lines and arrows, and on the ground's
+// hatching (the drawing placed its letters and numbers by fixed offsets; the polygons and
+// centres kept labels off one another only). Read back from every sample's drawing,
+// polygons and instant centres: no label on another, crossed by a line it does not name,
+// or on a hatching, block or dot.
+TEST_CASE("figures: no label of any sample's figures on another label, a line, a hatching, a block or a dot") {
+  int figures = 0;
+  for (const char* name : kinema_test::kSamples) {
+    const std::string tex = document_at_first_value(kinema::load_model(kinema_test::sample(name)));
+    int index = 0;
+    for (const std::string& text : kinema_test::plane_figures(tex)) {
+      ++figures;
+      const TikzFigure figure = kinema_test::read_tikz(text);
+      const std::vector<std::string> problems = label_problems(figure);
+      for (const std::string& p : problems) MESSAGE(std::string(name) << ", figure " << index << " (" << figure.labels.size() << " labels): " << p);
+      CAPTURE(name);
+      CAPTURE(index);
+      CHECK(problems.empty());
+      ++index;
+    }
+  }
+  CHECK(figures >= 40);  // drawings, polygons and instant centres of the planar samples
+}
+
+// The reader itself: a label on a line, one on a hatching and two on one another are found;
+// apart, none is.
+TEST_CASE("figures: the TikZ reader finds a label on a line, on a hatching and on another label") {
+  const std::string apart =
+      "\\draw[very thick] (0,0) -- (4,0);\n"
+      "\\fill[pattern=north east lines, rotate around={90:(6,0)}] (6,0) rectangle ++(2,-0.15);\n"
+      "\\node[font=\\scriptsize, inner sep=0pt] at (1,1) {$B$};\n"
+      "\\node[circle, draw, inner sep=1pt, font=\\scriptsize] at (2,1) {2};\n";
+  CHECK(label_problems(kinema_test::read_tikz(apart)).empty());
+  const std::string on_line = "\\draw[very thick] (0,0) -- (4,0);\n\\node[font=\\scriptsize] at (1,0.05) {$B$};\n";
+  CHECK(label_problems(kinema_test::read_tikz(on_line)).size() == 1);
+  // The hatching is turned to stand from (6,0) to (6,2) on the guide's right: a label at (6.08,1) is on it.
+  const std::string on_hatching =
+      "\\fill[pattern=north east lines, rotate around={90:(6,0)}] (6,0) rectangle ++(2,-0.15);\n"
+      "\\node[font=\\scriptsize, inner sep=0pt] at (6.08,1) {$B$};\n\\node[font=\\scriptsize, inner sep=0pt] at (5.5,1) {$C$};\n";
+  const auto hatched = label_problems(kinema_test::read_tikz(on_hatching));
+  REQUIRE(hatched.size() == 1);
+  CHECK(hatched[0].find("$B$") == 0);
+  const std::string on_label = "\\node[font=\\small] at (1,1) {B};\n\\node[below, font=\\small] at (1,1.3) {C};\n";
+  CHECK(label_problems(kinema_test::read_tikz(on_label)).size() == 1);
+  // A label at its own arrow's tip is not crossed by the arrow it names.
+  const std::string tip = "\\draw[-latex, red, thick] (0,0) -- ++(1,0) node[anchor=west, inner sep=1pt, font=\\scriptsize] {$v$};\n";
+  CHECK(label_problems(kinema_test::read_tikz(tip)).empty());
+}
