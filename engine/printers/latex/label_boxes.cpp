@@ -80,6 +80,23 @@ double LabelBox::distance_to_segment(std::complex<double> a, std::complex<double
   return std::min({distance_to(a), distance_to(b), distance_to(a + (b - a) * ((lo + hi) / 2))});
 }
 
+bool LabelBox::meets(const std::vector<std::complex<double>>& corners) const {
+  // Separating axes: the box's two and each edge's normal; apart on one of them, apart.
+  std::vector<std::complex<double>> axes = {{1, 0}, {0, 1}};
+  for (std::size_t k = 0; k < corners.size(); ++k) {
+    const std::complex<double> edge = corners[(k + 1) % corners.size()] - corners[k];
+    if (std::abs(edge) > 0) axes.push_back(edge * std::complex<double>(0, 1) / std::abs(edge));
+  }
+  for (const std::complex<double>& axis : axes) {
+    const auto along = [&](std::complex<double> p) { return p.real() * axis.real() + p.imag() * axis.imag(); };
+    const double reach = half_width * std::fabs(axis.real()) + half_height * std::fabs(axis.imag());
+    double lo = INFINITY, hi = -INFINITY;
+    for (const std::complex<double>& p : corners) lo = std::min(lo, along(p)), hi = std::max(hi, along(p));
+    if (hi <= along(centre) - reach || lo >= along(centre) + reach) return false;
+  }
+  return true;
+}
+
 LabelBox label_box(const std::string& latex, double font_pt, double pad_pt, std::complex<double> centre) {
   // A script is 3/4 of \scriptsize's size, 7/10 of \small's; stacked scripts (a^{n}_{B})
   // take the wider one's width.
@@ -105,63 +122,113 @@ LabelBox label_box(const std::string& latex, double font_pt, double pad_pt, std:
   return {centre, (width / 2 + pad_pt) * kCmPerPt, (0.6 * font_pt + pad_pt) * kCmPerPt};
 }
 
-bool LabelBoxes::free(const LabelBox& box) const {
-  for (const LabelBox& o : boxes_)
-    if (o.overlaps(box)) return false;
-  return true;
+void LabelBoxes::add_line(std::complex<double> a, std::complex<double> b, double half_width) {
+  lines_.push_back({a, b, half_width});
 }
 
-LabelBox LabelBoxes::place_first_free(const std::vector<LabelBox>& candidates) {
+double LabelBoxes::cost(const LabelBox& c, const Line* except) const {
+  // Lines and areas kept a point clear of, as a reader sees a label touching one as on it.
+  constexpr double clearance = 1 * kCmPerPt;
+  const LabelBox widened{c.centre, c.half_width + clearance, c.half_height + clearance};
+  const double met = 2 * c.half_width * c.half_height;
+  double cost = 0;
+  for (const LabelBox& o : boxes_)
+    cost += std::max(0.0, o.half_width + c.half_width - std::fabs(o.centre.real() - c.centre.real())) *
+            std::max(0.0, o.half_height + c.half_height - std::fabs(o.centre.imag() - c.centre.imag()));
+  for (const Line& line : lines_)
+    if (&line != except && widened.distance_to_segment(line.a, line.b) < line.half_width) cost += met;
+  for (const auto& area : areas_)
+    if (widened.meets(area)) cost += met;
+  return cost;
+}
+
+LabelBox LabelBoxes::place_first_free(const std::vector<LabelBox>& candidates, const Line* except) {
   const LabelBox* chosen = nullptr;
   double least = INFINITY;
   for (const LabelBox& c : candidates) {
-    double overlap = 0;
-    for (const LabelBox& o : boxes_)
-      overlap += std::max(0.0, o.half_width + c.half_width - std::fabs(o.centre.real() - c.centre.real())) *
-                 std::max(0.0, o.half_height + c.half_height - std::fabs(o.centre.imag() - c.centre.imag()));
+    const double overlap = cost(c, except);
     if (overlap < least) {
       least = overlap;
       chosen = &c;
     }
     if (overlap == 0) break;
   }
+  last_cost_ = least;
   boxes_.push_back(*chosen);
   return *chosen;
 }
 
-LabelBox LabelBoxes::place_near(std::complex<double> at, const LabelBox& size, double preferred) {
+std::vector<LabelBox> LabelBoxes::place_all(const std::vector<LabelRequest>& requests) {
+  std::vector<std::size_t> order(requests.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::vector<LabelBox> best;
+  LabelBoxes best_figure;
+  std::size_t fewest = requests.size() + 1;
+  for (int round = 0; round < 4; ++round) {
+    LabelBoxes trial = *this;
+    std::vector<LabelBox> placed(requests.size());
+    std::vector<std::size_t> crowded, free;
+    for (std::size_t k : order) {
+      placed[k] = trial.place(requests[k]);
+      (trial.last_cost_ > 0 ? crowded : free).push_back(k);
+    }
+    if (crowded.size() < fewest) {
+      fewest = crowded.size();
+      best = placed;
+      best_figure = trial;
+    }
+    if (crowded.empty()) break;
+    order = crowded;
+    order.insert(order.end(), free.begin(), free.end());
+  }
+  *this = best_figure;
+  return best;
+}
+
+LabelBox LabelBoxes::place_near(const LabelBox& named, const LabelBox& size, double preferred) {
   std::vector<LabelBox> candidates;
   const double reach = label_reach(size);
-  for (double gap : {0.12, 0.4, 0.7, 0.95}) {
-    for (int k = 0; k < 24; ++k) {
-      const double angle = preferred + (k % 2 ? 1 : -1) * ((k + 1) / 2) * kPi / 12;
+  // The distance between two boxes' nearest points.
+  const auto apart = [&](const LabelBox& c) {
+    return std::hypot(std::max(std::fabs(c.centre.real() - named.centre.real()) - c.half_width - named.half_width, 0.0),
+                      std::max(std::fabs(c.centre.imag() - named.centre.imag()) - c.half_height - named.half_height, 0.0));
+  };
+  // Within a label's height first; only where all that is taken, a little further.
+  for (double gap : {0.12, 0.3, 0.5, 0.7, 0.85, 0.95, 1.2, 1.5}) {
+    for (int k = 0; k < 48; ++k) {
+      const double angle = preferred + (k % 2 ? 1 : -1) * ((k + 1) / 2) * kPi / 24;
       const std::complex<double> along(std::cos(angle), std::sin(angle));
-      // The distance out along `along` at which the box stands `gap` label heights off `at`.
-      double lo = 0, hi = size.half_width + size.half_height + reach;
+      // The distance out along `along` at which the box stands `gap` label heights off what it names.
+      double lo = 0, hi = named.half_width + named.half_height + size.half_width + size.half_height + 2 * reach;
       for (int step = 0; step < 40; ++step) {
         const double mid = (lo + hi) / 2;
-        if (LabelBox{at + mid * along, size.half_width, size.half_height}.distance_to(at) < gap * reach) lo = mid;
+        if (apart({named.centre + mid * along, size.half_width, size.half_height}) < gap * reach) lo = mid;
         else hi = mid;
       }
-      candidates.push_back({at + hi * along, size.half_width, size.half_height});
+      candidates.push_back({named.centre + hi * along, size.half_width, size.half_height});
     }
   }
   return place_first_free(candidates);
 }
 
-LabelBox LabelBoxes::place_along(std::complex<double> a, std::complex<double> b, const LabelBox& size) {
+LabelBox LabelBoxes::place_along(std::complex<double> a, std::complex<double> b, const LabelBox& size, bool on_it) {
   std::vector<LabelBox> candidates;
   const std::complex<double> across = (b - a) / std::abs(b - a) * std::complex<double>(0, 1);
   // On it, then to either side, a little further each time; nearest the middle first.
   // Past its ends too, where a label is still within reach of it.
   for (double side : {0.0, 1.0, -1.0, 1.5, -1.5, 2.0, -2.0, 2.5, -2.5, 3.0, -3.0, 3.5, -3.5}) {
+    if (side == 0 && !on_it) continue;
     for (int k = 0; k < 35; ++k) {
       const double t = 0.5 + (k % 2 ? 1 : -1) * ((k + 1) / 2) * 0.05;
       const LabelBox c{a + (b - a) * t + across * (side * size.half_height), size.half_width, size.half_height};
       if (c.distance_to_segment(a, b) <= label_reach(size)) candidates.push_back(c);
     }
   }
-  return place_first_free(candidates);
+  // The line itself, when the label may stand on it.
+  const Line* itself = nullptr;
+  for (const Line& line : lines_)
+    if (on_it && ((line.a == a && line.b == b) || (line.a == b && line.b == a))) itself = &line;
+  return place_first_free(candidates, itself);
 }
 
 }  // namespace kinema
