@@ -1,6 +1,6 @@
 // kinema page's targets (issue 35), measured in headless chromium: the file's size, the time
-// from opening it to its first frame drawn, and frame times while it plays with arrows and
-// paths on (requestAnimationFrame deltas kept by the page). Written in docs/page.md.
+// from opening it to its first frame drawn, and frame times while it plays with arrows,
+// paths, polygons and instant centres on (requestAnimationFrame deltas kept by the page). Written in docs/page.md.
 //   node bench/page_timing.js PAGE.html CHROMIUM MODULES_DIR   (MODULES_DIR: build/tests/browser/node_modules)
 'use strict';
 const fs = require('fs');
@@ -19,6 +19,8 @@ const { chromium } = require(path.resolve(modulesDir, 'playwright-core'));
   const navigation = await page.evaluate(() => performance.getEntriesByType('navigation')[0].toJSON());
   await page.evaluate(() => {
     document.getElementById('show-acceleration').click();
+    const centres = document.getElementById('show-centres');
+    if (centres) centres.click();
     document.getElementById('speed').value = '60';
     window.kinemaPage.setPlaying(true);
   });

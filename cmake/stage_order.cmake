@@ -42,9 +42,12 @@ set(KINEMA_STAGES
 
 # Upward includes that the reshaping of issue 34 has yet to remove: "file -> header".
 # The list only shrinks: a new upward include fails configure, and so does an entry whose
-# file no longer includes upward (remove it).
-set(KINEMA_STAGE_ORDER_PENDING
-  "engine/model.cpp -> engine/analysis/output_scale.hpp")
+# file no longer includes upward (remove it). Empty: every include runs downward. In
+# script mode -DPENDING=<list> gives a list of its own (the check's own test, a small tree).
+set(KINEMA_STAGE_ORDER_PENDING "")
+if(CMAKE_SCRIPT_MODE_FILE AND DEFINED PENDING)
+  set(KINEMA_STAGE_ORDER_PENDING "${PENDING}")
+endif()
 
 # Headers that solve (derive, differentiate, simplify, order the equations, or solve,
 # compile or run a tape): a printer includes none of them. A printer formats what the

@@ -1,9 +1,9 @@
 #include "engine/model.hpp"
 
 #include "chains/spatial_chain.hpp"
+#include "engine/constraints/output_columns.hpp"  // check_column_names: the output columns named apart before any run
 #include "engine/numeric/assemblies.hpp"
 #include "engine/numeric/sweep.hpp"
-#include "engine/analysis/output_scale.hpp"  // check_column_names: the output columns named apart before any run
 #include "readers/mechanism_file.hpp"
 #include "linkages/linkage_loops.hpp"
 #include "loops/planar_loops.hpp"

@@ -33,7 +33,7 @@ double LinkageWriter::length_value(const Body& body, std::size_t ja, std::size_t
 }
 
 // The same distance as a factor of a term.
-std::string LinkageWriter::length_factor(const Body& body, std::size_t ja, std::size_t jb) {
+Operand LinkageWriter::length_factor(const Body& body, std::size_t ja, std::size_t jb) {
   const std::string& a = linkage_.joints[ja].name;
   const std::string& b = linkage_.joints[jb].name;
   const std::string pair = a < b ? a + b : b + a;
@@ -41,7 +41,7 @@ std::string LinkageWriter::length_factor(const Body& body, std::size_t ja, std::
   if (const std::string* text = given_length(body, a, b)) {
     return as_factor(*text, pair, Dimension::length, body.link->where, "link " + body.name + " length");
   }
-  return add_parameter(pair, value, Dimension::length, body.link->where);
+  return {add_parameter(pair, value, Dimension::length, body.link->where)};
 }
 
 // The angle of the vector from the body's first joint to joint j, minus the body's
@@ -87,31 +87,25 @@ double LinkageWriter::offset(const Body& body, std::size_t j, double d_first_j) 
 
 // factor * e^{i(angle + beta)} as a term of a loop.
 // An angle written as a formula (`beta`) stays that formula in the loop.
-Term LinkageWriter::rotated(const std::string& factor, const std::string& angle, double beta,
+Term LinkageWriter::rotated(const Operand& factor, const std::string& angle, double beta,
                             const std::string& beta_name, const SourceLocation& where, const std::string& written) {
   const double tolerance = 1e-12;
-  bool negative = false;
-  std::string unit;  // "" = 1, or "I"
-  std::string argument = angle;
+  Term term{false, false, factor, {}};
+  if (angle != "0") term.angle.push_back({angle});
   if (!written.empty()) {
-    const std::string term = is_identifier(written) ? written : "(" + written + ")";
-    argument = angle == "0" ? term : angle + " + " + term;
+    term.angle.push_back({written, !is_identifier(written)});
   } else if (std::fabs(beta) < tolerance) {
   } else if (std::fabs(std::fabs(beta) - kPi) < tolerance) {
-    negative = true;
+    term.negative = true;
   } else if (std::fabs(beta - kPi / 2) < tolerance) {
-    unit = "I";
+    term.times_i = true;
   } else if (std::fabs(beta + kPi / 2) < tolerance) {
-    unit = "I";
-    negative = true;
+    term.times_i = true;
+    term.negative = true;
   } else {
-    const std::string name = add_parameter(beta_name, beta, Dimension::angle, where);
-    argument = angle == "0" ? name : angle + " + " + name;
+    term.angle.push_back({add_parameter(beta_name, beta, Dimension::angle, where)});
   }
-  std::string text = factor;
-  if (!unit.empty()) text = unit + "*" + text;
-  if (argument != "0") text += "*exp(I*" + (argument.find(' ') != std::string::npos ? "(" + argument + ")" : argument) + ")";
-  return Term{negative, text};
+  return term;
 }
 
 // The vector from body b's first joint to joint j (empty when they coincide).
@@ -136,12 +130,12 @@ std::vector<Term> LinkageWriter::ground_point(const std::string& x, const std::s
   const auto zero = [&](const std::string& text) {
     return looks_like_quantity(text) && value_of(text, Dimension::length, where, name) == 0;
   };
-  const auto term = [&](const std::string& text, const std::string& wanted, const std::string& unit) {
+  const auto term = [&](const std::string& text, const std::string& wanted, bool times_i) {
     const bool negative = text.size() > 1 && text[0] == '-' && is_identifier(text.substr(1));  // "-Lc"
-    return Term{negative, unit + as_factor(negative ? text.substr(1) : text, wanted, Dimension::length, where, wanted)};
+    return Term{negative, times_i, as_factor(negative ? text.substr(1) : text, wanted, Dimension::length, where, wanted), {}};
   };
-  if (!zero(x)) terms.push_back(term(x, "x_" + name, ""));
-  if (!zero(y)) terms.push_back(term(y, "y_" + name, "I*"));
+  if (!zero(x)) terms.push_back(term(x, "x_" + name, false));
+  if (!zero(y)) terms.push_back(term(y, "y_" + name, true));
   return terms;
 }
 
@@ -158,7 +152,7 @@ std::vector<Term> LinkageWriter::through_vector(std::size_t j) {
   if (std::abs(t - first) <= 1e-12 * (1 + std::abs(first))) return {};
   const std::string factor = add_parameter("r_" + guide.name + "_" + joint.name, std::abs(t - first), Dimension::length, joint.where);
   const double beta = wrapped(std::arg(t - first) - guide.angle0 + guide.offset);
-  return {rotated(factor, guide.angle, beta, "beta_" + guide.name + "_" + joint.name, joint.where)};
+  return {rotated({factor}, guide.angle, beta, "beta_" + guide.name + "_" + joint.name, joint.where)};
 }
 
 // s * e^{i(guide angle + line offset)}: the slider's travel along its line.
@@ -166,7 +160,7 @@ Term LinkageWriter::travel(std::size_t j) {
   const Joint& joint = linkage_.joints[j];
   const Body& guide = bodies_[body_index_.at(joint.guide)];
   const double beta = wrapped(slider_direction(j) - guide.angle0 + guide.offset);
-  return rotated(slider_coordinate_[j], guide.angle, beta, "gamma_" + joint.name, joint.where);
+  return rotated({slider_coordinate_[j]}, guide.angle, beta, "gamma_" + joint.name, joint.where);
 }
 
 }  // namespace kinema::linkage_detail

@@ -1,8 +1,8 @@
 // The joints-and-links front end: a mechanism described as drawn (pins and
-// sliders at sketch positions, links listing their joints, a driver) is written as
-// the vector loops a student would write by hand, so that everything downstream —
-// derivation, the compiled evaluator, every printer — is the vector-loop pipeline's,
-// and its solving plan (the dyads, engine/constraints/solving_plan.hpp) is found.
+// sliders at sketch positions, links listing their joints, a driver) becomes the
+// vector loops a student would write by hand, built as GiNaC expressions (the same
+// constraint system as those loops written in a file: loops/planar_system builds both),
+// with its solving plan (the dyads, engine/constraints/solving_plan.hpp).
 //
 // The link graph (ground and links as nodes, joints as edges) is checked for
 // connectivity and mobility (Grübler), a spanning tree from ground places every link,
@@ -26,7 +26,8 @@ struct LinkageLoops {
   SolvingPlan plan;  ///< The dyads' assemblies not yet settled (engine/numeric/assemblies).
 };
 
-/// Throws InputError naming file:line, the joints and links, and what to change.
+/// The loops as text, for `kinema loops` (linkages/vector_loop_file). Throws InputError
+/// naming file:line, the joints and links, and what to change.
 LinkageLoops linkage_loops(const Mechanism& written);
 
 /// The constraint system of a joints-and-links mechanism: its loops' equations, with its

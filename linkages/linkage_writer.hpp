@@ -1,5 +1,5 @@
 // The joints-and-links front end's working state, shared by the files that each do one
-// of its jobs (linkages/: link_graph, driver, coordinates, link_vectors, loop_text, dyads,
+// of its jobs (linkages/: link_graph, driver, coordinates, link_vectors, loop_sums, dyads,
 // plan_export, sketch_numbers); linkage_loops.cpp runs them in order. Internal: only
 // linkages/ includes it.
 #pragma once
@@ -20,6 +20,7 @@
 #include "engine/base/user_text.hpp"
 #include "engine/constraints/formula_reader.hpp"
 #include "engine/constraints/solving_plan.hpp"
+#include "linkages/loop_terms.hpp"
 #include "readers/mechanism.hpp"
 
 namespace kinema::linkage_detail {
@@ -30,27 +31,6 @@ using Point2 = std::complex<double>;
 // drawn to a few digits (Example 4.1 gives x_B = y_B = 0.256 m for |BC| = 0.3 m);
 // more than this is a typo in one of the two.
 constexpr double kSketchTolerance = 0.01;
-
-// A signed term of a loop, as written ("BC*exp(I*phi2)").
-struct Term {
-  bool negative = false;
-  std::string text;
-};
-
-inline std::vector<Term> negated(std::vector<Term> terms) {
-  for (Term& t : terms) t.negative = !t.negative;
-  return terms;
-}
-
-inline std::string sum_text(const std::vector<Term>& terms) {
-  if (terms.empty()) return "0";
-  std::string text;
-  for (const Term& t : terms) {
-    if (text.empty()) text = t.negative ? "-" + t.text : t.text;
-    else text += (t.negative ? " - " : " + ") + t.text;
-  }
-  return text;
-}
 
 inline bool is_identifier(const std::string& text) {
   if (text.empty() || !std::isalpha(static_cast<unsigned char>(text[0]))) return false;
@@ -63,12 +43,19 @@ inline double wrapped(double angle) {
   return angle <= -kPi ? angle + 2 * kPi : angle;
 }
 
+/// What the front end derives beside the declarations it adds to the mechanism.
+struct LinkageTerms {
+  std::vector<TermSum> loops, points;
+  SolvingPlan plan;
+};
+
 class LinkageWriter {
  public:
+  /// Adds to `mechanism` the parameters the loops need, the input's names and the unknowns.
   explicit LinkageWriter(Mechanism& mechanism) : m_(mechanism), linkage_(*mechanism.linkage) {}
 
-  /// The solving plan found by write().
-  SolvingPlan plan() && { return std::move(plan_); }
+  /// The loops, points and solving plan found by write().
+  LinkageTerms terms() && { return {std::move(loops_), std::move(points_), std::move(plan_)}; }
 
   void write() {
     evaluate_parameters();
@@ -115,6 +102,7 @@ class LinkageWriter {
   Mechanism& m_;
   const Linkage& linkage_;
   SolvingPlan plan_;
+  std::vector<TermSum> loops_, points_;
   std::map<std::string, double> values_;  // parameters, SI
   GiNaC::exmap symbol_values_;            // the file's parameters by their symbols in reader_
   std::set<std::string> taken_;           // symbol names
@@ -141,7 +129,7 @@ class LinkageWriter {
   double value_of(const std::string& text, Dimension dimension, const SourceLocation& where, const std::string& what);
   std::string fresh_name(const std::string& wanted);
   std::string add_parameter(const std::string& wanted, double value, Dimension dimension, const SourceLocation& where);
-  std::string as_factor(const std::string& text, const std::string& wanted, Dimension dimension,
+  Operand as_factor(const std::string& text, const std::string& wanted, Dimension dimension,
                         const SourceLocation& where, const std::string& what);
 
   // link_graph.cpp: bodies and joints as a graph, connected, mobility 1
@@ -168,9 +156,9 @@ class LinkageWriter {
   // link_vectors.cpp: a joint's vector on its body as loop terms
   const std::string* given_length(const Body& body, const std::string& a, const std::string& b) const;
   double length_value(const Body& body, std::size_t ja, std::size_t jb);
-  std::string length_factor(const Body& body, std::size_t ja, std::size_t jb);
+  Operand length_factor(const Body& body, std::size_t ja, std::size_t jb);
   double offset(const Body& body, std::size_t j, double d_first_j);
-  Term rotated(const std::string& factor, const std::string& angle, double beta, const std::string& beta_name,
+  Term rotated(const Operand& factor, const std::string& angle, double beta, const std::string& beta_name,
                const SourceLocation& where, const std::string& written = "");
   std::vector<Term> body_vector(std::size_t b, std::size_t j);
   std::vector<Term> ground_point(const std::string& x, const std::string& y, const std::string& name,
@@ -178,7 +166,7 @@ class LinkageWriter {
   std::vector<Term> through_vector(std::size_t j);
   Term travel(std::size_t j);
 
-  // loop_text.cpp: the loops and points
+  // loop_sums.cpp: the loops and points as sums of terms
   Path position(std::size_t b, std::size_t j);
   Path reference(std::size_t b);
   static std::vector<Term> flatten(const Path& path, std::size_t from);

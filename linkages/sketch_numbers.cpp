@@ -21,6 +21,8 @@ void LinkageWriter::evaluate_parameters() {
 }
 
 double LinkageWriter::evaluate(const std::string& formula, const SourceLocation& where, const std::string& what) {
+  // A parameter's name is its value: nothing to read.
+  if (is_identifier(formula) && reader_.defined(formula) != nullptr) return values_.at(formula);
   const std::string context = where.str() + ": " + what;
   return formula_value(reader_.read(formula, context), symbol_values_, context, formula,
                        " once the parameters are put in");
@@ -58,11 +60,11 @@ std::string LinkageWriter::add_parameter(const std::string& wanted, double value
 
 // A length or coordinate as a factor in a term: the parameter or formula as written,
 // or a parameter made for a quantity.
-std::string LinkageWriter::as_factor(const std::string& text, const std::string& wanted, Dimension dimension,
+Operand LinkageWriter::as_factor(const std::string& text, const std::string& wanted, Dimension dimension,
                                      const SourceLocation& where, const std::string& what) {
-  if (is_identifier(text)) return text;
-  if (!looks_like_quantity(text)) return "(" + text + ")";
-  return add_parameter(wanted, value_of(text, dimension, where, what), dimension, where);
+  if (is_identifier(text)) return {text};
+  if (!looks_like_quantity(text)) return {text, true};
+  return {add_parameter(wanted, value_of(text, dimension, where, what), dimension, where)};
 }
 
 }  // namespace kinema::linkage_detail

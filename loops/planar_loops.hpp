@@ -1,7 +1,6 @@
 // The vector-loop front end: a Mechanism whose loops are written as complex
-// sums of link vectors becomes a ConstraintSystem. Each loop gives two
-// labelled scalar equations, its x (real) and y (imaginary) parts; all
-// symbols are real (GiNaC realsymbol) so that those parts simplify.
+// sums of link vectors (or by components) becomes a ConstraintSystem: its formulas
+// are read here, and loops/planar_system builds the system from them.
 #pragma once
 
 #include "engine/constraints/constraint_system.hpp"
@@ -10,7 +9,7 @@
 
 namespace kinema {
 
-/// Parses every formula, checks names, units (lengths vs angles), functions and
+/// Reads every formula, checks names, units (lengths vs angles), functions and
 /// counts; throws InputError naming file:line and what to change.
 ConstraintSystem build_planar_loops(const Mechanism& mechanism);
 

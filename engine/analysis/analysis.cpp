@@ -8,10 +8,10 @@ namespace {
 // The drawings and figures of the printed values, each built once for the run: the
 // geometry's and the polygons' tapes are compiled here, not per value or per printer.
 std::vector<ValueAnalysis> analyse_values(const ConstraintSystem& system, const MotionTable& values,
-                                          std::vector<std::string>& link_labels) {
+                                          std::vector<std::string>& link_labels, bool one_value_geometry) {
   std::vector<ValueAnalysis> analysed(values.size());
   if (!system.frames.empty()) {  // a spatial chain: its frames placed
-    for (std::size_t row = 0; row < values.size(); ++row) {
+    for (std::size_t row = 0; one_value_geometry && row < values.size(); ++row) {
       const MotionState s = values[row];
       if (s.status != Status::unassembled) analysed[row].frames = placed_frames(system, s);
     }
@@ -24,8 +24,8 @@ std::vector<ValueAnalysis> analyse_values(const ConstraintSystem& system, const 
     const MotionState s = values[row];
     if (s.status == Status::unassembled) continue;
     ValueAnalysis& value = analysed[row];
-    value.linkage = linkage_drawing(system, s);
-    if (!value.linkage) {
+    if (one_value_geometry) value.linkage = linkage_drawing(system, s);
+    if (one_value_geometry && !value.linkage) {
       value.segments = geometry.segments(s);
       value.points_on_links = geometry.points_on_links(s);
     }
@@ -47,7 +47,9 @@ Analysis analyse_for_views(const Model& model, const MotionTable* values, const 
   if (needs.dyad_derivation && needs.method != DerivationMethod::loops)
     analysis.dyads = derive_by_dyads(system, needs.method);
   if (needs.chain_at_instant && is_driven_chain(system)) analysis.chain = chain_at_instant(system, needs.basis);
-  if (needs.drawings && values) analysis.values = analyse_values(system, *values, analysis.link_labels);
+  if ((needs.drawings || needs.motion) && values)
+    analysis.values = analyse_values(system, *values, analysis.link_labels, needs.drawings);
+  if (needs.motion && values) analysis.motion = motion_drawing(system, *values);
   return analysis;
 }
 

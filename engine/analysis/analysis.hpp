@@ -15,6 +15,7 @@
 #include "engine/analysis/design_figures.hpp"
 #include "engine/analysis/geometry.hpp"
 #include "engine/analysis/instant_centres.hpp"
+#include "engine/analysis/motion_drawing.hpp"
 #include "engine/analysis/polygons.hpp"
 #include "engine/model.hpp"
 #include "engine/symbolic/dyad_derivation_types.hpp"
@@ -28,6 +29,9 @@ struct ViewNeeds {
   bool dyad_derivation = false;  ///< The relations dyad by dyad in `method` (when it is not the loops').
   bool chain_at_instant = false; ///< A driven spatial chain worked out at the instant in `basis`.
   bool drawings = false;         ///< Per printed value: drawing geometry, polygons, instant centres.
+  /// Every row moving (the web page): the drawing's geometry of the whole table, and per
+  /// row the polygons and instant centres (ValueAnalysis without its one-value geometry).
+  bool motion = false;
   DerivationMethod method = DerivationMethod::loops;
   std::string basis;  ///< The frame a chain's vectors are given along (empty: the observer's).
 };
@@ -55,8 +59,10 @@ struct Analysis {
   std::optional<ChainAtInstant> chain;
   /// A vector-loop file's link numbers, as DrawingSegment::link and PointOnLink::link index them.
   std::vector<std::string> link_labels;
-  /// Per row of the printed values, in order (when drawings are asked for).
+  /// Per row of the printed values, in order (when drawings or motion are asked for).
   std::vector<ValueAnalysis> values;
+  /// The drawing's geometry at every row (when motion is asked for).
+  std::optional<MotionDrawing> motion;
 };
 
 /// Computes what `needs` asks of the model at `values` (the printed values; nullptr when

@@ -25,14 +25,14 @@ struct Side {
   std::size_t unknown; // which unknown its angle is (kind unknown)
 };
 
-}  // namespace
+// Which of the four sides is which (indices into the loop's terms).
+struct FourBarSides {
+  std::size_t crank = 4, ground = 4, coupler = 4, rocker = 4;
+};
 
-std::optional<FourBarFigures> four_bar_figures(const Model& model) {
-  count_work(Work::design_figures);
-  const ConstraintSystem& system = model.system;
-  if (system.input.dimension != Dimension::angle || !system.frames.empty()) return std::nullopt;
-  if (system.groups.size() != 1 || system.groups.front().terms.size() != 4 || system.unknowns.size() != 2)
-    return std::nullopt;
+// The loop's four terms as sides: the crank turns with the input, two turn with the
+// unknowns, the ground is fixed; nullopt for a loop that is not a four-bar's.
+std::optional<std::vector<Side>> loop_sides(const ConstraintSystem& system) {
   GiNaC::exmap parameters;
   for (const SystemParameter& p : system.parameters) parameters[p.symbol] = p.value;
   std::vector<Side> sides;
@@ -61,14 +61,20 @@ std::optional<FourBarFigures> four_bar_figures(const Model& model) {
     }
     sides.push_back(side);
   }
-  std::size_t crank = 4, ground = 4, unknown_sides = 0;
+  return sides;
+}
+
+// The crank, the ground, and of the two sides that turn with unknowns the coupler and the
+// rocker; nullopt where they cannot be told apart.
+std::optional<FourBarSides> name_sides(const ConstraintSystem& system, const std::vector<Side>& sides) {
+  FourBarSides named;
+  std::size_t unknown_sides = 0;
   for (std::size_t k = 0; k < 4; ++k) {
-    if (sides[k].kind == Side::Kind::crank) crank = crank == 4 ? k : 5;
-    if (sides[k].kind == Side::Kind::ground) ground = ground == 4 ? k : 5;
+    if (sides[k].kind == Side::Kind::crank) named.crank = named.crank == 4 ? k : 5;
+    if (sides[k].kind == Side::Kind::ground) named.ground = named.ground == 4 ? k : 5;
     if (sides[k].kind == Side::Kind::unknown) ++unknown_sides;
   }
-  if (crank >= 4 || ground >= 4 || unknown_sides != 2) return std::nullopt;
-  std::size_t coupler = 4, rocker = 4;
+  if (named.crank >= 4 || named.ground >= 4 || unknown_sides != 2) return std::nullopt;
   if (system.plan) {
     // Joints and links: the rocker is the link other than the crank with a fixed pivot.
     const SolvingPlan& plan = *system.plan;
@@ -80,30 +86,29 @@ std::optional<FourBarFigures> four_bar_figures(const Model& model) {
     }
     for (std::size_t k = 0; k < 4; ++k) {
       if (sides[k].kind != Side::Kind::unknown) continue;
-      (static_cast<int>(sides[k].unknown) == rocker_unknown ? rocker : coupler) = k;
+      (static_cast<int>(sides[k].unknown) == rocker_unknown ? named.rocker : named.coupler) = k;
     }
-  } else if ((crank + 1) % 4 == ground || (ground + 1) % 4 == crank) {
+  } else if ((named.crank + 1) % 4 == named.ground || (named.ground + 1) % 4 == named.crank) {
     // Written round the loop: the coupler is opposite the ground, the rocker opposite the crank.
-    coupler = (ground + 2) % 4;
-    rocker = (crank + 2) % 4;
+    named.coupler = (named.ground + 2) % 4;
+    named.rocker = (named.crank + 2) % 4;
   }
-  if (coupler >= 4 || rocker >= 4 || sides[coupler].kind != Side::Kind::unknown ||
-      sides[rocker].kind != Side::Kind::unknown)
+  if (named.coupler >= 4 || named.rocker >= 4 || sides[named.coupler].kind != Side::Kind::unknown ||
+      sides[named.rocker].kind != Side::Kind::unknown)
     return std::nullopt;
+  return named;
+}
 
-  FourBarFigures f;
-  f.ground = sides[ground].length;
-  f.crank = sides[crank].length;
-  f.coupler = sides[coupler].length;
-  f.rocker = sides[rocker].length;
+// The lengths, Grashof's inequality s + l against p + q (in the output unit) and the kind
+// of four-bar it makes; false where there is nothing to classify.
+bool classify(FourBarFigures& f, const OutputScale& scale) {
   const double lengths[4] = {f.ground, f.crank, f.coupler, f.rocker};
   const double s = *std::min_element(lengths, lengths + 4), l = *std::max_element(lengths, lengths + 4);
   const double sum = f.ground + f.crank + f.coupler + f.rocker, p_q = sum - s - l;
   const double tolerance = 1e-9 * l;
-  const OutputScale scale(system);
   // A side of length zero is no four-bar to classify (a crank of length zero drives
   // nothing), and sums past the largest number in the output unit have no figures.
-  if (!(s > 0) || !std::isfinite(sum / scale.length)) return std::nullopt;
+  if (!(s > 0) || !std::isfinite(sum / scale.length)) return false;
   const auto shown = [&](double x) { return format_significant(x / scale.length); };
   const char* relation = std::fabs(s + l - p_q) <= tolerance ? "=" : s + l < p_q ? "<" : ">";
   f.inequality = "s + l = " + shown(s) + " + " + shown(l) + " = " + shown(s + l) + " " + relation + " p + q = " +
@@ -121,10 +126,15 @@ std::optional<FourBarFigures> four_bar_figures(const Model& model) {
   } else {
     f.grashof = "double-rocker";
   }
+  return true;
+}
 
-  // The transmission angle from the solved positions: at the coupler-rocker joint, between
-  // the coupler (back towards the crank pin) and the rocker (on to its pivot), as the loop
-  // goes round.
+// The transmission angle from the solved positions over a turn from the first input
+// value: at the coupler-rocker joint, between the coupler (back towards the crank pin)
+// and the rocker (on to its pivot), as the loop goes round; its least and greatest, and
+// whether the whole turn assembles.
+void transmission_over_a_turn(const Model& model, const Side& coupler, const Side& rocker, FourBarFigures& f) {
+  const ConstraintSystem& system = model.system;
   std::vector<double> inputs;
   const double first = system.input.values.empty() ? 0.0 : system.input.values.front();
   for (int k = 0; k <= 360; ++k) inputs.push_back(first + k * kPi / 180);
@@ -143,7 +153,7 @@ std::optional<FourBarFigures> four_bar_figures(const Model& model) {
     const auto edge = [&](const Side& side) {
       return std::polar(1.0 * side.sign, turn.q(row)[Eigen::Index(side.unknown)]);
     };
-    const std::complex<double> back = -edge(sides[coupler]), on = edge(sides[rocker]);
+    const std::complex<double> back = -edge(coupler), on = edge(rocker);
     double mu = std::abs(std::arg(on / back)) * 180 / kPi;
     if (mu < 1e-3) mu = 0;  // folded flat (a change point solved to sqrt(eps))
     if (mu > 180 - 1e-3) mu = 180;
@@ -158,6 +168,27 @@ std::optional<FourBarFigures> four_bar_figures(const Model& model) {
       f.greatest_at = at;
     }
   }
+}
+
+}  // namespace
+
+std::optional<FourBarFigures> four_bar_figures(const Model& model) {
+  count_work(Work::design_figures);
+  const ConstraintSystem& system = model.system;
+  if (system.input.dimension != Dimension::angle || !system.frames.empty()) return std::nullopt;
+  if (system.groups.size() != 1 || system.groups.front().terms.size() != 4 || system.unknowns.size() != 2)
+    return std::nullopt;
+  const std::optional<std::vector<Side>> sides = loop_sides(system);
+  if (!sides) return std::nullopt;
+  const std::optional<FourBarSides> named = name_sides(system, *sides);
+  if (!named) return std::nullopt;
+  FourBarFigures f;
+  f.ground = (*sides)[named->ground].length;
+  f.crank = (*sides)[named->crank].length;
+  f.coupler = (*sides)[named->coupler].length;
+  f.rocker = (*sides)[named->rocker].length;
+  if (!classify(f, OutputScale(system))) return std::nullopt;
+  transmission_over_a_turn(model, (*sides)[named->coupler], (*sides)[named->rocker], f);
   for (const Toggle& t : find_toggles(model)) f.toggles.push_back(t.input * 180 / kPi);
   return f;
 }

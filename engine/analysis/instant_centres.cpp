@@ -59,155 +59,189 @@ void add_ratios(InstantCentres& result, double length_scale) {
   }
 }
 
-// A vector-loop file names no links: a point whose formula ends in a link vector of fixed
-// length turning with an angle is on that link (docs/outputs.md: "points that lie on a link term
-// belong to that link"). Each centre from two such points' velocities:
-// v_a(I) = v_b(I) with v(P) = v_A + i omega (P - A); where the two turn alike, at
-// infinity across their relative velocity.
-std::optional<InstantCentres> centres_from_points(const ConstraintSystem& system, const MotionState& s) {
-  // Everything an angle's rate may hold (theta3^2 turns at 2 theta3 omega3).
+// A body of a vector-loop file as centres_from_points finds it: its angle's rate (what
+// tells two bodies apart), its name, a point on it with that point's velocity, and its
+// angular velocity now.
+struct PointBody {
+  GiNaC::ex rate;
+  std::string name;
+  Complex point, velocity;
+  std::size_t order = 0;  ///< The driver, then the unknowns in file order.
+  double omega = 0;
+};
+
+// The state's value of everything an angle's rate may hold (theta3^2 turns at 2 theta3 omega3).
+GiNaC::exmap state_values(const ConstraintSystem& system, const MotionState& s) {
   GiNaC::exmap values{{system.input.rate, s.input_rate}, {system.input.symbol, s.input}};
   for (std::size_t j = 0; j < system.unknowns.size(); ++j) {
     values[system.unknowns[j].rate] = s.qd[j];
     values[system.unknowns[j].symbol] = s.q[j];
   }
   for (const SystemParameter& parameter : system.parameters) values[parameter.symbol] = parameter.value;
+  return values;
+}
+
+// A rate's value now; nullopt where it is not a finite real number (or GiNaC cannot
+// evaluate it).
+std::optional<double> rate_value(const GiNaC::ex& rate, const GiNaC::exmap& values) {
+  try {
+    const GiNaC::ex w = rate.subs(values).evalf();
+    if (!GiNaC::is_a<GiNaC::numeric>(w) || !GiNaC::ex_to<GiNaC::numeric>(w).is_real()) return std::nullopt;
+    const double d = GiNaC::ex_to<GiNaC::numeric>(w).to_double();
+    return std::isfinite(d) ? std::optional<double>(d) : std::nullopt;
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+}
+
+// The driver's link first (0), then the unknowns' in file order (j + 1), then any other:
+// by the coordinate whose `part` e holds (its symbol in an angle, its rate in a rate).
+std::size_t body_order(const ConstraintSystem& system, const GiNaC::ex& e, GiNaC::realsymbol Coordinate::*part) {
+  std::size_t order = system.unknowns.size() + 1;
+  for (std::size_t j = system.unknowns.size(); j-- > 0;)
+    if (e.has(system.unknowns[j].*part)) order = j + 1;
+  if (e.has(system.input.*part)) order = 0;
+  return order;
+}
+
+bool has_body(const std::vector<PointBody>& bodies, const GiNaC::ex& rate) {
+  for (const PointBody& b : bodies)
+    if (b.rate.is_equal(rate)) return true;
+  return false;
+}
+
+// A vector-loop file names no links: a point whose formula ends in a link vector of fixed
+// length turning with an angle is on that link (docs/outputs.md: "points that lie on a link
+// term belong to that link").
+std::vector<PointBody> bodies_of_points(const ConstraintSystem& system, const MotionState& s,
+                                        const GiNaC::exmap& values) {
   const auto moves = [&](const GiNaC::ex& e) {
     if (e.has(system.input.symbol)) return true;
     for (const Coordinate& q : system.unknowns)
       if (e.has(q.symbol)) return true;
     return false;
   };
-  struct Body {
-    GiNaC::ex rate;
-    std::string name;
-    std::complex<double> point, velocity;
-    std::size_t order = 0;  ///< The driver, then the unknowns in file order.
-    double omega = 0;
-  };
-  std::vector<Body> bodies;
+  std::vector<PointBody> bodies;
   for (std::size_t p = 0; p < system.points.size(); ++p) {
     const PointObservable& point = system.points[p];
     if (point.written_terms.empty()) continue;
     const LinkVector link = split_link_vector(point.written_terms.back());
     if (!link.polar || moves(link.length) || !moves(link.angle)) continue;
-    GiNaC::ex rate, omega;
-    try {  // a formula GiNaC cannot differentiate or evaluate: the point names no link
+    GiNaC::ex rate;
+    try {  // a formula GiNaC cannot differentiate: the point names no link
       rate = time_derivative(system, link.angle);
-      omega = rate.subs(values).evalf();
     } catch (const std::exception&) {
       continue;
     }
-    bool known = false;
-    for (const Body& b : bodies) known = known || b.rate.is_equal(rate);
-    if (known) continue;
+    const std::optional<double> omega = rate_value(rate, values);
+    if (has_body(bodies, rate)) continue;
     const std::string name = link_label(system, link.angle);
-    std::size_t order = system.unknowns.size() + 1;  // the driver's link first, then the unknowns'
-    for (std::size_t j = system.unknowns.size(); j-- > 0;)
-      if (link.angle.has(system.unknowns[j].symbol)) order = j + 1;
-    if (link.angle.has(system.input.symbol)) order = 0;
+    if (!omega) continue;
     const PointMotion& m = s.points[p];
-    if (!GiNaC::is_a<GiNaC::numeric>(omega) || !GiNaC::ex_to<GiNaC::numeric>(omega).is_real()) continue;
-    const double w = GiNaC::ex_to<GiNaC::numeric>(omega).to_double();
-    if (!std::isfinite(w)) continue;
-    bodies.push_back({rate, name, {m.position[0], m.position[1]}, {m.velocity[0], m.velocity[1]}, order, w});
+    bodies.push_back({rate, name, {m.position[0], m.position[1]}, {m.velocity[0], m.velocity[1]},
+                      body_order(system, link.angle, &Coordinate::symbol), *omega});
   }
-  if (bodies.empty()) return std::nullopt;
-  // The loops' links no point ends on, known by a joint whose velocity is known (a named
-  // point, or a ground one), and the slider blocks (at their sliding points, turning with
-  // their guides): every body of the mechanism, as a course counts them.
-  {
-    std::vector<std::pair<Complex, Complex>> known;  // position, velocity
-    for (const PointMotion& m : s.points) known.push_back({{m.position[0], m.position[1]}, {m.velocity[0], m.velocity[1]}});
-    const MechanismGeometry geometry(system);
-    const std::vector<DrawingSegment> segments = geometry.segments(s);
-    known.push_back({0, 0});
-    for (const DrawingSegment& g : segments)
-      if (g.kind == DrawingSegment::Kind::ground) {
-        known.push_back({g.from, 0});
-        known.push_back({g.to, 0});
+  return bodies;
+}
+
+// The loops' links no point ends on, known by a joint whose velocity is known (a named
+// point, or a ground one), and the slider blocks (at their sliding points, turning with
+// their guides): every body of the mechanism, as a course counts them. A block is added
+// without a name (number_bodies names it).
+void add_drawn_bodies(const ConstraintSystem& system, const MotionState& s, const GiNaC::exmap& values,
+                      std::vector<PointBody>& bodies) {
+  std::vector<std::pair<Complex, Complex>> known;  // position, velocity
+  for (const PointMotion& m : s.points) known.push_back({{m.position[0], m.position[1]}, {m.velocity[0], m.velocity[1]}});
+  const MechanismGeometry geometry(system);
+  const std::vector<DrawingSegment> segments = geometry.segments(s);
+  known.push_back({0, 0});
+  for (const DrawingSegment& g : segments)
+    if (g.kind == DrawingSegment::Kind::ground) {
+      known.push_back({g.from, 0});
+      known.push_back({g.to, 0});
+    }
+  const auto velocity_at = [&](Complex p) -> std::optional<Complex> {
+    for (const auto& [at, v] : known)
+      if (std::abs(at - p) <= 1e-9 * system.length_scale) return v;
+    return std::nullopt;
+  };
+  for (const DrawingSegment& g : segments) {
+    if (g.kind != DrawingSegment::Kind::link || g.link < 0) continue;
+    const GiNaC::ex& rate = geometry.link_rates()[g.link];
+    const std::optional<double> w = rate_value(rate, values);
+    if (has_body(bodies, rate) || !w) continue;
+    for (const Complex end : {g.from, g.to})
+      if (const auto v = velocity_at(end)) {
+        const std::size_t order = body_order(system, rate, &Coordinate::rate);
+        bodies.push_back({rate, geometry.link_labels()[g.link], end, *v, order, *w});
+        break;
       }
-    const auto velocity_at = [&](Complex p) -> std::optional<Complex> {
-      for (const auto& [at, v] : known)
-        if (std::abs(at - p) <= 1e-9 * system.length_scale) return v;
-      return std::nullopt;
-    };
-    const auto omega_of = [&](const GiNaC::ex& rate) -> std::optional<double> {
-      try {
-        const GiNaC::ex w = rate.subs(values).evalf();
-        if (!GiNaC::is_a<GiNaC::numeric>(w) || !GiNaC::ex_to<GiNaC::numeric>(w).is_real()) return std::nullopt;
-        const double d = GiNaC::ex_to<GiNaC::numeric>(w).to_double();
-        return std::isfinite(d) ? std::optional<double>(d) : std::nullopt;
-      } catch (const std::exception&) {
-        return std::nullopt;
-      }
-    };
-    for (const DrawingSegment& g : segments) {
-      if (g.kind != DrawingSegment::Kind::link || g.link < 0) continue;
-      const GiNaC::ex& rate = geometry.link_rates()[g.link];
-      bool seen = false;
-      for (const Body& b : bodies) seen = seen || b.rate.is_equal(rate);
-      const std::optional<double> w = omega_of(rate);
-      if (seen || !w) continue;
-      for (const Complex end : {g.from, g.to})
-        if (const auto v = velocity_at(end)) {
-          std::size_t order = system.unknowns.size() + 1;
-          for (std::size_t j = system.unknowns.size(); j-- > 0;)
-            if (rate.has(system.unknowns[j].rate)) order = j + 1;
-          if (rate.has(system.input.rate)) order = 0;
-          bodies.push_back({rate, geometry.link_labels()[g.link], end, *v, order, *w});
-          break;
-        }
-    }
-    // A link that is only a slider's guide (Example 4.1's crank 1), known by the term's
-    // other end when that lies on the guide line.
-    for (const DrawingSegment& g : segments) {
-      if (g.kind != DrawingSegment::Kind::slider || g.guide_link < 0) continue;
-      const GiNaC::ex& rate = geometry.link_rates()[g.guide_link];
-      bool seen = false;
-      for (const Body& b : bodies) seen = seen || b.rate.is_equal(rate);
-      const Complex other = std::abs(g.block - g.to) <= 1e-9 * system.length_scale ? g.from : g.to;
-      const std::optional<double> w = omega_of(rate);
-      const auto v = velocity_at(other);
-      if (seen || !w || !v || std::fabs(cross(other - g.block, g.along)) > 1e-9 * system.length_scale) continue;
-      std::size_t order = system.unknowns.size() + 1;
-      for (std::size_t j = system.unknowns.size(); j-- > 0;)
-        if (rate.has(system.unknowns[j].rate)) order = j + 1;
-      if (rate.has(system.input.rate)) order = 0;
-      bodies.push_back({rate, geometry.link_labels()[g.guide_link], other, *v, order, *w});
-    }
-    for (const DrawingSegment& g : segments) {
-      if (g.kind != DrawingSegment::Kind::slider || (!g.fixed_guide && g.guide_link < 0)) continue;
-      const std::optional<double> w = g.fixed_guide ? std::optional<double>(0.0) : omega_of(geometry.link_rates()[g.guide_link]);
-      const auto v = velocity_at(g.block);
-      if (!w || !v) continue;
-      bodies.push_back({0, "", g.block, *v, system.unknowns.size() + 2, *w});  // named below
-    }
   }
-  InstantCentres result;
+  // A link that is only a slider's guide (Example 4.1's crank 1), known by the term's
+  // other end when that lies on the guide line.
+  for (const DrawingSegment& g : segments) {
+    if (g.kind != DrawingSegment::Kind::slider || g.guide_link < 0) continue;
+    const GiNaC::ex& rate = geometry.link_rates()[g.guide_link];
+    const bool seen = has_body(bodies, rate);
+    const Complex other = std::abs(g.block - g.to) <= 1e-9 * system.length_scale ? g.from : g.to;
+    const std::optional<double> w = rate_value(rate, values);
+    const auto v = velocity_at(other);
+    if (seen || !w || !v || std::fabs(cross(other - g.block, g.along)) > 1e-9 * system.length_scale) continue;
+    const std::size_t order = body_order(system, rate, &Coordinate::rate);
+    bodies.push_back({rate, geometry.link_labels()[g.guide_link], other, *v, order, *w});
+  }
+  for (const DrawingSegment& g : segments) {
+    if (g.kind != DrawingSegment::Kind::slider || (!g.fixed_guide && g.guide_link < 0)) continue;
+    const std::optional<double> w =
+        g.fixed_guide ? std::optional<double>(0.0) : rate_value(geometry.link_rates()[g.guide_link], values);
+    const auto v = velocity_at(g.block);
+    if (!w || !v) continue;
+    bodies.push_back({0, "", g.block, *v, system.unknowns.size() + 2, *w});
+  }
+}
+
+// Names the blocks with the numbers the links leave free (Example 4.2: links 1, 3, 4,
+// blocks 2, 5) and sorts the bodies by number where all are numbered, else driver first;
+// returns ground's name: "1", or "0" where a link is "1".
+std::string number_bodies(std::vector<PointBody>& bodies) {
   bool one_taken = false;
-  for (const Body& b : bodies) one_taken = one_taken || b.name == "1";
-  // Blocks numbered in the gaps the links leave (Example 4.2: links 1, 3, 4, blocks 2, 5).
-  {
-    std::vector<std::string> used = {one_taken ? "0" : "1"};
-    for (const Body& b : bodies) used.push_back(b.name);
-    int next = 1;
-    for (Body& b : bodies) {
-      if (!b.name.empty()) continue;
-      while (std::find(used.begin(), used.end(), std::to_string(next)) != used.end()) ++next;
-      b.name = std::to_string(next);
-      used.push_back(b.name);
-    }
+  for (const PointBody& b : bodies) one_taken = one_taken || b.name == "1";
+  const std::string ground = one_taken ? "0" : "1";
+  std::vector<std::string> used = {ground};
+  for (const PointBody& b : bodies) used.push_back(b.name);
+  int next = 1;
+  for (PointBody& b : bodies) {
+    if (!b.name.empty()) continue;
+    while (std::find(used.begin(), used.end(), std::to_string(next)) != used.end()) ++next;
+    b.name = std::to_string(next);
+    used.push_back(b.name);
   }
   const auto number = [](const std::string& name) {
     return !name.empty() && name.find_first_not_of("0123456789") == std::string::npos ? std::stoi(name) : -1;
   };
   bool numbered = true;
-  for (const Body& b : bodies) numbered = numbered && number(b.name) >= 0;
-  std::stable_sort(bodies.begin(), bodies.end(), [&](const Body& a, const Body& b) {
+  for (const PointBody& b : bodies) numbered = numbered && number(b.name) >= 0;
+  std::stable_sort(bodies.begin(), bodies.end(), [&](const PointBody& a, const PointBody& b) {
     return numbered ? number(a.name) < number(b.name) : a.order < b.order;
   });
-  result.bodies.push_back(one_taken ? "0" : "1");
+  return ground;
+}
+
+// Body b of the result (0 is ground, at rest at the origin): a point on it and its velocity.
+Complex body_point(const std::vector<PointBody>& bodies, std::size_t b) {
+  return b == 0 ? Complex() : bodies[b - 1].point;
+}
+Complex body_velocity(const std::vector<PointBody>& bodies, std::size_t b) {
+  return b == 0 ? Complex() : bodies[b - 1].velocity;
+}
+
+// Ground and the bodies, and each pair's centre from their velocities:
+// v_a(I) = v_b(I) with v(P) = v_A + i omega (P - A); where the two turn alike, at infinity
+// across their relative velocity.
+InstantCentres centres_of_bodies(const ConstraintSystem& system, const MotionState& s,
+                                 const std::vector<PointBody>& bodies, const std::string& ground) {
+  InstantCentres result;
+  result.bodies.push_back(ground);
   result.angular_velocities.push_back(0);
   result.rates.push_back(0);
   for (std::size_t b = 0; b < bodies.size(); ++b) {
@@ -217,52 +251,52 @@ std::optional<InstantCentres> centres_from_points(const ConstraintSystem& system
     if (bodies[b].rate.is_equal(system.input.rate)) result.driver = b + 1;
   }
   const std::size_t n = result.bodies.size();
-  const auto point_of = [&](std::size_t b) { return b == 0 ? std::complex<double>() : bodies[b - 1].point; };
-  const auto velocity_of = [&](std::size_t b) { return b == 0 ? std::complex<double>() : bodies[b - 1].velocity; };
   double fastest = 0;
   for (const PointMotion& m : s.points) fastest = std::max(fastest, m.speed());
   for (std::size_t a = 0; a < n; ++a) {
     for (std::size_t b = a + 1; b < n; ++b) {
       const double wa = result.angular_velocities[a], wb = result.angular_velocities[b];
-      const std::complex<double> A = point_of(a), B = point_of(b), I(0, 1);
+      const Complex A = body_point(bodies, a), B = body_point(bodies, b), I(0, 1);
+      const Complex va = body_velocity(bodies, a), vb = body_velocity(bodies, b);
       const std::string how = "velocities of the points on " + result.bodies[a] + " and " + result.bodies[b];
       if (std::fabs(wa - wb) <= 1e-12 * (std::fabs(wa) + std::fabs(wb))) {
         // Uniform where they turn alike: v_b(P) - v_a(P) = v_b(B) - v_a(A) + i omega (A - B).
-        const std::complex<double> relative = velocity_of(b) - velocity_of(a) + I * wa * (A - B);
+        const Complex relative = vb - va + I * wa * (A - B);
         if (std::abs(relative) <= 1e-12 * fastest) continue;  // moving as one: no centre
         result.centres.push_back({a, b, true, I * relative / std::abs(relative), how, {}, std::nullopt});
         continue;
       }
-      const std::complex<double> at = (velocity_of(b) - velocity_of(a) + I * (wa * A - wb * B)) / (I * (wa - wb));
+      const Complex at = (vb - va + I * (wa * A - wb * B)) / (I * (wa - wb));
       result.centres.push_back({a, b, false, at, how, {}, std::nullopt});
     }
   }
-  for (std::size_t a = 0; a < n; ++a)
-    for (std::size_t b = a + 1; b < n; ++b)
-      if (!result.find(a, b)) result.not_found.push_back({a, b});
-  for (const InstantCentre& c : result.centres)
-    if (!std::isfinite(c.at.real()) || !std::isfinite(c.at.imag())) return std::nullopt;
-  // Centres away from the joints: on the two Kennedy lines (through I_ab and I_bc for
-  // another body b) that cross there most squarely.
-  std::vector<std::complex<double>> joints = {0};
+  return result;
+}
+
+// Centres away from the joints: on the two Kennedy lines (through I_ab and I_bc for
+// another body b) that cross there most squarely. A centre at infinity is seen from the
+// block (rate 0, not ground), else from the moving body.
+void mark_kennedy_lines(InstantCentres& result, const std::vector<PointBody>& bodies, const MotionState& s,
+                        double length_scale) {
+  const std::size_t n = result.bodies.size();
+  std::vector<Complex> joints = {0};
   for (const PointMotion& m : s.points) joints.push_back({m.position[0], m.position[1]});
   for (InstantCentre& centre : result.centres) {
-    if (centre.at_infinity) {  // the arrow from the block (rate 0, not ground), else the moving body
+    if (centre.at_infinity) {
       const auto block = [&](std::size_t b) { return b != 0 && result.rates[b].is_zero(); };
-      centre.seen_from = block(centre.b) || centre.a == 0 ? point_of(centre.b)
-                         : block(centre.a)                ? point_of(centre.a)
-                                                          : (point_of(centre.a) + point_of(centre.b)) / 2.0;
+      const Complex a = body_point(bodies, centre.a), b = body_point(bodies, centre.b);
+      centre.seen_from = block(centre.b) || centre.a == 0 ? b : block(centre.a) ? a : (a + b) / 2.0;
       continue;
     }
     bool joint = false;
-    for (const auto& j : joints) joint = joint || std::abs(j - centre.at) <= 1e-9 * system.length_scale;
+    for (const auto& j : joints) joint = joint || std::abs(j - centre.at) <= 1e-9 * length_scale;
     if (joint) continue;
     std::vector<std::pair<Line, std::size_t>> lines;
     for (std::size_t b = 0; b < n; ++b) {
       if (b == centre.a || b == centre.b) continue;
       const InstantCentre *ab = result.find(centre.a, b), *bc = result.find(b, centre.b);
       if (!ab || !bc) continue;
-      if (const auto l = line_through(*ab, *bc, system.length_scale)) lines.push_back({*l, b});
+      if (const auto l = line_through(*ab, *bc, length_scale)) lines.push_back({*l, b});
     }
     double best = 1e-6;
     for (std::size_t i = 0; i < lines.size(); ++i)
@@ -275,6 +309,78 @@ std::optional<InstantCentres> centres_from_points(const ConstraintSystem& system
                           std::minmax(b2, centre.b)};
       }
   }
+}
+
+// The pairs of bodies the result has no centre for, and whether every centre it has is finite.
+bool list_missing_and_check_finite(InstantCentres& result) {
+  const std::size_t n = result.bodies.size();
+  for (std::size_t a = 0; a < n; ++a)
+    for (std::size_t b = a + 1; b < n; ++b)
+      if (!result.find(a, b)) result.not_found.push_back({a, b});
+  for (const InstantCentre& c : result.centres)
+    if (!std::isfinite(c.at.real()) || !std::isfinite(c.at.imag())) return false;
+  return true;
+}
+
+// Kennedy: I_ac on the line I_ab I_bc and on the line I_ad I_dc; of all such pairs of
+// lines the one that crosses most squarely. Repeated until no centre is added.
+void complete_by_kennedy(InstantCentres& result, double length_scale) {
+  const std::size_t n = result.bodies.size();
+  for (bool found = true; found;) {
+    found = false;
+    for (std::size_t a = 0; a < n; ++a) {
+      for (std::size_t c = a + 1; c < n; ++c) {
+        if (result.find(a, c)) continue;
+        std::vector<std::pair<Line, std::size_t>> lines;
+        for (std::size_t b = 0; b < n; ++b) {
+          if (b == a || b == c) continue;
+          const InstantCentre *ab = result.find(a, b), *bc = result.find(b, c);
+          if (!ab || !bc) continue;
+          if (const auto l = line_through(*ab, *bc, length_scale)) lines.push_back({*l, b});
+        }
+        double best = 0;
+        std::optional<InstantCentre> chosen;
+        for (std::size_t i = 0; i < lines.size(); ++i) {
+          for (std::size_t j = i + 1; j < lines.size(); ++j) {
+            const Line &p = lines[i].first, &q = lines[j].first;
+            const double sine = std::fabs(cross(p.along, q.along));
+            const std::size_t b1 = lines[i].second, b2 = lines[j].second;
+            const std::vector<std::pair<std::size_t, std::size_t>> kennedy = {
+                std::minmax(a, b1), std::minmax(b1, c), std::minmax(a, b2), std::minmax(b2, c)};
+            std::string how;
+            for (std::size_t k = 0; k < 4; ++k)
+              how += (k == 0 ? "" : k == 2 ? ", " : " ") + centre_name(result.bodies, kennedy[k].first, kennedy[k].second);
+            if (sine <= 1e-9) {  // parallel lines: a centre at infinity, unless they are one line
+              if (std::fabs(cross(q.through - p.through, p.along)) > 1e-9 * length_scale && !chosen)
+                chosen = InstantCentre{a, c, true, p.along, how, kennedy, p.through};
+              continue;
+            }
+            if (sine <= best) continue;
+            best = sine;
+            const double t = cross(q.through - p.through, q.along) / cross(p.along, q.along);
+            chosen = InstantCentre{a, c, false, p.through + t * p.along, how, kennedy, std::nullopt};
+          }
+        }
+        if (chosen) {
+          result.centres.push_back(*chosen);
+          found = true;
+        }
+      }
+    }
+  }
+}
+
+// A vector-loop file's centres: its bodies found from the points and the drawing, each
+// centre from two bodies' velocities.
+std::optional<InstantCentres> centres_from_points(const ConstraintSystem& system, const MotionState& s) {
+  const GiNaC::exmap values = state_values(system, s);
+  std::vector<PointBody> bodies = bodies_of_points(system, s, values);
+  if (bodies.empty()) return std::nullopt;
+  add_drawn_bodies(system, s, values, bodies);
+  const std::string ground = number_bodies(bodies);
+  InstantCentres result = centres_of_bodies(system, s, bodies, ground);
+  if (!list_missing_and_check_finite(result)) return std::nullopt;
+  mark_kennedy_lines(result, bodies, s, system.length_scale);
   if (result.driver != 0) add_ratios(result, system.length_scale);
   return result;
 }
@@ -345,55 +451,8 @@ std::optional<InstantCentres> instant_centres(const ConstraintSystem& system, co
     add(slider.block, slider.guide, true, std::polar(1.0, line + kPi / 2), "slider " + plan.joints[slider.joint].name,
         joint_at);
   }
-  // Kennedy: I_ac on the line I_ab I_bc and on the line I_ad I_dc; of all such pairs of
-  // lines the one that crosses most squarely.
-  for (bool found = true; found;) {
-    found = false;
-    for (std::size_t a = 0; a < n; ++a) {
-      for (std::size_t c = a + 1; c < n; ++c) {
-        if (result.find(a, c)) continue;
-        std::vector<std::pair<Line, std::size_t>> lines;
-        for (std::size_t b = 0; b < n; ++b) {
-          if (b == a || b == c) continue;
-          const InstantCentre *ab = result.find(a, b), *bc = result.find(b, c);
-          if (!ab || !bc) continue;
-          if (const auto l = line_through(*ab, *bc, system.length_scale)) lines.push_back({*l, b});
-        }
-        double best = 0;
-        std::optional<InstantCentre> chosen;
-        for (std::size_t i = 0; i < lines.size(); ++i) {
-          for (std::size_t j = i + 1; j < lines.size(); ++j) {
-            const Line &p = lines[i].first, &q = lines[j].first;
-            const double sine = std::fabs(cross(p.along, q.along));
-            const std::size_t b1 = lines[i].second, b2 = lines[j].second;
-            const std::vector<std::pair<std::size_t, std::size_t>> kennedy = {
-                std::minmax(a, b1), std::minmax(b1, c), std::minmax(a, b2), std::minmax(b2, c)};
-            std::string how;
-            for (std::size_t k = 0; k < 4; ++k)
-              how += (k == 0 ? "" : k == 2 ? ", " : " ") + centre_name(result.bodies, kennedy[k].first, kennedy[k].second);
-            if (sine <= 1e-9) {  // parallel lines: a centre at infinity, unless they are one line
-              if (std::fabs(cross(q.through - p.through, p.along)) > 1e-9 * system.length_scale && !chosen)
-                chosen = InstantCentre{a, c, true, p.along, how, kennedy, p.through};
-              continue;
-            }
-            if (sine <= best) continue;
-            best = sine;
-            const double t = cross(q.through - p.through, q.along) / cross(p.along, q.along);
-            chosen = InstantCentre{a, c, false, p.through + t * p.along, how, kennedy, std::nullopt};
-          }
-        }
-        if (chosen) {
-          result.centres.push_back(*chosen);
-          found = true;
-        }
-      }
-    }
-  }
-  for (std::size_t a = 0; a < n; ++a)
-    for (std::size_t b = a + 1; b < n; ++b)
-      if (!result.find(a, b)) result.not_found.push_back({a, b});
-  for (const InstantCentre& c : result.centres)
-    if (!std::isfinite(c.at.real()) || !std::isfinite(c.at.imag())) return std::nullopt;
+  complete_by_kennedy(result, system.length_scale);
+  if (!list_missing_and_check_finite(result)) return std::nullopt;
   std::sort(result.centres.begin(), result.centres.end(),
             [](const InstantCentre& p, const InstantCentre& q) { return std::pair(p.a, p.b) < std::pair(q.a, q.b); });
   add_ratios(result, system.length_scale);

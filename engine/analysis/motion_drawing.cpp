@@ -87,12 +87,31 @@ void loop_rows(const ConstraintSystem& system, const MotionTable& table, MotionD
     if (!row.empty()) row.resize(width, NAN);
 }
 
+// A spatial chain: each row's frames where it puts them (origin, then the x, y, z axes).
+void chain_rows(const ConstraintSystem& system, const MotionTable& table, MotionDrawing& drawing) {
+  for (const FrameObservable& frame : system.frames) {
+    drawing.frame_names.push_back(frame.name);
+    drawing.frame_parents.push_back(frame.parent);
+  }
+  for (std::size_t r = 0; r < table.size(); ++r) {
+    std::vector<double> row;
+    if (table.status(r) != Status::unassembled) {
+      for (const PlacedFrame& frame : placed_frames(system, table[r])) {
+        row.insert(row.end(), frame.origin.begin(), frame.origin.end());
+        for (const auto& axis : frame.axes) row.insert(row.end(), axis.begin(), axis.end());
+      }
+    }
+    drawing.rows.push_back(std::move(row));
+  }
+}
+
 }  // namespace
 
 MotionDrawing motion_drawing(const ConstraintSystem& system, const MotionTable& table) {
   MotionDrawing drawing;
   if (!system.frames.empty()) {
-    drawing.rows.resize(table.size());
+    drawing.form = MotionDrawing::Form::chain;
+    chain_rows(system, table, drawing);
     return drawing;
   }
   if (system.plan && system.plan->closed_form) {

@@ -16,8 +16,8 @@ namespace kinema {
 
 struct MotionDrawing {
   /// linkage: joints and links placed in closed form (linkage_drawing); loops: the loops'
-  /// terms (MechanismGeometry::segments); none: not drawn in the plane (spatial chains).
-  enum class Form { none, linkage, loops };
+  /// terms (MechanismGeometry::segments); chain: a spatial chain's frames (placed_frames).
+  enum class Form { none, linkage, loops, chain };
   Form form = Form::none;
 
   // Form::linkage. Each row: x, y of every joint (SI), then the angle (rad) of each block.
@@ -37,6 +37,10 @@ struct MotionDrawing {
   std::vector<DrawingSegment> segments;
   std::vector<PointOnLink> points_on_links;
   std::vector<std::string> link_labels;
+
+  // Form::chain. Each row: for each frame its origin (x, y, z), then its x, y and z axes
+  // (unit vectors, observer basis): 12 values a frame.
+  std::vector<std::string> frame_names, frame_parents;
 
   /// One entry a table row: the coordinates above (SI), empty where the row has no
   /// position (unassembled); NaN where a part is not known at that row (points on links

@@ -5,7 +5,7 @@
 namespace kinema {
 namespace {
 
-std::atomic<std::uint64_t> counts[4];
+std::atomic<std::uint64_t> counts[static_cast<int>(Work::count_)];
 
 }  // namespace
 

@@ -13,6 +13,8 @@ enum class Work {
   dyad_derivation,  ///< derive_by_dyads.
   chain_at_instant, ///< chain_at_instant: a chain's formulas at the instant.
   drawing,          ///< Drawing geometry, polygons, instant centres, a chain's frames placed (each call).
+  formula_read,     ///< FormulaReader::read: a formula's text parsed by GiNaC.
+  count_            ///< The number of kinds (not a kind of work).
 };
 
 void count_work(Work work);

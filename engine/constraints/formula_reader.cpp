@@ -9,6 +9,7 @@
 
 #include "engine/base/errors.hpp"
 #include "engine/base/user_text.hpp"
+#include "engine/base/work_count.hpp"
 
 namespace kinema {
 namespace {
@@ -360,7 +361,14 @@ FormulaReader::FormulaReader() : parser_(GiNaC::symtab(), /*strict=*/true) {}
 
 void FormulaReader::define(const std::string& name, const GiNaC::ex& symbol) { parser_.get_syms()[name] = symbol; }
 
+const GiNaC::ex* FormulaReader::defined(const std::string& name) {
+  const GiNaC::symtab& names = parser_.get_syms();
+  const auto found = names.find(name);
+  return found == names.end() ? nullptr : &found->second;
+}
+
 GiNaC::ex FormulaReader::read(const std::string& formula, const std::string& context) {
+  count_work(Work::formula_read);
   check_shape(formula, context);
   // A placeholder prefix no defined name starts with.
   std::string prefix = "kinemaNumber";

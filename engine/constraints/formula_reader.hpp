@@ -22,7 +22,11 @@ class FormulaReader {
   /// Makes `name` a symbol formulas may use.
   void define(const std::string& name, const GiNaC::ex& symbol);
 
+  /// The symbol defined as `name`, or nullptr: a name is its symbol without its text read.
+  const GiNaC::ex* defined(const std::string& name);
+
   /// The formula as an expression; throws InputError(context + ": ...") naming what is wrong.
+  /// Counted (engine/base/work_count: Work::formula_read).
   GiNaC::ex read(const std::string& formula, const std::string& context);
 
  private:

@@ -1,6 +1,5 @@
 #include "engine/run/view.hpp"
 
-#include "engine/analysis/motion_drawing.hpp"
 #include "engine/printers/web/page.hpp"
 
 namespace kinema {
@@ -16,10 +15,13 @@ void print_view(const Printer& printer, std::ostream& out, PrintJob job) {
 }
 
 void print_page(std::ostream& out, const Model& model, const MotionTable& table, bool circuit) {
-  const MotionDrawing drawing = motion_drawing(model.system, table);
   PrintJob job{model, &table};
   job.circuit = circuit;
-  write_page(out, job, drawing);
+  ViewNeeds needs;
+  needs.motion = true;
+  const Analysis analysis = analyse_for_views(model, &table, needs);
+  job.analysis = &analysis;
+  write_page(out, job);
 }
 
 }  // namespace kinema

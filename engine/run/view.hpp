@@ -17,7 +17,8 @@ Analysis analyse_for_printer(const Printer& printer, const PrintJob& job);
 void print_view(const Printer& printer, std::ostream& out, PrintJob job);
 
 /// The page (engine/printers/web/page) over `table`, solved already (rows along a circuit
-/// when `circuit`), its drawing's geometry computed here once: `kinema page` and the Python
+/// when `circuit`), its motion analysed here once (the drawing's geometry, polygons and
+/// instant centres of every row): `kinema page` and the Python
 /// module's Model.page() print it the one way.
 void print_page(std::ostream& out, const Model& model, const MotionTable& table, bool circuit);
 

@@ -1,5 +1,5 @@
 // libFuzzer target: the mechanism-file reader (TOML parse and every check in
-// readers/mechanism_file.cpp). A file may be refused (kinema::InputError); any other
+// readers/). A file may be refused (kinema::InputError); any other
 // exception would reach the user as an "internal error", so it stops the fuzzer.
 #include <cstddef>
 #include <cstdint>

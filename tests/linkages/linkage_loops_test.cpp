@@ -13,9 +13,11 @@
 
 #include "engine/run/view.hpp"
 #include "engine/base/errors.hpp"
+#include "engine/base/work_count.hpp"
 #include "engine/model.hpp"
 #include "engine/printers/printer.hpp"
 #include "linkages/linkage_loops.hpp"
+#include "loops/planar_loops.hpp"
 #include "readers/mechanism_file.hpp"
 #include "tests/test_support.hpp"
 
@@ -186,6 +188,92 @@ TEST_CASE("linkages/linkage_loops: the vector-loop file kinema writes reads back
     CHECK_FALSE(again.linkage);
     check_same_motion(kinema::make_model(drawn), kinema::make_model(again), degrees(10, 350, 20));
   }
+}
+
+namespace {
+
+// `b` with `a`'s symbols put in for theirs by name (two systems, each with symbols of its own).
+GiNaC::ex in_symbols_of(const kinema::ConstraintSystem& a, const kinema::ConstraintSystem& b, const GiNaC::ex& e) {
+  GiNaC::exmap same;
+  for (std::size_t k = 0; k < b.parameters.size(); ++k) same[b.parameters[k].symbol] = a.parameters.at(k).symbol;
+  same[b.input.symbol] = a.input.symbol;
+  same[b.input.rate] = a.input.rate;
+  same[b.input.second_rate] = a.input.second_rate;
+  for (std::size_t k = 0; k < b.unknowns.size(); ++k) {
+    same[b.unknowns[k].symbol] = a.unknowns.at(k).symbol;
+    same[b.unknowns[k].rate] = a.unknowns.at(k).rate;
+    same[b.unknowns[k].second_rate] = a.unknowns.at(k).second_rate;
+  }
+  return e.subs(same, GiNaC::subs_options::no_pattern);
+}
+
+// Each expression of `read` is, in `built`'s symbols, the same expression (not merely equal
+// when expanded: GiNaC's canonical form, so that every view prints the same).
+void check_same_expressions(const kinema::ConstraintSystem& built, const kinema::ConstraintSystem& read) {
+  const auto same = [&](const GiNaC::ex& x, const GiNaC::ex& y) { return x.is_equal(in_symbols_of(built, read, y)); };
+  REQUIRE(built.parameters.size() == read.parameters.size());
+  for (std::size_t k = 0; k < read.parameters.size(); ++k)
+    CHECK(built.parameters[k].symbol.get_name() == read.parameters[k].symbol.get_name());
+  REQUIRE(built.unknowns.size() == read.unknowns.size());
+  for (std::size_t k = 0; k < read.unknowns.size(); ++k) CHECK(built.unknowns[k].name == read.unknowns[k].name);
+  REQUIRE(built.equations.size() == read.equations.size());
+  for (std::size_t k = 0; k < read.equations.size(); ++k) CHECK(same(built.equations[k].expression, read.equations[k].expression));
+  REQUIRE(built.groups.size() == read.groups.size());
+  for (std::size_t g = 0; g < read.groups.size(); ++g) {
+    CAPTURE(read.groups[g].name);
+    CHECK(built.groups[g].name == read.groups[g].name);
+    REQUIRE((built.groups[g].vector && read.groups[g].vector));
+    CHECK(same(*built.groups[g].vector, *read.groups[g].vector));
+    REQUIRE(built.groups[g].terms.size() == read.groups[g].terms.size());
+    for (std::size_t t = 0; t < read.groups[g].terms.size(); ++t) CHECK(same(built.groups[g].terms[t], read.groups[g].terms[t]));
+  }
+  REQUIRE(built.points.size() == read.points.size());
+  for (std::size_t p = 0; p < read.points.size(); ++p) {
+    const auto &x = built.points[p], &y = read.points[p];
+    CAPTURE(y.name);
+    CHECK(x.name == y.name);
+    CHECK(x.is_joint == y.is_joint);
+    REQUIRE((x.written && y.written));
+    CHECK(same(*x.written, *y.written));
+    for (std::size_t c = 0; c < 2; ++c) CHECK(same(x.position.at(c), y.position.at(c)));
+    REQUIRE(x.written_terms.size() == y.written_terms.size());
+    for (std::size_t t = 0; t < y.written_terms.size(); ++t) CHECK(same(x.written_terms[t], y.written_terms[t]));
+  }
+}
+
+}  // namespace
+
+TEST_CASE("linkages/linkage_loops: the expressions built from the terms are those the loops' text reads to") {
+  std::vector<kinema::Mechanism> drawn;
+  for (const char* name : kinema_test::kSamples) {
+    kinema::Mechanism m = kinema::read_mechanism_file(sample(name));
+    if (m.linkage) drawn.push_back(m);
+  }
+  REQUIRE(drawn.size() >= 7);
+  // A length written as a formula (with a number in it) and an angle from the sketch.
+  drawn.push_back(kinema::read_mechanism_text(edited("length = \"b\"", "length = \"3*a\""), "lk.toml"));
+  REQUIRE(kinema::linkage_loops(drawn.back()).loops.loops.at(0).complex_formula.find("(3*a)*exp(I*theta3)") !=
+          std::string::npos);
+  for (const kinema::Mechanism& m : drawn) {
+    CAPTURE(m.source_file);
+    const kinema::ConstraintSystem built = kinema::build_linkage_system(m);
+    const kinema::ConstraintSystem read = kinema::build_planar_loops(kinema::linkage_loops(m).loops);
+    check_same_expressions(built, read);
+  }
+}
+
+TEST_CASE("linkages/linkage_loops: no text is read to build a joints-and-links file's equations") {
+  using kinema::Work;
+  const auto reads_in = [](const std::string& path) {
+    const kinema::Mechanism m = kinema::read_mechanism_file(path);
+    const std::uint64_t before = kinema::work_done_in_process(Work::formula_read);
+    kinema::make_model(m);
+    return kinema::work_done_in_process(Work::formula_read) - before;
+  };
+  // Its parameters are quantities and its lengths their names: nothing the file writes is a formula.
+  CHECK(reads_in(sample("problem_4_1_parallelogram.toml")) == 0);
+  // Its vector-loop twin reads its loops and points (the counter counts).
+  CHECK(reads_in(sample("four_bar.toml")) > 0);
 }
 
 TEST_CASE("linkages/linkage_loops: the four-bar as drawn: link angles from the sketch, lengths as given") {

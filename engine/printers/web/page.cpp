@@ -1,6 +1,7 @@
 #include "engine/printers/web/page.hpp"
 
 #include <cmath>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -9,6 +10,7 @@
 #include "engine/base/number_format.hpp"
 #include "engine/analysis/diagnostics.hpp"
 #include "engine/analysis/output_scale.hpp"
+#include "engine/printers/web/page_constructions.hpp"
 
 namespace kinema {
 
@@ -20,9 +22,9 @@ using json = nlohmann::ordered_json;
 // digests (hex), by CMakeLists.txt at configure time.
 #include "web_page_assets.inc"
 
-// Coordinates to the drawing's digits: 9 significant are far below a pixel at any zoom
+// Coordinates to the drawing's digits: 7 significant are far below a pixel at any zoom
 // the page offers and keep a long run's file small. NaN stays NaN (null in JSON).
-double drawn(double value) { return std::isfinite(value) ? round_significant(value, 9) : value; }
+double drawn(double value) { return std::isfinite(value) ? round_significant(value, 7) : value; }
 
 json point_json(std::complex<double> z, double per_unit) {
   return json::array({drawn(z.real() / per_unit), drawn(z.imag() / per_unit)});
@@ -34,6 +36,7 @@ json drawing_json(const MotionDrawing& drawing, double per_unit) {
   json out = json::object();
   out["form"] = drawing.form == MotionDrawing::Form::linkage ? "linkage"
                 : drawing.form == MotionDrawing::Form::loops ? "loops"
+                : drawing.form == MotionDrawing::Form::chain ? "chain"
                                                              : "none";
   if (drawing.form == MotionDrawing::Form::linkage) {
     out["joint_names"] = drawing.joint_names;
@@ -56,6 +59,9 @@ json drawing_json(const MotionDrawing& drawing, double per_unit) {
     out["points_on_links"] = json::array();
     for (const PointOnLink& p : drawing.points_on_links) out["points_on_links"].push_back({{"point", p.point}, {"link", p.link}});
     out["link_labels"] = drawing.link_labels;
+  } else if (drawing.form == MotionDrawing::Form::chain) {
+    out["frames"] = drawing.frame_names;
+    out["parents"] = drawing.frame_parents;
   }
   // Lengths in the output unit; the loops' unit directions (along) and blocks' angles as they are.
   const std::size_t segment_values = 8 * drawing.segments.size();
@@ -64,7 +70,8 @@ json drawing_json(const MotionDrawing& drawing, double per_unit) {
     json values = json::array();
     for (std::size_t k = 0; k < row.size(); ++k) {
       const bool direction = drawing.form == MotionDrawing::Form::loops && k < segment_values && k % 8 >= 6;
-      const bool angle = drawing.form == MotionDrawing::Form::linkage && k >= 2 * drawing.joint_names.size();
+      const bool angle = (drawing.form == MotionDrawing::Form::linkage && k >= 2 * drawing.joint_names.size()) ||
+                         (drawing.form == MotionDrawing::Form::chain && k % 12 >= 3);  // unit axes
       values.push_back(drawn(direction || angle ? row[k] : row[k] / per_unit));
     }
     rows.push_back(values.empty() ? json(nullptr) : values);
@@ -155,7 +162,10 @@ std::string base64_of_hex(const std::string& hex) {
   return out;
 }
 
-void write_page(std::ostream& out, const PrintJob& job, const MotionDrawing& drawing) {
+void write_page(std::ostream& out, const PrintJob& job) {
+  if (!job.analysis || !job.analysis->motion)
+    throw std::logic_error("write_page: the job's analysis holds no motion (analyse it with ViewNeeds::motion)");
+  const MotionDrawing& drawing = *job.analysis->motion;
   const ConstraintSystem& system = job.model.system;
   const MotionTable& table = *job.values;
   const OutputScale scale(system);
@@ -177,6 +187,7 @@ void write_page(std::ostream& out, const PrintJob& job, const MotionDrawing& dra
     reasons.push_back(table.status(r) == Status::ok ? std::string() : describe_failure(system, table.input(r), table.failure(r)));
   data["reasons"] = reasons;
   data["drawing"] = drawing_json(drawing, scale.length);
+  data["constructions"] = constructions_json(job.analysis->values, drawing, scale.length);
 
   const std::string script_hash = base64_of_hex(kPageScriptSha256), style_hash = base64_of_hex(kPageStyleSha256);
   // Nothing but the page's own script and style runs or loads: no fetch, no frame, no form.

@@ -70,12 +70,17 @@
   const value = node('span', 'value', controls);
   value.id = 'value';
   const toggles = {};
-  [['velocity', 'velocity arrows'], ['acceleration', 'acceleration arrows'], ['traces', 'paths of points']].forEach(function (t) {
+  const constructions = data.constructions;
+  const hasPolygons = constructions.rows.some(function (c) { return c && c.polygons; });
+  const hasCentres = constructions.rows.some(function (c) { return c && c.centres; });
+  [['velocity', 'velocity arrows', true], ['acceleration', 'acceleration arrows', true], ['traces', 'paths of points', true],
+    ['polygons', 'polygons', hasPolygons], ['centres', 'instant centres', hasCentres]].forEach(function (t) {
+    if (!t[2]) return;
     const label = node('label', '', controls);
     const box = node('input', '', label);
     box.type = 'checkbox';
     box.id = 'show-' + t[0];
-    box.checked = t[0] !== 'acceleration';
+    box.checked = t[0] !== 'acceleration' && t[0] !== 'centres';
     node('span', '', label, ' ' + t[1]);
     toggles[t[0]] = box;
   });
@@ -93,6 +98,11 @@
       markerHeight: 7, orient: 'auto-start-reverse' }, defs);
     svg('path', { d: 'M0,0 L10,5 L0,10 z', fill: kind === 'velocity' ? '#c62828' : '#2e7d32' }, marker);
   });
+  ['polygon', 'centre'].forEach(function (kind) {
+    const marker = svg('marker', { id: 'head-' + kind, viewBox: '0 0 10 10', refX: 9, refY: 5, markerWidth: 6,
+      markerHeight: 6, orient: 'auto-start-reverse' }, defs);
+    svg('path', { d: 'M0,0 L10,5 L0,10 z', fill: kind === 'polygon' ? '#1b1f24' : '#00838f' }, marker);
+  });
   const traceLayer = svg('g', { id: 'traces' }, picture);
   const layer = svg('g', { id: 'drawing' }, picture);
   const overlay = svg('g', { id: 'overlay' }, picture);
@@ -106,6 +116,8 @@
   const readoutText = node('textarea', '', aside);
   readoutText.id = 'readout-text';
   readoutText.readOnly = true;
+  const polygonArea = node('div', 'polygons', document.body);
+  polygonArea.id = 'polygons';
   const plotArea = node('div', 'plots', document.body);
 
   // The geometry of a row, in the file's length unit: joints (name, x, y), and what to draw.
@@ -168,8 +180,31 @@
     return out;
   }
 
-  // The extent of every row's drawing and points: the view fits the whole motion.
-  const extent = (function () {
+  // A spatial chain seen from a direction turned by dragging: the world turned about the
+  // motion's centre by yaw (about z, up) and pitch (looking down), projected along the view.
+  const camera = { yaw: -0.6, pitch: 0.45, centre: [0, 0, 0] };
+  function projectVector(v) {
+    const cy = Math.cos(camera.yaw), sy = Math.sin(camera.yaw), cp = Math.cos(camera.pitch), sp = Math.sin(camera.pitch);
+    return [cy * v[0] - sy * v[1], cp * v[2] + sp * (sy * v[0] + cy * v[1])];
+  }
+  function project(p) { return projectVector([p[0] - camera.centre[0], p[1] - camera.centre[1], p[2] - camera.centre[2]]); }
+  function chainPoint(n, p) { return [n[p.position], n[p.position + 1], p.dimension === 3 ? n[p.position + 2] : 0]; }
+
+  // The extent of every row's drawing and points: the view fits the whole motion (a chain's:
+  // the sphere about its centre that holds it, whichever way it is turned).
+  const extent = drawing.form === 'chain' ? (function () {
+    const all = [[0, 0, 0]];
+    drawing.rows.forEach(function (g) { if (g) for (let k = 0; k + 2 < g.length; k += 12) all.push(g.slice(k, k + 3)); });
+    numbers.forEach(function (n) { points.forEach(function (p) { all.push(chainPoint(n, p)); }); });
+    const finite = all.filter(function (p) { return p.every(isFinite); });
+    const lo = [0, 1, 2].map(function (k) { return Math.min.apply(null, finite.map(function (p) { return p[k]; })); });
+    const hi = [0, 1, 2].map(function (k) { return Math.max.apply(null, finite.map(function (p) { return p[k]; })); });
+    camera.centre = [0, 1, 2].map(function (k) { return (lo[k] + hi[k]) / 2; });
+    const r = Math.max.apply(null, finite.map(function (p) {
+      return Math.hypot(p[0] - camera.centre[0], p[1] - camera.centre[1], p[2] - camera.centre[2]);
+    })) || 1;
+    return { minX: -r, minY: -r, maxX: r, maxY: r, size: 2 * r };
+  })() : (function () {
     let minX = Infinity, minY = Infinity, maxX = -Infinity, maxY = -Infinity;
     const add = function (x, y) {
       if (!isFinite(x) || !isFinite(y)) return;
@@ -290,13 +325,13 @@
 
   function drawTraces() {
     traceLayer.textContent = '';
-    if (!toggles.traces.checked || data.spatial) return;
+    if (!toggles.traces.checked) return;
     points.forEach(function (p) {
       let path = '', pen = false;
       numbers.forEach(function (n, r) {
         const x = n[p.position], y = n[p.position + 1];
         if (status(r) !== 'ok' || !isFinite(x)) { pen = false; return; }
-        path += (pen ? ' L' : ' M') + xy([x, y]);
+        path += (pen ? ' L' : ' M') + xy(drawing.form === 'chain' ? project(chainPoint(n, p)) : [x, y]);
         pen = true;
       });
       if (path) svg('path', { d: path, class: 'trace', 'data-point': p.name }, traceLayer);
@@ -311,8 +346,11 @@
     picture.setAttribute('data-oy', view.oy);
     const s = status(row);
     picture.setAttribute('data-status', s);
-    if (data.spatial || drawing.form === 'none') {
-      message('3-D chains are not drawn yet: the readout and the plots show the solved rows.', overlay);
+    picture.setAttribute('data-yaw', camera.yaw);
+    picture.setAttribute('data-pitch', camera.pitch);
+    picture.setAttribute('data-centre', camera.centre.join(','));
+    if (drawing.form === 'chain') {
+      drawChain(s);
       return;
     }
     const geometry = rowGeometry(row);
@@ -349,11 +387,196 @@
         arrow(at, [n[p.acceleration], n[p.acceleration + 1]], accelerationScale, 'acceleration', overlay);
       }
     });
+    if (toggles.centres && toggles.centres.checked) drawCentres(overlay);
+    drawScaleBar(overlay);
+  }
+
+  // The constructions of a row (engine/printers/web/page_constructions.cpp): the rows give
+  // coordinates, their structures the names, kinds and which points an arrow joins.
+  function rowPolygons(r) {
+    const c = constructions.rows[r];
+    if (!c || !c.polygons) return null;
+    return c.polygons.map(function (p) {
+      const s = constructions.polygon_structures[p[0]];
+      const at = function (k) { return [p[1 + 2 * k], p[2 + 2 * k]]; };
+      return { order: s.order, vertices: s.vertices.map(function (name, k) { return { name: name, at: at(k) }; }),
+        arrows: s.arrows.map(function (a) { return { kind: a[0], name: a[1], from: at(a[2]), to: at(a[3]) }; }) };
+    });
+  }
+  function rowCentres(r) {
+    const c = constructions.rows[r];
+    if (!c || !c.centres) return null;
+    const s = constructions.centre_structures[c.centres[0]];
+    const g = drawing.rows[r];
+    let k = 1;
+    const next = function () { const p = [c.centres[k], c.centres[k + 1]]; k += 2; return p; };
+    return { not_found: s.not_found, centres: s.centres.map(function (centre) {
+      const out = { name: centre.name, infinite: centre.infinite, kennedy: centre.kennedy };
+      if (centre.infinite) out.direction = next();
+      else if (centre.joint !== null) out.at = [g[2 * centre.joint], g[2 * centre.joint + 1]];
+      else out.at = next();
+      if (centre.seen_from) out.seen_from = next();
+      return out;
+    }) };
+  }
+
+  // Labels of points that fall within a few pixels of each other, said once ("o = A").
+  function drawLabelled(list, place, parent, className, dataName, separator) {
+    const groups = [];
+    list.forEach(function (item) {
+      const p = place(item.at);
+      const group = groups.find(function (g) { return Math.hypot(g.p[0] - p[0], g.p[1] - p[1]) < 4; });
+      if (group) group.names.push(item.name);
+      else groups.push({ p: p, names: [item.name], item: item });
+      const mark = svg('g', { transform: 'translate(' + fixed(p[0]) + ',' + fixed(p[1]) + ')' }, parent);
+      mark.setAttribute(dataName, item.name);
+      mark.setAttribute('data-x', item.at[0]);
+      mark.setAttribute('data-y', item.at[1]);
+      svg('circle', { r: 3, class: className }, mark);
+    });
+    groups.forEach(function (g) {
+      svg('text', { x: fixed(g.p[0] + 6), y: fixed(g.p[1] + 14), class: 'label' }, parent, g.names.join(separator));
+    });
+  }
+
+  // The velocity and the acceleration polygon, each in a panel of its own, drawn as the
+  // notes draw them: at a round scale (1, 2 or 5 units a pixel times a power of ten) that
+  // fits the row's polygon, stated under it.
+  const polygonPanels = (function () {
+    if (!hasPolygons) return [];
+    return [['velocity polygon', '/s'], ['acceleration polygon', '/s^2']].map(function (kind, k) {
+      const box = node('div', 'polygon', polygonArea);
+      node('h2', '', box, kind[0]);
+      const panel = svg('svg', { viewBox: '0 0 400 300', id: k === 0 ? 'velocity-polygon' : 'acceleration-polygon' }, box);
+      return { svg: panel, key: node('p', 'key', box), unit: data.length_unit + kind[1], order: k };
+    });
+  })();
+  function roundScale(polygon) {
+    const xs = polygon.vertices.map(function (v) { return v.at[0]; }), ys = polygon.vertices.map(function (v) { return v.at[1]; });
+    const box = { x0: Math.min.apply(null, xs), x1: Math.max.apply(null, xs), y0: Math.min.apply(null, ys), y1: Math.max.apply(null, ys) };
+    const perPixel = Math.max((box.x1 - box.x0) / 340, (box.y1 - box.y0) / 250, 1e-300);
+    const power = Math.pow(10, Math.floor(Math.log10(perPixel)));
+    const step = [1, 2, 5, 10].map(function (m) { return m * power; }).find(function (m) { return m >= perPixel * (1 - 1e-12); });
+    return { perPixel: step, cx: 200 - (box.x0 + box.x1) / 2 / step, cy: 150 + (box.y0 + box.y1) / 2 / step };
+  }
+  function drawPolygons() {
+    const shown = toggles.polygons && toggles.polygons.checked;
+    polygonArea.style.display = shown ? '' : 'none';
+    if (!shown) return;
+    const polygons = status(row) === 'ok' ? rowPolygons(row) : null;
+    polygonPanels.forEach(function (panel) {
+      panel.svg.textContent = '';
+      if (!polygons) {
+        panel.key.textContent = '';
+        svg('text', { x: 200, y: 150, class: 'message' }, panel.svg, 'No polygon at this value.');
+        return;
+      }
+      const polygon = polygons[panel.order];
+      const scale = roundScale(polygon);
+      panel.svg.setAttribute('data-per-pixel', scale.perPixel);
+      // A scale bar of 50 units of the panel (a round length).
+      const bar = 50 * scale.perPixel;
+      svg('path', { d: 'M12,280 v5 h50 v-5', class: 'scale-bar', fill: 'none' }, panel.svg);
+      svg('text', { x: 70, y: 286, class: 'tick' }, panel.svg, Number(bar.toPrecision(2)) + ' ' + panel.unit);
+      panel.key.textContent = '';
+      const place = function (p) { return [scale.cx + p[0] / scale.perPixel, scale.cy - p[1] / scale.perPixel]; };
+      polygon.arrows.forEach(function (a) {
+        const p = place(a.from), q = place(a.to);
+        if (Math.hypot(q[0] - p[0], q[1] - p[1]) < 0.5) return;
+        const arrowLine = svg('line', { x1: fixed(p[0]), y1: fixed(p[1]), x2: fixed(q[0]), y2: fixed(q[1]),
+          class: 'polygon-arrow polygon-' + a.kind, 'marker-end': 'url(#head-polygon)' }, panel.svg);
+        arrowLine.setAttribute('data-arrow', a.name);
+      });
+      drawLabelled(polygon.vertices, place, panel.svg, 'point', 'data-vertex', ' = ');
+    });
+  }
+
+  // Instant centres over the drawing: Kennedy lines (dashed) through the three centres
+  // each joins, a centre at infinity as an arrow from where it is seen toward it.
+  function drawCentres(parent) {
+    const found = rowCentres(row);
+    if (!found) return;
+    const g = svg('g', { id: 'centres' }, parent);
+    const finite = found.centres.filter(function (c) { return c.at; });
+    finite.forEach(function (centre) {
+      centre.kennedy.forEach(function (pair) {
+        const ends = [centre.at];
+        pair.forEach(function (k) { if (k !== null && found.centres[k].at) ends.push(found.centres[k].at); });
+        let a = ends[0], b = ends[0], far = 0;
+        ends.forEach(function (p) {
+          ends.forEach(function (q) {
+            const d = Math.hypot(p[0] - q[0], p[1] - q[1]);
+            if (d > far) { far = d; a = p; b = q; }
+          });
+        });
+        if (far > 0) line(a, b, 'kennedy', g);
+      });
+    });
+    found.centres.forEach(function (centre) {
+      if (!centre.infinite || !centre.seen_from) return;
+      const p = px(centre.seen_from);
+      const q = [p[0] + 60 * centre.direction[0], p[1] - 60 * centre.direction[1]];
+      svg('line', { x1: fixed(p[0]), y1: fixed(p[1]), x2: fixed(q[0]), y2: fixed(q[1]), class: 'centre-infinite',
+        'marker-end': 'url(#head-centre)' }, g).setAttribute('data-centre', centre.name);
+      svg('text', { x: fixed(q[0] + 4), y: fixed(q[1] - 4), class: 'label centre-label' }, g, centre.name + ' \u221e');
+    });
+    drawLabelled(finite, px, g, 'centre', 'data-centre', ', ');
+  }
+
+  // A spatial chain: the observer's axes at the origin, each frame's origin joined to its
+  // parent's and its triad (x red, y green, z blue), the points with their arrows.
+  function drawChain(s) {
+    const g = drawing.rows[row];
+    if (!g || !g.length || s === 'unassembled') {
+      message('Not assembled at this value: nothing is drawn.', overlay);
+      return;
+    }
+    const body = svg('g', { class: s === 'ok' ? '' : 'singular-drawing' }, layer);
+    const axisLength = 0.2 * extent.size, triad = 0.08 * extent.size;
+    ['x', 'y', 'z'].forEach(function (name, k) {
+      const tip = [0, 0, 0];
+      tip[k] = axisLength;
+      line(project([0, 0, 0]), project(tip), 'world-axis', body);
+      const q = px(project(tip));
+      svg('text', { x: fixed(q[0] + 4), y: fixed(q[1] - 4), class: 'tick' }, body, name);
+    });
+    const origin = function (name) {
+      const k = drawing.frames.indexOf(name);
+      return k < 0 ? [0, 0, 0] : g.slice(12 * k, 12 * k + 3);
+    };
+    drawing.frames.forEach(function (name, k) {
+      const o = g.slice(12 * k, 12 * k + 3);
+      line(project(origin(drawing.parents[k])), project(o), 'chain-link', body);
+      ['x', 'y', 'z'].forEach(function (axis, a) {
+        const d = g.slice(12 * k + 3 + 3 * a, 12 * k + 6 + 3 * a);
+        line(project(o), project([o[0] + triad * d[0], o[1] + triad * d[1], o[2] + triad * d[2]]), 'triad-' + axis, body);
+      });
+      const q = px(project(o));
+      const mark = svg('g', { 'data-frame': name, transform: 'translate(' + fixed(q[0]) + ',' + fixed(q[1]) + ')' }, body);
+      svg('circle', { r: 3, class: 'joint' }, mark);
+      svg('text', { x: -8, y: 16, class: 'label frame-label' }, mark, name);
+    });
+    if (s !== 'ok') return;
+    const n = numbers[row];
+    points.forEach(function (p) {
+      const at = chainPoint(n, p);
+      if (!at.every(isFinite)) return;
+      const flat = project(at), q = px(flat);
+      const mark = svg('g', { 'data-point': p.name, 'data-x': at[0], 'data-y': at[1], 'data-z': at[2],
+        transform: 'translate(' + q[0] + ',' + q[1] + ')' }, overlay);
+      svg('circle', { r: 3, class: 'point' }, mark);
+      svg('text', { x: 6, y: -6, class: 'label' }, mark, p.name);
+      const d = p.dimension;
+      const vector = function (k) { return projectVector([n[k], n[k + 1], d === 3 ? n[k + 2] : 0]); };
+      if (toggles.velocity.checked) arrow(flat, vector(p.velocity), velocityScale, 'velocity', overlay);
+      if (toggles.acceleration.checked) arrow(flat, vector(p.acceleration), accelerationScale, 'acceleration', overlay);
+    });
     drawScaleBar(overlay);
   }
 
   function showKey() {
-    let text = 'Drag to pan, wheel to zoom, double-click to fit.';
+    let text = drawing.form === 'chain' ? 'Drag to turn (shift-drag to pan), wheel to zoom, double-click to fit. Frames: x red, y green, z blue.'
+      : 'Drag to pan, wheel to zoom, double-click to fit.';
     const unit = data.length_unit;
     if (velocityScale > 0) text += ' Velocity arrows (red): 1 ' + unit + ' of drawing = ' + (1 / velocityScale).toPrecision(3) + ' ' + unit + '/s.';
     if (accelerationScale > 0) {
@@ -437,6 +660,7 @@
     showReadout();
     plots.forEach(function (p) { p.cursor.setAttribute('x1', p.x()); p.cursor.setAttribute('x2', p.x()); });
     draw();
+    drawPolygons();
   }
 
   // Playing: rows at the chosen rate, looping; frame times kept for measuring.
@@ -470,7 +694,9 @@
   back.addEventListener('click', function () { setRow(row - 1); });
   forward.addEventListener('click', function () { setRow(row + 1); });
   scrubber.addEventListener('input', function () { setRow(Number(scrubber.value)); });
-  Object.keys(toggles).forEach(function (k) { toggles[k].addEventListener('change', function () { drawTraces(); draw(); }); });
+  Object.keys(toggles).forEach(function (k) {
+    toggles[k].addEventListener('change', function () { drawTraces(); draw(); drawPolygons(); });
+  });
   document.addEventListener('keydown', function (event) {
     if (event.target && (event.target.tagName === 'TEXTAREA' || event.target.tagName === 'SELECT')) return;
     const moves = { ArrowRight: row + 1, ArrowLeft: row - 1, Home: 0, End: count - 1 };
@@ -499,8 +725,13 @@
   });
   picture.addEventListener('pointermove', function (event) {
     if (!drag) return;
-    view.ox += event.clientX - drag.x;
-    view.oy += event.clientY - drag.y;
+    if (drawing.form === 'chain' && !event.shiftKey) {  // a chain turns (shift-drag pans)
+      camera.yaw += (event.clientX - drag.x) * 0.01;
+      camera.pitch = Math.max(-1.5, Math.min(1.5, camera.pitch + (event.clientY - drag.y) * 0.01));
+    } else {
+      view.ox += event.clientX - drag.x;
+      view.oy += event.clientY - drag.y;
+    }
     drag = { x: event.clientX, y: event.clientY };
     drawTraces();
     draw();

@@ -10,6 +10,8 @@
 
 #include "engine/model.hpp"
 #include "engine/printers/web/page.hpp"
+#include "engine/printers/web/page_constructions.hpp"
+#include "engine/run/view.hpp"
 #include "engine/analysis/motion_drawing.hpp"
 #include "readers/mechanism_file.hpp"
 #include "tests/test_support.hpp"
@@ -67,9 +69,8 @@ TEST_CASE("engine/printers/web/page: the file's strings stay data inside their s
       "four_bar.toml");
   const kinema::Model model = kinema::make_model(mechanism, kinema::DerivationScope::evaluation);
   const kinema::MotionTable table = kinema::analyse(model, turn_in_degrees(30));
-  kinema::PrintJob job{model, &table};
   std::ostringstream out;
-  kinema::write_page(out, job, kinema::motion_drawing(model.system, table));
+  kinema::print_page(out, model, table, false);
   const std::string page = out.str();
   CHECK(occurrences(page, "<script") == 2);  // the data and the page's own script
   CHECK(occurrences(page, "</script>") == 2);
@@ -90,4 +91,56 @@ TEST_CASE("engine/printers/web/page: base64 of hex digests as RFC 4648 gives the
   CHECK(kinema::base64_of_hex("666f") == "Zm8=");
   CHECK(kinema::base64_of_hex("666f6f") == "Zm9v");
   CHECK(kinema::base64_of_hex("666f6f626172") == "Zm9vYmFy");
+}
+
+// The page's constructions are the analysis's, written compactly: decoding a row gives back
+// every centre found by Kennedy lines (those at joints are named by the joint) and every
+// polygon vertex, to the five digits the page draws.
+TEST_CASE("engine/printers/web/page_constructions: each row's centres and polygons are the analysis's") {
+  const kinema::Model model = kinema::load_model(kinema_test::sample("problem_4_4_joints.toml"), kinema::DerivationScope::evaluation);
+  const kinema::MotionTable table = kinema::analyse(model, turn_in_degrees(45));
+  kinema::ViewNeeds needs;
+  needs.motion = true;
+  const kinema::Analysis analysis = kinema::analyse_for_views(model, &table, needs);
+  REQUIRE(analysis.motion);
+  const nlohmann::ordered_json data = kinema::constructions_json(analysis.values, *analysis.motion, 1.0);
+  REQUIRE(data["rows"].size() == table.size());
+  const auto close = [](double page, double engine, double size) { return std::fabs(page - engine) <= 1e-4 * size; };
+  std::size_t centres = 0, vertices = 0;
+  for (std::size_t r = 0; r < table.size(); ++r) {
+    const kinema::ValueAnalysis& value = analysis.values[r];
+    REQUIRE(value.centres);
+    REQUIRE(value.polygons);
+    const auto& row = data["rows"][r];
+    const auto& structure = data["centre_structures"][row["centres"][0].get<std::size_t>()];
+    REQUIRE(structure["centres"].size() == value.centres->centres.size());
+    std::size_t k = 1;
+    for (std::size_t c = 0; c < value.centres->centres.size(); ++c) {
+      const kinema::InstantCentre& centre = value.centres->centres[c];
+      const auto& written = structure["centres"][c];
+      if (centre.at_infinity || written["joint"].is_null()) {
+        CHECK(close(row["centres"][k].get<double>(), centre.at.real(), 1.0));
+        CHECK(close(row["centres"][k + 1].get<double>(), centre.at.imag(), 1.0));
+        k += 2;
+        ++centres;
+      } else {
+        const std::size_t j = written["joint"];
+        CHECK(std::abs(centre.at - std::complex<double>(analysis.motion->rows[r][2 * j], analysis.motion->rows[r][2 * j + 1])) < 1e-12);
+      }
+      if (written["seen_from"].get<bool>()) k += 2;
+    }
+    CHECK(k == row["centres"].size());
+    for (int order = 0; order < 2; ++order) {
+      const kinema::Polygon& polygon = order == 0 ? value.polygons->first : value.polygons->second;
+      const auto& p = row["polygons"][order];
+      double size = 0;
+      for (const kinema::PolygonVertex& v : polygon.vertices) size = std::max(size, std::abs(v.at));
+      for (std::size_t v = 0; v < polygon.vertices.size(); ++v, ++vertices) {
+        CHECK(close(p[1 + 2 * v].get<double>(), polygon.vertices[v].at.real(), size));
+        CHECK(close(p[2 + 2 * v].get<double>(), polygon.vertices[v].at.imag(), size));
+      }
+    }
+  }
+  CHECK(centres >= table.size());  // a Kennedy centre or one at infinity in every row
+  CHECK(vertices >= 8 * table.size());
 }

@@ -1,5 +1,5 @@
-// The loops and points: one loop per joint outside the spanning tree, each the two paths
-// from ground to that joint; each moving joint and link point as a point.
+// The loops and points as sums of terms: one loop per joint outside the spanning tree,
+// each the two paths from ground to that joint; each moving joint and link point as a point.
 #include "linkages/linkage_writer.hpp"
 
 namespace kinema::linkage_detail {
@@ -86,12 +86,9 @@ void LinkageWriter::write_loops() {
     std::vector<Term> terms = flatten(a, common);
     const std::vector<Term> back = negated(flatten(b, common));
     terms.insert(terms.end(), back.rbegin(), back.rend());
-    Loop loop;
-    loop.name = cycle_name(a, b, common, e.joint);
+    TermSum loop{cycle_name(a, b, common, e.joint), linkage_.joints[e.joint].where, terms};
     while (!loop_names.insert(loop.name).second) loop.name += "_";
-    loop.complex_formula = sum_text(terms);
-    loop.where = linkage_.joints[e.joint].where;
-    m_.loops.push_back(loop);
+    loops_.push_back(loop);
   }
 }
 
@@ -113,12 +110,7 @@ void LinkageWriter::write_points() {
         shown = shown || (k != j && linkage_.joints[k].kind == Joint::Kind::pin && std::abs(at_[k] - at_[j]) < 1e-12);
     }
     if (shown) continue;
-    Point point;
-    point.name = joint.name;
-    point.formula = sum_text(flatten(position(body, j), 0));
-    point.where = joint.where;
-    point.is_joint = true;
-    m_.points.push_back(point);
+    points_.push_back({joint.name, joint.where, flatten(position(body, j), 0), true});
   }
   for (const LinkPoint& p : linkage_.points) {
     const auto it = body_index_.find(p.link);
@@ -132,14 +124,10 @@ void LinkageWriter::write_points() {
     const Point2 v = at - at_[body.joints[0]];
     if (std::abs(v) > 1e-12 * (1 + std::abs(at))) {
       const std::string factor = add_parameter("r_" + body.name + "_" + p.name, std::abs(v), Dimension::length, p.where);
-      terms.push_back(rotated(factor, body.angle, wrapped(std::arg(v) - body.angle0 + body.offset),
+      terms.push_back(rotated({factor}, body.angle, wrapped(std::arg(v) - body.angle0 + body.offset),
                               "beta_" + body.name + "_" + p.name, p.where));
     }
-    Point point;
-    point.name = p.name;
-    point.formula = sum_text(terms);
-    point.where = p.where;
-    m_.points.push_back(point);
+    points_.push_back({p.name, p.where, terms});
   }
 }
 
