@@ -114,6 +114,15 @@ TEST_CASE("figures: the TikZ reader finds a label on a line, on a hatching and o
   CHECK(hatched[0].find("$B$") == 0);
   const std::string on_label = "\\node[font=\\small] at (1,1) {B};\n\\node[below, font=\\small] at (1,1.3) {C};\n";
   CHECK(label_problems(kinema_test::read_tikz(on_label)).size() == 1);
+  // A \node statement's own options give its font: its box is the \scriptsize one, as a
+  // node on a path's is (read as \normalsize, every \node label was a third too large).
+  for (const std::string& node : {std::string("\\node[font=\\scriptsize, inner sep=0pt] at (1,1) {$B$};\n"),
+                                  std::string("\\path (1,1) node[font=\\scriptsize, inner sep=0pt] {$B$};\n")}) {
+    const auto labels = kinema_test::read_tikz(node).labels;
+    REQUIRE(labels.size() == 1);
+    CHECK(labels[0].box.half_width == doctest::Approx(kinema::label_box("$B$", 8, 0).half_width));
+    CHECK(labels[0].box.half_height == doctest::Approx(kinema::label_box("$B$", 8, 0).half_height));
+  }
   // A label at its own arrow's tip is not crossed by the arrow it names.
   const std::string tip = "\\draw[-latex, red, thick] (0,0) -- ++(1,0) node[anchor=west, inner sep=1pt, font=\\scriptsize] {$v$};\n";
   CHECK(label_problems(kinema_test::read_tikz(tip)).empty());

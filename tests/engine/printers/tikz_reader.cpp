@@ -144,7 +144,7 @@ class StatementReader {
     skip();
     if (at_ < s_.size() && s_[at_] == '[') options_ = split_options(enclosed(s_, at_, '[', ']'));
     if (command == "\\node") {
-      read_node();
+      read_node(options_);  // \node[...]: its options are the node's
       return;
     }
     for (skip(); at_ < s_.size() && s_[at_] != ';'; skip()) step();
@@ -187,7 +187,7 @@ class StatementReader {
     } else if (next_is("node")) {
       at_ += 4;
       skip();
-      read_node();
+      read_node({});
     } else {
       FAIL("a TikZ step not understood at '" << s_.substr(at_) << "' in " << s_);
     }
@@ -233,9 +233,9 @@ class StatementReader {
     current_ = last;
   }
 
-  // A node: where the path is (or along its last step at pos), or at its own point.
-  void read_node() {
-    std::vector<std::string> options;
+  // A node: where the path is (or along its last step at pos), or at its own point;
+  // `options` those already read (a \node statement's).
+  void read_node(std::vector<std::string> options) {
     if (at_ < s_.size() && s_[at_] == '[') options = split_options(enclosed(s_, at_, '[', ']'));
     skip();
     TikzPoint where = current_;
