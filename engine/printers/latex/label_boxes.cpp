@@ -142,11 +142,27 @@ double LabelBoxes::cost(const LabelBox& c, const Line* except) const {
   return cost;
 }
 
-LabelBox LabelBoxes::place_first_free(const std::vector<LabelBox>& candidates, const Line* except) {
-  const LabelBox* chosen = nullptr;
+PlacedLabel with_leader(std::complex<double> at, double dot, const LabelBox& box) {
+  const std::complex<double> nearest(std::clamp(at.real(), box.centre.real() - box.half_width, box.centre.real() + box.half_width),
+                                     std::clamp(at.imag(), box.centre.imag() - box.half_height, box.centre.imag() + box.half_height));
+  const std::complex<double> along = (nearest - at) / std::abs(nearest - at);
+  return {box, true, at + along * dot, nearest - along * kCmPerPt};
+}
+
+double LabelBoxes::leader_cost(const PlacedLabel& c) const {
+  if (!c.led) return 0;
+  double cost = 0;
+  for (const LabelBox& o : boxes_)
+    if (o.distance_to(c.leader_from) > 0 && o.distance_to_segment(c.leader_from, c.leader_to) < kCmPerPt)
+      cost += 2 * c.box.half_width * c.box.half_height;
+  return cost;
+}
+
+PlacedLabel LabelBoxes::place_first_free(const std::vector<PlacedLabel>& candidates, const Line* except) {
+  const PlacedLabel* chosen = nullptr;
   double least = INFINITY;
-  for (const LabelBox& c : candidates) {
-    const double overlap = cost(c, except);
+  for (const PlacedLabel& c : candidates) {
+    const double overlap = cost(c.box, except) + leader_cost(c);
     if (overlap < least) {
       least = overlap;
       chosen = &c;
@@ -154,19 +170,20 @@ LabelBox LabelBoxes::place_first_free(const std::vector<LabelBox>& candidates, c
     if (overlap == 0) break;
   }
   last_cost_ = least;
-  boxes_.push_back(*chosen);
+  boxes_.push_back(chosen->box);
+  if (chosen->led) lines_.push_back({chosen->leader_from, chosen->leader_to, kLeaderHalfWidth});
   return *chosen;
 }
 
-std::vector<LabelBox> LabelBoxes::place_all(const std::vector<LabelRequest>& requests) {
+std::vector<PlacedLabel> LabelBoxes::place_all(const std::vector<LabelRequest>& requests) {
   std::vector<std::size_t> order(requests.size());
   for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-  std::vector<LabelBox> best;
+  std::vector<PlacedLabel> best;
   LabelBoxes best_figure;
   std::size_t fewest = requests.size() + 1;
   for (int round = 0; round < 4; ++round) {
     LabelBoxes trial = *this;
-    std::vector<LabelBox> placed(requests.size());
+    std::vector<PlacedLabel> placed(requests.size());
     std::vector<std::size_t> crowded, free;
     for (std::size_t k : order) {
       placed[k] = trial.place(requests[k]);
@@ -185,34 +202,42 @@ std::vector<LabelBox> LabelBoxes::place_all(const std::vector<LabelRequest>& req
   return best;
 }
 
-LabelBox LabelBoxes::place_near(const LabelBox& named, const LabelBox& size, double preferred) {
-  std::vector<LabelBox> candidates;
+PlacedLabel LabelBoxes::place_near(const LabelBox& named, const LabelBox& size, double preferred, bool may_lead) {
+  std::vector<PlacedLabel> candidates;
   const double reach = label_reach(size);
   // The distance between two boxes' nearest points.
   const auto apart = [&](const LabelBox& c) {
     return std::hypot(std::max(std::fabs(c.centre.real() - named.centre.real()) - c.half_width - named.half_width, 0.0),
                       std::max(std::fabs(c.centre.imag() - named.centre.imag()) - c.half_height - named.half_height, 0.0));
   };
-  // Within a label's height first; only where all that is taken, a little further.
-  for (double gap : {0.12, 0.3, 0.5, 0.7, 0.85, 0.95, 1.2, 1.5}) {
+  // Within a label's height first; only where all that is taken, a little further, or
+  // (a label that may be led) further still with a leader.
+  std::vector<double> gaps = {0.12, 0.3, 0.5, 0.7, 0.85, 0.95};
+  if (may_lead) {
+    for (double gap = 1.25; gap <= kLeaderReach; gap += 0.25) gaps.push_back(gap);
+  } else {
+    gaps.insert(gaps.end(), {1.2, 1.5});
+  }
+  for (double gap : gaps) {
     for (int k = 0; k < 48; ++k) {
       const double angle = preferred + (k % 2 ? 1 : -1) * ((k + 1) / 2) * kPi / 24;
       const std::complex<double> along(std::cos(angle), std::sin(angle));
       // The distance out along `along` at which the box stands `gap` label heights off what it names.
-      double lo = 0, hi = named.half_width + named.half_height + size.half_width + size.half_height + 2 * reach;
+      double lo = 0, hi = named.half_width + named.half_height + size.half_width + size.half_height + (gap + 1) * reach;
       for (int step = 0; step < 40; ++step) {
         const double mid = (lo + hi) / 2;
         if (apart({named.centre + mid * along, size.half_width, size.half_height}) < gap * reach) lo = mid;
         else hi = mid;
       }
-      candidates.push_back({named.centre + hi * along, size.half_width, size.half_height});
+      const LabelBox box{named.centre + hi * along, size.half_width, size.half_height};
+      candidates.push_back(may_lead && gap > 1 ? with_leader(named.centre, kLeaderDot, box) : PlacedLabel{box});
     }
   }
   return place_first_free(candidates);
 }
 
 LabelBox LabelBoxes::place_along(std::complex<double> a, std::complex<double> b, const LabelBox& size, bool on_it) {
-  std::vector<LabelBox> candidates;
+  std::vector<PlacedLabel> candidates;
   const std::complex<double> across = (b - a) / std::abs(b - a) * std::complex<double>(0, 1);
   // On it, then to either side, a little further each time; nearest the middle first.
   // Past its ends too, where a label is still within reach of it.
@@ -221,14 +246,14 @@ LabelBox LabelBoxes::place_along(std::complex<double> a, std::complex<double> b,
     for (int k = 0; k < 35; ++k) {
       const double t = 0.5 + (k % 2 ? 1 : -1) * ((k + 1) / 2) * 0.05;
       const LabelBox c{a + (b - a) * t + across * (side * size.half_height), size.half_width, size.half_height};
-      if (c.distance_to_segment(a, b) <= label_reach(size)) candidates.push_back(c);
+      if (c.distance_to_segment(a, b) <= label_reach(size)) candidates.push_back({c});
     }
   }
   // The line itself, when the label may stand on it.
   const Line* itself = nullptr;
   for (const Line& line : lines_)
     if (on_it && ((line.a == a && line.b == b) || (line.a == b && line.b == a))) itself = &line;
-  return place_first_free(candidates, itself);
+  return place_first_free(candidates, itself).box;
 }
 
 }  // namespace kinema

@@ -45,13 +45,27 @@ inline LabelBox circled(LabelBox text) {
 inline double label_reach(const LabelBox& box) { return 2 * box.half_height; }
 
 /// A label to place: beside `named` towards `preferred` first (place_near), or with `along`
-/// beside the line named.centre-end (place_along, on it first with `on_it`).
+/// beside the line named.centre-end (place_along, on it first with `on_it`). With
+/// `may_lead`, a label with no free place within label_reach stands further out, joined
+/// to what it names by a leader.
 struct LabelRequest {
   LabelBox named, size;
   double preferred = 0;
   bool along = false, on_it = false;
   std::complex<double> end;
+  bool may_lead = false;
 };
+
+/// A label placed: its box and, where it stands beyond label_reach of what it names, its
+/// leader, a thin line from beside what it names (past its dot) to 1 pt short of the box.
+struct PlacedLabel {
+  LabelBox box;
+  bool led = false;
+  std::complex<double> leader_from{}, leader_to{};
+};
+
+/// The leader from the point `at` (its dot `dot` cm round) to 1 pt short of `box`.
+PlacedLabel with_leader(std::complex<double> at, double dot, const LabelBox& box);
 
 /// What is on one figure so far: the labels placed and the dots they must not cover, the
 /// lines they must not cross and the areas (hatching, blocks) they must not stand on. A new
@@ -66,10 +80,10 @@ class LabelBoxes {
   void add_area(std::vector<std::complex<double>> corners) { areas_.push_back(std::move(corners)); }
   bool free(const LabelBox& box) const { return cost(box, nullptr) == 0; }
   /// A box of `size`'s half sizes beside `named` (a point's zero box, a block's box): first
-  /// towards `preferred` (radians), then turning either way, then a little further out;
-  /// placed and returned.
-  LabelBox place_near(const LabelBox& named, const LabelBox& size, double preferred);
-  LabelBox place_near(std::complex<double> at, const LabelBox& size, double preferred) {
+  /// towards `preferred` (radians), then turning either way, then a little further out
+  /// (with `may_lead`, out to kLeaderReach with a leader: `named` a point); placed and returned.
+  PlacedLabel place_near(const LabelBox& named, const LabelBox& size, double preferred, bool may_lead = false);
+  PlacedLabel place_near(std::complex<double> at, const LabelBox& size, double preferred) {
     return place_near(LabelBox{at, 0, 0}, size, preferred);
   }
   /// A box of `size`'s half sizes beside the line a-b (nearest its middle); with `on_it`,
@@ -79,7 +93,14 @@ class LabelBoxes {
   /// Every request placed, as each alone would be, in the order that leaves fewest on
   /// something: as asked, then those that found no free place first (a crowded label takes
   /// its one free place before a freer neighbour does). Their boxes, as requested.
-  std::vector<LabelBox> place_all(const std::vector<LabelRequest>& requests);
+  std::vector<PlacedLabel> place_all(const std::vector<LabelRequest>& requests);
+
+  /// How far out a led label may stand, in label heights.
+  static constexpr double kLeaderReach = 4;
+  /// A leader's dot: labels with leaders name points drawn as dots this size (cm).
+  static constexpr double kLeaderDot = 0.1;
+  /// Half a leader's width (very thin, 0.2 pt), in cm.
+  static constexpr double kLeaderHalfWidth = 0.1 * 2.54 / 72.27;
 
  private:
   struct Line {
@@ -89,10 +110,14 @@ class LabelBoxes {
   // 0 where the box meets nothing; else how badly it does (labels' overlap, and a share of
   // its area for each line or area it meets). `except` is a line it may cover.
   double cost(const LabelBox& box, const Line* except) const;
-  // The first free candidate, else the one that costs the least; placed and returned.
-  LabelBox place_first_free(const std::vector<LabelBox>& candidates, const Line* except = nullptr);
-  LabelBox place(const LabelRequest& r) {
-    return r.along ? place_along(r.named.centre, r.end, r.size, r.on_it) : place_near(r.named, r.size, r.preferred);
+  // What a leader meets: a label or dot (not the one at its own start) it runs through.
+  double leader_cost(const PlacedLabel& c) const;
+  // The first free candidate, else the one that costs the least; placed (its leader a line
+  // later labels keep off) and returned.
+  PlacedLabel place_first_free(const std::vector<PlacedLabel>& candidates, const Line* except = nullptr);
+  PlacedLabel place(const LabelRequest& r) {
+    return r.along ? PlacedLabel{place_along(r.named.centre, r.end, r.size, r.on_it)}
+                   : place_near(r.named, r.size, r.preferred, r.may_lead);
   }
   double last_cost_ = 0;  // what the last placed label meets
   std::vector<LabelBox> boxes_;

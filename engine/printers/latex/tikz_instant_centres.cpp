@@ -46,20 +46,21 @@ void write_centre_marks(std::ostream& out, const InstantCentres& c, LabelBoxes& 
   const auto label_of = [&](std::size_t k) {
     return centre_latex(c, c.centres[k]) + (c.centres[k].at_infinity ? "\\to\\infty" : "");
   };
-  // A dot's label above right, as a figure letters its points; an arrow's beyond its tip.
+  // A dot's label above right, as a figure letters its points, or where the centres crowd
+  // further out with a leader; an arrow's beyond its tip.
   std::vector<LabelRequest> requests;
   for (std::size_t k = 0; k < c.centres.size(); ++k)
     requests.push_back({{marks[k].to, 0, 0}, label_box("$" + label_of(k) + "$", 8, 0),
-                        marks[k].dot ? kPi / 4 : std::arg(marks[k].to - marks[k].from), false, false, 0});
-  const std::vector<LabelBox> boxes = placed.place_all(requests);
+                        marks[k].dot ? kPi / 4 : std::arg(marks[k].to - marks[k].from), false, false, 0, marks[k].dot});
+  const std::vector<PlacedLabel> placed_labels = placed.place_all(requests);
   for (std::size_t k = 0; k < c.centres.size(); ++k) {
     const CentreMark& m = marks[k];
-    const std::string label = label_of(k);
-    const LabelBox& chosen = boxes[k];
+    const PlacedLabel& chosen = placed_labels[k];
+    if (chosen.led) out << "\\draw[red!75!black, very thin] " << cm_xy(chosen.leader_from) << " -- " << cm_xy(chosen.leader_to) << ";\n";
     out << (m.dot ? "\\filldraw[red!75!black, fill=white] " + cm_xy(m.to) + " circle (0.07)"
                   : std::string("\\draw[->, red!75!black") + (c.centres[k].at_infinity ? "" : ", dashed") + "] " +
                         cm_xy(m.from) + " -- " + cm_xy(m.to))
-        << " node[font=\\scriptsize, inner sep=0pt] at " << cm_xy(chosen.centre) << " {$" << label << "$};\n";
+        << " node[font=\\scriptsize, inner sep=0pt] at " << cm_xy(chosen.box.centre) << " {$" << label_of(k) << "$};\n";
   }
 }
 

@@ -174,10 +174,10 @@ class MechanismFigure {
     std::stable_sort(pending_.begin(), pending_.end(), [](const PendingLabel& a, const PendingLabel& b) { return a.rank < b.rank; });
     std::vector<LabelRequest> requests;
     for (const PendingLabel& l : pending_) requests.push_back({l.named, l.size, l.preferred, l.along, false, l.end});
-    const std::vector<LabelBox> boxes = placed_.place_all(requests);
+    const std::vector<PlacedLabel> boxes = placed_.place_all(requests);
     for (std::size_t k = 0; k < pending_.size(); ++k) {
       const PendingLabel& l = pending_[k];
-      const LabelBox& chosen = boxes[k];
+      const LabelBox& chosen = boxes[k].box;
       out_ << (l.path.empty() ? "\\node" : l.path + " node") << "[" << l.options << "] at ("
            << format_fixed(chosen.centre.real(), 3) << "," << format_fixed(chosen.centre.imag(), 3) << ") {" << l.text << "};\n";
     }

@@ -157,14 +157,14 @@ void write_tikz_polygon(std::ostream& out, const ConstraintSystem& system, const
   const auto labelled = [&](const PolygonArrow& a) { return a.length() / scale.length / per_cm >= 0.6; };
   for (const PolygonArrow* a : drawn)
     if (labelled(*a)) requests.push_back({{cm_of(a->from), 0, 0}, label_box("$" + a->latex + "$", 8, 1), 0, true, true, cm_of(a->to)});
-  const std::vector<LabelBox> boxes = placed.place_all(requests);
+  const std::vector<PlacedLabel> boxes = placed.place_all(requests);
   std::size_t next = places.size();
   for (const PolygonArrow* arrow : drawn) {
     const PolygonArrow& a = *arrow;
     out << "\\draw[->, " << style(a.kind) << "] " << xy(a.from) << " -- " << xy(a.to);
     if (labelled(a)) {
       const std::complex<double> p = cm_of(a.from), q = cm_of(a.to);
-      const LabelBox& chosen = boxes[next++];
+      const LabelBox& chosen = boxes[next++].box;
       const double pos = std::real((chosen.centre - p) / (q - p));
       const std::complex<double> offset = chosen.centre - (p + (q - p) * pos);
       out << " node[pos=" << format_fixed(pos, 3) << ", xshift=" << format_fixed(offset.real(), 3)
@@ -174,7 +174,7 @@ void write_tikz_polygon(std::ostream& out, const ConstraintSystem& system, const
     out << ";\n";
   }
   for (std::size_t k = 0; k < places.size(); ++k) {
-    const std::complex<double> at = places[k].first, label = boxes[k].centre;
+    const std::complex<double> at = places[k].first, label = boxes[k].box.centre;
     out << "\\fill (" << format_fixed(at.real(), 3) << "," << format_fixed(at.imag(), 3) << ") circle (0.05);\n\\node[font=\\small, inner sep=0pt] at ("
         << format_fixed(label.real(), 3) << "," << format_fixed(label.imag(), 3) << ") {" << vertex_labels[k] << "};\n";
   }

@@ -566,6 +566,8 @@ struct ReadLabel {
   std::string text;
   kinema::LabelBox box;
   Point from, to;
+  bool led = false;  // joined to its point by a leader from..to: from beside the point, to beside the label
+  Point leader_from{}, leader_to{};
 };
 
 
@@ -588,11 +590,16 @@ void check_labels(const std::vector<ReadLabel>& labels, const std::vector<kinema
   for (std::size_t i = 0; i < labels.size(); ++i) {
     CAPTURE(labels[i].text);
     CAPTURE(labels[i].box.centre);
-    const double off = labels[i].from == labels[i].to ? labels[i].box.distance_to(labels[i].to)
-                                                      : labels[i].box.distance_to_segment(labels[i].from, labels[i].to);
-    // Within a label's height, or one and a half where lines or labels take the nearer ring
-    // (coordinates are written to 0.001 cm).
-    CHECK(off <= 1.5 * kinema::label_reach(labels[i].box) + 0.002);
+    // Within a label's height (coordinates are written to 0.001 cm); a label further out is
+    // led: its leader runs from its point's dot to a point's width off the label.
+    if (labels[i].led) {
+      CHECK(std::abs(labels[i].leader_from - labels[i].to) <= kinema::LabelBoxes::kLeaderDot + 0.002);
+      CHECK(labels[i].box.distance_to(labels[i].leader_to) <= 2.54 / 72.27 + 0.002);
+    } else {
+      const double off = labels[i].from == labels[i].to ? labels[i].box.distance_to(labels[i].to)
+                                                        : labels[i].box.distance_to_segment(labels[i].from, labels[i].to);
+      CHECK(off <= kinema::label_reach(labels[i].box) + 0.002);
+    }
     for (std::size_t j = 0; j < i; ++j) {
       CAPTURE(labels[j].text);
       CAPTURE(labels[j].box.centre);
@@ -621,11 +628,17 @@ TEST_CASE("figures: instant centres' labels on no other label, dot, pivot or blo
     ++figures;
     std::vector<ReadLabel> labels;
     std::vector<kinema::LabelBox> dots;
-    for (const std::string& line : lines_starting(figure, "\\filldraw[red!75!black, fill=white] ")) {
+    std::istringstream lines(figure);
+    std::vector<Point> leader;  // the leader just drawn, for the centre after it
+    for (std::string line; std::getline(lines, line);) {
+      if (line.rfind("\\draw[red!75!black, very thin] ", 0) == 0) leader = coordinates(line);
+      if (line.rfind("\\filldraw[red!75!black, fill=white] ", 0) != 0) continue;
       const auto c = coordinates(line);
       dots.push_back({c[0], 0.07, 0.07});
       const kinema::LabelBox box = kinema::label_box(node_text(line), 8, 0);
       labels.push_back({node_text(line), {c.size() > 1 ? c[1] : anchored(c[0], line, box), box.half_width, box.half_height}, c[0], c[0]});
+      if (leader.size() == 2) labels.back().led = true, labels.back().leader_from = leader[0], labels.back().leader_to = leader[1];
+      leader.clear();
     }
     for (const std::string& line : lines_starting(figure, "\\draw[->, red!75!black")) {
       const auto c = coordinates(line);
