@@ -97,6 +97,14 @@ bool LabelBox::meets(const std::vector<std::complex<double>>& corners) const {
   return true;
 }
 
+double LabelBox::distance_to_area(const std::vector<std::complex<double>>& corners) const {
+  if (meets(corners)) return 0;
+  double nearest = INFINITY;
+  for (std::size_t k = 0; k < corners.size(); ++k)
+    nearest = std::min(nearest, distance_to_segment(corners[k], corners[(k + 1) % corners.size()]));
+  return nearest;
+}
+
 LabelBox label_box(const std::string& latex, double font_pt, double pad_pt, std::complex<double> centre) {
   // A script is 3/4 of \scriptsize's size, 7/10 of \small's; stacked scripts (a^{n}_{B})
   // take the wider one's width.
@@ -202,11 +210,13 @@ std::vector<PlacedLabel> LabelBoxes::place_all(const std::vector<LabelRequest>& 
   return best;
 }
 
-PlacedLabel LabelBoxes::place_near(const LabelBox& named, const LabelBox& size, double preferred, bool may_lead) {
+PlacedLabel LabelBoxes::place_near(const LabelBox& named, const LabelBox& size, double preferred, bool may_lead,
+                                   const std::vector<std::complex<double>>& named_area) {
   std::vector<PlacedLabel> candidates;
   const double reach = label_reach(size);
-  // The distance between two boxes' nearest points.
+  // The distance between the box's and what it names' nearest points.
   const auto apart = [&](const LabelBox& c) {
+    if (!named_area.empty()) return c.distance_to_area(named_area);
     return std::hypot(std::max(std::fabs(c.centre.real() - named.centre.real()) - c.half_width - named.half_width, 0.0),
                       std::max(std::fabs(c.centre.imag() - named.centre.imag()) - c.half_height - named.half_height, 0.0));
   };

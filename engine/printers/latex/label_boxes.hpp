@@ -20,6 +20,8 @@ struct LabelBox {
   double distance_to_segment(std::complex<double> a, std::complex<double> b) const;
   /// True when the box and the convex polygon `corners` (in order) share more than an edge.
   bool meets(const std::vector<std::complex<double>>& corners) const;
+  /// From the convex polygon `corners` to the nearest point of the box (0 where they meet).
+  double distance_to_area(const std::vector<std::complex<double>>& corners) const;
 };
 
 /// The corners of the parallelogram from `corner` along `side` and `other_side`: a block or a
@@ -47,13 +49,15 @@ inline double label_reach(const LabelBox& box) { return 2 * box.half_height; }
 /// A label to place: beside `named` towards `preferred` first (place_near), or with `along`
 /// beside the line named.centre-end (place_along, on it first with `on_it`). With
 /// `may_lead`, a label with no free place within label_reach stands further out, joined
-/// to what it names by a leader.
+/// to what it names by a leader. A turned block names by `named_area`, its corners: its
+/// label's reach is measured from the block, not from the box round it.
 struct LabelRequest {
   LabelBox named, size;
   double preferred = 0;
   bool along = false, on_it = false;
   std::complex<double> end;
   bool may_lead = false;
+  std::vector<std::complex<double>> named_area{};
 };
 
 /// A label placed: its box and, where it stands beyond label_reach of what it names, its
@@ -81,8 +85,10 @@ class LabelBoxes {
   bool free(const LabelBox& box) const { return cost(box, nullptr) == 0; }
   /// A box of `size`'s half sizes beside `named` (a point's zero box, a block's box): first
   /// towards `preferred` (radians), then turning either way, then a little further out
-  /// (with `may_lead`, out to kLeaderReach with a leader: `named` a point); placed and returned.
-  PlacedLabel place_near(const LabelBox& named, const LabelBox& size, double preferred, bool may_lead = false);
+  /// (with `may_lead`, out to kLeaderReach with a leader: `named` a point); its distance
+  /// from `named_area` where that is given; placed and returned.
+  PlacedLabel place_near(const LabelBox& named, const LabelBox& size, double preferred, bool may_lead = false,
+                         const std::vector<std::complex<double>>& named_area = {});
   PlacedLabel place_near(std::complex<double> at, const LabelBox& size, double preferred) {
     return place_near(LabelBox{at, 0, 0}, size, preferred);
   }
@@ -117,7 +123,7 @@ class LabelBoxes {
   PlacedLabel place_first_free(const std::vector<PlacedLabel>& candidates, const Line* except = nullptr);
   PlacedLabel place(const LabelRequest& r) {
     return r.along ? PlacedLabel{place_along(r.named.centre, r.end, r.size, r.on_it)}
-                   : place_near(r.named, r.size, r.preferred, r.may_lead);
+                   : place_near(r.named, r.size, r.preferred, r.may_lead, r.named_area);
   }
   double last_cost_ = 0;  // what the last placed label meets
   std::vector<LabelBox> boxes_;

@@ -35,6 +35,7 @@ struct PendingLabel {
   bool along = false;  // beside the line named.centre - end
   Planar end;
   int rank = 0;  // placed in rank order: what names a point first, an angle last
+  std::vector<Planar> area{};  // a turned block's corners, when it names one
 };
 
 // The drawing of a planar mechanism in cm, as it is written: each shape into `out` and,
@@ -98,8 +99,10 @@ class MechanismFigure {
   void block(Planar at, double angle) {
     out_ << "\\draw[thick, fill=white, rotate around={" << format_fixed(to_degrees(angle)) << ":" << xy(at) << "}] " << xy(at)
          << " ++(-0.35,-0.2) rectangle ++(0.7,0.4);\n";
-    const Planar along = std::polar(1.0, angle);
-    placed_.add_area(parallelogram(at_cm(at) - along * Planar(0.35, 0.2), along * 0.7, along * Planar(0, 0.4)));
+    placed_.add_area(block_corners(at_cm(at), std::polar(1.0, angle)));
+  }
+  static std::vector<Planar> block_corners(Planar centre, Planar along) {
+    return parallelogram(centre - along * Planar(0.35, 0.2), along * 0.7, along * Planar(0, 0.4));
   }
   // A fixed guide from a to b, hatched on its right.
   void guide(Planar a, Planar b) {
@@ -161,19 +164,19 @@ class MechanismFigure {
     pending_.push_back({"", "circle, draw, inner sep=1pt, font=\\scriptsize", number, circled(label_box(number, 8, 1)),
                         {at_cm(a), 0, 0}, 0, true, at_cm(b), 4});
   }
-  // A block's number, circled, beside its block (0.7 by 0.4 cm turned by `angle`: the box
-  // round it), towards `preferred` first.
+  // A block's number, circled, beside its block (0.7 by 0.4 cm turned by `angle`), towards
+  // `preferred` first.
   void block_number(Planar at, double angle, double preferred, const std::string& number) {
-    const double c = std::fabs(std::cos(angle)), s = std::fabs(std::sin(angle));
+    const Planar along = std::polar(1.0, angle);
     pending_.push_back({"", "circle, draw, inner sep=1pt, font=\\scriptsize", number, circled(label_box(number, 8, 1)),
-                        {at_cm(at), 0.35 * c + 0.2 * s, 0.35 * s + 0.2 * c}, preferred, false, 0, 3});
+                        {at_cm(at), 0, 0}, preferred, false, 0, 3, block_corners(at_cm(at), along)});
   }
 
   // Every label, in the order asked, where it meets nothing drawn nor placed before it.
   void place_labels() {
     std::stable_sort(pending_.begin(), pending_.end(), [](const PendingLabel& a, const PendingLabel& b) { return a.rank < b.rank; });
     std::vector<LabelRequest> requests;
-    for (const PendingLabel& l : pending_) requests.push_back({l.named, l.size, l.preferred, l.along, false, l.end});
+    for (const PendingLabel& l : pending_) requests.push_back({l.named, l.size, l.preferred, l.along, false, l.end, false, l.area});
     const std::vector<PlacedLabel> boxes = placed_.place_all(requests);
     for (std::size_t k = 0; k < pending_.size(); ++k) {
       const PendingLabel& l = pending_[k];

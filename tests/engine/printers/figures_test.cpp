@@ -468,12 +468,21 @@ TEST_CASE("engine/printers/figures: the drawing's axes, angle arcs, numbered blo
     REQUIRE(y_axis.size() == 1);
     CHECK(node_text(x_axis[0]) == "$x$");
     CHECK(node_text(y_axis[0]) == "$y$");
-    // Every block numbered: a circled number beside it (its centre within the block's half
-    // diagonal, 0.4 cm, and a circled number's height, 0.47 cm), off its guide's hatching.
+    // Every block numbered: a circled number within one number's height of the block as
+    // turned (a label's reach, as for every label; a fixed 0.6 cm from the block's centre
+    // held only while numbers stood at fixed offsets, with arrows and letters under them),
+    // off its guide's hatching.
     const auto numbers = lines_starting(figure, "\\node[circle, draw, inner sep=1pt, font=\\scriptsize] at ");
     for (const Block& b : d.blocks) {
+      const Point along = std::polar(1.0, b.degrees * M_PI / 180);
+      const std::vector<Point> corners = kinema::parallelogram(b.centre - along * Point(0.35, 0.2), along * 0.7, along * Point(0, 0.4));
       bool numbered = false;
-      for (const std::string& line : numbers) numbered = numbered || std::abs(coordinates(line)[0] - b.centre) < 0.87;
+      for (const std::string& line : numbers) {
+        const std::string text = line.substr(line.rfind('{') + 1, line.rfind('}') - line.rfind('{') - 1);
+        const kinema::LabelBox number = kinema::circled(kinema::label_box(text, 8, 1, coordinates(line)[0]));
+        numbered = numbered || number.distance_to_area(corners) <= kinema::label_reach(number) + 0.002;
+      }
+      CAPTURE(b.centre);
       CHECK(numbered);
     }
     // No number on a guide's hatching (0.15 cm on one side of its line).
