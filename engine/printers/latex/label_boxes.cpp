@@ -65,19 +65,43 @@ bool LabelBox::overlaps(const LabelBox& o) const {
 double LabelBox::distance_to(std::complex<double> p) const {
   const double dx = std::max(std::fabs(p.real() - centre.real()) - half_width, 0.0);
   const double dy = std::max(std::fabs(p.imag() - centre.imag()) - half_height, 0.0);
-  return std::hypot(dx, dy);
+  return std::sqrt(dx * dx + dy * dy);
 }
 
+namespace {
+
+double point_to_segment(std::complex<double> p, std::complex<double> a, std::complex<double> b) {
+  const std::complex<double> ab = b - a;
+  const double length2 = std::norm(ab);
+  const double t = length2 > 0 ? std::clamp(std::real((p - a) * std::conj(ab)) / length2, 0.0, 1.0) : 0.0;
+  const std::complex<double> off = p - (a + ab * t);
+  return std::sqrt(std::norm(off));
+}
+
+}  // namespace
+
 double LabelBox::distance_to_segment(std::complex<double> a, std::complex<double> b) const {
-  // The distance is convex along the segment: its least found by golden-section search.
-  double lo = 0, hi = 1;
-  const double g = (std::sqrt(5.0) - 1) / 2;
-  for (int k = 0; k < 60; ++k) {
-    const double t1 = hi - g * (hi - lo), t2 = lo + g * (hi - lo);
-    if (distance_to(a + (b - a) * t1) <= distance_to(a + (b - a) * t2)) hi = t2;
-    else lo = t1;
-  }
-  return std::min({distance_to(a), distance_to(b), distance_to(a + (b - a) * ((lo + hi) / 2))});
+  // Where the segment crosses the box (clipped to it, something is left), 0.
+  const std::complex<double> d = b - a;
+  double enter = 0, leave = 1;
+  // The part of the segment where p * t <= q.
+  const auto clip = [&](double p, double q) {
+    if (p == 0) return q >= 0;
+    const double t = q / p;
+    if (p < 0) enter = std::max(enter, t);
+    else leave = std::min(leave, t);
+    return enter <= leave;
+  };
+  if (clip(-d.real(), a.real() - (centre.real() - half_width)) && clip(d.real(), centre.real() + half_width - a.real()) &&
+      clip(-d.imag(), a.imag() - (centre.imag() - half_height)) && clip(d.imag(), centre.imag() + half_height - a.imag()))
+    return 0;
+  // Else two convex shapes apart are nearest at a corner of one: the segment's ends to the
+  // box, the box's corners to the segment.
+  double nearest = std::min(distance_to(a), distance_to(b));
+  for (const double sx : {-1.0, 1.0})
+    for (const double sy : {-1.0, 1.0})
+      nearest = std::min(nearest, point_to_segment(centre + std::complex<double>(sx * half_width, sy * half_height), a, b));
+  return nearest;
 }
 
 bool LabelBox::meets(const std::vector<std::complex<double>>& corners) const {

@@ -2,11 +2,14 @@
 // document writes: each label's box from its text at its font, the lines and areas as drawn.
 #include <doctest/doctest.h>
 
+#include <cmath>
+#include <complex>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "engine/analysis/plot_range.hpp"
+#include "engine/base/units.hpp"
 #include "engine/printers/printer.hpp"
 #include "engine/run/view.hpp"
 #include "tests/engine/printers/tikz_reader.hpp"
@@ -126,4 +129,24 @@ TEST_CASE("figures: the TikZ reader finds a label on a line, on a hatching and o
   // A label at its own arrow's tip is not crossed by the arrow it names.
   const std::string tip = "\\draw[-latex, red, thick] (0,0) -- ++(1,0) node[anchor=west, inner sep=1pt, font=\\scriptsize] {$v$};\n";
   CHECK(label_problems(kinema_test::read_tikz(tip)).empty());
+}
+
+// The distances the placing keeps labels off lines and blocks by: a segment through the box
+// with both ends outside it meets it; beside it, by its nearest point or the box's nearest
+// corner; a block by its nearest edge.
+TEST_CASE("figures: a label box's distance to a segment and to a block") {
+  const kinema::LabelBox box{0, 1, 0.5};
+  CHECK(box.distance_to_segment({-3, 0}, {3, 0}) == 0);
+  CHECK(box.distance_to_segment({-3, 1}, {3, 1}) == doctest::Approx(0.5));
+  CHECK(box.distance_to_segment({3, 0}, {5, 0}) == doctest::Approx(2));
+  CHECK(box.distance_to_segment({2, 0}, {0, 2}) == doctest::Approx(0.5 / std::sqrt(2.0)));  // from the corner (1, 0.5)
+  CHECK(box.distance_to_segment({2, 0.5}, {2, 0.5}) == doctest::Approx(1));                 // a point
+  const std::vector<std::complex<double>> block = kinema::parallelogram({2, -1}, 1.0, {0, 2});
+  CHECK(box.distance_to_area(block) == doctest::Approx(1));
+  CHECK(kinema::LabelBox{{2.2, 0}, 0.5, 0.5}.distance_to_area(block) == 0);
+  // A block turned 45 degrees about (3, 0): its nearest corner is (3 - sqrt 2 / 2, 0) on the x axis.
+  const std::complex<double> turn = std::polar(1.0, kinema::kPi / 4);
+  const std::vector<std::complex<double>> turned =
+      kinema::parallelogram(std::complex<double>(3, 0) + std::complex<double>(-0.5, -0.5) * turn, turn, turn * std::complex<double>(0, 1));
+  CHECK(box.distance_to_area(turned) == doctest::Approx(2 - std::sqrt(0.5)));
 }
