@@ -26,36 +26,41 @@ struct CentreMark {
   std::complex<double> from, to;
 };
 
+// Half a thin line and half a very thick one, in cm (0.4 and 1.2 pt).
+constexpr double kThinHalf = 0.2 * 2.54 / 72.27, kVeryThickHalf = 0.6 * 2.54 / 72.27;
+
 // The centres' dots and arrows, each labelled next to its dot or its arrow's tip where no
-// other label, dot or pivot is (the shared LabelBoxes placing).
+// other label, dot, pivot, block or line is (the shared LabelBoxes placing: `placed` holds
+// what the figure drew before).
 template <class MarkOf>
-void write_centre_marks(std::ostream& out, const InstantCentres& c, const LinkageDrawing& drawing, double cm,
-                        const MarkOf& mark_of) {
+void write_centre_marks(std::ostream& out, const InstantCentres& c, LabelBoxes& placed, const MarkOf& mark_of) {
   const auto cm_xy = [](std::complex<double> p) {
     return "(" + format_fixed(p.real(), 3) + "," + format_fixed(p.imag(), 3) + ")";
   };
   std::vector<CentreMark> marks;
-  LabelBoxes placed;
   for (const InstantCentre& centre : c.centres) {
     marks.push_back(mark_of(centre));
     if (marks.back().dot) placed.add({marks.back().to, 0.1, 0.1});
+    else placed.add_line(marks.back().from, marks.back().to, kThinHalf);
   }
-  for (const auto& pivot : drawing.ground_pivots) placed.add({pivot.at * cm + std::complex<double>(0, -0.125), 0.16, 0.14});
-  for (const auto& link : drawing.links) {
-    if (!link.block) continue;  // a block, 0.6 by 0.3 cm turned by its angle
-    const double cos_a = std::fabs(std::cos(link.angle)), sin_a = std::fabs(std::sin(link.angle));
-    placed.add({link.joints.front().at * cm, 0.3 * cos_a + 0.15 * sin_a, 0.3 * sin_a + 0.15 * cos_a});
-  }
+  const auto label_of = [&](std::size_t k) {
+    return centre_latex(c, c.centres[k]) + (c.centres[k].at_infinity ? "\\to\\infty" : "");
+  };
+  // A dot's label above right, as a figure letters its points, or where the centres crowd
+  // further out with a leader; an arrow's beyond its tip.
+  std::vector<LabelRequest> requests;
+  for (std::size_t k = 0; k < c.centres.size(); ++k)
+    requests.push_back({{marks[k].to, 0, 0}, label_box("$" + label_of(k) + "$", 8, 0),
+                        marks[k].dot ? kPi / 4 : std::arg(marks[k].to - marks[k].from), false, false, 0, marks[k].dot});
+  const std::vector<PlacedLabel> placed_labels = placed.place_all(requests);
   for (std::size_t k = 0; k < c.centres.size(); ++k) {
     const CentreMark& m = marks[k];
-    const std::string label = centre_latex(c, c.centres[k]) + (c.centres[k].at_infinity ? "\\to\\infty" : "");
-    const LabelBox box = label_box("$" + label + "$", 8, 0);
-    // A dot's label above right, as a figure letters its points; an arrow's beyond its tip.
-    const LabelBox chosen = placed.place_near(m.to, box, m.dot ? kPi / 4 : std::arg(m.to - m.from));
+    const PlacedLabel& chosen = placed_labels[k];
+    if (chosen.led) out << "\\draw[red!75!black, very thin] " << cm_xy(chosen.leader_from) << " -- " << cm_xy(chosen.leader_to) << ";\n";
     out << (m.dot ? "\\filldraw[red!75!black, fill=white] " + cm_xy(m.to) + " circle (0.07)"
                   : std::string("\\draw[->, red!75!black") + (c.centres[k].at_infinity ? "" : ", dashed") + "] " +
                         cm_xy(m.from) + " -- " + cm_xy(m.to))
-        << " node[font=\\scriptsize, inner sep=0pt] at " << cm_xy(chosen.centre) << " {$" << label << "$};\n";
+        << " node[font=\\scriptsize, inner sep=0pt] at " << cm_xy(chosen.box.centre) << " {$" << label_of(k) << "$};\n";
   }
 }
 
@@ -119,6 +124,7 @@ void write_tikz_instant_centres(std::ostream& out, const ConstraintSystem& syste
   const auto cm_xy = [&](std::complex<double> p) {
     return "(" + format_fixed(p.real(), 3) + "," + format_fixed(p.imag(), 3) + ")";
   };
+  LabelBoxes placed;  // every line, block and pivot drawn, then the centres' labels
   // The Kennedy lines: each secondary centre on two lines of known centres; a line to a
   // centre off the figure runs to the figure's edge towards it.
   for (const InstantCentre& centre : c.centres) {
@@ -132,21 +138,28 @@ void write_tikz_instant_centres(std::ostream& out, const ConstraintSystem& syste
       const std::complex<double> end =
           on_figure(far) ? far.at * cm : edge_towards(near.at * cm, (far.at - near.at) / std::abs(far.at - near.at));
       out << "\\draw[gray!60, dashed] " << xy(near.at) << " -- " << cm_xy(end) << ";\n";
+      placed.add_line(near.at * cm, end, kThinHalf);
     }
   }
   for (const auto& link : drawing->links) {
     std::string path;
     for (const auto& joint : link.joints) path += (path.empty() ? "" : " -- ") + xy(joint.at);
-    if (link.block) {
+    if (link.block) {  // 0.6 by 0.3 cm, turned by its angle
+      const std::complex<double> at = link.joints.front().at * cm, along = std::polar(1.0, link.angle);
       out << "\\draw[thick, fill=white, rotate around={" << format_fixed(to_degrees(link.angle)) << ":"
           << xy(link.joints.front().at) << "}] " << xy(link.joints.front().at) << " ++(-0.3,-0.15) rectangle ++(0.6,0.3);\n";
-    } else {
-      out << "\\draw[very thick, blue!70!black] " << path << (link.joints.size() >= 3 ? " -- cycle" : "") << ";\n";
+      placed.add_area(parallelogram(at - along * std::complex<double>(0.3, 0.15), along * 0.6, along * std::complex<double>(0, 0.3)));
+      continue;
     }
+    out << "\\draw[very thick, blue!70!black] " << path << (link.joints.size() >= 3 ? " -- cycle" : "") << ";\n";
+    for (std::size_t k = 0; k + 1 < link.joints.size() + (link.joints.size() >= 3 ? 1 : 0); ++k)
+      placed.add_line(link.joints[k].at * cm, link.joints[(k + 1) % link.joints.size()].at * cm, kVeryThickHalf);
   }
-  for (const auto& pivot : drawing->ground_pivots)
+  for (const auto& pivot : drawing->ground_pivots) {
     out << "\\draw " << xy(pivot.at) << " -- ++(-0.15,-0.25) -- ++(0.3,0) -- cycle;\n";
-  write_centre_marks(out, c, *drawing, cm, [&](const InstantCentre& centre) {
+    placed.add_area(parallelogram(pivot.at * cm + std::complex<double>(-0.15, -0.25), 0.3, std::complex<double>(0, 0.25)));
+  }
+  write_centre_marks(out, c, placed, [&](const InstantCentre& centre) {
     if (centre.at_infinity) {  // an arrow from its joint (else the middle) towards it
       const std::complex<double> from = centre.seen_from.value_or(middle) * cm;
       return CentreMark{false, from, from + centre.at * 1.2};

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "engine/printers/latex/label_boxes.hpp"
 #include "engine/printers/latex/latex_format.hpp"
 #include "engine/analysis/geometry.hpp"
 #include "engine/base/number_format.hpp"
@@ -17,69 +18,288 @@ namespace kinema {
 
 namespace {
 
-// A fixed pivot: a triangle on hatched ground.
-void write_pivot(std::ostream& out, const std::string& at) {
-  out << "\\fill[pattern=north east lines] " << at << " ++(-0.3,-0.35) rectangle ++(0.6,0.15);\n"
-      << "\\draw " << at << " ++(-0.3,-0.2) -- ++(0.6,0);\n"
-      << "\\draw " << at << " -- ++(-0.15,-0.2) -- ++(0.3,0) -- cycle;\n";
-}
+constexpr double kCmPerPt = 2.54 / 72.27;
+// Half a line's width in cm: thin (0.4 pt), thick (0.8 pt), very thick (1.2 pt), a bar's body (6 pt).
+constexpr double kThin = 0.2 * kCmPerPt, kThick = 0.4 * kCmPerPt, kVeryThick = 0.6 * kCmPerPt, kBody = 3 * kCmPerPt;
 
-// A binary link drawn as a body, as the textbooks do: a light bar with rounded ends under
-// its centre line (the line is what tests and readers measure).
-void write_bar(std::ostream& out, const std::string& path) {
-  out << "\\draw[line width=6pt, line cap=round, line join=round, blue!12] " << path << ";\n"
-      << "\\draw[very thick, blue!70!black] " << path << ";\n";
-}
+using Planar = std::complex<double>;  // a point of the plane
 
-// The anchor that puts an arrow's label beyond its tip, away from the arrow.
-std::string anchor_beyond(std::complex<double> direction) {
-  const double a = std::arg(direction) * 180 / kPi;
-  if (a > -22.5 && a <= 22.5) return "west";
-  if (a > 22.5 && a <= 67.5) return "south west";
-  if (a > 67.5 && a <= 112.5) return "south";
-  if (a > 112.5 && a <= 157.5) return "south east";
-  if (a > -67.5 && a <= -22.5) return "north west";
-  if (a > -112.5 && a <= -67.5) return "north";
-  if (a > -157.5 && a <= -112.5) return "north east";
-  return "east";
-}
+// A label the drawing places once everything drawn is known: its TikZ node's options and
+// text, its box, and what it names (a point or a box beside which it stands, or a link
+// it stands beside); `path` the statement it ends (a point's dot, an arrow) or empty.
+struct PendingLabel {
+  std::string path, options, text;
+  LabelBox size;
+  LabelBox named;
+  double preferred = 0;
+  bool along = false;  // beside the line named.centre - end
+  Planar end;
+  int rank = 0;  // placed in rank order: what names a point first, an angle last
+  std::vector<Planar> area{};  // a turned block's corners, when it names one
+};
+
+// The drawing of a planar mechanism in cm, as it is written: each shape into `out` and,
+// as what its labels keep off, into `placed`; the labels after all of them.
+class MechanismFigure {
+ public:
+  MechanismFigure(std::ostream& out, double cm, double size, Planar centre)
+      : out_(out), cm_(cm), size_(size), centre_(centre) {}
+
+  std::string xy(Planar p) const { return "(" + format_fixed(p.real() * cm_) + "," + format_fixed(p.imag() * cm_) + ")"; }
+  Planar at_cm(Planar p) const { return p * cm_; }
+  bool same(Planar a, Planar b) const { return std::abs(a - b) < 1e-9 * size_; }
+
+  double cm() const { return cm_; }
+
+  // The frame's axes, labelled beside their tips after every other label (they name no
+  // part of the mechanism).
+  void axes() {
+    placed_.add_line(0, 1.2, kThin);
+    placed_.add_line(0, Planar(0, 1.2), kThin);
+  }
+  void axis_labels() {
+    for (const bool x : {true, false}) {
+      const std::string name = x ? "$x$" : "$y$";
+      pending_.push_back({x ? "\\draw[->, gray] (0,0) -- (1.2,0)" : "\\draw[->, gray] (0,0) -- (0,1.2)",
+                          "font=\\scriptsize, inner sep=0pt", name, label_box(name, 8, 0), {x ? Planar(1.2) : Planar(0, 1.2), 0, 0},
+                          x ? 0 : kPi / 2, false, 0});
+    }
+    place_labels();
+  }
+
+  // A fixed pivot: a triangle on hatched ground.
+  void pivot(Planar at) {
+    const std::string p = xy(at);
+    out_ << "\\fill[pattern=north east lines] " << p << " ++(-0.3,-0.35) rectangle ++(0.6,0.15);\n"
+         << "\\draw " << p << " ++(-0.3,-0.2) -- ++(0.6,0);\n"
+         << "\\draw " << p << " -- ++(-0.15,-0.2) -- ++(0.3,0) -- cycle;\n";
+    const Planar c = at_cm(at);
+    placed_.add_area(parallelogram(c + Planar(-0.3, -0.35), 0.6, Planar(0, 0.15)));
+    placed_.add_line(c + Planar(-0.3, -0.2), c + Planar(0.3, -0.2), kThin);
+    placed_.add_area({c, c + Planar(-0.15, -0.2), c + Planar(0.15, -0.2)});
+  }
+
+  // A binary link drawn as a body, as the textbooks do: a light bar with rounded ends under
+  // its centre line (the line is what tests and readers measure).
+  void bar(const std::vector<Planar>& path) {
+    std::string drawn;
+    for (const Planar& p : path) drawn += (drawn.empty() ? "" : " -- ") + xy(p);
+    out_ << "\\draw[line width=6pt, line cap=round, line join=round, blue!12] " << drawn << ";\n"
+         << "\\draw[very thick, blue!70!black] " << drawn << ";\n";
+    for (std::size_t k = 1; k < path.size(); ++k) placed_.add_line(at_cm(path[k - 1]), at_cm(path[k]), kBody);
+  }
+  void plate(const std::vector<Planar>& corners, const std::string& style) {
+    std::string drawn;
+    for (const Planar& p : corners) drawn += xy(p) + " -- ";
+    out_ << "\\filldraw[fill=blue!10, draw=blue!70!black, " << style << ", line join=round] " << drawn << "cycle;\n";
+    for (std::size_t k = 0; k < corners.size(); ++k)
+      placed_.add_line(at_cm(corners[k]), at_cm(corners[(k + 1) % corners.size()]), kVeryThick);
+  }
+  // A slider block, 0.7 by 0.4 cm, turned along its guide.
+  void block(Planar at, double angle) {
+    out_ << "\\draw[thick, fill=white, rotate around={" << format_fixed(to_degrees(angle)) << ":" << xy(at) << "}] " << xy(at)
+         << " ++(-0.35,-0.2) rectangle ++(0.7,0.4);\n";
+    placed_.add_area(block_corners(at_cm(at), std::polar(1.0, angle)));
+  }
+  static std::vector<Planar> block_corners(Planar centre, Planar along) {
+    return parallelogram(centre - along * Planar(0.35, 0.2), along * 0.7, along * Planar(0, 0.4));
+  }
+  // A fixed guide from a to b, hatched on its right.
+  void guide(Planar a, Planar b) {
+    const Planar along = (b - a) / std::abs(b - a);
+    out_ << "\\draw[gray] " << xy(a) << " -- " << xy(b) << ";\n"
+         << "\\fill[pattern=north east lines, rotate around={" << format_fixed(to_degrees(std::arg(along))) << ":" << xy(a)
+         << "}] " << xy(a) << " rectangle ++(" << format_fixed(std::abs(b - a) * cm_) << ",-0.15);\n";
+    placed_.add_line(at_cm(a), at_cm(b), kThin);
+    placed_.add_area(parallelogram(at_cm(a), at_cm(b - a), along * Planar(0, -0.15)));
+  }
+  void line(Planar a, Planar b, const std::string& style) {
+    out_ << "\\draw[" << style << "] " << xy(a) << " -- " << xy(b) << ";\n";
+    placed_.add_line(at_cm(a), at_cm(b), kThin);
+  }
+  void dot(Planar at, double radius, const std::string& command) {
+    out_ << command << " " << xy(at) << " circle (" << format_fixed(radius, 2) << ");\n";
+    placed_.add({at_cm(at), radius, radius});
+  }
+  // A named point: its dot, written with its letter (above left of it where that is free).
+  void point(Planar at, const std::string& letter) {
+    placed_.add({at_cm(at), 0.06, 0.06});
+    pending_.push_back({"\\fill " + xy(at) + " circle (0.06)", "font=\\small, inner sep=0pt", letter, label_box(letter, 10, 0),
+                        {at_cm(at), 0, 0}, 3 * kPi / 4, false, 0});
+  }
+
+  // An arrow from a point, `tip` cm long, written with its name beyond its tip.
+  void arrow(Planar from, Planar tip, const std::string& style, const std::string& name) {
+    placed_.add_line(at_cm(from), at_cm(from) + tip, kThick);
+    const std::string path = "\\draw[-latex, " + style + "] " + xy(from) + " -- ++(" + format_fixed(tip.real()) + "," +
+                             format_fixed(tip.imag()) + ")";
+    pending_.push_back({path, "inner sep=1pt, font=\\scriptsize, " + style.substr(0, style.find(", ")), name,
+                        label_box(name, 8, 0), {at_cm(from) + tip, 0, 0}, std::arg(tip), false, 0, 2});
+  }
+  // An angle that is a coordinate: a dashed x direction at `at` and an arc to `degrees`.
+  void angle_arc(Planar at, double degrees, const std::string& symbol) {
+    // 0.55 cm, or wider where a small angle leaves its symbol no room between the lines.
+    const LabelBox size = label_box(symbol, 8, 0);
+    const double room = (std::hypot(size.half_width, size.half_height) + 0.25) / std::sin(from_degrees(std::fabs(degrees)) / 2);
+    const double r = std::clamp(room, 0.55, 2.5);  // cm
+    out_ << "\\draw[gray, dashed] " << xy(at) << " -- ++(" << format_fixed(r + 0.25) << ",0);\n"
+         << "\\draw[->, gray] " << xy(at) << " ++(" << format_fixed(r) << ",0) arc[start angle=0, end angle="
+         << format_fixed(degrees) << ", radius=" << format_fixed(r) << "];\n";
+    const Planar c = at_cm(at);
+    placed_.add_line(c, c + (r + 0.25), kThin);
+    const int chords = std::max(1, static_cast<int>(std::ceil(std::fabs(degrees) / 10)));
+    for (int k = 0; k < chords; ++k)
+      placed_.add_line(c + std::polar(r, from_degrees(degrees * k / chords)),
+                       c + std::polar(r, from_degrees(degrees * (k + 1) / chords)), kThin);
+    const Planar middle = c + std::polar(r, from_degrees(degrees / 2));
+    pending_.push_back({"", "font=\\scriptsize, inner sep=0pt, gray!30!black", symbol, size, {middle, 0, 0},
+                        from_degrees(degrees / 2), false, 0, 5});
+  }
+
+  void pivot_label(Planar at, const std::string& text) {
+    pending_.push_back({"", "font=\\small, inner sep=0pt", text, label_box(text, 10, 0), {at_cm(at), 0, 0}, -kPi / 4, false, 0, 1});
+  }
+  // A link's number, circled, beside the line a-b.
+  void link_number(Planar a, Planar b, const std::string& number) {
+    pending_.push_back({"", "circle, draw, inner sep=1pt, font=\\scriptsize", number, circled(label_box(number, 8, 1)),
+                        {at_cm(a), 0, 0}, 0, true, at_cm(b), 4});
+  }
+  // A block's number, circled, beside its block (0.7 by 0.4 cm turned by `angle`), towards
+  // `preferred` first.
+  void block_number(Planar at, double angle, double preferred, const std::string& number) {
+    const Planar along = std::polar(1.0, angle);
+    pending_.push_back({"", "circle, draw, inner sep=1pt, font=\\scriptsize", number, circled(label_box(number, 8, 1)),
+                        {at_cm(at), 0, 0}, preferred, false, 0, 3, block_corners(at_cm(at), along)});
+  }
+
+  // Every label, in the order asked, where it meets nothing drawn nor placed before it.
+  void place_labels() {
+    std::stable_sort(pending_.begin(), pending_.end(), [](const PendingLabel& a, const PendingLabel& b) { return a.rank < b.rank; });
+    std::vector<LabelRequest> requests;
+    for (const PendingLabel& l : pending_) requests.push_back({l.named, l.size, l.preferred, l.along, false, l.end, false, l.area});
+    const std::vector<PlacedLabel> boxes = placed_.place_all(requests);
+    for (std::size_t k = 0; k < pending_.size(); ++k) {
+      const PendingLabel& l = pending_[k];
+      const LabelBox& chosen = boxes[k].box;
+      out_ << (l.path.empty() ? "\\node" : l.path + " node") << "[" << l.options << "] at ("
+           << format_fixed(chosen.centre.real(), 3) << "," << format_fixed(chosen.centre.imag(), 3) << ") {" << l.text << "};\n";
+    }
+    pending_.clear();
+  }
+
+ private:
+  std::ostream& out_;
+  const double cm_, size_;
+  const Planar centre_;
+  LabelBoxes placed_;
+  std::vector<PendingLabel> pending_;
+};
 
 // Joints and links as drawn: fixed guides hatched, binary links as bars, links with
-// more joints as plates, slider blocks as blocks on their lines, fixed pivots on ground.
-template <typename Xy>
-void write_links(std::ostream& out, const LinkageDrawing& drawing, const Xy& xy, std::complex<double> centre, double size,
-                 double cm) {
+// more joints as plates, slider blocks as blocks on their lines, fixed pivots on ground;
+// each link's number beside it, each pivot's name.
+void draw_linkage(MechanismFigure& f, const LinkageDrawing& drawing, Planar centre, double size, bool numbered) {
   for (const LinkageDrawing::Guide& g : drawing.guides) {
     // The line across the drawing, hatched on one side: centred where the drawing's
     // centre projects onto it.
-    const std::complex<double> middle = g.through + g.along * std::real((centre - g.through) * std::conj(g.along));
-    const std::complex<double> a = middle - g.along * (0.6 * size), b = middle + g.along * (0.6 * size);
-    const std::string angle = format_fixed(to_degrees(std::arg(g.along)));
-    out << "\\draw[gray] " << xy(a) << " -- " << xy(b) << ";\n"
-        << "\\fill[pattern=north east lines, rotate around={" << angle << ":" << xy(a) << "}] " << xy(a)
-        << " rectangle ++(" << format_fixed(1.2 * size * cm) << ",-0.15);\n";
+    const Planar middle = g.through + g.along * std::real((centre - g.through) * std::conj(g.along));
+    f.guide(middle - g.along * (0.6 * size), middle + g.along * (0.6 * size));
   }
   for (const LinkageDrawing::Link& link : drawing.links) {
     if (link.block) {
-      const std::string at = xy(link.joints.front().at);
-      out << "\\draw[thick, fill=white, rotate around={" << format_fixed(to_degrees(link.angle)) << ":" << at << "}] "
-          << at << " ++(-0.35,-0.2) rectangle ++(0.7,0.4);\n";
+      f.block(link.joints.front().at, link.angle);
       continue;
     }
-    std::string path;
-    for (const auto& joint : link.joints) path += (path.empty() ? "" : " -- ") + xy(joint.at);
-    if (link.joints.size() >= 3) {
-      out << "\\filldraw[fill=blue!10, draw=blue!70!black, very thick, line join=round] " << path << " -- cycle;\n";
-    } else {
-      write_bar(out, path);
-    }
+    std::vector<Planar> path;
+    for (const auto& joint : link.joints) path.push_back(joint.at);
+    if (path.size() >= 3) f.plate(path, "very thick");
+    else f.bar(path);
   }
   for (const auto& pivot : drawing.ground_pivots) {
-    write_pivot(out, xy(pivot.at));
-    out << "\\node[below right, font=\\small] at " << xy(pivot.at) << " {" << latex_escape_text(pivot.name) << "};\n";
+    f.pivot(pivot.at);
+    f.pivot_label(pivot.at, latex_escape_text(pivot.name));
   }
   for (const LinkageDrawing::Link& link : drawing.links)
-    for (const auto& joint : link.joints) out << "\\filldraw[fill=white] " << xy(joint.at) << " circle (0.07);\n";
+    for (const auto& joint : link.joints) f.dot(joint.at, 0.07, "\\filldraw[fill=white]");
+  for (const LinkageDrawing::Link& link : drawing.links) {
+    const auto& joints = link.joints;
+    if (!numbered || joints.empty()) continue;
+    if (link.block) {  // a block: on the side of its guide away from the hatching first
+      f.block_number(joints.front().at, link.angle, link.angle + kPi / 2, latex_escape_text(link.name));
+    } else if (joints.size() >= 2 && !f.same(joints[1].at, joints[0].at)) {
+      f.link_number(joints[0].at, joints[1].at, latex_escape_text(link.name));
+    }
+  }
+}
+
+// A vector-loop file's terms: ground lines between pivots, slider blocks on their guides,
+// link vectors as bars; the points on links as plates or bars.
+void draw_segments(MechanismFigure& f, const std::vector<DrawingSegment>& segments,
+                   const std::vector<PointOnLink>& points_on_links, Planar centre, double size) {
+  using Segment = DrawingSegment;
+  for (const Segment& g : segments) {
+    if (g.kind == Segment::Kind::ground) {
+      f.line(g.from, g.to, "gray, dashed");
+      for (const auto& end : {g.from, g.to}) f.pivot(end);
+    } else if (g.kind == Segment::Kind::slider) {
+      // The block at the slider's point, on the guide the geometry gives: a fixed guide
+      // hatched across the drawing; a guide on a turning link drawn as that link, from the
+      // term's other end through the block and on.
+      const Planar other = f.same(g.block, g.to) ? g.from : g.to;
+      if (g.fixed_guide) {
+        const double t = std::real((centre - g.block) * std::conj(g.along));
+        f.guide(g.block + g.along * std::min(t - 0.5 * size, -0.15 * size), g.block + g.along * std::max(t + 0.5 * size, 0.15 * size));
+      } else {
+        const Planar d = g.block - other;
+        const bool on_line = std::abs(std::imag(d * std::conj(g.along))) < 1e-9 * size;
+        if (on_line && std::abs(d) > 1e-9 * size) f.bar({other, g.block + d / std::abs(d) * (0.6 / f.cm())});
+        else f.line(g.block - g.along * (0.25 * size), g.block + g.along * (0.25 * size), "gray, thin");
+      }
+      f.block(g.block, std::arg(g.along));
+    } else {
+      f.bar({g.from, g.to});
+    }
+  }
+  // A point on a link drawn on it: a plate with a segment of the link from where the point's
+  // own link vector starts; nothing more for a joint the loops already reach; else a bar.
+  for (const PointOnLink& on : points_on_links) {
+    const Segment* base = nullptr;
+    bool joint = false;
+    for (const Segment& g : segments) {
+      if (g.link != on.link) continue;
+      joint = joint || f.same(g.from, on.at) || f.same(g.to, on.at);
+      if ((f.same(g.from, on.from) && !f.same(g.to, on.at)) || (f.same(g.to, on.from) && !f.same(g.from, on.at))) base = &g;
+    }
+    if (joint && !base) continue;
+    if (base) f.plate({base->from, base->to, on.at}, "thick");
+    else f.bar({on.from, on.at});
+  }
+  for (const Segment& g : segments)
+    for (const auto& end : {g.from, g.to}) f.dot(end, 0.07, "\\filldraw[fill=white]");
+}
+
+// A vector-loop file's link numbers beside each link's first segment (or the guide a link
+// only carries: a crank with a slot); every block numbered on the side away from its
+// guide's hatching first, or from its point's label.
+void number_segments(MechanismFigure& f, const std::vector<DrawingSegment>& segments,
+                     const std::vector<std::string>& link_labels) {
+  using Segment = DrawingSegment;
+  std::vector<bool> numbered(link_labels.size(), false);
+  for (const Segment& g : segments) {
+    if (g.link < 0 || numbered[g.link] || f.same(g.to, g.from)) continue;
+    numbered[g.link] = true;
+    f.link_number(g.from, g.to, latex_escape_text(link_labels[g.link]));
+  }
+  for (const Segment& g : segments) {
+    if (g.kind != Segment::Kind::slider || g.guide_link < 0 || numbered[g.guide_link] || f.same(g.to, g.from)) continue;
+    numbered[g.guide_link] = true;
+    f.link_number(g.block - g.along * std::abs(g.to - g.from) * 0.5, g.block + g.along * std::abs(g.to - g.from) * 0.5,
+                  latex_escape_text(link_labels[g.guide_link]));
+  }
+  for (const Segment& g : segments)
+    if (g.kind == Segment::Kind::slider && !g.block_label.empty())
+      f.block_number(g.block, std::arg(g.along), std::arg(g.along) + (g.fixed_guide ? 1 : -1) * kPi / 2,
+                     latex_escape_text(g.block_label));
 }
 
 }  // namespace
@@ -87,18 +307,17 @@ void write_links(std::ostream& out, const LinkageDrawing& drawing, const Xy& xy,
 void write_tikz_mechanism(std::ostream& out, const ConstraintSystem& system, const ValueAnalysis& at,
                           const std::vector<std::string>& link_labels, const MotionState& s) {
   const OutputScale scale(system);
-  using Segment = DrawingSegment;
   // Joints and links: the links as bodies (bars, plates, blocks); vector loops: their terms.
   const std::optional<LinkageDrawing>& drawing = at.linkage;
-  const std::vector<Segment>& segments = at.segments;
-  std::vector<std::complex<double>> extent = {{0, 0}};
-  for (const Segment& segment : segments) extent.push_back(segment.to);
+  const std::vector<DrawingSegment>& segments = at.segments;
+  std::vector<Planar> extent = {{0, 0}};
+  for (const DrawingSegment& segment : segments) extent.push_back(segment.to);
   if (drawing) {
     for (const auto& link : drawing->links)
       for (const auto& joint : link.joints) extent.push_back(joint.at);
     for (const auto& pivot : drawing->ground_pivots) extent.push_back(pivot.at);
   }
-  std::vector<std::complex<double>> points, velocities, accelerations;
+  std::vector<Planar> points, velocities, accelerations;
   double fastest = 0, largest = 0;
   if (s.status == Status::ok) {
     for (const PointMotion& p : s.points) {
@@ -122,177 +341,44 @@ void write_tikz_mechanism(std::ostream& out, const ConstraintSystem& system, con
   const double arrow_cm = 2.5;   // the fastest point's arrow
   const double velocity_scale = fastest > 0 ? arrow_cm / fastest : 0;  // cm per (m/s)
   const double acceleration_scale = largest > 0 ? arrow_cm / largest : 0;  // cm per (m/s^2)
-  auto xy = [&](std::complex<double> p) {
-    return "(" + format_fixed(p.real() * cm) + "," + format_fixed(p.imag() * cm) + ")";
-  };
+  const Planar centre((min_x + max_x) / 2, (min_y + max_y) / 2);
   // Introduced by a sentence that stays with it (after the substitution's display).
   out << "\\par\\medskip\\noindent The mechanism at this instant, drawn to scale"
       << (velocity_scale > 0 || acceleration_scale > 0 ? ", with the velocities and accelerations of its points as arrows" : "")
       << ":\n" << kLatexFigureBegin << "\\begin{tikzpicture}[line cap=round]\n";
+  MechanismFigure f(out, cm, size, centre);
   // The frame the positions are in: x and y from the origin.
-  out << "\\draw[->, gray] (0,0) -- (1.2,0) node[right, font=\\scriptsize] {$x$};\n"
-      << "\\draw[->, gray] (0,0) -- (0,1.2) node[above, font=\\scriptsize] {$y$};\n";
-  // Labels beside a link go on the side away from the fixed guides' hatching.
-  std::vector<std::pair<std::complex<double>, std::complex<double>>> guide_lines;  // through, along
-  if (drawing)
-    for (const auto& g : drawing->guides) guide_lines.push_back({g.through, g.along});
-  for (const Segment& g : segments)
-    if (g.kind == Segment::Kind::slider && g.fixed_guide) guide_lines.push_back({g.block, g.along});
-  const auto beside = [&](std::complex<double> middle, std::complex<double> across) {
-    const auto clearance = [&](std::complex<double> p) {
-      double least = 1e300;
-      for (const auto& [through, along] : guide_lines)
-        least = std::min(least, std::fabs(std::imag((p - through) * std::conj(along))));
-      return least;
-    };
-    const std::complex<double> left = middle + across * (0.35 / cm), right = middle - across * (0.35 / cm);
-    return clearance(left) >= 0.3 / cm || clearance(left) >= clearance(right) ? left : right;
-  };
-  if (drawing) {
-    write_links(out, *drawing, xy, {(min_x + max_x) / 2, (min_y + max_y) / 2}, size, cm);
-    // Link numbers beside each link (its first two joints), as the file names them.
-    for (std::size_t k = 0; k < drawing->links.size() && system.plan; ++k) {
-      const auto& joints = drawing->links[k].joints;
-      if (drawing->links[k].block && !joints.empty()) {  // a block: on the side of its guide away from the hatching
-        out << "\\node[circle, draw, inner sep=1pt, font=\\scriptsize] at "
-            << xy(joints.front().at + std::polar(0.55 / cm, drawing->links[k].angle + kPi / 2)) << " {"
-            << latex_escape_text(drawing->links[k].name) << "};\n";
-        continue;
-      }
-      if (joints.size() < 2 || drawing->links[k].block || std::abs(joints[1].at - joints[0].at) < 1e-9 * size) continue;
-      const std::complex<double> along = joints[1].at - joints[0].at;
-      const std::complex<double> across = along / std::abs(along) * std::complex<double>(0, 1);
-      out << "\\node[circle, draw, inner sep=1pt, font=\\scriptsize] at "
-          << xy(beside((joints[0].at + joints[1].at) / 2.0, across)) << " {"
-          << latex_escape_text(drawing->links[k].name) << "};\n";
-    }
-  }
-  for (const Segment& g : segments) {
-    if (g.kind == Segment::Kind::ground) {
-      out << "\\draw[gray, dashed] " << xy(g.from) << " -- " << xy(g.to) << ";\n";
-      for (const auto& end : {g.from, g.to}) write_pivot(out, xy(end));
-    } else if (g.kind == Segment::Kind::slider) {
-      // The block at the slider's point, on the guide the geometry gives: a fixed guide
-      // hatched across the drawing; a guide on a turning link drawn as that link, from the
-      // term's other end through the block and on.
-      const double angle = to_degrees(std::arg(g.along));
-      const std::complex<double> other = std::abs(g.block - g.to) < 1e-9 * size ? g.from : g.to;
-      const std::complex<double> centre((min_x + max_x) / 2, (min_y + max_y) / 2);
-      if (g.fixed_guide) {
-        const double t = std::real((centre - g.block) * std::conj(g.along));
-        const std::complex<double> a = g.block + g.along * std::min(t - 0.5 * size, -0.15 * size),
-                                   b = g.block + g.along * std::max(t + 0.5 * size, 0.15 * size);
-        out << "\\draw[gray] " << xy(a) << " -- " << xy(b) << ";\n"
-            << "\\fill[pattern=north east lines, rotate around={" << format_fixed(angle) << ":" << xy(a) << "}] "
-            << xy(a) << " rectangle ++(" << format_fixed(std::abs(b - a) * cm) << ",-0.15);\n";
-      } else {
-        const std::complex<double> d = g.block - other;
-        const bool on_line = std::abs(std::imag(d * std::conj(g.along))) < 1e-9 * size;
-        const std::complex<double> beyond = d / std::max(std::abs(d), 1e-30) * (0.6 / cm);
-        if (on_line && std::abs(d) > 1e-9 * size) {
-          write_bar(out, xy(other) + " -- " + xy(g.block + beyond));
-        } else {
-          out << "\\draw[gray, thin] " << xy(g.block - g.along * (0.25 * size)) << " -- "
-              << xy(g.block + g.along * (0.25 * size)) << ";\n";
-        }
-      }
-      out << "\\draw[thick, fill=white, rotate around={" << format_fixed(angle) << ":" << xy(g.block) << "}] "
-          << xy(g.block) << " ++(-0.35,-0.2) rectangle ++(0.7,0.4);\n";
-    } else {
-      write_bar(out, xy(g.from) + " -- " + xy(g.to));
-    }
-  }
-  // A point on a link of a vector-loop file drawn on it: a plate with a segment of the link
-  // from where the point's own link vector starts; nothing more for a joint the loops
-  // already reach; else a bar.
-  for (const PointOnLink& on : at.points_on_links) {
-    const auto near = [&](std::complex<double> a, std::complex<double> b) { return std::abs(a - b) < 1e-9 * size; };
-    const Segment* base = nullptr;
-    bool joint = false;
-    for (const Segment& g : segments) {
-      if (g.link != on.link) continue;
-      joint = joint || near(g.from, on.at) || near(g.to, on.at);
-      if ((near(g.from, on.from) && !near(g.to, on.at)) || (near(g.to, on.from) && !near(g.from, on.at))) base = &g;
-    }
-    if (joint && !base) continue;
-    if (base) {
-      out << "\\filldraw[fill=blue!10, draw=blue!70!black, thick, line join=round] " << xy(base->from) << " -- "
-          << xy(base->to) << " -- " << xy(on.at) << " -- cycle;\n";
-    } else {
-      write_bar(out, xy(on.from) + " -- " + xy(on.at));
-    }
-  }
-  // Link numbers beside each link's first segment.
-  std::vector<bool> numbered(link_labels.size(), false);
-  for (const Segment& g : segments) {
-    if (g.link < 0 || numbered[g.link] || std::abs(g.to - g.from) < 1e-9 * size) continue;
-    numbered[g.link] = true;
-    const std::complex<double> across = (g.to - g.from) / std::abs(g.to - g.from) * std::complex<double>(0, 1);
-    out << "\\node[circle, draw, inner sep=1pt, font=\\scriptsize] at "
-        << xy(beside((g.from + g.to) / 2.0, across)) << " {" << latex_escape_text(link_labels[g.link])
-        << "};\n";
-  }
-  // A link that is only a slider's guide (a crank carrying a slot): numbered beside it.
-  for (const Segment& g : segments) {
-    if (g.kind != Segment::Kind::slider || g.guide_link < 0 || numbered[g.guide_link] ||
-        std::abs(g.to - g.from) < 1e-9 * size)
-      continue;
-    numbered[g.guide_link] = true;
-    const std::complex<double> across = g.along * std::complex<double>(0, 1);
-    out << "\\node[circle, draw, inner sep=1pt, font=\\scriptsize] at "
-        << xy(beside((g.from + g.to) / 2.0, across)) << " {"
-        << latex_escape_text(link_labels[g.guide_link]) << "};\n";
-  }
-  // Every block numbered: on the side of a fixed guide away from its hatching; beside a
-  // block on a turning link, on the side away from its point's label (above left).
-  for (const Segment& g : segments)
-    if (g.kind == Segment::Kind::slider && !g.block_label.empty())
-      out << "\\node[circle, draw, inner sep=1pt, font=\\scriptsize] at "
-          << xy(g.block + g.along * std::complex<double>(0, (g.fixed_guide ? 0.55 : -0.55) / cm)) << " {"
-          << latex_escape_text(g.block_label)
-          << "};\n";
+  f.axes();
+  if (drawing) draw_linkage(f, *drawing, centre, size, system.plan.has_value());
+  draw_segments(f, segments, at.points_on_links, centre, size);
+  number_segments(f, segments, link_labels);
   // The angles that are coordinates, each once: an arc from the x direction at the joint
   // its link vector (or, for joints and links, its link) starts from.
   std::vector<bool> arced(system.unknowns.size() + 1, false);
-  const auto arc = [&](int coordinate, double angle, std::complex<double> at) {
+  const auto arc = [&](int coordinate, double angle, Planar from) {
     const double degrees = std::remainder(to_degrees(angle), 360.0);
     if (coordinate < 0 || arced[std::size_t(coordinate)] || std::fabs(degrees) < 1) return;
     arced[std::size_t(coordinate)] = true;
     const GiNaC::ex symbol = coordinate == 0 ? GiNaC::ex(system.input.symbol)
                                              : GiNaC::ex(system.unknowns[std::size_t(coordinate) - 1].symbol);
-    const double r = 0.55;  // cm
-    out << "\\draw[gray, dashed] " << xy(at) << " -- ++(" << format_fixed(r + 0.25) << ",0);\n"
-        << "\\draw[->, gray] " << xy(at) << " ++(" << format_fixed(r) << ",0) arc[start angle=0, end angle="
-        << format_fixed(degrees) << ", radius=" << format_fixed(r) << "];\n"
-        << "\\node[font=\\scriptsize, gray!30!black] at "
-        << xy(at + std::polar((r + 0.3) / cm, from_degrees(degrees / 2))) << " {$" << to_latex(symbol) << "$};\n";
+    f.angle_arc(from, degrees, "$" + to_latex(symbol) + "$");
   };
-  for (const Segment& g : segments)
-    if (std::abs(g.to - g.from) >= 1e-9 * size) arc(g.coordinate, g.angle, g.angle_at);
+  for (const DrawingSegment& g : segments)
+    if (!f.same(g.to, g.from)) arc(g.coordinate, g.angle, g.angle_at);
   if (drawing)
     for (const LinkageDrawing::Link& link : drawing->links)
       if (!link.block) arc(link.coordinate, link.coordinate_angle, link.origin);
-  for (const Segment& g : segments) {
-    for (const auto& end : {g.from, g.to})
-      out << "\\filldraw[fill=white] " << xy(end) << " circle (0.07);\n";
-  }
+  // The points, their letters and their arrows (v_B, a_B at the arrows' tips).
   for (std::size_t p = 0; p < points.size(); ++p) {
-    out << "\\fill " << xy(points[p]) << " circle (0.06) node[above left, font=\\small] {"
-         << latex_escape_text(system.points[p].name) << "};\n";
-    const std::string name = latex_symbol_name(system.points[p].name);  // v_B, a_B at the arrows' tips
-    if (velocity_scale > 0 && std::abs(velocities[p]) > 0) {
-      const std::complex<double> tip = velocities[p] * velocity_scale;
-      out << "\\draw[-latex, red, thick] " << xy(points[p]) << " -- ++(" << format_fixed(tip.real()) << ","
-           << format_fixed(tip.imag()) << ") node[anchor=" << anchor_beyond(tip) << ", inner sep=1pt, font=\\scriptsize, "
-           << "red] {$\\mathbf{v}_{" << name << "}$};\n";
-    }
-    if (acceleration_scale > 0 && std::abs(accelerations[p]) > 0) {
-      const std::complex<double> tip = accelerations[p] * acceleration_scale;
-      out << "\\draw[-latex, green!50!black, thick, dashed] " << xy(points[p]) << " -- ++(" << format_fixed(tip.real())
-          << "," << format_fixed(tip.imag()) << ") node[anchor=" << anchor_beyond(tip)
-          << ", inner sep=1pt, font=\\scriptsize, green!50!black] {$\\mathbf{a}_{" << name << "}$};\n";
-    }
+    f.point(points[p], latex_escape_text(system.points[p].name));
+    const std::string name = latex_symbol_name(system.points[p].name);
+    if (velocity_scale > 0 && std::abs(velocities[p]) > 0)
+      f.arrow(points[p], velocities[p] * velocity_scale, "red, thick", "$\\mathbf{v}_{" + name + "}$");
+    if (acceleration_scale > 0 && std::abs(accelerations[p]) > 0)
+      f.arrow(points[p], accelerations[p] * acceleration_scale, "green!50!black, thick, dashed", "$\\mathbf{a}_{" + name + "}$");
   }
+  f.place_labels();
+  f.axis_labels();
   // The scales in the caption: on the drawing's page, as its key.
   const double length_per_cm = 1.0 / cm / scale.length;
   std::string key = "The mechanism at the instant. Drawing scale: 1\\,cm = $" + latex_number(length_per_cm, 3) + "$\\," +

@@ -31,6 +31,9 @@ const char* style(Kind kind) {
   return "black";
 }
 
+// Half an arrow's line, in cm (thick, 0.8 pt; the absolute ones very thick, 1.2 pt).
+constexpr double kArrowHalfWidth = 0.6 * 2.54 / 72.27;
+
 const char* kind_name(Kind kind) {
   switch (kind) {
     case Kind::absolute: return "absolute";
@@ -119,8 +122,26 @@ void write_tikz_polygon(std::ostream& out, const ConstraintSystem& system, const
     if (!joined) places.push_back({p, v.name});
   }
   for (const auto& [at, names] : places) placed.add({at, 0.06, 0.06});  // the dots
+  // The arrows drawn: not one too short to see, nor one another's double (v_B = v_C: the
+  // first name on the figure); each a line the labels keep off.
+  std::vector<const PolygonArrow*> drawn;
+  for (std::size_t k = 0; k < polygon.arrows.size(); ++k) {
+    const PolygonArrow& a = polygon.arrows[k];
+    if (a.length() / scale.length / per_cm < 0.005) continue;  // a link that does not turn: in the table only
+    bool twice = false;
+    for (std::size_t j = 0; j < k; ++j)
+      twice = twice || (std::abs(polygon.arrows[j].from - a.from) + std::abs(polygon.arrows[j].to - a.to) <=
+                        1e-9 * std::max(a.length(), 1e-300));
+    if (twice) continue;
+    drawn.push_back(&a);
+    placed.add_line(cm_of(a.from), cm_of(a.to), kArrowHalfWidth);
+  }
+  // The vertices' labels, then the arrows' (short arrows keep their names in the table
+  // only; the others' on the arrow where no other label or line is, nearest its middle,
+  // else beside it), placed together.
   const std::complex<double> middle = centre / per_cm;
-  std::vector<std::string> vertex_lines;
+  std::vector<LabelRequest> requests;
+  std::vector<std::string> vertex_labels;
   for (const auto& [at, names] : places) {
     std::string label;
     for (std::size_t start = 0; start <= names.size();) {
@@ -129,29 +150,21 @@ void write_tikz_polygon(std::ostream& out, const ConstraintSystem& system, const
       if (comma == std::string::npos) break;
       start = comma + 2;
     }
+    vertex_labels.push_back(label);
     // Away from the polygon's middle, else the next free way round, within a label's height.
-    const double away = std::abs(at - middle) > 0 ? std::arg(at - middle) : kPi / 4;
-    const LabelBox chosen = placed.place_near(at, label_box(label, 10, 0), away);
-    vertex_lines.push_back("\\fill (" + format_fixed(at.real(), 3) + "," + format_fixed(at.imag(), 3) +
-                           ") circle (0.05);\n\\node[font=\\small, inner sep=0pt] at (" +
-                           format_fixed(chosen.centre.real(), 3) + "," + format_fixed(chosen.centre.imag(), 3) + ") {" +
-                           label + "};\n");
+    requests.push_back({{at, 0, 0}, label_box(label, 10, 0), std::abs(at - middle) > 0 ? std::arg(at - middle) : kPi / 4, false, false, 0});
   }
-  for (std::size_t k = 0; k < polygon.arrows.size(); ++k) {
-    const PolygonArrow& a = polygon.arrows[k];
-    const double cm = a.length() / scale.length / per_cm;
-    if (cm < 0.005) continue;  // a link that does not turn: in the table only
-    bool drawn = false;  // one arrow for two names (v_B = v_C): the first name on the figure
-    for (std::size_t j = 0; j < k; ++j)
-      drawn = drawn || (std::abs(polygon.arrows[j].from - a.from) + std::abs(polygon.arrows[j].to - a.to) <=
-                        1e-9 * std::max(a.length(), 1e-300));
-    if (drawn) continue;
+  const auto labelled = [&](const PolygonArrow& a) { return a.length() / scale.length / per_cm >= 0.6; };
+  for (const PolygonArrow* a : drawn)
+    if (labelled(*a)) requests.push_back({{cm_of(a->from), 0, 0}, label_box("$" + a->latex + "$", 8, 1), 0, true, true, cm_of(a->to)});
+  const std::vector<PlacedLabel> boxes = placed.place_all(requests);
+  std::size_t next = places.size();
+  for (const PolygonArrow* arrow : drawn) {
+    const PolygonArrow& a = *arrow;
     out << "\\draw[->, " << style(a.kind) << "] " << xy(a.from) << " -- " << xy(a.to);
-    // Short arrows keep their names in the table only; the others' on the arrow where no
-    // other label is (nearest its middle), else beside it.
-    if (cm >= 0.6) {
+    if (labelled(a)) {
       const std::complex<double> p = cm_of(a.from), q = cm_of(a.to);
-      const LabelBox chosen = placed.place_along(p, q, label_box("$" + a.latex + "$", 8, 1));
+      const LabelBox& chosen = boxes[next++].box;
       const double pos = std::real((chosen.centre - p) / (q - p));
       const std::complex<double> offset = chosen.centre - (p + (q - p) * pos);
       out << " node[pos=" << format_fixed(pos, 3) << ", xshift=" << format_fixed(offset.real(), 3)
@@ -160,7 +173,11 @@ void write_tikz_polygon(std::ostream& out, const ConstraintSystem& system, const
     }
     out << ";\n";
   }
-  for (const std::string& line : vertex_lines) out << line;
+  for (std::size_t k = 0; k < places.size(); ++k) {
+    const std::complex<double> at = places[k].first, label = boxes[k].box.centre;
+    out << "\\fill (" << format_fixed(at.real(), 3) << "," << format_fixed(at.imag(), 3) << ") circle (0.05);\n\\node[font=\\small, inner sep=0pt] at ("
+        << format_fixed(label.real(), 3) << "," << format_fixed(label.imag(), 3) << ") {" << vertex_labels[k] << "};\n";
+  }
   out << "\\end{tikzpicture}\n" << latex_figure_caption(velocity ? "Velocity polygon" : "Acceleration polygon") << "\\end{center}\n";
   out << (velocity ? "Velocity" : "Acceleration") << " polygon, scale 1\\,cm = $" << latex_number(per_cm, 3) << "\\,"
       << unit << "$; pole $o$ (every fixed point).\n\n";

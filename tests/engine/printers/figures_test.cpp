@@ -44,6 +44,13 @@ std::string document_at_first_value(const kinema::Model& model) {
   return document(model, &values, &sweep);
 }
 
+// The math after the last " {$" of a line, up to its "$}".
+std::string node_text(const std::string& line) {
+  const auto open = line.rfind(" {$");
+  REQUIRE(open != std::string::npos);
+  return line.substr(open + 2, line.rfind("$}") + 1 - (open + 2));
+}
+
 // Every "(x,y)" of a line, in order.
 std::vector<Point> coordinates(const std::string& line) {
   std::vector<Point> found;
@@ -455,13 +462,27 @@ TEST_CASE("engine/printers/figures: the drawing's axes, angle arcs, numbered blo
     const std::string figure = mechanism_figure(document(model, &values));
     const Drawing d = read_drawing(figure);
     // x and y from the origin.
-    CHECK(figure.find("\\draw[->, gray] (0,0) -- (1.2,0) node[right, font=\\scriptsize] {$x$};") != std::string::npos);
-    CHECK(figure.find("\\draw[->, gray] (0,0) -- (0,1.2) node[above, font=\\scriptsize] {$y$};") != std::string::npos);
-    // Every block numbered: a circled number beside it, off its guide's hatching.
+    const auto x_axis = lines_starting(figure, "\\draw[->, gray] (0,0) -- (1.2,0) node[");
+    const auto y_axis = lines_starting(figure, "\\draw[->, gray] (0,0) -- (0,1.2) node[");
+    REQUIRE(x_axis.size() == 1);
+    REQUIRE(y_axis.size() == 1);
+    CHECK(node_text(x_axis[0]) == "$x$");
+    CHECK(node_text(y_axis[0]) == "$y$");
+    // Every block numbered: a circled number within one number's height of the block as
+    // turned (a label's reach, as for every label; a fixed 0.6 cm from the block's centre
+    // held only while numbers stood at fixed offsets, with arrows and letters under them),
+    // off its guide's hatching.
     const auto numbers = lines_starting(figure, "\\node[circle, draw, inner sep=1pt, font=\\scriptsize] at ");
     for (const Block& b : d.blocks) {
+      const Point along = std::polar(1.0, b.degrees * M_PI / 180);
+      const std::vector<Point> corners = kinema::parallelogram(b.centre - along * Point(0.35, 0.2), along * 0.7, along * Point(0, 0.4));
       bool numbered = false;
-      for (const std::string& line : numbers) numbered = numbered || std::abs(coordinates(line)[0] - b.centre) < 0.6;
+      for (const std::string& line : numbers) {
+        const std::string text = line.substr(line.rfind('{') + 1, line.rfind('}') - line.rfind('{') - 1);
+        const kinema::LabelBox number = kinema::circled(kinema::label_box(text, 8, 1, coordinates(line)[0]));
+        numbered = numbered || number.distance_to_area(corners) <= kinema::label_reach(number) + 0.002;
+      }
+      CAPTURE(b.centre);
       CHECK(numbered);
     }
     // No number on a guide's hatching (0.15 cm on one side of its line).
@@ -505,7 +526,7 @@ TEST_CASE("figures: every velocity and acceleration arrow is labelled, every bar
     CHECK(!velocities.empty());
     for (const std::string& line : velocities) {
       CAPTURE(line);
-      CHECK(line.find("node[anchor=") != std::string::npos);
+      CHECK(line.find(" node[") != std::string::npos);
       CHECK(line.find("{$\\mathbf{v}_{") != std::string::npos);
     }
     for (const std::string& line : accelerations) {
@@ -554,14 +575,10 @@ struct ReadLabel {
   std::string text;
   kinema::LabelBox box;
   Point from, to;
+  bool led = false;  // joined to its point by a leader from..to: from beside the point, to beside the label
+  Point leader_from{}, leader_to{};
 };
 
-// The math after the last " {$" of a line, up to its "$}".
-std::string node_text(const std::string& line) {
-  const auto open = line.rfind(" {$");
-  REQUIRE(open != std::string::npos);
-  return line.substr(open + 2, line.rfind("$}") + 1 - (open + 2));
-}
 
 // The centre of a label at `at` by a TikZ placement (above right, right, ...), with
 // inner sep 1/3 em of its 8 pt font: what the printer wrote before it stated each place.
@@ -582,9 +599,16 @@ void check_labels(const std::vector<ReadLabel>& labels, const std::vector<kinema
   for (std::size_t i = 0; i < labels.size(); ++i) {
     CAPTURE(labels[i].text);
     CAPTURE(labels[i].box.centre);
-    const double off = labels[i].from == labels[i].to ? labels[i].box.distance_to(labels[i].to)
-                                                      : labels[i].box.distance_to_segment(labels[i].from, labels[i].to);
-    CHECK(off <= kinema::label_reach(labels[i].box) + 0.002);  // coordinates are written to 0.001 cm
+    // Within a label's height (coordinates are written to 0.001 cm); a label further out is
+    // led: its leader runs from its point's dot to a point's width off the label.
+    if (labels[i].led) {
+      CHECK(std::abs(labels[i].leader_from - labels[i].to) <= kinema::LabelBoxes::kLeaderDot + 0.002);
+      CHECK(labels[i].box.distance_to(labels[i].leader_to) <= 2.54 / 72.27 + 0.002);
+    } else {
+      const double off = labels[i].from == labels[i].to ? labels[i].box.distance_to(labels[i].to)
+                                                        : labels[i].box.distance_to_segment(labels[i].from, labels[i].to);
+      CHECK(off <= kinema::label_reach(labels[i].box) + 0.002);
+    }
     for (std::size_t j = 0; j < i; ++j) {
       CAPTURE(labels[j].text);
       CAPTURE(labels[j].box.centre);
@@ -613,11 +637,17 @@ TEST_CASE("figures: instant centres' labels on no other label, dot, pivot or blo
     ++figures;
     std::vector<ReadLabel> labels;
     std::vector<kinema::LabelBox> dots;
-    for (const std::string& line : lines_starting(figure, "\\filldraw[red!75!black, fill=white] ")) {
+    std::istringstream lines(figure);
+    std::vector<Point> leader;  // the leader just drawn, for the centre after it
+    for (std::string line; std::getline(lines, line);) {
+      if (line.rfind("\\draw[red!75!black, very thin] ", 0) == 0) leader = coordinates(line);
+      if (line.rfind("\\filldraw[red!75!black, fill=white] ", 0) != 0) continue;
       const auto c = coordinates(line);
       dots.push_back({c[0], 0.07, 0.07});
       const kinema::LabelBox box = kinema::label_box(node_text(line), 8, 0);
       labels.push_back({node_text(line), {c.size() > 1 ? c[1] : anchored(c[0], line, box), box.half_width, box.half_height}, c[0], c[0]});
+      if (leader.size() == 2) labels.back().led = true, labels.back().leader_from = leader[0], labels.back().leader_to = leader[1];
+      leader.clear();
     }
     for (const std::string& line : lines_starting(figure, "\\draw[->, red!75!black")) {
       const auto c = coordinates(line);
