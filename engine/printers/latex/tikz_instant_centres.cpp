@@ -64,12 +64,8 @@ void write_centre_marks(std::ostream& out, const InstantCentres& c, LabelBoxes& 
   }
 }
 
-}  // namespace
-
-void write_tikz_instant_centres(std::ostream& out, const ConstraintSystem& system, const ValueAnalysis& at,
-                                const MotionState& s, const InstantCentres& c) {
-  const OutputScale scale(system);
-  // Joints and links as placed; a vector-loop file's link vectors as segments.
+// Joints and links as placed; a vector-loop file's link vectors as segments.
+LinkageDrawing drawing_for_centres(const ValueAnalysis& at) {
   std::optional<LinkageDrawing> drawing = at.linkage;
   if (!drawing) {
     drawing.emplace();
@@ -87,6 +83,13 @@ void write_tikz_instant_centres(std::ostream& out, const ConstraintSystem& syste
     }
     drawing->ground_pivots.push_back({"", 0});
   }
+  return *drawing;
+}
+
+// The figure: the mechanism, the Kennedy lines and the centres (those off the figure as
+// arrows at its edge), the drawing scale in its caption.
+void write_centres_figure(std::ostream& out, const LinkageDrawing& linkage, const InstantCentres& c, const OutputScale& scale) {
+  const LinkageDrawing* drawing = &linkage;
   // The mechanism's extent; centres within twice its size around it are drawn.
   double min_x = 1e300, max_x = -1e300, min_y = 1e300, max_y = -1e300;
   const auto grow = [&](std::complex<double> p) {
@@ -176,6 +179,10 @@ void write_tikz_instant_centres(std::ostream& out, const ConstraintSystem& syste
       << latex_figure_caption("Instant centres. Drawing scale: 1\\,cm = $" + latex_number(1.0 / cm / scale.length, 3) +
                               "\\,\\mathrm{" + scale.length_unit + "}$.")
       << kLatexFigureEnd;
+}
+
+// What the figure shows, in a sentence.
+void write_centres_sentence(std::ostream& out, const ConstraintSystem& system, const InstantCentres& c) {
   if (system.plan) {
     out << "Instant centres: the primary ones at the pins and, for a slider, at infinity across its line; every "
            "other by the Aronhold--Kennedy theorem, where two lines of centres it shares a body with cross (dashed).";
@@ -187,11 +194,15 @@ void write_tikz_instant_centres(std::ostream& out, const ConstraintSystem& syste
         << latex_escape_text(c.bodies[0]) << ".";
   }
   out << "\n\n";
+}
+
+// Every pair of bodies, n(n-1)/2 rows: where its centre is and how it was found.
+void write_centres_table(std::ostream& out, const ConstraintSystem& system, const InstantCentres& c, const OutputScale& scale) {
   const std::string l = scale.length_unit;
   const DocumentNumbers number(system);  // round-off as 0, as everywhere in the document
   out << "\\medskip\n\\begin{tabular}{lrrl}\n\\toprule\ncentre & $x$ & $y$ & found by \\\\\n & $\\mathrm{" << l << "}$ & $\\mathrm{"
       << l << "}$ & \\\\\n\\midrule\n";
-  // Every pair of bodies, n(n-1)/2 rows: those no two lines fix say so.
+  // Those no two lines fix say so.
   for (std::size_t a = 0; a < c.bodies.size(); ++a) {
     for (std::size_t b = a + 1; b < c.bodies.size(); ++b) {
       const InstantCentre* found = c.find(a, b);
@@ -219,7 +230,11 @@ void write_tikz_instant_centres(std::ostream& out, const ConstraintSystem& syste
     }
   }
   out << "\\bottomrule\n\\end{tabular}\n\n";
-  if (c.ratios.empty()) return;
+}
+
+// The angular-velocity ratios from the centres beside the solved ones.
+void write_ratios_table(std::ostream& out, const ConstraintSystem& system, const InstantCentres& c) {
+  const DocumentNumbers number(system);
   const std::string driver = latex_escape_text(c.bodies[c.driver]);
   out << "\\begin{tabular}{lrr}\n\\toprule\nratio & from the centres & solved \\\\\n\\midrule\n";
   for (const VelocityRatio& r : c.ratios) {
@@ -230,6 +245,17 @@ void write_tikz_instant_centres(std::ostream& out, const ConstraintSystem& syste
         << number.ratio(r.analytic, 6) << "$ \\\\\n";
   }
   out << "\\bottomrule\n\\end{tabular}\n\n";
+}
+
+}  // namespace
+
+void write_tikz_instant_centres(std::ostream& out, const ConstraintSystem& system, const ValueAnalysis& at,
+                                const InstantCentres& c) {
+  const OutputScale scale(system);
+  write_centres_figure(out, drawing_for_centres(at), c, scale);
+  write_centres_sentence(out, system, c);
+  write_centres_table(out, system, c, scale);
+  if (!c.ratios.empty()) write_ratios_table(out, system, c);
 }
 
 }  // namespace kinema

@@ -12,7 +12,9 @@
 
 namespace kinema {
 
+/// The instant centres of one value (`at`, analysed): a figure with the Kennedy lines, the
+/// table of every pair of bodies, the velocity ratios the centres give.
 void write_tikz_instant_centres(std::ostream& out, const ConstraintSystem& system, const ValueAnalysis& at,
-                                const MotionState& state, const InstantCentres& centres);
+                                const InstantCentres& centres);
 
 }  // namespace kinema

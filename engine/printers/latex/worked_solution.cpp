@@ -300,7 +300,7 @@ class DocumentWriter {
     }
     if (const auto& centres = at.centres) {
       out_ << kLatexPartBreak << "\\subsubsection*{Instant centres}\n";
-      write_tikz_instant_centres(out_, system_, at, s, *centres);
+      write_tikz_instant_centres(out_, system_, at, *centres);
       if (polygons) write_three_methods(out_, system_, three_methods(system_, polygons->first, *centres), *centres);
     }
   }
