@@ -16,6 +16,7 @@
 #include "engine/base/units.hpp"
 #include "engine/base/work_count.hpp"
 #include "engine/model.hpp"
+#include "engine/numeric/circuit.hpp"
 #include "readers/mechanism_file.hpp"
 #include "tests/test_support.hpp"
 
@@ -140,6 +141,10 @@ TEST_CASE("with_parameters: a joints file equals its file edited, a formula para
   };
   CHECK(value_of("EF") == 0.231);
   CHECK(copy.kinematics.closed_form() == nullptr);  // the plan's numbers were the file's
+  kinema::CircuitSettings circuit;
+  circuit.step = 1 * kDeg;
+  CHECK_THROWS_WITH_AS(kinema::solve_circuit(copy.kinematics, circuit), doctest::Contains("closed form"),
+                       kinema::InputError);
 }
 
 TEST_CASE("with_parameters: a spatial chain equals its file edited") {
