@@ -83,6 +83,17 @@ MechanismModel MechanismModel::from_toml(const std::string& text, const std::str
 MechanismModel::MechanismModel(std::shared_ptr<const Engine> engine)
     : engine_(std::move(engine)), names_(std::make_shared<const Names>(names_of(engine_->model->system))) {}
 
+MechanismModel::MechanismModel(std::shared_ptr<const Engine> engine, std::shared_ptr<const Names> names)
+    : engine_(std::move(engine)), names_(std::move(names)) {}
+
+MechanismModel MechanismModel::with_parameters(const std::vector<std::pair<std::string, std::string>>& values) const {
+  const Model& model = *engine_->model;
+  std::vector<std::pair<std::string, double>> si;
+  for (const auto& [name, text] : values) si.emplace_back(name, parse_parameter_value(model.system, name, text));
+  auto copy = std::make_shared<const Model>(kinema::with_parameters(model, si));
+  return MechanismModel(std::make_shared<const Engine>(Engine{std::move(copy)}), names_);  // the same names
+}
+
 MechanismModel EngineAccess::facade(std::shared_ptr<const Model> model) {
   return MechanismModel(std::make_shared<const MechanismModel::Engine>(MechanismModel::Engine{std::move(model)}));
 }

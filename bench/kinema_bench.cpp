@@ -99,6 +99,18 @@ void derivation(benchmark::State& state, const std::string& name) {
   state.SetItemsProcessed(state.iterations());
 }
 
+// A design study's step: the model with its first parameter 1 % longer, nothing derived
+// or compiled (issue 36's target: <= 50 us).
+void with_parameters(benchmark::State& state, const std::string& name) {
+  Case& c = case_for(name);
+  const kinema::SystemParameter& first = c.model->system.parameters.at(0);
+  const std::vector<std::pair<std::string, double>> values{{first.symbol.get_name(), 1.01 * first.value}};
+  for (auto _ : state) {
+    kinema::Model copy = kinema::with_parameters(*c.model, values);
+    benchmark::DoNotOptimize(&copy.kinematics);
+  }
+}
+
 // --- hand-written closed forms (the floor) --------------------------------
 struct FourBarResult {
   double t3, t4, w3, w4, a3, a4;
@@ -256,6 +268,7 @@ int main(int argc, char** argv) {
     benchmark::RegisterBenchmark(("ginac_subs_evalf/" + s).c_str(), ginac_subs_evalf, s);
     benchmark::RegisterBenchmark(("ginac_compile_ex/" + s).c_str(), ginac_compile_ex, s);
     benchmark::RegisterBenchmark(("derivation/" + s).c_str(), derivation, s)->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark(("with_parameters/" + s).c_str(), with_parameters, s)->Unit(benchmark::kMicrosecond);
   }
   for (unsigned threads : {1u, 2u}) {
     benchmark::RegisterBenchmark(("kinema_sweep_1e6/problem_4_4_six_bar.toml/threads:" + std::to_string(threads)).c_str(),

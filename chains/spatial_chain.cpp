@@ -529,10 +529,8 @@ ConstraintSystem build_spatial_system(const Mechanism& mechanism) {
   system.source_file = mechanism.source_file;
   system.output = mechanism.output;
   system.parameters = k.parameters;
-  double largest = 0;
-  for (const SystemParameter& p : system.parameters)
-    if (p.dimension == Dimension::length) largest = std::max(largest, std::fabs(p.value));
-  system.length_scale = largest > 0 ? largest : 1.0;
+  for (SystemParameter& p : system.parameters) p.sets_length_scale = p.dimension == Dimension::length;
+  system.length_scale = length_scale_of(system.parameters);
   const std::size_t input = set_chain_input(system, mechanism, k);
   Driver& t = system.input;
   const auto parameter = [&](const std::string& name, double value, Dimension dimension, const SourceLocation& where) {
@@ -542,6 +540,7 @@ ConstraintSystem build_spatial_system(const Mechanism& mechanism) {
     p.dimension = dimension;
     p.text = format_round_trip(value);
     p.where = where;
+    p.written = false;  // the variable's motion at the instant, as the file gives it
     system.parameters.push_back(p);
     return p.symbol;
   };

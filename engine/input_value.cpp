@@ -26,6 +26,18 @@ double parse_input_value(const ConstraintSystem& m, const std::string& text) {
   return q.si_value;
 }
 
+double parse_parameter_value(const ConstraintSystem& m, const std::string& name, const std::string& text) {
+  const SystemParameter& p = m.parameters[written_parameter_index(m, name)];
+  const Quantity q = parse_quantity(text);
+  if (q.dimension != p.dimension) {
+    // A bare number is refused for a length or an angle: its unit would be a guess.
+    throw UnitError(m.source_file + ": parameter \"" + name + "\" is " + with_article(dimension_name(p.dimension)) +
+                    ", but \"" + text + "\" is " + with_article(dimension_name(q.dimension)) +
+                    (q.dimension == Dimension::number ? " (give its unit)" : ""));
+  }
+  return q.si_value;
+}
+
 WrittenValue written_input_value(const ConstraintSystem& m, const std::string& text) {
   const double si = parse_input_value(m, text);
   char* end = nullptr;

@@ -15,6 +15,11 @@ namespace kinema {
 /// time). UnitError for a unit of another kind than the input's.
 double parse_input_value(const ConstraintSystem& system, const std::string& text);
 
+/// A value for the parameter the file writes as `name`, in SI: "0.31 m", "120 mm", "30 deg";
+/// a bare number for a parameter of no known unit. InputError for a name the file does
+/// not write, UnitError naming the parameter for a value of another kind than its own.
+double parse_parameter_value(const ConstraintSystem& system, const std::string& name, const std::string& text);
+
 /// An input value as written: a number and its unit (SI per unit; 1 for a value given in SI).
 struct WrittenValue {
   double number = 0.0;

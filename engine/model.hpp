@@ -11,6 +11,8 @@
 
 #include <filesystem>
 #include <optional>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "engine/constraints/constraint_system.hpp"
@@ -41,6 +43,20 @@ struct Model {
 Model load_model(const std::filesystem::path& path, DerivationScope scope = DerivationScope::full);
 /// The same from a description already in memory (readers/mechanism_file.hpp reads one).
 Model make_model(const Mechanism& mechanism, DerivationScope scope = DerivationScope::full);
+
+/// The same mechanism with other values (SI) of parameters the file writes, as the file
+/// edited to them would give, without deriving or compiling anything: the copy shares the
+/// derivation's formulas and the compiled tape, which take the parameters as inputs.
+/// Parameters written as formulas of earlier ones follow them (EF = "CE" follows CE), and
+/// the length scale is the edited file's. A joints-and-links file keeps its loops, but the
+/// closed-form dyad positions hold numbers of the file's dimensions (each body's joints in
+/// its frame): the copy solves by Newton from the file's sketch guesses instead (the same
+/// numbers to rounding; no circuit or dyad-by-dyad derivation). A joints file for which
+/// kinema made parameters from the sketch (a length the file does not give) is refused:
+/// those numbers follow the dimensions only through the sketch. InputError names an
+/// unknown parameter, one kinema made, or a value that is not finite; a later entry for
+/// the same name wins.
+Model with_parameters(const Model& model, const std::vector<std::pair<std::string, double>>& values);
 
 /// The constraint system of a mechanism as written: built by the front end of its form
 /// (vector loops, joints and links, a spatial chain), the dyads' assemblies settled.

@@ -52,6 +52,7 @@ std::string LinkageWriter::add_parameter(const std::string& wanted, double value
   p.text = format_round_trip(shown) + (dimension == Dimension::angle ? " deg" : " m");
   p.quantity = Quantity{value, dimension};
   p.where = where;
+  p.generated = true;
   m_.parameters.push_back(p);
   values_[p.name] = value;
   if (known == generated_.end()) generated_[wanted] = p.name;

@@ -229,7 +229,6 @@ std::string PlanarSystemBuilder::unknown_list() const {
 
 void PlanarSystemBuilder::add_parameters() {
   GiNaC::exmap values;
-  double largest = 0;
   for (const Parameter& parameter : declarations_.parameters) {
     const std::string context = parameter.where.str() + ": parameter \"" + parameter.name + "\"";
     double value = 0.0;
@@ -276,10 +275,11 @@ void PlanarSystemBuilder::add_parameters() {
     if (plain_power) plain_powers_[entry.symbol] = *plain_power;
     if (!parameter.quantity) formulas_of_parameters_[entry.symbol] = formula;
     values[entry.symbol] = value;
-    if (entry.dimension == Dimension::length && parameter.quantity) largest = std::max(largest, std::fabs(value));
+    entry.sets_length_scale = entry.dimension == Dimension::length && parameter.quantity;
+    entry.written = !parameter.generated;
     system_.parameters.push_back(entry);
   }
-  system_.length_scale = largest > 0 ? largest : 1.0;
+  system_.length_scale = length_scale_of(system_.parameters);
 }
 
 }  // namespace kinema

@@ -65,6 +65,19 @@ std::vector<kinema::Solution> solve_list(const PyModel& m, const std::vector<Val
   return m.facade.solve(si);
 }
 
+/// m.with_parameters(b="0.31 m", c=0.09): quantities with units, or numbers in SI.
+PyModel with_parameters(const PyModel& m, const py::kwargs& values) {
+  std::vector<std::pair<std::string, double>> si;
+  for (const auto& [key, value] : values) {
+    const std::string name = py::str(key);
+    const double number = py::isinstance<py::str>(value)
+                              ? kinema::parse_parameter_value(m.engine->system, name, value.cast<std::string>())
+                              : value.cast<double>();
+    si.emplace_back(name, number);
+  }
+  return model_of(kinema::with_parameters(*m.engine, si));
+}
+
 /// The output unit of each field of sweep() (the CSV's column units).
 py::dict field_units(const PyModel& m) {
   const kinema::ConstraintSystem& system = m.engine->system;
@@ -330,6 +343,10 @@ PYBIND11_MODULE(kinema, module) {
           "The whole circuit of a joints-and-links mechanism through its toggles by step (\"1 deg\"), from start (or "
           "the file's value): the structured array of `kinema eval --circuit STEP --format npy` (a direction and each "
           "dyad's sign a row).")
+      .def("with_parameters", &with_parameters,
+           "The same mechanism with other parameter values, as the file edited to them: "
+           "m.with_parameters(b=\"0.31 m\", delta=\"25 deg\", c=0.09) (numbers in SI). Nothing is derived or "
+           "compiled again: the new model shares this one's formulas and compiled code.")
       .def("page", &page, "The page `kinema page FILE` writes (one self-contained HTML file).")
       .def("_repr_latex_", &notebook_latex)
       .def(

@@ -21,6 +21,7 @@ struct Parameter {
   std::optional<Quantity> quantity;  ///< Set when written as a quantity.
   std::string formula;       ///< Set when written as a formula.
   SourceLocation where;
+  bool generated = false;    ///< Made by kinema from a joints file's sketch, not written.
 };
 
 /// A coordinate whose value the loops determine (angle or slider length).

@@ -19,6 +19,7 @@
 #include <initializer_list>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <kinema/error.hpp>
@@ -133,11 +134,23 @@ class MechanismModel {
   }
   std::vector<Solution> solve(std::initializer_list<double> values) const { return solve(std::vector<double>(values)); }
 
+  /// The same mechanism with other parameter values, as quantities with units
+  /// ({{"b", "0.31 m"}, {"delta", "25 deg"}}; a bare number for a parameter of no unit),
+  /// gives the numbers the file edited to them would give, in microseconds: nothing is
+  /// derived or compiled again (the copy shares this model's formulas and compiled code).
+  /// Parameters written as formulas of others follow them (EF = "CE" follows CE). A
+  /// joints-and-links copy solves by Newton from the file's sketch guesses rather than
+  /// dyad by dyad (the same numbers); one whose sketch gave lengths the file does not
+  /// state is refused. Error naming the parameter for a name the file does not write or
+  /// a value of another kind than the parameter's (a length given in degrees).
+  MechanismModel with_parameters(const std::vector<std::pair<std::string, std::string>>& values) const;
+
   struct Engine;  ///< The engine's model (api/kinema.cpp).
 
  private:
   friend struct EngineAccess;  ///< kinema's own views beside this one (api/engine_access.hpp).
   explicit MechanismModel(std::shared_ptr<const Engine> engine);
+  MechanismModel(std::shared_ptr<const Engine> engine, std::shared_ptr<const Names> names);
   std::shared_ptr<const Engine> engine_;
   std::shared_ptr<const Names> names_;
 };

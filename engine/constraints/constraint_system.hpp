@@ -25,6 +25,11 @@ struct SystemParameter {
   std::string text;             ///< As written ("150 mm", "b/2").
   std::optional<GiNaC::ex> formula;  ///< For a parameter written as a formula of earlier ones.
   SourceLocation where;
+  /// In the file as the user wrote it; false for one kinema made (a joints file's sketch
+  /// numbers, a spatial chain's starting motion), which with_parameters does not set.
+  bool written = true;
+  /// Counted in ConstraintSystem::length_scale (each front end chooses which).
+  bool sets_length_scale = false;
 };
 
 /// A coordinate and its two time derivatives (the symbols carry their LaTeX names).
@@ -150,6 +155,14 @@ struct ConstraintSystem {
     return g.kind + " \"" + g.name + "\" (" + g.where.str() + ")";
   }
 };
+
+/// The largest |value| of the parameters that set the length scale, else 1 (m): what
+/// every front end stores as ConstraintSystem::length_scale.
+double length_scale_of(const std::vector<SystemParameter>& parameters);
+
+/// Where the parameter the file writes as `name` is in system.parameters; InputError
+/// naming it (and listing the file's parameters) for a name the file does not write.
+std::size_t written_parameter_index(const ConstraintSystem& system, const std::string& name);
 
 /// Most unknowns in one system: the numeric solver factorises the dense Jacobian at
 /// each position, so its time grows as the cube of the count (2,000 took minutes).

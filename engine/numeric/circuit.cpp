@@ -169,6 +169,9 @@ Circuit solve_circuit(const Kinematics& kinematics, const CircuitSettings& setti
   if (!(settings.step > 0) || !std::isfinite(settings.step)) {
     throw InputError("the circuit's step must be a positive number");
   }
+  if (kinematics.closed_form() == nullptr) {  // e.g. a joints file's copy by with_parameters
+    throw InputError("a circuit is walked dyad by dyad: it needs a model whose links are solved in closed form");
+  }
   Circuit circuit;
   std::vector<CircuitRow> rows;
   circuit.stop = walk(kinematics, settings, rows, circuit.dyad);

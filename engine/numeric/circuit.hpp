@@ -45,7 +45,7 @@ struct Circuit {
 };
 
 /// The circuit of a mechanism solved in closed form (kinematics.closed_form() != nullptr);
-/// InputError for a step that is not a positive number.
+/// InputError for a step that is not a positive number, or a model not in closed form.
 Circuit solve_circuit(const Kinematics& kinematics, const CircuitSettings& settings);
 
 }  // namespace kinema

@@ -81,6 +81,14 @@ Kinematics Kinematics::drawing_only(const ConstraintSystem& system, const Planar
   return k;
 }
 
+Kinematics Kinematics::sharing_tape(const ConstraintSystem& system) const {
+  Kinematics k(system);
+  k.layout_.link_vector_count = layout_.link_vector_count;
+  k.evaluator_ = evaluator_;
+  k.drawable_ = drawable_;
+  return k;
+}
+
 void Kinematics::compile(const ConstraintSystem& system, const std::vector<std::vector<ex>>& solving,
                          const PlanarLinkVectors& link_vectors) {
   // Inputs in the order of TapeLayout.
@@ -95,12 +103,14 @@ void Kinematics::compile(const ConstraintSystem& system, const std::vector<std::
 
   layout_.link_vector_count = link_vectors.vectors.size();
   try {
-    evaluator_ = CompiledExpressions(inputs, layout_.input_levels(), solving, drawing_stage(system, link_vectors));
+    evaluator_ = std::make_shared<const CompiledExpressions>(inputs, layout_.input_levels(), solving,
+                                                             drawing_stage(system, link_vectors));
   } catch (const std::exception&) {
     // A drawing formula the tape cannot take: the model solves as before and its views
     // draw nothing (a solving formula it cannot take throws again here).
     layout_.link_vector_count = 0;
-    evaluator_ = CompiledExpressions(inputs, layout_.input_levels(), solving, {});
+    evaluator_ = std::make_shared<const CompiledExpressions>(inputs, layout_.input_levels(), solving,
+                                                             std::vector<ex>{});
     drawable_ = false;
   }
 }
@@ -108,7 +118,7 @@ void Kinematics::compile(const ConstraintSystem& system, const std::vector<std::
 std::vector<double> Kinematics::drawing_values(const MotionState& state) const {
   const std::size_t n = layout_.unknown_count;
   if (!drawable_ || static_cast<std::size_t>(state.q.size()) != n) return {};
-  std::vector<double> registers = evaluator_.make_workspace();
+  std::vector<double> registers = evaluator_->make_workspace();
   for (std::size_t p = 0; p < parameter_values_.size(); ++p) registers[layout_.parameter(p)] = parameter_values_[p];
   registers[layout_.input()] = state.input;
   registers[layout_.rate()] = state.input_rate;
@@ -123,8 +133,8 @@ std::vector<double> Kinematics::drawing_values(const MotionState& state) const {
   // The drawing stage reads the registers of the stages before it, run on the same inputs.
   std::vector<double> outputs;
   for (std::size_t stage = 0; stage < TapeLayout::kStageCount; ++stage) {
-    outputs.assign(evaluator_.stage_output_count(stage), 0.0);
-    evaluator_.evaluate_stage(stage, registers, outputs.data());
+    outputs.assign(evaluator_->stage_output_count(stage), 0.0);
+    evaluator_->evaluate_stage(stage, registers, outputs.data());
   }
   return outputs;
 }

@@ -6,6 +6,7 @@
 
 #include <Eigen/Dense>
 
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -24,6 +25,9 @@ class Kinematics {
   /// The drawing stage alone, the solving stages empty (the same formulas and inputs in the
   /// same order as a model's): for an analysis that has the system and not its model.
   static Kinematics drawing_only(const ConstraintSystem& system, const PlanarLinkVectors& link_vectors);
+  /// The same tape (shared, not copied) for `system`, this one's system with other
+  /// parameter values: its parameters, scales and guesses read from `system`.
+  Kinematics sharing_tape(const ConstraintSystem& system) const;
 
   std::size_t unknown_count() const { return layout_.unknown_count; }
   std::size_t point_count() const { return layout_.point_dimensions.size(); }
@@ -31,7 +35,7 @@ class Kinematics {
   const TapeLayout& layout() const { return layout_; }
   /// One tape for position, acceleration and points (stages as in TapeLayout):
   /// sin/cos and every other subexpression computed once per input value.
-  const CompiledExpressions& evaluator() const { return evaluator_; }
+  const CompiledExpressions& evaluator() const { return *evaluator_; }
   const std::vector<double>& parameter_values() const { return parameter_values_; }
   /// The drawing stage's outputs (TapeLayout::link_vector_output, frame_placement_output)
   /// at a state whose position is known: rates NaN where the state has none. Empty for a
@@ -60,7 +64,8 @@ class Kinematics {
   void compile(const ConstraintSystem& system, const std::vector<std::vector<GiNaC::ex>>& solving,
                const PlanarLinkVectors& link_vectors);
   TapeLayout layout_;
-  CompiledExpressions evaluator_;
+  /// Shared by the models that differ only in parameter values (with_parameters).
+  std::shared_ptr<const CompiledExpressions> evaluator_ = std::make_shared<const CompiledExpressions>();
   std::vector<double> parameter_values_;
   double length_scale_ = 1.0, max_continuation_step_ = 0.0;
   std::vector<double> column_scale_;

@@ -181,3 +181,49 @@ def test_to_dataframe_has_a_column_a_field():
     assert list(frame.columns) == list(table.dtype.names)
     assert len(frame) == len(table)
     assert np.array_equal(frame["omega3"].to_numpy(), table["omega3"], equal_nan=True)
+
+
+def sweep_fields_close(a, b):
+    """Every numeric field of two sweeps within 1e-12 of the field's largest magnitude."""
+    assert a.dtype == b.dtype and len(a) == len(b) > 1
+    assert np.array_equal(a["status"], b["status"]) and (a["status"] == 0).all()
+    for field in a.dtype.names:
+        if a[field].dtype.kind != "f":
+            continue
+        scale = max(np.abs(a[field]).max(), np.abs(b[field]).max())
+        assert np.abs(a[field] - b[field]).max() <= 1e-12 * scale, field
+
+
+@pytest.mark.parametrize(
+    "sample, edits, values",
+    [
+        (
+            "four_bar.toml",
+            {'b = "120 mm"': 'b = "123 mm"', 'delta = "30 deg"': 'delta = "25 deg"'},
+            {"b": "123 mm", "delta": 25 * math.pi / 180},
+        ),
+        # EF = "CE" follows CE in the copy as in the edited file (within the sketch's 1 %).
+        ("problem_4_4_joints.toml", {'CE = "0.230 m"': 'CE = "0.231 m"'}, {"CE": 0.231}),
+    ],
+    ids=["four_bar", "problem_4_4_joints"],
+)
+def test_with_parameters_equals_the_edited_file(sample, edits, values):
+    text = (SAMPLES / sample).read_text()
+    for before, after in edits.items():
+        assert before in text
+        text = text.replace(before, after, 1)
+    model = kinema.load(str(SAMPLES / sample))
+    copy = model.with_parameters(**values)
+    edited = kinema.loads(text, sample)
+    sweep_fields_close(copy.sweep("0 deg", "360 deg", "5 deg"), edited.sweep("0 deg", "360 deg", "5 deg"))
+    assert [p["value"] for p in copy.parameters] == pytest.approx([p["value"] for p in edited.parameters], rel=1e-15)
+    # The original is untouched.
+    assert model.parameters[1]["value"] == kinema.load(str(SAMPLES / sample)).parameters[1]["value"]
+
+
+def test_with_parameters_errors_name_the_parameter():
+    model = kinema.load(str(SAMPLES / "four_bar.toml"))
+    with pytest.raises(kinema.InputError, match='no parameter named "bb"'):
+        model.with_parameters(bb="1 m")
+    with pytest.raises(kinema.UnitError, match='parameter "b" is a length'):
+        model.with_parameters(b="30 deg")
