@@ -21,9 +21,6 @@ class Kinematics {
  public:
   Kinematics() = default;
   Kinematics(const ConstraintSystem& system, const Derivation& derivation);
-  /// The drawing stage alone, the solving stages empty (the same formulas and inputs in the
-  /// same order as a model's): for an analysis that has the system and not its model.
-  static Kinematics drawing_only(const ConstraintSystem& system, const PlanarLinkVectors& link_vectors);
 
   std::size_t unknown_count() const { return layout_.unknown_count; }
   std::size_t point_count() const { return layout_.point_dimensions.size(); }
