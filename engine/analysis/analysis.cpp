@@ -33,7 +33,7 @@ std::vector<ValueAnalysis> analyse_values(const Model& model, const MotionTable&
       value.points_on_links = geometry.points_on_links(s);
     }
     value.polygons = polygons.polygons(s);
-    value.centres = instant_centres(system, s);
+    value.centres = instant_centres(geometry, s);
   }
   return analysed;
 }

@@ -71,31 +71,28 @@ int angle_coordinate(const ConstraintSystem& system, const LinkVector& v) {
 
 }  // namespace
 
-int MechanismGeometry::link_of(const ConstraintSystem& system, const LinkVectorMotion& term) {
+int MechanismGeometry::link_of(const ConstraintSystem& system, const PlanarLinkVectors& link_vectors,
+                               std::size_t vector) {
+  const LinkVectorMotion& term = link_vectors.vectors[vector];
   if (!term.link.polar || moves(system, term.link.length) || !moves(system, term.link.angle)) return -1;
-  return link_of_angle(system, term);
+  return link_of_angle(system, link_vectors, vector);
 }
 
-int MechanismGeometry::link_of_angle(const ConstraintSystem& system, const LinkVectorMotion& term) {
+int MechanismGeometry::link_of_angle(const ConstraintSystem& system, const PlanarLinkVectors& link_vectors,
+                                     std::size_t vector) {
+  const LinkVectorMotion& term = link_vectors.vectors[vector];
   if (!term.derived) return -1;  // drawn as a plain segment when GiNaC cannot differentiate the term
   for (std::size_t k = 0; k < link_rates_.size(); ++k)
     if (link_rates_[k].is_equal(term.angle_rate)) return static_cast<int>(k);
   link_rates_.push_back(term.angle_rate);
+  link_vectors_.push_back(vector);
   link_labels_.push_back(link_label(system, term.link.angle));
   return static_cast<int>(link_rates_.size() - 1);
 }
 
-MechanismGeometry::MechanismGeometry(const Model& model) : kinematics_(&model.kinematics) {
+MechanismGeometry::MechanismGeometry(const Model& model) : system_(&model.system), kinematics_(&model.kinematics) {
   count_work(Work::drawing);
   classify(model.system, model.derivation.link_vectors);
-}
-
-MechanismGeometry::MechanismGeometry(const ConstraintSystem& system) {
-  count_work(Work::drawing);
-  const PlanarLinkVectors link_vectors = planar_link_vectors(system);
-  own_ = std::make_shared<const Kinematics>(Kinematics::drawing_only(system, link_vectors));
-  kinematics_ = own_.get();
-  classify(system, link_vectors);
 }
 
 void MechanismGeometry::classify(const ConstraintSystem& system, const PlanarLinkVectors& link_vectors) {
@@ -109,7 +106,8 @@ void MechanismGeometry::classify(const ConstraintSystem& system, const PlanarLin
       const bool sliding = sliding_length(system, term.term).has_value();
       int guide_link = -1;
       const bool guide_turns = term.guide && moves(system, *term.guide);
-      if (guide_turns && term.link.polar && moves(system, term.link.angle)) guide_link = link_of_angle(system, term);
+      if (guide_turns && term.link.polar && moves(system, term.link.angle))
+        guide_link = link_of_angle(system, link_vectors, v);
       term_coordinates_.push_back(angle_coordinate(system, term.link));
       has_guide_.push_back(term.guide.has_value());
       guide_turns_.push_back(guide_turns);
@@ -117,12 +115,12 @@ void MechanismGeometry::classify(const ConstraintSystem& system, const PlanarLin
       kinds_.push_back(!moves(system, term.term) ? DrawingSegment::Kind::ground
                        : sliding                 ? DrawingSegment::Kind::slider
                                                  : DrawingSegment::Kind::link);
-      term_links_.push_back(link_of(system, term));
+      term_links_.push_back(link_of(system, link_vectors, v));
     }
   }
   for (const PlanarLinkVectors::Chain& chain : link_vectors.chains) {
     if (!chain.point) continue;
-    const int link = link_of(system, link_vectors.vectors[chain.vectors.back()]);
+    const int link = link_of(system, link_vectors, chain.vectors.back());
     if (link >= 0) points_.push_back({*chain.point, chain.vectors.back(), link});
   }
 }
@@ -139,6 +137,19 @@ std::vector<PointOnLink> MechanismGeometry::points_on_links(const MotionState& s
     if (std::isfinite(term.real()) && std::isfinite(term.imag())) found.push_back({on.point, on.link, at - term, at});
   }
   return found;
+}
+
+std::vector<std::optional<double>> MechanismGeometry::link_angular_velocities(const MotionState& state) const {
+  std::vector<std::optional<double>> omegas(link_rates_.size());
+  if (state.status != Status::ok) return omegas;
+  const std::vector<double> values = kinematics_->drawing_values(state);
+  if (values.empty()) return omegas;
+  for (std::size_t k = 0; k < omegas.size(); ++k) {
+    const double* w = values.data() + kinematics_->layout().link_vector_output(link_vectors_[k]) +
+                      TapeLayout::kVectorAngleRateAt;
+    if (std::isfinite(w[0]) && w[1] == 0) omegas[k] = w[0];
+  }
+  return omegas;
 }
 
 namespace {

@@ -5,7 +5,6 @@
 
 #include <array>
 #include <complex>
-#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -96,10 +95,10 @@ std::vector<PlacedFrame> placed_frames(const Model& model, const MotionState& st
 /// guides, TapeLayout::kDrawingStage), classed and numbered here.
 class MechanismGeometry {
  public:
+  /// Reads the model's link vectors and tape; the model must outlive it.
   explicit MechanismGeometry(const Model& model);
-  /// For a caller that has the system without its model (instant_centres): the link
-  /// vectors derived and the drawing stage compiled alone, as a model's.
-  explicit MechanismGeometry(const ConstraintSystem& system);
+  /// The system of the model it reads.
+  const ConstraintSystem& system() const { return *system_; }
   /// The loops' segments at a state whose position is known (status not unassembled). A loop's
   /// terms are laid end to end from the origin in the order, among those that close it, that
   /// puts its ground vectors at the origin and its corners on the most named points (the
@@ -112,17 +111,21 @@ class MechanismGeometry {
   const std::vector<std::string>& link_labels() const { return link_labels_; }
   /// Each link's angular rate (omega3), indexed as link_labels.
   const std::vector<GiNaC::ex>& link_rates() const { return link_rates_; }
+  /// Each link's angular velocity at a state that is ok (rad/s, link_rates as the model's
+  /// tape evaluates them), indexed as link_labels; nullopt where it is not a finite real
+  /// number, and for every link where the drawing stage gives no values.
+  std::vector<std::optional<double>> link_angular_velocities(const MotionState& state) const;
 
  private:
   /// Classes each loop term and finds the points on links.
   void classify(const ConstraintSystem& system, const PlanarLinkVectors& link_vectors);
   /// The link a term of fixed length turning with an angle is on (added when new), or -1.
-  int link_of(const ConstraintSystem& system, const LinkVectorMotion& term);
+  int link_of(const ConstraintSystem& system, const PlanarLinkVectors& link_vectors, std::size_t vector);
   /// The link turning with this vector's angle (added when new).
-  int link_of_angle(const ConstraintSystem& system, const LinkVectorMotion& term);
+  int link_of_angle(const ConstraintSystem& system, const PlanarLinkVectors& link_vectors, std::size_t vector);
 
-  std::shared_ptr<const Kinematics> own_;  ///< The drawing stage compiled alone (no model).
-  const Kinematics* kinematics_ = nullptr;  ///< The model's, or own_.
+  const ConstraintSystem* system_ = nullptr;  ///< The model's.
+  const Kinematics* kinematics_ = nullptr;    ///< The model's.
   /// Per loop term (the first link vectors of the model, in order): its kind, its link or
   /// -1, whether it has a guide that turns (a guide on a link) and with which link, its
   /// angle's coordinate (as DrawingSegment::coordinate) or -1.
@@ -138,6 +141,7 @@ class MechanismGeometry {
   };
   std::vector<OnLink> points_;
   std::vector<GiNaC::ex> link_rates_;  ///< Per link: the rate it turns with.
+  std::vector<std::size_t> link_vectors_;  ///< Per link: a link vector turning with it (its first).
   std::vector<std::string> link_labels_;
 };
 

@@ -6,8 +6,6 @@
 
 #include "engine/base/work_count.hpp"
 #include "engine/analysis/geometry.hpp"
-#include "engine/symbolic/derivation.hpp"
-#include "engine/constraints/expression_parts.hpp"
 #include "engine/numeric/dyad_positions.hpp"
 #include "engine/base/units.hpp"
 
@@ -59,10 +57,11 @@ void add_ratios(InstantCentres& result, double length_scale) {
   }
 }
 
-// A body of a vector-loop file as centres_from_points finds it: its angle's rate (what
-// tells two bodies apart), its name, a point on it with that point's velocity, and its
-// angular velocity now.
+// A body of a vector-loop file as centres_from_points finds it: its link (MechanismGeometry's
+// numbering; -1 for a slider block), the rate it turns with, its name, a point on it with that
+// point's velocity, and its angular velocity now.
 struct PointBody {
+  int link = -1;
   GiNaC::ex rate;
   std::string name;
   Complex point, velocity;
@@ -70,76 +69,41 @@ struct PointBody {
   double omega = 0;
 };
 
-// The state's value of everything an angle's rate may hold (theta3^2 turns at 2 theta3 omega3).
-GiNaC::exmap state_values(const ConstraintSystem& system, const MotionState& s) {
-  GiNaC::exmap values{{system.input.rate, s.input_rate}, {system.input.symbol, s.input}};
-  for (std::size_t j = 0; j < system.unknowns.size(); ++j) {
-    values[system.unknowns[j].rate] = s.qd[j];
-    values[system.unknowns[j].symbol] = s.q[j];
-  }
-  for (const SystemParameter& parameter : system.parameters) values[parameter.symbol] = parameter.value;
-  return values;
-}
-
-// A rate's value now; nullopt where it is not a finite real number (or GiNaC cannot
-// evaluate it).
-std::optional<double> rate_value(const GiNaC::ex& rate, const GiNaC::exmap& values) {
-  try {
-    const GiNaC::ex w = rate.subs(values).evalf();
-    if (!GiNaC::is_a<GiNaC::numeric>(w) || !GiNaC::ex_to<GiNaC::numeric>(w).is_real()) return std::nullopt;
-    const double d = GiNaC::ex_to<GiNaC::numeric>(w).to_double();
-    return std::isfinite(d) ? std::optional<double>(d) : std::nullopt;
-  } catch (const std::exception&) {
-    return std::nullopt;
-  }
-}
-
 // The driver's link first (0), then the unknowns' in file order (j + 1), then any other:
-// by the coordinate whose `part` e holds (its symbol in an angle, its rate in a rate).
-std::size_t body_order(const ConstraintSystem& system, const GiNaC::ex& e, GiNaC::realsymbol Coordinate::*part) {
+// by the coordinate whose rate a link's rate holds.
+std::size_t body_order(const ConstraintSystem& system, const GiNaC::ex& rate) {
   std::size_t order = system.unknowns.size() + 1;
   for (std::size_t j = system.unknowns.size(); j-- > 0;)
-    if (e.has(system.unknowns[j].*part)) order = j + 1;
-  if (e.has(system.input.*part)) order = 0;
+    if (rate.has(system.unknowns[j].rate)) order = j + 1;
+  if (rate.has(system.input.rate)) order = 0;
   return order;
 }
 
-bool has_body(const std::vector<PointBody>& bodies, const GiNaC::ex& rate) {
+bool has_body(const std::vector<PointBody>& bodies, int link) {
   for (const PointBody& b : bodies)
-    if (b.rate.is_equal(rate)) return true;
+    if (b.link == link) return true;
   return false;
+}
+
+// The body of link `link` known by a point on it and that point's velocity, unless it is
+// one already or its angular velocity is not known now.
+void add_link_body(const MechanismGeometry& geometry, const std::vector<std::optional<double>>& omegas, int link,
+                   Complex point, Complex velocity, std::vector<PointBody>& bodies) {
+  if (has_body(bodies, link) || !omegas[link]) return;
+  const GiNaC::ex& rate = geometry.link_rates()[link];
+  bodies.push_back({link, rate, geometry.link_labels()[link], point, velocity, body_order(geometry.system(), rate),
+                    *omegas[link]});
 }
 
 // A vector-loop file names no links: a point whose formula ends in a link vector of fixed
 // length turning with an angle is on that link (docs/outputs.md: "points that lie on a link
 // term belong to that link").
-std::vector<PointBody> bodies_of_points(const ConstraintSystem& system, const MotionState& s,
-                                        const GiNaC::exmap& values) {
-  const auto moves = [&](const GiNaC::ex& e) {
-    if (e.has(system.input.symbol)) return true;
-    for (const Coordinate& q : system.unknowns)
-      if (e.has(q.symbol)) return true;
-    return false;
-  };
+std::vector<PointBody> bodies_of_points(const MechanismGeometry& geometry, const MotionState& s,
+                                        const std::vector<std::optional<double>>& omegas) {
   std::vector<PointBody> bodies;
-  for (std::size_t p = 0; p < system.points.size(); ++p) {
-    const PointObservable& point = system.points[p];
-    if (point.written_terms.empty()) continue;
-    const LinkVector link = split_link_vector(point.written_terms.back());
-    if (!link.polar || moves(link.length) || !moves(link.angle)) continue;
-    GiNaC::ex rate;
-    try {  // a formula GiNaC cannot differentiate: the point names no link
-      rate = time_derivative(system, link.angle);
-    } catch (const std::exception&) {
-      continue;
-    }
-    const std::optional<double> omega = rate_value(rate, values);
-    if (has_body(bodies, rate)) continue;
-    const std::string name = link_label(system, link.angle);
-    if (!omega) continue;
-    const PointMotion& m = s.points[p];
-    bodies.push_back({rate, name, {m.position[0], m.position[1]}, {m.velocity[0], m.velocity[1]},
-                      body_order(system, link.angle, &Coordinate::symbol), *omega});
+  for (const PointOnLink& on : geometry.points_on_links(s)) {
+    const PointMotion& m = s.points[on.point];
+    add_link_body(geometry, omegas, on.link, on.at, {m.velocity[0], m.velocity[1]}, bodies);
   }
   return bodies;
 }
@@ -148,11 +112,11 @@ std::vector<PointBody> bodies_of_points(const ConstraintSystem& system, const Mo
 // point, or a ground one), and the slider blocks (at their sliding points, turning with
 // their guides): every body of the mechanism, as a course counts them. A block is added
 // without a name (number_bodies names it).
-void add_drawn_bodies(const ConstraintSystem& system, const MotionState& s, const GiNaC::exmap& values,
-                      std::vector<PointBody>& bodies) {
+void add_drawn_bodies(const MechanismGeometry& geometry, const MotionState& s,
+                      const std::vector<std::optional<double>>& omegas, std::vector<PointBody>& bodies) {
+  const double length_scale = geometry.system().length_scale;
   std::vector<std::pair<Complex, Complex>> known;  // position, velocity
   for (const PointMotion& m : s.points) known.push_back({{m.position[0], m.position[1]}, {m.velocity[0], m.velocity[1]}});
-  const MechanismGeometry geometry(system);
   const std::vector<DrawingSegment> segments = geometry.segments(s);
   known.push_back({0, 0});
   for (const DrawingSegment& g : segments)
@@ -162,18 +126,14 @@ void add_drawn_bodies(const ConstraintSystem& system, const MotionState& s, cons
     }
   const auto velocity_at = [&](Complex p) -> std::optional<Complex> {
     for (const auto& [at, v] : known)
-      if (std::abs(at - p) <= 1e-9 * system.length_scale) return v;
+      if (std::abs(at - p) <= 1e-9 * length_scale) return v;
     return std::nullopt;
   };
   for (const DrawingSegment& g : segments) {
-    if (g.kind != DrawingSegment::Kind::link || g.link < 0) continue;
-    const GiNaC::ex& rate = geometry.link_rates()[g.link];
-    const std::optional<double> w = rate_value(rate, values);
-    if (has_body(bodies, rate) || !w) continue;
+    if (g.kind != DrawingSegment::Kind::link || g.link < 0 || has_body(bodies, g.link)) continue;
     for (const Complex end : {g.from, g.to})
       if (const auto v = velocity_at(end)) {
-        const std::size_t order = body_order(system, rate, &Coordinate::rate);
-        bodies.push_back({rate, geometry.link_labels()[g.link], end, *v, order, *w});
+        add_link_body(geometry, omegas, g.link, end, *v, bodies);
         break;
       }
   }
@@ -181,22 +141,17 @@ void add_drawn_bodies(const ConstraintSystem& system, const MotionState& s, cons
   // other end when that lies on the guide line.
   for (const DrawingSegment& g : segments) {
     if (g.kind != DrawingSegment::Kind::slider || g.guide_link < 0) continue;
-    const GiNaC::ex& rate = geometry.link_rates()[g.guide_link];
-    const bool seen = has_body(bodies, rate);
-    const Complex other = std::abs(g.block - g.to) <= 1e-9 * system.length_scale ? g.from : g.to;
-    const std::optional<double> w = rate_value(rate, values);
+    const Complex other = std::abs(g.block - g.to) <= 1e-9 * length_scale ? g.from : g.to;
     const auto v = velocity_at(other);
-    if (seen || !w || !v || std::fabs(cross(other - g.block, g.along)) > 1e-9 * system.length_scale) continue;
-    const std::size_t order = body_order(system, rate, &Coordinate::rate);
-    bodies.push_back({rate, geometry.link_labels()[g.guide_link], other, *v, order, *w});
+    if (!v || std::fabs(cross(other - g.block, g.along)) > 1e-9 * length_scale) continue;
+    add_link_body(geometry, omegas, g.guide_link, other, *v, bodies);
   }
   for (const DrawingSegment& g : segments) {
     if (g.kind != DrawingSegment::Kind::slider || (!g.fixed_guide && g.guide_link < 0)) continue;
-    const std::optional<double> w =
-        g.fixed_guide ? std::optional<double>(0.0) : rate_value(geometry.link_rates()[g.guide_link], values);
+    const std::optional<double> w = g.fixed_guide ? std::optional<double>(0.0) : omegas[g.guide_link];
     const auto v = velocity_at(g.block);
     if (!w || !v) continue;
-    bodies.push_back({0, "", g.block, *v, system.unknowns.size() + 2, *w});
+    bodies.push_back({-1, 0, "", g.block, *v, geometry.system().unknowns.size() + 2, *w});
   }
 }
 
@@ -372,11 +327,12 @@ void complete_by_kennedy(InstantCentres& result, double length_scale) {
 
 // A vector-loop file's centres: its bodies found from the points and the drawing, each
 // centre from two bodies' velocities.
-std::optional<InstantCentres> centres_from_points(const ConstraintSystem& system, const MotionState& s) {
-  const GiNaC::exmap values = state_values(system, s);
-  std::vector<PointBody> bodies = bodies_of_points(system, s, values);
+std::optional<InstantCentres> centres_from_points(const MechanismGeometry& geometry, const MotionState& s) {
+  const ConstraintSystem& system = geometry.system();
+  const std::vector<std::optional<double>> omegas = geometry.link_angular_velocities(s);
+  std::vector<PointBody> bodies = bodies_of_points(geometry, s, omegas);
   if (bodies.empty()) return std::nullopt;
-  add_drawn_bodies(system, s, values, bodies);
+  add_drawn_bodies(geometry, s, omegas, bodies);
   const std::string ground = number_bodies(bodies);
   InstantCentres result = centres_of_bodies(system, s, bodies, ground);
   if (!list_missing_and_check_finite(result)) return std::nullopt;
@@ -394,10 +350,11 @@ const InstantCentre* InstantCentres::find(std::size_t a, std::size_t b) const {
   return nullptr;
 }
 
-std::optional<InstantCentres> instant_centres(const ConstraintSystem& system, const MotionState& s) {
+std::optional<InstantCentres> instant_centres(const MechanismGeometry& geometry, const MotionState& s) {
   count_work(Work::drawing);
+  const ConstraintSystem& system = geometry.system();
   if (s.status != Status::ok || !system.frames.empty()) return std::nullopt;
-  if (!system.plan) return centres_from_points(system, s);
+  if (!system.plan) return centres_from_points(geometry, s);
   if (!system.plan->closed_form) return std::nullopt;
   const SolvingPlan& plan = *system.plan;
   const SolvingPlan& frames = plan;

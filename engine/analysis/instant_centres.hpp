@@ -12,6 +12,7 @@
 
 #include <ginac/ginac.h>
 
+#include "engine/analysis/geometry.hpp"
 #include "engine/constraints/constraint_system.hpp"
 #include "engine/numeric/motion_table.hpp"
 
@@ -53,8 +54,10 @@ struct InstantCentres {
   const InstantCentre* find(std::size_t a, std::size_t b) const;
 };
 
-/// The instant centres of a joints-and-links mechanism placed in closed form at a state
-/// that is ok; nullopt for other systems (vector loops, spatial chains) and states.
-std::optional<InstantCentres> instant_centres(const ConstraintSystem& system, const MotionState& state);
+/// The instant centres at a state that is ok of the mechanism whose model `geometry` reads:
+/// a joints-and-links mechanism placed in closed form, or a vector-loop file with a named
+/// point on a link (its links and their angular velocities as the model derived and
+/// compiled them); nullopt for other systems (spatial chains) and states.
+std::optional<InstantCentres> instant_centres(const MechanismGeometry& geometry, const MotionState& state);
 
 }  // namespace kinema

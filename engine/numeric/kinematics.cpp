@@ -25,6 +25,7 @@ std::vector<ex> drawing_stage(const ConstraintSystem& system, const PlanarLinkVe
     for (const ex& part : m.parts) complex(part);
     for (const ex& magnitude : m.magnitudes) outputs.push_back(magnitude.expand());
     complex(m.guide ? *m.guide : ex(0));
+    complex(m.angle_rate);  // how fast its link turns (instant centres): complex where the angle is
   }
   for (const FrameObservable& frame : system.frames) {
     outputs.insert(outputs.end(), frame.origin.begin(), frame.origin.end());
@@ -73,12 +74,6 @@ Kinematics::Kinematics(const ConstraintSystem& system, const Derivation& d) : Ki
     points.insert(points.end(), frame.angular_acceleration.begin(), frame.angular_acceleration.end());
   }
   compile(system, {position, d.acceleration_rhs, points}, d.link_vectors);
-}
-
-Kinematics Kinematics::drawing_only(const ConstraintSystem& system, const PlanarLinkVectors& link_vectors) {
-  Kinematics k(system);
-  k.compile(system, {{}, {}, {}}, link_vectors);
-  return k;
 }
 
 Kinematics Kinematics::sharing_tape(const ConstraintSystem& system) const {

@@ -22,9 +22,6 @@ class Kinematics {
  public:
   Kinematics() = default;
   Kinematics(const ConstraintSystem& system, const Derivation& derivation);
-  /// The drawing stage alone, the solving stages empty (the same formulas and inputs in the
-  /// same order as a model's): for an analysis that has the system and not its model.
-  static Kinematics drawing_only(const ConstraintSystem& system, const PlanarLinkVectors& link_vectors);
   /// The same tape (shared, not copied) for `system`, this one's system with other
   /// parameter values: its parameters, scales and guesses read from `system`.
   Kinematics sharing_tape(const ConstraintSystem& system) const;

@@ -56,11 +56,13 @@ struct TapeLayout {
   std::size_t observable_output_count() const { return frame_output(frame_count); }
 
   // Outputs of the drawing stage: link vector k's x, y; its parts' x, y in the order of
-  // LinkVectorPart; its parts' lengths as derived; its guide's x, y (0 for none). Then
-  // frame f's origin (x, y, z) and its rotation (row-major, observer basis).
+  // LinkVectorPart; its parts' lengths as derived; its guide's x, y (0 for none); its
+  // angle's rate, real and imaginary parts (0 for a vector not polar). Then frame f's
+  // origin (x, y, z) and its rotation (row-major, observer basis).
   static constexpr std::size_t kVectorPartCount = 6;
   static constexpr std::size_t kVectorPositionAt = 0, kVectorPartsAt = 2, kVectorMagnitudesAt = 2 + 2 * kVectorPartCount,
-                               kVectorGuideAt = kVectorMagnitudesAt + kVectorPartCount, kVectorOutputs = kVectorGuideAt + 2,
+                               kVectorGuideAt = kVectorMagnitudesAt + kVectorPartCount,
+                               kVectorAngleRateAt = kVectorGuideAt + 2, kVectorOutputs = kVectorAngleRateAt + 2,
                                kFramePlacementOutputs = 12;
   std::size_t link_vector_output(std::size_t k) const { return kVectorOutputs * k; }
   std::size_t frame_placement_output(std::size_t f) const {

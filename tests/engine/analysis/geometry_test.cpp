@@ -90,3 +90,40 @@ TEST_CASE("engine/analysis/geometry: a slider's guide, and two loops each closin
   CHECK(drawn[5].kind == DrawingSegment::Kind::ground);
   CHECK(drawn[8].kind == DrawingSegment::Kind::slider);
 }
+
+TEST_CASE("engine/analysis/geometry: each link's angular velocity off the model's tape") {
+  // Every vector-loop sample: a link turning with a coordinate's rate turns at the value
+  // the state solved for that rate (instant centres read these, not GiNaC).
+  int checked = 0;
+  for (const char* name : kinema_test::kSamples) {
+    const kinema::Model model = kinema::load_model(kinema_test::sample(name));
+    const kinema::ConstraintSystem& system = model.system;
+    if (system.plan || !system.frames.empty()) continue;
+    CAPTURE(std::string(name));
+    const kinema::MechanismGeometry geometry(model);
+    std::vector<double> inputs = system.input.values;
+    if (inputs.empty()) inputs = {0.3};
+    for (const MotionState& s : kinema::analyse(model, inputs)) {
+      if (s.status != kinema::Status::ok) continue;
+      const auto omegas = geometry.link_angular_velocities(s);
+      REQUIRE(omegas.size() == geometry.link_rates().size());
+      for (std::size_t k = 0; k < omegas.size(); ++k) {
+        const GiNaC::ex& rate = geometry.link_rates()[k];
+        std::optional<double> solved;
+        if (rate.is_equal(system.input.rate)) solved = s.input_rate;
+        for (std::size_t j = 0; j < system.unknowns.size(); ++j)
+          if (rate.is_equal(system.unknowns[j].rate)) solved = s.qd[Eigen::Index(j)];
+        if (!solved) continue;
+        REQUIRE(omegas[k]);
+        CHECK(*omegas[k] == *solved);
+        ++checked;
+      }
+    }
+  }
+  CHECK(checked >= 12);
+  // No position, no angular velocities.
+  const kinema::Model four_bar = kinema::load_model(kinema_test::sample("four_bar.toml"));
+  MotionState unassembled;
+  unassembled.input = 0.3;
+  for (const auto& omega : kinema::MechanismGeometry(four_bar).link_angular_velocities(unassembled)) CHECK(!omega);
+}

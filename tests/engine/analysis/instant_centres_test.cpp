@@ -75,7 +75,7 @@ TEST_CASE("instant centres: a vector-loop file's links known by the points on th
   const kinema::Model model = kinema::load_model(kinema_test::sample("four_bar.toml"));
   const kinema::MotionTable table = kinema::analyse(model, {40 * M_PI / 180, 200 * M_PI / 180});
   for (const kinema::MotionState& s : table) {
-    const auto centres = kinema::instant_centres(model.system, s);
+    const auto centres = kinema::instant_centres(kinema::MechanismGeometry(model), s);
     REQUIRE(centres);
     REQUIRE(centres->bodies == std::vector<std::string>{"1", "2", "3", "4"});
     CHECK(centres->centres.size() == 6);
@@ -102,7 +102,7 @@ TEST_CASE("instant centres: a vector-loop file's links known by the points on th
   // gap the links leave), its centre with ground at infinity across the line y = e.
   const kinema::Model slider = kinema::load_model(kinema_test::sample("slider_crank.toml"));
   const kinema::MotionTable one = kinema::analyse(slider, slider.system.input.values);
-  const auto centres = kinema::instant_centres(slider.system, one[0]);
+  const auto centres = kinema::instant_centres(kinema::MechanismGeometry(slider), one[0]);
   REQUIRE(centres);
   CHECK(centres->bodies == std::vector<std::string>{"1", "2", "3", "4"});
   CHECK(centres->centres.size() == 6);
@@ -114,7 +114,7 @@ TEST_CASE("instant centres: a vector-loop file's links known by the points on th
   // ram 6: all 15 centres (issue 32: 3 of them before).
   const kinema::Model shaper = kinema::load_model(kinema_test::sample("crank_shaper.toml"));
   const kinema::MotionTable at = kinema::analyse(shaper, shaper.system.input.values);
-  const auto all = kinema::instant_centres(shaper.system, at[0]);
+  const auto all = kinema::instant_centres(kinema::MechanismGeometry(shaper), at[0]);
   REQUIRE(all);
   CHECK(all->bodies == std::vector<std::string>{"1", "2", "3", "4", "5", "6"});
   CHECK(all->centres.size() == 15);
@@ -122,7 +122,7 @@ TEST_CASE("instant centres: a vector-loop file's links known by the points on th
   // Example 4.2 as loops: blocks 2 (on link 3) and 5 (on the x axis), as the seed numbers them.
   const kinema::Model e42 = kinema::load_model(kinema_test::sample("example_4_2_r_rtr_rrt.toml"));
   const kinema::MotionTable e42_at = kinema::analyse(e42, e42.system.input.values);
-  const auto e42_centres = kinema::instant_centres(e42.system, e42_at[0]);
+  const auto e42_centres = kinema::instant_centres(kinema::MechanismGeometry(e42), e42_at[0]);
   REQUIRE(e42_centres);
   CHECK(e42_centres->bodies == std::vector<std::string>{"0", "1", "2", "3", "4", "5"});
   CHECK(e42_centres->centres.size() == 15);
@@ -140,7 +140,7 @@ TEST_CASE("instant centres: every vector-loop sample, each centre where the two 
     const kinema::MotionTable table = kinema::analyse(model, inputs);
     for (const kinema::MotionState& s : table) {
       if (s.status != kinema::Status::ok) continue;
-      const auto centres = kinema::instant_centres(system, s);
+      const auto centres = kinema::instant_centres(kinema::MechanismGeometry(model), s);
       if (!centres) continue;  // no point of the file lies on a link
       ++with_centres;
       check_kennedy(*centres, system.length_scale);
@@ -191,7 +191,7 @@ TEST_CASE("instant centres: every joints-and-links sample, each centre where the
     for (const kinema::MotionState& s : table) {
       if (s.status != kinema::Status::ok) continue;
       CAPTURE(s.input);
-      const auto centres = kinema::instant_centres(model.system, s);
+      const auto centres = kinema::instant_centres(kinema::MechanismGeometry(model), s);
       REQUIRE(centres);
       const std::size_t n = centres->bodies.size();
       // Every centre found: n (n - 1) / 2 of them.

@@ -238,7 +238,7 @@ TEST_CASE("engine/printers/figures: instant centres, every one listed and drawn 
     const kinema::Model model = kinema::load_model(kinema_test::sample(name));
     const double input = model.system.input.values.empty() ? 0.5 : model.system.input.values.front();
     const MotionTable values = kinema::analyse(model, {input});
-    const auto centres = kinema::instant_centres(model.system, values[0]);
+    const auto centres = kinema::instant_centres(kinema::MechanismGeometry(model), values[0]);
     REQUIRE(centres);
     const std::string tex = document(model, &values);
     const auto heading = tex.find("\\subsubsection*{Instant centres}");
@@ -293,7 +293,7 @@ TEST_CASE("engine/printers/figures: instant centres, every one listed and drawn 
   // Example 4.2: the arrow of I05 (slider 5 on the ground) starts at E, not at slider 2.
   const kinema::Model model = kinema::load_model(kinema_test::sample("example_4_2_joints.toml"));
   const MotionTable values = kinema::analyse(model, model.system.input.values);
-  const auto centres = kinema::instant_centres(model.system, values[0]);
+  const auto centres = kinema::instant_centres(kinema::MechanismGeometry(model), values[0]);
   REQUIRE(centres);
   const kinema::InstantCentre* i05 = centres->find(0, 5);
   REQUIRE(i05);

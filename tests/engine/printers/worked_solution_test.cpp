@@ -328,7 +328,7 @@ TEST_CASE("engine/printers/worked_solution: three methods, one answer for every 
     CHECK(has(tex, "\\subsubsection*{Three methods, one answer}"));
     for (const kinema::MotionState& s : values) {
       const auto polygons = builder.polygons(s);
-      const auto centres = kinema::instant_centres(model.system, s);
+      const auto centres = kinema::instant_centres(kinema::MechanismGeometry(model), s);
       REQUIRE(polygons);
       REQUIRE(centres);
       const auto rows = kinema::three_methods(model.system, polygons->first, *centres);
@@ -351,7 +351,7 @@ TEST_CASE("engine/printers/worked_solution: three methods, one answer for every 
   const std::string tex = document(loops, &one, nullptr, true);
   CHECK(has(tex, "\\subsubsection*{Three methods, one answer}"));
   const auto polygons = kinema::PolygonBuilder(loops).polygons(one[0]);
-  const auto centres = kinema::instant_centres(loops.system, one[0]);
+  const auto centres = kinema::instant_centres(kinema::MechanismGeometry(loops), one[0]);
   REQUIRE(polygons);
   REQUIRE(centres);
   const auto rows = kinema::three_methods(loops.system, polygons->first, *centres);
