@@ -16,6 +16,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include <kinema/kinema.hpp>
+
 #include "engine/model.hpp"
 
 namespace {
@@ -108,6 +110,19 @@ void with_parameters(benchmark::State& state, const std::string& name) {
   for (auto _ : state) {
     kinema::Model copy = kinema::with_parameters(*c.model, values);
     benchmark::DoNotOptimize(&copy.kinematics);
+  }
+}
+
+// One value through the library's facade (MechanismModel::solve, results read by name
+// later): the C++ call the Python module's Model.at is measured against (issue 36: the
+// module adds at most 2 us).
+void facade_solve(benchmark::State& state, const std::string& name) {
+  const kinema::MechanismModel model(sample_path(name));
+  double value = 0.5;
+  for (auto _ : state) {
+    const kinema::Solution solution = model.solve(value);
+    benchmark::DoNotOptimize(solution.rates().data());
+    value = value < 6.0 ? value + 1e-3 : 0.5;  // a new value each time, near the last (as a sweep in Python asks)
   }
 }
 
@@ -269,6 +284,7 @@ int main(int argc, char** argv) {
     benchmark::RegisterBenchmark(("ginac_compile_ex/" + s).c_str(), ginac_compile_ex, s);
     benchmark::RegisterBenchmark(("derivation/" + s).c_str(), derivation, s)->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark(("with_parameters/" + s).c_str(), with_parameters, s)->Unit(benchmark::kMicrosecond);
+    benchmark::RegisterBenchmark(("facade_solve/" + s).c_str(), facade_solve, s)->Unit(benchmark::kMicrosecond);
   }
   for (unsigned threads : {1u, 2u}) {
     benchmark::RegisterBenchmark(("kinema_sweep_1e6/problem_4_4_six_bar.toml/threads:" + std::to_string(threads)).c_str(),
