@@ -4,10 +4,13 @@
 // NumPy), so that every number and formula is the one the program prints.
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
+#include <pybind11/numpy.h>
 
 #include <kinema/kinema.hpp>
 
 #include <algorithm>
+#include <thread>
+#include <cstring>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -172,9 +175,11 @@ std::string derivation(const PyModel& m, const std::string& method, const std::s
   return out.str();
 }
 
-/// The npy printer's bytes for the values from `first` to `last` by `step` (the
-/// program's `kinema eval --sweep ... --format npy`), solved without the GIL.
-py::bytes npy_sweep(const PyModel& m, const Value& first, const Value& last, const Value& step) {
+/// The values from `first` to `last` by `step` as the program's `kinema eval --sweep ...
+/// --format npy` array: its header read by NumPy to make the array, then the printer's
+/// rows written straight into the array's memory as each block is solved and formatted
+/// (on every core, without the GIL): no copy of the table.
+py::object numpy_sweep(const PyModel& m, const Value& first, const Value& last, const Value& step) {
   const kinema::ConstraintSystem& system = m.engine->system;
   const auto written = [&](const Value& value) {
     if (const double* number = std::get_if<double>(&value)) return kinema::WrittenValue{*number, 1.0};
@@ -182,15 +187,33 @@ py::bytes npy_sweep(const PyModel& m, const Value& first, const Value& last, con
   };
   const kinema::InputValues inputs = kinema::input_sweep(system, written(first), written(last), written(step));
   kinema::check_input_range(system, inputs);
-  std::string bytes;
+  const kinema::ResultsPrinter& npy = *kinema::find_results_printer("npy");
+  std::string header;
+  npy.head(header, kinema::PrintJob{*m.engine}, inputs.size());
+  const py::module_ format = py::module_::import("numpy.lib.format");
+  const py::object stream = py::module_::import("io").attr("BytesIO")(py::bytes(header));
+  const py::tuple version = format.attr("read_magic")(stream);
+  const py::tuple described = format.attr(version[0].cast<int>() == 1 ? "read_array_header_1_0" : "read_array_header_2_0")(stream);
+  py::array table = py::module_::import("numpy").attr("empty")(described[0], described[2]);
+  char* const memory = static_cast<char*>(table.mutable_data());
+  const std::size_t capacity = static_cast<std::size_t>(table.nbytes());
   {
     py::gil_scoped_release unlocked;
     kinema::StreamSettings settings;
-    settings.printer = kinema::find_results_printer("npy");
-    settings.write = [&bytes](std::string_view text) { bytes.append(text); };
+    settings.printer = &npy;
+    settings.threads = std::max(1u, std::thread::hardware_concurrency());
+    std::size_t at = 0;  // bytes of the printer's output so far, the header's first
+    settings.write = [&](std::string_view text) {
+      const std::size_t skip = at < header.size() ? std::min(text.size(), header.size() - at) : 0;
+      const std::size_t offset = at + skip - header.size();
+      if (offset + (text.size() - skip) > capacity) throw std::logic_error("sweep: the rows outgrow the array the header describes");
+      std::memcpy(memory + offset, text.data() + skip, text.size() - skip);
+      at += text.size();
+    };
     kinema::stream_results(*m.engine, inputs, kinema::AnalysisOptions{}, settings);
+    if (at != header.size() + capacity) throw std::logic_error("sweep: the rows do not fill the array the header describes");
   }
-  return py::bytes(bytes);
+  return std::move(table);
 }
 
 /// The npy printer's bytes for a circuit (the program's `kinema eval --circuit STEP --format
@@ -330,7 +353,7 @@ PYBIND11_MODULE(kinema, module) {
       .def(
           "sweep",
           [](const PyModel& m, const Value& first, const Value& last, const Value& step) {
-            return numpy_array(npy_sweep(m, first, last, step));
+            return numpy_sweep(m, first, last, step);
           },
           py::arg("first"), py::arg("last"), py::arg("step"),
           "From first to last by step (\"0 deg\", \"360 deg\", \"1 deg\"; or numbers in SI): a NumPy structured array "
