@@ -20,6 +20,7 @@ namespace {
 
 constexpr double kCmPerPt = 2.54 / 72.27;
 // Half a line's width in cm: thin (0.4 pt), thick (0.8 pt), very thick (1.2 pt), a bar's body (6 pt).
+constexpr double kArrowSeparation = 0.12;  // cm between parallel arrows of one point
 constexpr double kThin = 0.2 * kCmPerPt, kThick = 0.4 * kCmPerPt, kVeryThick = 0.6 * kCmPerPt, kBody = 3 * kCmPerPt;
 
 using Planar = std::complex<double>;  // a point of the plane
@@ -374,8 +375,15 @@ void write_tikz_mechanism(std::ostream& out, const ConstraintSystem& system, con
     const std::string name = latex_symbol_name(system.points[p].name);
     if (velocity_scale > 0 && std::abs(velocities[p]) > 0)
       f.arrow(points[p], velocities[p] * velocity_scale, "red, thick", "$\\mathbf{v}_{" + name + "}$");
-    if (acceleration_scale > 0 && std::abs(accelerations[p]) > 0)
-      f.arrow(points[p], accelerations[p] * acceleration_scale, "green!50!black, thick, dashed", "$\\mathbf{a}_{" + name + "}$");
+    if (acceleration_scale > 0 && std::abs(accelerations[p]) > 0) {
+      // An acceleration along the velocity would hide under its arrow: it starts a
+      // little to its left instead, as drawn by hand.
+      const Planar a = accelerations[p] * acceleration_scale;
+      const bool hidden = velocity_scale > 0 && std::abs(velocities[p]) > 0 &&
+                          std::fabs(std::arg(accelerations[p] / velocities[p])) < from_degrees(15);
+      const Planar start = hidden ? points[p] + a / std::abs(a) * Planar(0, kArrowSeparation) / f.cm() : points[p];
+      f.arrow(start, a, "green!50!black, thick, dashed", "$\\mathbf{a}_{" + name + "}$");
+    }
   }
   f.place_labels();
   f.axis_labels();

@@ -2,7 +2,9 @@
 // document writes: each label's box from its text at its font, the lines and areas as drawn.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <complex>
 #include <sstream>
 #include <string>
@@ -149,4 +151,58 @@ TEST_CASE("figures: a label box's distance to a segment and to a block") {
   const std::vector<std::complex<double>> turned =
       kinema::parallelogram(std::complex<double>(3, 0) + std::complex<double>(-0.5, -0.5) * turn, turn, turn * std::complex<double>(0, 1));
   CHECK(box.distance_to_area(turned) == doctest::Approx(2 - std::sqrt(0.5)));
+}
+
+namespace {
+
+struct DrawnArrow {
+  std::complex<double> from, to;
+};
+
+// The drawing's arrows of one colour, read back from "\draw[-latex, COLOUR..] (x,y) -- ++(dx,dy)".
+std::vector<DrawnArrow> arrows_of(const std::string& figure, const std::string& colour) {
+  std::vector<DrawnArrow> arrows;
+  const std::string head = "\\draw[-latex, " + colour + ", ";
+  std::istringstream lines(figure);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind(head, 0) != 0) continue;
+    double x = 0, y = 0, dx = 0, dy = 0;
+    const std::size_t at = line.find("] (");
+    REQUIRE(std::sscanf(line.c_str() + at, "] (%lf,%lf) -- ++(%lf,%lf)", &x, &y, &dx, &dy) == 4);
+    arrows.push_back({{x, y}, {x + dx, y + dy}});
+  }
+  return arrows;
+}
+
+double distance_to_segment(std::complex<double> p, const DrawnArrow& s) {
+  const std::complex<double> d = s.to - s.from;
+  const double t = std::clamp(std::real((p - s.from) * std::conj(d)) / std::norm(d), 0.0, 1.0);
+  return std::abs(p - (s.from + t * d));
+}
+
+}  // namespace
+
+// A point's acceleration along its velocity was drawn on top of the velocity's arrow
+// (example 4.2's E: both along the guide), so one of them could not be seen.
+TEST_CASE("figures: no acceleration arrow of any sample's drawing lies on a velocity arrow") {
+  int pairs = 0;
+  for (const char* name : kinema_test::kSamples) {
+    const std::string tex = document_at_first_value(kinema::load_model(kinema_test::sample(name)));
+    const std::vector<std::string> figures = kinema_test::plane_figures(tex);
+    if (figures.empty()) continue;
+    const std::vector<DrawnArrow> velocities = arrows_of(figures.front(), "red");
+    for (const DrawnArrow& a : arrows_of(figures.front(), "green!50!black")) {
+      for (const DrawnArrow& v : velocities) {
+        ++pairs;
+        // On it: both ends of the shorter within a line's breadth of the longer.
+        const bool a_shorter = std::abs(a.to - a.from) < std::abs(v.to - v.from);
+        const DrawnArrow& shorter = a_shorter ? a : v;
+        const DrawnArrow& longer = a_shorter ? v : a;
+        const std::string sample = name;
+        CAPTURE(sample);
+        CHECK_FALSE((distance_to_segment(shorter.from, longer) < 0.05 && distance_to_segment(shorter.to, longer) < 0.05));
+      }
+    }
+  }
+  CHECK(pairs >= 20);
 }
