@@ -121,7 +121,7 @@ std::vector<std::vector<int>> flipped_signs(const SolvingPlan& plan) {
 // Starting guesses around a solved position: each angle a quarter turn on at a time, each
 // length as it is or reversed; every combination where they are few, else one unknown at a time.
 std::vector<Eigen::VectorXd> starting_guesses(const ConstraintSystem& system, const Eigen::VectorXd& q) {
-  constexpr std::size_t kMaxCombinations = 4096;
+  constexpr std::size_t kMaxAssemblyGuesses = 4096;
   std::vector<std::vector<double>> options;
   std::size_t combinations = 1;
   for (Eigen::Index i = 0; i < q.size(); ++i) {
@@ -131,10 +131,10 @@ std::vector<Eigen::VectorXd> starting_guesses(const ConstraintSystem& system, co
     } else {
       options.push_back({v, -v});
     }
-    combinations = std::min(combinations * options.back().size(), kMaxCombinations + 1);
+    combinations = std::min(combinations * options.back().size(), kMaxAssemblyGuesses + 1);
   }
   std::vector<Eigen::VectorXd> guesses;
-  if (combinations <= kMaxCombinations) {
+  if (combinations <= kMaxAssemblyGuesses) {
     for (std::size_t k = 1; k < combinations; ++k) {
       Eigen::VectorXd guess = q;
       std::size_t rest = k;
