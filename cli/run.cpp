@@ -33,6 +33,7 @@
 #include "linkages/vector_loop_file.hpp"
 #include "readers/mechanism_file.hpp"
 
+#include "cli/check_command.hpp"
 #include "cli/exit_status.hpp"
 #include "cli/output_file.hpp"
 #include "cli/progress_line.hpp"
@@ -174,6 +175,7 @@ struct CommandLine {
   std::string circuit_step, namespace_name, chain_input, basis;
   std::string page_sweep, page_circuit;
   bool quiet = false, fragment = false;
+  kinema_cli::CheckLine check;
 };
 
 // Every subcommand with its options, their values read into `line`.
@@ -259,6 +261,8 @@ void add_subcommands(CLI::App& app, CommandLine& line) {
                          "mechanism file (TOML) written as vector loops or as joints and links (a spatial chain "
                          "of frames has no vector loops)")->required();
   line.loops->add_option("-o,--output", line.output_path, "write to this file instead of stdout");
+
+  kinema_cli::add_check_command(app, line.check);
 
   for (CLI::App* command : app.get_subcommands({})) {
     for (CLI::Option* option : command->get_options()) {
@@ -453,6 +457,7 @@ int kinema_cli::run(int argc, char** argv) {
   } catch (const CLI::ParseError& error) {
     return kinema_cli::report_parse_error(app, error);  // help and version: 0; usage errors: one line, 2
   }
+  if (line.check.command->parsed()) return kinema_cli::run_check(line.check);  // its FILE may be a class table
 
   const Mechanism mechanism = read_mechanism(line);
   // A file kinema cannot analyse is not written as loops either. Only derive, latex and
