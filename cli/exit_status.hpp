@@ -10,13 +10,13 @@ namespace kinema_cli {
 namespace status {
 constexpr int success = 0;
 constexpr int internal = 1;     ///< a bug or an unexpected failure
-/// kinema check: some answers are wrong (as diff's 1: the answer, not a failure; an internal
-/// error also prints "kinema: internal error" on stderr and writes no report).
-constexpr int wrong_answers = 1;
 constexpr int bad_input = 2;    ///< the file (syntax, names, units, counts, values) or the command line
 constexpr int unassembled = 3;  ///< a requested value cannot be assembled
 constexpr int singular = 4;     ///< a requested value is a singular position
 constexpr int output = 5;       ///< the output cannot be written
+/// kinema check: some answers are wrong (the report is written; a grader that reads only
+/// the status tells this from every failure of kinema itself).
+constexpr int wrong_answers = 6;
 }  // namespace status
 
 /// The exit status for an error: kinema's exception classes, CLI11's parse

@@ -80,7 +80,7 @@ const std::string kFourBar = kinema_test::sample("four_bar.toml");
 
 }  // namespace
 
-TEST_CASE("kinema check: right answers (TOML, CSV) give status 0; a wrong one status 1 and its mistake") {
+TEST_CASE("kinema check: right answers (TOML, CSV) give status 0; a wrong one status 6 and its mistake") {
   const kinema::MotionState s = four_bar_at_40();
   const std::string omega3 = format_round_trip(s.qd[0]);
   const std::string right = write("right.toml", toml_answer("omega3", omega3 + " rad/s") +
