@@ -69,7 +69,7 @@ CheckReport check_file(const CheckLine& line, const AnswersFile& answers) {
 void add_check_command(CLI::App& app, CheckLine& line) {
   CLI::App* check = line.command = app.add_subcommand(
       "check", "check a student's answers against a mechanism file or a class table's variant, naming the likely "
-               "mistake of each wrong one (exit status 0: all right, 1: some wrong)");
+               "mistake of each wrong one (exit status 0: all right, 6: some wrong)");
   check->add_option("FILE_OR_CLASS", line.subject,
                     "mechanism file (TOML; the answers are for its own dimensions), or a class table written by "
                     "kinema problems (class.json, with --variant)")
