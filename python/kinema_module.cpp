@@ -281,9 +281,10 @@ std::string page(const PyModel& m) {
 
 /// The figures asked for by field name (None: all); KeyError-like InputError naming the
 /// fields there are.
-kinema::StudyOptions study_options(const kinema::ConstraintSystem& system, const std::optional<std::vector<std::string>>& figures) {
+kinema::StudyOptions study_options(const kinema::ConstraintSystem& system, const std::optional<std::vector<std::string>>& figures,
+                                   std::optional<unsigned> threads) {
   kinema::StudyOptions options;
-  options.threads = std::max(1u, std::thread::hardware_concurrency());
+  options.threads = std::max(1u, threads.value_or(std::thread::hardware_concurrency()));
   if (!figures) return options;
   const auto fields = kinema::study_figure_fields(system);
   options.figures = 0;
@@ -303,7 +304,7 @@ kinema::StudyOptions study_options(const kinema::ConstraintSystem& system, const
 /// (b[i], c[i]) (SI); a structured array, a row a design: the parameters, then the figures
 /// (SI; "grashof" a code into GRASHOF_CLASSES), solved on every core without the GIL.
 py::object study(const PyModel& m, const py::dict& values, const std::tuple<Value, Value, Value>& sweep,
-                 const std::optional<std::vector<std::string>>& figures) {
+                 const std::optional<std::vector<std::string>>& figures, std::optional<unsigned> threads) {
   const kinema::ConstraintSystem& system = m.engine->system;
   const py::module_ numpy = py::module_::import("numpy");
   kinema::Designs designs;
@@ -319,7 +320,7 @@ py::object study(const PyModel& m, const py::dict& values, const std::tuple<Valu
   const kinema::InputValues inputs =
       kinema::input_sweep(system, written(std::get<0>(sweep)), written(std::get<1>(sweep)), written(std::get<2>(sweep)));
   kinema::check_input_range(system, inputs);
-  const kinema::StudyOptions options = study_options(system, figures);
+  const kinema::StudyOptions options = study_options(system, figures, threads);
   std::vector<kinema::StudyColumn> columns;
   {
     py::gil_scoped_release unlocked;
@@ -457,13 +458,15 @@ PYBIND11_MODULE(kinema, module) {
            "m.with_parameters(b=\"0.31 m\", delta=\"25 deg\", c=0.09) (numbers in SI). Nothing is derived or "
            "compiled again: the new model shares this one's formulas and compiled code.")
       .def("study", &study, py::arg("designs"), py::arg("sweep"), py::arg("figures") = py::none(),
+           py::arg("threads") = py::none(),
            "A design study: m.study({\"b\": b, \"c\": c}, sweep=(\"0 deg\", \"360 deg\", \"1 deg\")), design i "
            "being (b[i], c[i]) in SI (kinema.grid makes every combination). Every design is solved over the sweep on "
            "this model's compiled code (nothing derived or compiled again), on every core. Returns a structured "
            "array, a row a design: the parameters, then the figures in SI (figures=None: all; else a list of "
            "field names): grashof (a code into kinema.GRASHOF_CLASSES), min_transmission_angle (rad), time_ratio, "
            "assembles, failed_values, max_abs_<rate> and max_abs_<second rate> of each unknown (max_abs_omega3, "
-           "max_abs_alpha3), max_<point>_speed and max_<point>_acceleration. NaN where a figure is not defined.")
+           "max_abs_alpha3), max_<point>_speed and max_<point>_acceleration. NaN where a figure is not defined. "
+           "threads: how many threads share the designs (default: one per core).")
       .def("page", &page, "The page `kinema page FILE` writes (one self-contained HTML file).")
       .def("_repr_latex_", &notebook_latex)
       .def(

@@ -32,11 +32,6 @@ std::vector<std::size_t> varied_parameters(const ConstraintSystem& system, const
   std::vector<std::size_t> indices;
   for (std::size_t k = 0; k < designs.names.size(); ++k) {
     const std::string& name = designs.names[k];
-    for (const SystemParameter& p : system.parameters) {
-      if (!p.written && p.symbol.get_name() == name)
-        throw InputError(system.source_file + ": parameter \"" + name + "\" is one kinema made from the sketch, not one " +
-                         "the file writes: a study varies the file's parameters (write " + name + " in the file to vary it)");
-    }
     const std::size_t index = written_parameter_index(system, name);  // names the file's parameters when not one
     if (std::find(indices.begin(), indices.end(), index) != indices.end())
       throw InputError("a design study: parameter \"" + name + "\" is given twice");

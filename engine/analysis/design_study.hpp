@@ -72,8 +72,8 @@ struct StudyResults {
 /// turn of the run (a crank's run of at least 360 deg), each limit position refined as
 /// find_limit_positions refines it: of a four-bar's rocker, else of the first slider
 /// coordinate with exactly two (slider_strokes' first). InputError (before anything is
-/// solved) for a name the file does not write (naming the file's parameters), one
-/// kinema made, a name given twice, lists of different lengths, or a value that is not
+/// solved) for a name the file does not write (naming the file's parameters; one kinema
+/// made is said to be), a name given twice, lists of different lengths, or a value that is not
 /// finite.
 StudyResults run_design_study(const Model& model, const Designs& designs, const std::vector<double>& inputs,
                               const StudyOptions& options = {});
