@@ -18,6 +18,7 @@
 
 #include <kinema/kinema.hpp>
 
+#include "engine/analysis/design_study.hpp"
 #include "engine/model.hpp"
 
 namespace {
@@ -124,6 +125,26 @@ void facade_solve(benchmark::State& state, const std::string& name) {
     benchmark::DoNotOptimize(solution.rates().data());
     value = value < 6.0 ? value + 1e-3 : 0.5;  // a new value each time, near the last (as a sweep in Python asks)
   }
+}
+
+// A design study (issue 36): 100,000 four-bar designs (coupler and rocker lengths on a
+// 400 x 250 grid) x 361 crank angles, every figure (Grashof class, least transmission
+// angle, time ratio, assembly, largest rates, second rates, speeds and accelerations), on
+// `threads` threads. Target: <= 1 s on two cores.
+void design_study(benchmark::State& state, unsigned threads) {
+  Case& c = case_for("four_bar.toml");
+  std::vector<double> b, cc, inputs;
+  for (int i = 0; i < 400; ++i) b.push_back(0.100 + 0.040 * i / 400);
+  for (int i = 0; i < 250; ++i) cc.push_back(0.060 + 0.040 * i / 250);
+  for (int k = 0; k <= 360; ++k) inputs.push_back(k * kinema::kPi / 180);
+  const kinema::Designs designs = kinema::design_grid({"b", "c"}, {b, cc});
+  kinema::StudyOptions options;
+  options.threads = threads;
+  for (auto _ : state) {
+    const kinema::StudyResults results = kinema::run_design_study(*c.model, designs, inputs, options);
+    benchmark::DoNotOptimize(results.max_rate.data());
+  }
+  state.counters["values/s"] = benchmark::Counter(double(designs.size() * inputs.size()), benchmark::Counter::kIsIterationInvariantRate);
 }
 
 // --- hand-written closed forms (the floor) --------------------------------
@@ -291,6 +312,13 @@ int main(int argc, char** argv) {
                                  kinema_sweep_million, threads)
         ->Unit(benchmark::kMillisecond)
         ->UseRealTime();
+  }
+  for (unsigned threads : {1u, 2u}) {
+    benchmark::RegisterBenchmark(("design_study_1e5x361/four_bar.toml/threads:" + std::to_string(threads)).c_str(),
+                                 design_study, threads)
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime()
+        ->Iterations(1);
   }
   benchmark::RegisterBenchmark("closed_form/four_bar.toml", closed_form_four_bar);
   benchmark::RegisterBenchmark("closed_form/slider_crank.toml", closed_form_slider_crank);

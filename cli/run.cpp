@@ -23,6 +23,8 @@
 #include "engine/run/results_stream.hpp"
 #include "engine/run/view.hpp"
 #include "engine/analysis/chain_instant.hpp"
+#include "engine/analysis/design_study.hpp"
+#include "engine/printers/data/study_table.hpp"
 #include "engine/analysis/diagnostics.hpp"
 #include "engine/base/number_format.hpp"
 #include "engine/analysis/output_scale.hpp"
@@ -169,7 +171,7 @@ struct CommandLine {
   CLI::App* loops = nullptr;
   CLI::App* page = nullptr;
   std::string file, output_path, format = "table", sweep, derive_format = "text", method = "loops";
-  std::vector<std::string> angles;
+  std::vector<std::string> angles, vary;
   int precision = 0;
   unsigned threads = 0;  // one per core: formatting on more threads changes no byte
   std::string circuit_step, namespace_name, chain_input, basis;
@@ -207,7 +209,8 @@ void add_subcommands(CLI::App& app, CommandLine& line) {
       ->check(CLI::Range(1, 17));
   eval->add_option("--threads", line.threads,
                    "threads formatting and writing the output of long runs, a block each in turn (default: "
-                   "one per core); the solve stays serial, so the output is the same bytes whatever the count")
+                   "one per core); the solve stays serial, so the output is the same bytes whatever the count; with --vary, "
+                   "threads solving the designs (each design alone: the same rows whatever the count)")
       ->check(kNotEmpty)
       ->check(CLI::Range(1u, 256u));
   eval->add_option("--circuit", line.circuit_step,
@@ -216,6 +219,14 @@ void add_subcommands(CLI::App& app, CommandLine& line) {
                    "STEP of the input (as --angle: deg or the length unit), e.g. --circuit 1")
       ->option_text("STEP")
       ->excludes(eval->get_option("--sweep"));
+  eval->add_option("--vary", line.vary,
+                   "a design study: NAME=FIRST:LAST:STEP, a parameter the file writes over a range (in the file's "
+                   "units, or each with its unit, e.g. b=110:130:1 or \"b=0.11 m:0.13 m:1 mm\"); repeat for a grid "
+                   "of every combination. One row per design of its figures over the run (Grashof class, least "
+                   "transmission angle, time ratio, whether every value assembles, largest rates and point speeds "
+                   "and accelerations), as csv, json or npy")
+      ->option_text("NAME=RANGE")
+      ->excludes(eval->get_option("--circuit"));
   eval->add_flag("-q,--quiet", line.quiet, "no progress line and no warnings on stderr (errors still)");
 
   line.latex = app.add_subcommand("latex", "write a worked solution in LaTeX (drawing, equations, plots)");
@@ -428,9 +439,34 @@ int write_sweep(const Model& model, const CommandLine& line, const InputValues& 
   return 0;
 }
 
-// kinema eval: along a circuit, over a list of values, or over a sweep.
+// kinema eval --vary: the grid of designs, each solved over the run's values, a row of
+// figures a design (computed by the engine, printed here as the format says).
+int write_study(const Model& model, const CommandLine& line, const InputValues& run_inputs) {
+  const ConstraintSystem& m = model.system;
+  if (line.format != "csv" && line.format != "json" && line.format != "npy")
+    throw InputError("--vary writes a row of figures a design as csv, json or npy; give --format csv (or json, npy)");
+  std::vector<std::string> names;
+  std::vector<std::vector<double>> axes;
+  for (const std::string& vary : line.vary) {
+    const std::size_t equals = vary.find('=');
+    if (equals == std::string::npos || equals == 0)
+      throw InputError("--vary \"" + vary + "\" is not NAME=FIRST:LAST:STEP (e.g. b=110:130:1)");
+    names.push_back(vary.substr(0, equals));
+    axes.push_back(parameter_range(m, names.back(), vary.substr(equals + 1)));
+  }
+  StudyOptions options;
+  options.threads = line.threads > 0 ? line.threads : std::max(1u, std::thread::hardware_concurrency());
+  const Designs designs = design_grid(names, axes);
+  const StudyResults results = run_design_study(model, designs, run_inputs.to_vector(), options);
+  write_output(print_study_table(study_columns(m, designs, results, StudyUnits::file), line.format, line.precision),
+               line.output_path);
+  return 0;
+}
+
+// kinema eval: along a circuit, over a list of values, or over a sweep; a design study with --vary.
 int run_eval(const Model& model, const CommandLine& line, std::vector<double> inputs) {
   const ConstraintSystem& m = model.system;
+  if (!line.vary.empty()) return write_study(model, line, eval_inputs(m, line, std::move(inputs)));
   if (!line.circuit_step.empty()) {
     write_circuit(model, line.circuit_step, inputs, line.format, line.precision, line.output_path);
     return 0;

@@ -38,6 +38,41 @@ double parse_parameter_value(const ConstraintSystem& m, const std::string& name,
   return q.si_value;
 }
 
+std::vector<double> parameter_range(const ConstraintSystem& m, const std::string& name, const std::string& range) {
+  const SystemParameter& p = m.parameters[written_parameter_index(m, name)];
+  const std::string written = "the range of " + name + " \"" + range + "\"";
+  std::vector<std::string> parts(1);
+  for (char c : range) {
+    if (c == ':') parts.emplace_back();
+    else parts.back() += c;
+  }
+  if (parts.size() != 3) throw InputError(written + " is not first:last:step (e.g. 0.25:0.35:0.001 or 25 cm:35 cm:1 mm)");
+  // Each part as {number, SI per its unit}; a bare number in the file's unit of its kind.
+  const double file_unit = p.dimension == Dimension::length  ? m.output.length_factor
+                           : p.dimension == Dimension::angle ? kRadiansPerDegree
+                                                             : 1.0;
+  WrittenValue values[3];
+  for (std::size_t k = 0; k < 3; ++k) {
+    const Quantity q = parse_quantity(parts[k]);
+    if (q.dimension == Dimension::number) {
+      values[k] = {q.si_value, file_unit};
+      continue;
+    }
+    if (q.dimension != p.dimension) {
+      throw UnitError(m.source_file + ": parameter \"" + name + "\" is " + with_article(dimension_name(p.dimension)) +
+                      ", but \"" + parts[k] + "\" in " + written + " is " + with_article(dimension_name(q.dimension)));
+    }
+    char* end = nullptr;
+    const double number = std::strtod(parts[k].c_str(), &end);
+    const double unit = parse_quantity("1" + std::string(end)).si_value;
+    values[k] = number * unit == q.si_value ? WrittenValue{number, unit} : WrittenValue{q.si_value, 1.0};
+  }
+  if (values[0].unit != values[1].unit || values[1].unit != values[2].unit)
+    for (WrittenValue& v : values) v = {v.number * v.unit, 1.0};
+  return sweep_between(values[0].number, values[1].number, values[2].number, values[0].unit, kMaxValuesPerRun, written)
+      .to_vector();
+}
+
 WrittenValue written_input_value(const ConstraintSystem& m, const std::string& text) {
   const double si = parse_input_value(m, text);
   char* end = nullptr;

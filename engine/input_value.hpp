@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "engine/constraints/constraint_system.hpp"
 #include "engine/base/input_values.hpp"
@@ -19,6 +20,15 @@ double parse_input_value(const ConstraintSystem& system, const std::string& text
 /// a bare number for a parameter of no known unit. InputError for a name the file does
 /// not write, UnitError naming the parameter for a value of another kind than its own.
 double parse_parameter_value(const ConstraintSystem& system, const std::string& name, const std::string& text);
+
+/// The values of a parameter the file writes over a range "first:last:step" (a design
+/// study's --vary), in SI: each of the three with a unit ("0.25 m:0.35 m:1 mm") or bare in
+/// the file's unit of the parameter's kind (its output length unit, degrees; a number of no
+/// unit as it is), computed in their unit when the three share one (else in SI), as a
+/// sweep is. InputError naming the parameter for a range with no values (a step of zero or
+/// pointing away from last), not three parts, or a name the file does not write (naming
+/// its parameters); UnitError for a value of another kind than the parameter.
+std::vector<double> parameter_range(const ConstraintSystem& system, const std::string& name, const std::string& range);
 
 /// An input value as written: a number and its unit (SI per unit; 1 for a value given in SI).
 struct WrittenValue {

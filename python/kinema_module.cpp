@@ -25,6 +25,7 @@
 #include "engine/run/results_stream.hpp"
 #include "engine/run/circuit_run.hpp"
 #include "engine/run/view.hpp"
+#include "engine/analysis/design_study.hpp"
 #include "engine/analysis/output_scale.hpp"
 #include "engine/analysis/plot_range.hpp"
 #include "engine/symbolic/dyad_method.hpp"
@@ -278,6 +279,92 @@ std::string page(const PyModel& m) {
   return out.str();
 }
 
+/// The figures asked for by field name (None: all); KeyError-like InputError naming the
+/// fields there are.
+kinema::StudyOptions study_options(const kinema::ConstraintSystem& system, const std::optional<std::vector<std::string>>& figures,
+                                   std::optional<unsigned> threads) {
+  kinema::StudyOptions options;
+  options.threads = std::max(1u, threads.value_or(std::thread::hardware_concurrency()));
+  if (!figures) return options;
+  const auto fields = kinema::study_figure_fields(system);
+  options.figures = 0;
+  for (const std::string& wanted : *figures) {
+    const auto found = std::find_if(fields.begin(), fields.end(), [&](const auto& field) { return field.first == wanted; });
+    if (found == fields.end()) {
+      std::string names;
+      for (const auto& field : fields) names += (names.empty() ? "" : ", ") + field.first;
+      throw kinema::InputError("study: no figure \"" + wanted + "\" (there are: " + names + ")");
+    }
+    options.figures |= kinema::study_figure_bit(found->second);
+  }
+  return options;
+}
+
+/// m.study({"b": array, "c": array}, sweep=(first, last, step), figures=None): design i is
+/// (b[i], c[i]) (SI); a structured array, a row a design: the parameters, then the figures
+/// (SI; "grashof" a code into GRASHOF_CLASSES), solved on every core without the GIL.
+py::object study(const PyModel& m, const py::dict& values, const std::tuple<Value, Value, Value>& sweep,
+                 const std::optional<std::vector<std::string>>& figures, std::optional<unsigned> threads) {
+  const kinema::ConstraintSystem& system = m.engine->system;
+  const py::module_ numpy = py::module_::import("numpy");
+  kinema::Designs designs;
+  for (const auto& [key, array] : values) {
+    designs.names.push_back(py::str(key));
+    const py::array_t<double, py::array::c_style | py::array::forcecast> column(numpy.attr("ravel")(array));
+    designs.values.emplace_back(column.data(), column.data() + column.size());
+  }
+  const auto written = [&](const Value& value) {
+    if (const double* number = std::get_if<double>(&value)) return kinema::WrittenValue{*number, 1.0};
+    return kinema::written_input_value(system, std::get<std::string>(value));
+  };
+  const kinema::InputValues inputs =
+      kinema::input_sweep(system, written(std::get<0>(sweep)), written(std::get<1>(sweep)), written(std::get<2>(sweep)));
+  kinema::check_input_range(system, inputs);
+  const kinema::StudyOptions options = study_options(system, figures, threads);
+  std::vector<kinema::StudyColumn> columns;
+  {
+    py::gil_scoped_release unlocked;
+    const kinema::StudyResults results = kinema::run_design_study(*m.engine, designs, inputs.to_vector(), options);
+    columns = kinema::study_columns(system, designs, results, kinema::StudyUnits::si);
+  }
+  // Only the figure fields asked for (a figure computes a group of them: max_rates every unknown's).
+  const auto shown = [&](const kinema::StudyColumn& column, std::size_t k) {
+    return k < designs.names.size() || !figures ||
+           std::find(figures->begin(), figures->end(), column.name) != figures->end();
+  };
+  py::list dtype;
+  for (std::size_t k = 0; k < columns.size(); ++k) {
+    if (!shown(columns[k], k)) continue;
+    const kinema::StudyColumn::Kind kind = columns[k].kind;
+    dtype.append(py::make_tuple(columns[k].name, kind == kinema::StudyColumn::Kind::grashof ? "i1"
+                                                 : kind == kinema::StudyColumn::Kind::flag  ? "?"
+                                                 : kind == kinema::StudyColumn::Kind::count ? "u4"
+                                                                                            : "f8"));
+  }
+  py::object table = numpy.attr("empty")(designs.size(), numpy.attr("dtype")(dtype));
+  for (std::size_t k = 0; k < columns.size(); ++k)
+    if (shown(columns[k], k))
+      table[py::str(columns[k].name)] = py::array_t<double>(columns[k].values.size(), columns[k].values.data());
+  return table;
+}
+
+/// kinema.grid(b=array, c=array): every combination as study() takes them (the first name slowest).
+py::dict grid(const py::kwargs& axes) {
+  std::vector<std::string> names;
+  std::vector<std::vector<double>> values;
+  for (const auto& [key, array] : axes) {
+    names.push_back(py::str(key));
+    const py::array_t<double, py::array::c_style | py::array::forcecast> column(
+        py::module_::import("numpy").attr("ravel")(array));
+    values.emplace_back(column.data(), column.data() + column.size());
+  }
+  const kinema::Designs designs = kinema::design_grid(names, values);
+  py::dict out;
+  for (std::size_t k = 0; k < names.size(); ++k)
+    out[py::str(names[k])] = py::array_t<double>(designs.values[k].size(), designs.values[k].data());
+  return out;
+}
+
 }  // namespace
 
 PYBIND11_MODULE(kinema, module) {
@@ -370,6 +457,16 @@ PYBIND11_MODULE(kinema, module) {
            "The same mechanism with other parameter values, as the file edited to them: "
            "m.with_parameters(b=\"0.31 m\", delta=\"25 deg\", c=0.09) (numbers in SI). Nothing is derived or "
            "compiled again: the new model shares this one's formulas and compiled code.")
+      .def("study", &study, py::arg("designs"), py::arg("sweep"), py::arg("figures") = py::none(),
+           py::arg("threads") = py::none(),
+           "A design study: m.study({\"b\": b, \"c\": c}, sweep=(\"0 deg\", \"360 deg\", \"1 deg\")), design i "
+           "being (b[i], c[i]) in SI (kinema.grid makes every combination). Every design is solved over the sweep on "
+           "this model's compiled code (nothing derived or compiled again), on every core. Returns a structured "
+           "array, a row a design: the parameters, then the figures in SI (figures=None: all; else a list of "
+           "field names): grashof (a code into kinema.GRASHOF_CLASSES), min_transmission_angle (rad), time_ratio, "
+           "assembles, failed_values, max_abs_<rate> and max_abs_<second rate> of each unknown (max_abs_omega3, "
+           "max_abs_alpha3), max_<point>_speed and max_<point>_acceleration. NaN where a figure is not defined. "
+           "threads: how many threads share the designs (default: one per core).")
       .def("page", &page, "The page `kinema page FILE` writes (one self-contained HTML file).")
       .def("_repr_latex_", &notebook_latex)
       .def(
@@ -390,6 +487,12 @@ PYBIND11_MODULE(kinema, module) {
         return pandas.attr("DataFrame")(table);
       },
       py::arg("table"), "A sweep's or a circuit's structured array as a pandas DataFrame (a column a field).");
+  py::tuple classes(7);
+  for (int code = 0; code < 7; ++code) classes[std::size_t(code)] = kinema::grashof_name(static_cast<kinema::GrashofClass>(code));
+  module.attr("GRASHOF_CLASSES") = classes;
+  module.def("grid", &grid,
+             "Every combination of the values given: kinema.grid(b=[...], c=[...]) -> {\"b\": array, \"c\": array} "
+             "for Model.study (the first name varies slowest).");
   module.def("load", [](const std::string& path) { return model_of(kinema::load_model(path)); }, py::arg("path"),
              "Reads a mechanism file (any of the three forms).");
   module.def(

@@ -18,11 +18,10 @@ using GiNaC::ex;
 
 namespace {
 
+// A side of the loop while the sides are told apart.
 struct Side {
   enum class Kind { crank, unknown, ground } kind;
-  double length;
-  int sign;            // of the written term
-  std::size_t unknown; // which unknown its angle is (kind unknown)
+  FourBarSide side;
 };
 
 // Which of the four sides is which (indices into the loop's terms).
@@ -40,8 +39,7 @@ std::optional<std::vector<Side>> loop_sides(const ConstraintSystem& system) {
     const LinkVector v = split_link_vector(term);
     const ex length = GiNaC::evalf(v.length.subs(parameters));
     if (!GiNaC::is_a<GiNaC::numeric>(length) || !GiNaC::ex_to<GiNaC::numeric>(length).is_real()) return std::nullopt;
-    const double l = GiNaC::ex_to<GiNaC::numeric>(length).to_double();
-    Side side{Side::Kind::ground, std::fabs(l), l < 0 ? -1 : 1, 0};
+    Side side{Side::Kind::ground, {v.length, GiNaC::ex_to<GiNaC::numeric>(length).to_double(), 0}};
     if (v.polar && v.angle.is_equal(system.input.symbol)) {
       side.kind = Side::Kind::crank;
     } else if (v.polar && !v.angle.has(system.input.symbol)) {
@@ -49,7 +47,7 @@ std::optional<std::vector<Side>> loop_sides(const ConstraintSystem& system) {
       for (std::size_t j = 0; j < 2; ++j) {
         if (v.angle.is_equal(system.unknowns[j].symbol)) {
           side.kind = Side::Kind::unknown;
-          side.unknown = j;
+          side.side.unknown = j;
           found = true;
         } else if (v.angle.has(system.unknowns[j].symbol)) {
           return std::nullopt;
@@ -86,7 +84,7 @@ std::optional<FourBarSides> name_sides(const ConstraintSystem& system, const std
     }
     for (std::size_t k = 0; k < 4; ++k) {
       if (sides[k].kind != Side::Kind::unknown) continue;
-      (static_cast<int>(sides[k].unknown) == rocker_unknown ? named.rocker : named.coupler) = k;
+      (static_cast<int>(sides[k].side.unknown) == rocker_unknown ? named.rocker : named.coupler) = k;
     }
   } else if ((named.crank + 1) % 4 == named.ground || (named.ground + 1) % 4 == named.crank) {
     // Written round the loop: the coupler is opposite the ground, the rocker opposite the crank.
@@ -99,33 +97,19 @@ std::optional<FourBarSides> name_sides(const ConstraintSystem& system, const std
   return named;
 }
 
-// The lengths, Grashof's inequality s + l against p + q (in the output unit) and the kind
-// of four-bar it makes; false where there is nothing to classify.
+// Grashof's inequality s + l against p + q (in the output unit) and the kind of four-bar
+// the lengths make; false where there is nothing to classify.
 bool classify(FourBarFigures& f, const OutputScale& scale) {
+  const GrashofClass kind = grashof_class(f.ground, f.crank, f.coupler, f.rocker, scale.length);
+  if (kind == GrashofClass::none) return false;
   const double lengths[4] = {f.ground, f.crank, f.coupler, f.rocker};
   const double s = *std::min_element(lengths, lengths + 4), l = *std::max_element(lengths, lengths + 4);
-  const double sum = f.ground + f.crank + f.coupler + f.rocker, p_q = sum - s - l;
-  const double tolerance = 1e-9 * l;
-  // A side of length zero is no four-bar to classify (a crank of length zero drives
-  // nothing), and sums past the largest number in the output unit have no figures.
-  if (!(s > 0) || !std::isfinite(sum / scale.length)) return false;
+  const double p_q = f.ground + f.crank + f.coupler + f.rocker - s - l;
   const auto shown = [&](double x) { return format_significant(x / scale.length); };
-  const char* relation = std::fabs(s + l - p_q) <= tolerance ? "=" : s + l < p_q ? "<" : ">";
+  const char* relation = kind == GrashofClass::change_point ? "=" : kind == GrashofClass::triple_rocker ? ">" : "<";
   f.inequality = "s + l = " + shown(s) + " + " + shown(l) + " = " + shown(s + l) + " " + relation + " p + q = " +
                  shown(p_q) + " (" + scale.length_unit + ")";
-  if (std::string(relation) == "=") {
-    f.grashof = "change point";
-  } else if (std::string(relation) == ">") {
-    f.grashof = "non-Grashof triple rocker";
-  } else if (std::fabs(f.ground - s) <= tolerance) {
-    f.grashof = "double-crank";
-  } else if (std::fabs(f.crank - s) <= tolerance) {
-    f.grashof = "crank-rocker";
-  } else if (std::fabs(f.rocker - s) <= tolerance) {
-    f.grashof = "rocker-crank";
-  } else {
-    f.grashof = "double-rocker";
-  }
+  f.grashof = grashof_name(kind);
   return true;
 }
 
@@ -133,7 +117,7 @@ bool classify(FourBarFigures& f, const OutputScale& scale) {
 // value: at the coupler-rocker joint, between the coupler (back towards the crank pin)
 // and the rocker (on to its pivot), as the loop goes round; its least and greatest, and
 // whether the whole turn assembles.
-void transmission_over_a_turn(const Model& model, const Side& coupler, const Side& rocker, FourBarFigures& f) {
+void transmission_over_a_turn(const Model& model, const FourBarLoop& loop, FourBarFigures& f) {
   const ConstraintSystem& system = model.system;
   std::vector<double> inputs;
   const double first = system.input.values.empty() ? 0.0 : system.input.values.front();
@@ -147,16 +131,8 @@ void transmission_over_a_turn(const Model& model, const Side& coupler, const Sid
       f.full_turn = false;
       continue;
     }
-    // The signed terms are the edges of the loop as it goes round (crank O2-A, coupler
-    // A-B, rocker B-O4, ground O4-O2): at B, between B-A (back along the coupler) and
-    // B-O4 (on along the rocker), from the solved angles.
-    const auto edge = [&](const Side& side) {
-      return std::polar(1.0 * side.sign, turn.q(row)[Eigen::Index(side.unknown)]);
-    };
-    const std::complex<double> back = -edge(coupler), on = edge(rocker);
-    double mu = std::abs(std::arg(on / back)) * 180 / kPi;
-    if (mu < 1e-3) mu = 0;  // folded flat (a change point solved to sqrt(eps))
-    if (mu > 180 - 1e-3) mu = 180;
+    const double mu = transmission_angle(loop, turn.q(row)[Eigen::Index(loop.coupler.unknown)],
+                                         turn.q(row)[Eigen::Index(loop.rocker.unknown)]);
     double at = std::fmod(turn.input(row) * 180 / kPi, 360.0);
     if (at < 0) at += 360;
     if (!(mu >= f.least_transmission)) {
@@ -172,9 +148,7 @@ void transmission_over_a_turn(const Model& model, const Side& coupler, const Sid
 
 }  // namespace
 
-std::optional<FourBarFigures> four_bar_figures(const Model& model) {
-  count_work(Work::design_figures);
-  const ConstraintSystem& system = model.system;
+std::optional<FourBarLoop> four_bar_loop(const ConstraintSystem& system) {
   if (system.input.dimension != Dimension::angle || !system.frames.empty()) return std::nullopt;
   if (system.groups.size() != 1 || system.groups.front().terms.size() != 4 || system.unknowns.size() != 2)
     return std::nullopt;
@@ -182,13 +156,63 @@ std::optional<FourBarFigures> four_bar_figures(const Model& model) {
   if (!sides) return std::nullopt;
   const std::optional<FourBarSides> named = name_sides(system, *sides);
   if (!named) return std::nullopt;
+  return FourBarLoop{(*sides)[named->ground].side, (*sides)[named->crank].side, (*sides)[named->coupler].side,
+                     (*sides)[named->rocker].side};
+}
+
+double transmission_angle(const FourBarLoop& loop, double coupler_angle, double rocker_angle) {
+  // The signed terms are the edges of the loop as it goes round (crank O2-A, coupler
+  // A-B, rocker B-O4, ground O4-O2): at B, between B-A (back along the coupler) and
+  // B-O4 (on along the rocker), from the solved angles.
+  const auto edge = [](const FourBarSide& side, double angle) { return std::polar(side.value < 0 ? -1.0 : 1.0, angle); };
+  const std::complex<double> back = -edge(loop.coupler, coupler_angle), on = edge(loop.rocker, rocker_angle);
+  double mu = std::abs(std::arg(on / back)) * 180 / kPi;
+  if (mu < 1e-3) mu = 0;  // folded flat (a change point solved to sqrt(eps))
+  if (mu > 180 - 1e-3) mu = 180;
+  return mu;
+}
+
+GrashofClass grashof_class(double ground, double crank, double coupler, double rocker, double length_unit) {
+  ground = std::fabs(ground), crank = std::fabs(crank), coupler = std::fabs(coupler), rocker = std::fabs(rocker);
+  const double lengths[4] = {ground, crank, coupler, rocker};
+  const double s = *std::min_element(lengths, lengths + 4), l = *std::max_element(lengths, lengths + 4);
+  const double sum = ground + crank + coupler + rocker, p_q = sum - s - l;
+  const double tolerance = 1e-9 * l;
+  // A side of length zero is no four-bar to classify (a crank of length zero drives
+  // nothing), and sums past the largest number in the output unit have no figures.
+  if (!(s > 0) || !std::isfinite(sum / length_unit)) return GrashofClass::none;
+  if (std::fabs(s + l - p_q) <= tolerance) return GrashofClass::change_point;
+  if (s + l > p_q) return GrashofClass::triple_rocker;
+  if (std::fabs(ground - s) <= tolerance) return GrashofClass::double_crank;
+  if (std::fabs(crank - s) <= tolerance) return GrashofClass::crank_rocker;
+  if (std::fabs(rocker - s) <= tolerance) return GrashofClass::rocker_crank;
+  return GrashofClass::double_rocker;
+}
+
+const char* grashof_name(GrashofClass kind) {
+  switch (kind) {
+    case GrashofClass::crank_rocker: return "crank-rocker";
+    case GrashofClass::double_crank: return "double-crank";
+    case GrashofClass::rocker_crank: return "rocker-crank";
+    case GrashofClass::double_rocker: return "double-rocker";
+    case GrashofClass::change_point: return "change point";
+    case GrashofClass::triple_rocker: return "non-Grashof triple rocker";
+    case GrashofClass::none: break;
+  }
+  return "n/a";
+}
+
+std::optional<FourBarFigures> four_bar_figures(const Model& model) {
+  count_work(Work::design_figures);
+  const std::optional<FourBarLoop> loop = four_bar_loop(model.system);
+  if (!loop) return std::nullopt;
   FourBarFigures f;
-  f.ground = (*sides)[named->ground].length;
-  f.crank = (*sides)[named->crank].length;
-  f.coupler = (*sides)[named->coupler].length;
-  f.rocker = (*sides)[named->rocker].length;
-  if (!classify(f, OutputScale(system))) return std::nullopt;
-  transmission_over_a_turn(model, (*sides)[named->coupler], (*sides)[named->rocker], f);
+  f.ground = std::fabs(loop->ground.value);
+  f.crank = std::fabs(loop->crank.value);
+  f.coupler = std::fabs(loop->coupler.value);
+  f.rocker = std::fabs(loop->rocker.value);
+  if (!classify(f, OutputScale(model.system))) return std::nullopt;
+  transmission_over_a_turn(model, *loop, f);
   for (const Toggle& t : find_toggles(model)) f.toggles.push_back(t.input * 180 / kPi);
   return f;
 }
@@ -230,14 +254,18 @@ std::vector<Strokes> slider_strokes(const Model& model) {
       s.limit_inputs[k] = limits[std::size_t(k)].input * 180 / kPi;
       s.limit_values[k] = limits[std::size_t(k)].q[Eigen::Index(j)] / scale.length;
     }
-    // The crank turns the way its rate says: the stroke from the first limit to the second.
-    const double between = s.limit_inputs[1] - s.limit_inputs[0];
-    s.first_stroke = system.input.rate_value >= 0 ? between : 360 - between;
-    s.second_stroke = 360 - s.first_stroke;
-    s.time_ratio = std::max(s.first_stroke, s.second_stroke) / std::min(s.first_stroke, s.second_stroke);
+    set_strokes(s, system.input.rate_value);
     all.push_back(s);
   }
   return all;
+}
+
+void set_strokes(Strokes& s, double rate) {
+  // The crank turns the way its rate says: the stroke from the first limit to the second.
+  const double between = s.limit_inputs[1] - s.limit_inputs[0];
+  s.first_stroke = rate >= 0 ? between : 360 - between;
+  s.second_stroke = 360 - s.first_stroke;
+  s.time_ratio = std::max(s.first_stroke, s.second_stroke) / std::min(s.first_stroke, s.second_stroke);
 }
 
 std::string describe_strokes(const Strokes& s, const std::string& input_name, const std::string& unit) {

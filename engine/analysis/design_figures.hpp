@@ -7,6 +7,7 @@
 // rocker (next to it).
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -40,6 +41,10 @@ struct Strokes {
   double time_ratio = 0;      ///< The longer stroke's crank angle over the shorter's (at a constant crank rate).
 };
 
+/// The strokes and time ratio of s from its limit_inputs, for a crank turning the way
+/// `rate` says (the file's input rate).
+void set_strokes(Strokes& s, double rate);
+
 /// Most unknowns of a mechanism whose sliders' strokes are searched: the search solves a
 /// turn in 1-degree steps (a dense solve of all unknowns at each), so a larger system has no
 /// strokes in eval's header, which would otherwise cost as much as a sweep of the turn.
@@ -50,6 +55,34 @@ constexpr std::size_t kMaxStrokeUnknowns = 128;
 /// mechanism of more than kMaxStrokeUnknowns unknowns.
 std::vector<Strokes> slider_strokes(const Model& model);
 std::string describe_strokes(const Strokes& strokes, const std::string& input_name, const std::string& unit);
+
+/// The Grashof classes four_bar_figures tells apart (FourBarFigures::grashof in words:
+/// grashof_name), none where there is no four-bar or nothing to classify.
+enum class GrashofClass : std::uint8_t {
+  none, crank_rocker, double_crank, rocker_crank, double_rocker, change_point, triple_rocker
+};
+const char* grashof_name(GrashofClass kind);  ///< "crank-rocker", ...; "n/a" for none.
+/// The class of a four-bar of these side lengths (SI; signs ignored); none where a side is
+/// zero or the sum is past the largest number in the output unit (SI metres per unit).
+GrashofClass grashof_class(double ground, double crank, double coupler, double rocker, double length_unit);
+
+/// A side of a vector-loop four-bar: its length as written (a formula of the parameters,
+/// signed as the loop's term), its value at the system's parameter values, and for the
+/// coupler and the rocker which unknown is its angle.
+struct FourBarSide {
+  GiNaC::ex length;
+  double value = 0;
+  std::size_t unknown = 0;
+};
+struct FourBarLoop {
+  FourBarSide ground, crank, coupler, rocker;
+};
+/// The loop of a vector-loop four-bar driven by its crank, its sides told apart as
+/// four_bar_figures tells them; nothing for other mechanisms.
+std::optional<FourBarLoop> four_bar_loop(const ConstraintSystem& system);
+/// The transmission angle (deg, 0 to 180) where the coupler's and the rocker's angles are
+/// solved: between them at their joint, the sides' signs those of the loop's values.
+double transmission_angle(const FourBarLoop& loop, double coupler_angle, double rocker_angle);
 
 /// The figures of a four-bar driven by its crank; nothing for other mechanisms.
 std::optional<FourBarFigures> four_bar_figures(const Model& model);

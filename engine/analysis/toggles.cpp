@@ -110,6 +110,69 @@ std::vector<Toggle> find_toggles(const Model& model) {
   return solve_with(model, [&](const Eigen::MatrixXd& phi_q, const Eigen::VectorXd&) { return scaled_determinant(phi_q, k); });
 }
 
+std::vector<Toggle> limit_positions_in_turn(const MotionTable& turn, std::size_t rows, const double* g,
+                                            std::size_t unknown, Workspace& workspace) {
+  const auto j = Eigen::Index(unknown);
+  std::vector<Toggle> found;
+  const auto keep = [&](double input, const Eigen::VectorXd& q) {
+    const double at = wrapped(input);
+    const bool known = std::any_of(found.begin(), found.end(), [&](const Toggle& t) {
+      const double d = std::fabs(t.input - at);
+      return std::min(d, 2 * kPi - d) < 1e-7;
+    });
+    if (!known) found.push_back({at, q});
+  };
+  for (std::size_t row = 0; row + 1 < rows; ++row) {
+    if (std::isnan(g[row]) || std::isnan(g[row + 1])) continue;
+    double ga = g[row], gb = g[row + 1];
+    if (ga == 0) {
+      keep(turn.input(row), turn.q(row));
+      continue;
+    }
+    if (!(ga * gb < 0)) continue;
+    // Regula falsi, Illinois variant: q solved from the nearer end of the bracket (1 deg
+    // apart at most, so on the same assembly).
+    double ta = turn.input(row), tb = turn.input(row + 1);
+    Eigen::VectorXd qa = turn.q(row), qb = turn.q(row + 1), q, dq;
+    double t = ta, last = std::numeric_limits<double>::quiet_NaN();
+    bool solved = false;
+    for (int iteration = 0; iteration < 200; ++iteration) {
+      t = (ta * gb - tb * ga) / (gb - ga);
+      if (!(t > std::min(ta, tb) && t < std::max(ta, tb))) {
+        if (std::isfinite(t)) {  // rounded onto an end: the root is there to round-off
+          const bool at_a = std::fabs(ga) < std::fabs(gb);
+          t = at_a ? ta : tb;
+          q = at_a ? qa : qb;
+          solved = true;
+          break;
+        }
+        t = 0.5 * (ta + tb);
+      }
+      q = std::fabs(t - ta) < std::fabs(t - tb) ? qa : qb;
+      if (!workspace.solve_position(t, q) || !workspace.sensitivity(t, q, dq)) break;
+      const double value = dq[j];
+      // Converged when the bracket or the step from the last trial is at round-off.
+      const double tolerance = 1e-14 * (1 + std::fabs(t));
+      if (value == 0 || std::fabs(tb - ta) < tolerance || std::fabs(t - last) < tolerance) {
+        solved = true;
+        break;
+      }
+      last = t;
+      // (ta, ga) the end kept, (tb, gb) the latest trial: halve the kept end's value when
+      // it is kept twice in a row (Illinois), so that it does not stall.
+      if ((value < 0) != (gb < 0)) {
+        ta = tb, ga = gb, qa = qb;
+      } else {
+        ga *= 0.5;
+      }
+      tb = t, gb = value, qb = q;
+    }
+    if (solved) keep(t, q);
+  }
+  std::sort(found.begin(), found.end(), [](const Toggle& a, const Toggle& b) { return a.input < b.input; });
+  return found;
+}
+
 std::vector<std::vector<Toggle>> find_limit_positions(const Model& model, const std::vector<std::size_t>& unknowns) {
   // One sweep of the turn in 1-deg steps, shared by every unknown asked for: dq/dtheta of all
   // unknowns from one LU per row, then each sign change of dq_j/dtheta refined alone (a
@@ -131,65 +194,11 @@ std::vector<std::vector<Toggle>> find_limit_positions(const Model& model, const 
     Eigen::VectorXd dq;
     if (workspace.sensitivity(turn.input(row), turn.q(row), dq)) rates[row] = dq;
   }
+  std::vector<double> g(turn.size());
   for (std::size_t w = 0; w < unknowns.size(); ++w) {
-    const auto j = Eigen::Index(unknowns[w]);
-    std::vector<Toggle>& found = limits[w];
-    const auto keep = [&](double input, const Eigen::VectorXd& q) {
-      const double at = wrapped(input);
-      const bool known = std::any_of(found.begin(), found.end(), [&](const Toggle& t) {
-        const double d = std::fabs(t.input - at);
-        return std::min(d, 2 * kPi - d) < 1e-7;
-      });
-      if (!known) found.push_back({at, q});
-    };
-    for (std::size_t row = 0; row + 1 < turn.size(); ++row) {
-      if (rates[row].size() == 0 || rates[row + 1].size() == 0) continue;
-      double ga = rates[row][j], gb = rates[row + 1][j];
-      if (ga == 0) {
-        keep(turn.input(row), turn.q(row));
-        continue;
-      }
-      if (!(ga * gb < 0)) continue;
-      // Regula falsi, Illinois variant: q solved from the nearer end of the bracket (1 deg
-      // apart at most, so on the same assembly).
-      double ta = turn.input(row), tb = turn.input(row + 1);
-      Eigen::VectorXd qa = turn.q(row), qb = turn.q(row + 1), q, dq;
-      double t = ta, last = std::numeric_limits<double>::quiet_NaN();
-      bool solved = false;
-      for (int iteration = 0; iteration < 200; ++iteration) {
-        t = (ta * gb - tb * ga) / (gb - ga);
-        if (!(t > std::min(ta, tb) && t < std::max(ta, tb))) {
-          if (std::isfinite(t)) {  // rounded onto an end: the root is there to round-off
-            const bool at_a = std::fabs(ga) < std::fabs(gb);
-            t = at_a ? ta : tb;
-            q = at_a ? qa : qb;
-            solved = true;
-            break;
-          }
-          t = 0.5 * (ta + tb);
-        }
-        q = std::fabs(t - ta) < std::fabs(t - tb) ? qa : qb;
-        if (!workspace.solve_position(t, q) || !workspace.sensitivity(t, q, dq)) break;
-        const double g = dq[j];
-        // Converged when the bracket or the step from the last trial is at round-off.
-        const double tolerance = 1e-14 * (1 + std::fabs(t));
-        if (g == 0 || std::fabs(tb - ta) < tolerance || std::fabs(t - last) < tolerance) {
-          solved = true;
-          break;
-        }
-        last = t;
-        // (ta, ga) the end kept, (tb, gb) the latest trial: halve the kept end's value when
-        // it is kept twice in a row (Illinois), so that it does not stall.
-        if ((g < 0) != (gb < 0)) {
-          ta = tb, ga = gb, qa = qb;
-        } else {
-          ga *= 0.5;
-        }
-        tb = t, gb = g, qb = q;
-      }
-      if (solved) keep(t, q);
-    }
-    std::sort(found.begin(), found.end(), [](const Toggle& a, const Toggle& b) { return a.input < b.input; });
+    for (std::size_t row = 0; row < turn.size(); ++row)
+      g[row] = rates[row].size() == 0 ? std::numeric_limits<double>::quiet_NaN() : rates[row][Eigen::Index(unknowns[w])];
+    limits[w] = limit_positions_in_turn(turn, turn.size(), g.data(), unknowns[w], workspace);
   }
   return limits;
 }

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "engine/model.hpp"
+#include "engine/numeric/workspace.hpp"
 
 namespace kinema {
 
@@ -28,5 +29,13 @@ std::vector<Toggle> find_limit_positions(const Model& model, std::size_t j);
 /// The same for several unknowns at once (one sweep of the turn shared by all): the limit
 /// positions of unknowns[w] in element w.
 std::vector<std::vector<Toggle>> find_limit_positions(const Model& model, const std::vector<std::size_t>& unknowns);
+
+/// The limit positions of unknown `unknown` in rows [0, rows) of a solved turn, given
+/// g[row] = dq/dtheta of that unknown (NaN where the row has none): each sign change of g
+/// between neighbouring rows refined as a root of dq/dtheta, q solved at each trial on
+/// `workspace` (the model's); a row where g is 0 is one. What find_limit_positions does
+/// after its sweep, for a caller that has solved the turn already (a design study).
+std::vector<Toggle> limit_positions_in_turn(const MotionTable& turn, std::size_t rows, const double* g,
+                                            std::size_t unknown, Workspace& workspace);
 
 }  // namespace kinema

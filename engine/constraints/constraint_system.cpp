@@ -16,14 +16,21 @@ double length_scale_of(const std::vector<SystemParameter>& parameters) {
 
 std::size_t written_parameter_index(const ConstraintSystem& system, const std::string& name) {
   std::string names;
+  bool made = false;  // one kinema made (a joints file's sketch numbers, a chain's starting motion)
   for (std::size_t i = 0; i < system.parameters.size(); ++i) {
     const SystemParameter& p = system.parameters[i];
-    if (!p.written) continue;
+    if (!p.written) {
+      made = made || p.symbol.get_name() == name;
+      continue;
+    }
     if (p.symbol.get_name() == name) return i;
     names += (names.empty() ? "" : ", ") + p.symbol.get_name();
   }
-  throw InputError(system.source_file + ": no parameter named \"" + name + "\" (there are: " +
-                   (names.empty() ? "none" : names) + ")");
+  throw InputError(system.source_file + ": no parameter named \"" + name + "\"" +
+                   (made ? " that the file writes: kinema made it from the file (its sketch or starting motion), and "
+                           "only the file's own parameters take other values"
+                         : "") +
+                   " (there are: " + (names.empty() ? "none" : names) + ")");
 }
 
 void refuse_unknown_count(std::size_t count, const SourceLocation& first_past, const std::string& name) {

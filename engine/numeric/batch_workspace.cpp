@@ -105,9 +105,13 @@ BatchWorkspace::BatchWorkspace(const Kinematics& k)
       pivots_(n_ * kLanes),
       x_(n_ * kLanes),
       predicted_(n_ * kLanes) {
+  reload_parameters();
+}
+
+void BatchWorkspace::reload_parameters() {
   for (std::size_t p = 0; p < layout_.parameter_count; ++p)
-    std::fill_n(lanes(layout_.parameter(p)), kLanes, k.parameter_values()[p]);
-  k.evaluator().prepare_batch(registers_.data());
+    std::fill_n(lanes(layout_.parameter(p)), kLanes, k_.parameter_values()[p]);
+  k_.evaluator().prepare_batch(registers_.data());
 }
 
 bool BatchWorkspace::factorise() {

@@ -16,6 +16,9 @@ class BatchWorkspace {
   static constexpr std::size_t kLanes = CompiledExpressions::kBatchLanes;
   explicit BatchWorkspace(const Kinematics& kinematics);
 
+  /// The kinematics' parameter values again (after Kinematics::set_parameter_values).
+  void reload_parameters();
+
   /// Solves rows [first, first + kLanes) of `table` (inputs already stored), predicted
   /// from the solved rows [history_begin, first) (at least row first - 1, status ok).
   /// Writes the rows only when every value converged on its predicted branch,

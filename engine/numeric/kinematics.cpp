@@ -1,5 +1,6 @@
 #include "engine/numeric/kinematics.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -42,7 +43,11 @@ Kinematics::Kinematics(const ConstraintSystem& system) : length_scale_(system.le
   layout_.unknown_count = n;
   for (const PointObservable& point : system.points) layout_.point_dimensions.push_back(point.position.size());
   layout_.frame_count = system.frames.size();
-  for (const SystemParameter& parameter : system.parameters) parameter_values_.push_back(parameter.value);
+  for (const SystemParameter& parameter : system.parameters) {
+    parameter_values_.push_back(parameter.value);
+    sets_length_scale_.push_back(parameter.sets_length_scale);
+  }
+  length_input_ = system.input.dimension == Dimension::length;
   max_continuation_step_ = system.input.dimension == Dimension::angle  ? from_degrees(2.0)
                            : system.input.dimension == Dimension::time ? 0.01
                                                                        : 0.01 * length_scale_;
@@ -51,6 +56,7 @@ Kinematics::Kinematics(const ConstraintSystem& system) : length_scale_(system.le
     const Coordinate& q = system.unknowns[i];
     guess_[static_cast<Eigen::Index>(i)] = q.guess;
     column_scale_.push_back(q.dimension == Dimension::length ? length_scale_ : 1.0);
+    length_unknown_.push_back(q.dimension == Dimension::length);
   }
   for (const Equation& equation : system.equations) equation_group_.push_back(equation.group);
   if (system.plan && system.plan->closed_form) closed_form_ = *system.plan;
@@ -82,6 +88,18 @@ Kinematics Kinematics::sharing_tape(const ConstraintSystem& system) const {
   k.evaluator_ = evaluator_;
   k.drawable_ = drawable_;
   return k;
+}
+
+void Kinematics::set_parameter_values(const double* values) {
+  std::copy(values, values + parameter_values_.size(), parameter_values_.begin());
+  // length_scale_of's rule, on the values alone.
+  double largest = 0;
+  for (std::size_t p = 0; p < parameter_values_.size(); ++p)
+    if (sets_length_scale_[p]) largest = std::max(largest, std::fabs(parameter_values_[p]));
+  length_scale_ = largest > 0 ? largest : 1.0;
+  if (length_input_) max_continuation_step_ = 0.01 * length_scale_;
+  for (std::size_t i = 0; i < column_scale_.size(); ++i)
+    if (length_unknown_[i]) column_scale_[i] = length_scale_;
 }
 
 void Kinematics::compile(const ConstraintSystem& system, const std::vector<std::vector<ex>>& solving,

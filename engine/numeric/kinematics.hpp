@@ -25,6 +25,12 @@ class Kinematics {
   /// The same tape (shared, not copied) for `system`, this one's system with other
   /// parameter values: its parameters, scales and guesses read from `system`.
   Kinematics sharing_tape(const ConstraintSystem& system) const;
+  /// Other parameter values (SI, one per parameter of the system, formula parameters
+  /// already following theirs) in place, with the length scale and what follows from it
+  /// as sharing_tape would set them from a system holding those values: what a design
+  /// study changes per design without copying a system. A workspace built on this object
+  /// sees them after its reload_parameters().
+  void set_parameter_values(const double* values);
 
   std::size_t unknown_count() const { return layout_.unknown_count; }
   std::size_t point_count() const { return layout_.point_dimensions.size(); }
@@ -64,6 +70,9 @@ class Kinematics {
   /// Shared by the models that differ only in parameter values (with_parameters).
   std::shared_ptr<const CompiledExpressions> evaluator_ = std::make_shared<const CompiledExpressions>();
   std::vector<double> parameter_values_;
+  std::vector<bool> sets_length_scale_;  ///< Per parameter: counted in the length scale (length_scale_of).
+  std::vector<bool> length_unknown_;     ///< Per unknown: a length (its column scaled by the length scale).
+  bool length_input_ = false;            ///< The input is a length (its continuation step follows the scale).
   double length_scale_ = 1.0, max_continuation_step_ = 0.0;
   std::vector<double> column_scale_;
   Eigen::VectorXd guess_;

@@ -336,6 +336,33 @@ void SweepSolver::solve_next(SweepBlock& block, std::size_t rows) {
   for (std::size_t row = 0; row < keep; ++row) s.history.set(row, table, reached - keep + row);
 }
 
+struct RepeatedSweep::State {
+  State(const Kinematics& k, const std::vector<double>& inputs, const SweepSettings& s)
+      : kinematics(k),
+        solvers(k, s.simd, s.rate),
+        table(inputs, k.unknown_count(), k.layout().point_dimensions, s.rate, s.second_rate, k.frame_count()) {}
+  const Kinematics& kinematics;
+  Solvers solvers;
+  MotionTable table;
+};
+
+RepeatedSweep::RepeatedSweep(const Kinematics& kinematics, const std::vector<double>& inputs,
+                             const SweepSettings& settings)
+    : state_(std::make_unique<State>(kinematics, inputs, settings)) {}
+RepeatedSweep::~RepeatedSweep() = default;
+
+const MotionTable& RepeatedSweep::solve() {
+  State& s = *state_;
+  s.solvers.scalar.reload_parameters();
+  if (s.solvers.simd) s.solvers.simd->reload_parameters();
+  // solve_sweep's one chunk: from the guesses, every row set again.
+  RunCursor cursor;
+  cursor.q = s.kinematics.guess();
+  const std::size_t n = s.table.size();
+  if (n > 0) solve_rows(s.kinematics, s.solvers, s.table, 0, n, n, 0, 0, cursor);
+  return s.table;
+}
+
 std::uint64_t values_solved_in_process() { return values_solved.load(std::memory_order_relaxed); }
 
 }  // namespace kinema

@@ -61,4 +61,25 @@ class SweepSolver {
   std::unique_ptr<State> state_;
 };
 
+/// One run of input values solved again and again as the parameter values of the
+/// kinematics change (Kinematics::set_parameter_values between runs: a design study):
+/// each run is solve_sweep's serial run (threads = 1), the same rows and numbers as
+/// solve_sweep on kinematics built with those values, in a table and solvers kept from
+/// run to run (no derivation, compilation or table per run).
+class RepeatedSweep {
+ public:
+  RepeatedSweep(const Kinematics& kinematics, const std::vector<double>& inputs, const SweepSettings& settings);
+  ~RepeatedSweep();
+  RepeatedSweep(const RepeatedSweep&) = delete;
+  RepeatedSweep& operator=(const RepeatedSweep&) = delete;
+
+  /// Solves the run at the kinematics' current parameter values; the table is this
+  /// object's, valid until the next call.
+  const MotionTable& solve();
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
 }  // namespace kinema

@@ -24,8 +24,13 @@ Workspace::Workspace(const Kinematics& k)
       step_(n_),
       trial_(n_),
       predicted_(n_) {
-  std::copy(k.parameter_values().begin(), k.parameter_values().end(), registers_.begin());
-  k.evaluator().prepare(registers_);
+  reload_parameters();
+}
+
+void Workspace::reload_parameters() {
+  std::copy(k_.parameter_values().begin(), k_.parameter_values().end(), registers_.begin());
+  k_.evaluator().prepare(registers_);
+  evaluated_ = false;
 }
 
 void Workspace::evaluate_position(double input, const Eigen::VectorXd& q) {

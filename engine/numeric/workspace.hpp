@@ -21,6 +21,10 @@ class Workspace {
   /// The workspace of a loaded model (engine/model.hpp).
   explicit Workspace(const Model& model);
 
+  /// The kinematics' parameter values again (after Kinematics::set_parameter_values):
+  /// the work on them alone (the tape's level 0) rerun, nothing allocated.
+  void reload_parameters();
+
   /// Newton-Raphson from q (updated in place). False when it does not converge;
   /// then worst_group names the equation group that stays open.
   bool solve_position(double input, Eigen::VectorXd& q, std::size_t* worst_group = nullptr,

@@ -1,0 +1,258 @@
+// Design studies (issue 36): every figure of every design equals what a separate model
+// with_parameters and its own analysis give (the four-bar's figures, the strokes' time
+// ratio, the solved table's largest values), designs that do not assemble included; a
+// study derives and compiles nothing per design and solves each value once; what it
+// refuses it names.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <optional>
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "engine/analysis/design_figures.hpp"
+#include "engine/analysis/design_study.hpp"
+#include "engine/analysis/toggles.hpp"
+#include "engine/base/errors.hpp"
+#include "engine/base/units.hpp"
+#include "engine/base/work_count.hpp"
+#include "engine/model.hpp"
+#include "engine/numeric/sweep.hpp"
+#include "readers/mechanism_file.hpp"
+#include "tests/test_support.hpp"
+
+using kinema::Designs;
+using kinema::Model;
+using kinema::MotionTable;
+using kinema::StudyFigure;
+using kinema::StudyResults;
+
+namespace {
+
+constexpr double kDeg = kinema::kPi / 180;
+const double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+Model sample_model(const std::string& name) {
+  return kinema::make_model(kinema::read_mechanism_file(kinema_test::sample(name)), kinema::DerivationScope::evaluation);
+}
+
+// A turn of the crank in 1-deg steps from `first` (the rows four_bar_figures solves).
+std::vector<double> turn_from(double first) {
+  std::vector<double> inputs;
+  for (int k = 0; k <= 360; ++k) inputs.push_back(first + k * kinema::kPi / 180);
+  return inputs;
+}
+
+// Both NaN, or equal to `tolerance` relative.
+void check_figure(double study, double expected, double tolerance, const std::string& what) {
+  INFO(what << ": study " << study << ", separate " << expected);
+  if (std::isnan(expected)) {
+    CHECK(std::isnan(study));
+  } else {
+    CHECK(std::fabs(study - expected) <= tolerance * std::max(1.0, std::fabs(expected)));
+  }
+}
+
+// The largest |x| over the rows whose status is ok (NaN with none).
+double largest_over_ok_rows(const MotionTable& t, const std::function<double(std::size_t)>& value) {
+  double largest = kNaN;
+  for (std::size_t r = 0; r < t.size(); ++r)
+    if (t.status(r) == kinema::Status::ok && !(std::fabs(value(r)) <= largest)) largest = std::fabs(value(r));
+  return largest;
+}
+
+// The time ratio of a separate model's unknown j (its limit positions found as
+// find_limit_positions finds them); NaN without exactly two.
+double separate_time_ratio(const Model& design, std::size_t j) {
+  const std::vector<kinema::Toggle> limits = kinema::find_limit_positions(design, j);
+  if (limits.size() != 2) return kNaN;
+  kinema::Strokes s;
+  for (int k = 0; k < 2; ++k) s.limit_inputs[k] = limits[std::size_t(k)].input * 180 / kinema::kPi;
+  kinema::set_strokes(s, design.system.input.rate_value);
+  return s.time_ratio;
+}
+
+// Design i of the study against with_parameters(model, design i) and its own analysis of
+// the same inputs: every figure the study gives.
+void check_design(const Model& model, const Designs& designs, std::size_t i, const std::vector<double>& inputs,
+                  const StudyResults& study, double separate_time_ratio_value) {
+  std::vector<std::pair<std::string, double>> values;
+  for (std::size_t k = 0; k < designs.names.size(); ++k) values.emplace_back(designs.names[k], designs.values[k][i]);
+  const Model design = kinema::with_parameters(model, values);
+  const MotionTable table = kinema::analyse(design, inputs);
+  INFO("design " << i);
+  const std::optional<kinema::FourBarFigures> four_bar = kinema::four_bar_figures(design);
+  CHECK(std::string(kinema::grashof_name(study.grashof[i])) == (four_bar ? four_bar->grashof : "n/a"));
+  check_figure(study.min_transmission_angle[i] / kDeg, four_bar ? four_bar->least_transmission : kNaN, 1e-9,
+               "least transmission angle");
+  check_figure(study.time_ratio[i], separate_time_ratio_value, 1e-9, "time ratio");
+  std::uint32_t failed = 0;
+  for (std::size_t r = 0; r < table.size(); ++r) failed += table.status(r) == kinema::Status::unassembled;
+  CHECK(study.failed_values[i] == failed);
+  CHECK(study.assembles[i] == (failed == 0));
+  for (std::size_t j = 0; j < table.unknown_count(); ++j) {
+    check_figure(study.max_rate[j][i], largest_over_ok_rows(table, [&](std::size_t r) { return table.qd(r)[j]; }), 1e-12,
+                 "max rate " + std::to_string(j));
+    check_figure(study.max_second_rate[j][i],
+                 largest_over_ok_rows(table, [&](std::size_t r) { return table.qdd(r)[j]; }), 1e-12,
+                 "max second rate " + std::to_string(j));
+  }
+  for (std::size_t p = 0; p < table.point_count(); ++p) {
+    check_figure(study.max_speed[p][i], largest_over_ok_rows(table, [&](std::size_t r) { return table.point(r, p).speed(); }),
+                 1e-12, "max speed " + std::to_string(p));
+    check_figure(study.max_acceleration[p][i],
+                 largest_over_ok_rows(table, [&](std::size_t r) { return table.point(r, p).acceleration_magnitude(); }),
+                 1e-12, "max acceleration " + std::to_string(p));
+  }
+}
+
+}  // namespace
+
+TEST_CASE("design study: a four-bar's figures per design equal separate with_parameters models' (one does not assemble)") {
+  const Model model = sample_model("four_bar.toml");
+  // crank-rocker (the file's), a longer coupler, a double-rocker, a double-crank, and a
+  // non-Grashof triple rocker that cannot be assembled over part of the turn.
+  Designs designs{{"a", "b", "c", "d"},
+                  {{0.040, 0.040, 0.100, 0.060, 0.050},
+                   {0.120, 0.130, 0.040, 0.090, 0.070},
+                   {0.080, 0.085, 0.080, 0.080, 0.045},
+                   {0.100, 0.100, 0.120, 0.030, 0.060}}};
+  const std::vector<double> inputs = turn_from(model.system.input.values.front());
+  kinema::StudyOptions options;
+  options.threads = 2;
+  const StudyResults study = kinema::run_design_study(model, designs, inputs, options);
+  const std::size_t rocker = kinema::four_bar_loop(model.system)->rocker.unknown;
+  for (std::size_t i = 0; i < designs.size(); ++i) {
+    std::vector<std::pair<std::string, double>> values;
+    for (std::size_t k = 0; k < designs.names.size(); ++k) values.emplace_back(designs.names[k], designs.values[k][i]);
+    check_design(model, designs, i, inputs, study, separate_time_ratio(kinema::with_parameters(model, values), rocker));
+  }
+  CHECK(kinema::grashof_name(study.grashof[0]) == std::string("crank-rocker"));
+  CHECK(kinema::grashof_name(study.grashof[4]) == std::string("non-Grashof triple rocker"));
+  CHECK(study.assembles[0] == 1);
+  CHECK(study.failed_values[4] > 0);  // the design the comparison is meant to include
+  // The crank-rocker's time ratio from the closed form: the rocker is at its limits where
+  // crank and coupler are in line, extended (a + b) and folded (b - a).
+  const double a = 0.040, b = 0.120, c = 0.080, d = 0.100;
+  const double extended = std::acos(((a + b) * (a + b) + d * d - c * c) / (2 * (a + b) * d));
+  const double folded = std::acos(((b - a) * (b - a) + d * d - c * c) / (2 * (b - a) * d)) + kinema::kPi;
+  const double stroke = folded - extended;
+  CHECK(study.time_ratio[0] ==
+        doctest::Approx(std::max(stroke, 2 * kinema::kPi - stroke) / std::min(stroke, 2 * kinema::kPi - stroke)).epsilon(1e-9));
+}
+
+TEST_CASE("design study: a slider-crank's figures equal separate models', its time ratio slider_strokes'") {
+  const Model model = sample_model("slider_crank.toml");
+  const Designs designs = kinema::design_grid({"a", "e"}, {{0.040, 0.050, 0.060}, {0.0, 0.010, 0.030}});
+  REQUIRE(designs.size() == 9);
+  const std::vector<double> inputs = turn_from(0);
+  const StudyResults study = kinema::run_design_study(model, designs, inputs);
+  for (std::size_t i = 0; i < designs.size(); ++i) {
+    const Model design = kinema::with_parameters(model, {{"a", designs.values[0][i]}, {"e", designs.values[1][i]}});
+    const std::vector<kinema::Strokes> strokes = kinema::slider_strokes(design);
+    check_design(model, designs, i, inputs, study, strokes.empty() ? kNaN : strokes.front().time_ratio);
+  }
+  CHECK(study.time_ratio[1 * 3 + 0] == doctest::Approx(1.0).epsilon(1e-9));  // no offset: both strokes half a turn
+  CHECK(study.time_ratio[1 * 3 + 2] > 1.02);
+}
+
+TEST_CASE("design study: formula parameters follow the varied ones, as with_parameters has them") {
+  const Model model = sample_model("problem_4_4_joints.toml");  // EF = "CE", Lc = "CD"
+  const Designs designs{{"CE", "CD"}, {{0.229, 0.231, 0.232}, {0.369, 0.370, 0.372}}};
+  const std::vector<double> inputs = turn_from(0);
+  const StudyResults study = kinema::run_design_study(model, designs, inputs);
+  for (std::size_t i = 0; i < designs.size(); ++i) {
+    const Model design = kinema::with_parameters(model, {{"CE", designs.values[0][i]}, {"CD", designs.values[1][i]}});
+    const std::vector<kinema::Strokes> strokes = kinema::slider_strokes(design);
+    check_design(model, designs, i, inputs, study, strokes.empty() ? kNaN : strokes.front().time_ratio);
+  }
+}
+
+TEST_CASE("design study: nothing derived or compiled per design, each value solved once, any thread count") {
+  const Model model = sample_model("four_bar.toml");
+  const std::vector<double> inputs = turn_from(0);
+  const auto work = [] {
+    return std::vector<std::uint64_t>{kinema::work_done_in_process(kinema::Work::tape_compile),
+                                      kinema::work_done_in_process(kinema::Work::differentiation),
+                                      kinema::work_done_in_process(kinema::Work::formula_read),
+                                      kinema::work_done_in_process(kinema::Work::dyad_derivation)};
+  };
+  const auto study_work = [&](std::size_t designs, unsigned threads, StudyResults& results) {
+    std::vector<double> b;
+    for (std::size_t i = 0; i < designs; ++i) b.push_back(0.110 + 0.02 * double(i) / double(designs));
+    kinema::StudyOptions options;
+    options.threads = threads;
+    const std::vector<std::uint64_t> before = work();
+    const std::uint64_t solved_before = kinema::values_solved_in_process();
+    results = kinema::run_design_study(model, Designs{{"b"}, {b}}, inputs, options);
+    CHECK(kinema::values_solved_in_process() - solved_before == designs * inputs.size());
+    std::vector<std::uint64_t> done = work();
+    for (std::size_t w = 0; w < done.size(); ++w) done[w] -= before[w];
+    return done;
+  };
+  StudyResults few, many, many_on_one;
+  const std::vector<std::uint64_t> for_two = study_work(2, 2, few);
+  const std::vector<std::uint64_t> for_forty = study_work(40, 2, many);
+  CHECK(for_forty == for_two);          // the same work, however many designs
+  // Nothing differentiated, read or derived at all; one small tape compiled for the study
+  // (the four-bar's side lengths from the parameters), not one a design.
+  CHECK(for_forty[0] <= 1);
+  CHECK(std::vector<std::uint64_t>(for_forty.begin() + 1, for_forty.end()) == std::vector<std::uint64_t>(3, 0));
+  study_work(40, 1, many_on_one);
+  for (std::size_t i = 0; i < 40; ++i) {  // threads share out designs, each solved alone: the same numbers
+    CHECK(many.max_rate[1][i] == many_on_one.max_rate[1][i]);
+    CHECK(many.time_ratio[i] == many_on_one.time_ratio[i]);
+  }
+}
+
+TEST_CASE("design study: only the figures asked for") {
+  const Model model = sample_model("four_bar.toml");
+  kinema::StudyOptions options;
+  options.figures = kinema::study_figure_bit(StudyFigure::grashof);
+  const std::uint64_t solved_before = kinema::values_solved_in_process();
+  const StudyResults study = kinema::run_design_study(model, Designs{{"a"}, {{0.04, 0.09}}}, turn_from(0), options);
+  CHECK(kinema::values_solved_in_process() == solved_before);  // a class needs no solving
+  CHECK(study.grashof.size() == 2);
+  CHECK(study.max_rate.empty());
+  CHECK(study.time_ratio.empty());
+  CHECK(kinema::grashof_name(study.grashof[0]) == std::string("crank-rocker"));
+  CHECK(kinema::grashof_name(study.grashof[1]) == std::string("non-Grashof triple rocker"));  // 90 + 120 > 100 + 80
+}
+
+TEST_CASE("design study: a grid is every combination, the first name slowest") {
+  const Designs grid = kinema::design_grid({"b", "c"}, {{1, 2}, {10, 20, 30}});
+  CHECK(grid.values[0] == std::vector<double>{1, 1, 1, 2, 2, 2});
+  CHECK(grid.values[1] == std::vector<double>{10, 20, 30, 10, 20, 30});
+}
+
+TEST_CASE("design study: refuses an unknown name (listing the file's), one kinema made, a name twice, lists apart, NaN") {
+  const Model model = sample_model("four_bar.toml");
+  const std::vector<double> inputs = turn_from(0);
+  const auto message = [&](const Designs& designs) {
+    try {
+      kinema::run_design_study(model, designs, inputs);
+    } catch (const kinema::InputError& error) {
+      return std::string(error.what());
+    }
+    return std::string("accepted");
+  };
+  CHECK(message({{"bb"}, {{0.1}}}).find("no parameter named \"bb\" (there are: a, b, c, d, p, delta)") != std::string::npos);
+  CHECK(message({{"b", "b"}, {{0.1}, {0.1}}}).find("\"b\" is given twice") != std::string::npos);
+  CHECK(message({{"b", "c"}, {{0.1, 0.2}, {0.1}}}).find("1 values of \"c\" but 2 of \"b\"") != std::string::npos);
+  CHECK(message({{"b"}, {{0.1, kNaN}}}).find("in design 1 is not a finite number") != std::string::npos);
+  // A joints file's parameters that kinema took from its sketch are not the file's to vary.
+  const Model joints = sample_model("triple_rocker_circuit.toml");
+  const auto joints_message = [&](const std::string& name) {
+    try {
+      kinema::run_design_study(joints, Designs{{name}, {{0.1}}}, inputs);
+    } catch (const kinema::InputError& error) {
+      return std::string(error.what());
+    }
+    return std::string("accepted");
+  };
+  CHECK(joints_message("x_D").find("no parameter named \"x_D\" that the file writes: kinema made it") != std::string::npos);
+}
