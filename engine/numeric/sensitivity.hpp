@@ -53,7 +53,7 @@ struct StateDerivatives {
 class SensitivityWorkspace {
  public:
   explicit SensitivityWorkspace(const ParameterSensitivity& sensitivity);
-  /// At row `row` of a table of the model; false (out unchanged) unless the row is ok.
+  /// At row `row` of a table of the model; false unless the row is ok (Phi_q regular there).
   bool at(const MotionTable& table, std::size_t row, StateDerivatives& out);
 
  private:
