@@ -12,6 +12,7 @@
 #include "engine/input_value.hpp"
 #include "engine/model.hpp"
 #include "engine/analysis/diagnostics.hpp"
+#include "engine/analysis/sensitivities.hpp"
 #include "readers/mechanism_file.hpp"
 
 namespace kinema {
@@ -92,6 +93,16 @@ MechanismModel MechanismModel::with_parameters(const std::vector<std::pair<std::
   for (const auto& [name, text] : values) si.emplace_back(name, parse_parameter_value(model.system, name, text));
   auto copy = std::make_shared<const Model>(kinema::with_parameters(model, si));
   return MechanismModel(std::make_shared<const Engine>(Engine{std::move(copy)}), names_);  // the same names
+}
+
+std::vector<double> MechanismModel::sensitivity(const std::string& column, const std::string& parameter,
+                                                const std::vector<double>& values) const {
+  const Model& model = *engine_->model;
+  const Sensitivities derivatives(model, sensitivity_columns(model.system, {column + ":" + parameter}));
+  const MotionTable table = analyse(model, values);
+  std::vector<double> result(table.size());
+  derivatives.rows(table, 0, table.size(), result.data(), true);  // one column: one value a row
+  return result;
 }
 
 MechanismModel EngineAccess::facade(std::shared_ptr<const Model> model) {

@@ -29,6 +29,7 @@
 #include "engine/base/number_format.hpp"
 #include "engine/analysis/output_scale.hpp"
 #include "engine/analysis/plot_range.hpp"
+#include "engine/analysis/sensitivities.hpp"
 #include "engine/constraints/solving_plan.hpp"
 #include "engine/base/user_text.hpp"
 #include "engine/symbolic/dyad_method.hpp"
@@ -70,12 +71,17 @@ const ResultsPrinter& results_printer(const std::string& format) {
 
 // kinema eval --circuit: the whole circuit solved, then printed a block of rows at a time.
 void write_circuit(const Model& model, const std::string& step_text, const std::vector<double>& inputs,
-                   const std::string& format, int precision, const std::string& output_path) {
-  const Circuit circuit = solve_circuit_from(model, step_text, inputs, kCommandLineCircuit);
+                   const std::string& format, int precision, const std::string& output_path,
+                   const Sensitivities* sensitivities) {
+  Circuit circuit = solve_circuit_from(model, step_text, inputs, kCommandLineCircuit);
   const ResultsPrinter* results = &results_printer(format);
   PrintJob job{model, &circuit.table};
   job.circuit = true;
   job.precision = precision;
+  if (sensitivities) {
+    sensitivities->fill(circuit.table);
+    job.sensitivities = &sensitivities->columns();
+  }
   const Analysis analysis = analyse_for_printer(*results, job);  // what the head shows, once
   job.analysis = &analysis;
   kinema_cli::Output output(output_path);
@@ -139,9 +145,9 @@ const char* const kFileHelp =
 // so solved once as one table, every value's failure reported, and printed only if
 // every value is assembled and regular.
 int write_list(const Model& model, const InputValues& inputs, const std::string& format, int precision,
-               const std::string& output_path) {
+               const std::string& output_path, const Sensitivities* sensitivities) {
   const ConstraintSystem& m = model.system;
-  const MotionTable table = analyse(model, inputs.to_vector());
+  MotionTable table = analyse(model, inputs.to_vector());
   int status = 0;
   for (const MotionState& state : table) {
     if (state.status == Status::ok) continue;
@@ -156,6 +162,10 @@ int write_list(const Model& model, const InputValues& inputs, const std::string&
   if (status != 0) return status;
   PrintJob job{model, &table};
   job.precision = precision;
+  if (sensitivities) {
+    sensitivities->fill(table);
+    job.sensitivities = &sensitivities->columns();
+  }
   std::ostringstream out;  // a value past the output unit's range throws here, before anything is written
   print_view(results_printer(format), out, job);
   write_output(out.str(), output_path);
@@ -172,6 +182,7 @@ struct CommandLine {
   CLI::App* page = nullptr;
   std::string file, output_path, format = "table", sweep, derive_format = "text", method = "loops";
   std::vector<std::string> angles, vary;
+  std::vector<std::string> sensitivities;  // eval --sensitivity: "b" or "omega3:b"
   int precision = 0;
   unsigned threads = 0;  // one per core: formatting on more threads changes no byte
   std::string circuit_step, namespace_name, chain_input, basis;
@@ -227,6 +238,13 @@ void add_subcommands(CLI::App& app, CommandLine& line) {
                    "and accelerations), as csv, json or npy")
       ->option_text("NAME=RANGE")
       ->excludes(eval->get_option("--circuit"));
+  eval->add_option("--sensitivity", line.sensitivities,
+                   "the derivative of output columns in a parameter, derived exactly: PARAMETER for every column "
+                   "that has one (unknowns, rates, second rates, points, frames), or COLUMN:PARAMETER for one, e.g. "
+                   "--sensitivity b or --sensitivity omega3:b; adds the columns d_COLUMN_d_PARAMETER in the column's "
+                   "unit per the parameter's (rad/s/mm); repeat for more")
+      ->option_text("[COLUMN:]PARAMETER")
+      ->allow_extra_args(false);
   eval->add_flag("-q,--quiet", line.quiet, "no progress line and no warnings on stderr (errors still)");
 
   line.latex = app.add_subcommand("latex", "write a worked solution in LaTeX (drawing, equations, plots)");
@@ -415,8 +433,10 @@ InputValues eval_inputs(const ConstraintSystem& m, const CommandLine& line, std:
 
 // kinema eval over a --sweep (or the file's sweep): solved, formatted and written a block
 // at a time, with a progress line; a file appears only when complete.
-int write_sweep(const Model& model, const CommandLine& line, const InputValues& run_inputs) {
+int write_sweep(const Model& model, const CommandLine& line, const InputValues& run_inputs,
+                const Sensitivities* sensitivities) {
   StreamSettings settings;
+  settings.sensitivities = sensitivities;
   settings.threads = line.threads > 0 ? line.threads : std::max(1u, std::thread::hardware_concurrency());
   kinema_cli::Output output(line.output_path);
   // Not when the results themselves scroll by on the same terminal.
@@ -466,16 +486,24 @@ int write_study(const Model& model, const CommandLine& line, const InputValues& 
 // kinema eval: along a circuit, over a list of values, or over a sweep; a design study with --vary.
 int run_eval(const Model& model, const CommandLine& line, std::vector<double> inputs) {
   const ConstraintSystem& m = model.system;
-  if (!line.vary.empty()) return write_study(model, line, eval_inputs(m, line, std::move(inputs)));
+  if (!line.vary.empty()) {
+    if (!line.sensitivities.empty())
+      throw InputError("--sensitivity adds columns to the rows of one design; --vary writes a row a design: give one of them");
+    return write_study(model, line, eval_inputs(m, line, std::move(inputs)));
+  }
+  // --sensitivity: each parameter's derivatives derived and compiled here, once.
+  std::optional<Sensitivities> sensitivities;
+  if (!line.sensitivities.empty()) sensitivities.emplace(model, sensitivity_columns(m, line.sensitivities));
+  const Sensitivities* derived = sensitivities ? &*sensitivities : nullptr;
   if (!line.circuit_step.empty()) {
-    write_circuit(model, line.circuit_step, inputs, line.format, line.precision, line.output_path);
+    write_circuit(model, line.circuit_step, inputs, line.format, line.precision, line.output_path, derived);
     return 0;
   }
   // A --sweep alone is computed value by value (a run of 10^9 holds none of them).
   const bool is_sweep = !line.sweep.empty() || (inputs.empty() && m.input.values.size() > 1);
   const InputValues run_inputs = eval_inputs(m, line, std::move(inputs));
-  if (!is_sweep) return write_list(model, run_inputs, line.format, line.precision, line.output_path);
-  return write_sweep(model, line, run_inputs);
+  if (!is_sweep) return write_list(model, run_inputs, line.format, line.precision, line.output_path, derived);
+  return write_sweep(model, line, run_inputs, derived);
 }
 
 }  // namespace

@@ -27,6 +27,7 @@
 #include "engine/run/view.hpp"
 #include "engine/analysis/design_study.hpp"
 #include "engine/analysis/output_scale.hpp"
+#include "engine/analysis/sensitivities.hpp"
 #include "engine/analysis/plot_range.hpp"
 #include "engine/symbolic/dyad_method.hpp"
 #include "readers/mechanism_file.hpp"
@@ -176,11 +177,8 @@ std::string derivation(const PyModel& m, const std::string& method, const std::s
   return out.str();
 }
 
-/// The values from `first` to `last` by `step` as the program's `kinema eval --sweep ...
-/// --format npy` array: its header read by NumPy to make the array, then the printer's
-/// rows written straight into the array's memory as each block is solved and formatted
-/// (on every core, without the GIL): no copy of the table.
-py::object numpy_sweep(const PyModel& m, const Value& first, const Value& last, const Value& step) {
+/// The input values from `first` to `last` by `step` ("0 deg" or numbers in SI), checked.
+kinema::InputValues sweep_inputs(const PyModel& m, const Value& first, const Value& last, const Value& step) {
   const kinema::ConstraintSystem& system = m.engine->system;
   const auto written = [&](const Value& value) {
     if (const double* number = std::get_if<double>(&value)) return kinema::WrittenValue{*number, 1.0};
@@ -188,6 +186,33 @@ py::object numpy_sweep(const PyModel& m, const Value& first, const Value& last, 
   };
   const kinema::InputValues inputs = kinema::input_sweep(system, written(first), written(last), written(step));
   kinema::check_input_range(system, inputs);
+  return inputs;
+}
+
+/// m.sensitivity("omega3", "b", "0 deg", "360 deg", "10 deg"): the exact derivative of a
+/// column in a parameter over that sweep, SI (rad/s per m), NaN where a value is not ok;
+/// the parameter's derivatives derived and compiled on the call, solved without the GIL.
+py::array_t<double> sensitivity(const PyModel& m, const std::string& column, const std::string& parameter,
+                                const Value& first, const Value& last, const Value& step) {
+  const kinema::InputValues inputs = sweep_inputs(m, first, last, step);
+  py::array_t<double> values(static_cast<py::ssize_t>(inputs.size()));
+  double* out = values.mutable_data();
+  {
+    py::gil_scoped_release unlocked;
+    const kinema::Sensitivities derivatives(*m.engine,
+                                            kinema::sensitivity_columns(m.engine->system, {column + ":" + parameter}));
+    const kinema::MotionTable table = kinema::analyse(*m.engine, inputs.to_vector());
+    derivatives.rows(table, 0, table.size(), out, true);  // one column asked: one value a row
+  }
+  return values;
+}
+
+/// The values from `first` to `last` by `step` as the program's `kinema eval --sweep ...
+/// --format npy` array: its header read by NumPy to make the array, then the printer's
+/// rows written straight into the array's memory as each block is solved and formatted
+/// (on every core, without the GIL): no copy of the table.
+py::object numpy_sweep(const PyModel& m, const Value& first, const Value& last, const Value& step) {
+  const kinema::InputValues inputs = sweep_inputs(m, first, last, step);
   const kinema::ResultsPrinter& npy = *kinema::find_results_printer("npy");
   std::string header;
   npy.head(header, kinema::PrintJob{*m.engine}, inputs.size());
@@ -453,6 +478,12 @@ PYBIND11_MODULE(kinema, module) {
           "The whole circuit of a joints-and-links mechanism through its toggles by step (\"1 deg\"), from start (or "
           "the file's value): the structured array of `kinema eval --circuit STEP --format npy` (a direction and each "
           "dyad's sign a row).")
+      .def("sensitivity", &sensitivity, py::arg("column"), py::arg("parameter"), py::arg("first"), py::arg("last"),
+           py::arg("step"),
+           "The exact derivative of an output column (an unknown, rate, second rate, or a point's or frame's "
+           "field of sweep()) in a parameter, from first to last by step as sweep() takes them: a NumPy array "
+           "in SI (d omega3 / d b in rad/s per m), NaN where a value is not ok. Derived symbolically, not by "
+           "differences: m.sensitivity(\"omega3\", \"b\", \"0 deg\", \"360 deg\", \"10 deg\").")
       .def("with_parameters", &with_parameters,
            "The same mechanism with other parameter values, as the file edited to them: "
            "m.with_parameters(b=\"0.31 m\", delta=\"25 deg\", c=0.09) (numbers in SI). Nothing is derived or "

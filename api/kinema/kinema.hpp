@@ -145,6 +145,15 @@ class MechanismModel {
   /// a value of another kind than the parameter's (a length given in degrees).
   MechanismModel with_parameters(const std::vector<std::pair<std::string, std::string>>& values) const;
 
+  /// The exact derivative of an output column ("omega3", "theta3", "P_vx", "P_speed": the
+  /// names of `kinema eval`'s columns) in a parameter ("b") at each input value (SI), each
+  /// continued from the one before as solve(values) does: SI (rad/s per m of b), NaN where a
+  /// value is not ok. Derived symbolically and solved with the model's Jacobian (the
+  /// parameter's derivatives compiled on each call). Error naming an unknown column or
+  /// parameter, with the names there are.
+  std::vector<double> sensitivity(const std::string& column, const std::string& parameter,
+                                  const std::vector<double>& values) const;
+
   struct Engine;  ///< The engine's model (api/kinema.cpp).
 
  private:

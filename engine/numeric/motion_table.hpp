@@ -99,6 +99,18 @@ class MotionTable {
   /// Heap bytes held by the table (for the benchmark's memory figure).
   std::size_t bytes() const;
 
+  /// Columns worked out from the solved rows after the solve, for a printer to show
+  /// (kinema eval --sensitivity: engine/analysis/sensitivities fills them): `columns` of
+  /// them, each over every row (their values until set: NaN).
+  void set_derived_count(std::size_t columns) {
+    if (derived_count_ == columns && derived_.size() == columns * size()) return;  // kept
+    derived_count_ = columns;
+    derived_.assign(columns * size(), NAN);
+  }
+  std::size_t derived_count() const { return derived_count_; }
+  const double* derived_column(std::size_t k) const { return derived_.data() + k * size(); }
+  double* derived_column(std::size_t k) { return derived_.data() + k * size(); }
+
   double input(std::size_t row) const { return input_[row]; }
   Status status(std::size_t row) const { return status_[row]; }
   const Failure& failure(std::size_t row) const { return failure_[row]; }
@@ -168,6 +180,8 @@ class MotionTable {
   std::vector<Status> status_;
   std::vector<Failure> failure_;
   std::vector<double> points_;
+  std::size_t derived_count_ = 0;
+  std::vector<double> derived_;  ///< Column-major, as points_.
   std::vector<std::size_t> point_offset_;  ///< First column of each point in points_.
   std::size_t frame_offset_ = 0;            ///< First column of the frames in points_.
   std::vector<signed char> direction_;      ///< Along a circuit only.

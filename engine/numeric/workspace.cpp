@@ -40,6 +40,7 @@ void Workspace::evaluate_position(double input, const Eigen::VectorXd& q) {
   for (std::size_t i = 0; i < n_; ++i) registers_[layout_.q(i)] = q[i];
   k_.evaluator().evaluate_stage_from(TapeLayout::kPositionStage, level, registers_, position_out_.data());
   evaluated_ = true;
+  jacobian_ready_ = false;
   evaluated_input_ = input;
 }
 
@@ -81,6 +82,7 @@ void Workspace::factorise() {
     for (std::size_t j = 0; j < n_; ++j) lu_[i * n_ + j] = phi_q(i, j) * column_scale[j];
   solver::lu_factor(lu_.data(), pivots_.data(), n_);
   for (std::size_t c = 0; c < n_; ++c) inverse_pivots_[c] = 1.0 / lu_[c * n_ + c];
+  jacobian_ready_ = false;
 }
 
 double Workspace::reciprocal_condition() const {
@@ -167,6 +169,18 @@ bool Workspace::sensitivity(double input, const Eigen::VectorXd& q, Eigen::Vecto
   return dq.allFinite();
 }
 
+bool Workspace::solve_jacobian(double input, const Eigen::VectorXd& q, const double* rhs, double* x) {
+  if (!evaluated_at(input, q)) evaluate_position(input, q);
+  if (!jacobian_ready_) {
+    factorise();
+    jacobian_regular_ = reciprocal_condition() >= solver::kSingularThreshold;
+    jacobian_ready_ = true;
+  }
+  if (!jacobian_regular_) return false;
+  std::copy(rhs, rhs + n_, rhs_.begin());
+  solve_rhs(x);
+  return true;
+}
 
 bool Workspace::predict_and_correct(double to, const Eigen::VectorXd& predicted, Eigen::VectorXd& q) {
   trial_q_ = predicted;

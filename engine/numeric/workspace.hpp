@@ -44,6 +44,11 @@ class Workspace {
   /// dq/dtheta at a solved position (false when Phi_q is singular).
   bool sensitivity(double input, const Eigen::VectorXd& q, Eigen::VectorXd& dq);
 
+  /// Solves Phi_q x = rhs (n values each) at a position (input, q) with the solver's LU
+  /// of Phi_q, factorised once for any number of right-hand sides there (the
+  /// sensitivities in a parameter solve three); false where Phi_q is singular.
+  bool solve_jacobian(double input, const Eigen::VectorXd& q, const double* rhs, double* x);
+
   /// Continues the solution from (from, q) to `to` in small steps so that the
   /// branch is kept; false when that is impossible (limit or branch point), or, with
   /// *too_far set, when `to` is more than solver::kMaxContinuationSteps steps away or
@@ -77,6 +82,9 @@ class Workspace {
   std::vector<double> least_squares_matrix_, least_squares_scratch_;  ///< Near-singular Newton steps.
   Eigen::VectorXd step_, trial_, predicted_, slope_, trial_q_;
   bool evaluated_ = false;  ///< The position stage's registers hold (evaluated_input_, q).
+  /// solve_jacobian's LU is that of the evaluated position (reset by evaluate_position and
+  /// factorise), and whether Phi_q is regular there.
+  bool jacobian_ready_ = false, jacobian_regular_ = false;
   double evaluated_input_ = 0;
 
   double phi(std::size_t i) const { return position_out_[layout_.phi(i)]; }

@@ -1,6 +1,9 @@
 #include "engine/printers/printer.hpp"
 
+#include <algorithm>
 #include <stdexcept>
+
+#include "engine/analysis/output_scale.hpp"
 
 namespace kinema {
 
@@ -24,6 +27,36 @@ const std::vector<const Printer*>& all_printers() {
 }
 
 }  // namespace
+
+std::vector<ResultColumn> printed_columns(const PrintJob& job) {
+  const ConstraintSystem& system = job.model.system;
+  std::vector<ResultColumn> columns = result_columns(system, OutputScale(system), job.circuit);
+  if (job.sensitivities)
+    for (const SensitivityColumn& column : *job.sensitivities) columns.push_back(column.named);
+  return columns;
+}
+
+std::size_t printed_column_count(const PrintJob& job) {
+  return result_column_count(job.model.system, job.circuit) +
+         (job.sensitivities ? job.sensitivities->size() : 0);
+}
+
+void printed_rows(const PrintJob& job, const MotionTable& table, std::size_t first, std::size_t last, double* values) {
+  const ConstraintSystem& system = job.model.system;
+  if (!job.sensitivities) {
+    result_rows(system, OutputScale(system), table, first, last, values);
+    return;
+  }
+  const std::size_t results = result_column_count(system, table.is_circuit()),
+                    derived = job.sensitivities->size(), rows = last - first;
+  if (table.derived_count() != derived) throw std::logic_error("printed_rows: the sensitivities were not filled in");
+  std::vector<double> own(rows * results);
+  result_rows(system, OutputScale(system), table, first, last, own.data());
+  for (std::size_t r = 0; r < rows; ++r) {
+    values = std::copy_n(own.data() + r * results, results, values);
+    for (std::size_t k = 0; k < derived; ++k) *values++ = table.derived_column(k)[first + r];
+  }
+}
 
 const Printer* find_printer(PrintKind kind, std::string_view name) {
   for (const Printer* printer : all_printers())

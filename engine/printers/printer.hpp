@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "engine/analysis/analysis.hpp"
+#include "engine/analysis/sensitivities.hpp"
 #include "engine/model.hpp"
 #include "engine/symbolic/dyad_derivation_types.hpp"
 
@@ -30,6 +31,9 @@ struct PrintJob {
   bool fragment = false;                ///< Documents: no preamble, for \input into notes.
   int precision = 0;                    ///< Results: significant digits in text formats (0: the format's default).
   bool circuit = false;                 ///< Results: rows along a circuit (a direction and dyad signs each).
+  /// Results: derivative columns printed after the result columns (kinema eval
+  /// --sensitivity), their values in the tables' derived columns (Sensitivities::fill).
+  const std::vector<SensitivityColumn>* sensitivities = nullptr;
   /// Derivations and documents: the loops' equations, or the seeds' methods dyad by dyad
   /// (joints and links; engine/symbolic/dyad_method).
   DerivationMethod method = DerivationMethod::loops;
@@ -82,6 +86,13 @@ class ResultsPrinter : public Printer {
   /// What comes after the last row of a run of `rows` values.
   virtual void tail(std::string& out, const PrintJob& job, std::size_t rows) const = 0;
 };
+
+/// The columns a results printer prints: result_columns, then the job's sensitivity columns.
+std::vector<ResultColumn> printed_columns(const PrintJob& job);
+std::size_t printed_column_count(const PrintJob& job);
+/// Rows [first, last) of table in the order of printed_columns, one row after the other:
+/// result_rows' values, then the table's derived columns (the sensitivities, filled before).
+void printed_rows(const PrintJob& job, const MotionTable& table, std::size_t first, std::size_t last, double* values);
 
 /// The printer of that kind and name, or nullptr.
 const Printer* find_printer(PrintKind kind, std::string_view name);

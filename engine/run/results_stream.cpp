@@ -79,6 +79,7 @@ class OrderedRun {
           solver_.solve_next(block, block_rows_);
           account_(block);
         }
+        if (settings_.sensitivities) settings_.sensitivities->fill(block.table, block.first, block.last);
         text.clear();
         printer_.rows(text, job_, block.table, block.first, block.last, block.run_row);
         if (!spin_until([&] { return write_turn_ == turn || failed_; }, spin_)) {
@@ -141,6 +142,7 @@ RunSummary stream_results(const Model& model, const InputValues& inputs, const A
   SweepSolver solver(model.kinematics, inputs, sweep);
   PrintJob job{model};
   job.precision = settings.precision;
+  if (settings.sensitivities) job.sensitivities = &settings.sensitivities->columns();
   const std::size_t total = inputs.size(), block_rows = settings.block_rows > 0 ? settings.block_rows
                                                                                  : automatic_block_rows(total);
   RunSummary summary;

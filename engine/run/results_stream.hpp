@@ -10,6 +10,7 @@
 #include <string_view>
 
 #include "engine/model.hpp"
+#include "engine/analysis/sensitivities.hpp"
 #include "engine/base/input_values.hpp"
 #include "engine/printers/printer.hpp"
 
@@ -20,6 +21,9 @@ struct StreamSettings {
   /// printer takes them: one that overflows the output unit throws InputError).
   const ResultsPrinter* printer = nullptr;
   int precision = 0;                        ///< As PrintJob::precision.
+  /// Derivative columns worked out for each block after its solve (on the thread that
+  /// formats it) and printed after the result columns (kinema eval --sensitivity).
+  const Sensitivities* sensitivities = nullptr;
   /// Threads (this one and count - 1 more), each taking the next block from the solver,
   /// formatting it and writing it after the blocks before it. The solve itself stays
   /// serial, one block at a time, so the numbers are the serial run's whatever the count

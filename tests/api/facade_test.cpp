@@ -7,6 +7,7 @@
 
 #include <kinema/kinema.hpp>
 
+#include <cmath>
 #include <cstdlib>
 #include <sstream>
 #include <string>
@@ -200,4 +201,22 @@ TEST_CASE("facade: <kinema/kinema.hpp> preprocesses to at most 60,000 lines and 
   }
   CHECK(contains(text, "kinema/kinema.hpp"));  // the markers do name headers
   CHECK(not_the_facades == "");
+}
+
+TEST_CASE("facade: sensitivity equals central differences of with_parameters, in SI") {
+  const kinema::MechanismModel four_bar(sample("four_bar.toml"));
+  const std::vector<double> values{kinema::degrees(40), kinema::degrees(100), kinema::degrees(250)};  // none where it is 0
+  const std::vector<double> exact = four_bar.sensitivity("omega3", "b", values);
+  REQUIRE(exact.size() == values.size());
+  // b = 120 mm moved by 1e-5 of itself: differences exact to ~1e-9 of the derivative.
+  const double h = 1.2e-6;
+  const std::vector<kinema::Solution> above = four_bar.with_parameters({{"b", "0.1200012 m"}}).solve(values),
+                                      below = four_bar.with_parameters({{"b", "0.1199988 m"}}).solve(values);
+  for (std::size_t r = 0; r < values.size(); ++r) {
+    const double difference = (above[r].rate("omega3") - below[r].rate("omega3")) / (2 * h);
+    INFO("row " << r << ": exact " << exact[r] << " (rad/s per m), differences " << difference);
+    CHECK(std::fabs(exact[r] - difference) <= 1e-6 * std::fabs(exact[r]));
+  }
+  CHECK_THROWS_WITH_AS(four_bar.sensitivity("omega3", "bb", values), doctest::Contains("(there are: a, b, c, d, p, delta)"),
+                       kinema::Error);
 }

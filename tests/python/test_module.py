@@ -227,3 +227,39 @@ def test_with_parameters_errors_name_the_parameter():
         model.with_parameters(bb="1 m")
     with pytest.raises(kinema.UnitError, match='parameter "b" is a length'):
         model.with_parameters(b="30 deg")
+
+
+@pytest.mark.parametrize(
+    "sample, column, parameter, unit",
+    [
+        ("four_bar.toml", "omega3", "b", 1.0),  # rad/s in the sweep as in SI
+        ("four_bar.toml", "P_ay", "delta", 1e-3),  # mm/s^2 in the sweep: m/s^2 is 1e-3 of the number
+        ("problem_4_4_joints.toml", "vF", "CE", 1.0),  # EF = "CE" follows CE
+        ("robot_arm_seed000.toml", "B_vz", "alpha", 1.0),
+    ],
+    ids=["four_bar_omega3_b", "four_bar_P_ay_delta", "problem_4_4_joints_vF_CE", "robot_arm_B_vz_alpha"],
+)
+def test_sensitivity_equals_finite_differences_of_with_parameters(sample, column, parameter, unit):
+    model = kinema.load(str(SAMPLES / sample))
+    first, last, step = (0.0, 1.0, 0.25) if model.units[model.input] == "s" else (0.0, 330 * math.pi / 180, math.pi / 6)
+    exact = model.sensitivity(column, parameter, first, last, step)
+    value = next(p["value"] for p in model.parameters if p["name"] == parameter)
+    h = 1e-5 * max(abs(value), 0.1)  # central differences: truncation ~1e-10, the solves' rounding ~1e-9
+    above = model.with_parameters(**{parameter: value + h}).sweep(first, last, step)
+    below = model.with_parameters(**{parameter: value - h}).sweep(first, last, step)
+    assert (above["status"] == 0).all() and (below["status"] == 0).all()
+    differences = (above[column] - below[column]) * unit / (2 * h)
+    assert exact.shape == differences.shape and len(exact) > 3
+    assert np.abs(exact - differences).max() <= 1e-6 * np.abs(exact).max()
+    # The same with the sweep written with units.
+    unit_name = model.units[model.input]
+    written = (f"{first} s", f"{last} s", f"{step} s") if unit_name == "s" else ("0 deg", "330 deg", "30 deg")
+    assert np.allclose(model.sensitivity(column, parameter, *written), exact, rtol=1e-12, atol=0)
+
+
+def test_sensitivity_errors_name_the_parameter_and_the_column():
+    model = kinema.load(str(SAMPLES / "four_bar.toml"))
+    with pytest.raises(kinema.InputError, match=r'no parameter named "bb" \(there are: a, b, c, d, p, delta\)'):
+        model.sensitivity("omega3", "bb", "0 deg", "10 deg", "5 deg")
+    with pytest.raises(kinema.InputError, match=r'no output column named "omega9" that has a derivative \(there are: theta3'):
+        model.sensitivity("omega9", "b", "0 deg", "10 deg", "5 deg")

@@ -17,8 +17,7 @@ class CsvPrinter : public ResultsPrinter {
   const char* name() const override { return "csv"; }
 
   void head(std::string& out, const PrintJob& job, std::size_t) const override {
-    const ConstraintSystem& system = job.model.system;
-    const std::vector<ResultColumn> columns = result_columns(system, OutputScale(system), job.circuit);
+    const std::vector<ResultColumn> columns = printed_columns(job);
     for (std::size_t k = 0; k < columns.size(); ++k) {
       out += (k == 0 ? "" : ",") + columns[k].name + " [" + columns[k].unit + "]";
       if (k + 1 == kInputColumns) out += ",status";
@@ -30,16 +29,15 @@ class CsvPrinter : public ResultsPrinter {
 
   void rows(std::string& out, const PrintJob& job, const MotionTable& table, std::size_t first, std::size_t last,
             std::size_t) const override {
-    const ConstraintSystem& system = job.model.system;
     const int digits = job.precision > 0 ? job.precision : 12;
-    const std::size_t columns = result_column_count(system, job.circuit), rows = last - first,
+    const std::size_t columns = printed_column_count(job), rows = last - first,
                       block_values = columns * rows;
     // The values and at most kMaxNumberChars + 1 characters a value, the status and the
     // note a row, in buffers of the thread's that only grow (a new or resized buffer would
     // be cleared first, every block).
     thread_local std::vector<double> values;
     values.resize(std::max(values.size(), block_values));
-    result_rows(system, OutputScale(system), table, first, last, values.data());
+    printed_rows(job, table, first, last, values.data());
     thread_local std::vector<char> text;
     text.resize(std::max(text.size(), rows * ((kMaxNumberChars + 1) * columns + 64)));
     char* p = text.data();

@@ -43,6 +43,19 @@ class JsonRowWriter {
     }
     if (job.circuit)
       for (const std::string& joint : dyad_inner_joints(system_)) branch_keys_.push_back(quoted(joint) + ": ");
+    if (job.sensitivities)
+      for (const SensitivityColumn& c : *job.sensitivities) sensitivity_keys_.push_back(quoted(c.named.name) + ": ");
+  }
+
+  /// The row's "sensitivities" member: each column asked for (null where undefined).
+  void sensitivities(const double* values) {
+    out_ += ", \"sensitivities\": {";
+    for (std::size_t k = 0; k < sensitivity_keys_.size(); ++k) {
+      if (k > 0) out_ += ", ";
+      out_ += sensitivity_keys_[k];
+      number(values[k]);
+    }
+    out_ += '}';
   }
 
   /// A row's members after its "input" key: `values` are its result columns.
@@ -68,7 +81,8 @@ class JsonRowWriter {
   std::string& out_;
   const PrintJob& job_;
   const ConstraintSystem& system_;
-  std::vector<std::string> coordinate_keys_, point_keys_, frame_keys_, guide_keys_, turning_keys_, branch_keys_;
+  std::vector<std::string> coordinate_keys_, point_keys_, frame_keys_, guide_keys_, turning_keys_, branch_keys_,
+      sensitivity_keys_;
   std::vector<std::pair<std::size_t, std::string>> blocks_;
   char buffer_[kMaxNumberChars];
 
@@ -270,6 +284,11 @@ class JsonPrinter : public ResultsPrinter {
       for (const FrameObservable& f : system.frames) frames.push_back(f.name);
       doc["frames"] = frames;
     }
+    if (job.sensitivities) {  // --sensitivity: each row's "sensitivities" by these names
+      json list = json::array();
+      for (const SensitivityColumn& c : *job.sensitivities) list.push_back({{"name", c.named.name}, {"unit", c.named.unit}});
+      doc["sensitivities"] = list;
+    }
     std::string text = doc.dump(2);  // ends with "\n}": the results go before it
     text.resize(text.size() - 2);
     out += text + ",\n  \"results\": [";
@@ -279,14 +298,17 @@ class JsonPrinter : public ResultsPrinter {
             std::size_t run_row) const override {
     const ConstraintSystem& system = job.model.system;
     const OutputScale scale(system);
-    // The block's values at once (worked out column by column), then row by row.
-    const std::size_t columns = result_column_count(system, job.circuit);
-    std::vector<double> block((last - first) * columns);
-    result_rows(system, scale, table, first, last, block.data());
+    // The block's values at once (worked out column by column), then row by row: the
+    // result columns, then the sensitivities asked for.
+    const std::size_t columns = result_column_count(system, job.circuit), width = printed_column_count(job);
+    std::vector<double> block((last - first) * width);
+    printed_rows(job, table, first, last, block.data());
     JsonRowWriter writer(out, job);
     for (std::size_t row = first; row < last; ++row) {
       out += run_row + (row - first) == 0 ? "\n    {\"input\": " : ",\n    {\"input\": ";
-      writer.row(table, row, block.data() + (row - first) * columns, columns, scale);
+      const double* values = block.data() + (row - first) * width;
+      writer.row(table, row, values, columns, scale);
+      if (job.sensitivities) writer.sensitivities(values + columns);
       out += '}';
     }
   }

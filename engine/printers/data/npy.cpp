@@ -45,20 +45,17 @@ class NpyPrinter : public ResultsPrinter {
   const char* name() const override { return "npy"; }
 
   void head(std::string& out, const PrintJob& job, std::size_t rows) const override {
-    const ConstraintSystem& system = job.model.system;
     std::vector<std::string> names;  // the CSV's column names without their units
-    for (const ResultColumn& column : result_columns(system, OutputScale(system), job.circuit)) names.push_back(column.name);
+    for (const ResultColumn& column : printed_columns(job)) names.push_back(column.name);
     out += npy_header(names, rows);
   }
 
   void rows(std::string& out, const PrintJob& job, const MotionTable& table, std::size_t first, std::size_t last,
             std::size_t) const override {
-    const ConstraintSystem& system = job.model.system;
-    const OutputScale scale(system);
     // The block's values at once (worked out column by column), then a record a row.
-    const std::size_t columns = result_column_count(system, job.circuit);
+    const std::size_t columns = printed_column_count(job);
     std::vector<double> values((last - first) * columns);
-    result_rows(system, scale, table, first, last, values.data());
+    printed_rows(job, table, first, last, values.data());
     const std::size_t bytes = columns * sizeof(double);
     std::vector<char> record(bytes + 2);
     out.reserve(out.size() + (last - first) * record.size());  // one allocation a block

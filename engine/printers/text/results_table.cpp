@@ -50,8 +50,9 @@ class ResultsTablePrinter : public ResultsPrinter {
     const auto number = [&](double value) { return format_significant(value, digits); };
     // The rows as the data formats print them, for their check: a value past the largest
     // number in the output unit is refused, not printed as inf.
-    std::vector<double> checked(result_column_count(system, table.is_circuit()) * (last - first));
-    result_rows(system, scale, table, first, last, checked.data());
+    const std::size_t width = printed_column_count(job), results = result_column_count(system, table.is_circuit());
+    std::vector<double> checked(width * (last - first));
+    printed_rows(job, table, first, last, checked.data());
     std::ostringstream out;
     for (std::size_t row = first; row < last; ++row) {
       const MotionState s = table[row];
@@ -94,6 +95,12 @@ class ResultsTablePrinter : public ResultsPrinter {
       if (!system.points.empty()) print_points(out, system, scale, s, digits);
       if (!system.frames.empty()) print_frames(out, system, s, digits);
       if (system.plan) print_sliders(out, system, scale, table, row, digits);
+      if (job.sensitivities) {
+        out << "  " << pad("sensitivity", 24) << "value (the column's unit per the parameter's)\n";
+        const double* derivative = checked.data() + (row - first) * width + results;
+        for (const SensitivityColumn& c : *job.sensitivities)
+          out << "  " << pad(c.named.name, 24) << number(*derivative++) << " " << c.named.unit << "\n";
+      }
     }
     text += out.str();
   }

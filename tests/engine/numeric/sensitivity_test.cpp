@@ -1,0 +1,194 @@
+// Exact sensitivities (engine/numeric/sensitivity, engine/analysis/sensitivities): every
+// derivative column of every parameter a sample writes equals central finite
+// differences of the solved output values in that parameter (the model re-solved with
+// with_parameters at p + h and p - h) over a sweep, vector loops, joints and links
+// (closed form, formula parameters) and spatial chains alike; and what is refused.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "engine/analysis/output_scale.hpp"
+#include "engine/analysis/sensitivities.hpp"
+#include "engine/base/errors.hpp"
+#include "engine/base/units.hpp"
+#include "engine/model.hpp"
+#include "readers/mechanism_file.hpp"
+#include "tests/test_support.hpp"
+
+using kinema::Model;
+using kinema::MotionTable;
+
+namespace {
+
+Model sample_model(const std::string& name) {
+  return kinema::make_model(kinema::read_mechanism_file(kinema_test::sample(name)), kinema::DerivationScope::evaluation);
+}
+
+std::vector<double> inputs_between(double first, double last, std::size_t count) {
+  std::vector<double> inputs;
+  for (std::size_t i = 0; i < count; ++i) inputs.push_back(first + (last - first) * double(i) / double(count - 1));
+  return inputs;
+}
+
+// All rows of a table of the model in output units (result_rows), row after row.
+std::vector<double> output_rows(const Model& model, const MotionTable& table) {
+  std::vector<double> values(kinema::result_column_count(model.system) * table.size());
+  kinema::result_rows(model.system, kinema::OutputScale(model.system), table, 0, table.size(), values.data());
+  return values;
+}
+
+// SI units of a parameter per its output unit (the file's length unit, deg, or 1).
+double parameter_output_unit(const kinema::SystemParameter& p, const kinema::OutputScale& scale) {
+  return p.dimension == kinema::Dimension::length ? scale.length
+         : p.dimension == kinema::Dimension::angle ? kinema::kRadiansPerDegree
+                                                    : 1.0;
+}
+
+// Step of the central differences: 1e-5 of the parameter's size (lengths: at least of the
+// length scale; angles and plain numbers: 1e-5). The differences' truncation error is then
+// ~1e-10 of a derivative and the solves' rounding (1e-14 of the length scale) ~1e-9.
+double difference_step(const kinema::SystemParameter& p, double length_scale) {
+  return 1e-5 * (p.dimension == kinema::Dimension::length ? std::max(std::fabs(p.value), length_scale) : 1.0);
+}
+
+// Every sensitivity column of every written parameter of the sample equals the central
+// difference of its column to 1e-6 of the column's scale: the larger of its largest
+// derivative over the sweep and the size a derivative of it has (its largest value per the
+// parameter's size). So a derivative near zero is compared with its column's size, and one
+// that is zero everywhere with the size of the differences' rounding (~1e-8 of that).
+void check_against_finite_differences(const std::string& sample, const std::vector<double>& inputs) {
+  INFO(sample);
+  const Model model = sample_model(sample);
+  const kinema::ConstraintSystem& system = model.system;
+  const kinema::OutputScale scale(system);
+  const std::size_t width = kinema::result_column_count(system), rows = inputs.size();
+  const std::vector<kinema::ResultColumn> columns = kinema::result_columns(system, scale);
+  const MotionTable table = kinema::analyse(model, inputs);
+  std::size_t compared = 0;
+  for (const kinema::SystemParameter& p : system.parameters) {
+    if (!p.written) continue;
+    const std::string name = p.symbol.get_name();
+    INFO("parameter " << name);
+    const kinema::Sensitivities sensitivities(model, kinema::sensitivity_columns(system, {name}));
+    const std::size_t asked = sensitivities.columns().size();
+    REQUIRE(asked == kinema::differentiable_columns(system).size());
+    std::vector<double> exact(asked * rows);
+    sensitivities.rows(table, 0, rows, exact.data());
+    const double h = difference_step(p, system.length_scale);
+    const Model above = kinema::with_parameters(model, {{name, p.value + h}});
+    const Model below = kinema::with_parameters(model, {{name, p.value - h}});
+    const MotionTable above_table = kinema::analyse(above, inputs), below_table = kinema::analyse(below, inputs);
+    for (std::size_t r = 0; r < rows; ++r)
+      REQUIRE((table.status(r) == kinema::Status::ok && above_table.status(r) == kinema::Status::ok &&
+               below_table.status(r) == kinema::Status::ok));
+    const std::vector<double> plus = output_rows(above, above_table), minus = output_rows(below, below_table);
+    const double step = 2 * h / parameter_output_unit(p, scale);  // in the parameter's output unit
+    const double size = h / 1e-5 / parameter_output_unit(p, scale);
+    for (std::size_t k = 0; k < asked; ++k) {
+      const kinema::SensitivityColumn& column = sensitivities.columns()[k];
+      INFO(column.named.name << " [" << column.named.unit << "]");
+      CHECK(column.named.name == "d_" + columns[column.column].name + "_d_" + name);
+      double largest = 0;
+      for (std::size_t r = 0; r < rows; ++r)
+        largest = std::max({largest, std::fabs(exact[r * asked + k]), std::fabs(plus[r * width + column.column]) / size});
+      for (std::size_t r = 0; r < rows; ++r) {
+        double change = plus[r * width + column.column] - minus[r * width + column.column];
+        if (columns[column.column].unit == "deg") change = std::remainder(change, 360.0);  // wrapped at +-180
+        const double difference = change / step, value = exact[r * asked + k];
+        INFO("row " << r << ": exact " << value << ", differences " << difference);
+        CHECK(std::fabs(value - difference) <= 1e-6 * largest);
+        ++compared;
+      }
+    }
+  }
+  CHECK(compared > 0);
+}
+
+}  // namespace
+
+TEST_CASE("engine/numeric/sensitivity: every derivative column equals finite differences, vector loops") {
+  const std::vector<double> turn = inputs_between(0, kinema::from_degrees(330), 12);
+  check_against_finite_differences("four_bar.toml", turn);
+  check_against_finite_differences("slider_crank.toml", turn);
+  check_against_finite_differences("problem_4_4_six_bar.toml", turn);
+}
+
+TEST_CASE("engine/numeric/sensitivity: every derivative column equals finite differences, joints and links") {
+  // Solved dyad by dyad in closed form, EF = "CE" and Lc = "CD" following (d/dCE moves F's link too).
+  const Model model = sample_model("problem_4_4_joints.toml");
+  REQUIRE(model.kinematics.closed_form() != nullptr);
+  check_against_finite_differences("problem_4_4_joints.toml", inputs_between(0, kinema::from_degrees(330), 12));
+}
+
+TEST_CASE("engine/numeric/sensitivity: every derivative column equals finite differences, spatial chains") {
+  check_against_finite_differences("robot_arm_seed000.toml", inputs_between(0, 1, 6));     // open: points and frames
+  check_against_finite_differences("rssr_spatial_four_bar.toml", inputs_between(0, kinema::from_degrees(330), 12));
+}
+
+TEST_CASE("engine/numeric/sensitivity: a formula parameter given alone does not follow its formula") {
+  // d/dEF with EF given (its formula "CE" dropped, as with_parameters drops it) leaves CE's
+  // links alone, and d/dCE = its own part + d/dEF's (EF follows CE one for one).
+  const Model model = sample_model("problem_4_4_joints.toml");
+  const MotionTable table = kinema::analyse(model, {kinema::from_degrees(30)});
+  const auto values = [&](const std::string& asked) {
+    const kinema::Sensitivities s(model, kinema::sensitivity_columns(model.system, {asked}));
+    std::vector<double> row(s.columns().size());
+    s.rows(table, 0, 1, row.data(), true);
+    return row;
+  };
+  const std::vector<double> ce = values("CE"), ef = values("EF");
+  const std::vector<double> ce_alone = [&] {  // CE with EF held: EF given its value
+    const Model held = kinema::with_parameters(model, {{"EF", model.system.parameters[kinema::written_parameter_index(model.system, "EF")].value}});
+    const MotionTable t = kinema::analyse(held, {kinema::from_degrees(30)});
+    const kinema::Sensitivities s(held, kinema::sensitivity_columns(held.system, {"CE"}));
+    std::vector<double> row(s.columns().size());
+    s.rows(t, 0, 1, row.data(), true);
+    return row;
+  }();
+  REQUIRE(ce.size() == ef.size());
+  REQUIRE(ce.size() == ce_alone.size());
+  double moved = 0;
+  for (std::size_t k = 0; k < ce.size(); ++k) {
+    CHECK(ce[k] == doctest::Approx(ce_alone[k] + ef[k]).epsilon(1e-9).scale(1.0));
+    moved = std::max(moved, std::fabs(ef[k]));
+  }
+  CHECK(moved > 0);  // EF moves something: the sum above is not trivially ce_alone's
+}
+
+TEST_CASE("engine/numeric/sensitivity: columns asked one by one, named and in the output units") {
+  const Model model = sample_model("four_bar.toml");
+  const std::vector<kinema::SensitivityColumn> one = kinema::sensitivity_columns(model.system, {"omega3:b"});
+  REQUIRE(one.size() == 1);
+  CHECK(one[0].named.name == "d_omega3_d_b");
+  CHECK(one[0].named.unit == "rad/s/mm");  // the column's unit per the parameter's output unit
+  const std::vector<kinema::SensitivityColumn> angle = kinema::sensitivity_columns(model.system, {"theta3:delta", "P_speed:b"});
+  REQUIRE(angle.size() == 2);
+  CHECK(angle[0].named.unit == "deg/deg");
+  CHECK(angle[1].named.unit == "mm/s/mm");
+  // Asked twice (alone and with all of b's): one column.
+  const std::vector<kinema::SensitivityColumn> all = kinema::sensitivity_columns(model.system, {"omega3:b", "b"});
+  CHECK(all.size() == kinema::differentiable_columns(model.system).size());
+  CHECK(all[0].named.name == "d_omega3_d_b");
+}
+
+TEST_CASE("engine/numeric/sensitivity: an unknown parameter or column is named with the list of names") {
+  const Model model = sample_model("four_bar.toml");
+  const auto message = [&](const std::string& asked) {
+    try {
+      kinema::sensitivity_columns(model.system, {asked});
+    } catch (const kinema::InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  const std::string parameter = message("omega3:bb");
+  CHECK(parameter.find("no parameter named \"bb\"") != std::string::npos);
+  CHECK(parameter.find("there are: a, b, c, d, p, delta") != std::string::npos);
+  const std::string column = message("omega2:b");  // the input's rate is given: no derivative
+  CHECK(column.find("no output column named \"omega2\"") != std::string::npos);
+  CHECK(column.find("theta3, omega3, alpha3") != std::string::npos);
+  CHECK(message("b").empty());
+}
