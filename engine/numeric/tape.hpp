@@ -81,7 +81,7 @@ class CompiledExpressions {
   std::size_t output_count() const { return output_registers_.size(); }
   std::size_t instruction_count() const { return instructions_.size(); }
 
-#define KINEMA_TAPE_OP_NAME(name, operands, value, text) name,
+#define KINEMA_TAPE_OP_NAME(name, operands, value, text, js) name,
   enum class Op : std::uint8_t { KINEMA_TAPE_OPS(KINEMA_TAPE_OP_NAME) sincos };
 #undef KINEMA_TAPE_OP_NAME
   struct Instruction {
