@@ -154,8 +154,8 @@ std::string script_safe(const std::string& json_text) {
 }
 
 // A compiled tape as the page's runner takes it: its instructions six numbers each (op, out,
-// a, b, c, exponent), its initial registers (inputs, constants) and each stage's end and
-// output registers.
+// a, b, c, exponent), its initial registers (inputs, constants), each stage's end, where each
+// input level's instructions begin in it, and its output registers.
 json tape_json(const CompiledExpressions& tape) {
   json code = json::array();
   for (const auto& in : tape.instructions()) {
@@ -163,14 +163,18 @@ json tape_json(const CompiledExpressions& tape) {
                               static_cast<long long>(in.b), static_cast<long long>(in.c), static_cast<long long>(in.exponent)})
       code.push_back(v);
   }
-  json ends = json::array(), outputs = json::array();
+  json ends = json::array(), outputs = json::array(), levels = json::array();
   for (std::size_t stage = 0; stage < tape.stage_count(); ++stage) {
     ends.push_back(tape.stage_end(stage));
+    json begins = json::array();
+    for (int level = 0; level <= tape.levels(); ++level) begins.push_back(tape.level_begin(stage, level));
+    levels.push_back(begins);
     json registers = json::array();
     for (std::size_t k = 0; k < tape.stage_output_count(stage); ++k) registers.push_back(tape.output_register(stage, k));
     outputs.push_back(registers);
   }
-  return {{"code", code}, {"registers", tape.initial_registers()}, {"stage_end", ends}, {"outputs", outputs}};
+  return {{"code", code}, {"registers", tape.initial_registers()}, {"stage_end", ends}, {"level_begin", levels},
+          {"outputs", outputs}};
 }
 
 // What the page's sliders need to solve again (engine/analysis/resolving.hpp), with the
@@ -193,6 +197,8 @@ json resolving_json(const PrintJob& job, const OutputScale& scale) {
           {"parameter_count", r.layout.parameter_count},
           {"point_dimensions", r.layout.point_dimensions},
           {"link_vector_count", r.layout.link_vector_count},
+          {"input_level", TapeLayout::kInputLevel},
+          {"coordinate_level", TapeLayout::kCoordinateLevel},
           {"vector_outputs", TapeLayout::kVectorOutputs},
           {"vector_position_at", TapeLayout::kVectorPositionAt},
           {"vector_guide_at", TapeLayout::kVectorGuideAt},

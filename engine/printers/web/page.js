@@ -769,7 +769,7 @@
     const m = t.code.length / 6;
     const tape = { op: new Int32Array(m), out: new Int32Array(m), a: new Int32Array(m), b: new Int32Array(m),
       c: new Int32Array(m), e: new Int32Array(m), registers: Float64Array.from(t.registers, function (v) { return v === null ? NaN : v; }),
-      stageEnd: t.stage_end, outputs: t.outputs };
+      stageEnd: t.stage_end, levelBegin: t.level_begin, outputs: t.outputs };
     for (let k = 0; k < m; ++k) {
       tape.op[k] = t.code[6 * k]; tape.out[k] = t.code[6 * k + 1]; tape.a[k] = t.code[6 * k + 2];
       tape.b[k] = t.code[6 * k + 3]; tape.c[k] = t.code[6 * k + 4]; tape.e[k] = t.code[6 * k + 5];
@@ -849,7 +849,8 @@
     const K = R.constants, tape = tapeOf(R.tape), formulas = tapeOf(R.formulas), run = kinemaTapeRunner.run;
     const n = R.guess.length, P = R.parameter_count, r = Float64Array.from(tape.registers);
     const at = { input: P, rate: P + 1, second: P + 2, q: P + 3, qd: P + 3 + n, qdd: P + 3 + 2 * n };
-    const end = tape.stageEnd, out = tape.outputs;
+    const end = tape.stageEnd, out = tape.outputs, level = tape.levelBegin;
+    const inputLevel = R.input_level, coordinateLevel = R.coordinate_level;
     const lu = new Float64Array(n * n), inversePivots = new Float64Array(n), pivots = new Int32Array(n);
     const solver = { n: n, columnScale: new Float64Array(n), lengthScale: 1, maxStep: R.max_step };
     const lengthScaleOf = function (values) {
@@ -866,6 +867,9 @@
       const all = values.slice();
       R.formula_targets.forEach(function (p, k) { all[p] = f[formulas.outputs[0][k]]; });
       for (let p = 0; p < P; ++p) r[p] = all[p];
+      // What depends on the parameters alone runs once (CompiledExpressions::prepare).
+      for (let s = 0; s < end.length; ++s) run(tape, r, level[s][0], level[s][1]);
+      evaluatedInput = NaN;
       solver.lengthScale = lengthScaleOf(all);
       for (let i = 0; i < n; ++i) solver.columnScale[i] = R.length_unknowns[i] ? solver.lengthScale : 1;
       solver.maxStep = R.max_step_follows_length ? R.max_step * solver.lengthScale / fileLengthScale : R.max_step;
@@ -873,10 +877,12 @@
     };
     let evaluatedInput = NaN;
     const evaluated = new Float64Array(n);
+    // Only q changed (a Newton iterate): what depends on the input alone still holds.
     function evaluatePosition(input, q) {
+      const from = evaluatedInput === input ? coordinateLevel : inputLevel;
       r[at.input] = input;
       for (let i = 0; i < n; ++i) r[at.q + i] = q[i];
-      run(tape, r, 0, end[0]);
+      run(tape, r, level[0][from], end[0]);
       evaluatedInput = input;
       evaluated.set(q);
     }
@@ -1025,7 +1031,7 @@
         row.status = 'singular';
         row.why = 'jacobian';
         for (let i = 0; i < n; ++i) { r[at.qd + i] = NaN; r[at.qdd + i] = NaN; }
-        run(tape, r, end[0], end[3]);
+        for (let s = 1; s < end.length; ++s) run(tape, r, level[s][inputLevel], end[s]);
         row.drawn = Float64Array.from(out[3], function (k) { return r[k]; });
         return row;
       }
@@ -1035,13 +1041,13 @@
       r[at.rate] = R.rate;
       r[at.second] = R.second_rate;
       for (let i = 0; i < n; ++i) r[at.qd + i] = qd[i];
-      run(tape, r, end[0], end[1]);
+      run(tape, r, level[1][inputLevel], end[1]);
       const qdd = new Float64Array(n);
       for (let i = 0; i < n; ++i) qdd[i] = r[out[1][i]];
       solveRhs(qdd);
       for (let i = 0; i < n; ++i) r[at.qdd + i] = qdd[i];
-      run(tape, r, end[1], end[2]);
-      run(tape, r, end[2], end[3]);
+      run(tape, r, level[2][inputLevel], end[2]);
+      run(tape, r, level[3][inputLevel], end[3]);
       row.qd = qd;
       row.qdd = qdd;
       row.points = Float64Array.from(out[2], function (k) { return r[k]; });
