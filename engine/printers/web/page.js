@@ -627,48 +627,49 @@
   // against the row, the input going back and forth); a cursor at the row; a click moves there.
   const colours = ['#1c3f94', '#c62828', '#2e7d32', '#d98b00', '#8e44ad', '#00838f', '#6d4c41', '#ad1457'];
   let plots = [];
+  // Made again when the sliders solve new rows.
   function buildPlots() {
-  plotArea.textContent = '';
-  plots = data.columns.plots.filter(function (p) { return p.fields.length > 0; }).map(function (plot) {
-    const box = node('div', 'plot', plotArea);
-    node('h2', '', box, plot.title + (data.circuit ? ' along the circuit' : ' against ' + data.input.name));
-    const chart = svg('svg', { viewBox: '0 0 400 200', preserveAspectRatio: 'none', class: 'chart' }, box);
-    const legend = node('div', 'legend', box);
-    const xs = numbers.map(function (n, r) { return data.circuit ? r : n[0]; });
-    let lo = Infinity, hi = -Infinity;
-    plot.fields.forEach(function (f) { numbers.forEach(function (n) { if (isFinite(n[f])) { lo = Math.min(lo, n[f]); hi = Math.max(hi, n[f]); } }); });
-    if (!isFinite(lo)) { lo = -1; hi = 1; }
-    if (hi - lo < 1e-12 * Math.max(1, Math.abs(hi))) { lo -= 1; hi += 1; }
-    const x0 = Math.min.apply(null, xs), x1 = Math.max.apply(null, xs);
-    const X = function (x) { return 40 + (x - x0) / ((x1 - x0) || 1) * 350; };
-    const Y = function (y) { return 185 - (y - lo) / (hi - lo) * 175; };
-    svg('line', { x1: 40, y1: 185, x2: 390, y2: 185, class: 'axis' }, chart);
-    svg('line', { x1: 40, y1: 10, x2: 40, y2: 185, class: 'axis' }, chart);
-    if (lo < 0 && hi > 0) svg('line', { x1: 40, y1: Y(0), x2: 390, y2: Y(0), class: 'axis' }, chart);
-    svg('text', { x: 36, y: 14, class: 'tick', 'text-anchor': 'end' }, chart, hi.toPrecision(3));
-    svg('text', { x: 36, y: 185, class: 'tick', 'text-anchor': 'end' }, chart, lo.toPrecision(3));
-    plot.fields.forEach(function (f, k) {
-      let path = '', pen = false;
-      numbers.forEach(function (n, r) {
-        if (!isFinite(n[f])) { pen = false; return; }
-        path += (pen ? ' L' : ' M') + fixed(X(xs[r])) + ',' + fixed(Y(n[f]));
-        pen = true;
+    plotArea.textContent = '';
+    plots = data.columns.plots.filter(function (p) { return p.fields.length > 0; }).map(function (plot) {
+      const box = node('div', 'plot', plotArea);
+      node('h2', '', box, plot.title + (data.circuit ? ' along the circuit' : ' against ' + data.input.name));
+      const chart = svg('svg', { viewBox: '0 0 400 200', preserveAspectRatio: 'none', class: 'chart' }, box);
+      const legend = node('div', 'legend', box);
+      const xs = numbers.map(function (n, r) { return data.circuit ? r : n[0]; });
+      let lo = Infinity, hi = -Infinity;
+      plot.fields.forEach(function (f) { numbers.forEach(function (n) { if (isFinite(n[f])) { lo = Math.min(lo, n[f]); hi = Math.max(hi, n[f]); } }); });
+      if (!isFinite(lo)) { lo = -1; hi = 1; }
+      if (hi - lo < 1e-12 * Math.max(1, Math.abs(hi))) { lo -= 1; hi += 1; }
+      const x0 = Math.min.apply(null, xs), x1 = Math.max.apply(null, xs);
+      const X = function (x) { return 40 + (x - x0) / ((x1 - x0) || 1) * 350; };
+      const Y = function (y) { return 185 - (y - lo) / (hi - lo) * 175; };
+      svg('line', { x1: 40, y1: 185, x2: 390, y2: 185, class: 'axis' }, chart);
+      svg('line', { x1: 40, y1: 10, x2: 40, y2: 185, class: 'axis' }, chart);
+      if (lo < 0 && hi > 0) svg('line', { x1: 40, y1: Y(0), x2: 390, y2: Y(0), class: 'axis' }, chart);
+      svg('text', { x: 36, y: 14, class: 'tick', 'text-anchor': 'end' }, chart, hi.toPrecision(3));
+      svg('text', { x: 36, y: 185, class: 'tick', 'text-anchor': 'end' }, chart, lo.toPrecision(3));
+      plot.fields.forEach(function (f, k) {
+        let path = '', pen = false;
+        numbers.forEach(function (n, r) {
+          if (!isFinite(n[f])) { pen = false; return; }
+          path += (pen ? ' L' : ' M') + fixed(X(xs[r])) + ',' + fixed(Y(n[f]));
+          pen = true;
+        });
+        const colour = colours[k % colours.length];
+        if (path) svg('path', { d: path, fill: 'none', stroke: colour, 'stroke-width': 1.3, 'vector-effect': 'non-scaling-stroke' }, chart);
+        const field = data.columns.fields[f];
+        node('span', '', legend, '\u25a0 ' + field.name + ' [' + field.unit + ']').style.color = colour;
       });
-      const colour = colours[k % colours.length];
-      if (path) svg('path', { d: path, fill: 'none', stroke: colour, 'stroke-width': 1.3, 'vector-effect': 'non-scaling-stroke' }, chart);
-      const field = data.columns.fields[f];
-      node('span', '', legend, '\u25a0 ' + field.name + ' [' + field.unit + ']').style.color = colour;
+      const cursor = svg('line', { y1: 10, y2: 185, class: 'cursor', 'vector-effect': 'non-scaling-stroke' }, chart);
+      chart.addEventListener('click', function (event) {
+        const b = chart.getBoundingClientRect();
+        const x = x0 + ((event.clientX - b.left) / b.width * 400 - 40) / 350 * ((x1 - x0) || 1);
+        let best = 0;
+        xs.forEach(function (v, r) { if (Math.abs(v - x) < Math.abs(xs[best] - x)) best = r; });
+        setRow(best);
+      });
+      return { cursor: cursor, x: function () { return X(xs[row]); } };
     });
-    const cursor = svg('line', { y1: 10, y2: 185, class: 'cursor', 'vector-effect': 'non-scaling-stroke' }, chart);
-    chart.addEventListener('click', function (event) {
-      const b = chart.getBoundingClientRect();
-      const x = x0 + ((event.clientX - b.left) / b.width * 400 - 40) / 350 * ((x1 - x0) || 1);
-      let best = 0;
-      xs.forEach(function (v, r) { if (Math.abs(v - x) < Math.abs(xs[best] - x)) best = r; });
-      setRow(best);
-    });
-    return { cursor: cursor, x: function () { return X(xs[row]); } };
-  });
   }
   buildPlots();
 

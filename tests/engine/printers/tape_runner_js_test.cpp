@@ -53,10 +53,12 @@ TEST_CASE("the page's tape runner, run in node, gives CompiledExpressions' value
     return;
   }
   realsymbol a("a"), b("b"), c("c"), x("x");
-  // Each operation of the table, and sincos, at least once (checked below).
-  const std::vector<ex> outputs = {a + b, a - b, a * b, a / b, -a * b, pow(a, 2) + b, pow(a, -3) + b, pow(a, b),
+  // Each operation of the table, and sincos, at least once (checked below); the fused ones
+  // each with a product of their own (a shared product is not fused).
+  const std::vector<ex> outputs = {a + b, a - b, a * b, a / b, -x, pow(a, 2) + b, pow(a, -3) + b, pow(a, b),
                                    tan(a), exp(b), log(a), sqrt(a), abs(x - a), atan2(a, b), asin(x), acos(x),
-                                   atan(x), a * b + c, a * b - c, c - a * b, sin(a) * cos(a) + b};
+                                   atan(x), b * c + a, a * c - x, b - c * x, exp(x) - a * x, log(b) - pow(a, 2) * c,
+                                   sin(a) * cos(a) + b};
   const kinema::CompiledExpressions tape({a, b, c, x}, outputs);
   std::vector<bool> used(table_names().size(), false);
   for (const auto& in : tape.instructions()) used[static_cast<std::size_t>(in.op)] = true;
