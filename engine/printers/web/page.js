@@ -853,6 +853,8 @@
     const end = tape.stageEnd, out = tape.outputs, level = tape.levelBegin;
     const inputLevel = R.input_level, coordinateLevel = R.coordinate_level;
     const lu = new Float64Array(n * n), inversePivots = new Float64Array(n), pivots = new Int32Array(n);
+    // Buffers reused from value to value (a sweep allocates only its rows).
+    const newtonTrial = new Float64Array(n), newtonStep = new Float64Array(n), corrected = new Float64Array(n);
     const solver = { n: n, columnScale: new Float64Array(n), lengthScale: 1, maxStep: R.max_step };
     const lengthScaleOf = function (values) {
       let largest = 0;
@@ -946,19 +948,23 @@
       }
       return x;
     }
+    const outputsOf = function (stage) {
+      const registers = out[stage], values = new Float64Array(registers.length);
+      for (let k = 0; k < registers.length; ++k) values[k] = r[registers[k]];
+      return values;
+    };
     const allFinite = function (v) { for (let i = 0; i < v.length; ++i) if (!isFinite(v[i])) return false; return true; };
     // Workspace::solve_position: Newton with step halving; q (a Float64Array) updated in place.
     function solvePosition(input, q) {
       const tolerance = K.newton_tolerance * solver.lengthScale;
       if (!evaluatedAt(input, q)) evaluatePosition(input, q);
       let norm = residualNorm(), converged = false;
-      const trial = new Float64Array(n);
+      const trial = newtonTrial;
       for (let iteration = 0; iteration < K.newton_iterations && isFinite(norm); ++iteration) {
         if (norm <= tolerance) { converged = true; break; }
         factorise();
-        let step;
+        let step = newtonStep;
         if (pivotRatio(lu, n, solver.lengthScale) > K.least_squares_pivot_ratio) {
-          step = new Float64Array(n);
           for (let i = 0; i < n; ++i) step[i] = -phi(i);
           solveRhs(step);
         } else {
@@ -991,7 +997,8 @@
     }
     // Workspace::predict_and_correct: Newton from the prediction, refused on another branch.
     function predictAndCorrect(to, predicted, q) {
-      const trial = Float64Array.from(predicted);
+      const trial = corrected;
+      trial.set(predicted);
       if (!solvePosition(to, trial)) return false;
       for (let i = 0; i < n; ++i) if (Math.abs(trial[i] - predicted[i]) / solver.columnScale[i] > K.branch_tolerance) return false;
       q.set(trial);
@@ -1033,7 +1040,7 @@
         row.why = 'jacobian';
         for (let i = 0; i < n; ++i) { r[at.qd + i] = NaN; r[at.qdd + i] = NaN; }
         for (let s = 1; s < end.length; ++s) run(tape, r, level[s][inputLevel], end[s]);
-        row.drawn = Float64Array.from(out[3], function (k) { return r[k]; });
+        row.drawn = outputsOf(3);
         return row;
       }
       const qd = new Float64Array(n);
@@ -1051,8 +1058,8 @@
       run(tape, r, level[3][inputLevel], end[3]);
       row.qd = qd;
       row.qdd = qdd;
-      row.points = Float64Array.from(out[2], function (k) { return r[k]; });
-      row.drawn = Float64Array.from(out[3], function (k) { return r[k]; });
+      row.points = outputsOf(2);
+      row.drawn = outputsOf(3);
       if (!allFinite(qd) || !allFinite(qdd) || !allFinite(row.points)) { row.status = 'singular'; row.why = 'rates'; }
       return row;
     }
