@@ -7,7 +7,10 @@
 // has its instant centre drawn (or listed as not found); a spatial chain's points are drawn in
 // 3-D where eval puts them, projected, and dragging turns it; the derivation is laid out as
 // MathML. A singular row and an unassembled
-// range show as such; a hostile title, description and file name run no script.
+// range show as such; a hostile title, description and file name run no script. A dimension
+// slider moved in the four-bar's, a slider-crank's and Problem 4.4's pages solves the rows
+// again as `kinema eval` solves the file edited to that dimension (1e-12), and a rocker too
+// short to close shows its rows as not assembled.
 //
 //   node page_test.js KINEMA SAMPLES_DIR WORK_DIR CHROMIUM MODULES_DIR
 'use strict';
