@@ -17,6 +17,7 @@
 #include "engine/analysis/instant_centres.hpp"
 #include "engine/analysis/motion_drawing.hpp"
 #include "engine/analysis/polygons.hpp"
+#include "engine/analysis/resolving.hpp"
 #include "engine/model.hpp"
 #include "engine/symbolic/dyad_derivation_types.hpp"
 
@@ -63,6 +64,9 @@ struct Analysis {
   std::vector<ValueAnalysis> values;
   /// The drawing's geometry at every row (when motion is asked for).
   std::optional<MotionDrawing> motion;
+  /// What solving again for other dimensions needs (when motion is asked for and the
+  /// model can be: engine/analysis/resolving.hpp).
+  std::optional<Resolving> resolving;
 };
 
 /// Computes what `needs` asks of the model at `values` (the printed values; nullptr when

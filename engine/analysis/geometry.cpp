@@ -134,7 +134,7 @@ std::vector<PointOnLink> MechanismGeometry::points_on_links(const MotionState& s
     const double* xy = values.data() + kinematics_->layout().link_vector_output(on.vector) + TapeLayout::kVectorPositionAt;
     const PointMotion& m = state.points[on.point];
     const std::complex<double> at(m.position[0], m.position[1]), term(xy[0], xy[1]);
-    if (std::isfinite(term.real()) && std::isfinite(term.imag())) found.push_back({on.point, on.link, at - term, at});
+    if (std::isfinite(term.real()) && std::isfinite(term.imag())) found.push_back({on.point, on.link, on.vector, at - term, at});
   }
   return found;
 }
@@ -219,6 +219,8 @@ std::vector<DrawingSegment> MechanismGeometry::segments(const MotionState& state
       DrawingSegment& g = segments.emplace_back();
       g.from = at;
       g.to = at + terms[k];
+      g.term = term;
+      g.loop_start = term_of.size() == 1;
       g.kind = kinds_[term];
       g.link = term_links_[term];
       g.coordinate = term_coordinates_[term];
@@ -242,11 +244,13 @@ std::vector<DrawingSegment> MechanismGeometry::segments(const MotionState& state
       DrawingSegment& g = segments[j];
       if (g.kind != DrawingSegment::Kind::slider) continue;
       const std::size_t term = term_of[j - begin];
-      g.block = grounded(g.to) && !grounded(g.from) ? g.from : g.to;
+      g.block_at_from = grounded(g.to) && !grounded(g.from);
+      g.block = g.block_at_from ? g.from : g.to;
       g.along = g.to - g.from;
       if (has_guide_[term]) {
         const std::complex<double> d = vector_at(term, TapeLayout::kVectorGuideAt);
-        if (std::abs(d) > 0 && std::isfinite(std::abs(d))) g.along = d;
+        g.guide_from_tape = std::abs(d) > 0 && std::isfinite(std::abs(d));
+        if (g.guide_from_tape) g.along = d;
         g.fixed_guide = !guide_turns_[term];
         g.guide_link = guide_links_[term];
       }

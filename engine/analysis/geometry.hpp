@@ -34,6 +34,13 @@ struct DrawingSegment {
   int coordinate = -1;
   double angle = 0;
   std::complex<double> angle_at;
+  /// The link vector (drawing stage) this segment draws; a loop's first segment starts at
+  /// the origin, each next at the end of the one before (the web page lays out re-solved
+  /// rows from the tape's link vectors in this order).
+  std::size_t term = 0;
+  bool loop_start = false;
+  bool block_at_from = false;  ///< A slider's block is at `from` (else at `to`).
+  bool guide_from_tape = false;  ///< `along` is the drawing stage's guide (else to - from).
 };
 
 /// A named point on a link: its formula's last term is a link vector of fixed length
@@ -41,6 +48,7 @@ struct DrawingSegment {
 struct PointOnLink {
   std::size_t point = 0;
   int link = 0;
+  std::size_t vector = 0;  ///< The link vector (drawing stage) its formula ends with.
   std::complex<double> from, at;  ///< SI.
 };
 

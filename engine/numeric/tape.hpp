@@ -81,7 +81,7 @@ class CompiledExpressions {
   std::size_t output_count() const { return output_registers_.size(); }
   std::size_t instruction_count() const { return instructions_.size(); }
 
-#define KINEMA_TAPE_OP_NAME(name, operands, value, text) name,
+#define KINEMA_TAPE_OP_NAME(name, operands, value, text, js) name,
   enum class Op : std::uint8_t { KINEMA_TAPE_OPS(KINEMA_TAPE_OP_NAME) sincos };
 #undef KINEMA_TAPE_OP_NAME
   struct Instruction {
@@ -98,6 +98,11 @@ class CompiledExpressions {
   const std::vector<double>& initial_registers() const { return initial_registers_; }
   std::size_t stage_end(std::size_t stage) const { return stage_end_[stage]; }
   std::size_t stage_output_begin(std::size_t stage) const { return stage_outputs_[stage]; }
+  /// Distinct input levels, and the first instruction of level L (0..levels()) of a stage.
+  int levels() const { return levels_; }
+  std::size_t level_begin(std::size_t stage, int level) const {
+    return level_begin_[stage * (levels_ + 1) + static_cast<std::size_t>(level)];
+  }
 
  private:
   /// Fuses a product used only by the sum right after it in the same stage and level
@@ -121,9 +126,6 @@ class CompiledExpressions {
   /// First instruction of level L in stage s at level_begin_[s * (levels_ + 1) + L];
   /// [.. + levels_] is the stage's end.
   std::vector<std::size_t> level_begin_;
-  std::size_t level_begin(std::size_t stage, int level) const {
-    return level_begin_[stage * (levels_ + 1) + static_cast<std::size_t>(level)];
-  }
   std::vector<std::size_t> stage_outputs_;  ///< Output index where each stage starts (+ end).
   std::vector<double> initial_registers_;  ///< Inputs (overwritten), constants, temporaries.
 };

@@ -19,7 +19,7 @@ using GiNaC::ex;
 
 int CompiledExpressions::operand_count(Op op) {
   switch (op) {
-#define KINEMA_TAPE_OPERANDS(name, operands, value, text) \
+#define KINEMA_TAPE_OPERANDS(name, operands, value, text, js) \
   case Op::name: return operands;
     KINEMA_TAPE_OPS(KINEMA_TAPE_OPERANDS)
 #undef KINEMA_TAPE_OPERANDS

@@ -27,7 +27,7 @@ void CompiledExpressions::run(std::size_t begin, std::size_t end, double* r) con
   for (std::size_t k = begin; k < end; ++k) {
     const Instruction& in = instructions_[k];
     switch (in.op) {
-#define KINEMA_RUN_SCALAR(name, operands, value, text)                              \
+#define KINEMA_RUN_SCALAR(name, operands, value, text, js)                              \
   case Op::name: {                                                                 \
     [[maybe_unused]] const double A = r[in.a], B = r[in.b], C = r[in.c];           \
     [[maybe_unused]] const int E = in.exponent;                                    \
@@ -65,7 +65,7 @@ KINEMA_LANE_LOOPS static void run_batch(
     const double* __restrict b = registers + in->b * kLanes;
     const double* __restrict c = registers + in->c * kLanes;
     switch (in->op) {
-#define KINEMA_RUN_LANES(name, operands, value, text)                               \
+#define KINEMA_RUN_LANES(name, operands, value, text, js)                               \
   case Op::name: {                                                                 \
     [[maybe_unused]] const int E = in->exponent;                                   \
     for (std::size_t l = 0; l < kLanes; ++l) {                                     \

@@ -7,7 +7,10 @@
 // has its instant centre drawn (or listed as not found); a spatial chain's points are drawn in
 // 3-D where eval puts them, projected, and dragging turns it; the derivation is laid out as
 // MathML. A singular row and an unassembled
-// range show as such; a hostile title, description and file name run no script.
+// range show as such; a hostile title, description and file name run no script. A dimension
+// slider moved in the four-bar's, a slider-crank's and Problem 4.4's pages solves the rows
+// again as `kinema eval` solves the file edited to that dimension (1e-12), and a rocker too
+// short to close shows its rows as not assembled.
 //
 //   node page_test.js KINEMA SAMPLES_DIR WORK_DIR CHROMIUM MODULES_DIR
 'use strict';
@@ -294,6 +297,96 @@ async function checkFailedRows(browser, file, status) {
   assert.deepStrictEqual(seen.errors, [], `${name}: console errors`);
 }
 
+// Dimension sliders: a slider moved to a new value solves every row again in the page; each
+// row equals `kinema eval` of the file edited to that value (17 digits) to 1e-12 relative on
+// every coordinate, rate, second rate and point value (relative to the larger of the value
+// and a column's largest, for values that are rounding noise about 0), with the same status;
+// the joints drawn there are eval's points. Returns the slider's value and the page's rows.
+async function checkSlider(browser, sampleName, parameter, target, sweep) {
+  const file = path.join(samplesDir, sampleName + '.toml');
+  const html = path.join(workDir, sampleName + '_sliders.html');
+  run(['page', file, '--sweep', sweep, '-o', html]);
+  const { page, seen } = await open(browser, html);
+  const set = await page.evaluate(([name, value]) => {
+    const input = document.querySelector('#sliders input[data-parameter="' + name + '"]');
+    input.value = value;
+    input.dispatchEvent(new Event('input'));
+    return { value: input.value, shown: input.parentNode.querySelector('.shown').textContent };
+  }, [parameter, target]);
+  assert(set.value !== undefined && Number(set.value) === target, `${sampleName}: slider ${parameter} at ${set.value}, not ${target}`);
+  const unit = set.shown.split(' ').pop();
+  // The file edited to the slider's value, in the unit the slider shows.
+  const edited = path.join(workDir, sampleName + '_' + parameter + '.toml');
+  const text = fs.readFileSync(file, 'utf8');
+  const line = new RegExp('^' + parameter + ' = .*$', 'm');
+  assert(line.test(text), `${sampleName}: no line for ${parameter}`);
+  fs.writeFileSync(edited, text.replace(line, `${parameter} = "${set.value} ${unit}"`));
+  const csv = run(['eval', edited, '--sweep', sweep, '--format', 'csv', '--precision', '17', '-q']).trimEnd().split('\n');
+  const header = csv[0].split(','), expected = csv.slice(1).map((r) => r.split(','));
+  const got = await page.evaluate(() => window.kinemaPage.rows());
+  assert.strictEqual(got.length, expected.length, `${sampleName}: ${got.length} rows in the page, eval ${expected.length}`);
+  const largest = header.map((h, k) => Math.max(0, ...expected.map((r) => (isFinite(Number(r[k])) && r[k] !== '' ? Math.abs(Number(r[k])) : 0))));
+  let compared = 0;
+  expected.forEach((fields, r) => {
+    assert.strictEqual(got[r].status, fields[3], `${sampleName} ${parameter}=${set.value}: row ${r}'s status`);
+    for (let k = 4; k < header.length - 1; ++k) {
+      const want = fields[k] === '' ? NaN : Number(fields[k]), have = got[r].fields[k];
+      if (isNaN(want)) {
+        assert(isNaN(have), `${sampleName}: row ${r} ${header[k]} is ${have} in the page, none in eval`);
+        continue;
+      }
+      const scale = Math.max(Math.abs(want), Math.abs(have), largest[k] * 1e-3);
+      assert(Math.abs(have - want) <= 1e-12 * scale,
+        `${sampleName} ${parameter}=${set.value}: row ${r} ${header[k]} is ${have} in the page, ${want} in eval`);
+      ++compared;
+    }
+  });
+  // The joints drawn at a regular row: at eval's points.
+  const ok = expected.map((f, r) => (f[3] === 'ok' ? r : -1)).filter((r) => r >= 0);
+  if (ok.length) {
+    const row = ok[Math.floor(ok.length / 2)];
+    await scrubTo(page, row);
+    const view = await shown(page);
+    const fields = expected[row];
+    let joints = 0;
+    for (const joint of view.joints) {
+      const column = header.findIndex((h) => h.startsWith(joint.name + '_x ['));
+      if (!joint.name || column < 0) continue;
+      const x = Number(fields[column]), y = Number(fields[column + 1]), size = Math.max(largest[column], largest[column + 1]);
+      assert(Math.abs(joint.x - x) <= 1e-12 * size && Math.abs(joint.y - y) <= 1e-12 * size,
+        `${sampleName}: joint ${joint.name} drawn at (${joint.x}, ${joint.y}), eval's point at (${x}, ${y})`);
+      ++joints;
+    }
+    assert(joints >= 1, `${sampleName}: no joint drawn at a point of eval's`);
+  }
+  assert.deepStrictEqual(seen.errors, [], `${sampleName}: console errors`);
+  return { page: page, compared: compared, statuses: got.map((g) => g.status) };
+}
+
+async function checkSliders(browser) {
+  let compared = 0;
+  for (const [sample, parameter, value] of [['four_bar', 'b', 150], ['slider_crank', 'b', 120], ['problem_4_4_six_bar', 'CE', 0.276]]) {
+    compared += (await checkSlider(browser, sample, parameter, value, '0:356:4')).compared;
+  }
+  // A rocker half as long: the four-bar no longer closes at every crank angle.
+  const short = await checkSlider(browser, 'four_bar', 'c', 40, '0:356:4');
+  assert(short.statuses.includes('unassembled'), 'four_bar with c = 40 mm: every row assembles');
+  const failed = short.statuses.indexOf('unassembled');
+  const marked = await short.page.evaluate(() => document.querySelectorAll('.mark-unassembled').length);
+  assert.strictEqual(marked, short.statuses.filter((s) => s === 'unassembled').length, 'four_bar c = 40 mm: marks on the scrubber');
+  await scrubTo(short.page, failed);
+  const view = await shown(short.page);
+  assert(view.status === 'unassembled' && view.statusText.startsWith('Not assembled: ') && view.joints.length === 0,
+    `four_bar c = 40 mm: row ${failed} shown as "${view.statusText}" with ${view.joints.length} joints`);
+  // A full turn at 1 deg re-solved in the page: the time a slider move takes.
+  const timing = await checkSlider(browser, 'four_bar', 'b', 130, '0:359:1');
+  const times = await timing.page.evaluate(() => {
+    for (let k = 0; k < 20; ++k) window.kinemaPage.setDimensions({ b: 125 + (k % 2) * 5 });
+    return window.kinemaPage.resolveTimes.slice(-20).sort((x, y) => x - y);
+  });
+  console.log(`sliders: ${compared} values equal eval's; a four-bar turn at 1 deg re-solved in ${times[10].toFixed(2)} ms (median of 20, max ${times[19].toFixed(2)} ms)`);
+}
+
 // What the samples' constructions showed (each planar sample has polygons; joints-and-links
 // ones have centres), checked after all ran.
 const constructions = { images: 0, centres: new Set() };
@@ -340,6 +433,7 @@ async function checkHostile(browser) {
     await checkFailedRows(browser, path.join(samplesDir, 'problem_4_1_parallelogram.toml'), 'singular');
     await checkFailedRows(browser, path.join(samplesDir, 'triple_rocker_circuit.toml'), 'unassembled');
     await checkHostile(browser);
+    await checkSliders(browser);
     assert(constructions.images >= 20, `only ${constructions.images} polygon images checked against eval`);
     for (const joints of ['problem_4_4_joints', 'crank_shaper', 'example_4_2_joints', 'triple_rocker_circuit'])
       assert(constructions.centres.has(joints), `${joints}: no instant centres shown`);

@@ -10,14 +10,15 @@ namespace {
 using Op = CompiledExpressions::Op;
 
 // The op table's text with A, B, C, E replaced by the operands.
-std::string expand(const char* pattern, const std::string& a, const std::string& b, const std::string& c, int e) {
+std::string expand(const char* pattern, const std::string& a, const std::string& b, const std::string& c,
+                   const std::string& e) {
   std::string text;
   for (const char* p = pattern; *p; ++p) {
     switch (*p) {
       case 'A': text += a; break;
       case 'B': text += b; break;
       case 'C': text += c; break;
-      case 'E': text += std::to_string(e); break;
+      case 'E': text += e; break;
       default: text += *p;
     }
   }
@@ -26,7 +27,7 @@ std::string expand(const char* pattern, const std::string& a, const std::string&
 
 const char* op_text(Op op) {
   switch (op) {
-#define KINEMA_OP_TEXT(name, operands, value, text) \
+#define KINEMA_OP_TEXT(name, operands, value, text, js) \
   case Op::name: return text;
     KINEMA_TAPE_OPS(KINEMA_OP_TEXT)
 #undef KINEMA_OP_TEXT
@@ -36,6 +37,38 @@ const char* op_text(Op op) {
 }
 
 }  // namespace
+
+void write_tape_runner_js(std::ostream& out) {
+  out << "// The tape's runner, written by kinema from its one op table (engine/numeric/tape_ops.hpp).\n"
+         "const kinemaTapeRunner = (function () {\n"
+         "  'use strict';\n"
+         "  // base^exponent by squaring, as the tape's integer powers (kinema::integer_power).\n"
+         "  function integerPower(base, exponent) {\n"
+         "    let result = 1;\n"
+         "    for (let e = Math.abs(exponent); e; e >>= 1, base *= base) if (e & 1) result *= base;\n"
+         "    return exponent < 0 ? 1 / result : result;\n"
+         "  }\n"
+         "  // Instructions [begin, end) of a tape (arrays op, out, a, b, c, e) on the registers r.\n"
+         "  function run(tape, r, begin, end) {\n"
+         "    const op = tape.op, out = tape.out, a = tape.a, b = tape.b, c = tape.c, e = tape.e;\n"
+         "    for (let k = begin; k < end; ++k) {\n"
+         "      const A = r[a[k]], B = r[b[k]], C = r[c[k]];\n"
+         "      switch (op[k]) {\n";
+  std::string names;
+#define KINEMA_OP_JS(name, operands, value, text, js)                                                      \
+  out << "        case " << static_cast<int>(Op::name) << ": r[out[k]] = " << expand(js, "A", "B", "C", "e[k]") \
+      << "; break;  // " #name "\n";                                                                        \
+  names += "'" #name "', ";
+  KINEMA_TAPE_OPS(KINEMA_OP_JS)
+#undef KINEMA_OP_JS
+  out << "        case " << static_cast<int>(Op::sincos) << ": r[out[k]] = Math.sin(A); r[b[k]] = Math.cos(A); break;  // sincos\n"
+         "        default: throw new Error('kinema tape: no operation ' + op[k]);\n"
+         "      }\n"
+         "    }\n"
+         "  }\n"
+         "  return { run: run, operations: ["
+      << names << "'sincos'] };\n})();\n";
+}
 
 std::string cpp_double_literal(double value) {
   std::string text = format_round_trip(value);
@@ -87,7 +120,7 @@ void write_tape_stage_cpp(std::ostream& out, const CompiledExpressions& tape,
       define(in.b, "std::cos(" + operand(in.a) + ")");
       continue;
     }
-    define(in.out, expand(op_text(in.op), operand(in.a), operand(in.b), operand(in.c), in.exponent));
+    define(in.out, expand(op_text(in.op), operand(in.a), operand(in.b), operand(in.c), std::to_string(in.exponent)));
   }
   for (std::size_t k = 0; k < output_targets.size(); ++k) {
     out << indent << output_targets[k] << " = " << operand(tape.output_register(stage, k)) << ";\n";

@@ -11,6 +11,8 @@
 #include "engine/base/number_format.hpp"
 #include "engine/analysis/diagnostics.hpp"
 #include "engine/analysis/output_scale.hpp"
+#include "engine/base/sha256.hpp"
+#include "engine/printers/code/tape_emitter.hpp"
 #include "engine/printers/web/mathml.hpp"
 #include "engine/printers/web/page_constructions.hpp"
 
@@ -55,11 +57,15 @@ json drawing_json(const MotionDrawing& drawing, double per_unit) {
       const char* kind = s.kind == DrawingSegment::Kind::ground ? "ground"
                          : s.kind == DrawingSegment::Kind::slider ? "slider"
                                                                   : "link";
+      // How a re-solved row lays it out from the tape's link vectors (term, loop_start, ...).
       out["segments"].push_back({{"kind", kind}, {"link", s.link}, {"fixed_guide", s.fixed_guide},
-                                 {"guide_link", s.guide_link}, {"block_label", s.block_label}});
+                                 {"guide_link", s.guide_link}, {"block_label", s.block_label}, {"term", s.term},
+                                 {"loop_start", s.loop_start}, {"block_at_from", s.block_at_from},
+                                 {"guide_from_tape", s.guide_from_tape}});
     }
     out["points_on_links"] = json::array();
-    for (const PointOnLink& p : drawing.points_on_links) out["points_on_links"].push_back({{"point", p.point}, {"link", p.link}});
+    for (const PointOnLink& p : drawing.points_on_links)
+      out["points_on_links"].push_back({{"point", p.point}, {"link", p.link}, {"vector", p.vector}});
     out["link_labels"] = drawing.link_labels;
   } else if (drawing.form == MotionDrawing::Form::chain) {
     out["frames"] = drawing.frame_names;
@@ -147,6 +153,72 @@ std::string script_safe(const std::string& json_text) {
   return out;
 }
 
+// A compiled tape as the page's runner takes it: its instructions six numbers each (op, out,
+// a, b, c, exponent), its initial registers (inputs, constants), each stage's end, where each
+// input level's instructions begin in it, and its output registers.
+json tape_json(const CompiledExpressions& tape) {
+  json code = json::array();
+  for (const auto& in : tape.instructions()) {
+    for (const long long v : {static_cast<long long>(in.op), static_cast<long long>(in.out), static_cast<long long>(in.a),
+                              static_cast<long long>(in.b), static_cast<long long>(in.c), static_cast<long long>(in.exponent)})
+      code.push_back(v);
+  }
+  json ends = json::array(), outputs = json::array(), levels = json::array();
+  for (std::size_t stage = 0; stage < tape.stage_count(); ++stage) {
+    ends.push_back(tape.stage_end(stage));
+    json begins = json::array();
+    for (int level = 0; level <= tape.levels(); ++level) begins.push_back(tape.level_begin(stage, level));
+    levels.push_back(begins);
+    json registers = json::array();
+    for (std::size_t k = 0; k < tape.stage_output_count(stage); ++k) registers.push_back(tape.output_register(stage, k));
+    outputs.push_back(registers);
+  }
+  return {{"code", code}, {"registers", tape.initial_registers()}, {"stage_end", ends}, {"level_begin", levels},
+          {"outputs", outputs}};
+}
+
+// What the page's sliders need to solve again (engine/analysis/resolving.hpp), with the
+// rows' inputs (SI) and the output units; null where the page cannot.
+json resolving_json(const PrintJob& job, const OutputScale& scale) {
+  if (!job.analysis->resolving || job.circuit) return nullptr;
+  const Resolving& r = *job.analysis->resolving;
+  const ConstraintSystem& system = job.model.system;
+  json parameters = json::array();
+  for (const Resolving::Parameter& p : r.parameters)
+    parameters.push_back({{"name", p.name}, {"value", p.value}, {"dimension", dimension_name(p.dimension)},
+                          {"slider", p.slider}, {"sets_length_scale", p.sets_length_scale}});
+  json unknowns = json::array();
+  for (const Coordinate& q : system.unknowns) unknowns.push_back(dimension_name(q.dimension));
+  json inputs = json::array();
+  for (std::size_t row = 0; row < job.values->size(); ++row) inputs.push_back(job.values->input(row));
+  json constants = json::object();
+  for (const auto& [name, value] : r.constants) constants[name] = value;
+  return {{"tape", tape_json(*r.tape)},
+          {"parameter_count", r.layout.parameter_count},
+          {"point_dimensions", r.layout.point_dimensions},
+          {"link_vector_count", r.layout.link_vector_count},
+          {"input_level", TapeLayout::kInputLevel},
+          {"coordinate_level", TapeLayout::kCoordinateLevel},
+          {"vector_outputs", TapeLayout::kVectorOutputs},
+          {"vector_position_at", TapeLayout::kVectorPositionAt},
+          {"vector_guide_at", TapeLayout::kVectorGuideAt},
+          {"parameters", parameters},
+          {"formulas", tape_json(r.formulas)},
+          {"formula_targets", r.formula_targets},
+          {"guess", r.guess},
+          {"unknowns", unknowns},
+          {"length_unknowns", r.length_unknowns},
+          {"rate", r.rate},
+          {"second_rate", r.second_rate},
+          {"max_step", r.max_step},
+          {"max_step_follows_length", r.max_step_follows_length},
+          {"constants", constants},
+          {"inputs", inputs},
+          {"input_dimension", dimension_name(system.input.dimension)},
+          {"length_per_unit", scale.length},
+          {"length_unit", scale.length_unit}};
+}
+
 }  // namespace
 
 std::string base64_of_hex(const std::string& hex) {
@@ -193,6 +265,7 @@ void write_page(std::ostream& out, const PrintJob& job) {
   for (const auto& point : data["columns"]["points"])
     if (point["dimension"] == 2) point_fields[point["name"]] = {point["velocity"], point["acceleration"]};
   data["constructions"] = constructions_json(job.analysis->values, drawing, scale.length, point_fields);
+  data["resolve"] = resolving_json(job, scale);
 
   // The derivation as the notes print it, in MathML (markup of kinema's own, every text escaped).
   std::ostringstream latex;
@@ -205,7 +278,11 @@ void write_page(std::ostream& out, const PrintJob& job) {
     derivation = "<p>This derivation uses LaTeX the page does not show yet: <code>kinema derive FILE --format latex</code> prints it.</p>\n";
   }
 
-  const std::string script_hash = base64_of_hex(kPageScriptSha256), style_hash = base64_of_hex(kPageStyleSha256);
+  // The script: the tape's runner generated from the op table, then page.js.
+  std::ostringstream runner;
+  write_tape_runner_js(runner);
+  const std::string script = runner.str() + kPageScript;
+  const std::string script_hash = base64_of_hex(sha256_hex(script)), style_hash = base64_of_hex(sha256_hex(kPageStyle));
   // Nothing but the page's own script and style runs or loads: no fetch, no frame, no form.
   out << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
       << "<meta http-equiv=\"Content-Security-Policy\" content=\"default-src 'none'; script-src 'sha256-" << script_hash
@@ -215,7 +292,7 @@ void write_page(std::ostream& out, const PrintJob& job) {
       << "<details id=\"derivation\"><summary>The derivation (as kinema derive --format latex prints it)</summary>\n"
       << derivation << "</details>\n"
       << "<script type=\"application/json\" id=\"kinema-data\">" << script_safe(data.dump(-1, ' ', false, json::error_handler_t::replace))
-      << "</script>\n<script>" << kPageScript << "</script>\n</body>\n</html>\n";
+      << "</script>\n<script>" << script << "</script>\n</body>\n</html>\n";
 }
 
 }  // namespace kinema

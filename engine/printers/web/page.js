@@ -1,9 +1,9 @@
 // kinema page: the mechanism animated over rows kinema solved (the JSON in #kinema-data,
-// written by engine/printers/web/page.cpp). Nothing is solved here: the page draws, plays
-// and reads out the rows. Every string of the file is set as text (textContent), never as
-// markup.
-'use strict';
+// written by engine/printers/web/page.cpp): the page draws, plays and reads out the rows.
+// Its dimension sliders solve the rows again here, on the model's compiled tape (below).
+// Every string of the file is set as text (textContent), never as markup.
 (function () {
+  'use strict';
   const data = JSON.parse(document.getElementById('kinema-data').textContent);
   const SVG = 'http://www.w3.org/2000/svg';
   const rows = data.rows.map(function (line) { return line.split(','); });
@@ -12,6 +12,7 @@
   const points = data.columns.points;
   const count = rows.length;
   let row = 0;
+  let resolved = false;  // the rows are the sliders' (solved here), not the file's
 
   // Elements, their text always through textContent.
   function node(tag, className, parent, text) {
@@ -62,11 +63,15 @@
   scrubber.step = 1;
   scrubber.value = 0;
   const marks = svg('svg', { id: 'marks', viewBox: '0 0 1000 8', preserveAspectRatio: 'none' }, scrub);
-  for (let r = 0; r < count; ++r) {
-    if (status(r) === 'ok') continue;
-    const x = count > 1 ? r / (count - 1) * 1000 : 0;
-    svg('rect', { x: x - 1.5, y: 0, width: 3, height: 8, class: 'mark-' + status(r), 'data-row': r }, marks);
+  function drawMarks() {
+    marks.textContent = '';
+    for (let r = 0; r < count; ++r) {
+      if (status(r) === 'ok') continue;
+      const x = count > 1 ? r / (count - 1) * 1000 : 0;
+      svg('rect', { x: x - 1.5, y: 0, width: 3, height: 8, class: 'mark-' + status(r), 'data-row': r }, marks);
+    }
   }
+  drawMarks();
   const value = node('span', 'value', controls);
   value.id = 'value';
   const toggles = {};
@@ -116,6 +121,8 @@
   const readoutText = node('textarea', '', aside);
   readoutText.id = 'readout-text';
   readoutText.readOnly = true;
+  const sliderArea = node('div', 'sliders', document.body);
+  sliderArea.id = 'sliders';
   const polygonArea = node('div', 'polygons', document.body);
   polygonArea.id = 'polygons';
   const plotArea = node('div', 'plots', document.body);
@@ -409,7 +416,7 @@
     });
   }
   function rowCentres(r) {
-    const c = constructions.rows[r];
+    const c = resolved ? null : constructions.rows[r];
     if (!c || !c.centres) return null;
     const s = constructions.centre_structures[c.centres[0]];
     const g = drawing.rows[r];
@@ -468,12 +475,13 @@
     const shown = toggles.polygons && toggles.polygons.checked;
     polygonArea.style.display = shown ? '' : 'none';
     if (!shown) return;
-    const polygons = status(row) === 'ok' ? rowPolygons(row) : null;
+    const polygons = status(row) === 'ok' && !resolved ? rowPolygons(row) : null;
     polygonPanels.forEach(function (panel) {
       panel.svg.textContent = '';
       if (!polygons) {
         panel.key.textContent = '';
-        svg('text', { x: 200, y: 150, class: 'message' }, panel.svg, 'No polygon at this value.');
+        svg('text', { x: 200, y: 150, class: 'message' }, panel.svg,
+          resolved ? 'Polygons: at the file\'s dimensions only.' : 'No polygon at this value.');
         return;
       }
       const polygon = polygons[panel.order];
@@ -618,46 +626,52 @@
   // Plots of rates, second rates and point speeds against the input (along a circuit:
   // against the row, the input going back and forth); a cursor at the row; a click moves there.
   const colours = ['#1c3f94', '#c62828', '#2e7d32', '#d98b00', '#8e44ad', '#00838f', '#6d4c41', '#ad1457'];
-  const plots = data.columns.plots.filter(function (p) { return p.fields.length > 0; }).map(function (plot) {
-    const box = node('div', 'plot', plotArea);
-    node('h2', '', box, plot.title + (data.circuit ? ' along the circuit' : ' against ' + data.input.name));
-    const chart = svg('svg', { viewBox: '0 0 400 200', preserveAspectRatio: 'none', class: 'chart' }, box);
-    const legend = node('div', 'legend', box);
-    const xs = numbers.map(function (n, r) { return data.circuit ? r : n[0]; });
-    let lo = Infinity, hi = -Infinity;
-    plot.fields.forEach(function (f) { numbers.forEach(function (n) { if (isFinite(n[f])) { lo = Math.min(lo, n[f]); hi = Math.max(hi, n[f]); } }); });
-    if (!isFinite(lo)) { lo = -1; hi = 1; }
-    if (hi - lo < 1e-12 * Math.max(1, Math.abs(hi))) { lo -= 1; hi += 1; }
-    const x0 = Math.min.apply(null, xs), x1 = Math.max.apply(null, xs);
-    const X = function (x) { return 40 + (x - x0) / ((x1 - x0) || 1) * 350; };
-    const Y = function (y) { return 185 - (y - lo) / (hi - lo) * 175; };
-    svg('line', { x1: 40, y1: 185, x2: 390, y2: 185, class: 'axis' }, chart);
-    svg('line', { x1: 40, y1: 10, x2: 40, y2: 185, class: 'axis' }, chart);
-    if (lo < 0 && hi > 0) svg('line', { x1: 40, y1: Y(0), x2: 390, y2: Y(0), class: 'axis' }, chart);
-    svg('text', { x: 36, y: 14, class: 'tick', 'text-anchor': 'end' }, chart, hi.toPrecision(3));
-    svg('text', { x: 36, y: 185, class: 'tick', 'text-anchor': 'end' }, chart, lo.toPrecision(3));
-    plot.fields.forEach(function (f, k) {
-      let path = '', pen = false;
-      numbers.forEach(function (n, r) {
-        if (!isFinite(n[f])) { pen = false; return; }
-        path += (pen ? ' L' : ' M') + fixed(X(xs[r])) + ',' + fixed(Y(n[f]));
-        pen = true;
+  let plots = [];
+  // Made again when the sliders solve new rows.
+  function buildPlots() {
+    plotArea.textContent = '';
+    plots = data.columns.plots.filter(function (p) { return p.fields.length > 0; }).map(function (plot) {
+      const box = node('div', 'plot', plotArea);
+      node('h2', '', box, plot.title + (data.circuit ? ' along the circuit' : ' against ' + data.input.name));
+      const chart = svg('svg', { viewBox: '0 0 400 200', preserveAspectRatio: 'none', class: 'chart' }, box);
+      const legend = node('div', 'legend', box);
+      const xs = numbers.map(function (n, r) { return data.circuit ? r : n[0]; });
+      let lo = Infinity, hi = -Infinity;
+      plot.fields.forEach(function (f) { numbers.forEach(function (n) { if (isFinite(n[f])) { lo = Math.min(lo, n[f]); hi = Math.max(hi, n[f]); } }); });
+      if (!isFinite(lo)) { lo = -1; hi = 1; }
+      if (hi - lo < 1e-12 * Math.max(1, Math.abs(hi))) { lo -= 1; hi += 1; }
+      const x0 = Math.min.apply(null, xs), x1 = Math.max.apply(null, xs);
+      const X = function (x) { return 40 + (x - x0) / ((x1 - x0) || 1) * 350; };
+      const Y = function (y) { return 185 - (y - lo) / (hi - lo) * 175; };
+      svg('line', { x1: 40, y1: 185, x2: 390, y2: 185, class: 'axis' }, chart);
+      svg('line', { x1: 40, y1: 10, x2: 40, y2: 185, class: 'axis' }, chart);
+      if (lo < 0 && hi > 0) svg('line', { x1: 40, y1: Y(0), x2: 390, y2: Y(0), class: 'axis' }, chart);
+      svg('text', { x: 36, y: 14, class: 'tick', 'text-anchor': 'end' }, chart, hi.toPrecision(3));
+      svg('text', { x: 36, y: 185, class: 'tick', 'text-anchor': 'end' }, chart, lo.toPrecision(3));
+      plot.fields.forEach(function (f, k) {
+        let path = '', pen = false;
+        numbers.forEach(function (n, r) {
+          if (!isFinite(n[f])) { pen = false; return; }
+          path += (pen ? ' L' : ' M') + fixed(X(xs[r])) + ',' + fixed(Y(n[f]));
+          pen = true;
+        });
+        const colour = colours[k % colours.length];
+        if (path) svg('path', { d: path, fill: 'none', stroke: colour, 'stroke-width': 1.3, 'vector-effect': 'non-scaling-stroke' }, chart);
+        const field = data.columns.fields[f];
+        node('span', '', legend, '\u25a0 ' + field.name + ' [' + field.unit + ']').style.color = colour;
       });
-      const colour = colours[k % colours.length];
-      if (path) svg('path', { d: path, fill: 'none', stroke: colour, 'stroke-width': 1.3, 'vector-effect': 'non-scaling-stroke' }, chart);
-      const field = data.columns.fields[f];
-      node('span', '', legend, '\u25a0 ' + field.name + ' [' + field.unit + ']').style.color = colour;
+      const cursor = svg('line', { y1: 10, y2: 185, class: 'cursor', 'vector-effect': 'non-scaling-stroke' }, chart);
+      chart.addEventListener('click', function (event) {
+        const b = chart.getBoundingClientRect();
+        const x = x0 + ((event.clientX - b.left) / b.width * 400 - 40) / 350 * ((x1 - x0) || 1);
+        let best = 0;
+        xs.forEach(function (v, r) { if (Math.abs(v - x) < Math.abs(xs[best] - x)) best = r; });
+        setRow(best);
+      });
+      return { cursor: cursor, x: function () { return X(xs[row]); } };
     });
-    const cursor = svg('line', { y1: 10, y2: 185, class: 'cursor', 'vector-effect': 'non-scaling-stroke' }, chart);
-    chart.addEventListener('click', function (event) {
-      const b = chart.getBoundingClientRect();
-      const x = x0 + ((event.clientX - b.left) / b.width * 400 - 40) / 350 * ((x1 - x0) || 1);
-      let best = 0;
-      xs.forEach(function (v, r) { if (Math.abs(v - x) < Math.abs(xs[best] - x)) best = r; });
-      setRow(best);
-    });
-    return { cursor: cursor, x: function () { return X(xs[row]); } };
-  });
+  }
+  buildPlots();
 
   function setRow(r) {
     row = Math.max(0, Math.min(count - 1, r));
@@ -745,9 +759,528 @@
   picture.addEventListener('dblclick', function () { fit(); drawTraces(); draw(); });
   window.addEventListener('resize', function () { fit(); drawTraces(); draw(); });
 
+
+  // Dimension sliders: the mechanism solved again in the page for other values of the
+  // file's parameters. The model's compiled tape (data.resolve.tape, parameters among its
+  // inputs) runs on kinemaTapeRunner, generated by kinema from its one op table; Newton,
+  // continuation and the singularity test follow kinema's (engine/numeric/workspace.cpp,
+  // sweep.cpp, solver.hpp, whose constants come with the data), so a row solved here is
+  // kinema eval's for the file edited to these dimensions.
+  function tapeOf(t) {
+    const m = t.code.length / 6;
+    const tape = { op: new Int32Array(m), out: new Int32Array(m), a: new Int32Array(m), b: new Int32Array(m),
+      c: new Int32Array(m), e: new Int32Array(m), registers: Float64Array.from(t.registers, function (v) { return v === null ? NaN : v; }),
+      stageEnd: t.stage_end, levelBegin: t.level_begin, outputs: t.outputs };
+    for (let k = 0; k < m; ++k) {
+      tape.op[k] = t.code[6 * k]; tape.out[k] = t.code[6 * k + 1]; tape.a[k] = t.code[6 * k + 2];
+      tape.b[k] = t.code[6 * k + 3]; tape.c[k] = t.code[6 * k + 4]; tape.e[k] = t.code[6 * k + 5];
+    }
+    return tape;
+  }
+
+  // solver.hpp's LU with partial pivoting (row-major n x n, in place) and its solve.
+  function luFactor(a, pivots, n) {
+    for (let c = 0; c < n; ++c) {
+      let best = c;
+      for (let r = c + 1; r < n; ++r) if (Math.abs(a[r * n + c]) > Math.abs(a[best * n + c])) best = r;
+      pivots[c] = best;
+      if (best !== c) for (let j = 0; j < n; ++j) { const t = a[c * n + j]; a[c * n + j] = a[best * n + j]; a[best * n + j] = t; }
+      const pivot = a[c * n + c];
+      if (pivot === 0) continue;
+      for (let r = c + 1; r < n; ++r) {
+        const factor = a[r * n + c] /= pivot;
+        for (let j = c + 1; j < n; ++j) a[r * n + j] -= factor * a[c * n + j];
+      }
+    }
+  }
+  function luSolve(a, inversePivots, pivots, x, n) {
+    for (let c = 0; c < n; ++c) if (pivots[c] !== c) { const t = x[c]; x[c] = x[pivots[c]]; x[pivots[c]] = t; }
+    for (let c = 0; c < n; ++c) for (let r = c + 1; r < n; ++r) x[r] -= a[r * n + c] * x[c];
+    for (let c = n; c-- > 0;) {
+      x[c] *= inversePivots[c];
+      for (let r = 0; r < c; ++r) x[r] -= a[r * n + c] * x[c];
+    }
+  }
+  function pivotRatio(a, n, lengthScale) {
+    let smallest = Infinity, largest = n === 1 ? lengthScale : 0;
+    for (let c = 0; c < n; ++c) {
+      const pivot = Math.abs(a[c * n + c]);
+      smallest = Math.min(smallest, pivot);
+      largest = Math.max(largest, pivot);
+    }
+    const ratio = smallest / largest;
+    return isFinite(ratio) ? ratio : 0;
+  }
+  // One-sided Jacobi (solver.hpp jacobi_orthogonalise), with v when given.
+  function jacobi(a, v, n, K) {
+    if (v) for (let i = 0; i < n; ++i) for (let j = 0; j < n; ++j) v[i * n + j] = i === j ? 1 : 0;
+    for (let sweep = 0; sweep < K.jacobi_sweeps; ++sweep) {
+      let rotated = false;
+      for (let p = 0; p + 1 < n; ++p) {
+        for (let q = p + 1; q < n; ++q) {
+          let alpha = 0, beta = 0, gamma = 0;
+          for (let i = 0; i < n; ++i) {
+            alpha += a[i * n + p] * a[i * n + p]; beta += a[i * n + q] * a[i * n + q]; gamma += a[i * n + p] * a[i * n + q];
+          }
+          if (!(Math.abs(gamma) > K.jacobi_tolerance * Math.sqrt(alpha) * Math.sqrt(beta))) continue;
+          rotated = true;
+          const zeta = (beta - alpha) / (2 * gamma);
+          const t = (zeta >= 0 ? 1 : -1) / (Math.abs(zeta) + Math.hypot(1, zeta));
+          const c = 1 / Math.sqrt(1 + t * t), s = c * t;
+          for (let i = 0; i < n; ++i) {
+            const ap = a[i * n + p], aq = a[i * n + q];
+            a[i * n + p] = c * ap - s * aq; a[i * n + q] = s * ap + c * aq;
+          }
+          if (v) for (let i = 0; i < n; ++i) {
+            const vp = v[i * n + p], vq = v[i * n + q];
+            v[i * n + p] = c * vp - s * vq; v[i * n + q] = s * vp + c * vq;
+          }
+        }
+      }
+      if (!rotated) break;
+    }
+  }
+  function columnLength(a, j, n) {
+    let sum = 0;
+    for (let i = 0; i < n; ++i) sum += a[i * n + j] * a[i * n + j];
+    return Math.sqrt(sum);
+  }
+
+  function makeSolver(R) {
+    const K = R.constants, tape = tapeOf(R.tape), formulas = tapeOf(R.formulas), run = kinemaTapeRunner.run;
+    const n = R.guess.length, P = R.parameter_count, r = Float64Array.from(tape.registers);
+    const at = { input: P, rate: P + 1, second: P + 2, q: P + 3, qd: P + 3 + n, qdd: P + 3 + 2 * n };
+    const end = tape.stageEnd, out = tape.outputs, level = tape.levelBegin;
+    const inputLevel = R.input_level, coordinateLevel = R.coordinate_level;
+    const lu = new Float64Array(n * n), inversePivots = new Float64Array(n), pivots = new Int32Array(n);
+    // Buffers reused from value to value (a sweep allocates only its rows).
+    const newtonTrial = new Float64Array(n), newtonStep = new Float64Array(n), corrected = new Float64Array(n);
+    const solver = { n: n, columnScale: new Float64Array(n), lengthScale: 1, maxStep: R.max_step };
+    const lengthScaleOf = function (values) {
+      let largest = 0;
+      R.parameters.forEach(function (p, k) { if (p.sets_length_scale) largest = Math.max(largest, Math.abs(values[k])); });
+      return largest > 0 ? largest : 1;
+    };
+    const fileLengthScale = lengthScaleOf(R.parameters.map(function (p) { return p.value; }));
+    // The sliders' values (SI, by parameter index); the formula parameters follow them.
+    solver.setParameters = function (values) {
+      const f = Float64Array.from(formulas.registers);
+      for (let p = 0; p < P; ++p) f[p] = values[p];
+      run(formulas, f, 0, formulas.stageEnd[0]);
+      const all = values.slice();
+      R.formula_targets.forEach(function (p, k) { all[p] = f[formulas.outputs[0][k]]; });
+      for (let p = 0; p < P; ++p) r[p] = all[p];
+      // What depends on the parameters alone runs once (CompiledExpressions::prepare).
+      for (let s = 0; s < end.length; ++s) run(tape, r, level[s][0], level[s][1]);
+      evaluatedInput = NaN;
+      solver.lengthScale = lengthScaleOf(all);
+      for (let i = 0; i < n; ++i) solver.columnScale[i] = R.length_unknowns[i] ? solver.lengthScale : 1;
+      solver.maxStep = R.max_step_follows_length ? R.max_step * solver.lengthScale / fileLengthScale : R.max_step;
+      return all;
+    };
+    let evaluatedInput = NaN;
+    const evaluated = new Float64Array(n);
+    // Only q changed (a Newton iterate): what depends on the input alone still holds.
+    function evaluatePosition(input, q) {
+      const from = evaluatedInput === input ? coordinateLevel : inputLevel;
+      r[at.input] = input;
+      for (let i = 0; i < n; ++i) r[at.q + i] = q[i];
+      run(tape, r, level[0][from], end[0]);
+      evaluatedInput = input;
+      evaluated.set(q);
+    }
+    function evaluatedAt(input, q) {
+      if (evaluatedInput !== input) return false;
+      for (let i = 0; i < n; ++i) if (evaluated[i] !== q[i]) return false;
+      return true;
+    }
+    const phi = function (i) { return r[out[0][i]]; };
+    const phiQ = function (i, j) { return r[out[0][n + j * n + i]]; };
+    const phiTheta = function (i) { return r[out[0][n + n * n + i]]; };
+    function residualNorm() {
+      let norm = 0;
+      for (let i = 0; i < n; ++i) {
+        const m = Math.abs(phi(i));
+        if (isNaN(m)) return m;
+        norm = Math.max(norm, m);
+      }
+      return norm;
+    }
+    function scaledJacobian(a) {
+      for (let i = 0; i < n; ++i) for (let j = 0; j < n; ++j) a[i * n + j] = phiQ(i, j) * solver.columnScale[j];
+      return a;
+    }
+    function factorise() {
+      scaledJacobian(lu);
+      luFactor(lu, pivots, n);
+      for (let c = 0; c < n; ++c) inversePivots[c] = 1 / lu[c * n + c];
+    }
+    function reciprocalCondition() {
+      const ratio = pivotRatio(lu, n, solver.lengthScale);
+      if (ratio === 0) return 0;
+      if (ratio >= K.clearly_regular_pivot_ratio || n === 1) return ratio;
+      const a = scaledJacobian(new Float64Array(n * n));
+      jacobi(a, null, n, K);
+      let smallest = Infinity, largest = 0;
+      for (let j = 0; j < n; ++j) { const l = columnLength(a, j, n); smallest = Math.min(smallest, l); largest = Math.max(largest, l); }
+      const rc = smallest / largest;
+      return isFinite(rc) ? rc : 0;
+    }
+    function solveRhs(x) {
+      luSolve(lu, inversePivots, pivots, x, n);
+      for (let i = 0; i < n; ++i) x[i] *= solver.columnScale[i];
+      return x;
+    }
+    function leastSquaresStep(b) {
+      const a = new Float64Array(n * n), v = new Float64Array(n * n), x = new Float64Array(n);
+      for (let i = 0; i < n; ++i) for (let j = 0; j < n; ++j) a[i * n + j] = phiQ(i, j);
+      jacobi(a, v, n, K);
+      let largest = 0;
+      for (let j = 0; j < n; ++j) largest = Math.max(largest, columnLength(a, j, n));
+      const cutoff = n * K.epsilon * largest;
+      for (let j = 0; j < n; ++j) {
+        const sigma = columnLength(a, j, n);
+        if (!(sigma > cutoff)) continue;
+        let projection = 0;
+        for (let i = 0; i < n; ++i) projection += a[i * n + j] * b[i];
+        const coefficient = projection / (sigma * sigma);
+        for (let i = 0; i < n; ++i) x[i] += v[i * n + j] * coefficient;
+      }
+      return x;
+    }
+    const outputsOf = function (stage) {
+      const registers = out[stage], values = new Float64Array(registers.length);
+      for (let k = 0; k < registers.length; ++k) values[k] = r[registers[k]];
+      return values;
+    };
+    const allFinite = function (v) { for (let i = 0; i < v.length; ++i) if (!isFinite(v[i])) return false; return true; };
+    // Workspace::solve_position: Newton with step halving; q (a Float64Array) updated in place.
+    function solvePosition(input, q) {
+      const tolerance = K.newton_tolerance * solver.lengthScale;
+      if (!evaluatedAt(input, q)) evaluatePosition(input, q);
+      let norm = residualNorm(), converged = false;
+      const trial = newtonTrial;
+      for (let iteration = 0; iteration < K.newton_iterations && isFinite(norm); ++iteration) {
+        if (norm <= tolerance) { converged = true; break; }
+        factorise();
+        let step = newtonStep;
+        if (pivotRatio(lu, n, solver.lengthScale) > K.least_squares_pivot_ratio) {
+          for (let i = 0; i < n; ++i) step[i] = -phi(i);
+          solveRhs(step);
+        } else {
+          const b = new Float64Array(n);
+          for (let i = 0; i < n; ++i) b[i] = -phi(i);
+          step = leastSquaresStep(b);
+        }
+        if (!allFinite(step)) break;
+        let lambda = 1, improved = false;
+        for (let halving = 0; halving < K.step_halvings; ++halving, lambda *= 0.5) {
+          for (let i = 0; i < n; ++i) trial[i] = q[i] + lambda * step[i];
+          evaluatePosition(input, trial);
+          const trialNorm = residualNorm();
+          if (isFinite(trialNorm) && trialNorm < norm) { improved = true; norm = trialNorm; q.set(trial); break; }
+        }
+        if (!improved) break;
+      }
+      if (!converged && norm <= K.rounding_tolerance * solver.lengthScale) converged = true;
+      if (!evaluatedAt(input, q)) evaluatePosition(input, q);
+      return converged && allFinite(q);
+    }
+    function sensitivity(input, q) {
+      if (!evaluatedAt(input, q)) evaluatePosition(input, q);
+      factorise();
+      if (reciprocalCondition() < K.singular_threshold) return null;
+      const dq = new Float64Array(n);
+      for (let i = 0; i < n; ++i) dq[i] = -phiTheta(i);
+      solveRhs(dq);
+      return allFinite(dq) ? dq : null;
+    }
+    // Workspace::predict_and_correct: Newton from the prediction, refused on another branch.
+    function predictAndCorrect(to, predicted, q) {
+      const trial = corrected;
+      trial.set(predicted);
+      if (!solvePosition(to, trial)) return false;
+      for (let i = 0; i < n; ++i) if (Math.abs(trial[i] - predicted[i]) / solver.columnScale[i] > K.branch_tolerance) return false;
+      q.set(trial);
+      return true;
+    }
+    // Workspace::continue_to: small predicted steps, halved where refused.
+    function continueTo(from, to, q) {
+      const maxStep = solver.maxStep, minStep = maxStep * 1e-7;
+      if (!(Math.abs(to - from) <= K.max_continuation_steps * maxStep)) return false;
+      let t = from, h = Math.sign(to - from) * Math.min(maxStep, Math.abs(to - from));
+      const predicted = new Float64Array(n);
+      while (t !== to) {
+        if (Math.abs(to - t) <= Math.abs(h) * (1 + 1e-12)) h = to - t;
+        if (t + h === t) return false;
+        const slope = sensitivity(t, q);
+        let accepted = false;
+        if (slope) {
+          for (let i = 0; i < n; ++i) predicted[i] = q[i] + slope[i] * h;
+          accepted = predictAndCorrect(t + h, predicted, q);
+        }
+        if (accepted) {
+          t = h === to - t ? to : t + h;
+          h = Math.sign(to - from) * Math.min(maxStep, 2 * Math.abs(h));
+        } else {
+          h /= 2;
+          if (Math.abs(h) < minStep) return false;
+        }
+      }
+      return true;
+    }
+    // Workspace::motion_into: rates, second rates, points and the drawing stage's values.
+    function motion(input, q) {
+      const row = { input: input, status: 'ok', q: Float64Array.from(q) };
+      if (!evaluatedAt(input, q)) evaluatePosition(input, q);
+      factorise();
+      if (reciprocalCondition() < K.singular_threshold) {
+        // Drawn all the same (a position without rates, as Kinematics::drawing_values draws it).
+        row.status = 'singular';
+        row.why = 'jacobian';
+        for (let i = 0; i < n; ++i) { r[at.qd + i] = NaN; r[at.qdd + i] = NaN; }
+        for (let s = 1; s < end.length; ++s) run(tape, r, level[s][inputLevel], end[s]);
+        row.drawn = outputsOf(3);
+        return row;
+      }
+      const qd = new Float64Array(n);
+      for (let i = 0; i < n; ++i) qd[i] = -phiTheta(i) * R.rate;
+      solveRhs(qd);
+      r[at.rate] = R.rate;
+      r[at.second] = R.second_rate;
+      for (let i = 0; i < n; ++i) r[at.qd + i] = qd[i];
+      run(tape, r, level[1][inputLevel], end[1]);
+      const qdd = new Float64Array(n);
+      for (let i = 0; i < n; ++i) qdd[i] = r[out[1][i]];
+      solveRhs(qdd);
+      for (let i = 0; i < n; ++i) r[at.qdd + i] = qdd[i];
+      run(tape, r, level[2][inputLevel], end[2]);
+      run(tape, r, level[3][inputLevel], end[3]);
+      row.qd = qd;
+      row.qdd = qdd;
+      row.points = outputsOf(2);
+      row.drawn = outputsOf(3);
+      if (!allFinite(qd) || !allFinite(qdd) || !allFinite(row.points)) { row.status = 'singular'; row.why = 'rates'; }
+      return row;
+    }
+    // The sweep over the page's inputs (sweep.cpp solve_rows, one value at a time): each row
+    // continued from the last, the first from the file's guesses.
+    solver.sweep = function (inputs) {
+      const rows = [];
+      let q = Float64Array.from(R.guess), havePrevious = false, qSingular = false, lastOk = null;
+      const predicted = new Float64Array(n);
+      inputs.forEach(function (input, k) {
+        let solved = false;
+        const trial = Float64Array.from(q);
+        if (havePrevious) {
+          const before = rows[k - 1], h = input - before.input;
+          if (R.rate !== 0 && Math.abs(h) <= solver.maxStep) {
+            predict(before, h, predicted);
+            solved = predictAndCorrect(input, predicted, trial);
+          }
+          if (!solved) { trial.set(q); solved = continueTo(before.input, input, trial); }
+        } else {
+          solved = solvePosition(input, trial);
+          if (!solved && qSingular && lastOk && R.rate !== 0) {
+            predict(lastOk, input - lastOk.input, trial);
+            solved = solvePosition(input, trial);
+          }
+        }
+        if (!solved) {
+          rows.push({ input: input, status: 'unassembled' });
+          havePrevious = false;
+          return;
+        }
+        q = trial;
+        const row = motion(input, q);
+        qSingular = row.status === 'singular';
+        havePrevious = row.status === 'ok';
+        if (havePrevious) lastOk = row;
+        rows.push(row);
+      });
+      return rows;
+    };
+    function predict(row, h, into) {
+      const rate = R.rate, second = R.second_rate;
+      for (let i = 0; i < n; ++i) {
+        const slope = row.qd[i] / rate, curvature = (row.qdd[i] - slope * second) / (rate * rate);
+        into[i] = row.q[i] + h * (slope + 0.5 * h * curvature);
+      }
+    }
+    return solver;
+  }
+
+  // The sliders: one for each parameter the file writes as a length or an angle, from half
+  // to one and a half times its value (an angle of 0: +-30 deg); the file's other
+  // parameters follow through their formulas. A move solves every row of the page again (the
+  // same input values) and redraws whatever the page draws from rows.
+  const R = data.resolve;
+  const solver = R ? makeSolver(R) : null;
+  const fileRows = { rows: rows.slice(), numbers: numbers.slice(), drawing: drawing.rows.slice(), reasons: data.reasons.slice() };
+  const sliders = [];
+  const resolveTimes = [];
+  let lastSolved = null;
+  function outputValue(p, si) { return p.dimension === 'angle' ? si * 180 / Math.PI : si / R.length_per_unit; }
+  function siValue(p, shown) { return p.dimension === 'angle' ? shown * Math.PI / 180 : shown * R.length_per_unit; }
+  function unitOf(p) { return p.dimension === 'angle' ? 'deg' : R.length_unit; }
+  // OutputScale (engine/constraints/output_columns.cpp): the CSV's units, angles wrapped to (-180, 180].
+  function remainder360(d) {
+    const k = d / 360;
+    let m = Math.round(k);
+    if (Math.abs(k - Math.trunc(k)) === 0.5) m = 2 * Math.round(k / 2);
+    return d - 360 * m;
+  }
+  function coordinateOut(dimension, si) {
+    if (dimension === 'time') return si;
+    if (dimension !== 'angle') return si / R.length_per_unit;
+    let d = si * 180 / Math.PI;
+    if (d > -180 && d <= 180) return d;
+    d = remainder360(d);
+    return d <= -180 ? d + 360 : d;
+  }
+  function unwrappedOut(dimension, si) { return dimension === 'time' ? si : dimension === 'angle' ? si * 180 / Math.PI : si / R.length_per_unit; }
+  function rateOut(dimension, si) { return dimension === 'angle' || dimension === 'time' ? si : si / R.length_per_unit; }
+  function lengthOf(v, k, d) {
+    const squares = v[k] * v[k] + v[k + 1] * v[k + 1] + (d === 3 ? v[k + 2] * v[k + 2] : 0);
+    if (squares > 1e-300 && squares < 1e300) return Math.sqrt(squares);
+    return Math.hypot(v[k], v[k + 1], d === 3 ? v[k + 2] : 0);
+  }
+  // A solved row as the CSV's fields (numbers in its units; NaN where the status leaves none).
+  function fieldsOf(solved) {
+    const f = R.length_per_unit, out = [unwrappedOut(R.input_dimension, solved.input),
+      rateOut(R.input_dimension, R.rate), rateOut(R.input_dimension, R.second_rate), solved.status];
+    R.unknowns.forEach(function (dimension, i) {
+      const ok = solved.status === 'ok';
+      out.push(solved.status === 'unassembled' ? NaN : coordinateOut(dimension, solved.q[i]));
+      out.push(ok ? rateOut(dimension, solved.qd[i]) : NaN, ok ? rateOut(dimension, solved.qdd[i]) : NaN);
+    });
+    let k = 0;
+    R.point_dimensions.forEach(function (d) {
+      const v = solved.status === 'ok' ? solved.points : null;
+      const value = function (j) { return v ? v[j] / f : NaN; };
+      for (let c = 0; c < d; ++c) out.push(value(k + c));
+      for (let c = 0; c < d; ++c) out.push(value(k + d + c));
+      out.push(v ? lengthOf(v, k + d, d) / f : NaN);
+      for (let c = 0; c < d; ++c) out.push(value(k + 2 * d + c));
+      out.push(v ? lengthOf(v, k + 2 * d, d) / f : NaN);
+      k += 3 * d;
+    });
+    out.push('');
+    return out;
+  }
+  // The drawing of a solved row: each segment a link vector of the drawing stage laid end to
+  // end in kinema's order (engine/analysis/geometry.cpp MechanismGeometry::segments), each
+  // point on a link drawn back along its vector; in the output length unit.
+  function drawingOf(solved) {
+    if (!solved.drawn) return null;
+    const f = R.length_per_unit, v = solved.drawn;
+    const vector = function (t, part) { const k = R.vector_outputs * t + part; return [v[k], v[k + 1]]; };
+    const g = [];
+    let at = [0, 0];
+    drawing.segments.forEach(function (s) {
+      if (s.loop_start) at = [0, 0];
+      const term = vector(s.term, R.vector_position_at);
+      const from = at, to = [at[0] + term[0], at[1] + term[1]];
+      at = to;
+      let along = s.guide_from_tape ? vector(s.term, R.vector_guide_at) : term;
+      const length = Math.hypot(along[0], along[1]);
+      if (length > 0) along = [along[0] / length, along[1] / length];
+      const block = s.block_at_from ? from : to;
+      g.push(from[0] / f, from[1] / f, to[0] / f, to[1] / f, block[0] / f, block[1] / f, along[0], along[1]);
+    });
+    drawing.points_on_links.forEach(function (p) {
+      if (solved.status !== 'ok') { g.push(NaN, NaN, NaN, NaN); return; }
+      let k = 0;
+      for (let j = 0; j < p.point; ++j) k += 3 * R.point_dimensions[j];
+      const term = vector(p.vector, R.vector_position_at), x = solved.points[k], y = solved.points[k + 1];
+      g.push((x - term[0]) / f, (y - term[1]) / f, x / f, y / f);
+    });
+    return g;
+  }
+  function reasonOf(solved) {
+    if (solved.status === 'unassembled')
+      return 'the loops do not close at ' + data.input.name + ' with these dimensions (Newton, continued from the value before, does not converge)';
+    return solved.why === 'jacobian' ? 'the Jacobian of the loops is singular here with these dimensions (a toggle)'
+      : 'the rates are not finite here with these dimensions';
+  }
+  // Solves every row for the sliders' values and puts the rows where the page reads them.
+  function resolveRows() {
+    const begun = performance.now();
+    const values = R.parameters.map(function (p) { return p.value; });
+    sliders.forEach(function (s) { values[s.index] = siValue(s.parameter, Number(s.input.value)); });
+    solver.setParameters(values);
+    const solved = solver.sweep(R.inputs);
+    resolveTimes.push(performance.now() - begun);
+    lastSolved = solved;
+    resolved = sliders.some(function (s) { return Number(s.input.value) !== s.fileValue; });
+    for (let r = 0; r < count; ++r) {
+      if (!resolved) {
+        rows[r] = fileRows.rows[r]; numbers[r] = fileRows.numbers[r]; drawing.rows[r] = fileRows.drawing[r];
+        data.reasons[r] = fileRows.reasons[r];
+        continue;
+      }
+      const fields = fieldsOf(solved[r]);
+      numbers[r] = fields.map(function (v) { return typeof v === 'number' ? v : parseFloat(v); });
+      rows[r] = fields.map(function (v) { return typeof v !== 'number' ? v : isFinite(v) ? String(Number(v.toPrecision(12))) : ''; });
+      drawing.rows[r] = solved[r].status === 'unassembled' ? null : drawingOf(solved[r]);
+      data.reasons[r] = solved[r].status === 'ok' ? '' : reasonOf(solved[r]);
+    }
+    sliders.forEach(function (s) { s.shown.textContent = s.input.value + ' ' + unitOf(s.parameter); });
+    const failed = solved.filter(function (x) { return x.status !== 'ok'; }).length;
+    sliderNote.textContent = !resolved ? 'The file\'s dimensions: the rows kinema solved.'
+      : 'Solved here in ' + resolveTimes[resolveTimes.length - 1].toFixed(1) + ' ms' +
+        (failed ? ': ' + failed + ' of ' + count + ' values not assembled or singular (marked on the scrubber).' : '.');
+    drawMarks();
+    buildPlots();
+    drawTraces();
+    setRow(row);
+  }
+  let sliderNote = null;
+  if (solver) {
+    node('h2', '', sliderArea, 'Dimensions');
+    R.parameters.forEach(function (p, index) {
+      if (!p.slider) return;
+      const fileValue = Number(outputValue(p, p.value).toPrecision(12));
+      const spread = fileValue !== 0 ? Math.abs(fileValue) / 2 : p.dimension === 'angle' ? 30 : outputValue(p, 0.5 * solver.lengthScale);
+      // A round step (a power of ten, about a hundredth of the spread): the values read as written.
+      const step = Math.pow(10, Math.floor(Math.log10(spread / 100)));
+      const label = node('label', 'slider', sliderArea);
+      node('span', 'name', label, p.name);
+      const input = node('input', '', label);
+      input.type = 'range';
+      input.step = step;
+      input.min = Number((Math.ceil((fileValue - spread) / step) * step).toPrecision(12));
+      input.max = Number((Math.floor((fileValue + spread) / step) * step).toPrecision(12));
+      input.value = fileValue;
+      input.setAttribute('data-parameter', p.name);
+      const shown = node('span', 'shown', label);
+      const slider = { parameter: p, index: index, input: input, shown: shown, fileValue: Number(input.value) };
+      input.addEventListener('input', resolveRows);
+      sliders.push(slider);
+    });
+    const reset = node('button', '', sliderArea, 'The file\'s dimensions');
+    reset.addEventListener('click', function () {
+      sliders.forEach(function (s) { s.input.value = s.fileValue; });
+      resolveRows();
+    });
+    sliderNote = node('p', 'key', sliderArea);
+    sliders.forEach(function (s) { s.shown.textContent = s.input.value + ' ' + unitOf(s.parameter); });
+    sliderNote.textContent = 'The file\'s dimensions: the rows kinema solved.';
+  } else {
+    sliderArea.style.display = 'none';
+  }
+  // Sets parameters (by name, in the file's output units) as the sliders would, and solves.
+  function setDimensions(values) {
+    sliders.forEach(function (s) { if (s.parameter.name in values) s.input.value = values[s.parameter.name]; });
+    resolveRows();
+  }
+
   // What a measurement reads (bench/page_timing.js): the times between frames while playing,
   // and the time each frame's drawing took.
-  window.kinemaPage = { frameTimes: frameTimes, drawTimes: drawTimes, setPlaying: setPlaying };
+  // The sliders' rows for a test: every row's status and fields (numbers in the CSV's units).
+  window.kinemaPage = { frameTimes: frameTimes, drawTimes: drawTimes, setPlaying: setPlaying, resolveTimes: resolveTimes,
+    setDimensions: setDimensions, setRow: setRow,
+    rows: function () { return numbers.map(function (n, r) { return { status: status(r), fields: n.slice() }; }); } };
   // The derivation (static MathML written by kinema) under everything the script made.
   document.body.appendChild(document.getElementById('derivation'));
   fit();

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <string>
 
+#include "engine/base/sha256.hpp"
 #include "engine/model.hpp"
 #include "engine/printers/web/page.hpp"
 #include "engine/printers/web/page_constructions.hpp"
@@ -81,8 +82,47 @@ TEST_CASE("engine/printers/web/page: the file's strings stay data inside their s
   const nlohmann::json parsed = nlohmann::json::parse(data);
   CHECK(parsed["title"] == hostile);
   CHECK(parsed["rows"].size() == table.size());
-  // The policy names the page's script and style only.
-  CHECK(page.find("default-src 'none'; script-src 'sha256-") != std::string::npos);
+  // The policy names the page's script and style only, by the digests of what the page holds
+  // (the script's tape runner is generated when the page is written).
+  const std::string script_open = "</script>\n<script>", style_open = "<style>";
+  const std::size_t script_begin = page.find(script_open) + script_open.size();
+  const std::string script = page.substr(script_begin, page.find("</script>", script_begin) - script_begin);
+  const std::size_t style_begin = page.find(style_open) + style_open.size();
+  const std::string style = page.substr(style_begin, page.find("</style>", style_begin) - style_begin);
+  CHECK(script.find("kinemaTapeRunner") != std::string::npos);
+  CHECK(page.find("script-src 'sha256-" + kinema::base64_of_hex(kinema::sha256_hex(script)) + "'; style-src 'sha256-" +
+                  kinema::base64_of_hex(kinema::sha256_hex(style)) + "';") != std::string::npos);
+}
+
+TEST_CASE("engine/base/sha256: the digests of FIPS 180-4's examples") {
+  CHECK(kinema::sha256_hex("") == "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855");
+  CHECK(kinema::sha256_hex("abc") == "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
+  CHECK(kinema::sha256_hex("abcdbcdecdefdefgefghfghighijhijkijkljklmklmnlmnomnopnopq") ==
+        "248d6a61d20638b8e5c026930c3e6039a33ce45964ff2167f6ecedd419db06c1");  // two blocks
+  CHECK(kinema::sha256_hex(std::string(1000000, 'a')) == "cdc76e5c9914fb9281a1c7e284d73e67f1809a48a497200e046d39ccc7112cd0");
+}
+
+TEST_CASE("engine/printers/web/page: a vector-loop file's page carries what solving again needs; a joints file's does not") {
+  const auto page_data = [](const std::string& name) {
+    const kinema::Model model = kinema::load_model(kinema_test::sample(name));
+    const kinema::MotionTable table = kinema::analyse(model, turn_in_degrees(30));
+    std::ostringstream out;
+    kinema::print_page(out, model, table, false);
+    const std::string page = out.str(), open = "id=\"kinema-data\">";
+    const std::size_t begin = page.find(open) + open.size();
+    return nlohmann::json::parse(page.substr(begin, page.find("</script>", begin) - begin));
+  };
+  const nlohmann::json six_bar = page_data("problem_4_4_six_bar.toml")["resolve"];
+  REQUIRE(six_bar.is_object());
+  CHECK(six_bar["inputs"].size() == 12);
+  // EF = "CE" and Lc = "CD" follow their parameters: no slider, set by the formulas' tape.
+  std::vector<std::string> sliders, followers;
+  for (const auto& p : six_bar["parameters"]) (p["slider"] ? sliders : followers).push_back(p["name"]);
+  CHECK(sliders == std::vector<std::string>{"AB", "BC", "CD", "CE", "La", "Lb"});
+  CHECK(followers == std::vector<std::string>{"EF", "Lc"});
+  CHECK(six_bar["formula_targets"].size() == 2);
+  CHECK(six_bar["tape"]["code"].size() % 6 == 0);
+  CHECK(page_data("problem_4_4_joints.toml")["resolve"].is_null());
 }
 
 TEST_CASE("engine/printers/web/page: base64 of hex digests as RFC 4648 gives them") {

@@ -1,0 +1,46 @@
+// What a view needs to solve the mechanism again for other dimensions, as the web page's
+// sliders do: the model's compiled tape (parameters are among its inputs, so new
+// dimensions need no derivation), the parameters that can be moved and the formulas of
+// those that follow them (compiled to a tape of their own), and the solver's rules
+// (engine/numeric/solver.hpp). The page runs both tapes with a runner generated from the
+// one op table and follows the sweep's Newton continuation.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/model.hpp"
+
+namespace kinema {
+
+struct Resolving {
+  const CompiledExpressions* tape = nullptr;  ///< The model's.
+  TapeLayout layout;
+  struct Parameter {
+    std::string name;
+    double value = 0;  ///< SI.
+    Dimension dimension = Dimension::number;
+    bool slider = false;             ///< Written with a value (not a formula), a length or an angle.
+    bool sets_length_scale = false;  ///< Counted in the length scale (ConstraintSystem::length_scale).
+  };
+  std::vector<Parameter> parameters;
+  /// Inputs: the parameters in order; output k: the value of parameter formula_targets[k],
+  /// written as a formula of earlier ones (those formulas put in, so each reads only values).
+  CompiledExpressions formulas;
+  std::vector<std::size_t> formula_targets;
+  std::vector<double> guess;            ///< The file's guesses (SI): the branch a run starts on.
+  std::vector<bool> length_unknowns;    ///< Column scaled by the length scale (else 1).
+  double rate = 0, second_rate = 0;     ///< The input's (SI).
+  double max_step = 0;                  ///< Kinematics::max_continuation_step at the file's dimensions.
+  bool max_step_follows_length = false; ///< A length input: the step is 1 % of the length scale.
+  /// The solver's constants by name (solver.hpp), as the page's Newton uses them.
+  std::vector<std::pair<std::string, double>> constants;
+};
+
+/// Nullopt where the page cannot solve again: a joints-and-links file (its extra
+/// columns and its drawing come from the closed-form placement), a spatial chain, a
+/// model whose tape has no drawing stage, or parameter formulas the tape cannot take.
+std::optional<Resolving> resolving(const Model& model);
+
+}  // namespace kinema
