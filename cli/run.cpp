@@ -35,6 +35,7 @@
 
 #include "cli/exit_status.hpp"
 #include "cli/output_file.hpp"
+#include "cli/problems_command.hpp"
 #include "cli/progress_line.hpp"
 #include "cli/run.hpp"
 #include "cli/usage.hpp"
@@ -448,12 +449,15 @@ int kinema_cli::run(int argc, char** argv) {
   app.set_version_flag("--version", "kinema " KINEMA_VERSION, "print the version and exit");
   CommandLine line;
   add_subcommands(app, line);
+  kinema_cli::ProblemsOptions problems;
+  kinema_cli::add_problems_command(app, problems);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
     return kinema_cli::report_parse_error(app, error);  // help and version: 0; usage errors: one line, 2
   }
 
+  if (problems.command->parsed()) return kinema_cli::run_problems(problems);
   const Mechanism mechanism = read_mechanism(line);
   // A file kinema cannot analyse is not written as loops either. Only derive, latex and
   // page print the formulas solved in closed form: the others do without them (faster).

@@ -13,6 +13,7 @@
 #   numeric       per input value, no GiNaC
 #   model         the derived and compiled mechanism
 #   analysis      what views show beyond the solved table
+#   problems      problem sets: variants drawn from a seed, checked, their answers (engine/problems/)
 #   printers      formats only: what a view shows, from the results and the analysis
 #   run           a long run solved and printed block by block (the solver and a printer)
 #   facade        the installed library API (api/kinema/)
@@ -34,6 +35,7 @@ set(KINEMA_STAGES
   "numeric:engine/numeric/"
   "model:engine/model."
   "analysis:engine/analysis/|engine/input_value."
+  "problems:engine/problems/"
   "printers:engine/printers/"
   "run:engine/run/"
   "facade:api/"
