@@ -58,9 +58,21 @@ std::string tolerance_text(const ProblemTolerance& t) {
                         : format_significant(t.relative * 100, 6) + "% relative";
 }
 
+// A unit in math mode: "\mathrm{rad/s^{2}}". Units are those kinema reads (parse_quantity
+// refused any other) or prints: letters, /, ^ and digits only.
+std::string latex_unit(const std::string& unit) {
+  std::string text;
+  for (std::size_t k = 0; k < unit.size(); ++k) {
+    const bool power = unit[k] == '^' && k + 1 < unit.size();
+    text += power ? "^{" + std::string(1, unit[k + 1]) + "}" : std::string(1, unit[k]);
+    k += power ? 1 : 0;
+  }
+  return "\\mathrm{" + text + "}";
+}
+
 // A value in math mode as the sheet gives it ("300\,\mathrm{mm}").
 std::string latex_quantity(double value, const std::string& unit) {
-  return latex_number(value, 12) + (unit.empty() ? "" : "\\,\\mathrm{" + latex_escape_text(unit) + "}");
+  return latex_number(value, 12) + (unit.empty() ? "" : "\\," + latex_unit(unit));
 }
 
 }  // namespace
@@ -102,8 +114,8 @@ std::string problem_answers_latex(const ConstraintSystem& system, const std::vec
       << "\\begin{tabular}{lll}\n\\toprule\nquantity & at & answer \\\\\n\\midrule\n";
   for (const ProblemAnswer& a : answers) {
     out << "$" << problem_quantity_latex(system, a.quantity) << "$ & $" << to_latex(system.input.symbol) << " = $ "
-        << latex_escape_text(a.at_text) << " & $\\boxed{" << latex_number(a.value, 6) << "}\\,\\mathrm{"
-        << latex_escape_text(a.unit) << "}$ \\\\\n";
+        << latex_escape_text(a.at_text) << " & $\\boxed{" << latex_number(a.value, 6) << "}\\," << latex_unit(a.unit)
+        << "$ \\\\\n";
   }
   out << "\\bottomrule\n\\end{tabular}\n\n";
   return out.str();
@@ -123,7 +135,7 @@ void write_problem_sheet(std::ostream& out, const ProblemSet& set, const Problem
   out << "\\subsection*{Data}\n\\begin{tabular}{ll}\n\\toprule\nparameter & value \\\\\n\\midrule\n";
   for (const SystemParameter& p : system.parameters) {
     if (!p.written) continue;
-    std::string value = "\\texttt{" + latex_escape_text(p.text) + "}";
+    std::string value = latex_escape_text(p.text);
     for (const GivenValue& g : variant.given)
       if (g.name == p.symbol.get_name()) value = "$" + latex_quantity(g.value, g.unit) + "$";
     if (p.formula && !varied.count(p.symbol.get_name())) value = "$" + to_latex(*p.formula) + "$";
@@ -143,8 +155,7 @@ void write_problem_sheet(std::ostream& out, const ProblemSet& set, const Problem
   out << "\\subsection*{Find}\nAt $" << to_latex(input.symbol) << " = $ " << at_list << ":\n\\begin{itemize}\n";
   for (std::size_t k = 0; k < variant.answers.size() && (k == 0 || variant.answers[k].at_text == variant.answers[0].at_text); ++k) {
     const ProblemAnswer& a = variant.answers[k];
-    out << "\\item $" << problem_quantity_latex(system, a.quantity) << "$ in $\\mathrm{" << latex_escape_text(a.unit)
-        << "}$\n";
+    out << "\\item $" << problem_quantity_latex(system, a.quantity) << "$ in $" << latex_unit(a.unit) << "$\n";
   }
   out << "\\end{itemize}\nAnswers are graded to " << latex_escape_text(tolerance_text(set.tolerance))
       << ". Angles are measured counter-clockwise from the $x$ axis.\n\n";
