@@ -211,7 +211,7 @@ struct ProblemConditions {
   std::string grashof;  ///< A four-bar's class ("crank-rocker"); empty: any.
   std::optional<double> min_transmission_angle;  ///< rad: the transmission angle stays within [this, pi - this].
   bool assembles = true;  ///< Every asked value assembles (answers need it; false is refused).
-  std::optional<double> toggle_margin;  ///< SI of the input: at least this far from any toggle or limit.
+  std::optional<double> toggle_margin;  ///< rad: asked values at least this far from any toggle of the crank.
   std::optional<double> min_answer;     ///< Every answer at least this large (output units, absolute).
   SourceLocation grashof_where, transmission_where, toggle_where, min_answer_where;
 };

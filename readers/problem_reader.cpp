@@ -131,9 +131,10 @@ class ProblemReader {
     }
     if (FileReader::has(table, "toggle_margin")) {
       const Node& value = FileReader::at(table, "toggle_margin");
-      const Quantity q = r_.quantity(value, "toggle_margin");
-      if (!(q.si_value > 0)) r_.fail(value, "toggle_margin must be positive, e.g. \"10 deg\"");
-      c.toggle_margin = q.si_value;
+      // An angle of the crank: toggles are found over its turn.
+      const double margin = r_.quantity_of(value, "toggle_margin", Dimension::angle);
+      if (!(margin > 0)) r_.fail(value, "toggle_margin must be positive, e.g. \"10 deg\"");
+      c.toggle_margin = margin;
       c.toggle_where = r_.where(value);
     }
     if (FileReader::has(table, "min_answer")) {

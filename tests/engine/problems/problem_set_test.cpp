@@ -218,6 +218,14 @@ TEST_CASE("kinema problems writes the set into a directory, twice the same bytes
   CHECK(table["variants"][0]["answers"][0]["at"] == "30 deg");
   CHECK(table["variants"][0]["answers"][0]["at_si"].get<double>() == doctest::Approx(M_PI / 6).epsilon(1e-15));
 
+  // Draws refused are reported per condition (the four-bar's ranges hold non-crank-rockers).
+  const std::string four_bar = kinema_test::write_temporary("four_bar_problem.toml", four_bar_problem_text());
+  const auto redrawn = kinema_test::run_kinema({"problems", four_bar, "--count", "2", "--seed", "7", "-o", one + "/four_bar"});
+  REQUIRE(redrawn.exit_status == 0);
+  CAPTURE(redrawn.err);
+  CHECK(redrawn.err.find(" redrawn; failed conditions: ") != std::string::npos);
+  CHECK(redrawn.err.find("grashof ") != std::string::npos);
+
   // No [problem]: refused, nothing made.
   const std::string bad = kinema_test::fresh_directory("problems_bad") + "/set";
   const auto refused = kinema_test::run_kinema({"problems", kinema_test::sample("four_bar.toml"), "-o", bad});
@@ -305,6 +313,7 @@ TEST_CASE("problems: a bad [problem] is refused at its line, saying what to writ
   refused("sig_figs = 3", "tolerance = \"one percent\"", "not a relative tolerance");
   refused("sig_figs = 3", "sig_figs = 3\ntolerance = \"1%\"", "give one of them");
   refused("at = [\"40 deg\", \"200 deg\"]", "at = [\"40 mm\"]", "[problem] at = \"40 mm\"");
+  refused("toggle_margin = \"5 deg\"", "toggle_margin = \"5 mm\"", "an angle is needed here");
   // Conditions no variant can meet: refused with how many draws each condition refused.
   refused("min_answer = 0.2", "min_answer = 1e9", "variants met the conditions in");
   // A condition the mechanism has no figure for.
