@@ -39,6 +39,7 @@
 #include "cli/check_command.hpp"
 #include "cli/exit_status.hpp"
 #include "cli/output_file.hpp"
+#include "cli/problems_command.hpp"
 #include "cli/progress_line.hpp"
 #include "cli/run.hpp"
 #include "cli/usage.hpp"
@@ -516,6 +517,8 @@ int kinema_cli::run(int argc, char** argv) {
   app.set_version_flag("--version", "kinema " KINEMA_VERSION, "print the version and exit");
   CommandLine line;
   add_subcommands(app, line);
+  kinema_cli::ProblemsOptions problems;
+  kinema_cli::add_problems_command(app, problems);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
@@ -523,6 +526,7 @@ int kinema_cli::run(int argc, char** argv) {
   }
   if (line.check.command->parsed()) return kinema_cli::run_check(line.check);  // its FILE may be a class table
 
+  if (problems.command->parsed()) return kinema_cli::run_problems(problems);
   const Mechanism mechanism = read_mechanism(line);
   // A file kinema cannot analyse is not written as loops either. Only derive, latex and
   // page print the formulas solved in closed form: the others do without them (faster).

@@ -13,7 +13,7 @@
 #   numeric       per input value, no GiNaC
 #   model         the derived and compiled mechanism
 #   analysis      what views show beyond the solved table
-#   problems      problem sets and answer checking over the model (engine/problems/)
+#   problems      problem sets (variants drawn from a seed, checked, their answers) and answer checking (engine/problems/)
 #   printers      formats only: what a view shows, from the results and the analysis
 #   run           a long run solved and printed block by block (the solver and a printer)
 #   facade        the installed library API (api/kinema/)

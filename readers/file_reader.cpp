@@ -300,6 +300,7 @@ void FileReader::read_heading(const Node& root, Mechanism& mechanism) const {
   mechanism.description = optional_string(root, "description", "");
   read_output(root, mechanism);
   read_parameters(root, mechanism);
+  read_problem(root, mechanism);
 }
 
 }  // namespace kinema::reading

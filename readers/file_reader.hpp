@@ -85,7 +85,10 @@ class FileReader {
   // The driver's values, rate and second rate, as [input] and [driver] give them.
   void read_motion(const Node& table, const std::string& section, Input& input) const;
 
-  // Title, description, [output] and [parameters]: every form opens alike.
+  // The optional [problem] table (problem_reader.cpp), the same in every form.
+  void read_problem(const Node& root, Mechanism& mechanism) const;
+
+  // Title, description, [output], [parameters] and [problem]: every form opens alike.
   void read_heading(const Node& root, Mechanism& mechanism) const;
 
  protected:

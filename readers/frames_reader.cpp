@@ -19,7 +19,7 @@ class FramesReader : public FileReader {
   // A file written as a spatial chain of frames (docs/mechanism-files.md, "Spatial chains").
   void read(const Node& root, Mechanism& mechanism) const {
     check_keys(root, {"title", "description", "parameters", "input", "variables", "frames", "points", "closures",
-                      "output"},
+                      "output", "problem"},
                "the top level of a spatial chain (a file of frames; vector loops and joints and links are other forms)");
     read_heading(root, mechanism);
     SpatialChain& chain = mechanism.chain.emplace();

@@ -21,7 +21,7 @@ class JointsReader : public FileReader {
   // A file written as joints and links (docs/mechanism-files.md, "Joints and links"), as
   // written: linkages/ finds its loops and dyads.
   void read(const Node& root, Mechanism& mechanism) const {
-    check_keys(root, {"title", "description", "parameters", "driver", "joints", "links", "points", "output"},
+    check_keys(root, {"title", "description", "parameters", "driver", "joints", "links", "points", "output", "problem"},
                "the top level of a joints-and-links file (vector loops go in another file: [input], [unknowns], "
                "[loops])");
     read_heading(root, mechanism);

@@ -181,6 +181,53 @@ struct SpatialChain {
   std::vector<ChainClosure> closures;
 };
 
+/// What a problem asks for (the optional [problem] table, docs/problems.md): a quantity
+/// to find, named as eval's output columns name it (checked against them by
+/// engine/problems, which knows the columns).
+struct ProblemFind {
+  std::string name;
+  SourceLocation where;
+};
+
+/// An input value the answers are asked at, as written ("30 deg"; read against the
+/// driver by engine/problems).
+struct ProblemAt {
+  std::string text;
+  SourceLocation where;
+};
+
+/// A parameter (or the driver's value or rate) a problem set varies: drawn on the grid
+/// low, low + step, ... up to high (SI).
+struct ProblemVary {
+  std::string name;
+  double low = 0.0, high = 0.0, step = 0.0;
+  Dimension dimension = Dimension::number;
+  std::string unit;  ///< The unit the range is written in ("m"), shown where the file gives no other.
+  SourceLocation where;
+};
+
+/// What every variant of a problem set must meet (the [problem.conditions] table).
+struct ProblemConditions {
+  std::string grashof;  ///< A four-bar's class ("crank-rocker"); empty: any.
+  std::optional<double> min_transmission_angle;  ///< rad: the transmission angle stays within [this, pi - this].
+  bool assembles = true;  ///< Every asked value assembles (answers need it; false is refused).
+  std::optional<double> toggle_margin;  ///< rad: asked values at least this far from any toggle of the crank.
+  std::optional<double> min_answer;     ///< Every answer at least this large (output units, absolute).
+  SourceLocation grashof_where, transmission_where, toggle_where, min_answer_where;
+};
+
+/// The [problem] table: what a problem asks and, for a problem set, what varies.
+struct Problem {
+  std::string statement;
+  std::vector<ProblemFind> find;
+  std::vector<ProblemAt> at;  ///< Empty: the file's input values.
+  std::vector<ProblemVary> vary;
+  ProblemConditions conditions;
+  double relative_tolerance = 0.01;  ///< Used when sig_figs is 0.
+  int sig_figs = 0;
+  SourceLocation where;
+};
+
 struct Mechanism {
   std::string title;
   std::string description;
@@ -196,6 +243,8 @@ struct Mechanism {
   std::optional<Linkage> linkage;
   /// Set for a file written as a spatial chain of frames (then input, unknowns and loops are empty).
   std::optional<SpatialChain> chain;
+  /// Set when the file has a [problem] table (kinema problems).
+  std::optional<Problem> problem;
 };
 
 }  // namespace kinema

@@ -18,7 +18,7 @@ class VectorLoopReader : public FileReader {
   // The top level of a file of vector loops (docs/mechanism-files.md, "Vector loops").
   void read(const Node& root, Mechanism& mechanism) const {
     check_keys(root, {"title", "description", "parameters", "input", "unknowns", "loops",
-                      "points", "output"},
+                      "points", "output", "problem"},
                "the top level");
     read_heading(root, mechanism);
     read_input(root, mechanism);

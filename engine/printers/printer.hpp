@@ -14,6 +14,7 @@
 #include "engine/analysis/analysis.hpp"
 #include "engine/analysis/sensitivities.hpp"
 #include "engine/model.hpp"
+#include "engine/problems/problem_set.hpp"
 #include "engine/symbolic/dyad_derivation_types.hpp"
 
 namespace kinema {
@@ -41,6 +42,8 @@ struct PrintJob {
   /// Derivations and documents of a spatial chain: the frame whose axes vectors are given
   /// along (empty: the observer's).
   std::string basis;
+  /// Documents: a problem's asked answers, boxed in a section of their own (a key of kinema problems).
+  const std::vector<ProblemAnswer>* answers = nullptr;
 };
 
 /// What a printer shows.

@@ -306,7 +306,7 @@ void number_segments(MechanismFigure& f, const std::vector<DrawingSegment>& segm
 }  // namespace
 
 void write_tikz_mechanism(std::ostream& out, const ConstraintSystem& system, const ValueAnalysis& at,
-                          const std::vector<std::string>& link_labels, const MotionState& s) {
+                          const std::vector<std::string>& link_labels, const MotionState& s, bool arrows) {
   const OutputScale scale(system);
   // Joints and links: the links as bodies (bars, plates, blocks); vector loops: their terms.
   const std::optional<LinkageDrawing>& drawing = at.linkage;
@@ -340,8 +340,8 @@ void write_tikz_mechanism(std::ostream& out, const ConstraintSystem& system, con
   const double size = std::max({max_x - min_x, max_y - min_y, 1e-9});
   const double cm = 9.0 / size;  // drawing units per metre
   const double arrow_cm = 2.5;   // the fastest point's arrow
-  const double velocity_scale = fastest > 0 ? arrow_cm / fastest : 0;  // cm per (m/s)
-  const double acceleration_scale = largest > 0 ? arrow_cm / largest : 0;  // cm per (m/s^2)
+  const double velocity_scale = arrows && fastest > 0 ? arrow_cm / fastest : 0;  // cm per (m/s)
+  const double acceleration_scale = arrows && largest > 0 ? arrow_cm / largest : 0;  // cm per (m/s^2)
   const Planar centre((min_x + max_x) / 2, (min_y + max_y) / 2);
   // Introduced by a sentence that stays with it (after the substitution's display).
   out << "\\par\\medskip\\noindent The mechanism at this instant, drawn to scale"

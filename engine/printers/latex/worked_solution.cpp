@@ -19,6 +19,7 @@
 #include "engine/printers/latex/tikz_mechanism.hpp"
 #include "engine/printers/latex/tikz_polygons.hpp"
 #include "engine/printers/printer.hpp"
+#include "engine/printers/problems/problem_documents.hpp"
 #include "engine/analysis/analysis.hpp"
 #include "engine/analysis/diagnostics.hpp"
 #include "engine/base/number_format.hpp"
@@ -803,6 +804,7 @@ class WorkedSolutionPrinter : public Printer {
         throw std::logic_error("a document was given no analysis of its values: build it with analyse_for_views");
       for (std::size_t row = 0; row < job.values->size(); ++row) writer.results((*job.values)[row], analysis.values[row]);
     }
+    if (job.answers) out << problem_answers_latex(job.model.system, *job.answers);
     if (job.sweep) writer.plots(*job.sweep);
     if (!job.fragment) writer.end();
   }
