@@ -118,19 +118,23 @@ def test_the_plot_is_a_png(executed):
     assert png.startswith(b"\x89PNG\r\n\x1a\n") and len(png) > 10_000  # drawn, not an empty canvas
 
 
-def test_the_design_study_of_the_files_ce_is_the_programs_stroke(executed):
+def test_the_design_study_row_of_the_files_ce_is_the_programs_sweep(executed):
     columns, rows = table_rows(shown(executed, "design-study", "text/html"))
     designs = [dict(zip(columns, row)) for row in rows]
-    assert [float(d["CE (m)"]) for d in designs] == pytest.approx([0.20, 0.21, 0.22, 0.23, 0.24, 0.25, 0.26])
+    assert [float(d["CE"]) for d in designs] == pytest.approx([0.20, 0.21, 0.22, 0.23, 0.24, 0.25, 0.26])
     assert all(d["assembles"] == "True" for d in designs)
-    strokes = [float(d["stroke of F (m)"]) for d in designs]
-    assert strokes == sorted(strokes) and strokes[0] < strokes[-1]  # each design its own CE
-    # The file's own CE: the stroke and time ratio the program finds at the slider's limits
-    # (the study's 0.1 deg rows come within the displayed digits and the step's angle).
+    speeds = [float(d["max_F_speed"]) for d in designs]
+    assert len(set(speeds)) == len(speeds)  # each design its own CE
+    # The file's own CE: the time ratio the program finds at the slider's limits, and the
+    # largest |omega3| and slider speed of the program's own sweep at the study's step
+    # (to the digits the table shows).
     files = designs[3]
-    limits = program_json("eval", str(SAMPLE), "--at", "30")["strokes"][0]
-    assert float(files["stroke of F (m)"]) == pytest.approx(limits["limit_values"][0] - limits["limit_values"][1], rel=1e-5)
-    assert float(files["time ratio"]) == pytest.approx(limits["time_ratio"], abs=2e-3)
+    assert float(files["time_ratio"]) == pytest.approx(program_json("eval", str(SAMPLE), "--at", "30")["strokes"][0]["time_ratio"], rel=1e-5)
+    rows = program_json("eval", str(SAMPLE), "--sweep", "0:360:0.1")["results"]
+    omega3 = max(abs(r["coordinates"]["phi3"]["rate"]) for r in rows)
+    speed_F = max(r["points"]["F"]["speed"] for r in rows)
+    assert float(files["max_abs_omega3"]) == pytest.approx(omega3, rel=1e-5)
+    assert float(files["max_F_speed"]) == pytest.approx(speed_F, rel=1e-5)
 
 
 def test_the_page_shows_inline_with_the_mechanism(executed, monkeypatch):
