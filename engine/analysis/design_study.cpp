@@ -14,6 +14,7 @@
 #include "engine/base/number_format.hpp"
 #include "engine/base/units.hpp"
 #include "engine/constraints/output_columns.hpp"
+#include "engine/numeric/design_lanes.hpp"
 #include "engine/numeric/sweep.hpp"
 #include "engine/numeric/tape.hpp"
 #include "engine/numeric/workspace.hpp"
@@ -154,9 +155,47 @@ class DesignRunner {
     sweep_ = std::make_unique<RepeatedSweep>(kinematics_, inputs, settings);
     if (!setup.stroke_unknowns.empty()) limits_ = std::make_unique<Workspace>(kinematics_);
     if (setup.loop) loop_ = *setup.loop;
+    if (options.across_designs && solves() && settings.rate != 0 && !inputs.empty()) {
+      lanes_ = std::make_unique<DesignLanes>(kinematics_, inputs, settings.rate, settings.second_rate);
+      lane_designs_.resize(DesignLanes::kLanes);
+    }
   }
 
+  /// Design `design` solved alone.
   void run(const Designs& designs, std::size_t design, StudyResults& results) {
+    const GrashofClass kind = load_design(designs, design, results);
+    kinematics_.set_parameter_values(values_.data());
+    if (!solves()) return;
+    summarise(sweep_->solve(), kind, design, results);
+  }
+
+  /// Whether designs go kLanes at a time to run_lanes: a run predicted by the input's rate.
+  bool uses_lanes() const { return lanes_ != nullptr; }
+
+  /// Designs [first, first + count), count <= kLanes, solved together, one to a lane.
+  void run_lanes(const Designs& designs, std::size_t first, std::size_t count, StudyResults& results) {
+    for (std::size_t l = 0; l < count; ++l) {
+      lane_designs_[l].kind = load_design(designs, first + l, results);
+      lane_designs_[l].values = values_;
+      lane_designs_[l].loop = loop_;
+      lanes_->set_design(l, values_.data());
+    }
+    lanes_->solve(count);
+    lane_values_ += lanes_->lane_values();
+    for (std::size_t l = 0; l < count; ++l) {
+      const LaneDesign& lane = lane_designs_[l];
+      kinematics_.set_parameter_values(lane.values.data());  // for the time ratio's refinement
+      loop_ = lane.loop;
+      summarise(lanes_->table(l), lane.kind, first + l, results);
+    }
+  }
+
+  std::uint64_t lane_values() const { return lane_values_; }
+
+ private:
+  // The design's parameter values into values_ (formula ones following), its four-bar
+  // sides into loop_; its class (into the results when asked for).
+  GrashofClass load_design(const Designs& designs, std::size_t design, StudyResults& results) {
     for (std::size_t k = 0; k < setup_.varied.size(); ++k) values_[setup_.varied[k]] = designs.values[k][design];
     if (setup_.has_tape) {
       setup_.tape.evaluate(values_.data(), tape_outputs_.data(), tape_registers_);
@@ -172,13 +211,9 @@ class DesignRunner {
                            setup_.length_unit);
     }
     if (options_.wants(StudyFigure::grashof)) results.grashof[design] = kind;
-    kinematics_.set_parameter_values(values_.data());
-    if (!solves()) return;
-    const MotionTable& table = sweep_->solve();
-    summarise(table, kind, design, results);
+    return kind;
   }
 
- private:
   bool solves() const {
     for (StudyFigure f : {StudyFigure::min_transmission_angle, StudyFigure::time_ratio, StudyFigure::assembles,
                           StudyFigure::max_rates, StudyFigure::max_second_rates, StudyFigure::max_speeds,
@@ -257,6 +292,15 @@ class DesignRunner {
   std::unique_ptr<RepeatedSweep> sweep_;
   std::unique_ptr<Workspace> limits_;
   FourBarLoop loop_;
+  // Designs across lanes: what each lane's design needs summed up after the run.
+  struct LaneDesign {
+    GrashofClass kind = GrashofClass::none;
+    std::vector<double> values;
+    FourBarLoop loop;
+  };
+  std::unique_ptr<DesignLanes> lanes_;
+  std::vector<LaneDesign> lane_designs_;
+  std::uint64_t lane_values_ = 0;
 };
 
 // Room for one value of each figure asked for per design.
@@ -399,18 +443,26 @@ StudyResults run_design_study(const Model& model, const Designs& designs, const 
   const std::size_t count = designs.size();
   StudyResults results = sized_results(model, count, options);
   if (count == 0) return results;
-  // Designs handed out a few at a time: their cost varies (a design that does not
-  // assemble solves its values one by one).
+  // Designs handed out a few at a time (their cost varies: a design that does not
+  // assemble solves its values one by one), a lane's worth where they go in lanes.
   constexpr std::size_t kDesignsATurn = 8;
   std::atomic<std::size_t> next{0};
+  std::atomic<std::uint64_t> lane_values{0};
   std::exception_ptr failure;
   std::mutex failure_lock;
   const auto work = [&]() {
     try {
       DesignRunner runner(setup, inputs, options);
-      for (std::size_t first = next.fetch_add(kDesignsATurn); first < count; first = next.fetch_add(kDesignsATurn))
-        for (std::size_t design = first; design < std::min(count, first + kDesignsATurn); ++design)
-          runner.run(designs, design, results);
+      const std::size_t turn = runner.uses_lanes() ? DesignLanes::kLanes : kDesignsATurn;
+      for (std::size_t first = next.fetch_add(turn); first < count; first = next.fetch_add(turn)) {
+        const std::size_t last = std::min(count, first + turn);
+        if (runner.uses_lanes()) {
+          runner.run_lanes(designs, first, last - first, results);
+          continue;
+        }
+        for (std::size_t design = first; design < last; ++design) runner.run(designs, design, results);
+      }
+      lane_values += runner.lane_values();
     } catch (...) {
       const std::lock_guard<std::mutex> lock(failure_lock);
       if (!failure) failure = std::current_exception();
@@ -423,6 +475,7 @@ StudyResults run_design_study(const Model& model, const Designs& designs, const 
   work();
   for (std::thread& worker : workers) worker.join();
   if (failure) std::rethrow_exception(failure);
+  results.lane_values = lane_values;
   return results;
 }
 

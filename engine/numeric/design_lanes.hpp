@@ -1,0 +1,67 @@
+// One run of input values solved for kLanes designs of a mechanism at once (a design
+// study, issue 36): lane l of the batch tape holds design l's parameter values (the work
+// on them alone rerun per lane), every lane at the same input value, each lane's Newton
+// started from its own last row predicted by its rates (as the scalar run predicts), a
+// few iterations with each lane's own convergence test, the LU of Phi_q vectorised
+// across lanes; then rates, second rates and points. A lane that does not converge
+// cleanly at a value (more iterations, a step that does not lower the residual, a pivot
+// not clearly regular, another branch, numbers not finite) is solved at that value by
+// the scalar run (RowSolver), and goes on in the lanes from the next value after one it
+// solves ok: each lane's table is what solve_sweep gives its design, to rounding.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "engine/numeric/kinematics.hpp"
+#include "engine/numeric/lane_lu.hpp"
+#include "engine/numeric/motion_table.hpp"
+#include "engine/numeric/simd_math.hpp"
+
+namespace kinema {
+
+class DesignLanes {
+ public:
+  static constexpr std::size_t kLanes = kLuLanes;
+  /// Lanes on `kinematics`' tape (their parameter values set by set_design), the run
+  /// `inputs` at the input's rates `rate` (not 0) and `second_rate`.
+  DesignLanes(const Kinematics& kinematics, const std::vector<double>& inputs, double rate, double second_rate);
+  ~DesignLanes();
+  DesignLanes(const DesignLanes&) = delete;
+  DesignLanes& operator=(const DesignLanes&) = delete;
+
+  /// Lane l's design: the value of every parameter (SI, formula parameters following).
+  void set_design(std::size_t lane, const double* values);
+  /// Solves the run for lanes [0, count).
+  void solve(std::size_t count);
+  /// Lane l's rows of the last solve().
+  const MotionTable& table(std::size_t lane) const;
+  /// Values the last solve() solved in the lanes (the others by the scalar run).
+  std::size_t lane_values() const { return lane_values_; }
+
+ private:
+  struct Lane;
+  const Kinematics& k_;
+  const TapeLayout& layout_;
+  std::size_t n_;
+  std::vector<double> inputs_;
+  double rate_, second_rate_;
+  std::vector<std::unique_ptr<Lane>> lanes_;
+  std::vector<double> registers_;  ///< Register r of lane l at r * kLanes + l.
+  std::vector<double> lu_, pivots_, x_, start_, column_scale_;  ///< Lane-major as in lane_lu.hpp.
+  double tolerance_[kLanes], length_scale_[kLanes], pivot_ratio_[kLanes], residual_[kLanes];
+  std::size_t lane_values_ = 0;
+
+  double* lanes(std::size_t reg) { return registers_.data() + reg * kLanes; }
+  const double* output(std::size_t stage, std::size_t k) { return lanes(k_.evaluator().output_register(stage, k)); }
+  /// The starting point of each lane at `row` (take[l] 1 for a lane solved in the lanes).
+  bool choose_lanes(std::size_t row, std::size_t count, double* take);
+  /// Newton, rates and points at `input` for the lanes taken from start_; ok[l] 1 where
+  /// a lane's values are the scalar run's (check_branch: within the branch tolerance of
+  /// the start, as a predicted value must be).
+  KINEMA_LANE_LOOPS void solve_value(double input, bool check_branch, const double* take, double* ok);
+  KINEMA_LANE_LOOPS void factorise();
+  void store(std::size_t lane, std::size_t row);
+};
+
+}  // namespace kinema
