@@ -40,7 +40,9 @@ DesignLanes::DesignLanes(const Kinematics& kinematics, const std::vector<double>
       pivots_(n_ * kLanes),
       x_(n_ * kLanes),
       start_(n_ * kLanes),
-      column_scale_(n_ * kLanes) {
+      column_scale_(n_ * kLanes),
+      step_(n_ * kLanes),
+      phi_(n_ * kLanes) {
   for (std::size_t l = 0; l < kLanes; ++l) {
     lanes_.push_back(std::make_unique<Lane>(kinematics, inputs, rate, second_rate));
     set_design(l, kinematics.parameter_values().data());
@@ -69,18 +71,24 @@ void DesignLanes::solve(std::size_t count) {
     lanes_[l]->last_in_lanes = false;
   }
   lane_values_ = 0;
-  double take[kLanes], ok[kLanes];
+  double take[kLanes], ok[kLanes], restart[kLanes], open[kLanes];
   for (std::size_t row = 0; row < inputs_.size(); ++row) {
-    if (choose_lanes(row, count, take)) {
-      solve_value(inputs_[row], row > 0, take, ok);
-    } else {
-      std::fill_n(ok, kLanes, 0.0);
-    }
+    const bool restarts = choose_lanes(row, count, take, restart);
+    std::fill_n(ok, kLanes, 0.0);
+    std::fill_n(open, kLanes, 0.0);
+    if (std::find(take, take + kLanes, 1.0) != take + kLanes) solve_value(inputs_[row], row > 0, take, ok);
+    for (std::size_t l = 0; l < count; ++l)
+      if (ok[l] != 0) store(l, row);
+    if (restarts) restart_values(inputs_[row], restart, open);
     for (std::size_t l = 0; l < count; ++l) {
       Lane& lane = *lanes_[l];
       if (ok[l] != 0) {
-        store(l, row);
         lane.last_in_lanes = true;
+        ++lane_values_;
+        continue;
+      }
+      if (open[l] != 0) {
+        lane.rows.failed_elsewhere(lane.table, row, lane.kinematics.equation_group(worst_row_[l]), residual_[l]);
         ++lane_values_;
         continue;
       }
@@ -92,36 +100,37 @@ void DesignLanes::solve(std::size_t count) {
   count_values_solved(lane_values_);
 }
 
-bool DesignLanes::choose_lanes(std::size_t row, std::size_t count, double* take) {
+bool DesignLanes::choose_lanes(std::size_t row, std::size_t count, double* take, double* restart) {
   const double input = inputs_[row];
-  bool any = false;
+  bool any_restart = false;
   for (std::size_t l = 0; l < kLanes; ++l) {
     const Lane& lane = *lanes_[l];
-    bool taken = false;
+    const Eigen::VectorXd* from = &lane.kinematics.guess();  // any finite position keeps a lane not solved quiet
+    bool predicted = false, restarted = false;
     if (l < count && row == 0) {
       // The first value from the guesses, as the scalar run starts (Newton alone).
-      taken = lane.kinematics.closed_form() == nullptr;
-    } else if (l < count) {
+      predicted = lane.kinematics.closed_form() == nullptr;
+    } else if (l < count && (lane.last_in_lanes || lane.rows.on_branch())) {
       // The scalar run's fast path: from the last row, ok, predicted by its rates.
       const double h = input - inputs_[row - 1];
-      taken = (lane.last_in_lanes || lane.rows.on_branch()) &&
-              std::fabs(h) <= lane.kinematics.max_continuation_step();
-      for (std::size_t i = 0; taken && i < n_; ++i) {
+      predicted = std::fabs(h) <= lane.kinematics.max_continuation_step();
+      for (std::size_t i = 0; predicted && i < n_; ++i) {
         start_[i * kLanes + l] =
             solver::predict_second_order(lane.table.q_column(i)[row - 1], lane.table.qd_column(i)[row - 1],
                                          lane.table.qdd_column(i)[row - 1], rate_, second_rate_, h);
       }
+    } else if (l < count) {
+      const Eigen::VectorXd* position = lane.rows.restart_position();
+      restarted = position != nullptr;
+      if (restarted) from = position;
     }
-    if (!taken) {
-      // Not solved here: any finite position keeps the lane's arithmetic quiet.
-      for (std::size_t i = 0; i < n_; ++i) start_[i * kLanes + l] = lane.kinematics.guess()[Eigen::Index(i)];
-    } else if (row == 0) {
-      for (std::size_t i = 0; i < n_; ++i) start_[i * kLanes + l] = lane.kinematics.guess()[Eigen::Index(i)];
-    }
-    take[l] = taken ? 1.0 : 0.0;
-    any = any || taken;
+    if (!predicted || row == 0)
+      for (std::size_t i = 0; i < n_; ++i) start_[i * kLanes + l] = (*from)[Eigen::Index(i)];
+    take[l] = predicted ? 1.0 : 0.0;
+    restart[l] = restarted ? 1.0 : 0.0;
+    any_restart = any_restart || restarted;
   }
-  return any;
+  return any_restart;
 }
 
 void DesignLanes::factorise() {
@@ -247,6 +256,110 @@ void DesignLanes::solve_value(double input, bool check_branch, const double* tak
     accumulate(lanes(layout_.qdd(i)));
   }
   for (std::size_t l = 0; l < kLanes; ++l) ok[l] = nonfinite[l] == 0.0 ? ok[l] : 0.0;
+}
+
+void DesignLanes::restart_values(double input, const double* restart, double* open) {
+  const std::size_t n = n_;
+  const auto& e = k_.evaluator();
+  std::fill_n(lanes(layout_.input()), kLanes, input);
+  for (std::size_t i = 0; i < n; ++i) std::copy_n(start_.data() + i * kLanes, kLanes, lanes(layout_.q(i)));
+  // Each lane is at a position it accepted (stepping: a step to take from it next) or at
+  // a trial on its step (lambda_ times it); every evaluation serves both. start_ holds
+  // the position accepted.
+  double active[kLanes], stepping[kLanes], lambda[kLanes], norm[kLanes], halvings[kLanes], iterations[kLanes];
+  double scalar[kLanes];  // 1: the scalar run solves the value (it closes, or needs least squares)
+  for (std::size_t l = 0; l < kLanes; ++l) {
+    active[l] = restart[l];
+    stepping[l] = 1.0;
+    lambda[l] = 1.0;
+    norm[l] = INFINITY;
+    halvings[l] = iterations[l] = 0.0;
+    scalar[l] = 0.0;
+  }
+  const double rounding_factor = solver::kRoundingTolerance / solver::kNewtonTolerance;
+  for (int evaluation = 0;; ++evaluation) {
+    e.evaluate_stage_batch_from(TapeLayout::kPositionStage,
+                                evaluation == 0 ? TapeLayout::kInputLevel : TapeLayout::kCoordinateLevel,
+                                registers_.data());
+    double trial_norm[kLanes];
+    std::fill_n(trial_norm, kLanes, 0.0);
+    for (std::size_t i = 0; i < n; ++i) {
+      const double* phi = output(TapeLayout::kPositionStage, layout_.phi(i));
+      for (std::size_t l = 0; l < kLanes; ++l) {
+        const double magnitude = std::fabs(phi[l]);
+        trial_norm[l] = (magnitude > trial_norm[l] || magnitude != magnitude) ? magnitude : trial_norm[l];
+      }
+    }
+    // The first evaluation is at the start (accepted as it is); later ones at trials,
+    // accepted where they lower max |Phi| (a finite one), else the step is halved.
+    int stepping_lanes = 0;
+    for (std::size_t l = 0; l < kLanes; ++l) {
+      if (active[l] == 0) continue;
+      const bool first = evaluation == 0;
+      const bool accepted = first || (trial_norm[l] <= DBL_MAX && trial_norm[l] < norm[l]);
+      if (accepted) {
+        norm[l] = trial_norm[l];
+        iterations[l] += first ? 0.0 : 1.0;
+        for (std::size_t i = 0; i < n; ++i) {
+          start_[i * kLanes + l] = lanes(layout_.q(i))[l];
+          phi_[i * kLanes + l] = output(TapeLayout::kPositionStage, layout_.phi(i))[l];
+        }
+        const bool finite = norm[l] <= DBL_MAX;
+        const bool closes = norm[l] <= tolerance_[l];
+        const bool stops = !finite || closes || iterations[l] == solver::kNewtonIterations;
+        scalar[l] = closes || !finite ? 1.0 : 0.0;
+        active[l] = stops ? 0.0 : 1.0;
+        stepping[l] = 1.0;
+      } else {
+        halvings[l] += 1.0;
+        lambda[l] *= 0.5;
+        active[l] = halvings[l] == solver::kStepHalvings ? 0.0 : 1.0;
+        stepping[l] = 0.0;
+      }
+      stepping_lanes += active[l] != 0 && stepping[l] != 0;
+    }
+    if (stepping_lanes > 0) {
+      // A Newton step from each lane's accepted position (this evaluation's, for a lane
+      // that just accepted one); the scalar solver's least-squares step is the scalar run's.
+      factorise();
+      for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t l = 0; l < kLanes; ++l) x_[i * kLanes + l] = -phi_[i * kLanes + l];
+      lu_solve_lanes(lu_.data(), pivots_.data(), x_.data(), n);
+      for (std::size_t l = 0; l < kLanes; ++l) {
+        if (active[l] == 0 || stepping[l] == 0) continue;
+        bool finite = true;
+        for (std::size_t i = 0; i < n; ++i) {
+          step_[i * kLanes + l] = x_[i * kLanes + l] * column_scale_[i * kLanes + l];
+          finite = finite && std::isfinite(step_[i * kLanes + l]);
+        }
+        const bool least_squares = !(pivot_ratio_[l] > solver::kLeastSquaresPivotRatio);
+        scalar[l] = least_squares ? 1.0 : scalar[l];
+        active[l] = least_squares || !finite ? 0.0 : 1.0;
+        lambda[l] = 1.0;
+        halvings[l] = 0.0;
+      }
+    }
+    int open_lanes = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      double* q = lanes(layout_.q(i));
+      const double* from = start_.data() + i * kLanes;
+      const double* step = step_.data() + i * kLanes;
+      for (std::size_t l = 0; l < kLanes; ++l) q[l] = active[l] != 0 ? from[l] + lambda[l] * step[l] : from[l];
+    }
+    for (std::size_t l = 0; l < kLanes; ++l) open_lanes += active[l] != 0;
+    if (open_lanes == 0) break;
+  }
+  for (std::size_t l = 0; l < kLanes; ++l) {
+    // Stopped within rounding of closing counts as closed (solve_position's last test).
+    const bool rounding = norm[l] <= rounding_factor * tolerance_[l];
+    open[l] = restart[l] != 0 && scalar[l] == 0 && !rounding ? 1.0 : 0.0;
+    residual_[l] = norm[l];
+    // The equation whose |Phi| is largest (the first of equals), as solve_position names it.
+    std::size_t worst = 0;
+    for (std::size_t i = 1; i < n; ++i)
+      if (std::fabs(phi_[i * kLanes + l]) > std::fabs(phi_[worst * kLanes + l])) worst = i;
+    worst_row_[l] = worst;
+  }
 }
 
 void DesignLanes::store(std::size_t l, std::size_t row) {

@@ -49,17 +49,26 @@ class DesignLanes {
   std::vector<std::unique_ptr<Lane>> lanes_;
   std::vector<double> registers_;  ///< Register r of lane l at r * kLanes + l.
   std::vector<double> lu_, pivots_, x_, start_, column_scale_;  ///< Lane-major as in lane_lu.hpp.
+  std::vector<double> step_, phi_;  ///< restart_values: each lane's step and Phi at its position.
+  std::size_t worst_row_[kLanes];
   double tolerance_[kLanes], length_scale_[kLanes], pivot_ratio_[kLanes], residual_[kLanes];
   std::size_t lane_values_ = 0;
 
   double* lanes(std::size_t reg) { return registers_.data() + reg * kLanes; }
   const double* output(std::size_t stage, std::size_t k) { return lanes(k_.evaluator().output_register(stage, k)); }
-  /// The starting point of each lane at `row` (take[l] 1 for a lane solved in the lanes).
-  bool choose_lanes(std::size_t row, std::size_t count, double* take);
+  /// Each lane's start at `row` into start_: take[l] 1 for a lane whose value is predicted
+  /// (or the first, from the guesses), restart[l] 1 for one that starts Newton alone after
+  /// a value that did not assemble (RowSolver::restart_position). Whether any is.
+  bool choose_lanes(std::size_t row, std::size_t count, double* take, double* restart);
   /// Newton, rates and points at `input` for the lanes taken from start_; ok[l] 1 where
   /// a lane's values are the scalar run's (check_branch: within the branch tolerance of
   /// the start, as a predicted value must be).
   KINEMA_LANE_LOOPS void solve_value(double input, bool check_branch, const double* take, double* ok);
+  /// Workspace::solve_position's damped Newton (halved steps) from start_ for the lanes
+  /// restarted; open[l] 1 where it stops open as the scalar solver would (max |Phi| in
+  /// residual_, its row in worst_row_), 0 where the scalar run is to solve the value
+  /// (it closes, or needs a least-squares step).
+  KINEMA_LANE_LOOPS void restart_values(double input, const double* restart, double* open);
   KINEMA_LANE_LOOPS void factorise();
   void store(std::size_t lane, std::size_t row);
 };

@@ -402,6 +402,27 @@ void RowSolver::solved_elsewhere(const MotionTable& table, std::size_t row) {
 
 bool RowSolver::on_branch() const { return state_->at.have_previous; }
 
+const Eigen::VectorXd* RowSolver::restart_position() const {
+  const State& s = *state_;
+  const bool newton_alone = !s.at.have_previous && !s.at.q_singular && s.kinematics.closed_form() == nullptr;
+  return newton_alone ? &s.at.q : nullptr;
+}
+
+void RowSolver::failed_elsewhere(MotionTable& table, std::size_t row, std::size_t group, double residual) {
+  // As solve_rows stores a row Newton alone could not close, and leaves the cursor.
+  RunCursor& at = state_->at;
+  MotionState failed;
+  failed.input = table.input(row);
+  failed.status = Status::unassembled;
+  failed.failure.kind = Failure::Kind::group_open;
+  failed.failure.group = static_cast<std::uint32_t>(group);
+  failed.failure.residual = residual;
+  failed.failure.from_guesses = !at.after_gap;
+  table.set(row, failed);
+  at.after_gap = at.any_solved;
+  at.have_previous = false;
+}
+
 void count_values_solved(std::uint64_t values) { values_solved.fetch_add(values, std::memory_order_relaxed); }
 
 std::uint64_t values_solved_in_process() { return values_solved.load(std::memory_order_relaxed); }

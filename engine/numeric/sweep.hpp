@@ -102,6 +102,15 @@ class RowSolver {
   void solved_elsewhere(const MotionTable& table, std::size_t row);
   /// The last row solved is ok: solve() predicts the next from its rates.
   bool on_branch() const;
+  /// Where solve() starts Newton alone (Workspace::solve_position) for the next row: after
+  /// a row that did not assemble, from the last position solved (or the guesses); nullptr
+  /// where it does anything else (predicts, restarts past a singular position, places
+  /// dyads in closed form).
+  const Eigen::VectorXd* restart_position() const;
+  /// The next row, `row`, did not assemble: Newton from restart_position() stopped open
+  /// with max |Phi| = residual, largest in equation group `group`, found elsewhere as
+  /// solve() would have found it. Stored as solve() stores it.
+  void failed_elsewhere(MotionTable& table, std::size_t row, std::size_t group, double residual);
 
  private:
   struct State;

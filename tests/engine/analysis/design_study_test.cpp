@@ -312,11 +312,12 @@ TEST_CASE("design study across lanes: the scalar run's figures, designs that fai
   }
   CHECK(failing >= 3);  // what the comparison is meant to include
   CHECK(alone.lane_values == 0);
-  // Nearly every value that assembles in the lanes (the first from the guesses too): not
-  // those that do not, nor the few next to a gap, where the four-bar nears a limit
-  // position and Phi_q is not clearly regular.
-  CHECK(double(lanes.lane_values) >= 0.95 * double(values - failed_values));
-  CHECK(lanes.lane_values <= values - failed_values);
+  // Nearly every value in the lanes, those that do not assemble too (Newton from the last
+  // position, its steps halved, lane by lane): not the few next to a gap, where the
+  // four-bar nears a limit position and Phi_q is not clearly regular, nor where a gap
+  // starts (continuation) or ends.
+  CHECK(double(lanes.lane_values) >= 0.95 * double(values));
+  CHECK(lanes.lane_values + 2 * failing <= values);
   check_same_figures(lanes, alone, 1e-12);
 }
 
