@@ -137,6 +137,16 @@ double largest_vector(const MotionTable& table, std::size_t p, std::size_t dimen
   return largest;
 }
 
+// |the angle x wrapped to [-pi, pi]|: transmission_angle is this (in degrees) of
+// rocker - coupler + pi (+ pi more where one of their lengths is written negative), the
+// direction from the rocker's edge to the coupler's back. Rounding by adding and taking
+// away 1.5 * 2^52 (no libm call): |x| < 2^51 turns.
+double transmission_measure(double x) {
+  constexpr double kTurn = 2 * kPi, kRound = 0x1.8p52;
+  const double turns = (x / kTurn + kRound) - kRound;
+  return std::fabs(x - turns * kTurn);
+}
+
 // One thread's designs: its own kinematics (sharing the tape), sweep, workspaces and
 // buffers, made once and reused design after design.
 class DesignRunner {
@@ -186,7 +196,7 @@ class DesignRunner {
       const LaneDesign& lane = lane_designs_[l];
       kinematics_.set_parameter_values(lane.values.data());  // for the time ratio's refinement
       loop_ = lane.loop;
-      summarise(lanes_->table(l), lane.kind, first + l, results);
+      summarise(lanes_->table(l), lane.kind, first + l, results, l);
     }
   }
 
@@ -222,7 +232,11 @@ class DesignRunner {
     return false;
   }
 
-  void summarise(const MotionTable& table, GrashofClass kind, std::size_t design, StudyResults& results) {
+  // The figures of a design from its table; a lane's (`lane` < kLanes) points' largest
+  // from the lanes, which keep them instead of the points' columns.
+  void summarise(const MotionTable& table, GrashofClass kind, std::size_t design, StudyResults& results,
+                 std::size_t lane = DesignLanes::kLanes) {
+    const bool from_lanes = lane < DesignLanes::kLanes;
     if (options_.wants(StudyFigure::assembles)) {
       std::uint32_t failed = 0;
       for (std::size_t row = 0; row < table.size(); ++row) failed += table.status(row) == Status::unassembled;
@@ -234,11 +248,17 @@ class DesignRunner {
       if (kind != GrashofClass::none) {  // as four_bar_figures: no figures where there is nothing to classify
         const double* coupler = table.q_column(loop_.coupler.unknown);
         const double* rocker = table.q_column(loop_.rocker.unknown);
+        // The row where the angle is least by a measure without trigonometry, its angle
+        // as transmission_angle gives it (the least of every row's, to rounding).
+        const double offset = (loop_.coupler.value < 0) == (loop_.rocker.value < 0) ? kPi : 0;
+        double least_measure = kNaN;
+        std::size_t least_row = table.size();
         for (std::size_t row = 0; row < table.size(); ++row) {
           if (table.status(row) == Status::unassembled) continue;
-          const double mu = transmission_angle(loop_, coupler[row], rocker[row]);
-          if (!(mu >= least)) least = mu;
+          const double measure = transmission_measure(rocker[row] - coupler[row] + offset);
+          if (!(measure >= least_measure)) least_measure = measure, least_row = row;
         }
+        if (least_row < table.size()) least = transmission_angle(loop_, coupler[least_row], rocker[least_row]);
       }
       results.min_transmission_angle[design] = least * kPi / 180;
     }
@@ -251,9 +271,11 @@ class DesignRunner {
     const std::vector<std::size_t>& dimensions = kinematics_.layout().point_dimensions;
     for (std::size_t p = 0; p < dimensions.size(); ++p) {
       if (options_.wants(StudyFigure::max_speeds))
-        results.max_speed[p][design] = largest_vector(table, p, dimensions[p], dimensions[p]);
+        results.max_speed[p][design] = from_lanes ? lanes_->largest_speed(lane, p)
+                                                  : largest_vector(table, p, dimensions[p], dimensions[p]);
       if (options_.wants(StudyFigure::max_accelerations))
-        results.max_acceleration[p][design] = largest_vector(table, p, dimensions[p], 2 * dimensions[p]);
+        results.max_acceleration[p][design] = from_lanes ? lanes_->largest_acceleration(lane, p)
+                                                         : largest_vector(table, p, dimensions[p], 2 * dimensions[p]);
     }
     if (options_.wants(StudyFigure::time_ratio)) results.time_ratio[design] = time_ratio(table);
   }

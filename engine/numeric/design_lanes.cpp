@@ -42,7 +42,9 @@ DesignLanes::DesignLanes(const Kinematics& kinematics, const std::vector<double>
       start_(n_ * kLanes),
       column_scale_(n_ * kLanes),
       step_(n_ * kLanes),
-      phi_(n_ * kLanes) {
+      phi_(n_ * kLanes),
+      largest_speed_(kinematics.point_count() * kLanes),
+      largest_acceleration_(kinematics.point_count() * kLanes) {
   for (std::size_t l = 0; l < kLanes; ++l) {
     lanes_.push_back(std::make_unique<Lane>(kinematics, inputs, rate, second_rate));
     set_design(l, kinematics.parameter_values().data());
@@ -71,12 +73,23 @@ void DesignLanes::solve(std::size_t count) {
     lanes_[l]->last_in_lanes = false;
   }
   lane_values_ = 0;
+  std::fill(largest_speed_.begin(), largest_speed_.end(), NAN);
+  std::fill(largest_acceleration_.begin(), largest_acceleration_.end(), NAN);
   double take[kLanes], ok[kLanes], restart[kLanes], open[kLanes];
   for (std::size_t row = 0; row < inputs_.size(); ++row) {
-    const bool restarts = choose_lanes(row, count, take, restart);
+    bool restarts = choose_lanes(row, count, take, restart);
     std::fill_n(ok, kLanes, 0.0);
     std::fill_n(open, kLanes, 0.0);
-    if (std::find(take, take + kLanes, 1.0) != take + kLanes) solve_value(inputs_[row], row > 0, take, ok);
+    if (std::find(take, take + kLanes, 1.0) != take + kLanes) {
+      solve_value(inputs_[row], row > 0, take, ok);
+      keep_largest(ok);
+    }
+    // The first value, from the guesses, is Newton alone: where the undamped steps did
+    // not close it, the damped ones decide whether it stays open.
+    for (std::size_t l = 0; row == 0 && l < count; ++l) {
+      restart[l] = take[l] != 0 && ok[l] == 0 && lanes_[l]->rows.restart_position() != nullptr ? 1.0 : 0.0;
+      restarts = restarts || restart[l] != 0;
+    }
     for (std::size_t l = 0; l < count; ++l)
       if (ok[l] != 0) store(l, row);
     if (restarts) restart_values(inputs_[row], restart, open);
@@ -95,6 +108,7 @@ void DesignLanes::solve(std::size_t count) {
       if (lane.last_in_lanes) lane.rows.solved_elsewhere(lane.table, row - 1);
       lane.last_in_lanes = false;
       lane.rows.solve(lane.table, row);
+      if (lane.table.status(row) == Status::ok) keep_largest(l, row);
     }
   }
   count_values_solved(lane_values_);
@@ -291,32 +305,36 @@ void DesignLanes::restart_values(double input, const double* restart, double* op
       }
     }
     // The first evaluation is at the start (accepted as it is); later ones at trials,
-    // accepted where they lower max |Phi| (a finite one), else the step is halved.
+    // accepted where they lower max |Phi| (a finite one), else the step is halved. Every
+    // lane in selects, so that the loops run across lanes.
+    const bool first = evaluation == 0;
+    double accepted[kLanes];
     int stepping_lanes = 0;
     for (std::size_t l = 0; l < kLanes; ++l) {
-      if (active[l] == 0) continue;
-      const bool first = evaluation == 0;
-      const bool accepted = first || (trial_norm[l] <= DBL_MAX && trial_norm[l] < norm[l]);
-      if (accepted) {
-        norm[l] = trial_norm[l];
-        iterations[l] += first ? 0.0 : 1.0;
-        for (std::size_t i = 0; i < n; ++i) {
-          start_[i * kLanes + l] = lanes(layout_.q(i))[l];
-          phi_[i * kLanes + l] = output(TapeLayout::kPositionStage, layout_.phi(i))[l];
-        }
-        const bool finite = norm[l] <= DBL_MAX;
-        const bool closes = norm[l] <= tolerance_[l];
-        const bool stops = !finite || closes || iterations[l] == solver::kNewtonIterations;
-        scalar[l] = closes || !finite ? 1.0 : 0.0;
-        active[l] = stops ? 0.0 : 1.0;
-        stepping[l] = 1.0;
-      } else {
-        halvings[l] += 1.0;
-        lambda[l] *= 0.5;
-        active[l] = halvings[l] == solver::kStepHalvings ? 0.0 : 1.0;
-        stepping[l] = 0.0;
+      const bool is_active = active[l] != 0;
+      const bool accept = is_active && (first || (trial_norm[l] <= DBL_MAX && trial_norm[l] < norm[l]));
+      accepted[l] = accept ? 1.0 : 0.0;
+      norm[l] = accept ? trial_norm[l] : norm[l];
+      iterations[l] += accept && !first ? 1.0 : 0.0;
+      const bool finite = norm[l] <= DBL_MAX, closes = norm[l] <= tolerance_[l];
+      const bool stops = !finite || closes || iterations[l] == solver::kNewtonIterations;
+      scalar[l] = accept && (closes || !finite) ? 1.0 : scalar[l];
+      const bool halved = is_active && !accept;
+      halvings[l] += halved ? 1.0 : 0.0;
+      lambda[l] *= halved ? 0.5 : 1.0;
+      active[l] = !is_active || (accept && stops) || (halved && halvings[l] == solver::kStepHalvings) ? 0.0 : 1.0;
+      stepping[l] = active[l] != 0 && accept ? 1.0 : 0.0;
+      stepping_lanes += stepping[l] != 0;
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      const double* q = lanes(layout_.q(i));
+      const double* phi = output(TapeLayout::kPositionStage, layout_.phi(i));
+      double* position = start_.data() + i * kLanes;
+      double* kept_phi = phi_.data() + i * kLanes;
+      for (std::size_t l = 0; l < kLanes; ++l) {
+        position[l] = accepted[l] != 0 ? q[l] : position[l];
+        kept_phi[l] = accepted[l] != 0 ? phi[l] : kept_phi[l];
       }
-      stepping_lanes += active[l] != 0 && stepping[l] != 0;
     }
     if (stepping_lanes > 0) {
       // A Newton step from each lane's accepted position (this evaluation's, for a lane
@@ -325,18 +343,24 @@ void DesignLanes::restart_values(double input, const double* restart, double* op
       for (std::size_t i = 0; i < n; ++i)
         for (std::size_t l = 0; l < kLanes; ++l) x_[i * kLanes + l] = -phi_[i * kLanes + l];
       lu_solve_lanes(lu_.data(), pivots_.data(), x_.data(), n);
-      for (std::size_t l = 0; l < kLanes; ++l) {
-        if (active[l] == 0 || stepping[l] == 0) continue;
-        bool finite = true;
-        for (std::size_t i = 0; i < n; ++i) {
-          step_[i * kLanes + l] = x_[i * kLanes + l] * column_scale_[i * kLanes + l];
-          finite = finite && std::isfinite(step_[i * kLanes + l]);
+      double nonfinite[kLanes] = {};  // x * 0 is 0 for finite x, NaN otherwise
+      for (std::size_t i = 0; i < n; ++i) {
+        double* step = step_.data() + i * kLanes;
+        const double* x = x_.data() + i * kLanes;
+        const double* scale = column_scale_.data() + i * kLanes;
+        for (std::size_t l = 0; l < kLanes; ++l) {
+          const double value = x[l] * scale[l];
+          step[l] = stepping[l] != 0 ? value : step[l];
+          nonfinite[l] += stepping[l] != 0 ? value * 0.0 : 0.0;
         }
-        const bool least_squares = !(pivot_ratio_[l] > solver::kLeastSquaresPivotRatio);
+      }
+      for (std::size_t l = 0; l < kLanes; ++l) {
+        const bool steps = stepping[l] != 0;
+        const bool least_squares = steps && !(pivot_ratio_[l] > solver::kLeastSquaresPivotRatio);
         scalar[l] = least_squares ? 1.0 : scalar[l];
-        active[l] = least_squares || !finite ? 0.0 : 1.0;
-        lambda[l] = 1.0;
-        halvings[l] = 0.0;
+        active[l] = steps && (least_squares || nonfinite[l] != 0) ? 0.0 : active[l];
+        lambda[l] = steps ? 1.0 : lambda[l];
+        halvings[l] = steps ? 0.0 : halvings[l];
       }
     }
     int open_lanes = 0;
@@ -373,10 +397,49 @@ void DesignLanes::store(std::size_t l, std::size_t row) {
     table.qd_values()[i * rows + row] = lanes(layout_.qd(i))[l];
     table.qdd_values()[i * rows + row] = lanes(layout_.qdd(i))[l];
   }
-  // The point stage's outputs (points, then frames) are in the table's point column order.
-  double* points = table.point_values();
-  for (std::size_t k = 0; k < layout_.observable_output_count(); ++k)
-    points[k * rows + row] = output(TapeLayout::kPointStage, k)[l];
+}
+
+namespace {
+// The largest so far and one more, as the study keeps the largest over rows (NaN at
+// first: any length replaces it).
+inline double larger(double largest, double length) { return !(length <= largest) ? length : largest; }
+}  // namespace
+
+void DesignLanes::keep_largest(const double* ok) {
+  const std::vector<std::size_t>& dimensions = layout_.point_dimensions;
+  for (std::size_t p = 0; p < dimensions.size(); ++p) {
+    const std::size_t d = dimensions[p];
+    for (std::size_t kind = 1; kind <= 2; ++kind) {  // velocity, then acceleration
+      double squares[kLanes] = {};
+      for (std::size_t c = 0; c < d; ++c) {
+        const double* v = output(TapeLayout::kPointStage, layout_.point_output(p) + kind * d + c);
+        for (std::size_t l = 0; l < kLanes; ++l) squares[l] += v[l] * v[l];
+      }
+      double* largest = (kind == 1 ? largest_speed_ : largest_acceleration_).data() + p * kLanes;
+      int unusual = 0;  // squares that vector_length takes apart (std::hypot)
+      for (std::size_t l = 0; l < kLanes; ++l) {
+        const bool normal = squares[l] > 1e-300 && squares[l] < 1e300;
+        unusual += ok[l] != 0 && !normal;
+        const double length = std::sqrt(normal ? squares[l] : 1.0);
+        largest[l] = ok[l] != 0 && normal ? larger(largest[l], length) : largest[l];
+      }
+      for (std::size_t l = 0; unusual > 0 && l < kLanes; ++l) {
+        if (ok[l] == 0 || (squares[l] > 1e-300 && squares[l] < 1e300)) continue;
+        double v[3] = {};
+        for (std::size_t c = 0; c < d; ++c) v[c] = output(TapeLayout::kPointStage, layout_.point_output(p) + kind * d + c)[l];
+        largest[l] = larger(largest[l], vector_length(v[0], v[1], v[2]));
+      }
+    }
+  }
+}
+
+void DesignLanes::keep_largest(std::size_t l, std::size_t row) {
+  const MotionTable& table = lanes_[l]->table;
+  for (std::size_t p = 0; p < table.point_count(); ++p) {
+    const PointMotion point = table.point(row, p);
+    largest_speed_[p * kLanes + l] = larger(largest_speed_[p * kLanes + l], point.speed());
+    largest_acceleration_[p * kLanes + l] = larger(largest_acceleration_[p * kLanes + l], point.acceleration_magnitude());
+  }
 }
 
 }  // namespace kinema

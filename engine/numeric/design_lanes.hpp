@@ -34,8 +34,14 @@ class DesignLanes {
   void set_design(std::size_t lane, const double* values);
   /// Solves the run for lanes [0, count).
   void solve(std::size_t count);
-  /// Lane l's rows of the last solve().
+  /// Lane l's rows of the last solve(). The points' columns hold only the values the
+  /// scalar run solved: of the others each point's largest speed and acceleration are
+  /// kept (largest_speed, largest_acceleration), not written value by value.
   const MotionTable& table(std::size_t lane) const;
+  /// Point p's largest speed (acceleration magnitude) over lane l's values whose status is
+  /// ok in the last solve(), as MotionTable::point(row, p).speed() gives each; NaN with none.
+  double largest_speed(std::size_t lane, std::size_t p) const { return largest_speed_[p * kLanes + lane]; }
+  double largest_acceleration(std::size_t lane, std::size_t p) const { return largest_acceleration_[p * kLanes + lane]; }
   /// Values the last solve() solved in the lanes (the others by the scalar run).
   std::size_t lane_values() const { return lane_values_; }
 
@@ -51,6 +57,7 @@ class DesignLanes {
   std::vector<double> lu_, pivots_, x_, start_, column_scale_;  ///< Lane-major as in lane_lu.hpp.
   std::vector<double> step_, phi_;  ///< restart_values: each lane's step and Phi at its position.
   std::size_t worst_row_[kLanes];
+  std::vector<double> largest_speed_, largest_acceleration_;  ///< Point p of lane l at p * kLanes + l.
   double tolerance_[kLanes], length_scale_[kLanes], pivot_ratio_[kLanes], residual_[kLanes];
   std::size_t lane_values_ = 0;
 
@@ -71,6 +78,11 @@ class DesignLanes {
   KINEMA_LANE_LOOPS void restart_values(double input, const double* restart, double* open);
   KINEMA_LANE_LOOPS void factorise();
   void store(std::size_t lane, std::size_t row);
+  /// The lanes' point speeds and accelerations (ok[l] 1 where lane l's value is ok) into
+  /// their largest.
+  KINEMA_LANE_LOOPS void keep_largest(const double* ok);
+  /// The same for a row of lane l's table the scalar run solved.
+  void keep_largest(std::size_t lane, std::size_t row);
 };
 
 }  // namespace kinema
