@@ -4,7 +4,10 @@
 // speeds and accelerations, whether every value assembles). Nothing is derived or compiled
 // per design: every design runs on the model's one compiled tape, whose inputs the
 // parameters are (only the work on them alone is rerun), its values solved as
-// analyse(with_parameters(model, design), inputs) solves them, on several threads.
+// analyse(with_parameters(model, design), inputs) solves them, on several threads, 32
+// designs at a time in the lanes of the batch tape where the input has a rate
+// (engine/numeric/design_lanes: the values a lane cannot solve as the scalar solver
+// would go to it).
 #pragma once
 
 #include <cstdint>

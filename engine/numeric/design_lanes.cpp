@@ -44,7 +44,9 @@ DesignLanes::DesignLanes(const Kinematics& kinematics, const std::vector<double>
       step_(n_ * kLanes),
       phi_(n_ * kLanes),
       largest_speed_(kinematics.point_count() * kLanes),
-      largest_acceleration_(kinematics.point_count() * kLanes) {
+      largest_acceleration_(kinematics.point_count() * kLanes),
+      largest_speed_square_(kinematics.point_count() * kLanes),
+      largest_acceleration_square_(kinematics.point_count() * kLanes) {
   for (std::size_t l = 0; l < kLanes; ++l) {
     lanes_.push_back(std::make_unique<Lane>(kinematics, inputs, rate, second_rate));
     set_design(l, kinematics.parameter_values().data());
@@ -75,6 +77,8 @@ void DesignLanes::solve(std::size_t count) {
   lane_values_ = 0;
   std::fill(largest_speed_.begin(), largest_speed_.end(), NAN);
   std::fill(largest_acceleration_.begin(), largest_acceleration_.end(), NAN);
+  std::fill(largest_speed_square_.begin(), largest_speed_square_.end(), 0.0);
+  std::fill(largest_acceleration_square_.begin(), largest_acceleration_square_.end(), 0.0);
   double take[kLanes], ok[kLanes], restart[kLanes], open[kLanes];
   for (std::size_t row = 0; row < inputs_.size(); ++row) {
     bool restarts = choose_lanes(row, count, take, restart);
@@ -416,12 +420,12 @@ void DesignLanes::keep_largest(const double* ok) {
         for (std::size_t l = 0; l < kLanes; ++l) squares[l] += v[l] * v[l];
       }
       double* largest = (kind == 1 ? largest_speed_ : largest_acceleration_).data() + p * kLanes;
+      double* largest_square = (kind == 1 ? largest_speed_square_ : largest_acceleration_square_).data() + p * kLanes;
       int unusual = 0;  // squares that vector_length takes apart (std::hypot)
       for (std::size_t l = 0; l < kLanes; ++l) {
         const bool normal = squares[l] > 1e-300 && squares[l] < 1e300;
         unusual += ok[l] != 0 && !normal;
-        const double length = std::sqrt(normal ? squares[l] : 1.0);
-        largest[l] = ok[l] != 0 && normal ? larger(largest[l], length) : largest[l];
+        largest_square[l] = ok[l] != 0 && normal && squares[l] > largest_square[l] ? squares[l] : largest_square[l];
       }
       for (std::size_t l = 0; unusual > 0 && l < kLanes; ++l) {
         if (ok[l] == 0 || (squares[l] > 1e-300 && squares[l] < 1e300)) continue;
@@ -431,6 +435,18 @@ void DesignLanes::keep_largest(const double* ok) {
       }
     }
   }
+}
+
+namespace {
+double largest_of(double length, double square) { return square > 0 ? larger(length, std::sqrt(square)) : length; }
+}  // namespace
+
+double DesignLanes::largest_speed(std::size_t lane, std::size_t p) const {
+  return largest_of(largest_speed_[p * kLanes + lane], largest_speed_square_[p * kLanes + lane]);
+}
+
+double DesignLanes::largest_acceleration(std::size_t lane, std::size_t p) const {
+  return largest_of(largest_acceleration_[p * kLanes + lane], largest_acceleration_square_[p * kLanes + lane]);
 }
 
 void DesignLanes::keep_largest(std::size_t l, std::size_t row) {

@@ -40,8 +40,8 @@ class DesignLanes {
   const MotionTable& table(std::size_t lane) const;
   /// Point p's largest speed (acceleration magnitude) over lane l's values whose status is
   /// ok in the last solve(), as MotionTable::point(row, p).speed() gives each; NaN with none.
-  double largest_speed(std::size_t lane, std::size_t p) const { return largest_speed_[p * kLanes + lane]; }
-  double largest_acceleration(std::size_t lane, std::size_t p) const { return largest_acceleration_[p * kLanes + lane]; }
+  double largest_speed(std::size_t lane, std::size_t p) const;
+  double largest_acceleration(std::size_t lane, std::size_t p) const;
   /// Values the last solve() solved in the lanes (the others by the scalar run).
   std::size_t lane_values() const { return lane_values_; }
 
@@ -57,7 +57,10 @@ class DesignLanes {
   std::vector<double> lu_, pivots_, x_, start_, column_scale_;  ///< Lane-major as in lane_lu.hpp.
   std::vector<double> step_, phi_;  ///< restart_values: each lane's step and Phi at its position.
   std::size_t worst_row_[kLanes];
-  std::vector<double> largest_speed_, largest_acceleration_;  ///< Point p of lane l at p * kLanes + l.
+  /// Point p of lane l at p * kLanes + l: the largest length from the scalar run's rows
+  /// and from squares vector_length takes apart (NaN: none), and the largest square of
+  /// the others (0: none; its root is the largest length, the root being monotonic).
+  std::vector<double> largest_speed_, largest_acceleration_, largest_speed_square_, largest_acceleration_square_;
   double tolerance_[kLanes], length_scale_[kLanes], pivot_ratio_[kLanes], residual_[kLanes];
   std::size_t lane_values_ = 0;
 
