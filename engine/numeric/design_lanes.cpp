@@ -43,6 +43,7 @@ DesignLanes::DesignLanes(const Kinematics& kinematics, const std::vector<double>
       column_scale_(n_ * kLanes),
       step_(n_ * kLanes),
       phi_(n_ * kLanes),
+      previous_(3 * n_ * kLanes),
       largest_speed_(kinematics.point_count() * kLanes),
       largest_acceleration_(kinematics.point_count() * kLanes),
       largest_speed_square_(kinematics.point_count() * kLanes),
@@ -73,6 +74,9 @@ void DesignLanes::solve(std::size_t count) {
   for (std::size_t l = 0; l < count; ++l) {
     lanes_[l]->rows.start();
     lanes_[l]->last_in_lanes = false;
+    // Every row ok with nothing to report until the scalar run stores one (store() then
+    // writes only the numbers).
+    lanes_[l]->table.set_ok(0, inputs_.size());
   }
   lane_values_ = 0;
   std::fill(largest_speed_.begin(), largest_speed_.end(), NAN);
@@ -87,6 +91,7 @@ void DesignLanes::solve(std::size_t count) {
     if (std::find(take, take + kLanes, 1.0) != take + kLanes) {
       solve_value(inputs_[row], row > 0, take, ok);
       keep_largest(ok);
+      keep_previous(ok);
     }
     // The first value, from the guesses, is Newton alone: where the undamped steps did
     // not close it, the damped ones decide whether it stays open.
@@ -112,15 +117,21 @@ void DesignLanes::solve(std::size_t count) {
       if (lane.last_in_lanes) lane.rows.solved_elsewhere(lane.table, row - 1);
       lane.last_in_lanes = false;
       lane.rows.solve(lane.table, row);
-      if (lane.table.status(row) == Status::ok) keep_largest(l, row);
+      if (lane.table.status(row) != Status::ok) continue;
+      keep_largest(l, row);
+      for (std::size_t i = 0; i < n_; ++i) {
+        previous_[(3 * i) * kLanes + l] = lane.table.q_column(i)[row];
+        previous_[(3 * i + 1) * kLanes + l] = lane.table.qd_column(i)[row];
+        previous_[(3 * i + 2) * kLanes + l] = lane.table.qdd_column(i)[row];
+      }
     }
   }
   count_values_solved(lane_values_);
 }
 
 bool DesignLanes::choose_lanes(std::size_t row, std::size_t count, double* take, double* restart) {
-  const double input = inputs_[row];
   bool any_restart = false;
+  const double h = row > 0 ? inputs_[row] - inputs_[row - 1] : 0.0;
   for (std::size_t l = 0; l < kLanes; ++l) {
     const Lane& lane = *lanes_[l];
     const Eigen::VectorXd* from = &lane.kinematics.guess();  // any finite position keeps a lane not solved quiet
@@ -130,13 +141,7 @@ bool DesignLanes::choose_lanes(std::size_t row, std::size_t count, double* take,
       predicted = lane.kinematics.closed_form() == nullptr;
     } else if (l < count && (lane.last_in_lanes || lane.rows.on_branch())) {
       // The scalar run's fast path: from the last row, ok, predicted by its rates.
-      const double h = input - inputs_[row - 1];
       predicted = std::fabs(h) <= lane.kinematics.max_continuation_step();
-      for (std::size_t i = 0; predicted && i < n_; ++i) {
-        start_[i * kLanes + l] =
-            solver::predict_second_order(lane.table.q_column(i)[row - 1], lane.table.qd_column(i)[row - 1],
-                                         lane.table.qdd_column(i)[row - 1], rate_, second_rate_, h);
-      }
     } else if (l < count) {
       const Eigen::VectorXd* position = lane.rows.restart_position();
       restarted = position != nullptr;
@@ -148,7 +153,31 @@ bool DesignLanes::choose_lanes(std::size_t row, std::size_t count, double* take,
     restart[l] = restarted ? 1.0 : 0.0;
     any_restart = any_restart || restarted;
   }
+  if (row > 0) predict(h, take);
   return any_restart;
+}
+
+void DesignLanes::predict(double h, const double* predicted) {
+  for (std::size_t i = 0; i < n_; ++i) {
+    const double* q = previous_.data() + (3 * i) * kLanes;
+    const double* qd = previous_.data() + (3 * i + 1) * kLanes;
+    const double* qdd = previous_.data() + (3 * i + 2) * kLanes;
+    double* start = start_.data() + i * kLanes;
+    for (std::size_t l = 0; l < kLanes; ++l) {
+      const double value = solver::predict_second_order(q[l], qd[l], qdd[l], rate_, second_rate_, h);
+      start[l] = predicted[l] != 0 ? value : start[l];
+    }
+  }
+}
+
+void DesignLanes::keep_previous(const double* ok) {
+  for (std::size_t i = 0; i < n_; ++i) {
+    const double* from[3] = {lanes(layout_.q(i)), lanes(layout_.qd(i)), lanes(layout_.qdd(i))};
+    for (std::size_t k = 0; k < 3; ++k) {
+      double* to = previous_.data() + (3 * i + k) * kLanes;
+      for (std::size_t l = 0; l < kLanes; ++l) to[l] = ok[l] != 0 ? from[k][l] : to[l];
+    }
+  }
 }
 
 void DesignLanes::factorise() {
@@ -393,7 +422,6 @@ void DesignLanes::restart_values(double input, const double* restart, double* op
 void DesignLanes::store(std::size_t l, std::size_t row) {
   MotionTable& table = lanes_[l]->table;
   const std::size_t rows = table.size();
-  table.set_ok(row, 1);
   table.loop_residuals()[row] = residual_[l];
   table.reciprocal_conditions()[row] = pivot_ratio_[l];
   for (std::size_t i = 0; i < n_; ++i) {

@@ -57,6 +57,7 @@ class DesignLanes {
   std::vector<double> lu_, pivots_, x_, start_, column_scale_;  ///< Lane-major as in lane_lu.hpp.
   std::vector<double> step_, phi_;  ///< restart_values: each lane's step and Phi at its position.
   std::size_t worst_row_[kLanes];
+  std::vector<double> previous_;  ///< Each lane's last ok row: q_i, qd_i, qdd_i at (3 i + 0, 1, 2) kLanes + l.
   /// Point p of lane l at p * kLanes + l: the largest length from the scalar run's rows
   /// and from squares vector_length takes apart (NaN: none), and the largest square of
   /// the others (0: none; its root is the largest length, the root being monotonic).
@@ -70,6 +71,11 @@ class DesignLanes {
   /// (or the first, from the guesses), restart[l] 1 for one that starts Newton alone after
   /// a value that did not assemble (RowSolver::restart_position). Whether any is.
   bool choose_lanes(std::size_t row, std::size_t count, double* take, double* restart);
+  /// start_ of the lanes predicted (predicted[l] 1) h on from their last row, as the
+  /// scalar run predicts (solver::predict_second_order).
+  KINEMA_LANE_LOOPS void predict(double h, const double* predicted);
+  /// The rows just solved in the lanes (ok[l] 1) as each lane's last row.
+  KINEMA_LANE_LOOPS void keep_previous(const double* ok);
   /// Newton, rates and points at `input` for the lanes taken from start_; ok[l] 1 where
   /// a lane's values are the scalar run's (check_branch: within the branch tolerance of
   /// the start, as a predicted value must be).
