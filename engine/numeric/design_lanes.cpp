@@ -180,6 +180,17 @@ void DesignLanes::keep_previous(const double* ok) {
   }
 }
 
+KINEMA_INLINE_LANES void DesignLanes::largest_phi(double* norm) {
+  std::fill_n(norm, kLanes, 0.0);
+  for (std::size_t i = 0; i < n_; ++i) {
+    const double* phi = output(TapeLayout::kPositionStage, layout_.phi(i));
+    for (std::size_t l = 0; l < kLanes; ++l) {
+      const double magnitude = std::fabs(phi[l]);  // NaN stays: the comparison is false for it
+      norm[l] = (magnitude > norm[l] || magnitude != magnitude) ? magnitude : norm[l];
+    }
+  }
+}
+
 void DesignLanes::factorise() {
   for (std::size_t i = 0; i < n_; ++i)
     for (std::size_t j = 0; j < n_; ++j) {
@@ -225,14 +236,7 @@ void DesignLanes::solve_value(double input, bool check_branch, const double* tak
     e.evaluate_stage_batch_from(TapeLayout::kPositionStage,
                                 iteration == 0 ? TapeLayout::kInputLevel : TapeLayout::kCoordinateLevel,
                                 registers_.data());
-    std::fill_n(residual_, kLanes, 0.0);
-    for (std::size_t i = 0; i < n; ++i) {
-      const double* phi = output(TapeLayout::kPositionStage, layout_.phi(i));
-      for (std::size_t l = 0; l < kLanes; ++l) {
-        const double magnitude = std::fabs(phi[l]);  // NaN stays: the comparison is false for it
-        residual_[l] = (magnitude > residual_[l] || magnitude != magnitude) ? magnitude : residual_[l];
-      }
-    }
+    largest_phi(residual_);
     factorise();
     int open = 0;
     for (std::size_t l = 0; l < kLanes; ++l) {
@@ -329,14 +333,7 @@ void DesignLanes::restart_values(double input, const double* restart, double* op
                                 evaluation == 0 ? TapeLayout::kInputLevel : TapeLayout::kCoordinateLevel,
                                 registers_.data());
     double trial_norm[kLanes];
-    std::fill_n(trial_norm, kLanes, 0.0);
-    for (std::size_t i = 0; i < n; ++i) {
-      const double* phi = output(TapeLayout::kPositionStage, layout_.phi(i));
-      for (std::size_t l = 0; l < kLanes; ++l) {
-        const double magnitude = std::fabs(phi[l]);
-        trial_norm[l] = (magnitude > trial_norm[l] || magnitude != magnitude) ? magnitude : trial_norm[l];
-      }
-    }
+    largest_phi(trial_norm);
     // The first evaluation is at the start (accepted as it is); later ones at trials,
     // accepted where they lower max |Phi| (a finite one), else the step is halved. Every
     // lane in selects, so that the loops run across lanes.

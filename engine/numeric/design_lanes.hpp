@@ -7,7 +7,10 @@
 // cleanly at a value (more iterations, a step that does not lower the residual, a pivot
 // not clearly regular, another branch, numbers not finite) is solved at that value by
 // the scalar run (RowSolver), and goes on in the lanes from the next value after one it
-// solves ok: each lane's table is what solve_sweep gives its design, to rounding.
+// solves ok. After a value that does not assemble, the scalar run's Newton alone from the
+// last position (its steps halved where they do not lower the residual) runs lane by
+// lane too, and a value it leaves open is stored as the scalar run stores it. Each lane's
+// table is what solve_sweep gives its design, to rounding.
 #pragma once
 
 #include <memory>
@@ -86,6 +89,8 @@ class DesignLanes {
   /// (it closes, or needs a least-squares step).
   KINEMA_LANE_LOOPS void restart_values(double input, const double* restart, double* open);
   KINEMA_LANE_LOOPS void factorise();
+  /// max |Phi| of each lane at the position stage just evaluated (NaN where one is).
+  void largest_phi(double* norm);
   void store(std::size_t lane, std::size_t row);
   /// The lanes' point speeds and accelerations (ok[l] 1 where lane l's value is ok) into
   /// their largest.
