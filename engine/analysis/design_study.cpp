@@ -14,6 +14,7 @@
 #include "engine/base/number_format.hpp"
 #include "engine/base/units.hpp"
 #include "engine/constraints/output_columns.hpp"
+#include "engine/numeric/design_lanes.hpp"
 #include "engine/numeric/sweep.hpp"
 #include "engine/numeric/tape.hpp"
 #include "engine/numeric/workspace.hpp"
@@ -136,6 +137,16 @@ double largest_vector(const MotionTable& table, std::size_t p, std::size_t dimen
   return largest;
 }
 
+// |the angle x wrapped to [-pi, pi]|: transmission_angle is this (in degrees) of
+// rocker - coupler + pi (+ pi more where one of their lengths is written negative), the
+// direction from the rocker's edge to the coupler's back. Rounding by adding and taking
+// away 1.5 * 2^52 (no libm call): |x| < 2^51 turns.
+double transmission_measure(double x) {
+  constexpr double kTurn = 2 * kPi, kRound = 0x1.8p52;
+  const double turns = (x / kTurn + kRound) - kRound;
+  return std::fabs(x - turns * kTurn);
+}
+
 // One thread's designs: its own kinematics (sharing the tape), sweep, workspaces and
 // buffers, made once and reused design after design.
 class DesignRunner {
@@ -154,9 +165,47 @@ class DesignRunner {
     sweep_ = std::make_unique<RepeatedSweep>(kinematics_, inputs, settings);
     if (!setup.stroke_unknowns.empty()) limits_ = std::make_unique<Workspace>(kinematics_);
     if (setup.loop) loop_ = *setup.loop;
+    if (options.across_designs && solves() && settings.rate != 0 && !inputs.empty()) {
+      lanes_ = std::make_unique<DesignLanes>(kinematics_, inputs, settings.rate, settings.second_rate);
+      lane_designs_.resize(DesignLanes::kLanes);
+    }
   }
 
+  /// Design `design` solved alone.
   void run(const Designs& designs, std::size_t design, StudyResults& results) {
+    const GrashofClass kind = load_design(designs, design, results);
+    kinematics_.set_parameter_values(values_.data());
+    if (!solves()) return;
+    summarise(sweep_->solve(), kind, design, results);
+  }
+
+  /// Whether designs go kLanes at a time to run_lanes: a run predicted by the input's rate.
+  bool uses_lanes() const { return lanes_ != nullptr; }
+
+  /// Designs [first, first + count), count <= kLanes, solved together, one to a lane.
+  void run_lanes(const Designs& designs, std::size_t first, std::size_t count, StudyResults& results) {
+    for (std::size_t l = 0; l < count; ++l) {
+      lane_designs_[l].kind = load_design(designs, first + l, results);
+      lane_designs_[l].values = values_;
+      lane_designs_[l].loop = loop_;
+      lanes_->set_design(l, values_.data());
+    }
+    lanes_->solve(count);
+    lane_values_ += lanes_->lane_values();
+    for (std::size_t l = 0; l < count; ++l) {
+      const LaneDesign& lane = lane_designs_[l];
+      kinematics_.set_parameter_values(lane.values.data());  // for the time ratio's refinement
+      loop_ = lane.loop;
+      summarise(lanes_->table(l), lane.kind, first + l, results, l);
+    }
+  }
+
+  std::uint64_t lane_values() const { return lane_values_; }
+
+ private:
+  // The design's parameter values into values_ (formula ones following), its four-bar
+  // sides into loop_; its class (into the results when asked for).
+  GrashofClass load_design(const Designs& designs, std::size_t design, StudyResults& results) {
     for (std::size_t k = 0; k < setup_.varied.size(); ++k) values_[setup_.varied[k]] = designs.values[k][design];
     if (setup_.has_tape) {
       setup_.tape.evaluate(values_.data(), tape_outputs_.data(), tape_registers_);
@@ -172,13 +221,9 @@ class DesignRunner {
                            setup_.length_unit);
     }
     if (options_.wants(StudyFigure::grashof)) results.grashof[design] = kind;
-    kinematics_.set_parameter_values(values_.data());
-    if (!solves()) return;
-    const MotionTable& table = sweep_->solve();
-    summarise(table, kind, design, results);
+    return kind;
   }
 
- private:
   bool solves() const {
     for (StudyFigure f : {StudyFigure::min_transmission_angle, StudyFigure::time_ratio, StudyFigure::assembles,
                           StudyFigure::max_rates, StudyFigure::max_second_rates, StudyFigure::max_speeds,
@@ -187,7 +232,11 @@ class DesignRunner {
     return false;
   }
 
-  void summarise(const MotionTable& table, GrashofClass kind, std::size_t design, StudyResults& results) {
+  // The figures of a design from its table; a lane's (`lane` < kLanes) points' largest
+  // from the lanes, which keep them instead of the points' columns.
+  void summarise(const MotionTable& table, GrashofClass kind, std::size_t design, StudyResults& results,
+                 std::size_t lane = DesignLanes::kLanes) {
+    const bool from_lanes = lane < DesignLanes::kLanes;
     if (options_.wants(StudyFigure::assembles)) {
       std::uint32_t failed = 0;
       for (std::size_t row = 0; row < table.size(); ++row) failed += table.status(row) == Status::unassembled;
@@ -199,11 +248,17 @@ class DesignRunner {
       if (kind != GrashofClass::none) {  // as four_bar_figures: no figures where there is nothing to classify
         const double* coupler = table.q_column(loop_.coupler.unknown);
         const double* rocker = table.q_column(loop_.rocker.unknown);
+        // The row where the angle is least by a measure without trigonometry, its angle
+        // as transmission_angle gives it (the least of every row's, to rounding).
+        const double offset = (loop_.coupler.value < 0) == (loop_.rocker.value < 0) ? kPi : 0;
+        double least_measure = kNaN;
+        std::size_t least_row = table.size();
         for (std::size_t row = 0; row < table.size(); ++row) {
           if (table.status(row) == Status::unassembled) continue;
-          const double mu = transmission_angle(loop_, coupler[row], rocker[row]);
-          if (!(mu >= least)) least = mu;
+          const double measure = transmission_measure(rocker[row] - coupler[row] + offset);
+          if (!(measure >= least_measure)) least_measure = measure, least_row = row;
         }
+        if (least_row < table.size()) least = transmission_angle(loop_, coupler[least_row], rocker[least_row]);
       }
       results.min_transmission_angle[design] = least * kPi / 180;
     }
@@ -216,9 +271,11 @@ class DesignRunner {
     const std::vector<std::size_t>& dimensions = kinematics_.layout().point_dimensions;
     for (std::size_t p = 0; p < dimensions.size(); ++p) {
       if (options_.wants(StudyFigure::max_speeds))
-        results.max_speed[p][design] = largest_vector(table, p, dimensions[p], dimensions[p]);
+        results.max_speed[p][design] = from_lanes ? lanes_->largest_speed(lane, p)
+                                                  : largest_vector(table, p, dimensions[p], dimensions[p]);
       if (options_.wants(StudyFigure::max_accelerations))
-        results.max_acceleration[p][design] = largest_vector(table, p, dimensions[p], 2 * dimensions[p]);
+        results.max_acceleration[p][design] = from_lanes ? lanes_->largest_acceleration(lane, p)
+                                                         : largest_vector(table, p, dimensions[p], 2 * dimensions[p]);
     }
     if (options_.wants(StudyFigure::time_ratio)) results.time_ratio[design] = time_ratio(table);
   }
@@ -257,6 +314,15 @@ class DesignRunner {
   std::unique_ptr<RepeatedSweep> sweep_;
   std::unique_ptr<Workspace> limits_;
   FourBarLoop loop_;
+  // Designs across lanes: what each lane's design needs summed up after the run.
+  struct LaneDesign {
+    GrashofClass kind = GrashofClass::none;
+    std::vector<double> values;
+    FourBarLoop loop;
+  };
+  std::unique_ptr<DesignLanes> lanes_;
+  std::vector<LaneDesign> lane_designs_;
+  std::uint64_t lane_values_ = 0;
 };
 
 // Room for one value of each figure asked for per design.
@@ -399,18 +465,26 @@ StudyResults run_design_study(const Model& model, const Designs& designs, const 
   const std::size_t count = designs.size();
   StudyResults results = sized_results(model, count, options);
   if (count == 0) return results;
-  // Designs handed out a few at a time: their cost varies (a design that does not
-  // assemble solves its values one by one).
+  // Designs handed out a few at a time (their cost varies: a design that does not
+  // assemble solves its values one by one), a lane's worth where they go in lanes.
   constexpr std::size_t kDesignsATurn = 8;
   std::atomic<std::size_t> next{0};
+  std::atomic<std::uint64_t> lane_values{0};
   std::exception_ptr failure;
   std::mutex failure_lock;
   const auto work = [&]() {
     try {
       DesignRunner runner(setup, inputs, options);
-      for (std::size_t first = next.fetch_add(kDesignsATurn); first < count; first = next.fetch_add(kDesignsATurn))
-        for (std::size_t design = first; design < std::min(count, first + kDesignsATurn); ++design)
-          runner.run(designs, design, results);
+      const std::size_t turn = runner.uses_lanes() ? DesignLanes::kLanes : kDesignsATurn;
+      for (std::size_t first = next.fetch_add(turn); first < count; first = next.fetch_add(turn)) {
+        const std::size_t last = std::min(count, first + turn);
+        if (runner.uses_lanes()) {
+          runner.run_lanes(designs, first, last - first, results);
+          continue;
+        }
+        for (std::size_t design = first; design < last; ++design) runner.run(designs, design, results);
+      }
+      lane_values += runner.lane_values();
     } catch (...) {
       const std::lock_guard<std::mutex> lock(failure_lock);
       if (!failure) failure = std::current_exception();
@@ -423,6 +497,7 @@ StudyResults run_design_study(const Model& model, const Designs& designs, const 
   work();
   for (std::thread& worker : workers) worker.join();
   if (failure) std::rethrow_exception(failure);
+  results.lane_values = lane_values;
   return results;
 }
 

@@ -4,7 +4,10 @@
 // speeds and accelerations, whether every value assembles). Nothing is derived or compiled
 // per design: every design runs on the model's one compiled tape, whose inputs the
 // parameters are (only the work on them alone is rerun), its values solved as
-// analyse(with_parameters(model, design), inputs) solves them, on several threads.
+// analyse(with_parameters(model, design), inputs) solves them, on several threads, 32
+// designs at a time in the lanes of the batch tape where the input has a rate
+// (engine/numeric/design_lanes: the values a lane cannot solve as the scalar solver
+// would go to it).
 #pragma once
 
 #include <cstdint>
@@ -48,6 +51,9 @@ constexpr unsigned kAllStudyFigures = (1u << static_cast<unsigned>(StudyFigure::
 struct StudyOptions {
   unsigned figures = kAllStudyFigures;  ///< study_figure_bit of each figure wanted.
   unsigned threads = 1;                 ///< Designs are shared out among this many threads.
+  /// Designs solved kLanes at a time, one to a lane of the batch tape (engine/numeric/
+  /// design_lanes), where the input has a rate; else each alone. The same numbers to rounding.
+  bool across_designs = true;
   bool wants(StudyFigure figure) const { return (figures & study_figure_bit(figure)) != 0; }
 };
 
@@ -63,6 +69,7 @@ struct StudyResults {
   std::vector<std::uint32_t> failed_values; ///< Values of the run that did not assemble.
   std::vector<std::vector<double>> max_rate, max_second_rate;   ///< [unknown][design]
   std::vector<std::vector<double>> max_speed, max_acceleration; ///< [point][design]
+  std::uint64_t lane_values = 0;  ///< Values solved in lanes across designs (the rest one by one): a diagnostic.
 };
 
 /// The figures of every design over the input values `inputs` (SI), each value solved as

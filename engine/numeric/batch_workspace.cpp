@@ -4,97 +4,10 @@
 #include <cfloat>
 #include <cmath>
 
+#include "engine/numeric/lane_lu.hpp"
 #include "engine/numeric/solver.hpp"
 
 namespace kinema {
-namespace {
-
-constexpr std::size_t kLanes = BatchWorkspace::kLanes;
-
-// LU with partial pivoting of kLanes small matrices at once, lane-parallel: the
-// pivot row of each lane is chosen and swapped in by selects, so every loop is a
-// fixed-length loop over lanes. Same operations, in the same order, as lu_factor.
-KINEMA_LANE_LOOPS void lu_factor_lanes(double* a, double* pivots, std::size_t n) {
-  auto at = [&](std::size_t i, std::size_t j) { return a + (i * n + j) * kLanes; };
-  for (std::size_t c = 0; c < n; ++c) {
-    double best[kLanes], best_magnitude[kLanes];
-    const double* diagonal = at(c, c);
-    for (std::size_t l = 0; l < kLanes; ++l) {
-      best[l] = static_cast<double>(c);
-      best_magnitude[l] = std::fabs(diagonal[l]);
-    }
-    for (std::size_t r = c + 1; r < n; ++r) {
-      const double* candidate = at(r, c);
-      for (std::size_t l = 0; l < kLanes; ++l) {
-        const double magnitude = std::fabs(candidate[l]);
-        const bool larger = magnitude > best_magnitude[l];
-        best[l] = larger ? static_cast<double>(r) : best[l];
-        best_magnitude[l] = larger ? magnitude : best_magnitude[l];
-      }
-    }
-    std::copy(best, best + kLanes, pivots + c * kLanes);
-    for (std::size_t r = c + 1; r < n; ++r) {
-      for (std::size_t j = 0; j < n; ++j) {
-        double* __restrict top = at(c, j);
-        double* __restrict other = at(r, j);
-        for (std::size_t l = 0; l < kLanes; ++l) {
-          const bool swap = best[l] == static_cast<double>(r);
-          const double t = top[l];
-          top[l] = swap ? other[l] : t;
-          other[l] = swap ? t : other[l];
-        }
-      }
-    }
-    for (std::size_t r = c + 1; r < n; ++r) {
-      double* __restrict factor = at(r, c);
-      const double* __restrict pivot = at(c, c);
-      for (std::size_t l = 0; l < kLanes; ++l) factor[l] /= pivot[l];
-      for (std::size_t j = c + 1; j < n; ++j) {
-        double* __restrict target = at(r, j);
-        const double* __restrict source = at(c, j);
-        for (std::size_t l = 0; l < kLanes; ++l) target[l] -= factor[l] * source[l];
-      }
-    }
-  }
-}
-
-// Solves with lu_factor_lanes's result; x (n rows of kLanes) holds the right-hand sides.
-KINEMA_LANE_LOOPS void lu_solve_lanes(const double* a, const double* pivots, double* x, std::size_t n) {
-  auto at = [&](std::size_t i, std::size_t j) { return a + (i * n + j) * kLanes; };
-  for (std::size_t c = 0; c < n; ++c) {
-    for (std::size_t r = c + 1; r < n; ++r) {
-      double* __restrict top = x + c * kLanes;
-      double* __restrict other = x + r * kLanes;
-      const double* __restrict pivot = pivots + c * kLanes;
-      for (std::size_t l = 0; l < kLanes; ++l) {
-        const bool swap = pivot[l] == static_cast<double>(r);
-        const double t = top[l];
-        top[l] = swap ? other[l] : t;
-        other[l] = swap ? t : other[l];
-      }
-    }
-  }
-  for (std::size_t c = 0; c < n; ++c) {
-    for (std::size_t r = c + 1; r < n; ++r) {
-      double* __restrict target = x + r * kLanes;
-      const double* __restrict source = x + c * kLanes;
-      const double* __restrict factor = at(r, c);
-      for (std::size_t l = 0; l < kLanes; ++l) target[l] -= factor[l] * source[l];
-    }
-  }
-  for (std::size_t c = n; c-- > 0;) {
-    double* __restrict value = x + c * kLanes;
-    const double* __restrict pivot = at(c, c);
-    for (std::size_t l = 0; l < kLanes; ++l) value[l] /= pivot[l];
-    for (std::size_t r = 0; r < c; ++r) {
-      double* __restrict target = x + r * kLanes;
-      const double* __restrict factor = at(r, c);
-      for (std::size_t l = 0; l < kLanes; ++l) target[l] -= factor[l] * value[l];
-    }
-  }
-}
-
-}  // namespace
 
 BatchWorkspace::BatchWorkspace(const Kinematics& k)
     : k_(k),

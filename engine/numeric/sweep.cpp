@@ -363,6 +363,68 @@ const MotionTable& RepeatedSweep::solve() {
   return s.table;
 }
 
+struct RowSolver::State {
+  explicit State(const Kinematics& k) : kinematics(k), solvers(k, false, 0) {}
+  const Kinematics& kinematics;
+  Solvers solvers;
+  RunCursor at;
+};
+
+RowSolver::RowSolver(const Kinematics& kinematics) : state_(std::make_unique<State>(kinematics)) {}
+RowSolver::~RowSolver() = default;
+
+void RowSolver::start() {
+  State& s = *state_;
+  s.solvers.scalar.reload_parameters();
+  s.at = RunCursor{};
+  s.at.q = s.kinematics.guess();
+}
+
+void RowSolver::solve(MotionTable& table, std::size_t row) {
+  State& s = *state_;
+  solve_rows(s.kinematics, s.solvers, table, row, row + 1, row + 1, row, 0, s.at);
+}
+
+void RowSolver::solved_elsewhere(const MotionTable& table, std::size_t row) {
+  // As solve_rows leaves the cursor after a row whose status is ok.
+  RunCursor& at = state_->at;
+  at.q = table.q(row);
+  at.any_solved = true;
+  at.q_singular = false;
+  at.after_gap = false;
+  at.have_previous = true;
+  at.have_last_ok = true;
+  at.last_ok_input = table.input(row);
+  at.last_ok_q = at.q;
+  at.last_ok_qd = table.qd(row);
+  at.last_ok_qdd = table.qdd(row);
+}
+
+bool RowSolver::on_branch() const { return state_->at.have_previous; }
+
+const Eigen::VectorXd* RowSolver::restart_position() const {
+  const State& s = *state_;
+  const bool newton_alone = !s.at.have_previous && !s.at.q_singular && s.kinematics.closed_form() == nullptr;
+  return newton_alone ? &s.at.q : nullptr;
+}
+
+void RowSolver::failed_elsewhere(MotionTable& table, std::size_t row, std::size_t group, double residual) {
+  // As solve_rows stores a row Newton alone could not close, and leaves the cursor.
+  RunCursor& at = state_->at;
+  MotionState failed;
+  failed.input = table.input(row);
+  failed.status = Status::unassembled;
+  failed.failure.kind = Failure::Kind::group_open;
+  failed.failure.group = static_cast<std::uint32_t>(group);
+  failed.failure.residual = residual;
+  failed.failure.from_guesses = !at.after_gap;
+  table.set(row, failed);
+  at.after_gap = at.any_solved;
+  at.have_previous = false;
+}
+
+void count_values_solved(std::uint64_t values) { values_solved.fetch_add(values, std::memory_order_relaxed); }
+
 std::uint64_t values_solved_in_process() { return values_solved.load(std::memory_order_relaxed); }
 
 }  // namespace kinema

@@ -82,4 +82,43 @@ class RepeatedSweep {
   std::unique_ptr<State> state_;
 };
 
+/// One run's rows solved one at a time into a table the caller keeps, each as
+/// solve_sweep's serial run solves it when it goes one by one (no SIMD blocks): for a
+/// caller that solves the rows it can itself and hands the others here (a design study's
+/// lanes across designs, engine/numeric/design_lanes).
+class RowSolver {
+ public:
+  explicit RowSolver(const Kinematics& kinematics);
+  ~RowSolver();
+  RowSolver(const RowSolver&) = delete;
+  RowSolver& operator=(const RowSolver&) = delete;
+
+  /// A new run at the kinematics' current parameter values, from its guesses.
+  void start();
+  /// Solves `row` of `table` (its input stored; every row before it in this run solved).
+  void solve(MotionTable& table, std::size_t row);
+  /// Row `row` (status ok, nothing to report) was solved elsewhere as solve() would
+  /// have solved it: the run goes on from it.
+  void solved_elsewhere(const MotionTable& table, std::size_t row);
+  /// The last row solved is ok: solve() predicts the next from its rates.
+  bool on_branch() const;
+  /// Where solve() starts Newton alone (Workspace::solve_position) for the next row: after
+  /// a row that did not assemble, from the last position solved (or the guesses); nullptr
+  /// where it does anything else (predicts, restarts past a singular position, places
+  /// dyads in closed form).
+  const Eigen::VectorXd* restart_position() const;
+  /// The next row, `row`, did not assemble: Newton from restart_position() stopped open
+  /// with max |Phi| = residual, largest in equation group `group`, found elsewhere as
+  /// solve() would have found it. Stored as solve() stores it.
+  void failed_elsewhere(MotionTable& table, std::size_t row, std::size_t group, double residual);
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
+/// Counts values solved outside solve_sweep and the solvers above (a design study's
+/// lanes) in values_solved_in_process().
+void count_values_solved(std::uint64_t values);
+
 }  // namespace kinema

@@ -1,0 +1,486 @@
+#include "engine/numeric/design_lanes.hpp"
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+
+#include "engine/numeric/solver.hpp"
+#include "engine/numeric/sweep.hpp"
+
+namespace kinema {
+
+namespace {
+// Newton iterations a lane gets; one that needs more is solved by the scalar run (a
+// value predicted from 1 deg back converges in 3 or 4, the first one from the guesses
+// in about 6).
+constexpr int kLaneIterations = 10;
+}  // namespace
+
+struct DesignLanes::Lane {
+  Lane(const Kinematics& k, const std::vector<double>& inputs, double rate, double second_rate)
+      : kinematics(k),
+        rows(kinematics),
+        table(inputs, k.unknown_count(), k.layout().point_dimensions, rate, second_rate, k.frame_count()) {}
+  Kinematics kinematics;  // the design's parameter values, the tape shared
+  RowSolver rows;         // the values the lanes leave to the scalar run
+  MotionTable table;
+  bool last_in_lanes = false;  // the last row was solved in the lanes (rows not told yet)
+};
+
+DesignLanes::DesignLanes(const Kinematics& kinematics, const std::vector<double>& inputs, double rate,
+                         double second_rate)
+    : k_(kinematics),
+      layout_(kinematics.layout()),
+      n_(kinematics.unknown_count()),
+      inputs_(inputs),
+      rate_(rate),
+      second_rate_(second_rate),
+      registers_(kinematics.evaluator().make_batch_workspace()),
+      lu_(n_ * n_ * kLanes),
+      pivots_(n_ * kLanes),
+      x_(n_ * kLanes),
+      start_(n_ * kLanes),
+      column_scale_(n_ * kLanes),
+      step_(n_ * kLanes),
+      phi_(n_ * kLanes),
+      previous_(3 * n_ * kLanes),
+      largest_speed_(kinematics.point_count() * kLanes),
+      largest_acceleration_(kinematics.point_count() * kLanes),
+      largest_speed_square_(kinematics.point_count() * kLanes),
+      largest_acceleration_square_(kinematics.point_count() * kLanes) {
+  for (std::size_t l = 0; l < kLanes; ++l) {
+    lanes_.push_back(std::make_unique<Lane>(kinematics, inputs, rate, second_rate));
+    set_design(l, kinematics.parameter_values().data());
+  }
+  std::fill_n(lanes(layout_.rate()), kLanes, rate);
+  std::fill_n(lanes(layout_.second_rate()), kLanes, second_rate);
+}
+
+DesignLanes::~DesignLanes() = default;
+
+const MotionTable& DesignLanes::table(std::size_t lane) const { return lanes_[lane]->table; }
+
+void DesignLanes::set_design(std::size_t l, const double* values) {
+  Kinematics& k = lanes_[l]->kinematics;
+  k.set_parameter_values(values);
+  for (std::size_t p = 0; p < layout_.parameter_count; ++p) lanes(layout_.parameter(p))[l] = values[p];
+  length_scale_[l] = k.length_scale();
+  tolerance_[l] = solver::kNewtonTolerance * k.length_scale();
+  for (std::size_t i = 0; i < n_; ++i) column_scale_[i * kLanes + l] = k.column_scale()[i];
+}
+
+void DesignLanes::solve(std::size_t count) {
+  k_.evaluator().prepare_batch(registers_.data());  // each lane's work on its parameters
+  for (std::size_t l = 0; l < count; ++l) {
+    lanes_[l]->rows.start();
+    lanes_[l]->last_in_lanes = false;
+    // Every row ok with nothing to report until the scalar run stores one (store() then
+    // writes only the numbers).
+    lanes_[l]->table.set_ok(0, inputs_.size());
+  }
+  lane_values_ = 0;
+  std::fill(largest_speed_.begin(), largest_speed_.end(), NAN);
+  std::fill(largest_acceleration_.begin(), largest_acceleration_.end(), NAN);
+  std::fill(largest_speed_square_.begin(), largest_speed_square_.end(), 0.0);
+  std::fill(largest_acceleration_square_.begin(), largest_acceleration_square_.end(), 0.0);
+  double take[kLanes], ok[kLanes], restart[kLanes], open[kLanes];
+  for (std::size_t row = 0; row < inputs_.size(); ++row) {
+    bool restarts = choose_lanes(row, count, take, restart);
+    std::fill_n(ok, kLanes, 0.0);
+    std::fill_n(open, kLanes, 0.0);
+    if (std::find(take, take + kLanes, 1.0) != take + kLanes) {
+      solve_value(inputs_[row], row > 0, take, ok);
+      keep_largest(ok);
+      keep_previous(ok);
+    }
+    // The first value, from the guesses, is Newton alone: where the undamped steps did
+    // not close it, the damped ones decide whether it stays open.
+    for (std::size_t l = 0; row == 0 && l < count; ++l) {
+      restart[l] = take[l] != 0 && ok[l] == 0 && lanes_[l]->rows.restart_position() != nullptr ? 1.0 : 0.0;
+      restarts = restarts || restart[l] != 0;
+    }
+    for (std::size_t l = 0; l < count; ++l)
+      if (ok[l] != 0) store(l, row);
+    if (restarts) restart_values(inputs_[row], restart, open);
+    for (std::size_t l = 0; l < count; ++l) {
+      Lane& lane = *lanes_[l];
+      if (ok[l] != 0) {
+        lane.last_in_lanes = true;
+        ++lane_values_;
+        continue;
+      }
+      if (open[l] != 0) {
+        lane.rows.failed_elsewhere(lane.table, row, lane.kinematics.equation_group(worst_row_[l]), residual_[l]);
+        ++lane_values_;
+        continue;
+      }
+      if (lane.last_in_lanes) lane.rows.solved_elsewhere(lane.table, row - 1);
+      lane.last_in_lanes = false;
+      lane.rows.solve(lane.table, row);
+      if (lane.table.status(row) != Status::ok) continue;
+      keep_largest(l, row);
+      for (std::size_t i = 0; i < n_; ++i) {
+        previous_[(3 * i) * kLanes + l] = lane.table.q_column(i)[row];
+        previous_[(3 * i + 1) * kLanes + l] = lane.table.qd_column(i)[row];
+        previous_[(3 * i + 2) * kLanes + l] = lane.table.qdd_column(i)[row];
+      }
+    }
+  }
+  count_values_solved(lane_values_);
+}
+
+bool DesignLanes::choose_lanes(std::size_t row, std::size_t count, double* take, double* restart) {
+  bool any_restart = false;
+  const double h = row > 0 ? inputs_[row] - inputs_[row - 1] : 0.0;
+  for (std::size_t l = 0; l < kLanes; ++l) {
+    const Lane& lane = *lanes_[l];
+    const Eigen::VectorXd* from = &lane.kinematics.guess();  // any finite position keeps a lane not solved quiet
+    bool predicted = false, restarted = false;
+    if (l < count && row == 0) {
+      // The first value from the guesses, as the scalar run starts (Newton alone).
+      predicted = lane.kinematics.closed_form() == nullptr;
+    } else if (l < count && (lane.last_in_lanes || lane.rows.on_branch())) {
+      // The scalar run's fast path: from the last row, ok, predicted by its rates.
+      predicted = std::fabs(h) <= lane.kinematics.max_continuation_step();
+    } else if (l < count) {
+      const Eigen::VectorXd* position = lane.rows.restart_position();
+      restarted = position != nullptr;
+      if (restarted) from = position;
+    }
+    if (!predicted || row == 0)
+      for (std::size_t i = 0; i < n_; ++i) start_[i * kLanes + l] = (*from)[Eigen::Index(i)];
+    take[l] = predicted ? 1.0 : 0.0;
+    restart[l] = restarted ? 1.0 : 0.0;
+    any_restart = any_restart || restarted;
+  }
+  if (row > 0) predict(h, take);
+  return any_restart;
+}
+
+void DesignLanes::predict(double h, const double* predicted) {
+  for (std::size_t i = 0; i < n_; ++i) {
+    const double* q = previous_.data() + (3 * i) * kLanes;
+    const double* qd = previous_.data() + (3 * i + 1) * kLanes;
+    const double* qdd = previous_.data() + (3 * i + 2) * kLanes;
+    double* start = start_.data() + i * kLanes;
+    for (std::size_t l = 0; l < kLanes; ++l) {
+      const double value = solver::predict_second_order(q[l], qd[l], qdd[l], rate_, second_rate_, h);
+      start[l] = predicted[l] != 0 ? value : start[l];
+    }
+  }
+}
+
+void DesignLanes::keep_previous(const double* ok) {
+  for (std::size_t i = 0; i < n_; ++i) {
+    const double* from[3] = {lanes(layout_.q(i)), lanes(layout_.qd(i)), lanes(layout_.qdd(i))};
+    for (std::size_t k = 0; k < 3; ++k) {
+      double* to = previous_.data() + (3 * i + k) * kLanes;
+      for (std::size_t l = 0; l < kLanes; ++l) to[l] = ok[l] != 0 ? from[k][l] : to[l];
+    }
+  }
+}
+
+KINEMA_INLINE_LANES void DesignLanes::largest_phi(double* norm) {
+  std::fill_n(norm, kLanes, 0.0);
+  for (std::size_t i = 0; i < n_; ++i) {
+    const double* phi = output(TapeLayout::kPositionStage, layout_.phi(i));
+    for (std::size_t l = 0; l < kLanes; ++l) {
+      const double magnitude = std::fabs(phi[l]);  // NaN stays: the comparison is false for it
+      norm[l] = (magnitude > norm[l] || magnitude != magnitude) ? magnitude : norm[l];
+    }
+  }
+}
+
+void DesignLanes::factorise() {
+  for (std::size_t i = 0; i < n_; ++i)
+    for (std::size_t j = 0; j < n_; ++j) {
+      const double* phi_q = output(TapeLayout::kPositionStage, layout_.phi_q(i, j));
+      const double* scale = column_scale_.data() + j * kLanes;
+      double* target = lu_.data() + (i * n_ + j) * kLanes;
+      for (std::size_t l = 0; l < kLanes; ++l) target[l] = phi_q[l] * scale[l];
+    }
+  lu_factor_lanes(lu_.data(), pivots_.data(), n_);
+  // min/max |pivot| per lane, as solver::pivot_ratio (NaN where a pivot is not finite).
+  double smallest[kLanes], largest[kLanes];
+  for (std::size_t l = 0; l < kLanes; ++l) {
+    smallest[l] = INFINITY;
+    largest[l] = n_ == 1 ? length_scale_[l] : 0;
+  }
+  for (std::size_t c = 0; c < n_; ++c) {
+    const double* pivot = lu_.data() + (c * n_ + c) * kLanes;
+    for (std::size_t l = 0; l < kLanes; ++l) {
+      const double magnitude = std::fabs(pivot[l]);
+      smallest[l] = magnitude < smallest[l] ? magnitude : smallest[l];
+      largest[l] = magnitude > largest[l] ? magnitude : largest[l];
+    }
+  }
+  for (std::size_t l = 0; l < kLanes; ++l) pivot_ratio_[l] = smallest[l] / largest[l];
+}
+
+void DesignLanes::solve_value(double input, bool check_branch, const double* take, double* ok) {
+  const std::size_t n = n_;
+  const auto& e = k_.evaluator();
+  std::fill_n(lanes(layout_.input()), kLanes, input);
+  for (std::size_t i = 0; i < n; ++i) std::copy_n(start_.data() + i * kLanes, kLanes, lanes(layout_.q(i)));
+  // Workspace::solve_position's Newton lane by lane: a lane stops where max |Phi| is
+  // within its tolerance; a step that does not lower it (the scalar solver would halve
+  // it), a pivot not clearly regular or too many iterations leave the value to the
+  // scalar run.
+  double pending[kLanes], failed[kLanes], previous[kLanes];
+  for (std::size_t l = 0; l < kLanes; ++l) {
+    pending[l] = take[l];
+    failed[l] = 1.0 - take[l];
+    previous[l] = INFINITY;
+  }
+  for (int iteration = 0;; ++iteration) {
+    e.evaluate_stage_batch_from(TapeLayout::kPositionStage,
+                                iteration == 0 ? TapeLayout::kInputLevel : TapeLayout::kCoordinateLevel,
+                                registers_.data());
+    largest_phi(residual_);
+    factorise();
+    int open = 0;
+    for (std::size_t l = 0; l < kLanes; ++l) {
+      const bool worse = !(residual_[l] < previous[l]) || !(pivot_ratio_[l] >= solver::kClearlyRegularPivotRatio);
+      const bool lost = pending[l] != 0 && worse;
+      failed[l] = lost ? 1.0 : failed[l];
+      pending[l] = pending[l] != 0 && !lost && !(residual_[l] <= tolerance_[l]) ? 1.0 : 0.0;
+      open += pending[l] != 0;
+    }
+    if (open == 0) break;
+    if (iteration + 1 == kLaneIterations) {
+      for (std::size_t l = 0; l < kLanes; ++l) failed[l] = pending[l] != 0 ? 1.0 : failed[l];
+      break;
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      const double* phi = output(TapeLayout::kPositionStage, layout_.phi(i));
+      for (std::size_t l = 0; l < kLanes; ++l) x_[i * kLanes + l] = -phi[l];
+    }
+    lu_solve_lanes(lu_.data(), pivots_.data(), x_.data(), n);
+    for (std::size_t i = 0; i < n; ++i) {
+      double* q = lanes(layout_.q(i));
+      const double* scale = column_scale_.data() + i * kLanes;
+      for (std::size_t l = 0; l < kLanes; ++l) q[l] += pending[l] * x_[i * kLanes + l] * scale[l];
+    }
+    std::copy_n(residual_, kLanes, previous);
+  }
+  for (std::size_t l = 0; l < kLanes; ++l) ok[l] = failed[l] == 0 ? 1.0 : 0.0;
+  // A predicted value stays on its branch (Workspace::predict_and_correct's test).
+  if (check_branch) {
+    for (std::size_t i = 0; i < n; ++i) {
+      const double* q = lanes(layout_.q(i));
+      const double* start = start_.data() + i * kLanes;
+      const double* scale = column_scale_.data() + i * kLanes;
+      for (std::size_t l = 0; l < kLanes; ++l)
+        ok[l] = std::fabs(q[l] - start[l]) / scale[l] > solver::kBranchTolerance ? 0.0 : ok[l];
+    }
+  }
+  // Velocity, then acceleration, with the factorisation at the solution; then points.
+  for (std::size_t i = 0; i < n; ++i) {
+    const double* phi_theta = output(TapeLayout::kPositionStage, layout_.phi_theta(i));
+    for (std::size_t l = 0; l < kLanes; ++l) x_[i * kLanes + l] = -phi_theta[l] * rate_;
+  }
+  lu_solve_lanes(lu_.data(), pivots_.data(), x_.data(), n);
+  for (std::size_t i = 0; i < n; ++i) {
+    double* qd = lanes(layout_.qd(i));
+    const double* scale = column_scale_.data() + i * kLanes;
+    for (std::size_t l = 0; l < kLanes; ++l) qd[l] = x_[i * kLanes + l] * scale[l];
+  }
+  e.evaluate_stage_batch_from(TapeLayout::kAccelerationStage, TapeLayout::kInputLevel, registers_.data());
+  for (std::size_t i = 0; i < n; ++i)
+    std::copy_n(output(TapeLayout::kAccelerationStage, i), kLanes, x_.data() + i * kLanes);
+  lu_solve_lanes(lu_.data(), pivots_.data(), x_.data(), n);
+  for (std::size_t i = 0; i < n; ++i) {
+    double* qdd = lanes(layout_.qdd(i));
+    const double* scale = column_scale_.data() + i * kLanes;
+    for (std::size_t l = 0; l < kLanes; ++l) qdd[l] = x_[i * kLanes + l] * scale[l];
+  }
+  e.evaluate_stage_batch_from(TapeLayout::kPointStage, TapeLayout::kInputLevel, registers_.data());
+  // x * 0 is 0 for finite x and NaN otherwise: one sum per lane says whether all are
+  // finite (the scalar run calls a position singular where they are not).
+  double nonfinite[kLanes] = {};
+  const auto accumulate = [&](const double* v) {
+    for (std::size_t l = 0; l < kLanes; ++l) nonfinite[l] += v[l] * 0.0;
+  };
+  for (std::size_t k = 0; k < layout_.observable_output_count(); ++k) accumulate(output(TapeLayout::kPointStage, k));
+  for (std::size_t i = 0; i < n; ++i) {
+    accumulate(lanes(layout_.qd(i)));
+    accumulate(lanes(layout_.qdd(i)));
+  }
+  for (std::size_t l = 0; l < kLanes; ++l) ok[l] = nonfinite[l] == 0.0 ? ok[l] : 0.0;
+}
+
+void DesignLanes::restart_values(double input, const double* restart, double* open) {
+  const std::size_t n = n_;
+  const auto& e = k_.evaluator();
+  std::fill_n(lanes(layout_.input()), kLanes, input);
+  for (std::size_t i = 0; i < n; ++i) std::copy_n(start_.data() + i * kLanes, kLanes, lanes(layout_.q(i)));
+  // Each lane is at a position it accepted (stepping: a step to take from it next) or at
+  // a trial on its step (lambda_ times it); every evaluation serves both. start_ holds
+  // the position accepted.
+  double active[kLanes], stepping[kLanes], lambda[kLanes], norm[kLanes], halvings[kLanes], iterations[kLanes];
+  double scalar[kLanes];  // 1: the scalar run solves the value (it closes, or needs least squares)
+  for (std::size_t l = 0; l < kLanes; ++l) {
+    active[l] = restart[l];
+    stepping[l] = 1.0;
+    lambda[l] = 1.0;
+    norm[l] = INFINITY;
+    halvings[l] = iterations[l] = 0.0;
+    scalar[l] = 0.0;
+  }
+  const double rounding_factor = solver::kRoundingTolerance / solver::kNewtonTolerance;
+  for (int evaluation = 0;; ++evaluation) {
+    e.evaluate_stage_batch_from(TapeLayout::kPositionStage,
+                                evaluation == 0 ? TapeLayout::kInputLevel : TapeLayout::kCoordinateLevel,
+                                registers_.data());
+    double trial_norm[kLanes];
+    largest_phi(trial_norm);
+    // The first evaluation is at the start (accepted as it is); later ones at trials,
+    // accepted where they lower max |Phi| (a finite one), else the step is halved. Every
+    // lane in selects, so that the loops run across lanes.
+    const bool first = evaluation == 0;
+    double accepted[kLanes];
+    int stepping_lanes = 0;
+    for (std::size_t l = 0; l < kLanes; ++l) {
+      const bool is_active = active[l] != 0;
+      const bool accept = is_active && (first || (trial_norm[l] <= DBL_MAX && trial_norm[l] < norm[l]));
+      accepted[l] = accept ? 1.0 : 0.0;
+      norm[l] = accept ? trial_norm[l] : norm[l];
+      iterations[l] += accept && !first ? 1.0 : 0.0;
+      const bool finite = norm[l] <= DBL_MAX, closes = norm[l] <= tolerance_[l];
+      const bool stops = !finite || closes || iterations[l] == solver::kNewtonIterations;
+      scalar[l] = accept && (closes || !finite) ? 1.0 : scalar[l];
+      const bool halved = is_active && !accept;
+      halvings[l] += halved ? 1.0 : 0.0;
+      lambda[l] *= halved ? 0.5 : 1.0;
+      active[l] = !is_active || (accept && stops) || (halved && halvings[l] == solver::kStepHalvings) ? 0.0 : 1.0;
+      stepping[l] = active[l] != 0 && accept ? 1.0 : 0.0;
+      stepping_lanes += stepping[l] != 0;
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      const double* q = lanes(layout_.q(i));
+      const double* phi = output(TapeLayout::kPositionStage, layout_.phi(i));
+      double* position = start_.data() + i * kLanes;
+      double* kept_phi = phi_.data() + i * kLanes;
+      for (std::size_t l = 0; l < kLanes; ++l) {
+        position[l] = accepted[l] != 0 ? q[l] : position[l];
+        kept_phi[l] = accepted[l] != 0 ? phi[l] : kept_phi[l];
+      }
+    }
+    if (stepping_lanes > 0) {
+      // A Newton step from each lane's accepted position (this evaluation's, for a lane
+      // that just accepted one); the scalar solver's least-squares step is the scalar run's.
+      factorise();
+      for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t l = 0; l < kLanes; ++l) x_[i * kLanes + l] = -phi_[i * kLanes + l];
+      lu_solve_lanes(lu_.data(), pivots_.data(), x_.data(), n);
+      double nonfinite[kLanes] = {};  // x * 0 is 0 for finite x, NaN otherwise
+      for (std::size_t i = 0; i < n; ++i) {
+        double* step = step_.data() + i * kLanes;
+        const double* x = x_.data() + i * kLanes;
+        const double* scale = column_scale_.data() + i * kLanes;
+        for (std::size_t l = 0; l < kLanes; ++l) {
+          const double value = x[l] * scale[l];
+          step[l] = stepping[l] != 0 ? value : step[l];
+          nonfinite[l] += stepping[l] != 0 ? value * 0.0 : 0.0;
+        }
+      }
+      for (std::size_t l = 0; l < kLanes; ++l) {
+        const bool steps = stepping[l] != 0;
+        const bool least_squares = steps && !(pivot_ratio_[l] > solver::kLeastSquaresPivotRatio);
+        scalar[l] = least_squares ? 1.0 : scalar[l];
+        active[l] = steps && (least_squares || nonfinite[l] != 0) ? 0.0 : active[l];
+        lambda[l] = steps ? 1.0 : lambda[l];
+        halvings[l] = steps ? 0.0 : halvings[l];
+      }
+    }
+    int open_lanes = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      double* q = lanes(layout_.q(i));
+      const double* from = start_.data() + i * kLanes;
+      const double* step = step_.data() + i * kLanes;
+      for (std::size_t l = 0; l < kLanes; ++l) q[l] = active[l] != 0 ? from[l] + lambda[l] * step[l] : from[l];
+    }
+    for (std::size_t l = 0; l < kLanes; ++l) open_lanes += active[l] != 0;
+    if (open_lanes == 0) break;
+  }
+  for (std::size_t l = 0; l < kLanes; ++l) {
+    // Stopped within rounding of closing counts as closed (solve_position's last test).
+    const bool rounding = norm[l] <= rounding_factor * tolerance_[l];
+    open[l] = restart[l] != 0 && scalar[l] == 0 && !rounding ? 1.0 : 0.0;
+    residual_[l] = norm[l];
+    // The equation whose |Phi| is largest (the first of equals), as solve_position names it.
+    std::size_t worst = 0;
+    for (std::size_t i = 1; i < n; ++i)
+      if (std::fabs(phi_[i * kLanes + l]) > std::fabs(phi_[worst * kLanes + l])) worst = i;
+    worst_row_[l] = worst;
+  }
+}
+
+void DesignLanes::store(std::size_t l, std::size_t row) {
+  MotionTable& table = lanes_[l]->table;
+  const std::size_t rows = table.size();
+  table.loop_residuals()[row] = residual_[l];
+  table.reciprocal_conditions()[row] = pivot_ratio_[l];
+  for (std::size_t i = 0; i < n_; ++i) {
+    table.q_values()[i * rows + row] = lanes(layout_.q(i))[l];
+    table.qd_values()[i * rows + row] = lanes(layout_.qd(i))[l];
+    table.qdd_values()[i * rows + row] = lanes(layout_.qdd(i))[l];
+  }
+}
+
+namespace {
+// The largest so far and one more, as the study keeps the largest over rows (NaN at
+// first: any length replaces it).
+inline double larger(double largest, double length) { return !(length <= largest) ? length : largest; }
+}  // namespace
+
+void DesignLanes::keep_largest(const double* ok) {
+  const std::vector<std::size_t>& dimensions = layout_.point_dimensions;
+  for (std::size_t p = 0; p < dimensions.size(); ++p) {
+    const std::size_t d = dimensions[p];
+    for (std::size_t kind = 1; kind <= 2; ++kind) {  // velocity, then acceleration
+      double squares[kLanes] = {};
+      for (std::size_t c = 0; c < d; ++c) {
+        const double* v = output(TapeLayout::kPointStage, layout_.point_output(p) + kind * d + c);
+        for (std::size_t l = 0; l < kLanes; ++l) squares[l] += v[l] * v[l];
+      }
+      double* largest = (kind == 1 ? largest_speed_ : largest_acceleration_).data() + p * kLanes;
+      double* largest_square = (kind == 1 ? largest_speed_square_ : largest_acceleration_square_).data() + p * kLanes;
+      int unusual = 0;  // squares that vector_length takes apart (std::hypot)
+      for (std::size_t l = 0; l < kLanes; ++l) {
+        const bool normal = squares[l] > 1e-300 && squares[l] < 1e300;
+        unusual += ok[l] != 0 && !normal;
+        largest_square[l] = ok[l] != 0 && normal && squares[l] > largest_square[l] ? squares[l] : largest_square[l];
+      }
+      for (std::size_t l = 0; unusual > 0 && l < kLanes; ++l) {
+        if (ok[l] == 0 || (squares[l] > 1e-300 && squares[l] < 1e300)) continue;
+        double v[3] = {};
+        for (std::size_t c = 0; c < d; ++c) v[c] = output(TapeLayout::kPointStage, layout_.point_output(p) + kind * d + c)[l];
+        largest[l] = larger(largest[l], vector_length(v[0], v[1], v[2]));
+      }
+    }
+  }
+}
+
+namespace {
+double largest_of(double length, double square) { return square > 0 ? larger(length, std::sqrt(square)) : length; }
+}  // namespace
+
+double DesignLanes::largest_speed(std::size_t lane, std::size_t p) const {
+  return largest_of(largest_speed_[p * kLanes + lane], largest_speed_square_[p * kLanes + lane]);
+}
+
+double DesignLanes::largest_acceleration(std::size_t lane, std::size_t p) const {
+  return largest_of(largest_acceleration_[p * kLanes + lane], largest_acceleration_square_[p * kLanes + lane]);
+}
+
+void DesignLanes::keep_largest(std::size_t l, std::size_t row) {
+  const MotionTable& table = lanes_[l]->table;
+  for (std::size_t p = 0; p < table.point_count(); ++p) {
+    const PointMotion point = table.point(row, p);
+    largest_speed_[p * kLanes + l] = larger(largest_speed_[p * kLanes + l], point.speed());
+    largest_acceleration_[p * kLanes + l] = larger(largest_acceleration_[p * kLanes + l], point.acceleration_magnitude());
+  }
+}
+
+}  // namespace kinema
