@@ -5,7 +5,7 @@
 
 #include "engine/analysis/design_figures.hpp"
 #include "engine/analysis/output_scale.hpp"
-#include "engine/base/number_format.hpp"
+#include "engine/base/units.hpp"
 
 namespace kinema {
 

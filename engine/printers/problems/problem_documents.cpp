@@ -156,6 +156,9 @@ void write_problem_sheet(std::ostream& out, const ProblemSet& set, const Problem
   // The given data: every parameter (a varied one in the file's unit), then the driver.
   std::set<std::string> varied;
   for (const GivenValue& g : variant.given) varied.insert(g.name);
+  // The data and what to find side by side: the statement, the data and the drawing fit
+  // on one page, the sheet a class is handed.
+  out << "\\noindent\\begin{minipage}[t]{0.48\\textwidth}\n";
   out << "\\subsection*{Data}\n\\begin{tabular}{ll}\n\\toprule\nparameter & value \\\\\n\\midrule\n";
   for (const SystemParameter& p : system.parameters) {
     if (!p.written) continue;
@@ -176,6 +179,7 @@ void write_problem_sheet(std::ostream& out, const ProblemSet& set, const Problem
       << rate << " \\\\\n$" << to_latex(input.second_rate) << "$ & "
       << latex_escape_text(input.second_rate_text.empty() ? "0" : input.second_rate_text) << " \\\\\n"
       << "\\bottomrule\n\\end{tabular}\n\n";
+  out << "\\end{minipage}\\hfill\\begin{minipage}[t]{0.48\\textwidth}\n";
   out << "\\subsection*{Find}\nAt $" << to_latex(input.symbol) << " = $ " << at_list << ":\n\\begin{itemize}\n";
   for (const ProblemAnswer& a : variant.answers) {
     if (a.figure) continue;
@@ -189,7 +193,7 @@ void write_problem_sheet(std::ostream& out, const ProblemSet& set, const Problem
         << " (of the mechanism, over a turn)\n";
   }
   out << "\\end{itemize}\nAnswers are graded to " << latex_escape_text(tolerance_text(set.tolerance))
-      << ". Angles are measured counter-clockwise from the $x$ axis.\n\n";
+      << ". Angles are measured counter-clockwise from the $x$ axis.\n\\end{minipage}\n\n";
   // The drawing at the first asked value, without the answers' arrows.
   write_tikz_mechanism(out, system, at, link_labels, state, false);
   out << "\\end{document}\n";
