@@ -10,8 +10,23 @@ namespace {
 
 std::string number(double value) { return format_significant(value, 6); }
 
+// A design figure's line: no input value; a class in words as written.
+std::string figure_line(const AnswerVerdict& v) {
+  std::string line = v.where.str() + ": " + v.quantity + " (design figure): given ";
+  const std::string unit = v.unit.empty() ? "" : " " + v.unit;
+  if (!v.expected_text.empty()) {
+    line += "\"" + v.given + "\", expected \"" + v.expected_text + "\": ";
+  } else {
+    line += number(v.given_value) + unit;
+    if (v.unit_assumed && !v.unit.empty()) line += " (no unit: taken as " + v.unit + ")";
+    line += ", expected " + number(v.expected) + unit + ": ";
+  }
+  return line + (v.right ? "right" : "wrong");
+}
+
 // "omega3 at 40 deg" with where it was written.
 std::string answer_line(const AnswerVerdict& v) {
+  if (v.figure) return figure_line(v);
   std::string line = v.where.str() + ": " + v.quantity;
   if (v.quantity != v.column) line += " (" + v.column + ")";
   line += " at " + v.at + ": given " + number(v.given_value) + " " + v.unit;
@@ -69,7 +84,8 @@ std::string check_report_json(const CheckReport& report) {
                        {"given_value", v.given_value},
                        {"unit", v.unit},
                        {"unit_assumed", v.unit_assumed},
-                       {"expected", v.expected},
+                       {"expected", v.expected_text.empty() ? nlohmann::ordered_json(v.expected) : nlohmann::ordered_json(v.expected_text)},
+                       {"figure", v.figure},
                        {"right", v.right},
                        {"mistake", v.mistakes.empty() ? nlohmann::ordered_json(nullptr) : mistake_json(v.mistakes.front())},
                        {"mistakes", mistakes}});

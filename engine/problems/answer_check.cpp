@@ -1,6 +1,8 @@
 #include "engine/problems/answer_check.hpp"
 
+#include <cctype>
 #include <cmath>
+#include <limits>
 #include <map>
 
 #include "engine/analysis/output_scale.hpp"
@@ -8,6 +10,7 @@
 #include "engine/base/number_format.hpp"
 #include "engine/base/user_text.hpp"
 #include "engine/input_value.hpp"
+#include "engine/problems/design_answers.hpp"
 #include "engine/problems/mistake_catalogue.hpp"
 
 namespace kinema {
@@ -155,6 +158,48 @@ std::vector<MistakeMatch> matching_mistakes(Evaluated& evaluated, std::size_t co
   return matches;
 }
 
+// Words compared as a person would: case and spaces around them aside ("Crank-Rocker ").
+std::string folded(const std::string& text) {
+  const auto first = text.find_first_not_of(" \t"), last = text.find_last_not_of(" \t");
+  std::string out = first == std::string::npos ? "" : text.substr(first, last - first + 1);
+  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return out;
+}
+
+// A design figure's answer: once for the mechanism (no at), a number within the tolerance
+// or a class in words. No mistake of the catalogue is sought: it is made at an input value.
+AnswerVerdict figure_verdict(const CheckSubject& subject, const WrittenAnswer& answer,
+                             std::optional<std::vector<DesignAnswer>>& figures, const AnswerTolerance& tolerance) {
+  const ConstraintSystem& system = subject.model->system;
+  if (!answer.at.empty())
+    throw InputError(answer.where.str() + ": " + answer.quantity + " is a design figure of the whole mechanism; "
+                     "write it without at");
+  if (!figures) figures = design_answers(*subject.model);
+  const std::optional<DesignAnswer> figure = design_answer(*figures, answer.quantity);
+  if (!figure) {
+    std::string names;
+    for (const DesignAnswer& f : *figures) names += (names.empty() ? "" : ", ") + f.name;
+    throw InputError(answer.where.str() + ": " + system.source_file + " has no design figure \"" +
+                     one_line(answer.quantity) + "\"" + (names.empty() ? "" : "; its figures: " + names));
+  }
+  AnswerVerdict verdict;
+  verdict.where = answer.where;
+  verdict.quantity = verdict.column = answer.quantity;
+  verdict.figure = true;
+  verdict.unit = figure->unit;
+  if (!figure->text.empty()) {
+    verdict.given = answer.value;
+    verdict.given_value = verdict.expected = std::numeric_limits<double>::quiet_NaN();
+    verdict.expected_text = figure->text;
+    verdict.right = folded(answer.value) == folded(figure->text);
+    return verdict;
+  }
+  read_given(answer, OutputScale(system), verdict);
+  verdict.expected = figure->value;
+  verdict.right = within(tolerance, verdict.given_value, verdict.expected, verdict.unit);
+  return verdict;
+}
+
 }  // namespace
 
 CheckSubject file_subject(const Model& model) {
@@ -216,7 +261,17 @@ CheckReport check_answers(const CheckSubject& subject, const AnswersFile& answer
   const std::vector<ResultColumn> columns = result_columns(system, scale);
   CheckReport report{answers.path, subject.source, subject.variant, tolerance, {}};
   std::map<double, Evaluated> cache;
+  std::optional<std::vector<DesignAnswer>> figures;  // a turn's solve: once, when one is answered
   for (const WrittenAnswer& answer : answers.answers) {
+    const bool column_named = [&] {
+      for (const ResultColumn& c : columns)
+        if (c.name == answer.quantity) return true;
+      return false;
+    }();
+    if (!column_named && is_design_figure_name(answer.quantity)) {
+      report.verdicts.push_back(figure_verdict(subject, answer, figures, tolerance));
+      continue;
+    }
     AnswerVerdict verdict;
     verdict.where = answer.where;
     verdict.quantity = answer.quantity;

@@ -32,6 +32,10 @@ struct AnswerVerdict {
   double given_value = 0.0;  ///< In `unit`.
   bool unit_assumed = false;  ///< Written without a unit: taken as `unit`.
   double expected = 0.0;
+  /// A design figure (engine/problems/design_answers): no input value (at empty); one
+  /// that is a class in words (grashof) is graded as text against expected_text.
+  bool figure = false;
+  std::string expected_text;
   bool right = false;
   /// Wrong answers only: the catalogue's mistakes that reproduce it, in catalogue order
   /// (the first is the likely one); empty when none does.

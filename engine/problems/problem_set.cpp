@@ -13,6 +13,7 @@
 #include "engine/base/number_format.hpp"
 #include "engine/constraints/output_columns.hpp"
 #include "engine/input_value.hpp"
+#include "engine/problems/design_answers.hpp"
 
 namespace kinema {
 
@@ -139,13 +140,22 @@ void check_conditions_apply(const Model& model, const Problem& problem) {
   if (problem.find.empty()) throw InputError(problem.where.str() + ": [problem] find lists no quantity");
 }
 
-// Every find name known, else InputError at its line listing the names.
-void check_find_names(const ConstraintSystem& system, const Problem& problem) {
+// Every find name known (a design figure one the mechanism has), else InputError at its
+// line listing the names.
+void check_find_names(const Model& model, const Problem& problem) {
+  const ConstraintSystem& system = model.system;
   const std::vector<ResultColumn> columns = result_columns(system, OutputScale(system));
+  std::optional<std::vector<DesignAnswer>> figures;  // a turn's solve: only when a figure is asked
   for (const ProblemFind& find : problem.find) {
     if (column_of(system, columns, find.name)) continue;
+    if (is_design_figure_name(find.name)) {
+      if (!figures) figures = design_answers(model);
+      if (design_answer(*figures, find.name)) continue;
+    }
     std::string names;
     for (const std::string& name : find_names(system)) names += (names.empty() ? "" : ", ") + name;
+    if (!figures) figures = design_answers(model);
+    for (const DesignAnswer& figure : *figures) names += ", " + figure.name;
     throw InputError(find.where.str() + ": [problem] find: no quantity \"" + find.name +
                      "\" in this mechanism; the names are: " + names);
   }
@@ -204,10 +214,22 @@ std::vector<ProblemAnswer> problem_answers(const Model& variant, const std::vect
     result_values(system, scale, table, row, shown.data());
     result_values(system, si_scale, table, row, si.data());
     for (const ProblemFind& f : find) {
+      if (is_design_figure_name(f.name) && !column_of(system, columns, f.name)) continue;
       const std::size_t k = *column_of(system, columns, f.name);
       const double in_si = columns[k].unit == "deg" ? from_degrees(si[k]) : si[k];
-      answers.push_back({f.name, row < at_texts.size() ? at_texts[row] : "", at[row], in_si, shown[k], columns[k].unit});
+      answers.push_back({f.name, row < at_texts.size() ? at_texts[row] : "", at[row], in_si, shown[k], columns[k].unit, "", false});
     }
+  }
+  std::optional<std::vector<DesignAnswer>> figures;
+  for (const ProblemFind& f : find) {
+    if (!is_design_figure_name(f.name) || column_of(system, columns, f.name)) continue;
+    if (!figures) figures = design_answers(variant);
+    const std::optional<DesignAnswer> figure = design_answer(*figures, f.name);
+    // A variant without the figure (a four-bar drawn into no four-bar cannot be: the
+    // names are checked on the file) answers NaN, which min_answer refuses.
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    answers.push_back(figure ? ProblemAnswer{f.name, "", 0.0, figure->si, figure->value, figure->unit, figure->text, true}
+                             : ProblemAnswer{f.name, "", 0.0, nan, nan, "", "", true});
   }
   return answers;
 }
@@ -230,15 +252,21 @@ std::vector<std::string> failed_conditions(const Model& variant, const Problem& 
     }
   }
   if (c.toggle_margin) {
+    // Near a toggle or a slider's limit position the rates are large or change sense: no
+    // fair problem either way.
+    std::vector<double> folds;
+    for (const Toggle& toggle : find_toggles(variant)) folds.push_back(toggle.input);
+    for (const Strokes& s : slider_strokes(variant))
+      for (double limit : s.limit_inputs) folds.push_back(from_degrees(limit));
     bool near = false;
-    for (const Toggle& toggle : find_toggles(variant))
-      for (double value : at) near = near || std::fabs(std::remainder(value - toggle.input, 2 * kPi)) < *c.toggle_margin;
+    for (double fold : folds)
+      for (double value : at) near = near || std::fabs(std::remainder(value - fold, 2 * kPi)) < *c.toggle_margin;
     if (near) failed.push_back("toggle_margin");
   }
   if (c.min_answer) {
     bool small = false;
     for (const ProblemAnswer& answer : problem_answers(variant, problem.find, at, {}))
-      small = small || !(std::fabs(answer.value) >= *c.min_answer);
+      small = small || (answer.text.empty() && !(std::fabs(answer.value) >= *c.min_answer));
     if (small) failed.push_back("min_answer");
   }
   return failed;
@@ -249,7 +277,7 @@ ProblemSet make_problem_set(const Model& model, const Problem& problem, std::siz
   if (count == 0 || count > kMaxProblemVariants)
     throw InputError("--count " + std::to_string(count) + ": a set has from 1 to " + std::to_string(kMaxProblemVariants) +
                      " variants");
-  check_find_names(system, problem);
+  check_find_names(model, problem);
   std::vector<VaryTarget> targets;
   for (const ProblemVary& vary : problem.vary) targets.push_back(vary_target(system, vary));
   check_conditions_apply(model, problem);

@@ -38,7 +38,8 @@ struct GivenValue {
   std::string unit;
 };
 
-/// An asked answer: `quantity` (an output column) at input value `at_text`.
+/// An asked answer: `quantity` (an output column) at input value `at_text`, or a design
+/// figure (engine/problems/design_answers), asked once per variant: at_text empty.
 struct ProblemAnswer {
   std::string quantity;
   std::string at_text;  ///< "30 deg", as the file (or the drawn driver value) writes it.
@@ -46,6 +47,8 @@ struct ProblemAnswer {
   double si = 0.0;      ///< In SI (rad, m, s).
   double value = 0.0;   ///< In the output units of kinema eval.
   std::string unit;     ///< Those units ("rad/s", "mm/s").
+  std::string text;     ///< A figure that is a class in words (grashof); value and si NaN then.
+  bool figure = false;  ///< A design figure: no input value (at_text empty).
 };
 
 struct ProblemVariant {
@@ -89,16 +92,18 @@ constexpr std::size_t kMaxProblemVariants = 1000;
 ProblemSet make_problem_set(const Model& model, const Problem& problem, std::size_t count, std::uint64_t seed);
 
 /// The names `find` takes for this system: eval's output columns, then the short forms
-/// vP (P_speed) and aP (P_acceleration) of its points.
+/// vP (P_speed) and aP (P_acceleration) of its points (design figures are listed apart).
 std::vector<std::string> find_names(const ConstraintSystem& system);
 
-/// The conditions of `problem` that `variant` (a model) fails at the asked values (SI):
+/// The conditions of `problem` that `variant` (a model) fails at the asked values (SI;
+/// toggle_margin: within the margin of a toggle or of a slider's limit position):
 /// "assembles", "grashof", "min_transmission_angle", "toggle_margin", "min_answer". Empty
 /// when it meets them all.
 std::vector<std::string> failed_conditions(const Model& variant, const Problem& problem, const std::vector<double>& at);
 
 /// The answers of `variant` at `at` (SI; `at_texts` as shown) for the find names, as kinema
-/// eval gives them at those values (one run, each value continued from the previous).
+/// eval gives them at those values (one run, each value continued from the previous), for
+/// each value in find's order, then the design figures asked, once, in find's order.
 std::vector<ProblemAnswer> problem_answers(const Model& variant, const std::vector<ProblemFind>& find,
                                            const std::vector<double>& at, const std::vector<std::string>& at_texts);
 

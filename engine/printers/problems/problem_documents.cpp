@@ -30,7 +30,13 @@ std::string csv_row(const std::vector<std::string>& fields) {
 
 // "b [mm]" and "omega3 @ 30 deg [rad/s]": the columns' headings.
 std::string given_heading(const GivenValue& g) { return g.name + (g.unit.empty() ? "" : " [" + g.unit + "]"); }
-std::string answer_heading(const ProblemAnswer& a) { return a.quantity + " @ " + a.at_text + " [" + a.unit + "]"; }
+std::string answer_heading(const ProblemAnswer& a) {
+  if (a.figure) return a.quantity + (a.unit.empty() ? "" : " [" + a.unit + "]");
+  return a.quantity + " @ " + a.at_text + " [" + a.unit + "]";
+}
+
+// An answer in a table: a number, or a class in words.
+std::string answer_field(const ProblemAnswer& a) { return a.text.empty() ? format_round_trip(a.value) : a.text; }
 
 // Headings of the given values and answers, from the first variant (every variant asks alike).
 std::vector<std::string> headings(const ProblemSet& set, bool tolerances) {
@@ -75,6 +81,17 @@ std::string latex_quantity(double value, const std::string& unit) {
   return latex_number(value, 12) + (unit.empty() ? "" : "\\," + latex_unit(unit));
 }
 
+// A design figure in math mode, in words: its name is no symbol of the mechanism.
+std::string figure_latex(const std::string& name) {
+  if (name == "grashof") return "\\text{Grashof class}";
+  if (name == "min_transmission_angle") return "\\mu_{\\min}";
+  if (name == "max_transmission_angle") return "\\mu_{\\max}";
+  const bool stroke = name.rfind("stroke", 0) == 0;
+  const std::string of = name.size() > (stroke ? 6u : 10u) ? name.substr(stroke ? 7 : 11) : "";
+  return std::string(stroke ? "\\text{stroke}" : "\\text{time ratio}") +
+         (of.empty() ? "" : "\\text{ of }" + latex_symbol_name(of));
+}
+
 }  // namespace
 
 std::string xml_escape(const std::string& text) {
@@ -113,6 +130,13 @@ std::string problem_answers_latex(const ConstraintSystem& system, const std::vec
   out << kLatexPartBreak << "\\subsection*{Answers}\nThe quantities the problem asks for, as computed above:\n\n"
       << "\\begin{tabular}{lll}\n\\toprule\nquantity & at & answer \\\\\n\\midrule\n";
   for (const ProblemAnswer& a : answers) {
+    if (a.figure) {
+      // Once for the mechanism: no input value.
+      out << "$" << figure_latex(a.quantity) << "$ & --- & $\\boxed{"
+          << (a.text.empty() ? latex_number(a.value, 6) : "\\text{" + latex_escape_text(a.text) + "}") << "}"
+          << (a.unit.empty() ? "" : "\\," + latex_unit(a.unit)) << "$ \\\\\n";
+      continue;
+    }
     out << "$" << problem_quantity_latex(system, a.quantity) << "$ & $" << to_latex(system.input.symbol) << " = $ "
         << latex_escape_text(a.at_text) << " & $\\boxed{" << latex_number(a.value, 6) << "}\\," << latex_unit(a.unit)
         << "$ \\\\\n";
@@ -132,6 +156,9 @@ void write_problem_sheet(std::ostream& out, const ProblemSet& set, const Problem
   // The given data: every parameter (a varied one in the file's unit), then the driver.
   std::set<std::string> varied;
   for (const GivenValue& g : variant.given) varied.insert(g.name);
+  // The data and what to find side by side: the statement, the data and the drawing fit
+  // on one page, the sheet a class is handed.
+  out << "\\noindent\\begin{minipage}[t]{0.48\\textwidth}\n";
   out << "\\subsection*{Data}\n\\begin{tabular}{ll}\n\\toprule\nparameter & value \\\\\n\\midrule\n";
   for (const SystemParameter& p : system.parameters) {
     if (!p.written) continue;
@@ -152,13 +179,21 @@ void write_problem_sheet(std::ostream& out, const ProblemSet& set, const Problem
       << rate << " \\\\\n$" << to_latex(input.second_rate) << "$ & "
       << latex_escape_text(input.second_rate_text.empty() ? "0" : input.second_rate_text) << " \\\\\n"
       << "\\bottomrule\n\\end{tabular}\n\n";
+  out << "\\end{minipage}\\hfill\\begin{minipage}[t]{0.48\\textwidth}\n";
   out << "\\subsection*{Find}\nAt $" << to_latex(input.symbol) << " = $ " << at_list << ":\n\\begin{itemize}\n";
-  for (std::size_t k = 0; k < variant.answers.size() && (k == 0 || variant.answers[k].at_text == variant.answers[0].at_text); ++k) {
-    const ProblemAnswer& a = variant.answers[k];
+  for (const ProblemAnswer& a : variant.answers) {
+    if (a.figure) continue;
+    if (a.at_text != variant.answers.front().at_text) break;  // each value asks the same
     out << "\\item $" << problem_quantity_latex(system, a.quantity) << "$ in $" << latex_unit(a.unit) << "$\n";
   }
+  for (const ProblemAnswer& a : variant.answers) {
+    if (!a.figure) continue;
+    out << "\\item $" << figure_latex(a.quantity) << "$"
+        << (!a.text.empty() ? " (in words)" : a.unit.empty() ? "" : " in $" + latex_unit(a.unit) + "$")
+        << " (of the mechanism, over a turn)\n";
+  }
   out << "\\end{itemize}\nAnswers are graded to " << latex_escape_text(tolerance_text(set.tolerance))
-      << ". Angles are measured counter-clockwise from the $x$ axis.\n\n";
+      << ". Angles are measured counter-clockwise from the $x$ axis.\n\\end{minipage}\n\n";
   // The drawing at the first asked value, without the answers' arrows.
   write_tikz_mechanism(out, system, at, link_labels, state, false);
   out << "\\end{document}\n";
@@ -169,7 +204,7 @@ std::string problem_class_csv(const ProblemSet& set) {
   for (const ProblemVariant& v : set.variants) {
     std::vector<std::string> row = {std::to_string(v.number)};
     for (const GivenValue& g : v.given) row.push_back(format_significant(g.value, 12));
-    for (const ProblemAnswer& a : v.answers) row.push_back(format_round_trip(a.value));
+    for (const ProblemAnswer& a : v.answers) row.push_back(answer_field(a));
     text += csv_row(row);
   }
   return text;
@@ -181,8 +216,9 @@ std::string problem_formula_csv(const ProblemSet& set) {
     std::vector<std::string> row = {std::to_string(v.number)};
     for (const GivenValue& g : v.given) row.push_back(format_significant(g.value, 12));
     for (const ProblemAnswer& a : v.answers) {
-      row.push_back(format_round_trip(a.value));
-      row.push_back(format_round_trip(set.tolerance.absolute(a.value)));
+      // A class in words has no numeric tolerance: graded as text.
+      row.push_back(answer_field(a));
+      row.push_back(a.text.empty() ? format_round_trip(set.tolerance.absolute(a.value)) : "");
     }
     text += csv_row(row);
   }
@@ -201,9 +237,16 @@ std::string problem_class_json(const ProblemSet& set, const std::string& source)
     nlohmann::ordered_json parameters = nlohmann::ordered_json::object();
     for (const GivenValue& g : v.given) parameters[g.name] = {{"si", g.si}, {"value", g.value}, {"unit", g.unit}};
     nlohmann::ordered_json answers = nlohmann::ordered_json::array();
-    for (const ProblemAnswer& a : v.answers)
-      answers.push_back({{"quantity", a.quantity}, {"at", a.at_text}, {"at_si", a.at_si}, {"si", a.si}, {"value", a.value},
-                         {"unit", a.unit}});
+    for (const ProblemAnswer& a : v.answers) {
+      if (!a.text.empty()) {
+        answers.push_back({{"quantity", a.quantity}, {"text", a.text}});
+      } else if (a.figure) {  // once for the variant: no input value
+        answers.push_back({{"quantity", a.quantity}, {"si", a.si}, {"value", a.value}, {"unit", a.unit}});
+      } else {
+        answers.push_back({{"quantity", a.quantity}, {"at", a.at_text}, {"at_si", a.at_si}, {"si", a.si}, {"value", a.value},
+                           {"unit", a.unit}});
+      }
+    }
     variants.push_back({{"variant", v.number}, {"parameters", parameters}, {"answers", answers}});
   }
   root["variants"] = variants;
@@ -220,10 +263,21 @@ std::string problem_moodle_xml(const ProblemSet& set, const std::string& title) 
     for (const GivenValue& g : v.given)
       given += (given.empty() ? "" : ", ") + g.name + " = " + format_significant(g.value, 12) + (g.unit.empty() ? "" : " " + g.unit);
     for (const ProblemAnswer& a : v.answers) {
-      const std::string name = "Variant " + std::to_string(v.number) + ": " + a.quantity + " at " + a.at_text;
+      const std::string name = "Variant " + std::to_string(v.number) + ": " + a.quantity + (a.figure ? "" : " at " + a.at_text);
       std::string text = (set.statement.empty() ? title : set.statement) + " Variant " + std::to_string(v.number) +
-                         (given.empty() ? "" : " (" + given + ")") + ": find " + a.quantity + " at " +
-                         v.model.system.input.name + " = " + a.at_text + ", in " + a.unit + ".";
+                         (given.empty() ? "" : " (" + given + ")") + ": find " + a.quantity +
+                         (a.figure ? "" : " at " + v.model.system.input.name + " = " + a.at_text) +
+                         (!a.text.empty() ? ", in words." : a.unit.empty() ? "." : ", in " + a.unit + ".");
+      if (!a.text.empty()) {  // a class in words: a short-answer question, graded as text
+        out << "  <question type=\"shortanswer\">\n"
+            << "    <name><text>" << xml_escape(name) << "</text></name>\n"
+            << "    <questiontext format=\"plain_text\"><text>" << xml_escape(text) << "</text></questiontext>\n"
+            << "    <defaultgrade>1</defaultgrade>\n    <usecase>0</usecase>\n"
+            << "    <answer fraction=\"100\">\n      <text>" << xml_escape(a.text) << "</text>\n"
+            << "      <feedback><text></text></feedback>\n    </answer>\n"
+            << "  </question>\n";
+        continue;
+      }
       out << "  <question type=\"numerical\">\n"
           << "    <name><text>" << xml_escape(name) << "</text></name>\n"
           << "    <questiontext format=\"plain_text\"><text>" << xml_escape(text) << "</text></questiontext>\n"

@@ -9,6 +9,7 @@
 #include <cstdio>
 
 #include "engine/base/errors.hpp"
+#include "engine/analysis/design_figures.hpp"
 #include "engine/base/number_format.hpp"
 #include "engine/problems/answer_check.hpp"
 #include "engine/problems/mistake_catalogue.hpp"
@@ -238,4 +239,28 @@ TEST_CASE("check: an unknown quantity lists the mechanism's; a value of another 
                        UnitError);
   CHECK_THROWS_WITH_AS(check_answers(file_subject(model), one_answer("omega3", "40 mm", "2"), {}),
                        doctest::Contains("answers.toml:2: at of omega3"), InputError);
+}
+
+TEST_CASE("check: a design figure is graded once, without at; a class in words as text") {
+  const Model model = sample_model("four_bar.toml");
+  const std::optional<FourBarFigures> f = four_bar_figures(model);
+  REQUIRE(f);
+  const AnswerVerdict least = verdict_on(model, "min_transmission_angle", "", f->least_transmission);
+  CHECK(least.figure);
+  CHECK(least.right);
+  CHECK_FALSE(verdict_on(model, "min_transmission_angle", "", f->least_transmission + 5).right);
+  CHECK_FALSE(verdict_on(model, "max_transmission_angle", "", f->least_transmission).right);
+  // The same angle in radians is the same answer.
+  CHECK(check_answers(file_subject(model), one_answer("min_transmission_angle", "", format_round_trip(f->least_transmission * kDeg) + " rad"), {})
+            .verdicts.at(0).right);
+  const auto grashof = [&](const std::string& words) {
+    return check_answers(file_subject(model), one_answer("grashof", "", words), {}).verdicts.at(0);
+  };
+  REQUIRE(f->grashof == "crank-rocker");
+  CHECK(grashof(" Crank-Rocker").right);
+  CHECK_FALSE(grashof("double-rocker").right);
+  CHECK(grashof("double-rocker").expected_text == "crank-rocker");
+  // A figure is of the whole turn: an input value is refused; a figure the mechanism lacks too.
+  CHECK_THROWS_AS(check_answers(file_subject(model), one_answer("grashof", "30 deg", "crank-rocker"), {}), InputError);
+  CHECK_THROWS_AS(check_answers(file_subject(model), one_answer("time_ratio", "", "1.2"), {}), InputError);
 }

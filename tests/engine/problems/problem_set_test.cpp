@@ -168,6 +168,74 @@ TEST_CASE("problems: the keys' answers are kinema eval's of the file edited to e
   }
 }
 
+TEST_CASE("problems: a design figure answers once per variant, the analysis' figure of the file edited to it") {
+  // A four-bar's Grashof class (in words) and transmission angles.
+  const std::string four_bar = kinema_test::replaced("find = [\"omega3\", \"alpha4\", \"vP\"]",
+      "find = [\"omega3\", \"grashof\", \"min_transmission_angle\", \"max_transmission_angle\"]", four_bar_problem_text());
+  const Loaded loaded = load(four_bar, "four_bar_figures.toml");
+  const ProblemSet set = make_problem_set(loaded.model, *loaded.mechanism.problem, 3, 7);
+  for (const ProblemVariant& variant : set.variants) {
+    CAPTURE(variant.number);
+    REQUIRE(variant.answers.size() == variant.at.size() + 3);  // omega3 at each value, each figure once
+    const std::optional<FourBarFigures> f =
+        four_bar_figures(make_model(read_mechanism_text(edited(four_bar, variant, "omega2"), "edited.toml")));
+    REQUIRE(f);
+    const ProblemAnswer* grashof = &variant.answers[variant.at.size()];
+    CHECK(grashof->figure);
+    CHECK(grashof->at_text.empty());
+    CHECK(grashof->text == f->grashof);
+    CHECK(grashof[1].value == doctest::Approx(f->least_transmission).epsilon(1e-9));
+    CHECK(grashof[1].si == doctest::Approx(f->least_transmission * M_PI / 180).epsilon(1e-9));
+    CHECK(grashof[2].value == doctest::Approx(f->greatest_transmission).epsilon(1e-9));
+  }
+  // The class table and the exports carry them: the class as a short-answer question.
+  CHECK(problem_class_csv(set).find("min_transmission_angle [deg]") != std::string::npos);
+  CHECK(problem_class_json(set, "x.toml").find("\"text\": \"crank-rocker\"") != std::string::npos);
+  const std::string moodle = problem_moodle_xml(set, "t");
+  CHECK(moodle.find("<question type=\"shortanswer\">") != std::string::npos);
+  CHECK(moodle.find("<text>crank-rocker</text>") != std::string::npos);
+
+  // A slider's stroke and time ratio (the six-bar's slider 5).
+  const std::string six_bar = kinema_test::replaced("find = [\"omega3\", \"alpha3\", \"vF\"]", "find = [\"stroke\", \"time_ratio\"]",
+                                                    kinema_test::read_file(kinema_test::sample("problem_4_4_set.toml")));
+  const Loaded slider = load(six_bar, "six_bar_figures.toml");
+  const ProblemSet strokes = make_problem_set(slider.model, *slider.mechanism.problem, 2, 7);
+  for (const ProblemVariant& variant : strokes.variants) {
+    CAPTURE(variant.number);
+    const std::vector<Strokes> s = slider_strokes(make_model(read_mechanism_text(edited(six_bar, variant, "omega1"), "edited.toml")));
+    REQUIRE(!s.empty());
+    REQUIRE(variant.answers.size() == 2);
+    CHECK(variant.answers[0].value == doctest::Approx(std::fabs(s[0].limit_values[1] - s[0].limit_values[0])).epsilon(1e-9));
+    CHECK(variant.answers[1].value == doctest::Approx(s[0].time_ratio).epsilon(1e-9));
+  }
+}
+
+TEST_CASE("problems: toggle_margin redraws a variant asked too near a slider's limit position") {
+  // The offset slider-crank has no toggle; its piston's outer limit is where crank and rod
+  // are in line, sin(theta2) = e / (a + b): 0.3 deg to 11.5 deg over the drawn offsets, so
+  // the draws of e above about 17 mm put it within 5 deg of the asked 10 deg.
+  const std::string text = kinema_test::read_file(kinema_test::sample("slider_crank.toml")) + R"toml(
+[problem]
+find = ["omega3"]
+at = ["10 deg"]
+[problem.vary]
+e = { range = ["1 mm", "40 mm"], step = "1 mm" }
+[problem.conditions]
+toggle_margin = "5 deg"
+)toml";
+  const Loaded loaded = load(text, "slider_limits.toml");
+  REQUIRE(find_toggles(loaded.model).empty());
+  const ProblemSet set = make_problem_set(loaded.model, *loaded.mechanism.problem, 8, 7);
+  REQUIRE(set.redrawn.size() == 1);
+  CHECK(set.redrawn[0].first == "toggle_margin");
+  CHECK(set.redrawn[0].second > 0);
+  for (const ProblemVariant& variant : set.variants) {
+    const double e = variant.given.at(0).si, limit = std::asin(e / (0.05 + 0.15)) * 180 / M_PI;
+    CAPTURE(e);
+    CHECK(std::fabs(limit - 10) >= 5);
+  }
+}
+
 TEST_CASE("problems: the same seed gives the same bytes, another seed another set") {
   const std::string text = kinema_test::read_file(kinema_test::sample("problem_4_4_set.toml"));
   const auto files_for = [&](std::uint64_t seed) {
@@ -277,7 +345,10 @@ TEST_CASE("problems: a variant's sheet and key compile with pdflatex, no overful
   for (const auto& [name, document] : {std::make_pair(std::string("problem_sheet"), sheet), std::make_pair(std::string("problem_key"), key)}) {
     CAPTURE(name);
     std::string log;
-    CHECK(kinema_test::compile_document(document, name, log) > 0);
+    const int pages = kinema_test::compile_document(document, name, log);
+    CHECK(pages > 0);
+    // The sheet a class is handed: statement, data and drawing on one page.
+    if (name == "problem_sheet") CHECK(pages == 1);
     for (const kinema_test::Overfull& box : kinema_test::overfull_boxes(log)) {
       INFO(box.text);
       CHECK(box.points <= 1);
