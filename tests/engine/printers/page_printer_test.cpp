@@ -207,7 +207,7 @@ TEST_CASE("engine/printers/web/page: Problem 4.4's pages at 0.5 deg steps are at
     const kinema::MotionTable table = kinema::analyse(model, inputs);
     std::ostringstream out;
     kinema::print_page(out, model, table, false);
-    MESSAGE(name << ": " << out.str().size() << " bytes");
+    MESSAGE(std::string(name) << ": " << out.str().size() << " bytes");
     CHECK(out.str().size() <= 1000000);
   }
 }
