@@ -1,6 +1,10 @@
 #include "engine/printers/web/page.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -33,6 +37,38 @@ double drawn(double value) { return std::isfinite(value) ? round_significant(val
 json point_json(std::complex<double> z, double per_unit) {
   return json::array({drawn(z.real() / per_unit), drawn(z.imag() / per_unit)});
 }
+
+// A row's values each written once: the row is [its pattern, its distinct values], the
+// pattern (shared by rows, in "row_patterns") giving each place's index among them. A loop
+// drawing repeats each vector's ends and its zeros, which are then written once a row.
+class RowPatterns {
+ public:
+  json pack(const std::vector<double>& row) {
+    std::vector<std::uint64_t> distinct;  // by bits: -0 and NaN stay what they are
+    json values = json::array({0}), pattern = json::array();
+    for (const double value : row) {
+      std::uint64_t bits;
+      std::memcpy(&bits, &value, sizeof bits);
+      auto found = std::find(distinct.begin(), distinct.end(), bits);
+      if (found == distinct.end() || std::isnan(value)) {
+        distinct.push_back(bits);
+        values.push_back(value);
+        found = distinct.end() - 1;
+      }
+      pattern.push_back(found - distinct.begin());
+    }
+    const std::string key = pattern.dump();
+    const auto known = index_.emplace(key, list_.size());
+    if (known.second) list_.push_back(std::move(pattern));
+    values[0] = known.first->second;
+    return values;
+  }
+  const json& list() const { return list_; }
+
+ private:
+  json list_ = json::array();
+  std::map<std::string, std::size_t> index_;
+};
 
 // The drawing's parts that stay from row to row, and each row's coordinates, in the file's
 // output length unit (angles stay in rad).
@@ -74,16 +110,18 @@ json drawing_json(const MotionDrawing& drawing, double per_unit) {
   // Lengths in the output unit; the loops' unit directions (along) and blocks' angles as they are.
   const std::size_t segment_values = 8 * drawing.segments.size();
   json rows = json::array();
+  RowPatterns patterns;
   for (const std::vector<double>& row : drawing.rows) {
-    json values = json::array();
+    std::vector<double> values;
     for (std::size_t k = 0; k < row.size(); ++k) {
       const bool direction = drawing.form == MotionDrawing::Form::loops && k < segment_values && k % 8 >= 6;
       const bool angle = (drawing.form == MotionDrawing::Form::linkage && k >= 2 * drawing.joint_names.size()) ||
                          (drawing.form == MotionDrawing::Form::chain && k % 12 >= 3);  // unit axes
       values.push_back(drawn(direction || angle ? row[k] : row[k] / per_unit));
     }
-    rows.push_back(values.empty() ? json(nullptr) : values);
+    rows.push_back(values.empty() ? json(nullptr) : patterns.pack(values));
   }
+  out["row_patterns"] = patterns.list();
   out["rows"] = rows;
   return out;
 }

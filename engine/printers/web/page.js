@@ -9,6 +9,11 @@
   const rows = data.rows.map(function (line) { return line.split(','); });
   const numbers = rows.map(function (fields) { return fields.map(parseFloat); });
   const drawing = data.drawing;
+  // A drawing row is written as [its pattern, its distinct values] (page.cpp): each place's
+  // value is the pattern's index among them.
+  drawing.rows = drawing.rows.map(function (packed) {
+    return packed && drawing.row_patterns[packed[0]].map(function (k) { return packed[1 + k]; });
+  });
   const points = data.columns.points;
   const count = rows.length;
   let row = 0;
@@ -419,11 +424,12 @@
     const c = resolved ? null : constructions.rows[r];
     if (!c || !c.centres) return null;
     const s = constructions.centre_structures[c.centres[0]];
+    const lines = constructions.kennedy_sets[c.centres[1]];
     const g = drawing.rows[r];
-    let k = 1;
+    let k = 2;
     const next = function () { const p = [c.centres[k], c.centres[k + 1]]; k += 2; return p; };
-    return { not_found: s.not_found, centres: s.centres.map(function (centre) {
-      const out = { name: centre.name, infinite: centre.infinite, kennedy: centre.kennedy };
+    return { not_found: s.not_found, centres: s.centres.map(function (centre, j) {
+      const out = { name: centre.name, infinite: centre.infinite, kennedy: lines[j] };
       if (centre.infinite) out.direction = next();
       else if (centre.joint !== null) out.at = [g[2 * centre.joint], g[2 * centre.joint + 1]];
       else out.at = next();

@@ -96,9 +96,13 @@ std::string centre_name(const InstantCentres& centres, const InstantCentre& c) {
 
 // A centre at a joint (a pin's, and any Kennedy finds there) is named by the joint: the
 // drawing's row has its place already.
-json centres_json(const InstantCentres& centres, const std::vector<double>& joints, double per_unit, Structures& structures) {
+// The Kennedy lines are a list of their own (one entry per centre): they change with the
+// row far more often than the rest of the structure, which then stays shared.
+json centres_json(const InstantCentres& centres, const std::vector<double>& joints, double per_unit, Structures& structures,
+                  Structures& kennedy_sets) {
   json structure = {{"bodies", centres.bodies}, {"centres", json::array()}};
-  json row = json::array({0});
+  json kennedy = json::array();
+  json row = json::array({0, 0});
   std::map<std::pair<std::size_t, std::size_t>, std::size_t> index;
   for (std::size_t k = 0; k < centres.centres.size(); ++k) index[{centres.centres[k].a, centres.centres[k].b}] = k;
   const auto find = [&index](std::pair<std::size_t, std::size_t> bodies) -> json {
@@ -119,7 +123,8 @@ json centres_json(const InstantCentres& centres, const std::vector<double>& join
     for (std::size_t k = 0; k + 1 < c.kennedy.size(); k += 2) lines.push_back(json::array({find(c.kennedy[k]), find(c.kennedy[k + 1])}));
     const json joint = c.at_infinity ? json(nullptr) : joint_at(c.at);
     structure["centres"].push_back({{"name", centre_name(centres, c)}, {"infinite", c.at_infinity}, {"joint", joint},
-                                    {"seen_from", c.seen_from.has_value()}, {"kennedy", lines}});
+                                    {"seen_from", c.seen_from.has_value()}});
+    kennedy.push_back(std::move(lines));
     if (c.at_infinity) push_point(row, c.at, 1.0, 1.0);
     else if (joint.is_null()) push_point(row, c.at, per_unit, size);
     if (c.seen_from) push_point(row, *c.seen_from, per_unit, size);
@@ -128,6 +133,7 @@ json centres_json(const InstantCentres& centres, const std::vector<double>& join
   for (const auto& pair : centres.not_found) missing.push_back("I" + centres.bodies[pair.first] + centres.bodies[pair.second]);
   structure["not_found"] = missing;
   row[0] = structures.index(std::move(structure));
+  row[1] = kennedy_sets.index(std::move(kennedy));
   return row;
 }
 
@@ -135,7 +141,7 @@ json centres_json(const InstantCentres& centres, const std::vector<double>& join
 
 json constructions_json(const std::vector<ValueAnalysis>& values, const MotionDrawing& drawing, double per_unit,
                         const PointFields& point_fields) {
-  Structures polygon_structures, centre_structures;
+  Structures polygon_structures, centre_structures, kennedy_sets;
   json rows = json::array();
   for (std::size_t r = 0; r < values.size(); ++r) {
     const ValueAnalysis& value = values[r];
@@ -152,11 +158,12 @@ json constructions_json(const std::vector<ValueAnalysis>& values, const MotionDr
       std::vector<double> joints;
       if (drawing.form == MotionDrawing::Form::linkage && r < drawing.rows.size())
         joints.assign(drawing.rows[r].begin(), drawing.rows[r].begin() + std::min(drawing.rows[r].size(), 2 * drawing.joint_names.size()));
-      row["centres"] = centres_json(*value.centres, joints, per_unit, centre_structures);
+      row["centres"] = centres_json(*value.centres, joints, per_unit, centre_structures, kennedy_sets);
     }
     rows.push_back(std::move(row));
   }
-  return {{"polygon_structures", polygon_structures.list()}, {"centre_structures", centre_structures.list()}, {"rows", rows}};
+  return {{"polygon_structures", polygon_structures.list()}, {"centre_structures", centre_structures.list()},
+          {"kennedy_sets", kennedy_sets.list()}, {"rows", rows}};
 }
 
 }  // namespace kinema

@@ -20,12 +20,12 @@ namespace kinema {
 /// fields, by the point's name.
 using PointFields = std::map<std::string, std::pair<std::size_t, std::size_t>>;
 
-/// {"polygon_structures", "centre_structures", "rows"}: per row null (nothing to construct)
+/// {"polygon_structures", "centre_structures", "kennedy_sets", "rows"}: per row null (nothing to construct)
 /// or {"polygons": two (velocity, acceleration) [structure, the x y of each vertex the
 /// structure does not place (the pole is at 0; a named point's image is its velocity or
 /// acceleration, the CSV field `point_fields` gives), then of each point a construction
 /// adds; a structure's arrow names its ends by index into the vertices, then those], "centres":
-/// [structure, each centre's x y unless the structure names the joint it is at (a unit
+/// [structure, Kennedy set (per centre, its lines: pairs of indices into the centres), each centre's x y unless the structure names the joint it is at (a unit
 /// direction when at infinity; then the point it is seen from when the structure says so)]}. Lengths in the output unit (`per_unit` metres each), times in s.
 nlohmann::ordered_json constructions_json(const std::vector<ValueAnalysis>& values, const MotionDrawing& drawing,
                                           double per_unit, const PointFields& point_fields);

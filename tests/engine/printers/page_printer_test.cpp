@@ -154,7 +154,11 @@ TEST_CASE("engine/printers/web/page_constructions: each row's centres and polygo
     const auto& row = data["rows"][r];
     const auto& structure = data["centre_structures"][row["centres"][0].get<std::size_t>()];
     REQUIRE(structure["centres"].size() == value.centres->centres.size());
-    std::size_t k = 1;
+    // Each centre's Kennedy lines, from the row's set: one line per two centres it passes through.
+    const auto& kennedy = data["kennedy_sets"][row["centres"][1].get<std::size_t>()];
+    REQUIRE(kennedy.size() == value.centres->centres.size());
+    for (std::size_t c = 0; c < kennedy.size(); ++c) CHECK(2 * kennedy[c].size() == value.centres->centres[c].kennedy.size());
+    std::size_t k = 2;
     for (std::size_t c = 0; c < value.centres->centres.size(); ++c) {
       const kinema::InstantCentre& centre = value.centres->centres[c];
       const auto& written = structure["centres"][c];
@@ -190,4 +194,20 @@ TEST_CASE("engine/printers/web/page_constructions: each row's centres and polygo
   }
   CHECK(centres >= table.size());  // a Kennedy centre or one at infinity in every row
   CHECK(vertices >= 8 * table.size());
+}
+
+// Issue 35's target: Problem 4.4 at 0.5 deg steps (kinema page --sweep 0:360:0.5, 721 rows)
+// in a file of at most 1 MB, in both its forms (the vector loops' page carries the tape too).
+TEST_CASE("engine/printers/web/page: Problem 4.4's pages at 0.5 deg steps are at most 1 MB") {
+  std::vector<double> inputs;
+  for (int k = 0; k <= 720; ++k) inputs.push_back(k * 0.5 * M_PI / 180);
+  for (const char* name : {"problem_4_4_six_bar.toml", "problem_4_4_joints.toml"}) {
+    CAPTURE(name);
+    const kinema::Model model = kinema::load_model(kinema_test::sample(name));
+    const kinema::MotionTable table = kinema::analyse(model, inputs);
+    std::ostringstream out;
+    kinema::print_page(out, model, table, false);
+    MESSAGE(std::string(name) << ": " << out.str().size() << " bytes");
+    CHECK(out.str().size() <= 1000000);
+  }
 }
