@@ -164,6 +164,21 @@ void check_find_names(const Model& model, const Problem& problem) {
 // The order the redraw report names conditions in.
 const char* const kConditionNames[] = {"assembles", "grashof", "min_transmission_angle", "toggle_margin", "min_answer"};
 
+// The digits after the point that write every value of a range's grid in `factor`'s unit
+// alike: those of its step and of its low end (a 5 mm step in m: 3, so 0.380 beside 0.385).
+int grid_decimals(const ProblemVary& vary, double factor) {
+  int decimals = 0;
+  for (const double v : {vary.step / factor, vary.low / factor})
+    for (int d = decimals; d <= 9; ++d) {
+      const double scaled = std::fabs(v) * std::pow(10.0, d);
+      if (std::fabs(scaled - std::round(scaled)) <= 1e-6 * std::max(1.0, scaled)) {
+        decimals = d;
+        break;
+      }
+    }
+  return decimals;
+}
+
 // A draw of every varied value on its grid, set into a copy of the model.
 struct Draw {
   std::vector<GivenValue> given;
@@ -179,7 +194,7 @@ Draw draw_values(const std::vector<VaryTarget>& targets, ProblemDraws& draws) {
     // The grid value as the file would write it in its unit (12 digits: no 0.30000000000000004).
     const double value = round_significant((t.vary->low + double(draws.below_or_equal(t.steps)) * t.vary->step) / factor, 12);
     const double si = value * factor;
-    draw.given.push_back({t.vary->name, si, value, t.unit});
+    draw.given.push_back({t.vary->name, si, value, t.unit, grid_decimals(*t.vary, factor)});
     const std::string text = format_significant(value, 12) + (t.unit.empty() ? "" : " " + t.unit);
     if (t.kind == VaryKind::parameter) draw.parameters.emplace_back(t.vary->name, si);
     if (t.kind == VaryKind::driver_value) draw.driver_value.emplace(si, text);

@@ -36,6 +36,7 @@ struct GivenValue {
   double si = 0.0;
   double value = 0.0;
   std::string unit;
+  int decimals = 0;  ///< Digits after the point that show the range's grid in `unit` (0.380 m for 5 mm steps).
 };
 
 /// An asked answer: `quantity` (an output column) at input value `at_text`, or a design

@@ -77,8 +77,9 @@ std::string latex_unit(const std::string& unit) {
 }
 
 // A value in math mode as the sheet gives it ("300\,\mathrm{mm}").
-std::string latex_quantity(double value, const std::string& unit) {
-  return latex_number(value, 12) + (unit.empty() ? "" : "\\," + latex_unit(unit));
+// A varied value with the digits of its grid, as the file writes its other values (0.380 m).
+std::string latex_given(const GivenValue& g) {
+  return format_fixed(g.value, g.decimals) + (g.unit.empty() ? "" : "\\," + latex_unit(g.unit));
 }
 
 // A design figure in math mode, in words: its name is no symbol of the mechanism.
@@ -164,7 +165,7 @@ void write_problem_sheet(std::ostream& out, const ProblemSet& set, const Problem
     if (!p.written) continue;
     std::string value = latex_escape_text(p.text);
     for (const GivenValue& g : variant.given)
-      if (g.name == p.symbol.get_name()) value = "$" + latex_quantity(g.value, g.unit) + "$";
+      if (g.name == p.symbol.get_name()) value = "$" + latex_given(g) + "$";
     if (p.formula && !varied.count(p.symbol.get_name())) value = "$" + to_latex(*p.formula) + "$";
     out << "$" << to_latex(p.symbol) << "$ & " << value << " \\\\\n";
   }
@@ -174,7 +175,7 @@ void write_problem_sheet(std::ostream& out, const ProblemSet& set, const Problem
   std::string rate = latex_escape_text(input.rate_text.empty() ? format_significant(input.rate_value) + " " + scale.rate_unit(input.dimension)
                                                                : input.rate_text);
   for (const GivenValue& g : variant.given)
-    if (g.name == input.rate.get_name()) rate = "$" + latex_quantity(g.value, g.unit) + "$";
+    if (g.name == input.rate.get_name()) rate = "$" + latex_given(g) + "$";
   out << "\\midrule\n$" << to_latex(input.symbol) << "$ & " << at_list << " \\\\\n$" << to_latex(input.rate) << "$ & "
       << rate << " \\\\\n$" << to_latex(input.second_rate) << "$ & "
       << latex_escape_text(input.second_rate_text.empty() ? "0" : input.second_rate_text) << " \\\\\n"

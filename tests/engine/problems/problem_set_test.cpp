@@ -342,6 +342,12 @@ TEST_CASE("problems: a variant's sheet and key compile with pdflatex, no overful
   }
   CHECK(sheet.find("\\boxed") == std::string::npos);
   CHECK(sheet.find("velocity vectors") == std::string::npos);  // no arrow of an answer in the drawing
+  // A varied length with its grid's digits (5 mm steps in m: 0.380, not 0.38 beside the file's 0.150).
+  for (const GivenValue& g : variant.given) {
+    if (g.unit != "m") continue;
+    CHECK(g.decimals == 3);
+    CHECK(sheet.find("$" + format_fixed(g.value, 3) + "\\,\\mathrm{m}$") != std::string::npos);
+  }
   for (const auto& [name, document] : {std::make_pair(std::string("problem_sheet"), sheet), std::make_pair(std::string("problem_key"), key)}) {
     CAPTURE(name);
     std::string log;
