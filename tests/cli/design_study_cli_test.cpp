@@ -38,14 +38,14 @@ json eval_json(std::vector<std::string> arguments) {
   return json::parse(kinema_test::read_file(out));
 }
 
-// Both null (undefined), or equal to 1e-12 relative.
-void check_same(const json& study, double separate, const std::string& what) {
+// Both null (undefined), or equal to `tolerance` relative.
+void check_same(const json& study, double separate, const std::string& what, double tolerance) {
   INFO(what << ": study " << study.dump() << ", separate run " << separate);
   if (std::isnan(separate)) {
     CHECK(study.is_null());
   } else {
     REQUIRE(study.is_number());
-    CHECK(std::fabs(study.get<double>() - separate) <= 1e-12 * std::max(1.0, std::fabs(separate)));
+    CHECK(std::fabs(study.get<double>() - separate) <= tolerance * std::max(1.0, std::fabs(separate)));
   }
 }
 
@@ -59,6 +59,12 @@ double largest(const json& run, const std::function<double(const json&)>& value)
 
 // One study row against the separate run of the sample edited to its design.
 void check_row(const json& design, const json& run) {
+  // 1e-12, but a change-point design passes a singular position once a turn, where the
+  // study's lanes (another order of operations, fused multiply-adds) and the scalar solver
+  // agree only to Newton's tolerance over the least singular value (as the engine's test
+  // says; 1.2e-12 seen in the Debug build): there 1e-10.
+  const double tolerance =
+      run.contains("four_bar") && run["four_bar"]["grashof"] == "change point" ? 1e-10 : 1e-12;
   std::size_t failed = 0;
   for (const json& row : run["results"]) failed += row["status"] == "unassembled";
   CHECK(design["failed_values"] == failed);
@@ -66,25 +72,25 @@ void check_row(const json& design, const json& run) {
   if (run.contains("four_bar")) {
     CHECK(design["grashof"] == run["four_bar"]["grashof"]);
     check_same(design["min_transmission_angle"], run["four_bar"]["transmission_angle"]["least"].get<double>(),
-               "least transmission angle");
+               "least transmission angle", tolerance);
   } else {
     CHECK(design["grashof"] == "n/a");
   }
-  if (run.contains("strokes")) check_same(design["time_ratio"], run["strokes"][0]["time_ratio"].get<double>(), "time ratio");
+  if (run.contains("strokes")) check_same(design["time_ratio"], run["strokes"][0]["time_ratio"].get<double>(), "time ratio", tolerance);
   for (const json& c : run["coordinates"]) {
     const std::string name = c["name"];
     check_same(design["max_abs_" + c["rate_name"].get<std::string>()],
-               largest(run, [&](const json& row) { return row["coordinates"][name]["rate"].get<double>(); }), name);
+               largest(run, [&](const json& row) { return row["coordinates"][name]["rate"].get<double>(); }), name, tolerance);
     check_same(design["max_abs_" + c["second_rate_name"].get<std::string>()],
-               largest(run, [&](const json& row) { return row["coordinates"][name]["second_rate"].get<double>(); }), name);
+               largest(run, [&](const json& row) { return row["coordinates"][name]["second_rate"].get<double>(); }), name, tolerance);
   }
   for (const json& p : run["points"]) {
     const std::string name = p;
     check_same(design["max_" + name + "_speed"],
-               largest(run, [&](const json& row) { return row["points"][name]["speed"].get<double>(); }), name);
+               largest(run, [&](const json& row) { return row["points"][name]["speed"].get<double>(); }), name, tolerance);
     check_same(design["max_" + name + "_acceleration"],
                largest(run, [&](const json& row) { return row["points"][name]["acceleration_magnitude"].get<double>(); }),
-               name);
+               name, tolerance);
   }
 }
 
