@@ -46,7 +46,12 @@ ConstraintSystem build_linkage_system(const Mechanism& written) {
   for (const TermSum& loop : terms.loops) builder.add_loop(linkage_detail::planar_vector(loop, builder.formulas(), "loop"));
   builder.end_loops();
   for (const TermSum& point : terms.points) builder.add_point(linkage_detail::planar_vector(point, builder.formulas(), "point"));
+  std::vector<std::pair<std::string, GiNaC::ex>> ground;
+  for (const TermSum& joint : terms.ground)
+    ground.emplace_back(joint.name, joint.terms.empty() ? GiNaC::ex(0)
+                                                        : linkage_detail::planar_vector(joint, builder.formulas(), "point").vector);
   ConstraintSystem system = std::move(builder).system();
+  system.ground_joints = std::move(ground);
   system.plan = std::move(terms.plan);
   return system;
 }

@@ -47,6 +47,7 @@ inline double wrapped(double angle) {
 struct LinkageTerms {
   std::vector<TermSum> loops, points;
   SolvingPlan plan;
+  std::vector<TermSum> ground;  ///< Each ground joint's position (not a point: no columns).
 };
 
 class LinkageWriter {
@@ -55,7 +56,7 @@ class LinkageWriter {
   explicit LinkageWriter(Mechanism& mechanism) : m_(mechanism), linkage_(*mechanism.linkage) {}
 
   /// The loops, points and solving plan found by write().
-  LinkageTerms terms() && { return {std::move(loops_), std::move(points_), std::move(plan_)}; }
+  LinkageTerms terms() && { return {std::move(loops_), std::move(points_), std::move(plan_), std::move(ground_)}; }
 
   void write() {
     evaluate_parameters();
@@ -102,7 +103,7 @@ class LinkageWriter {
   Mechanism& m_;
   const Linkage& linkage_;
   SolvingPlan plan_;
-  std::vector<TermSum> loops_, points_;
+  std::vector<TermSum> loops_, points_, ground_;
   std::map<std::string, double> values_;  // parameters, SI
   GiNaC::exmap symbol_values_;            // the file's parameters by their symbols in reader_
   std::set<std::string> taken_;           // symbol names

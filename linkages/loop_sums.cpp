@@ -95,7 +95,10 @@ void LinkageWriter::write_loops() {
 void LinkageWriter::write_points() {
   for (std::size_t j = 0; j < linkage_.joints.size(); ++j) {
     const Joint& joint = linkage_.joints[j];
-    if (joint.ground) continue;
+    if (joint.ground) {
+      ground_.push_back({joint.name, joint.where, flatten(position(0, j), 0)});
+      continue;
+    }
     // From the body nearest ground: the shortest sum (a slider's point from its guide).
     std::size_t body = 0;
     for (std::size_t b = 1; b < bodies_.size(); ++b) {

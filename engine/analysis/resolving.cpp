@@ -28,7 +28,15 @@ void compile_formulas(const ConstraintSystem& system, Resolving& out) {
 std::optional<Resolving> resolving(const Model& model) {
   const ConstraintSystem& system = model.system;
   const Kinematics& k = model.kinematics;
-  if (system.plan || !system.frames.empty() || k.layout().link_vector_count == 0) return std::nullopt;
+  if (!system.frames.empty() || k.layout().link_vector_count == 0) return std::nullopt;
+  if (system.plan) {
+    // Joints and links: solved by Newton from the file's guesses (as with_parameters does),
+    // drawn and their extra columns computed from the drawing stage. Not where kinema took
+    // a parameter from the sketch: that one follows the dimensions only through the sketch.
+    if (k.layout().linkage_joint_count == 0) return std::nullopt;
+    for (const SystemParameter& p : system.parameters)
+      if (!p.written) return std::nullopt;
+  }
   Resolving out;
   out.tape = &k.evaluator();
   out.layout = k.layout();

@@ -38,9 +38,11 @@ struct Resolving {
   std::vector<std::pair<std::string, double>> constants;
 };
 
-/// Nullopt where the page cannot solve again: a joints-and-links file (its extra
-/// columns and its drawing come from the closed-form placement), a spatial chain, a
-/// model whose tape has no drawing stage, or parameter formulas the tape cannot take.
+/// Nullopt where the page cannot solve again: a spatial chain, a model whose tape has no
+/// drawing stage, parameter formulas the tape cannot take, or a joints-and-links file
+/// with a parameter kinema took from its sketch. A joints-and-links file is solved by
+/// Newton from its guesses; its joints, blocks, guides and extra columns are the drawing
+/// stage's (TapeLayout::linkage_joint_output on).
 std::optional<Resolving> resolving(const Model& model);
 
 }  // namespace kinema

@@ -146,6 +146,9 @@ struct ConstraintSystem {
   /// How a mechanism of joints and links is solved: its dyads, joints and links (set by
   /// the front end that found them).
   std::optional<SolvingPlan> plan;
+  /// Joints and links: each ground joint's position (x + I*y) by name, a formula of the
+  /// parameters (the drawing stage draws the pivots where the sliders put them).
+  std::vector<std::pair<std::string, GiNaC::ex>> ground_joints;
   /// Typical length (largest length parameter, else 1 m): tolerances and scaling.
   double length_scale = 1.0;
 

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "engine/constraints/complex_parts.hpp"
+#include "engine/constraints/output_columns.hpp"
 
 namespace kinema {
 
@@ -32,6 +33,132 @@ std::vector<ex> drawing_stage(const ConstraintSystem& system, const PlanarLinkVe
     outputs.insert(outputs.end(), frame.origin.begin(), frame.origin.end());
     outputs.insert(outputs.end(), frame.rotation.begin(), frame.rotation.end());
   }
+  return outputs;
+}
+
+// A body's angle, rate and second rate as formulas (output_scale.cpp's turning): ground's
+// 0, an unknown's or the driver's its symbols, a slider block its guide's plus its offset.
+struct Turning {
+  ex angle, rate, second_rate;
+};
+Turning turning(const ConstraintSystem& system, std::size_t body) {
+  const SolvingPlan& plan = *system.plan;
+  const SolvingPlan::Body& b = plan.bodies[body];
+  if (b.unknown >= 0) {
+    const Coordinate& q = system.unknowns[std::size_t(b.unknown)];
+    return {q.symbol, q.rate, q.second_rate};
+  }
+  if (b.guide >= 0) {
+    Turning t = turning(system, std::size_t(b.guide));
+    t.angle += b.offset;
+    return t;
+  }
+  if (body != 0 && body == plan.driver_body && plan.driver_slider < 0)
+    return {system.input.symbol, system.input.rate, system.input.second_rate};
+  return {0, 0, 0};
+}
+
+// A slider's coordinate, its rate and second rate (the driver's when it drives).
+Turning travel(const ConstraintSystem& system, const SolvingPlan::Slider& slider) {
+  if (slider.unknown < 0) return {system.input.symbol, system.input.rate, system.input.second_rate};
+  const Coordinate& q = system.unknowns[std::size_t(slider.unknown)];
+  return {q.symbol, q.rate, q.second_rate};
+}
+
+// What a joints-and-links page draws and its result columns beyond the points, as
+// TapeLayout places them after the link vectors: the same formulas as linkage_drawing and
+// output_scale.cpp's linkage_values, written on the tape so that a page solving for other
+// dimensions computes them. `points` is the point stage (each point's position, velocity,
+// acceleration). Empty for anything else.
+std::vector<ex> linkage_stage(const ConstraintSystem& system, const std::vector<ex>& points, TapeLayout& layout) {
+  std::vector<ex> outputs;
+  if (!system.plan || !system.frames.empty()) return outputs;
+  const SolvingPlan& plan = *system.plan;
+  const ex I = GiNaC::I;
+  const auto point_named = [&](const std::string& name) -> int {
+    for (std::size_t p = 0; p < system.points.size(); ++p)
+      if (system.points[p].name == name) return int(p);
+    return -1;
+  };
+  const auto point_at = [&](int p) { return system.points[std::size_t(p)].position[0] + I * system.points[std::size_t(p)].position[1]; };
+  // Each joint where it is: a moving joint is its point; a slider shown at a pin of its
+  // block (no point of its own) is that pin's; a ground joint its formula.
+  std::vector<ex> joints;
+  for (std::size_t j = 0; j < plan.joints.size(); ++j) {
+    ex at;
+    bool found = false;
+    for (const auto& [name, where] : system.ground_joints)
+      if (name == plan.joints[j].name) { at = where; found = true; }
+    if (!found && point_named(plan.joints[j].name) >= 0) { at = point_at(point_named(plan.joints[j].name)); found = true; }
+    for (std::size_t b = 1; !found && b < plan.bodies.size(); ++b) {
+      std::complex<double> mine;
+      bool on = false;
+      for (const auto& [joint, v] : plan.bodies[b].points) if (joint == j) { mine = v; on = true; }
+      for (const auto& [joint, v] : plan.bodies[b].points) {
+        if (!on || found || joint == j || std::abs(v - mine) > 1e-12 || point_named(plan.joints[joint].name) < 0) continue;
+        at = point_at(point_named(plan.joints[joint].name));
+        found = true;
+      }
+    }
+    if (!found) throw std::logic_error("linkage_stage: joint " + plan.joints[j].name + " has no formula");
+    joints.push_back(at);
+    outputs.push_back(real_part_of(at));
+    outputs.push_back(imag_part_of(at));
+  }
+  layout.linkage_joint_count = plan.joints.size();
+  layout.linkage_block_count = 0;
+  for (std::size_t b = 1; b < plan.bodies.size(); ++b) {
+    if (plan.bodies[b].guide < 0) continue;
+    outputs.push_back(turning(system, b).angle);
+    ++layout.linkage_block_count;
+  }
+  layout.linkage_guide_count = 0;
+  for (const SolvingPlan::Slider& s : plan.sliders) {
+    if (s.guide != 0) continue;
+    // Its point where the coordinate is 0: the slider joint less its travel along the line.
+    const ex along = ex(std::cos(s.direction)) + I * ex(std::sin(s.direction));
+    const ex through = joints[s.joint] - travel(system, s).angle * along;
+    outputs.push_back(real_part_of(through));
+    outputs.push_back(imag_part_of(through));
+    outputs.push_back(std::cos(s.direction));
+    outputs.push_back(std::sin(s.direction));
+    ++layout.linkage_guide_count;
+  }
+  // The result columns (output_scale.cpp linkage_values), SI.
+  const std::size_t first = outputs.size();
+  for (std::size_t b = 1; b < plan.bodies.size(); ++b) {
+    if (plan.bodies[b].guide < 0) continue;
+    const Turning t = turning(system, b);
+    outputs.insert(outputs.end(), {t.angle, t.rate, t.second_rate});
+  }
+  struct Sliding {
+    ex relative_velocity, relative_acceleration, coriolis;
+  };
+  const auto sliding = [&](const SolvingPlan::Slider& slider) {
+    const Turning guide = turning(system, slider.guide), s = travel(system, slider);
+    const ex u = GiNaC::exp(I * (guide.angle + slider.direction));
+    return Sliding{s.rate * u, s.second_rate * u, 2 * guide.rate * I * s.rate * u};
+  };
+  const auto complex = [&](const ex& z) {
+    outputs.push_back(real_part_of(z));
+    outputs.push_back(imag_part_of(z));
+  };
+  for (const SolvingPlan::Slider& slider : plan.sliders) {
+    const Sliding s = sliding(slider);
+    for (const ex& c : {s.relative_velocity, s.relative_acceleration, s.coriolis}) complex(c);
+  }
+  for (const GuidePoint& g : guide_points(system)) {
+    const Sliding s = sliding(plan.sliders[g.slider]);
+    const std::size_t at = layout.point_output(g.point), d = layout.point_dimensions[g.point];
+    complex(points[at + d] + I * points[at + d + 1] - s.relative_velocity);
+    complex(points[at + 2 * d] + I * points[at + 2 * d + 1] - s.relative_acceleration - s.coriolis);
+  }
+  for (const RelativeTurning& r : relative_turnings(system)) {
+    const Turning block = turning(system, r.block), other = turning(system, r.other);
+    outputs.push_back(block.rate - other.rate);
+    outputs.push_back(block.second_rate - other.second_rate);
+  }
+  layout.linkage_column_count = outputs.size() - first;
   return outputs;
 }
 
@@ -85,6 +212,10 @@ Kinematics::Kinematics(const ConstraintSystem& system, const Derivation& d) : Ki
 Kinematics Kinematics::sharing_tape(const ConstraintSystem& system) const {
   Kinematics k(system);
   k.layout_.link_vector_count = layout_.link_vector_count;
+  k.layout_.linkage_joint_count = layout_.linkage_joint_count;
+  k.layout_.linkage_block_count = layout_.linkage_block_count;
+  k.layout_.linkage_guide_count = layout_.linkage_guide_count;
+  k.layout_.linkage_column_count = layout_.linkage_column_count;
   k.evaluator_ = evaluator_;
   k.drawable_ = drawable_;
   return k;
@@ -116,12 +247,16 @@ void Kinematics::compile(const ConstraintSystem& system, const std::vector<std::
 
   layout_.link_vector_count = link_vectors.vectors.size();
   try {
-    evaluator_ = std::make_shared<const CompiledExpressions>(inputs, layout_.input_levels(), solving,
-                                                             drawing_stage(system, link_vectors));
+    std::vector<ex> drawing = drawing_stage(system, link_vectors);
+    const std::vector<ex> linkage = linkage_stage(system, solving.size() > 2 ? solving[2] : std::vector<ex>{}, layout_);
+    drawing.insert(drawing.end(), linkage.begin(), linkage.end());
+    evaluator_ = std::make_shared<const CompiledExpressions>(inputs, layout_.input_levels(), solving, drawing);
   } catch (const std::exception&) {
     // A drawing formula the tape cannot take: the model solves as before and its views
     // draw nothing (a solving formula it cannot take throws again here).
     layout_.link_vector_count = 0;
+    layout_.linkage_joint_count = layout_.linkage_block_count = layout_.linkage_guide_count = 0;
+    layout_.linkage_column_count = 0;
     evaluator_ = std::make_shared<const CompiledExpressions>(inputs, layout_.input_levels(), solving,
                                                              std::vector<ex>{});
     drawable_ = false;

@@ -14,6 +14,11 @@ struct TapeLayout {
   std::vector<std::size_t> point_dimensions;  ///< 2 or 3 per point.
   std::size_t frame_count = 0;                ///< Frames of a spatial chain (angular velocity and acceleration).
   std::size_t link_vector_count = 0;          ///< A planar system's link vectors (Derivation::link_vectors).
+  // Joints and links (SolvingPlan), on the drawing stage: 0 for anything else.
+  std::size_t linkage_joint_count = 0;   ///< SolvingPlan::joints.
+  std::size_t linkage_block_count = 0;   ///< Bodies that are slider blocks.
+  std::size_t linkage_guide_count = 0;   ///< Sliders on a fixed guide (guide 0).
+  std::size_t linkage_column_count = 0;  ///< The joints-and-links result columns (linkage_columns_begin on).
 
   // Input registers: [parameters, theta, thetad, thetadd, q, qd, qdd].
   std::size_t parameter(std::size_t p) const { return p; }
@@ -68,7 +73,15 @@ struct TapeLayout {
   std::size_t frame_placement_output(std::size_t f) const {
     return link_vector_output(link_vector_count) + kFramePlacementOutputs * f;
   }
-  std::size_t drawing_output_count() const { return frame_placement_output(frame_count); }
+  /// Then, for joints and links: each joint's x, y (SolvingPlan::joints order); each block's
+  /// angle (body order); each fixed guide's point where its coordinate is 0 and its unit
+  /// direction (x, y each, SolvingPlan::sliders order); then the joints-and-links result
+  /// columns in SI (angles in rad, not wrapped), as result_columns lists them.
+  std::size_t linkage_joint_output(std::size_t j) const { return frame_placement_output(frame_count) + 2 * j; }
+  std::size_t linkage_block_output(std::size_t b) const { return linkage_joint_output(linkage_joint_count) + b; }
+  std::size_t linkage_guide_output(std::size_t g) const { return linkage_block_output(linkage_block_count) + 4 * g; }
+  std::size_t linkage_column_output(std::size_t c) const { return linkage_guide_output(linkage_guide_count) + c; }
+  std::size_t drawing_output_count() const { return linkage_column_output(linkage_column_count); }
 
   // Input levels (how often an input changes): work on level-0 inputs runs once,
   // on the input and its rates once per value, on q once per Newton iterate.

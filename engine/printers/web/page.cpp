@@ -215,6 +215,29 @@ json tape_json(const CompiledExpressions& tape) {
           {"outputs", outputs}};
 }
 
+// Joints and links: where the page finds on the drawing stage each drawn joint (by the
+// drawing's joint names), the blocks' angles, the fixed guides and the extra result
+// columns, with how each column is written (an angle wrapped to degrees, a length in the
+// output unit, or as it is); null for anything else.
+json linkage_json(const ConstraintSystem& system, const MotionDrawing& drawing, const TapeLayout& layout) {
+  if (!system.plan || layout.linkage_joint_count == 0 || drawing.form != MotionDrawing::Form::linkage) return nullptr;
+  json joints = json::array();
+  for (const std::string& name : drawing.joint_names) {
+    std::size_t j = 0;
+    while (j < system.plan->joints.size() && system.plan->joints[j].name != name) ++j;
+    if (j == system.plan->joints.size()) return nullptr;
+    joints.push_back(layout.linkage_joint_output(j));
+  }
+  json kinds = json::array();
+  for (std::size_t b = 0; b < block_links(system).size(); ++b) kinds.insert(kinds.end(), {"angle", "rate", "rate"});
+  for (std::size_t k = 0; k < 6 * system.plan->sliders.size() + 4 * guide_points(system).size(); ++k) kinds.push_back("length");
+  for (std::size_t k = 0; k < 2 * relative_turnings(system).size(); ++k) kinds.push_back("rate");
+  if (kinds.size() != layout.linkage_column_count) return nullptr;
+  return {{"joints", joints}, {"blocks_at", layout.linkage_block_output(0)}, {"block_count", layout.linkage_block_count},
+          {"guides_at", layout.linkage_guide_output(0)}, {"guide_count", layout.linkage_guide_count},
+          {"columns_at", layout.linkage_column_output(0)}, {"column_kinds", kinds}};
+}
+
 // What the page's sliders need to solve again (engine/analysis/resolving.hpp), with the
 // rows' inputs (SI) and the output units; null where the page cannot.
 json resolving_json(const PrintJob& job, const OutputScale& scale) {
@@ -231,6 +254,8 @@ json resolving_json(const PrintJob& job, const OutputScale& scale) {
   for (std::size_t row = 0; row < job.values->size(); ++row) inputs.push_back(job.values->input(row));
   json constants = json::object();
   for (const auto& [name, value] : r.constants) constants[name] = value;
+  const json linkage = linkage_json(system, *job.analysis->motion, r.layout);
+  if (system.plan && linkage.is_null()) return nullptr;
   return {{"tape", tape_json(*r.tape)},
           {"parameter_count", r.layout.parameter_count},
           {"point_dimensions", r.layout.point_dimensions},
@@ -254,7 +279,8 @@ json resolving_json(const PrintJob& job, const OutputScale& scale) {
           {"inputs", inputs},
           {"input_dimension", dimension_name(system.input.dimension)},
           {"length_per_unit", scale.length},
-          {"length_unit", scale.length_unit}};
+          {"length_unit", scale.length_unit},
+          {"linkage", linkage}};
 }
 
 }  // namespace

@@ -1122,7 +1122,8 @@
   // same input values) and redraws whatever the page draws from rows.
   const R = data.resolve;
   const solver = R ? makeSolver(R) : null;
-  const fileRows = { rows: rows.slice(), numbers: numbers.slice(), drawing: drawing.rows.slice(), reasons: data.reasons.slice() };
+  const fileRows = { rows: rows.slice(), numbers: numbers.slice(), drawing: drawing.rows.slice(), reasons: data.reasons.slice(),
+    guides: drawing.guides };
   const sliders = [];
   const resolveTimes = [];
   let lastSolved = null;
@@ -1171,8 +1172,25 @@
       out.push(v ? lengthOf(v, k + 2 * d, d) / f : NaN);
       k += 3 * d;
     });
+    // Joints and links: the blocks', sliders', guide points' and relative turnings' columns,
+    // from the drawing stage (kinematics.cpp linkage_stage).
+    if (R.linkage) R.linkage.column_kinds.forEach(function (kind, c) {
+      const v = solved.status === 'ok' ? solved.drawn[R.linkage.columns_at + c] : NaN;
+      out.push(kind === 'angle' ? coordinateOut('angle', v) : kind === 'length' ? v / R.length_per_unit : v);
+    });
     out.push('');
     return out;
+  }
+  // The fixed guides of joints and links where these dimensions put them (from a drawn row).
+  function guidesOf(solved) {
+    const row = solved.find(function (x) { return x.drawn; });
+    if (!row) return fileRows.guides;
+    const L = R.linkage, v = row.drawn, guides = [];
+    for (let g = 0; g < L.guide_count; ++g) {
+      const k = L.guides_at + 4 * g;
+      guides.push({ through: [v[k] / R.length_per_unit, v[k + 1] / R.length_per_unit], along: [v[k + 2], v[k + 3]] });
+    }
+    return guides;
   }
   // The drawing of a solved row: each segment a link vector of the drawing stage laid end to
   // end in kinema's order (engine/analysis/geometry.cpp MechanismGeometry::segments), each
@@ -1180,6 +1198,12 @@
   function drawingOf(solved) {
     if (!solved.drawn) return null;
     const f = R.length_per_unit, v = solved.drawn;
+    if (R.linkage) {  // joints and links: each drawn joint, then each block's angle
+      const g = [];
+      R.linkage.joints.forEach(function (k) { g.push(v[k] / f, v[k + 1] / f); });
+      for (let b = 0; b < R.linkage.block_count; ++b) g.push(v[R.linkage.blocks_at + b]);
+      return g;
+    }
     const vector = function (t, part) { const k = R.vector_outputs * t + part; return [v[k], v[k + 1]]; };
     const g = [];
     let at = [0, 0];
@@ -1219,6 +1243,7 @@
     resolveTimes.push(performance.now() - begun);
     lastSolved = solved;
     resolved = sliders.some(function (s) { return Number(s.input.value) !== s.fileValue; });
+    if (R.linkage) drawing.guides = resolved ? guidesOf(solved) : fileRows.guides;
     for (let r = 0; r < count; ++r) {
       if (!resolved) {
         rows[r] = fileRows.rows[r]; numbers[r] = fileRows.numbers[r]; drawing.rows[r] = fileRows.drawing[r];

@@ -3,9 +3,12 @@
 // the closed form puts them; ground, links and sliders are told apart.
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <complex>
 
 #include "engine/analysis/geometry.hpp"
+#include "engine/analysis/output_scale.hpp"
+#include "engine/constraints/output_columns.hpp"
 #include "tests/engine/unit_support.hpp"
 #include "tests/test_support.hpp"
 
@@ -126,4 +129,69 @@ TEST_CASE("engine/analysis/geometry: each link's angular velocity off the model'
   MotionState unassembled;
   unassembled.input = 0.3;
   for (const auto& omega : kinema::MechanismGeometry(four_bar).link_angular_velocities(unassembled)) CHECK(!omega);
+}
+
+// The page re-solves joints files with the tape alone: its drawing stage must give what
+// linkage_drawing places in closed form (joints, blocks, fixed guides) and the extra
+// result columns as eval writes them, at every row of a turn.
+TEST_CASE("engine/analysis/geometry: a joints file's drawing stage places its joints and gives its extra columns") {
+  for (const char* name : {"problem_4_4_joints.toml", "example_4_1_joints.toml", "example_4_2_joints.toml",
+                           "problem_4_1_parallelogram.toml"}) {
+    CAPTURE(name);
+    const kinema::Model model = kinema::load_model(kinema_test::sample(name));
+    const kinema::ConstraintSystem& system = model.system;
+    const kinema::TapeLayout& layout = model.kinematics.layout();
+    REQUIRE(layout.linkage_joint_count == system.plan->joints.size());
+    const kinema::OutputScale scale(system);
+    REQUIRE(scale.length == 1.0);  // the columns below compared in SI
+    std::vector<double> inputs;
+    for (int k = 0; k < 36; ++k) inputs.push_back(k * 10 * M_PI / 180);
+    const kinema::MotionTable table = kinema::analyse(model, inputs);
+    const std::size_t width = kinema::result_column_count(system), begin = kinema::linkage_columns_begin(system);
+    REQUIRE(layout.linkage_column_count == width - begin);
+    std::size_t checked = 0;
+    for (std::size_t r = 0; r < table.size(); ++r) {
+      if (table.status(r) != kinema::Status::ok) continue;
+      const kinema::MotionState state = table[r];
+      const std::vector<double> drawn = model.kinematics.drawing_values(state);
+      const auto placed = kinema::linkage_drawing(system, state);
+      REQUIRE(placed);
+      const auto close = [&](double tape, double expected) {
+        CHECK(std::abs(tape - expected) <= 1e-9 * (1 + std::abs(expected)));
+      };
+      const auto joint_at = [&](const std::string& joint) {
+        for (std::size_t j = 0; j < system.plan->joints.size(); ++j)
+          if (system.plan->joints[j].name == joint) return layout.linkage_joint_output(j);
+        FAIL("no joint " << joint);
+        return std::size_t(0);
+      };
+      std::size_t block = 0;
+      for (const auto& link : placed->links) {
+        for (const auto& joint : link.joints) {
+          close(drawn[joint_at(joint.name)], joint.at.real());
+          close(drawn[joint_at(joint.name) + 1], joint.at.imag());
+        }
+        if (link.block) close(std::remainder(drawn[layout.linkage_block_output(block++)] - link.angle, 2 * M_PI), 0);
+      }
+      for (const auto& pivot : placed->ground_pivots) close(drawn[joint_at(pivot.name)], pivot.at.real());
+      for (std::size_t g = 0; g < placed->guides.size(); ++g) {
+        // The guide's point where the coordinate is 0 lies on the closed form's line.
+        const std::size_t k = layout.linkage_guide_output(g);
+        const std::complex<double> through(drawn[k], drawn[k + 1]), along(drawn[k + 2], drawn[k + 3]);
+        close(std::abs(along - placed->guides[g].along), 0);
+        close(std::imag((through - placed->guides[g].through) * std::conj(along)), 0);
+      }
+      std::vector<double> values(width);
+      kinema::result_values(system, scale, table, r, values.data());
+      const std::vector<kinema::ResultColumn> columns = kinema::result_columns(system, scale);
+      for (std::size_t c = begin; c < width; ++c) {
+        CAPTURE(columns[c].name);
+        double tape = drawn[layout.linkage_column_output(c - begin)];
+        if (columns[c].unit == "deg") tape = scale.coordinate(kinema::Dimension::angle, tape);
+        close(tape, values[c]);
+        ++checked;
+      }
+    }
+    CHECK(checked > 0);
+  }
 }

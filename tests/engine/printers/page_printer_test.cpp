@@ -102,7 +102,7 @@ TEST_CASE("engine/base/sha256: the digests of FIPS 180-4's examples") {
   CHECK(kinema::sha256_hex(std::string(1000000, 'a')) == "cdc76e5c9914fb9281a1c7e284d73e67f1809a48a497200e046d39ccc7112cd0");
 }
 
-TEST_CASE("engine/printers/web/page: a vector-loop file's page carries what solving again needs; a joints file's does not") {
+TEST_CASE("engine/printers/web/page: a vector-loop file's and a joints file's pages carry what solving again needs; a chain's does not") {
   const auto page_data = [](const std::string& name) {
     const kinema::Model model = kinema::load_model(kinema_test::sample(name));
     const kinema::MotionTable table = kinema::analyse(model, turn_in_degrees(30));
@@ -122,7 +122,17 @@ TEST_CASE("engine/printers/web/page: a vector-loop file's page carries what solv
   CHECK(followers == std::vector<std::string>{"EF", "Lc"});
   CHECK(six_bar["formula_targets"].size() == 2);
   CHECK(six_bar["tape"]["code"].size() % 6 == 0);
-  CHECK(page_data("problem_4_4_joints.toml")["resolve"].is_null());
+  // Joints and links: each drawn joint found on the drawing stage, and a kind for each
+  // extra column (block angle and rates, slider terms, relative turning).
+  const nlohmann::json joints = page_data("problem_4_4_joints.toml");
+  REQUIRE(joints["resolve"].is_object());
+  const nlohmann::json& linkage = joints["resolve"]["linkage"];
+  REQUIRE(linkage.is_object());
+  CHECK(linkage["joints"].size() == joints["drawing"]["joint_names"].size());
+  CHECK(linkage["block_count"] == 1);  // slider 5
+  CHECK(linkage["guide_count"] == 1);  // its guide x = -Lc
+  CHECK(linkage["column_kinds"].size() == 3 + 6 + 2);  // theta5; F5's vrel, arel, Coriolis; omega54, alpha54
+  CHECK(page_data("robot_arm_seed000.toml")["resolve"].is_null());
 }
 
 TEST_CASE("engine/printers/web/page: base64 of hex digests as RFC 4648 gives them") {
