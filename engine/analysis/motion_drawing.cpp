@@ -41,9 +41,13 @@ void linkage_rows(const ConstraintSystem& system, const MotionTable& table, Moti
       for (std::size_t j = 0; j < drawing.joint_names.size(); ++j)
         if (drawing.joint_names[j] == joint.name) at[j] = joint.at;
     };
+    // A slider's joint is where its block is (the block's pin), not the point of its guide's
+    // body the sketch had there: blocks placed last, whatever order the file lists links in.
     for (const auto& pivot : placed->ground_pivots) place(pivot);
-    for (const auto& link : placed->links)
-      for (const auto& joint : link.joints) place(joint);
+    for (const bool blocks : {false, true})
+      for (const auto& link : placed->links)
+        if (link.block == blocks)
+          for (const auto& joint : link.joints) place(joint);
     std::vector<double> row;
     for (const auto& z : at) put(row, z);
     for (const auto& link : placed->links)

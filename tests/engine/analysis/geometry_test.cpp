@@ -7,6 +7,7 @@
 #include <complex>
 
 #include "engine/analysis/geometry.hpp"
+#include "engine/analysis/motion_drawing.hpp"
 #include "engine/analysis/output_scale.hpp"
 #include "engine/constraints/output_columns.hpp"
 #include "tests/engine/unit_support.hpp"
@@ -132,12 +133,13 @@ TEST_CASE("engine/analysis/geometry: each link's angular velocity off the model'
 }
 
 // The page re-solves joints files with the tape alone: its drawing stage must give what
-// linkage_drawing places in closed form (joints, blocks, fixed guides) and the extra
+// the file's rows draw in closed form (joints, blocks, fixed guides) and the extra
 // result columns as eval writes them, at every row of a turn.
 TEST_CASE("engine/analysis/geometry: a joints file's drawing stage places its joints and gives its extra columns") {
   for (const char* name : {"problem_4_4_joints.toml", "example_4_1_joints.toml", "example_4_2_joints.toml",
                            "problem_4_1_parallelogram.toml"}) {
-    CAPTURE(name);
+    const std::string sample = name;
+    CAPTURE(sample);
     const kinema::Model model = kinema::load_model(kinema_test::sample(name));
     const kinema::ConstraintSystem& system = model.system;
     const kinema::TapeLayout& layout = model.kinematics.layout();
@@ -147,6 +149,8 @@ TEST_CASE("engine/analysis/geometry: a joints file's drawing stage places its jo
     std::vector<double> inputs;
     for (int k = 0; k < 36; ++k) inputs.push_back(k * 10 * M_PI / 180);
     const kinema::MotionTable table = kinema::analyse(model, inputs);
+    const kinema::MotionDrawing drawing = kinema::motion_drawing(model, table);
+    REQUIRE(drawing.rows.size() == table.size());
     const std::size_t width = kinema::result_column_count(system), begin = kinema::linkage_columns_begin(system);
     REQUIRE(layout.linkage_column_count == width - begin);
     std::size_t checked = 0;
@@ -156,6 +160,7 @@ TEST_CASE("engine/analysis/geometry: a joints file's drawing stage places its jo
       const std::vector<double> drawn = model.kinematics.drawing_values(state);
       const auto placed = kinema::linkage_drawing(system, state);
       REQUIRE(placed);
+      CAPTURE(r);
       const auto close = [&](double tape, double expected) {
         CHECK(std::abs(tape - expected) <= 1e-9 * (1 + std::abs(expected)));
       };
@@ -165,15 +170,18 @@ TEST_CASE("engine/analysis/geometry: a joints file's drawing stage places its jo
         FAIL("no joint " << joint);
         return std::size_t(0);
       };
-      std::size_t block = 0;
-      for (const auto& link : placed->links) {
-        for (const auto& joint : link.joints) {
-          close(drawn[joint_at(joint.name)], joint.at.real());
-          close(drawn[joint_at(joint.name) + 1], joint.at.imag());
-        }
-        if (link.block) close(std::remainder(drawn[layout.linkage_block_output(block++)] - link.angle, 2 * M_PI), 0);
+      // Each joint where the page's file rows put it (motion_drawing: one place a name, a
+      // slider's joint at its block's pin), each block at its angle.
+      const std::vector<double>& row = drawing.rows[r];
+      REQUIRE(row.size() == 2 * drawing.joint_names.size() + layout.linkage_block_count);
+      for (std::size_t j = 0; j < drawing.joint_names.size(); ++j) {
+        CAPTURE(drawing.joint_names[j]);
+        close(drawn[joint_at(drawing.joint_names[j])], row[2 * j]);
+        close(drawn[joint_at(drawing.joint_names[j]) + 1], row[2 * j + 1]);
+        ++checked;
       }
-      for (const auto& pivot : placed->ground_pivots) close(drawn[joint_at(pivot.name)], pivot.at.real());
+      for (std::size_t b = 0; b < layout.linkage_block_count; ++b)
+        close(std::remainder(drawn[layout.linkage_block_output(b)] - row[2 * drawing.joint_names.size() + b], 2 * M_PI), 0);
       for (std::size_t g = 0; g < placed->guides.size(); ++g) {
         // The guide's point where the coordinate is 0 lies on the closed form's line.
         const std::size_t k = layout.linkage_guide_output(g);
