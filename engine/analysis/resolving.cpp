@@ -28,7 +28,9 @@ void compile_formulas(const ConstraintSystem& system, Resolving& out) {
 std::optional<Resolving> resolving(const Model& model) {
   const ConstraintSystem& system = model.system;
   const Kinematics& k = model.kinematics;
-  if (!system.frames.empty() || k.layout().link_vector_count == 0) return std::nullopt;
+  // Drawn from the drawing stage: a planar system's link vectors, a chain's frames.
+  const bool drawn = system.frames.empty() ? k.layout().link_vector_count > 0 : k.drawable();
+  if (!drawn) return std::nullopt;
   if (system.plan) {
     // Joints and links: solved by Newton from the file's guesses (as with_parameters does),
     // drawn and their extra columns computed from the drawing stage. Not where kinema took

@@ -38,11 +38,11 @@ struct Resolving {
   std::vector<std::pair<std::string, double>> constants;
 };
 
-/// Nullopt where the page cannot solve again: a spatial chain, a model whose tape has no
-/// drawing stage, parameter formulas the tape cannot take, or a joints-and-links file
+/// Nullopt where the page cannot solve again: a model whose tape has no drawing stage, parameter formulas the tape cannot take, or a joints-and-links file
 /// with a parameter kinema took from its sketch. A joints-and-links file is solved by
 /// Newton from its guesses; its joints, blocks, guides and extra columns are the drawing
-/// stage's (TapeLayout::linkage_joint_output on).
+/// stage's (TapeLayout::linkage_joint_output on); a spatial chain's frames are placed by the
+/// drawing stage (TapeLayout::frame_placement_output).
 std::optional<Resolving> resolving(const Model& model);
 
 }  // namespace kinema

@@ -44,6 +44,8 @@ class Kinematics {
   /// at a state whose position is known: rates NaN where the state has none. Empty for a
   /// state of another system, and where the drawing formulas could not be compiled.
   std::vector<double> drawing_values(const MotionState& state) const;
+  /// The drawing formulas compiled onto the tape (a formula the tape cannot take leaves none).
+  bool drawable() const { return drawable_; }
 
   /// Typical length (largest length parameter), for tolerances and scaling.
   double length_scale() const { return length_scale_; }

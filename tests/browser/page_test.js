@@ -357,6 +357,31 @@ async function checkSlider(browser, sampleName, parameter, target, sweep) {
         `${sampleName}: joint ${joint.name} drawn at (${joint.x}, ${joint.y}), eval's point at (${x}, ${y})`);
       ++joints;
     }
+    // A chain's points (its frames drawn by the re-solved rows): at eval's, and a frame's
+    // origin drawn where a point at that origin is (the robot arm's A at E3's).
+    const chain = await page.evaluate(() => {
+      const mark = (e) => { const m = /translate\(([^,]+),([^)]+)\)/.exec(e.getAttribute('transform')); return [Number(m[1]), Number(m[2])]; };
+      const points = Array.from(document.querySelectorAll('#mechanism [data-point]')).map((e) => ({ name: e.getAttribute('data-point'),
+        at: ['data-x', 'data-y', 'data-z'].map((a) => Number(e.getAttribute(a))), px: mark(e) }));
+      const frames = {};
+      document.querySelectorAll('#mechanism [data-frame]').forEach((e) => { frames[e.getAttribute('data-frame')] = mark(e); });
+      return { points: points, frames: frames };
+    });
+    if (sampleName.startsWith('robot_arm')) {
+      assert(Object.keys(chain.frames).length === 3 && chain.points.length === 3, `${sampleName}: frames or points not drawn`);
+      for (const point of chain.points) {
+        const column = header.findIndex((h) => h.startsWith(point.name + '_x ['));
+        assert(column >= 0, `${sampleName}: no column for point ${point.name}`);
+        point.at.forEach((v, c) => {
+          const want = Number(fields[column + c]), size = Math.max(largest[column], largest[column + 1], largest[column + 2]);
+          assert(Math.abs(v - want) <= 1e-12 * size, `${sampleName}: point ${point.name} drawn with ${'xyz'[c]} = ${v}, eval ${want}`);
+        });
+        ++joints;
+      }
+      const a = chain.points.find((p) => p.name === 'A');
+      assert(a && chain.frames.E3 && Math.hypot(a.px[0] - chain.frames.E3[0], a.px[1] - chain.frames.E3[1]) <= 0.1,
+        `${sampleName}: frame E3 drawn at ${chain.frames.E3} px, its origin point A at ${a && a.px}`);
+    }
     assert(joints >= 1, `${sampleName}: no joint drawn at a point of eval's`);
   }
   assert.deepStrictEqual(seen.errors, [], `${sampleName}: console errors`);
@@ -375,6 +400,8 @@ async function checkSliders(browser) {
     ['problem_4_4_joints', 'CE', 0.232], ['example_4_2_joints', 'DE', 0.201], ['example_4_1_joints', 'BC', 0.302]]) {
     compared += (await checkSlider(browser, sample, parameter, value, '0:356:4')).compared;
   }
+  // A spatial chain: its frames placed by the tape's drawing stage, over time.
+  compared += (await checkSlider(browser, 'robot_arm_seed000', 'L2', 0.75, '0:6:0.1')).compared;
   // A rocker half as long: the four-bar no longer closes at every crank angle.
   const short = await checkSlider(browser, 'four_bar', 'c', 40, '0:356:4');
   assert(short.statuses.includes('unassembled'), 'four_bar with c = 40 mm: every row assembles');

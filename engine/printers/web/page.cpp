@@ -280,7 +280,10 @@ json resolving_json(const PrintJob& job, const OutputScale& scale) {
           {"input_dimension", dimension_name(system.input.dimension)},
           {"length_per_unit", scale.length},
           {"length_unit", scale.length_unit},
-          {"linkage", linkage}};
+          {"linkage", linkage},
+          {"frame_count", r.layout.frame_count},
+          {"frames_at", r.layout.frame_placement_output(0)},
+          {"frame_outputs", TapeLayout::kFramePlacementOutputs}};
 }
 
 }  // namespace

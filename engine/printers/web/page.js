@@ -1172,6 +1172,8 @@
       out.push(v ? lengthOf(v, k + 2 * d, d) / f : NaN);
       k += 3 * d;
     });
+    // A chain's frames: angular velocity and acceleration, after the points on the same stage.
+    for (let c = 0; c < 6 * R.frame_count; ++c) out.push(solved.status === 'ok' ? solved.points[k + c] : NaN);
     // Joints and links: the blocks', sliders', guide points' and relative turnings' columns,
     // from the drawing stage (kinematics.cpp linkage_stage).
     if (R.linkage) R.linkage.column_kinds.forEach(function (kind, c) {
@@ -1198,6 +1200,17 @@
   function drawingOf(solved) {
     if (!solved.drawn) return null;
     const f = R.length_per_unit, v = solved.drawn;
+    if (R.frame_count) {  // a chain: each frame's origin, then its x, y, z axes (motion_drawing.cpp chain_rows)
+      const g = [];
+      for (let fr = 0; fr < R.frame_count; ++fr) {
+        // The tape's placement: origin, then the rotation row by row; + 0 as placed_frames: no signed zero.
+        const k = R.frames_at + R.frame_outputs * fr;
+        for (let c = 0; c < 3; ++c) g.push(v[k + c] / f + 0);
+        for (let axis = 0; axis < 3; ++axis)
+          for (let c = 0; c < 3; ++c) g.push(v[k + 3 + 3 * c + axis] + 0);
+      }
+      return g;
+    }
     if (R.linkage) {  // joints and links: each drawn joint, then each block's angle
       const g = [];
       R.linkage.joints.forEach(function (k) { g.push(v[k] / f, v[k + 1] / f); });
