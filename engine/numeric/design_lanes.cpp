@@ -16,6 +16,28 @@ namespace {
 constexpr int kLaneIterations = 10;
 }  // namespace
 
+double LoopReach::distance(double input) const {
+  const double x = crank * std::cos(input) + fixed_x, y = crank * std::sin(input) + fixed_y;
+  const double known_sum = std::hypot(x, y), a = std::fabs(first), b = std::fabs(second);
+  return std::max(known_sum - (a + b), std::fabs(a - b) - known_sum);
+}
+
+bool LoopReach::clearly_open(double input) const {
+  // A margin a thousand times Newton's rounding tolerance (of the lengths' sum, at least
+  // the length scale Newton's tests use): nearer the reach, Newton decides.
+  const double lengths = std::fabs(crank) + std::hypot(fixed_x, fixed_y) + std::fabs(first) + std::fabs(second);
+  return known && distance(input) > 1e3 * solver::kRoundingTolerance * lengths;
+}
+
+double LoopReach::limit(double from, double to) const {
+  for (int halving = 0; halving < 60 && from != to; ++halving) {
+    const double middle = from + (to - from) / 2;
+    if (middle == from || middle == to) break;
+    (distance(middle) <= 0 ? from : to) = middle;
+  }
+  return from;
+}
+
 struct DesignLanes::Lane {
   Lane(const Kinematics& k, const std::vector<double>& inputs, double rate, double second_rate)
       : kinematics(k),
@@ -69,6 +91,8 @@ void DesignLanes::set_design(std::size_t l, const double* values) {
   for (std::size_t i = 0; i < n_; ++i) column_scale_[i * kLanes + l] = k.column_scale()[i];
 }
 
+void DesignLanes::set_reach(std::size_t lane, const LoopReach& reach) { reach_[lane] = reach; }
+
 void DesignLanes::solve(std::size_t count) {
   k_.evaluator().prepare_batch(registers_.data());  // each lane's work on its parameters
   for (std::size_t l = 0; l < count; ++l) {
@@ -83,9 +107,9 @@ void DesignLanes::solve(std::size_t count) {
   std::fill(largest_acceleration_.begin(), largest_acceleration_.end(), NAN);
   std::fill(largest_speed_square_.begin(), largest_speed_square_.end(), 0.0);
   std::fill(largest_acceleration_square_.begin(), largest_acceleration_square_.end(), 0.0);
-  double take[kLanes], ok[kLanes], restart[kLanes], open[kLanes];
+  double take[kLanes], ok[kLanes], restart[kLanes], open[kLanes], out_of_reach[kLanes];
   for (std::size_t row = 0; row < inputs_.size(); ++row) {
-    bool restarts = choose_lanes(row, count, take, restart);
+    bool restarts = choose_lanes(row, count, take, restart, out_of_reach);
     std::fill_n(ok, kLanes, 0.0);
     std::fill_n(open, kLanes, 0.0);
     if (std::find(take, take + kLanes, 1.0) != take + kLanes) {
@@ -104,6 +128,14 @@ void DesignLanes::solve(std::size_t count) {
     if (restarts) restart_values(inputs_[row], restart, open);
     for (std::size_t l = 0; l < count; ++l) {
       Lane& lane = *lanes_[l];
+      if (out_of_reach[l] != 0) {
+        if (lane.last_in_lanes) lane.rows.solved_elsewhere(lane.table, row - 1);
+        lane.last_in_lanes = false;
+        const double limit = row > 0 ? reach_[l].limit(inputs_[row - 1], inputs_[row]) : inputs_[row];
+        lane.rows.unassembled_elsewhere(lane.table, row, limit, 0, reach_[l].distance(inputs_[row]));
+        ++lane_values_;
+        continue;
+      }
       if (ok[l] != 0) {
         lane.last_in_lanes = true;
         ++lane_values_;
@@ -129,14 +161,18 @@ void DesignLanes::solve(std::size_t count) {
   count_values_solved(lane_values_);
 }
 
-bool DesignLanes::choose_lanes(std::size_t row, std::size_t count, double* take, double* restart) {
+bool DesignLanes::choose_lanes(std::size_t row, std::size_t count, double* take, double* restart,
+                               double* out_of_reach) {
   bool any_restart = false;
   const double h = row > 0 ? inputs_[row] - inputs_[row - 1] : 0.0;
   for (std::size_t l = 0; l < kLanes; ++l) {
     const Lane& lane = *lanes_[l];
     const Eigen::VectorXd* from = &lane.kinematics.guess();  // any finite position keeps a lane not solved quiet
     bool predicted = false, restarted = false;
-    if (l < count && row == 0) {
+    out_of_reach[l] = l < count && reach_[l].clearly_open(inputs_[row]) ? 1.0 : 0.0;
+    if (out_of_reach[l] != 0) {
+      // Neither predicted nor restarted: solve() stores it as not assembling.
+    } else if (l < count && row == 0) {
       // The first value from the guesses, as the scalar run starts (Newton alone).
       predicted = lane.kinematics.closed_form() == nullptr;
     } else if (l < count && (lane.last_in_lanes || lane.rows.on_branch())) {

@@ -23,6 +23,24 @@
 
 namespace kinema {
 
+/// Where a loop of four terms closes that has two known at each input (a crank's, signed
+/// length `crank` at the input's angle, and a fixed vector) and two of unknown angle
+/// (lengths `first`, `second`): where |crank e^(i input) + fixed| lies between
+/// |first - second| and first + second. A design study's four-bars have one: it tells,
+/// without Newton, the values that cannot close.
+struct LoopReach {
+  bool known = false;
+  double crank = 0, fixed_x = 0, fixed_y = 0, first = 0, second = 0;
+  /// How far the known terms' sum lies outside the reach of the other two (<= 0 within
+  /// it): the least |Phi| any position leaves at `input`.
+  double distance(double input) const;
+  /// Whether `input` is out of reach by more than rounding could hide from Newton (which
+  /// counts max |Phi| within solver::kRoundingTolerance of the lengths as closed).
+  bool clearly_open(double input) const;
+  /// Where the loop stops closing between `from` (within reach) and `to` (out of it).
+  double limit(double from, double to) const;
+};
+
 class DesignLanes {
  public:
   static constexpr std::size_t kLanes = kLuLanes;
@@ -35,6 +53,9 @@ class DesignLanes {
 
   /// Lane l's design: the value of every parameter (SI, formula parameters following).
   void set_design(std::size_t lane, const double* values);
+  /// Lane l's loop reach (none: every value to Newton): a value clearly out of it is
+  /// stored as not assembling without Newton or continuation (RowSolver::unassembled_elsewhere).
+  void set_reach(std::size_t lane, const LoopReach& reach);
   /// Solves the run for lanes [0, count).
   void solve(std::size_t count);
   /// Lane l's rows of the last solve(). The points' columns hold only the values the
@@ -67,13 +88,15 @@ class DesignLanes {
   std::vector<double> largest_speed_, largest_acceleration_, largest_speed_square_, largest_acceleration_square_;
   double tolerance_[kLanes], length_scale_[kLanes], pivot_ratio_[kLanes], residual_[kLanes];
   std::size_t lane_values_ = 0;
+  LoopReach reach_[kLanes];
 
   double* lanes(std::size_t reg) { return registers_.data() + reg * kLanes; }
   const double* output(std::size_t stage, std::size_t k) { return lanes(k_.evaluator().output_register(stage, k)); }
   /// Each lane's start at `row` into start_: take[l] 1 for a lane whose value is predicted
   /// (or the first, from the guesses), restart[l] 1 for one that starts Newton alone after
-  /// a value that did not assemble (RowSolver::restart_position). Whether any is.
-  bool choose_lanes(std::size_t row, std::size_t count, double* take, double* restart);
+  /// a value that did not assemble (RowSolver::restart_position), out_of_reach[l] 1 (and
+  /// neither) for one whose LoopReach says the value cannot close. Whether any restarts.
+  bool choose_lanes(std::size_t row, std::size_t count, double* take, double* restart, double* out_of_reach);
   /// start_ of the lanes predicted (predicted[l] 1) h on from their last row, as the
   /// scalar run predicts (solver::predict_second_order).
   KINEMA_LANE_LOOPS void predict(double h, const double* predicted);
