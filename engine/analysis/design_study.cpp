@@ -230,15 +230,10 @@ class DesignRunner {
   // The loop reach of the design loaded (none for a mechanism that is not a vector-loop
   // four-bar, or one placed in closed form, whose failures the scalar run tells otherwise).
   LoopReach loop_reach() const {
-    LoopReach reach;
-    if (!setup_.loop || kinematics_.closed_form() != nullptr) return reach;
-    reach.known = true;
-    reach.crank = loop_.crank.value;
-    reach.fixed_x = loop_.ground.value * std::cos(loop_.ground.angle_value);
-    reach.fixed_y = loop_.ground.value * std::sin(loop_.ground.angle_value);
-    reach.first = loop_.coupler.value;
-    reach.second = loop_.rocker.value;
-    return reach;
+    if (!setup_.loop || kinematics_.closed_form() != nullptr) return {};
+    const double ground_angle = loop_.ground.angle_value;
+    return LoopReach(loop_.crank.value, loop_.ground.value * std::cos(ground_angle),
+                     loop_.ground.value * std::sin(ground_angle), loop_.coupler.value, loop_.rocker.value);
   }
 
   bool solves() const {

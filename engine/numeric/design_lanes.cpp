@@ -16,17 +16,25 @@ namespace {
 constexpr int kLaneIterations = 10;
 }  // namespace
 
-double LoopReach::distance(double input) const {
-  const double x = crank * std::cos(input) + fixed_x, y = crank * std::sin(input) + fixed_y;
-  const double known_sum = std::hypot(x, y), a = std::fabs(first), b = std::fabs(second);
-  return std::max(known_sum - (a + b), std::fabs(a - b) - known_sum);
+LoopReach::LoopReach(double crank, double fixed_x, double fixed_y, double first, double second)
+    : crank_(crank), fixed_x_(fixed_x), fixed_y_(fixed_y), first_(std::fabs(first)), second_(std::fabs(second)) {
+  // A margin of a thousand times Newton's rounding tolerance of the lengths' sum (at
+  // least the length scale Newton's tests use): nearer the reach, Newton decides.
+  const double fixed = std::hypot(fixed_x, fixed_y), turning = std::fabs(crank);
+  const double margin = 1e3 * solver::kRoundingTolerance * (turning + fixed + first_ + second_);
+  const double far = first_ + second_ + margin, near = std::fabs(first_ - second_) - margin;
+  // NaN anywhere: no reach (every comparison false).
+  if (!(far > 0)) return;
+  far_square_ = far * far;
+  near_square_ = near > 0 ? near * near : -INFINITY;
+  // The known sum's length runs over [|fixed - turning|, fixed + turning] in a turn.
+  ever_open_ = fixed + turning > far || std::fabs(fixed - turning) < near;
 }
 
-bool LoopReach::clearly_open(double input) const {
-  // A margin a thousand times Newton's rounding tolerance (of the lengths' sum, at least
-  // the length scale Newton's tests use): nearer the reach, Newton decides.
-  const double lengths = std::fabs(crank) + std::hypot(fixed_x, fixed_y) + std::fabs(first) + std::fabs(second);
-  return known && distance(input) > 1e3 * solver::kRoundingTolerance * lengths;
+double LoopReach::distance(double input) const {
+  const double x = crank_ * std::cos(input) + fixed_x_, y = crank_ * std::sin(input) + fixed_y_;
+  const double known_sum = std::hypot(x, y);
+  return std::max(known_sum - (first_ + second_), std::fabs(first_ - second_) - known_sum);
 }
 
 double LoopReach::limit(double from, double to) const {
@@ -55,6 +63,8 @@ DesignLanes::DesignLanes(const Kinematics& kinematics, const std::vector<double>
       layout_(kinematics.layout()),
       n_(kinematics.unknown_count()),
       inputs_(inputs),
+      cos_inputs_(inputs.size()),
+      sin_inputs_(inputs.size()),
       rate_(rate),
       second_rate_(second_rate),
       registers_(kinematics.evaluator().make_batch_workspace()),
@@ -70,6 +80,10 @@ DesignLanes::DesignLanes(const Kinematics& kinematics, const std::vector<double>
       largest_acceleration_(kinematics.point_count() * kLanes),
       largest_speed_square_(kinematics.point_count() * kLanes),
       largest_acceleration_square_(kinematics.point_count() * kLanes) {
+  for (std::size_t row = 0; row < inputs.size(); ++row) {
+    cos_inputs_[row] = std::cos(inputs[row]);
+    sin_inputs_[row] = std::sin(inputs[row]);
+  }
   for (std::size_t l = 0; l < kLanes; ++l) {
     lanes_.push_back(std::make_unique<Lane>(kinematics, inputs, rate, second_rate));
     set_design(l, kinematics.parameter_values().data());
@@ -91,7 +105,10 @@ void DesignLanes::set_design(std::size_t l, const double* values) {
   for (std::size_t i = 0; i < n_; ++i) column_scale_[i * kLanes + l] = k.column_scale()[i];
 }
 
-void DesignLanes::set_reach(std::size_t lane, const LoopReach& reach) { reach_[lane] = reach; }
+void DesignLanes::set_reach(std::size_t lane, const LoopReach& reach) {
+  // A design within reach all round: no test per value.
+  reach_[lane] = reach.ever_open() ? reach : LoopReach();
+}
 
 void DesignLanes::solve(std::size_t count) {
   k_.evaluator().prepare_batch(registers_.data());  // each lane's work on its parameters
@@ -169,7 +186,7 @@ bool DesignLanes::choose_lanes(std::size_t row, std::size_t count, double* take,
     const Lane& lane = *lanes_[l];
     const Eigen::VectorXd* from = &lane.kinematics.guess();  // any finite position keeps a lane not solved quiet
     bool predicted = false, restarted = false;
-    out_of_reach[l] = l < count && reach_[l].clearly_open(inputs_[row]) ? 1.0 : 0.0;
+    out_of_reach[l] = l < count && reach_[l].clearly_open(cos_inputs_[row], sin_inputs_[row]) ? 1.0 : 0.0;
     if (out_of_reach[l] != 0) {
       // Neither predicted nor restarted: solve() stores it as not assembling.
     } else if (l < count && row == 0) {

@@ -13,6 +13,7 @@
 // table is what solve_sweep gives its design, to rounding.
 #pragma once
 
+#include <cmath>
 #include <memory>
 #include <vector>
 
@@ -28,17 +29,31 @@ namespace kinema {
 /// (lengths `first`, `second`): where |crank e^(i input) + fixed| lies between
 /// |first - second| and first + second. A design study's four-bars have one: it tells,
 /// without Newton, the values that cannot close.
-struct LoopReach {
-  bool known = false;
-  double crank = 0, fixed_x = 0, fixed_y = 0, first = 0, second = 0;
+class LoopReach {
+ public:
+  LoopReach() = default;  ///< None: every input may close.
+  LoopReach(double crank, double fixed_x, double fixed_y, double first, double second);
   /// How far the known terms' sum lies outside the reach of the other two (<= 0 within
   /// it): the least |Phi| any position leaves at `input`.
   double distance(double input) const;
-  /// Whether `input` is out of reach by more than rounding could hide from Newton (which
-  /// counts max |Phi| within solver::kRoundingTolerance of the lengths as closed).
-  bool clearly_open(double input) const;
+  /// Whether `input` (its cosine and sine) is out of reach by more than rounding could
+  /// hide from Newton (which counts max |Phi| within solver::kRoundingTolerance of the
+  /// lengths as closed). Squares compared: no root per value.
+  bool clearly_open(double cos_input, double sin_input) const {
+    const double x = crank_ * cos_input + fixed_x_, y = crank_ * sin_input + fixed_y_, square = x * x + y * y;
+    return square > far_square_ || square < near_square_;
+  }
+  /// Whether any input is clearly open (else the test need not be made).
+  bool ever_open() const { return ever_open_; }
   /// Where the loop stops closing between `from` (within reach) and `to` (out of it).
   double limit(double from, double to) const;
+
+ private:
+  double crank_ = 0, fixed_x_ = 0, fixed_y_ = 0, first_ = 0, second_ = 0;
+  // The squared lengths of the known sum past which (or short of which) it is clearly out
+  // of reach; never where there is no reach.
+  double far_square_ = INFINITY, near_square_ = -INFINITY;
+  bool ever_open_ = false;
 };
 
 class DesignLanes {
@@ -74,7 +89,7 @@ class DesignLanes {
   const Kinematics& k_;
   const TapeLayout& layout_;
   std::size_t n_;
-  std::vector<double> inputs_;
+  std::vector<double> inputs_, cos_inputs_, sin_inputs_;  // the cosines and sines for LoopReach
   double rate_, second_rate_;
   std::vector<std::unique_ptr<Lane>> lanes_;
   std::vector<double> registers_;  ///< Register r of lane l at r * kLanes + l.

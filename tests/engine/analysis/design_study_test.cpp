@@ -359,8 +359,9 @@ TEST_CASE("design study across lanes: a slider-crank (a length unknown, each lan
 }
 
 TEST_CASE("design lanes: a value out of the loop's reach stored as the scalar run stores it, without Newton") {
-  // Non-Grashof couplers and rockers of the sample (a + b > c + d): each has a gap near
-  // 0 deg that the reach tells; a crank-rocker (b = 0.12, c = 0.08) never leaves it.
+  // Two non-Grashof couplers and rockers of the sample (a + b > c + d): each has a gap
+  // near 0 deg that the reach tells; a design near a change point and a crank-rocker
+  // (b = 0.12, c = 0.08) never leave it.
   const Model base = kinema::with_parameters(sample_model("four_bar.toml"), {});
   const std::vector<double> inputs = turn_from(0);
   const std::vector<std::pair<double, double>> designs{{0.140, 0.061}, {0.135, 0.066}, {0.130, 0.071}, {0.120, 0.080}};
@@ -373,12 +374,9 @@ TEST_CASE("design lanes: a value out of the loop's reach stored as the scalar ru
   for (std::size_t l = 0; l < designs.size(); ++l) {
     separate.push_back(kinema::with_parameters(base, {{"b", designs[l].first}, {"c", designs[l].second}}));
     lanes.set_design(l, separate.back().kinematics.parameter_values().data());
-    kinema::LoopReach reach;
-    reach.known = true;
-    reach.crank = 0.04;     // a
-    reach.fixed_x = -0.1;   // the ground term, - d
-    reach.first = designs[l].first;
-    reach.second = -designs[l].second;  // written - c*exp(I*theta4)
+    // a*exp(I*theta2), the ground's - d, b*exp(I*theta3) and - c*exp(I*theta4).
+    const kinema::LoopReach reach(0.04, -0.1, 0, designs[l].first, -designs[l].second);
+    CHECK(reach.ever_open() == (l < 2));
     lanes.set_reach(l, reach);
     reaches.push_back(reach);
   }
@@ -416,8 +414,8 @@ TEST_CASE("design lanes: a value out of the loop's reach stored as the scalar ru
                                                                       : got.residual == reach.distance(inputs[r]);
     }
   }
-  // The reach decided nearly all of the gaps' values (three designs' gaps of tens of
-  // values each): Newton only those within its margin.
+  // The reach decided nearly all of the gaps' values (two designs' gaps of tens of values
+  // each): Newton only those within its margin.
   CHECK(unassembled >= 30);
   CHECK(double(out_of_reach) >= 0.9 * double(unassembled));
 }
