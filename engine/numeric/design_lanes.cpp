@@ -148,7 +148,8 @@ void DesignLanes::solve(std::size_t count) {
       if (out_of_reach[l] != 0) {
         if (lane.last_in_lanes) lane.rows.solved_elsewhere(lane.table, row - 1);
         lane.last_in_lanes = false;
-        const double limit = row > 0 ? reach_[l].limit(inputs_[row - 1], inputs_[row]) : inputs_[row];
+        // Where the gap starts only after an ok row (where the run continues from it).
+        const double limit = lane.rows.on_branch() ? reach_[l].limit(inputs_[row - 1], inputs_[row]) : inputs_[row];
         lane.rows.unassembled_elsewhere(lane.table, row, limit, 0, reach_[l].distance(inputs_[row]));
         ++lane_values_;
         continue;
