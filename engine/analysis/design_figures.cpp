@@ -53,7 +53,13 @@ std::optional<std::vector<Side>> loop_sides(const ConstraintSystem& system) {
           return std::nullopt;
         }
       }
-      if (!found && !GiNaC::is_a<GiNaC::numeric>(GiNaC::evalf(v.angle.subs(parameters)))) return std::nullopt;
+      const ex angle = GiNaC::evalf(v.angle.subs(parameters));
+      if (!found && !GiNaC::is_a<GiNaC::numeric>(angle)) return std::nullopt;
+      if (!found) {
+        const GiNaC::numeric value = GiNaC::ex_to<GiNaC::numeric>(angle);
+        side.side.angle = v.angle;
+        side.side.angle_value = value.is_real() ? value.to_double() : std::numeric_limits<double>::quiet_NaN();
+      }
     } else if (v.polar) {
       return std::nullopt;
     }

@@ -68,11 +68,14 @@ GrashofClass grashof_class(double ground, double crank, double coupler, double r
 
 /// A side of a vector-loop four-bar: its length as written (a formula of the parameters,
 /// signed as the loop's term), its value at the system's parameter values, and for the
-/// coupler and the rocker which unknown is its angle.
+/// coupler and the rocker which unknown is its angle; for the ground its fixed angle as
+/// written (0 where its term has no exp) and that angle's value (NaN where not real).
 struct FourBarSide {
   GiNaC::ex length;
   double value = 0;
   std::size_t unknown = 0;
+  GiNaC::ex angle = 0;
+  double angle_value = 0;
 };
 struct FourBarLoop {
   FourBarSide ground, crank, coupler, rocker;

@@ -84,12 +84,13 @@ StudySetup set_up(const Model& base, const Designs& designs, const std::vector<d
     setup.following.push_back(i);
     outputs.push_back(resolved[p.symbol]);
   }
-  const bool four_bar_figures_wanted = options.wants(StudyFigure::grashof) ||
-                                       options.wants(StudyFigure::min_transmission_angle);
-  if (four_bar_figures_wanted || options.wants(StudyFigure::time_ratio)) setup.loop = four_bar_loop(system);
+  // A four-bar's sides: its figures, and its loop's reach (the values that cannot close
+  // told without Newton in the lanes).
+  setup.loop = four_bar_loop(system);
   if (setup.loop) {
     for (const FourBarSide* side : {&setup.loop->ground, &setup.loop->crank, &setup.loop->coupler, &setup.loop->rocker})
       outputs.push_back(side->length.subs(resolved));
+    outputs.push_back(setup.loop->ground.angle.subs(resolved));
   }
   if (!outputs.empty() && !designs.names.empty()) {
     setup.tape = CompiledExpressions(symbols, outputs);
@@ -189,6 +190,7 @@ class DesignRunner {
       lane_designs_[l].values = values_;
       lane_designs_[l].loop = loop_;
       lanes_->set_design(l, values_.data());
+      lanes_->set_reach(l, loop_reach());
     }
     lanes_->solve(count);
     lane_values_ += lanes_->lane_values();
@@ -216,12 +218,22 @@ class DesignRunner {
       const double* sides = tape_outputs_.data() + setup_.following.size();
       if (setup_.has_tape) {
         loop_.ground.value = sides[0], loop_.crank.value = sides[1], loop_.coupler.value = sides[2], loop_.rocker.value = sides[3];
+        loop_.ground.angle_value = sides[4];
       }
       kind = grashof_class(loop_.ground.value, loop_.crank.value, loop_.coupler.value, loop_.rocker.value,
                            setup_.length_unit);
     }
     if (options_.wants(StudyFigure::grashof)) results.grashof[design] = kind;
     return kind;
+  }
+
+  // The loop reach of the design loaded (none for a mechanism that is not a vector-loop
+  // four-bar, or one placed in closed form, whose failures the scalar run tells otherwise).
+  LoopReach loop_reach() const {
+    if (!setup_.loop || kinematics_.closed_form() != nullptr) return {};
+    const double ground_angle = loop_.ground.angle_value;
+    return LoopReach(loop_.crank.value, loop_.ground.value * std::cos(ground_angle),
+                     loop_.ground.value * std::sin(ground_angle), loop_.coupler.value, loop_.rocker.value);
   }
 
   bool solves() const {

@@ -16,6 +16,36 @@ namespace {
 constexpr int kLaneIterations = 10;
 }  // namespace
 
+LoopReach::LoopReach(double crank, double fixed_x, double fixed_y, double first, double second)
+    : crank_(crank), fixed_x_(fixed_x), fixed_y_(fixed_y), first_(std::fabs(first)), second_(std::fabs(second)) {
+  // A margin of a thousand times Newton's rounding tolerance of the lengths' sum (at
+  // least the length scale Newton's tests use): nearer the reach, Newton decides.
+  const double fixed = std::hypot(fixed_x, fixed_y), turning = std::fabs(crank);
+  const double margin = 1e3 * solver::kRoundingTolerance * (turning + fixed + first_ + second_);
+  const double far = first_ + second_ + margin, near = std::fabs(first_ - second_) - margin;
+  // NaN anywhere: no reach (every comparison false).
+  if (!(far > 0)) return;
+  far_square_ = far * far;
+  near_square_ = near > 0 ? near * near : -INFINITY;
+  // The known sum's length runs over [|fixed - turning|, fixed + turning] in a turn.
+  ever_open_ = fixed + turning > far || std::fabs(fixed - turning) < near;
+}
+
+double LoopReach::distance(double input) const {
+  const double x = crank_ * std::cos(input) + fixed_x_, y = crank_ * std::sin(input) + fixed_y_;
+  const double known_sum = std::hypot(x, y);
+  return std::max(known_sum - (first_ + second_), std::fabs(first_ - second_) - known_sum);
+}
+
+double LoopReach::limit(double from, double to) const {
+  for (int halving = 0; halving < 60 && from != to; ++halving) {
+    const double middle = from + (to - from) / 2;
+    if (middle == from || middle == to) break;
+    (distance(middle) <= 0 ? from : to) = middle;
+  }
+  return from;
+}
+
 struct DesignLanes::Lane {
   Lane(const Kinematics& k, const std::vector<double>& inputs, double rate, double second_rate)
       : kinematics(k),
@@ -33,6 +63,8 @@ DesignLanes::DesignLanes(const Kinematics& kinematics, const std::vector<double>
       layout_(kinematics.layout()),
       n_(kinematics.unknown_count()),
       inputs_(inputs),
+      cos_inputs_(inputs.size()),
+      sin_inputs_(inputs.size()),
       rate_(rate),
       second_rate_(second_rate),
       registers_(kinematics.evaluator().make_batch_workspace()),
@@ -48,6 +80,10 @@ DesignLanes::DesignLanes(const Kinematics& kinematics, const std::vector<double>
       largest_acceleration_(kinematics.point_count() * kLanes),
       largest_speed_square_(kinematics.point_count() * kLanes),
       largest_acceleration_square_(kinematics.point_count() * kLanes) {
+  for (std::size_t row = 0; row < inputs.size(); ++row) {
+    cos_inputs_[row] = std::cos(inputs[row]);
+    sin_inputs_[row] = std::sin(inputs[row]);
+  }
   for (std::size_t l = 0; l < kLanes; ++l) {
     lanes_.push_back(std::make_unique<Lane>(kinematics, inputs, rate, second_rate));
     set_design(l, kinematics.parameter_values().data());
@@ -69,6 +105,11 @@ void DesignLanes::set_design(std::size_t l, const double* values) {
   for (std::size_t i = 0; i < n_; ++i) column_scale_[i * kLanes + l] = k.column_scale()[i];
 }
 
+void DesignLanes::set_reach(std::size_t lane, const LoopReach& reach) {
+  // A design within reach all round: no test per value.
+  reach_[lane] = reach.ever_open() ? reach : LoopReach();
+}
+
 void DesignLanes::solve(std::size_t count) {
   k_.evaluator().prepare_batch(registers_.data());  // each lane's work on its parameters
   for (std::size_t l = 0; l < count; ++l) {
@@ -83,9 +124,9 @@ void DesignLanes::solve(std::size_t count) {
   std::fill(largest_acceleration_.begin(), largest_acceleration_.end(), NAN);
   std::fill(largest_speed_square_.begin(), largest_speed_square_.end(), 0.0);
   std::fill(largest_acceleration_square_.begin(), largest_acceleration_square_.end(), 0.0);
-  double take[kLanes], ok[kLanes], restart[kLanes], open[kLanes];
+  double take[kLanes], ok[kLanes], restart[kLanes], open[kLanes], out_of_reach[kLanes];
   for (std::size_t row = 0; row < inputs_.size(); ++row) {
-    bool restarts = choose_lanes(row, count, take, restart);
+    bool restarts = choose_lanes(row, count, take, restart, out_of_reach);
     std::fill_n(ok, kLanes, 0.0);
     std::fill_n(open, kLanes, 0.0);
     if (std::find(take, take + kLanes, 1.0) != take + kLanes) {
@@ -104,6 +145,15 @@ void DesignLanes::solve(std::size_t count) {
     if (restarts) restart_values(inputs_[row], restart, open);
     for (std::size_t l = 0; l < count; ++l) {
       Lane& lane = *lanes_[l];
+      if (out_of_reach[l] != 0) {
+        if (lane.last_in_lanes) lane.rows.solved_elsewhere(lane.table, row - 1);
+        lane.last_in_lanes = false;
+        // Where the gap starts only after an ok row (where the run continues from it).
+        const double limit = lane.rows.on_branch() ? reach_[l].limit(inputs_[row - 1], inputs_[row]) : inputs_[row];
+        lane.rows.unassembled_elsewhere(lane.table, row, limit, 0, reach_[l].distance(inputs_[row]));
+        ++lane_values_;
+        continue;
+      }
       if (ok[l] != 0) {
         lane.last_in_lanes = true;
         ++lane_values_;
@@ -129,14 +179,18 @@ void DesignLanes::solve(std::size_t count) {
   count_values_solved(lane_values_);
 }
 
-bool DesignLanes::choose_lanes(std::size_t row, std::size_t count, double* take, double* restart) {
+bool DesignLanes::choose_lanes(std::size_t row, std::size_t count, double* take, double* restart,
+                               double* out_of_reach) {
   bool any_restart = false;
   const double h = row > 0 ? inputs_[row] - inputs_[row - 1] : 0.0;
   for (std::size_t l = 0; l < kLanes; ++l) {
     const Lane& lane = *lanes_[l];
     const Eigen::VectorXd* from = &lane.kinematics.guess();  // any finite position keeps a lane not solved quiet
     bool predicted = false, restarted = false;
-    if (l < count && row == 0) {
+    out_of_reach[l] = l < count && reach_[l].clearly_open(cos_inputs_[row], sin_inputs_[row]) ? 1.0 : 0.0;
+    if (out_of_reach[l] != 0) {
+      // Neither predicted nor restarted: solve() stores it as not assembling.
+    } else if (l < count && row == 0) {
       // The first value from the guesses, as the scalar run starts (Newton alone).
       predicted = lane.kinematics.closed_form() == nullptr;
     } else if (l < count && (lane.last_in_lanes || lane.rows.on_branch())) {

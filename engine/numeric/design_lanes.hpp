@@ -13,6 +13,7 @@
 // table is what solve_sweep gives its design, to rounding.
 #pragma once
 
+#include <cmath>
 #include <memory>
 #include <vector>
 
@@ -22,6 +23,38 @@
 #include "engine/numeric/simd_math.hpp"
 
 namespace kinema {
+
+/// Where a loop of four terms closes that has two known at each input (a crank's, signed
+/// length `crank` at the input's angle, and a fixed vector) and two of unknown angle
+/// (lengths `first`, `second`): where |crank e^(i input) + fixed| lies between
+/// |first - second| and first + second. A design study's four-bars have one: it tells,
+/// without Newton, the values that cannot close.
+class LoopReach {
+ public:
+  LoopReach() = default;  ///< None: every input may close.
+  LoopReach(double crank, double fixed_x, double fixed_y, double first, double second);
+  /// How far the known terms' sum lies outside the reach of the other two (<= 0 within
+  /// it): the least |Phi| any position leaves at `input`.
+  double distance(double input) const;
+  /// Whether `input` (its cosine and sine) is out of reach by more than rounding could
+  /// hide from Newton (which counts max |Phi| within solver::kRoundingTolerance of the
+  /// lengths as closed). Squares compared: no root per value.
+  bool clearly_open(double cos_input, double sin_input) const {
+    const double x = crank_ * cos_input + fixed_x_, y = crank_ * sin_input + fixed_y_, square = x * x + y * y;
+    return square > far_square_ || square < near_square_;
+  }
+  /// Whether any input is clearly open (else the test need not be made).
+  bool ever_open() const { return ever_open_; }
+  /// Where the loop stops closing between `from` (within reach) and `to` (out of it).
+  double limit(double from, double to) const;
+
+ private:
+  double crank_ = 0, fixed_x_ = 0, fixed_y_ = 0, first_ = 0, second_ = 0;
+  // The squared lengths of the known sum past which (or short of which) it is clearly out
+  // of reach; never where there is no reach.
+  double far_square_ = INFINITY, near_square_ = -INFINITY;
+  bool ever_open_ = false;
+};
 
 class DesignLanes {
  public:
@@ -35,6 +68,9 @@ class DesignLanes {
 
   /// Lane l's design: the value of every parameter (SI, formula parameters following).
   void set_design(std::size_t lane, const double* values);
+  /// Lane l's loop reach (none: every value to Newton): a value clearly out of it is
+  /// stored as not assembling without Newton or continuation (RowSolver::unassembled_elsewhere).
+  void set_reach(std::size_t lane, const LoopReach& reach);
   /// Solves the run for lanes [0, count).
   void solve(std::size_t count);
   /// Lane l's rows of the last solve(). The points' columns hold only the values the
@@ -53,7 +89,7 @@ class DesignLanes {
   const Kinematics& k_;
   const TapeLayout& layout_;
   std::size_t n_;
-  std::vector<double> inputs_;
+  std::vector<double> inputs_, cos_inputs_, sin_inputs_;  // the cosines and sines for LoopReach
   double rate_, second_rate_;
   std::vector<std::unique_ptr<Lane>> lanes_;
   std::vector<double> registers_;  ///< Register r of lane l at r * kLanes + l.
@@ -67,13 +103,15 @@ class DesignLanes {
   std::vector<double> largest_speed_, largest_acceleration_, largest_speed_square_, largest_acceleration_square_;
   double tolerance_[kLanes], length_scale_[kLanes], pivot_ratio_[kLanes], residual_[kLanes];
   std::size_t lane_values_ = 0;
+  LoopReach reach_[kLanes];
 
   double* lanes(std::size_t reg) { return registers_.data() + reg * kLanes; }
   const double* output(std::size_t stage, std::size_t k) { return lanes(k_.evaluator().output_register(stage, k)); }
   /// Each lane's start at `row` into start_: take[l] 1 for a lane whose value is predicted
   /// (or the first, from the guesses), restart[l] 1 for one that starts Newton alone after
-  /// a value that did not assemble (RowSolver::restart_position). Whether any is.
-  bool choose_lanes(std::size_t row, std::size_t count, double* take, double* restart);
+  /// a value that did not assemble (RowSolver::restart_position), out_of_reach[l] 1 (and
+  /// neither) for one whose LoopReach says the value cannot close. Whether any restarts.
+  bool choose_lanes(std::size_t row, std::size_t count, double* take, double* restart, double* out_of_reach);
   /// start_ of the lanes predicted (predicted[l] 1) h on from their last row, as the
   /// scalar run predicts (solver::predict_second_order).
   KINEMA_LANE_LOOPS void predict(double h, const double* predicted);

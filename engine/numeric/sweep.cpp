@@ -423,6 +423,29 @@ void RowSolver::failed_elsewhere(MotionTable& table, std::size_t row, std::size_
   at.have_previous = false;
 }
 
+void RowSolver::unassembled_elsewhere(MotionTable& table, std::size_t row, double limit, std::size_t group,
+                                      double distance) {
+  RunCursor& at = state_->at;
+  if (!at.have_previous) {
+    failed_elsewhere(table, row, group, distance);
+    return;
+  }
+  // After an ok row solve_rows continues from it (Workspace::continue_to), which refuses
+  // a step of more than kMaxContinuationSteps of the largest.
+  MotionState failed;
+  failed.input = table.input(row);
+  failed.status = Status::unassembled;
+  const double from = table.input(row - 1);
+  const bool too_far =
+      !(std::fabs(failed.input - from) <= solver::kMaxContinuationSteps * state_->kinematics.max_continuation_step());
+  failed.failure.kind = too_far ? Failure::Kind::too_far : Failure::Kind::branch_stops;
+  failed.failure.from = from;
+  failed.failure.stopped_at = too_far ? from : limit;
+  table.set(row, failed);
+  at.after_gap = at.any_solved;
+  at.have_previous = false;
+}
+
 void count_values_solved(std::uint64_t values) { values_solved.fetch_add(values, std::memory_order_relaxed); }
 
 std::uint64_t values_solved_in_process() { return values_solved.load(std::memory_order_relaxed); }

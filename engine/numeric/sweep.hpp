@@ -111,6 +111,13 @@ class RowSolver {
   /// with max |Phi| = residual, largest in equation group `group`, found elsewhere as
   /// solve() would have found it. Stored as solve() stores it.
   void failed_elsewhere(MotionTable& table, std::size_t row, std::size_t group, double residual);
+  /// The next row, `row`, cannot close: a test outside Newton (a design study's LoopReach)
+  /// found no position there, so solve()'s Newton or continuation would stop open. Stored
+  /// with the status and the kind of failure solve() would store (a branch that stops
+  /// after an ok row, else a group left open), the details the test's: continuation
+  /// stopped at `limit` (where the loop stops closing), Newton left `distance` open in
+  /// `group` (the least |Phi| any position leaves).
+  void unassembled_elsewhere(MotionTable& table, std::size_t row, double limit, std::size_t group, double distance);
 
  private:
   struct State;
