@@ -207,64 +207,95 @@ py::array_t<double> sensitivity(const PyModel& m, const std::string& column, con
   return values;
 }
 
+/// An empty NumPy array as the npy `header` describes it (NumPy reads the header), and what
+/// the npy printer writes after the header copied into its memory as it comes: no copy of
+/// a table, no second parse.
+class NpyArray {
+ public:
+  explicit NpyArray(const std::string& header) : header_size_(header.size()) {
+    const py::module_ format = py::module_::import("numpy.lib.format");
+    const py::object stream = py::module_::import("io").attr("BytesIO")(py::bytes(header));
+    const py::tuple version = format.attr("read_magic")(stream);
+    const py::tuple described =
+        format.attr(version[0].cast<int>() == 1 ? "read_array_header_1_0" : "read_array_header_2_0")(stream);
+    array_ = py::module_::import("numpy").attr("empty")(described[0], described[2]);
+    memory_ = static_cast<char*>(array_.mutable_data());
+    capacity_ = static_cast<std::size_t>(array_.nbytes());
+  }
+  /// The printer's bytes in order, the header first (skipped); needs no GIL.
+  void write(std::string_view text) {
+    const std::size_t skip = at_ < header_size_ ? std::min(text.size(), header_size_ - at_) : 0;
+    const std::size_t offset = at_ + skip - header_size_;
+    if (offset + (text.size() - skip) > capacity_) throw std::logic_error("npy: the rows outgrow the array the header describes");
+    std::memcpy(memory_ + offset, text.data() + skip, text.size() - skip);
+    at_ += text.size();
+  }
+  /// The array, once the rows have filled it.
+  py::object filled() {
+    if (at_ != header_size_ + capacity_) throw std::logic_error("npy: the rows do not fill the array the header describes");
+    return std::move(array_);
+  }
+
+ private:
+  py::array array_;
+  std::size_t header_size_, capacity_ = 0, at_ = 0;
+  char* memory_ = nullptr;
+};
+
 /// The values from `first` to `last` by `step` as the program's `kinema eval --sweep ...
-/// --format npy` array: its header read by NumPy to make the array, then the printer's
-/// rows written straight into the array's memory as each block is solved and formatted
-/// (on every core, without the GIL): no copy of the table.
+/// --format npy` array: the printer's rows written straight into the array's memory as
+/// each block is solved and formatted (on every core, without the GIL).
 py::object numpy_sweep(const PyModel& m, const Value& first, const Value& last, const Value& step) {
   const kinema::InputValues inputs = sweep_inputs(m, first, last, step);
   const kinema::ResultsPrinter& npy = *kinema::find_results_printer("npy");
   std::string header;
   npy.head(header, kinema::PrintJob{*m.engine}, inputs.size());
-  const py::module_ format = py::module_::import("numpy.lib.format");
-  const py::object stream = py::module_::import("io").attr("BytesIO")(py::bytes(header));
-  const py::tuple version = format.attr("read_magic")(stream);
-  const py::tuple described = format.attr(version[0].cast<int>() == 1 ? "read_array_header_1_0" : "read_array_header_2_0")(stream);
-  py::array table = py::module_::import("numpy").attr("empty")(described[0], described[2]);
-  char* const memory = static_cast<char*>(table.mutable_data());
-  const std::size_t capacity = static_cast<std::size_t>(table.nbytes());
+  NpyArray table(header);
   {
     py::gil_scoped_release unlocked;
     kinema::StreamSettings settings;
     settings.printer = &npy;
     settings.threads = std::max(1u, std::thread::hardware_concurrency());
-    std::size_t at = 0;  // bytes of the printer's output so far, the header's first
-    settings.write = [&](std::string_view text) {
-      const std::size_t skip = at < header.size() ? std::min(text.size(), header.size() - at) : 0;
-      const std::size_t offset = at + skip - header.size();
-      if (offset + (text.size() - skip) > capacity) throw std::logic_error("sweep: the rows outgrow the array the header describes");
-      std::memcpy(memory + offset, text.data() + skip, text.size() - skip);
-      at += text.size();
-    };
+    settings.write = [&](std::string_view text) { table.write(text); };
     kinema::stream_results(*m.engine, inputs, kinema::AnalysisOptions{}, settings);
-    if (at != header.size() + capacity) throw std::logic_error("sweep: the rows do not fill the array the header describes");
   }
-  return std::move(table);
+  return table.filled();
 }
 
-/// The npy printer's bytes for a circuit (the program's `kinema eval --circuit STEP --format
-/// npy`: a direction and each dyad's sign a row), solved without the GIL.
-py::bytes npy_circuit(const PyModel& m, const std::string& step, const std::optional<Value>& start) {
+/// The program's `kinema eval --circuit STEP --format npy` array (a direction and each
+/// dyad's sign a row), solved and its rows written into the array without the GIL.
+py::object numpy_circuit(const PyModel& m, const std::string& step, const std::optional<Value>& start) {
   std::vector<double> inputs;
   if (start) {
     const double* number = std::get_if<double>(&*start);
     inputs.push_back(number ? *number : kinema::parse_input_value(m.engine->system, std::get<std::string>(*start)));
   }
-  std::string bytes;
+  std::optional<kinema::Circuit> circuit;
   {
     py::gil_scoped_release unlocked;
-    const kinema::Circuit circuit = kinema::solve_circuit_from(*m.engine, step, inputs, {"circuit step", "circuit(\"1 deg\")", "start="});
-    kinema::PrintJob job{*m.engine, &circuit.table};
-    job.circuit = true;
-    std::ostringstream out;
-    kinema::print_view(*kinema::find_results_printer("npy"), out, job);
-    bytes = out.str();
+    circuit.emplace(kinema::solve_circuit_from(*m.engine, step, inputs, {"circuit step", "circuit(\"1 deg\")", "start="}));
   }
-  return py::bytes(bytes);
-}
-
-py::object numpy_array(const py::bytes& npy) {
-  return py::module_::import("numpy").attr("load")(py::module_::import("io").attr("BytesIO")(npy));
+  const kinema::ResultsPrinter& npy = *kinema::find_results_printer("npy");
+  kinema::PrintJob job{*m.engine, &circuit->table};
+  job.circuit = true;
+  const std::size_t rows = circuit->table.size();
+  std::string text;
+  npy.head(text, job, rows);
+  NpyArray table(text);
+  {
+    py::gil_scoped_release unlocked;
+    table.write(text);
+    constexpr std::size_t kBlock = 4096;  // rows formatted at a time
+    for (std::size_t first = 0; first < rows; first += kBlock) {
+      text.clear();
+      npy.rows(text, job, circuit->table, first, std::min(rows, first + kBlock), first);
+      table.write(text);
+    }
+    text.clear();
+    npy.tail(text, job, rows);
+    table.write(text);
+  }
+  return table.filled();
 }
 
 /// The derivation in a notebook (Jupyter renders it with MathJax): the align* blocks of
@@ -472,7 +503,7 @@ PYBIND11_MODULE(kinema, module) {
           "with the fields and output units of `kinema eval --format npy` (units: Model.units).")
       .def(
           "circuit", [](const PyModel& m, const std::string& step, const std::optional<Value>& start) {
-            return numpy_array(npy_circuit(m, step, start));
+            return numpy_circuit(m, step, start);
           },
           py::arg("step"), py::arg("start") = py::none(),
           "The whole circuit of a joints-and-links mechanism through its toggles by step (\"1 deg\"), from start (or "

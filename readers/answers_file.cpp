@@ -2,12 +2,9 @@
 
 #include <cmath>
 #include <cstdlib>
-#include <filesystem>
-#include <fstream>
 
 #include "engine/base/errors.hpp"
 #include "engine/base/number_format.hpp"
-#include "engine/base/toml_ascii.hpp"
 #include "engine/base/user_text.hpp"
 #include "readers/file_reader.hpp"
 
@@ -61,22 +58,6 @@ AnswerTolerance significant_figures(long figures, const std::string& context) {
   return tolerance;
 }
 
-std::string read_text_file(const std::string& path, std::size_t max_bytes, const std::string& what) {
-  std::error_code error;
-  if (std::filesystem::is_directory(path, error)) throw InputError(path + ": is a directory, not an " + what);
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw InputError(path + ": cannot open the " + what + " (does it exist?)");
-  std::string text;
-  char chunk[16384];
-  // At most a byte past the limit: a stream that never ends (/dev/zero) stops there.
-  while (text.size() <= max_bytes && file.read(chunk, sizeof chunk).gcount() > 0)
-    text.append(chunk, static_cast<std::size_t>(file.gcount()));
-  if (text.size() > max_bytes) {
-    throw InputError(path + ": the " + what + " is larger than " + std::to_string(max_bytes / 1024) + " KiB");
-  }
-  return text;
-}
-
 namespace {
 
 constexpr std::size_t kMaxAnswersFileBytes = 1024 * 1024;
@@ -90,16 +71,8 @@ void add_answer(AnswersFile& file, WrittenAnswer answer) {
 
 // [[answer]] tables: quantity, value, at (optional); a top-level variant = N.
 AnswersFile read_toml(const std::string& text, const std::string& name) {
-  toml::table root;
-  try {
-    root = toml::parse(ascii_toml(text, name), name);
-  } catch (const toml::parse_error& error) {
-    const auto& at = error.source().begin;
-    throw InputError(name + ":" + std::to_string(at.line) + ": syntax error in the answers file (column " +
-                     std::to_string(at.column) + "): " + one_line(std::string(error.description())));
-  }
   const reading::FileReader reader(name);
-  reader.check_text(root, "", false);
+  const toml::table root = reader.parse(text, "answers file");
   reader.check_keys(root, {"variant", "answer"}, "the answers file");
   AnswersFile file;
   file.path = name;
@@ -202,7 +175,7 @@ AnswersFile read_answers_text(const std::string& text, const std::string& name) 
 }
 
 AnswersFile read_answers_file(const std::string& path) {
-  return read_answers_text(read_text_file(path, kMaxAnswersFileBytes, "answers file"), path);
+  return read_answers_text(reading::read_text_file(path, kMaxAnswersFileBytes, "answers file"), path);
 }
 
 }  // namespace kinema

@@ -55,8 +55,4 @@ AnswersFile read_answers_file(const std::string& path);
 /// The same from text in memory; `name` stands for the file (its extension picks the form).
 AnswersFile read_answers_text(const std::string& text, const std::string& name);
 
-/// A small text file read whole: InputError for a directory, one that cannot be opened,
-/// or one larger than max_bytes (`what` names it: "answers file").
-std::string read_text_file(const std::string& path, std::size_t max_bytes, const std::string& what);
-
 }  // namespace kinema

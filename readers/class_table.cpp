@@ -7,6 +7,7 @@
 
 #include "engine/base/errors.hpp"
 #include "engine/base/user_text.hpp"
+#include "readers/file_reader.hpp"
 
 namespace kinema {
 
@@ -122,7 +123,7 @@ ClassTable read_class_table_text(const std::string& text, const std::string& pat
 }
 
 ClassTable read_class_table(const std::string& path) {
-  return read_class_table_text(read_text_file(path, kMaxClassTableBytes, "class table"), path);
+  return read_class_table_text(reading::read_text_file(path, kMaxClassTableBytes, "class table"), path);
 }
 
 const ClassVariant& class_variant(const ClassTable& table, long number) {

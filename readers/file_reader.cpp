@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <optional>
 #include <set>
 
@@ -32,13 +34,32 @@ constexpr double kMaxRate = 1e9;
 
 }  // namespace
 
-toml::table FileReader::parse(const std::string& text) const {
+std::string read_text_file(const std::string& path, std::size_t max_bytes, const std::string& what) {
+  const std::string a_what = (std::string("aeiou").find(what[0]) != std::string::npos ? "an " : "a ") + what;
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error)) throw InputError(path + ": is a directory, not " + a_what + "; give the path of the file");
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw InputError(path + ": cannot open the " + what + " (does it exist?)");
+  // Read at most a chunk past the limit: a stream that never ends (/dev/zero) stops
+  // there. In chunks, so that a file of a few KiB touches a few KiB (not a zeroed MiB).
+  std::string text;
+  char chunk[16384];
+  while (text.size() <= max_bytes && file.read(chunk, sizeof chunk).gcount() > 0)
+    text.append(chunk, static_cast<std::size_t>(file.gcount()));
+  if (text.size() > max_bytes) {
+    throw InputError(path + ": the " + what + " is larger than " + std::to_string(max_bytes / 1024) +
+                     " KiB; it is a few KiB of text");
+  }
+  return text;
+}
+
+toml::table FileReader::parse(const std::string& text, const std::string& what) const {
   toml::table root;
   try {
     root = toml::parse(ascii_toml(text, file_), file_);
   } catch (const toml::parse_error& error) {
     const auto& at = error.source().begin;
-    throw InputError(file_ + ":" + std::to_string(at.line) + ": syntax error in the mechanism file (column " +
+    throw InputError(file_ + ":" + std::to_string(at.line) + ": syntax error in the " + what + " (column " +
                      std::to_string(at.column) + "): " + one_line(std::string(error.description())));
   }
   check_text(root, "", false);

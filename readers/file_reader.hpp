@@ -33,9 +33,9 @@ class FileReader {
  public:
   explicit FileReader(std::string file) : file_(std::move(file)) {}
 
-  /// The file's text parsed (syntax errors with line and column) and every key and string
-  /// checked (check_text).
-  toml::table parse(const std::string& text) const;
+  /// The file's text parsed (syntax errors with line and column, `what` naming the file's
+  /// kind) and every key and string checked (check_text).
+  toml::table parse(const std::string& text, const std::string& what = "mechanism file") const;
 
   // Every key and string of the file, before anything reads them: no character that
   // controls how text is shown (engine/base/user_text.hpp) — ESC and the like would
@@ -94,6 +94,11 @@ class FileReader {
  protected:
   std::string file_;
 };
+
+/// A text file read whole, for every file kinema reads (mechanism files, answers files,
+/// class tables): InputError for a directory, a file that cannot be opened, or one larger
+/// than max_bytes (`what` names its kind: "answers file").
+std::string read_text_file(const std::string& path, std::size_t max_bytes, const std::string& what);
 
 // The three forms, each from a parsed and checked file (`mechanism` holds its source_file).
 void read_vector_loops(const std::string& file, const Node& root, Mechanism& mechanism);

@@ -4,8 +4,6 @@
 // file_reader.hpp), and the one name space of parameters, input and unknowns checked.
 #include "readers/mechanism_file.hpp"
 
-#include <filesystem>
-#include <fstream>
 #include <map>
 
 #include "engine/base/errors.hpp"
@@ -52,24 +50,7 @@ Mechanism read_mechanism_text(const std::string& text, const std::string& name) 
 }
 
 Mechanism read_mechanism_file(const std::string& path) {
-  std::error_code error;
-  if (std::filesystem::is_directory(path, error)) {
-    throw InputError(path + ": is a directory, not a mechanism file; give the path of a .toml file");
-  }
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw InputError(path + ": cannot open the mechanism file (does it exist?)");
-  // Read at most one byte past the limit: a stream that never ends (/dev/zero) stops
-  // there. In chunks, so that a file of a few KiB touches a few KiB (not a zeroed MiB).
-  std::string text;
-  char chunk[16384];
-  while (text.size() <= kMaxMechanismFileBytes && file.read(chunk, sizeof chunk).gcount() > 0) {
-    text.append(chunk, static_cast<std::size_t>(file.gcount()));
-  }
-  if (text.size() > kMaxMechanismFileBytes + 1) text.resize(kMaxMechanismFileBytes + 1);
-  if (text.size() > kMaxMechanismFileBytes) {
-    throw InputError(path + ": the mechanism file is larger than " + std::to_string(kMaxMechanismFileBytes / 1024) +
-                     " KiB; a mechanism file is a few KiB of text");
-  }
+  const std::string text = reading::read_text_file(path, kMaxMechanismFileBytes, "mechanism file");
   return read_mechanism_text(text, path);
 }
 

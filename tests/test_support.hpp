@@ -44,10 +44,6 @@ std::string shell_quote(const std::string& word);
 
 std::string sample(const std::string& name);     ///< Path of samples/NAME.
 
-/// A sample that is a student's answers file (kinema check's input, "..._answers.toml"), not a mechanism.
-inline bool is_answers_file(const std::string& path) {
-  return path.size() >= 13 && path.compare(path.size() - 13, 13, "_answers.toml") == 0;
-}
 
 /// `kinema loops` of a mechanism as written (its constraint system built for the guesses).
 std::string loops_file(const kinema::Mechanism& written);

@@ -34,17 +34,18 @@ struct LinkageColumns {
 };
 
 // A body's angle and rates: ground's are 0, an unknown's or the driver's are the
-// position's, a slider block turns with its guide.
+// position's, a slider block turns with its guide. Of a derivative's position (`at` holding
+// the derivatives, the input's 0): the derivatives, a block's offset being a constant.
 template <typename Vector>
-Turning turning(const SolvingPlan& frames, const Position<Vector>& at, std::size_t body) {
+Turning turning(const SolvingPlan& frames, const Position<Vector>& at, std::size_t body, bool derivative = false) {
   const SolvingPlan::Body& b = frames.bodies[body];
   if (b.unknown >= 0) {
     const auto i = Eigen::Index(b.unknown);
     return {at.q[i], at.qd[i], at.qdd[i]};
   }
   if (b.guide >= 0) {
-    Turning t = turning(frames, at, std::size_t(b.guide));
-    t.angle += b.offset;
+    Turning t = turning(frames, at, std::size_t(b.guide), derivative);
+    t.angle += derivative ? 0.0 : b.offset;
     return t;
   }
   if (body != 0 && body == frames.driver_body && frames.driver_slider < 0) return {at.input, at.rate, at.second_rate};
@@ -67,6 +68,24 @@ Sliding sliding(const SolvingPlan& frames, const Position<Vector>& at, const Sol
     s2 = at.qdd[Eigen::Index(slider.unknown)];
   }
   return {s1 * u, s2 * u, 2 * guide.rate * std::complex<double>(0, 1) * s1 * u};
+}
+
+// The derivative of a slider's Sliding along `d` (the derivatives of `at`'s values; the
+// input's 0): u turns by d(angle), so du = i u d(angle).
+template <typename Vector>
+Sliding sliding_derivative(const SolvingPlan& frames, const Position<Vector>& at, const Position<Vector>& d,
+                           const SolvingPlan::Slider& slider) {
+  const Turning guide = turning(frames, at, slider.guide), d_guide = turning(frames, d, slider.guide, true);
+  const std::complex<double> i(0, 1), u = std::polar(1.0, guide.angle + slider.direction), du = i * u * d_guide.angle;
+  double s1 = at.rate, s2 = at.second_rate, ds1 = 0, ds2 = 0;  // the driver's rates do not change
+  if (slider.unknown >= 0) {
+    const auto k = Eigen::Index(slider.unknown);
+    s1 = at.qd[k];
+    s2 = at.qdd[k];
+    ds1 = d.qd[k];
+    ds2 = d.qdd[k];
+  }
+  return {ds1 * u + s1 * du, ds2 * u + s2 * du, 2.0 * i * (d_guide.rate * s1 * u + guide.rate * (ds1 * u + s1 * du))};
 }
 
 // The joints-and-links values of an ok position (see result_columns), from `values` on.
@@ -109,7 +128,52 @@ double* linkage_values(const ConstraintSystem& system, const OutputScale& scale,
   return values;
 }
 
+// The derivatives of linkage_values along `d` (the derivatives of `at`'s values and
+// points), SI (block angles in rad), in its order.
+template <typename Vector>
+void linkage_derivative_values(const ConstraintSystem& system, const LinkageColumns& columns, const Position<Vector>& at,
+                               const Position<Vector>& d, double* values) {
+  const SolvingPlan& frames = *system.plan;
+  for (std::size_t body = 1; body < frames.bodies.size(); ++body) {
+    if (frames.bodies[body].guide < 0) continue;
+    const Turning t = turning(frames, d, body, true);
+    *values++ = t.angle;
+    *values++ = t.rate;
+    *values++ = t.second_rate;
+  }
+  const auto put = [&](const std::complex<double>& c) {
+    *values++ = c.real();
+    *values++ = c.imag();
+  };
+  for (const SolvingPlan::Slider& slider : frames.sliders) {
+    const Sliding s = sliding_derivative(frames, at, d, slider);
+    for (const std::complex<double>& c : {s.relative_velocity, s.relative_acceleration, s.coriolis}) put(c);
+  }
+  for (const GuidePoint& g : columns.guides) {
+    const Sliding s = sliding_derivative(frames, at, d, frames.sliders[g.slider]);
+    const PointMotion p = d.point(g.point);
+    put(std::complex<double>(p.velocity[0], p.velocity[1]) - s.relative_velocity);
+    put(std::complex<double>(p.acceleration[0], p.acceleration[1]) - s.relative_acceleration - s.coriolis);
+  }
+  for (const RelativeTurning& r : columns.turnings) {
+    const Turning block = turning(frames, d, r.block, true), other = turning(frames, d, r.other, true);
+    *values++ = block.rate - other.rate;
+    *values++ = block.second_rate - other.second_rate;
+  }
+}
+
 }  // namespace
+
+void linkage_derivatives(const ConstraintSystem& system, const MotionTable& table, std::size_t row,
+                         const Eigen::VectorXd& dq, const Eigen::VectorXd& dqd, const Eigen::VectorXd& dqdd,
+                         const std::function<PointMotion(std::size_t)>& d_point, double* values) {
+  const Eigen::VectorXd q = table.q(row), qd = table.qd(row), qdd = table.qdd(row);
+  linkage_derivative_values(system, LinkageColumns(system),
+                            Position<Eigen::VectorXd>{q, qd, qdd, table.input(row), table.input_rate(row),
+                                                      table.input_second_rate(row),
+                                                      [&](std::size_t p) { return table.point(row, p); }},
+                            Position<Eigen::VectorXd>{dq, dqd, dqdd, 0.0, 0.0, 0.0, d_point}, values);
+}
 
 void linkage_values(const ConstraintSystem& system, const OutputScale& scale, const MotionState& state, double* values) {
   linkage_values(system, scale, LinkageColumns(system),

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 
 #include "engine/constraints/output_columns.hpp"
 #include "engine/numeric/motion_table.hpp"
@@ -26,5 +27,13 @@ void result_rows(const ConstraintSystem& system, const OutputScale& scale, const
 /// The joints-and-links values of an ok state (blocks, sliders, guide points, relative turnings), from result_columns'
 /// linkage_columns_begin on.
 void linkage_values(const ConstraintSystem& system, const OutputScale& scale, const MotionState& state, double* values);
+
+/// The derivatives in a parameter of an ok row's joints-and-links values, in linkage_values'
+/// order but SI (block angles in rad): from the derivatives of the row's unknowns, their
+/// rates and second rates, and of its points' motions (d_point(p)). A block's offset and a
+/// slider's direction on its guide are the file's constants.
+void linkage_derivatives(const ConstraintSystem& system, const MotionTable& table, std::size_t row,
+                         const Eigen::VectorXd& dq, const Eigen::VectorXd& dqd, const Eigen::VectorXd& dqdd,
+                         const std::function<PointMotion(std::size_t)>& d_point, double* values);
 
 }  // namespace kinema

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "engine/analysis/output_scale.hpp"
 #include "engine/base/errors.hpp"
 #include "engine/base/units.hpp"
 #include "engine/model.hpp"
@@ -16,14 +17,14 @@ namespace {
 // What a result column's derivative is made of: a derivative the engine solves, or a
 // vector's length (speed, acceleration magnitude): d|v| = v . dv / |v|.
 struct ColumnSource {
-  enum class Kind { none, q, qd, qdd, observable, magnitude } kind = Kind::none;
-  std::size_t index = 0;      ///< Unknown, or point-stage output (the first component of a magnitude).
+  enum class Kind { none, q, qd, qdd, observable, magnitude, linkage } kind = Kind::none;
+  std::size_t index = 0;      ///< Unknown, point-stage output (the first component of a magnitude), or linkage value.
   std::size_t point = 0, component = 0, dimension = 0;  ///< A magnitude: its vector among the point's values.
   double factor = 1;          ///< Output units of the column per SI unit.
 };
 
-// Each result column's source, up to the joints-and-links columns (which have none), in
-// the order of result_columns.
+// Each result column's source in the order of result_columns, up to a circuit's assembly
+// signs (which have none).
 std::vector<ColumnSource> column_sources(const ConstraintSystem& system) {
   using Kind = ColumnSource::Kind;
   const OutputScale scale(system);
@@ -46,11 +47,34 @@ std::vector<ColumnSource> column_sources(const ConstraintSystem& system) {
   }
   for (std::size_t f = 0; f < system.frames.size(); ++f)
     for (std::size_t c = 0; c < 6; ++c) sources.push_back({Kind::observable, output++, 0, 0, 0, 1.0});
+  if (!system.plan) return sources;
+  // Joints and links (linkage_derivatives' order, SI): each block's angle (deg) and rates,
+  // each slider's three vectors, each guide point's two, each relative turning's rates.
+  std::size_t linkage = 0;
+  const auto add = [&](std::size_t count, double factor) {
+    for (std::size_t k = 0; k < count; ++k) sources.push_back({Kind::linkage, linkage++, 0, 0, 0, factor});
+  };
+  for (const SolvingPlan::Body& body : system.plan->bodies) {
+    if (body.guide < 0) continue;
+    add(1, scale.unwrapped(Dimension::angle, 1.0));
+    add(2, 1.0);
+  }
+  add(6 * system.plan->sliders.size() + 4 * guide_points(system).size(), length);
+  add(2 * relative_turnings(system).size(), 1.0);
   return sources;
 }
 
-double derivative(const ColumnSource& source, const StateDerivatives& d, const MotionTable& table, std::size_t row) {
+// Whether any of the columns is a joints-and-links value (worked out per row only then).
+bool asks_linkage(const std::vector<SensitivityColumn>& columns, const std::vector<ColumnSource>& sources) {
+  for (const SensitivityColumn& column : columns)
+    if (sources[column.column].kind == ColumnSource::Kind::linkage) return true;
+  return false;
+}
+
+double derivative(const ColumnSource& source, const StateDerivatives& d, const std::vector<double>& linkage,
+                  const MotionTable& table, std::size_t row) {
   switch (source.kind) {
+    case ColumnSource::Kind::linkage: return linkage[source.index];
     case ColumnSource::Kind::q: return d.q[Eigen::Index(source.index)];
     case ColumnSource::Kind::qd: return d.qd[Eigen::Index(source.index)];
     case ColumnSource::Kind::qdd: return d.qdd[Eigen::Index(source.index)];
@@ -65,6 +89,26 @@ double derivative(const ColumnSource& source, const StateDerivatives& d, const M
     }
     default: return std::numeric_limits<double>::quiet_NaN();
   }
+}
+
+// The joints-and-links values' derivatives at an ok row (linkage_derivatives), the points'
+// from the point stage's derivatives (each point's position, velocity, acceleration).
+void linkage_of(const ConstraintSystem& system, const MotionTable& table, std::size_t row, const StateDerivatives& d,
+                double* values) {
+  std::vector<std::size_t> first_output(system.points.size());
+  for (std::size_t p = 0, output = 0; p < system.points.size(); output += 3 * system.points[p].components.size(), ++p)
+    first_output[p] = output;
+  const auto d_point = [&](std::size_t p) {
+    PointMotion motion;
+    motion.dimension = system.points[p].components.size();
+    for (std::size_t c = 0; c < motion.dimension; ++c) {
+      motion.position[c] = d.observables[first_output[p] + c];
+      motion.velocity[c] = d.observables[first_output[p] + motion.dimension + c];
+      motion.acceleration[c] = d.observables[first_output[p] + 2 * motion.dimension + c];
+    }
+    return motion;
+  };
+  linkage_derivatives(system, table, row, d.q, d.qd, d.qdd, d_point, values);
 }
 
 // A parameter's output unit ("" for a plain number) and SI units per output unit.
@@ -171,12 +215,20 @@ void Sensitivities::rows(const MotionTable& table, std::size_t first, std::size_
   for (const auto& parameter : parameters_) workspaces.emplace_back(*parameter);
   std::vector<StateDerivatives> derivatives(parameters_.size());
   std::vector<char> known(parameters_.size());
+  const bool linkage = asks_linkage(columns_, sources);
+  std::vector<std::vector<double>> linkage_values(parameters_.size());
+  if (linkage)
+    for (auto& list : linkage_values) list.resize(sources.size() - linkage_columns_begin(model_.system));
   for (std::size_t row = first; row < last; ++row) {
-    for (std::size_t k = 0; k < workspaces.size(); ++k) known[k] = workspaces[k].at(table, row, derivatives[k]);
+    for (std::size_t k = 0; k < workspaces.size(); ++k) {
+      known[k] = workspaces[k].at(table, row, derivatives[k]);
+      if (known[k] && linkage) linkage_of(model_.system, table, row, derivatives[k], linkage_values[k].data());
+    }
     for (std::size_t c = 0; c < columns_.size(); ++c) {
       const SensitivityColumn& column = columns_[c];
       const std::size_t k = column_parameter_[c];
-      *values++ = known[k] ? derivative(sources[column.column], derivatives[k], table, row) * (si ? 1.0 : column.output_factor)
+      *values++ = known[k] ? derivative(sources[column.column], derivatives[k], linkage_values[k], table, row) *
+                                 (si ? 1.0 : column.output_factor)
                            : std::numeric_limits<double>::quiet_NaN();
     }
   }

@@ -3,7 +3,8 @@
 // unit ("d_omega3_d_b [rad/s/mm]"; a parameter of no unit adds none). Every column that
 // is a function of the solved state has one: each unknown, its rate and second rate; each
 // point's position, velocity, speed, acceleration and its magnitude; each frame's angular
-// velocity and acceleration. The values are the engine's exact derivatives
+// velocity and acceleration; a joints file's blocks, sliders' relative velocities, relative
+// and Coriolis accelerations, guide points and relative turnings. The values are the engine's exact derivatives
 // (engine/numeric/sensitivity), NaN where the row is not ok.
 #pragma once
 

@@ -9,57 +9,21 @@
 
 namespace kinema {
 
-BatchWorkspace::BatchWorkspace(const Kinematics& k)
-    : k_(k),
-      layout_(k.layout()),
-      n_(k.unknown_count()),
-      registers_(k.evaluator().make_batch_workspace()),
-      lu_(n_ * n_ * kLanes),
-      pivots_(n_ * kLanes),
-      x_(n_ * kLanes),
-      predicted_(n_ * kLanes) {
-  reload_parameters();
-}
+BatchWorkspace::BatchWorkspace(const Kinematics& k) : LaneSystem(k), predicted_(n_ * kLanes) { reload_parameters(); }
 
 void BatchWorkspace::reload_parameters() {
   for (std::size_t p = 0; p < layout_.parameter_count; ++p)
     std::fill_n(lanes(layout_.parameter(p)), kLanes, k_.parameter_values()[p]);
+  for (std::size_t l = 0; l < kLanes; ++l) set_scales(l, k_);
   k_.evaluator().prepare_batch(registers_.data());
 }
 
-bool BatchWorkspace::factorise() {
-  const auto& column_scale = k_.column_scale();
-  for (std::size_t i = 0; i < n_; ++i)
-    for (std::size_t j = 0; j < n_; ++j) {
-      const double* phi_q = output(TapeLayout::kPositionStage, layout_.phi_q(i, j));
-      double* target = lu_.data() + (i * n_ + j) * kLanes;
-      for (std::size_t l = 0; l < kLanes; ++l) target[l] = phi_q[l] * column_scale[j];
-    }
-  lu_factor_lanes(lu_.data(), pivots_.data(), n_);
+bool BatchWorkspace::clearly_regular() const {
   // Clearly regular pivots only; anything near a toggle goes to the scalar path,
-  // which decides singularity with the singular values.
-  pivot_ratios(pivot_ratio_);
+  // which decides singularity with the singular values (NaN compares false: not regular).
   int irregular = 0;
   for (std::size_t l = 0; l < kLanes; ++l) irregular += !(pivot_ratio_[l] >= solver::kClearlyRegularPivotRatio);
   return irregular == 0;
-}
-
-void BatchWorkspace::pivot_ratios(double* ratio) const {
-  double smallest[kLanes], largest[kLanes];
-  for (std::size_t l = 0; l < kLanes; ++l) {
-    smallest[l] = INFINITY;
-    largest[l] = n_ == 1 ? k_.length_scale() : 0;  // as solver::pivot_ratio
-  }
-  for (std::size_t c = 0; c < n_; ++c) {
-    const double* pivot = lu_.data() + (c * n_ + c) * kLanes;
-    for (std::size_t l = 0; l < kLanes; ++l) {
-      const double magnitude = std::fabs(pivot[l]);
-      smallest[l] = magnitude < smallest[l] ? magnitude : smallest[l];
-      largest[l] = magnitude > largest[l] ? magnitude : largest[l];
-    }
-  }
-  // NaN (a zero pivot divided through) compares false: not regular.
-  for (std::size_t l = 0; l < kLanes; ++l) ratio[l] = smallest[l] / largest[l];
 }
 
 bool BatchWorkspace::predict(const MotionTable& table, std::size_t first, std::size_t history_begin) {
@@ -133,41 +97,24 @@ bool BatchWorkspace::solve_lanes(MotionTable& table, std::size_t first, std::siz
   // factorisation (at the solution) also gives the rates. A lane that has converged
   // stays where it is, as the scalar solver stops there.
   double residual[kLanes];
-  double done[kLanes];  // 1 for a lane that has converged
+  double unconverged[kLanes];  // 1 for a lane that steps on, 0 for one that has converged
   for (int iteration = 0;; ++iteration) {
     e.evaluate_stage_batch_from(TapeLayout::kPositionStage,
                                 iteration == 0 ? TapeLayout::kInputLevel : TapeLayout::kCoordinateLevel,
                                 registers_.data());
-    bool all_done = true;
-    for (std::size_t l = 0; l < kLanes; ++l) residual[l] = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-      const double* phi = output(TapeLayout::kPositionStage, layout_.phi(i));
-      for (std::size_t l = 0; l < kLanes; ++l) {
-        // NaN stays: the comparison is false for it.
-        const double magnitude = std::fabs(phi[l]);
-        residual[l] = (magnitude > residual[l] || magnitude != magnitude) ? magnitude : residual[l];
-      }
-    }
+    largest_phi(residual);
     int nonfinite = 0, open = 0;
     for (std::size_t l = 0; l < kLanes; ++l) {
       nonfinite += !(residual[l] <= DBL_MAX);
-      done[l] = residual[l] <= tolerance ? 1.0 : 0.0;
+      unconverged[l] = residual[l] <= tolerance ? 0.0 : 1.0;
       open += !(residual[l] <= tolerance);
     }
     if (nonfinite) return false;
-    all_done = open == 0;
-    if (!factorise()) return false;
-    if (all_done) break;
+    factorise();
+    if (!clearly_regular()) return false;
+    if (open == 0) break;
     if (iteration == 6) return false;
-    for (std::size_t i = 0; i < n; ++i) {
-      const double* phi = output(TapeLayout::kPositionStage, layout_.phi(i));
-      for (std::size_t l = 0; l < kLanes; ++l) x_[i * kLanes + l] = -phi[l];
-    }
-    lu_solve_lanes(lu_.data(), pivots_.data(), x_.data(), n);
-    for (std::size_t i = 0; i < n; ++i) {
-      double* q = lanes(layout_.q(i));
-      for (std::size_t l = 0; l < kLanes; ++l) q[l] += (1.0 - done[l]) * x_[i * kLanes + l] * column_scale[i];
-    }
+    newton_step(unconverged);
   }
   // Same branch as predicted (as Workspace::predict_and_correct checks).
   int jumped = 0;
@@ -179,36 +126,10 @@ bool BatchWorkspace::solve_lanes(MotionTable& table, std::size_t first, std::siz
   }
   if (jumped) return false;
 
-  // Velocity, then acceleration, with the factorisation at the solution.
-  for (std::size_t i = 0; i < n; ++i) {
-    const double* phi_theta = output(TapeLayout::kPositionStage, layout_.phi_theta(i));
-    for (std::size_t l = 0; l < kLanes; ++l) x_[i * kLanes + l] = -phi_theta[l] * rate;
-  }
-  lu_solve_lanes(lu_.data(), pivots_.data(), x_.data(), n);
-  for (std::size_t i = 0; i < n; ++i) {
-    double* qd = lanes(layout_.qd(i));
-    for (std::size_t l = 0; l < kLanes; ++l) qd[l] = x_[i * kLanes + l] * column_scale[i];
-  }
-  e.evaluate_stage_batch_from(TapeLayout::kAccelerationStage, TapeLayout::kInputLevel, registers_.data());
-  for (std::size_t i = 0; i < n; ++i)
-    std::copy_n(output(TapeLayout::kAccelerationStage, i), kLanes, x_.data() + i * kLanes);
-  lu_solve_lanes(lu_.data(), pivots_.data(), x_.data(), n);
-  for (std::size_t i = 0; i < n; ++i) {
-    double* qdd = lanes(layout_.qdd(i));
-    for (std::size_t l = 0; l < kLanes; ++l) qdd[l] = x_[i * kLanes + l] * column_scale[i];
-  }
-  e.evaluate_stage_batch_from(TapeLayout::kPointStage, TapeLayout::kInputLevel, registers_.data());
+  solve_rates(rate);
   const std::size_t point_values = layout_.observable_output_count();
-  // x * 0 is 0 for finite x and NaN otherwise: one sum per lane says whether all are finite.
-  double nonfinite[kLanes] = {};
-  auto accumulate = [&](const double* v) {
-    for (std::size_t l = 0; l < kLanes; ++l) nonfinite[l] += v[l] * 0.0;
-  };
-  for (std::size_t k = 0; k < point_values; ++k) accumulate(output(TapeLayout::kPointStage, k));
-  for (std::size_t i = 0; i < n; ++i) {
-    accumulate(lanes(layout_.qd(i)));
-    accumulate(lanes(layout_.qdd(i)));
-  }
+  double nonfinite[kLanes];
+  nonfinite_results(nonfinite);
   int bad = 0;
   for (std::size_t l = 0; l < kLanes; ++l) bad += nonfinite[l] != 0.0;
   if (bad) return false;

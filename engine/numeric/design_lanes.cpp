@@ -59,20 +59,13 @@ struct DesignLanes::Lane {
 
 DesignLanes::DesignLanes(const Kinematics& kinematics, const std::vector<double>& inputs, double rate,
                          double second_rate)
-    : k_(kinematics),
-      layout_(kinematics.layout()),
-      n_(kinematics.unknown_count()),
+    : LaneSystem(kinematics),
       inputs_(inputs),
       cos_inputs_(inputs.size()),
       sin_inputs_(inputs.size()),
       rate_(rate),
       second_rate_(second_rate),
-      registers_(kinematics.evaluator().make_batch_workspace()),
-      lu_(n_ * n_ * kLanes),
-      pivots_(n_ * kLanes),
-      x_(n_ * kLanes),
       start_(n_ * kLanes),
-      column_scale_(n_ * kLanes),
       step_(n_ * kLanes),
       phi_(n_ * kLanes),
       previous_(3 * n_ * kLanes),
@@ -100,9 +93,8 @@ void DesignLanes::set_design(std::size_t l, const double* values) {
   Kinematics& k = lanes_[l]->kinematics;
   k.set_parameter_values(values);
   for (std::size_t p = 0; p < layout_.parameter_count; ++p) lanes(layout_.parameter(p))[l] = values[p];
-  length_scale_[l] = k.length_scale();
+  set_scales(l, k);
   tolerance_[l] = solver::kNewtonTolerance * k.length_scale();
-  for (std::size_t i = 0; i < n_; ++i) column_scale_[i * kLanes + l] = k.column_scale()[i];
 }
 
 void DesignLanes::set_reach(std::size_t lane, const LoopReach& reach) {
@@ -234,43 +226,6 @@ void DesignLanes::keep_previous(const double* ok) {
   }
 }
 
-KINEMA_INLINE_LANES void DesignLanes::largest_phi(double* norm) {
-  std::fill_n(norm, kLanes, 0.0);
-  for (std::size_t i = 0; i < n_; ++i) {
-    const double* phi = output(TapeLayout::kPositionStage, layout_.phi(i));
-    for (std::size_t l = 0; l < kLanes; ++l) {
-      const double magnitude = std::fabs(phi[l]);  // NaN stays: the comparison is false for it
-      norm[l] = (magnitude > norm[l] || magnitude != magnitude) ? magnitude : norm[l];
-    }
-  }
-}
-
-void DesignLanes::factorise() {
-  for (std::size_t i = 0; i < n_; ++i)
-    for (std::size_t j = 0; j < n_; ++j) {
-      const double* phi_q = output(TapeLayout::kPositionStage, layout_.phi_q(i, j));
-      const double* scale = column_scale_.data() + j * kLanes;
-      double* target = lu_.data() + (i * n_ + j) * kLanes;
-      for (std::size_t l = 0; l < kLanes; ++l) target[l] = phi_q[l] * scale[l];
-    }
-  lu_factor_lanes(lu_.data(), pivots_.data(), n_);
-  // min/max |pivot| per lane, as solver::pivot_ratio (NaN where a pivot is not finite).
-  double smallest[kLanes], largest[kLanes];
-  for (std::size_t l = 0; l < kLanes; ++l) {
-    smallest[l] = INFINITY;
-    largest[l] = n_ == 1 ? length_scale_[l] : 0;
-  }
-  for (std::size_t c = 0; c < n_; ++c) {
-    const double* pivot = lu_.data() + (c * n_ + c) * kLanes;
-    for (std::size_t l = 0; l < kLanes; ++l) {
-      const double magnitude = std::fabs(pivot[l]);
-      smallest[l] = magnitude < smallest[l] ? magnitude : smallest[l];
-      largest[l] = magnitude > largest[l] ? magnitude : largest[l];
-    }
-  }
-  for (std::size_t l = 0; l < kLanes; ++l) pivot_ratio_[l] = smallest[l] / largest[l];
-}
-
 void DesignLanes::solve_value(double input, bool check_branch, const double* take, double* ok) {
   const std::size_t n = n_;
   const auto& e = k_.evaluator();
@@ -305,16 +260,7 @@ void DesignLanes::solve_value(double input, bool check_branch, const double* tak
       for (std::size_t l = 0; l < kLanes; ++l) failed[l] = pending[l] != 0 ? 1.0 : failed[l];
       break;
     }
-    for (std::size_t i = 0; i < n; ++i) {
-      const double* phi = output(TapeLayout::kPositionStage, layout_.phi(i));
-      for (std::size_t l = 0; l < kLanes; ++l) x_[i * kLanes + l] = -phi[l];
-    }
-    lu_solve_lanes(lu_.data(), pivots_.data(), x_.data(), n);
-    for (std::size_t i = 0; i < n; ++i) {
-      double* q = lanes(layout_.q(i));
-      const double* scale = column_scale_.data() + i * kLanes;
-      for (std::size_t l = 0; l < kLanes; ++l) q[l] += pending[l] * x_[i * kLanes + l] * scale[l];
-    }
+    newton_step(pending);
     std::copy_n(residual_, kLanes, previous);
   }
   for (std::size_t l = 0; l < kLanes; ++l) ok[l] = failed[l] == 0 ? 1.0 : 0.0;
@@ -328,38 +274,10 @@ void DesignLanes::solve_value(double input, bool check_branch, const double* tak
         ok[l] = std::fabs(q[l] - start[l]) / scale[l] > solver::kBranchTolerance ? 0.0 : ok[l];
     }
   }
-  // Velocity, then acceleration, with the factorisation at the solution; then points.
-  for (std::size_t i = 0; i < n; ++i) {
-    const double* phi_theta = output(TapeLayout::kPositionStage, layout_.phi_theta(i));
-    for (std::size_t l = 0; l < kLanes; ++l) x_[i * kLanes + l] = -phi_theta[l] * rate_;
-  }
-  lu_solve_lanes(lu_.data(), pivots_.data(), x_.data(), n);
-  for (std::size_t i = 0; i < n; ++i) {
-    double* qd = lanes(layout_.qd(i));
-    const double* scale = column_scale_.data() + i * kLanes;
-    for (std::size_t l = 0; l < kLanes; ++l) qd[l] = x_[i * kLanes + l] * scale[l];
-  }
-  e.evaluate_stage_batch_from(TapeLayout::kAccelerationStage, TapeLayout::kInputLevel, registers_.data());
-  for (std::size_t i = 0; i < n; ++i)
-    std::copy_n(output(TapeLayout::kAccelerationStage, i), kLanes, x_.data() + i * kLanes);
-  lu_solve_lanes(lu_.data(), pivots_.data(), x_.data(), n);
-  for (std::size_t i = 0; i < n; ++i) {
-    double* qdd = lanes(layout_.qdd(i));
-    const double* scale = column_scale_.data() + i * kLanes;
-    for (std::size_t l = 0; l < kLanes; ++l) qdd[l] = x_[i * kLanes + l] * scale[l];
-  }
-  e.evaluate_stage_batch_from(TapeLayout::kPointStage, TapeLayout::kInputLevel, registers_.data());
-  // x * 0 is 0 for finite x and NaN otherwise: one sum per lane says whether all are
-  // finite (the scalar run calls a position singular where they are not).
-  double nonfinite[kLanes] = {};
-  const auto accumulate = [&](const double* v) {
-    for (std::size_t l = 0; l < kLanes; ++l) nonfinite[l] += v[l] * 0.0;
-  };
-  for (std::size_t k = 0; k < layout_.observable_output_count(); ++k) accumulate(output(TapeLayout::kPointStage, k));
-  for (std::size_t i = 0; i < n; ++i) {
-    accumulate(lanes(layout_.qd(i)));
-    accumulate(lanes(layout_.qdd(i)));
-  }
+  solve_rates(rate_);
+  // The scalar run calls a position singular where the results are not all finite.
+  double nonfinite[kLanes];
+  nonfinite_results(nonfinite);
   for (std::size_t l = 0; l < kLanes; ++l) ok[l] = nonfinite[l] == 0.0 ? ok[l] : 0.0;
 }
 

@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "engine/numeric/kinematics.hpp"
-#include "engine/numeric/lane_lu.hpp"
+#include "engine/numeric/lane_system.hpp"
 #include "engine/numeric/motion_table.hpp"
 #include "engine/numeric/simd_math.hpp"
 
@@ -56,9 +56,9 @@ class LoopReach {
   bool ever_open_ = false;
 };
 
-class DesignLanes {
+class DesignLanes : LaneSystem {
  public:
-  static constexpr std::size_t kLanes = kLuLanes;
+  using LaneSystem::kLanes;
   /// Lanes on `kinematics`' tape (their parameter values set by set_design), the run
   /// `inputs` at the input's rates `rate` (not 0) and `second_rate`.
   DesignLanes(const Kinematics& kinematics, const std::vector<double>& inputs, double rate, double second_rate);
@@ -86,14 +86,10 @@ class DesignLanes {
 
  private:
   struct Lane;
-  const Kinematics& k_;
-  const TapeLayout& layout_;
-  std::size_t n_;
   std::vector<double> inputs_, cos_inputs_, sin_inputs_;  // the cosines and sines for LoopReach
   double rate_, second_rate_;
   std::vector<std::unique_ptr<Lane>> lanes_;
-  std::vector<double> registers_;  ///< Register r of lane l at r * kLanes + l.
-  std::vector<double> lu_, pivots_, x_, start_, column_scale_;  ///< Lane-major as in lane_lu.hpp.
+  std::vector<double> start_;  ///< Each lane's start: unknown i of lane l at i kLanes + l.
   std::vector<double> step_, phi_;  ///< restart_values: each lane's step and Phi at its position.
   std::size_t worst_row_[kLanes];
   std::vector<double> previous_;  ///< Each lane's last ok row: q_i, qd_i, qdd_i at (3 i + 0, 1, 2) kLanes + l.
@@ -101,12 +97,10 @@ class DesignLanes {
   /// and from squares vector_length takes apart (NaN: none), and the largest square of
   /// the others (0: none; its root is the largest length, the root being monotonic).
   std::vector<double> largest_speed_, largest_acceleration_, largest_speed_square_, largest_acceleration_square_;
-  double tolerance_[kLanes], length_scale_[kLanes], pivot_ratio_[kLanes], residual_[kLanes];
+  double tolerance_[kLanes], residual_[kLanes];
   std::size_t lane_values_ = 0;
   LoopReach reach_[kLanes];
 
-  double* lanes(std::size_t reg) { return registers_.data() + reg * kLanes; }
-  const double* output(std::size_t stage, std::size_t k) { return lanes(k_.evaluator().output_register(stage, k)); }
   /// Each lane's start at `row` into start_: take[l] 1 for a lane whose value is predicted
   /// (or the first, from the guesses), restart[l] 1 for one that starts Newton alone after
   /// a value that did not assemble (RowSolver::restart_position), out_of_reach[l] 1 (and
@@ -126,9 +120,6 @@ class DesignLanes {
   /// residual_, its row in worst_row_), 0 where the scalar run is to solve the value
   /// (it closes, or needs a least-squares step).
   KINEMA_LANE_LOOPS void restart_values(double input, const double* restart, double* open);
-  KINEMA_LANE_LOOPS void factorise();
-  /// max |Phi| of each lane at the position stage just evaluated (NaN where one is).
-  void largest_phi(double* norm);
   void store(std::size_t lane, std::size_t row);
   /// The lanes' point speeds and accelerations (ok[l] 1 where lane l's value is ok) into
   /// their largest.

@@ -33,7 +33,43 @@ struct RunCursor {
   bool have_last_ok = false;
   double last_ok_input = 0;
   Eigen::VectorXd last_ok_q, last_ok_qd, last_ok_qdd;
+
+  /// After `row` of `table`, solved with status ok by other means than the scalar run
+  /// (a SIMD block, the design lanes): where solve_rows stands after such a row.
+  void ok_row(const MotionTable& table, std::size_t row) {
+    q = table.q(row);
+    any_solved = true;
+    q_singular = false;
+    after_gap = false;
+    have_previous = true;
+    have_last_ok = true;
+    last_ok_input = table.input(row);
+    last_ok_q = q;
+    last_ok_qd = table.qd(row);
+    last_ok_qdd = table.qdd(row);
+  }
+  /// Stores `row` of `table` as unassembled for `why`; the branch may differ after a gap,
+  /// so the run resumes from the last good q.
+  void failed_row(MotionTable& table, std::size_t row, const Failure& why) {
+    MotionState failed;
+    failed.input = table.input(row);
+    failed.status = Status::unassembled;
+    failed.failure = why;
+    table.set(row, failed);
+    after_gap = any_solved;
+    have_previous = false;
+  }
 };
+
+// Newton could not close equation group `group`, max |Phi| `residual` staying open.
+Failure group_open(std::size_t group, double residual, bool from_guesses) {
+  Failure why;
+  why.kind = Failure::Kind::group_open;
+  why.group = static_cast<std::uint32_t>(group);
+  why.residual = residual;
+  why.from_guesses = from_guesses;
+  return why;
+}
 
 // The dyads' signs for a row placed in closed form: the assembly the motion runs on
 // from the last ok row, marched there in small steps (the short way round for an angle),
@@ -120,13 +156,7 @@ std::size_t solve_rows(const Kinematics& kinematics, Solvers& solvers, MotionTab
       if (solvers.simd->solve(table, row, history_begin)) {
         at.batch_rows += BatchWorkspace::kLanes;
         row += BatchWorkspace::kLanes - 1;
-        at.q = table.q(row);
-        at.q_singular = false;
-        at.have_last_ok = true;
-        at.last_ok_input = table.input(row);
-        at.last_ok_q = at.q;
-        at.last_ok_qd = table.qd(row);
-        at.last_ok_qdd = table.qdd(row);
+        at.ok_row(table, row);  // the flags as they were: a block follows an ok row
         continue;
       }
       at.next_batch_try = offset + row + BatchWorkspace::kLanes;
@@ -154,12 +184,7 @@ std::size_t solve_rows(const Kinematics& kinematics, Solvers& solvers, MotionTab
           std::size_t worst_group = 0;
           double residual = 0;
           solved = solvers.scalar.solve_position(input, trial, &worst_group, &residual);
-          if (!solved) {
-            why.kind = Failure::Kind::group_open;
-            why.group = static_cast<std::uint32_t>(worst_group);
-            why.residual = residual;
-            why.from_guesses = false;
-          }
+          if (!solved) why = group_open(worst_group, residual, false);
         } else {
           why.kind = Failure::Kind::dyad_open;
           why.group = dyad;
@@ -189,22 +214,11 @@ std::size_t solve_rows(const Kinematics& kinematics, Solvers& solvers, MotionTab
                            trial);
           solved = solvers.scalar.solve_position(input, trial, &worst_group, &residual);
         }
-        if (!solved) {
-          why.kind = Failure::Kind::group_open;
-          why.group = static_cast<std::uint32_t>(worst_group);
-          why.residual = residual;
-          why.from_guesses = !at.after_gap;
-        }
+        if (!solved) why = group_open(worst_group, residual, !at.after_gap);
       }
     }
     if (!solved) {
-      MotionState failed;
-      failed.input = input;
-      failed.status = Status::unassembled;
-      failed.failure = why;
-      table.set(row, failed);
-      at.after_gap = at.any_solved;
-      at.have_previous = false;  // resume from the last good q; the branch may differ after a gap
+      at.failed_row(table, row, why);
       continue;
     }
     at.q = trial;
@@ -386,18 +400,7 @@ void RowSolver::solve(MotionTable& table, std::size_t row) {
 }
 
 void RowSolver::solved_elsewhere(const MotionTable& table, std::size_t row) {
-  // As solve_rows leaves the cursor after a row whose status is ok.
-  RunCursor& at = state_->at;
-  at.q = table.q(row);
-  at.any_solved = true;
-  at.q_singular = false;
-  at.after_gap = false;
-  at.have_previous = true;
-  at.have_last_ok = true;
-  at.last_ok_input = table.input(row);
-  at.last_ok_q = at.q;
-  at.last_ok_qd = table.qd(row);
-  at.last_ok_qdd = table.qdd(row);
+  state_->at.ok_row(table, row);
 }
 
 bool RowSolver::on_branch() const { return state_->at.have_previous; }
@@ -409,18 +412,9 @@ const Eigen::VectorXd* RowSolver::restart_position() const {
 }
 
 void RowSolver::failed_elsewhere(MotionTable& table, std::size_t row, std::size_t group, double residual) {
-  // As solve_rows stores a row Newton alone could not close, and leaves the cursor.
+  // As solve_rows stores a row Newton alone could not close.
   RunCursor& at = state_->at;
-  MotionState failed;
-  failed.input = table.input(row);
-  failed.status = Status::unassembled;
-  failed.failure.kind = Failure::Kind::group_open;
-  failed.failure.group = static_cast<std::uint32_t>(group);
-  failed.failure.residual = residual;
-  failed.failure.from_guesses = !at.after_gap;
-  table.set(row, failed);
-  at.after_gap = at.any_solved;
-  at.have_previous = false;
+  at.failed_row(table, row, group_open(group, residual, !at.after_gap));
 }
 
 void RowSolver::unassembled_elsewhere(MotionTable& table, std::size_t row, double limit, std::size_t group,

@@ -227,3 +227,19 @@ TEST_CASE("kinema check: docs/check.md's example is what it prints for the sampl
   for (std::size_t at; (at = report.find(samples)) != std::string::npos;) report.replace(at, samples.size(), "samples/");
   CHECK(report == shown);
 }
+
+TEST_CASE("kinema check: the README's and docs/problems.md's example, the set's sample answers, is all right") {
+  // The command as both documents give it, run on the files it names.
+  const std::string command =
+      "kinema check samples/problem_4_4_set.toml samples/check/problem_4_4_answers.toml\n";
+  for (const char* document : {"../README.md", "../docs/problems.md"}) {
+    CAPTURE(document);
+    CHECK(kinema_test::read_file(kinema_test::sample(document)).find(command) != std::string::npos);
+  }
+  const Checked result =
+      check({kinema_test::sample("problem_4_4_set.toml"), kinema_test::sample("check/problem_4_4_answers.toml")});
+  CAPTURE(result.error);
+  CHECK(result.status == kinema_cli::status::success);
+  CHECK(result.report.find(": right") != std::string::npos);
+  CHECK(result.report.find(": wrong") == std::string::npos);
+}

@@ -17,8 +17,7 @@ import kinema
 
 PROGRAM = os.environ["KINEMA_PROGRAM"]
 SAMPLES = pathlib.Path(os.environ["KINEMA_SAMPLES"])
-# A student's answers file (kinema check's input) is no mechanism.
-ALL_SAMPLES = sorted(p for p in SAMPLES.glob("*.toml") if not p.name.endswith("_answers.toml"))
+ALL_SAMPLES = sorted(SAMPLES.glob("*.toml"))
 # A run of each kind of input: numbers in the input's output unit, as --sweep takes them.
 RUNS = {"deg": (0, 360, 15), "s": (0, 2, 0.25), "mm": (110, 190, 10), "in": (1, 9, 1), "m": (0.11, 0.19, 0.01)}
 LENGTH_UNITS = {"m": 1.0, "mm": 1e-3, "cm": 1e-2, "in": 0.0254, "ft": 0.3048}

@@ -4,11 +4,14 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <functional>
 #include <string>
 #include <vector>
 
 #include "engine/base/errors.hpp"
 #include "engine/model.hpp"
+#include "readers/answers_file.hpp"
+#include "readers/class_table.hpp"
 #include "readers/mechanism_file.hpp"
 #include "tests/test_support.hpp"
 
@@ -316,4 +319,36 @@ TEST_CASE("readers/mechanism_file: a joints-and-links file is read as written, a
   REQUIRE(system.plan);
   CHECK(system.plan->closed_form);
   CHECK(system.plan->dyads.size() == 2);
+}
+
+TEST_CASE("every file kinema reads is refused alike: a directory, a missing path, one past its size limit") {
+  // Mechanism files, answers files and class tables share readers/file_reader's read_text_file.
+  const std::string directory = kinema_test::fresh_directory("read_text_file");
+  const std::string missing = directory + "/absent.toml";
+  struct Reader {
+    const char* what;
+    std::function<void(const std::string&)> read;
+  };
+  const std::vector<Reader> readers{
+      {"mechanism file", [](const std::string& path) { kinema::read_mechanism_file(path); }},
+      {"answers file", [](const std::string& path) { kinema::read_answers_file(path); }},
+      {"class table", [](const std::string& path) { kinema::read_class_table(path); }}};
+  auto message = [](const Reader& reader, const std::string& path) {
+    try {
+      reader.read(path);
+    } catch (const kinema::InputError& error) {
+      return std::string(error.what());
+    }
+    return std::string("read");
+  };
+  for (const Reader& reader : readers) {
+    CAPTURE(reader.what);
+    const std::string what = reader.what;
+    CHECK(message(reader, directory).find(": is a directory, not a") != std::string::npos);
+    CHECK(message(reader, directory).find(what) != std::string::npos);
+    CHECK(message(reader, missing).find("cannot open the " + what) != std::string::npos);
+    // /dev/zero never ends: the read stops past the limit.
+    CHECK(message(reader, "/dev/zero").find("the " + what + " is larger than") != std::string::npos);
+  }
+  CHECK(message(readers[1], directory).find("not an answers file") != std::string::npos);
 }

@@ -5,39 +5,29 @@
 // "resumed_after_gap" as a bool. numpy.load and pandas read it without a parser.
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <cstring>
 #include <limits>
 #include <string>
 #include <vector>
 
+#include "engine/printers/data/npy_header.hpp"
 #include "engine/printers/printer.hpp"
 #include "engine/analysis/output_scale.hpp"
 
 namespace kinema {
 namespace {
 
-// The header: magic, version, length, then a Python dict literal padded with spaces
-// (and a final newline) so that the data starts on a 64-byte boundary.
-std::string npy_header(const std::vector<std::string>& names, std::size_t rows) {
-  std::string descr = "[";
-  for (const std::string& name : names) descr += "('" + name + "', '<f8'), ";
+// The fields: the CSV's columns without their units, then the two flags.
+std::vector<NpyField> npy_fields(const std::vector<std::string>& names) {
+  std::vector<NpyField> fields;
+  for (const std::string& name : names) fields.push_back({name, "<f8"});
   // The two flags' names, unless the file took them (field names must differ).
   std::string status = "status", gap = "resumed_after_gap";
   for (std::string* flag : {&status, &gap})
     while (std::find(names.begin(), names.end(), *flag) != names.end()) *flag += "_";
-  descr += "('" + status + "', '|u1'), ('" + gap + "', '|b1')]";
-  std::string dict = "{'descr': " + descr + ", 'fortran_order': False, 'shape': (" + std::to_string(rows) + ",), }";
-  const bool version1 = dict.size() + 12 < 65000;
-  const std::size_t prefix = version1 ? 10 : 12;  // magic 6 + version 2 + length 2 or 4
-  const std::size_t total = (prefix + dict.size() + 1 + 63) / 64 * 64;
-  dict += std::string(total - prefix - dict.size() - 1, ' ') + "\n";
-  std::string header = "\x93NUMPY";
-  header += version1 ? '\x01' : '\x02';
-  header += '\x00';
-  const std::uint32_t length = static_cast<std::uint32_t>(dict.size());
-  for (std::size_t b = 0; b < (version1 ? 2u : 4u); ++b) header += static_cast<char>((length >> (8 * b)) & 0xff);
-  return header + dict;
+  fields.push_back({status, "|u1"});
+  fields.push_back({gap, "|b1"});
+  return fields;
 }
 
 class NpyPrinter : public ResultsPrinter {
@@ -47,7 +37,7 @@ class NpyPrinter : public ResultsPrinter {
   void head(std::string& out, const PrintJob& job, std::size_t rows) const override {
     std::vector<std::string> names;  // the CSV's column names without their units
     for (const ResultColumn& column : printed_columns(job)) names.push_back(column.name);
-    out += npy_header(names, rows);
+    out += npy_header(npy_fields(names), rows);
   }
 
   void rows(std::string& out, const PrintJob& job, const MotionTable& table, std::size_t first, std::size_t last,

@@ -8,6 +8,7 @@
 
 #include "engine/base/errors.hpp"
 #include "engine/base/number_format.hpp"
+#include "engine/printers/data/npy_header.hpp"
 
 namespace kinema {
 
@@ -71,21 +72,10 @@ std::size_t npy_size(StudyColumn::Kind kind) {
 }
 
 std::string npy_table(const std::vector<StudyColumn>& columns) {
-  std::string descr = "[";
-  for (const StudyColumn& c : columns) descr += "('" + c.name + "', '" + npy_type(c.kind) + "'), ";
-  descr += "]";
+  std::vector<NpyField> fields;
+  for (const StudyColumn& c : columns) fields.push_back({c.name, npy_type(c.kind)});
   const std::size_t rows = row_count(columns);
-  std::string dict = "{'descr': " + descr + ", 'fortran_order': False, 'shape': (" + std::to_string(rows) + ",), }";
-  const bool version1 = dict.size() + 12 < 65000;
-  const std::size_t prefix = version1 ? 10 : 12;  // magic 6 + version 2 + length 2 or 4
-  const std::size_t total = (prefix + dict.size() + 1 + 63) / 64 * 64;
-  dict += std::string(total - prefix - dict.size() - 1, ' ') + "\n";
-  std::string out = "\x93NUMPY";
-  out += version1 ? '\x01' : '\x02';
-  out += '\x00';
-  const auto length = static_cast<std::uint32_t>(dict.size());
-  for (std::size_t b = 0; b < (version1 ? 2u : 4u); ++b) out += static_cast<char>((length >> (8 * b)) & 0xff);
-  out += dict;
+  std::string out = npy_header(fields, rows);
   for (std::size_t row = 0; row < rows; ++row) {
     for (const StudyColumn& c : columns) {  // little-endian, as the types say
       const double v = c.values[row];

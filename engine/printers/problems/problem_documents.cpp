@@ -76,10 +76,13 @@ std::string latex_unit(const std::string& unit) {
   return "\\mathrm{" + text + "}";
 }
 
-// A value in math mode as the sheet gives it ("300\,\mathrm{mm}").
-// A varied value with the digits of its grid, as the file writes its other values (0.380 m).
+// A varied value's number with the digits of its grid, as the file writes its other values
+// (0.380 m): the sheet and the Moodle question give it alike.
+std::string given_number(const GivenValue& g) { return format_fixed(g.value, g.decimals); }
+
+// A varied value in math mode as the sheet gives it ("0.380\,\mathrm{m}").
 std::string latex_given(const GivenValue& g) {
-  return format_fixed(g.value, g.decimals) + (g.unit.empty() ? "" : "\\," + latex_unit(g.unit));
+  return given_number(g) + (g.unit.empty() ? "" : "\\," + latex_unit(g.unit));
 }
 
 // A design figure in math mode, in words: its name is no symbol of the mechanism.
@@ -262,7 +265,7 @@ std::string problem_moodle_xml(const ProblemSet& set, const std::string& title) 
   for (const ProblemVariant& v : set.variants) {
     std::string given;
     for (const GivenValue& g : v.given)
-      given += (given.empty() ? "" : ", ") + g.name + " = " + format_significant(g.value, 12) + (g.unit.empty() ? "" : " " + g.unit);
+      given += (given.empty() ? "" : ", ") + g.name + " = " + given_number(g) + (g.unit.empty() ? "" : " " + g.unit);
     for (const ProblemAnswer& a : v.answers) {
       const std::string name = "Variant " + std::to_string(v.number) + ": " + a.quantity + (a.figure ? "" : " at " + a.at_text);
       std::string text = (set.statement.empty() ? title : set.statement) + " Variant " + std::to_string(v.number) +

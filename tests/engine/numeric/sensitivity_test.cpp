@@ -2,7 +2,8 @@
 // derivative column of every parameter a sample writes equals central finite
 // differences of the solved output values in that parameter (the model re-solved with
 // with_parameters at p + h and p - h) over a sweep, vector loops, joints and links
-// (closed form, formula parameters) and spatial chains alike; and what is refused.
+// (closed form, formula parameters; their blocks, sliders on moving guides and guide
+// points) and spatial chains alike; and what is refused.
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -121,6 +122,17 @@ TEST_CASE("engine/numeric/sensitivity: every derivative column equals finite dif
   const Model model = sample_model("problem_4_4_joints.toml");
   REQUIRE(model.kinematics.closed_form() != nullptr);
   check_against_finite_differences("problem_4_4_joints.toml", inputs_between(0, kinema::from_degrees(330), 12));
+  // The joints files' own columns: sliders on moving guides (relative velocity, relative and
+  // Coriolis acceleration, the guide's point under the slider), blocks and relative turnings.
+  for (const char* sample : {"example_4_1_joints.toml", "example_4_2_joints.toml", "problem_3_22_joints.toml"}) {
+    const Model joints = sample_model(sample);
+    const std::vector<kinema::ResultColumn> columns = kinema::result_columns(joints.system, kinema::OutputScale(joints.system));
+    CHECK(kinema::differentiable_columns(joints.system).size() == columns.size() - kinema::kInputColumns);
+  }
+  check_against_finite_differences("example_4_1_joints.toml", inputs_between(kinema::from_degrees(5), kinema::from_degrees(85), 6));
+  check_against_finite_differences("example_4_2_joints.toml", inputs_between(kinema::from_degrees(5), kinema::from_degrees(85), 6));
+  check_against_finite_differences("problem_3_22_joints.toml",
+                                   inputs_between(kinema::from_degrees(-150), kinema::from_degrees(-90), 6));
 }
 
 TEST_CASE("engine/numeric/sensitivity: every derivative column equals finite differences, spatial chains") {

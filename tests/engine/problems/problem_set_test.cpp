@@ -329,6 +329,35 @@ TEST_CASE("problems: the Moodle XML is well formed and carries every answer with
   CHECK_THROWS(kinema_test::parse_xml("<quiz>&</quiz>"));
 }
 
+TEST_CASE("problems: the sample set's Moodle questions give each varied value with the sheet's digits") {
+  const std::string text = kinema_test::read_file(kinema_test::sample("problem_4_4_set.toml"));
+  const Loaded loaded = load(text, "problem_4_4_set.toml");
+  const ProblemSet set = make_problem_set(loaded.model, *loaded.mechanism.problem, 4, 7);
+  const kinema_test::XmlElement quiz = kinema_test::parse_xml(problem_moodle_xml(set, "t"));
+  std::size_t question = 1, grid_digits_differ = 0;  // after the category
+  for (const ProblemVariant& variant : set.variants) {
+    const std::string sheet = problem_sheet(set, variant);
+    for (std::size_t k = 0; k < variant.answers.size(); ++k) {
+      REQUIRE(question < quiz.children.size());
+      const std::string asked = quiz.children[question++].child("questiontext").child("text").text;
+      CAPTURE(asked);
+      for (const GivenValue& g : variant.given) {
+        // "BC = 0.380 m" in the question, "$0.380\\,\\mathrm{m}$" on the sheet: the same digits.
+        const std::string before = g.name + " = ", after = " " + g.unit;
+        const std::size_t at = asked.find(before);
+        REQUIRE(at != std::string::npos);
+        const std::size_t first = at + before.size();
+        const std::string number = asked.substr(first, asked.find(after, first) - first);
+        CHECK(number == format_fixed(g.value, g.decimals));
+        CHECK(sheet.find("$" + number + "\\,\\mathrm{" + g.unit + "}$") != std::string::npos);
+        grid_digits_differ += k == 0 && number != format_significant(g.value, 12);
+      }
+    }
+  }
+  CHECK(question == quiz.children.size());
+  CHECK(grid_digits_differ > 0);  // some value (0.380 m) whose shortest digits (0.38) would differ
+}
+
 TEST_CASE("problems: a variant's sheet and key compile with pdflatex, no overfull line; the sheet has no answer") {
   const std::string text = kinema_test::read_file(kinema_test::sample("problem_4_4_set.toml"));
   const Loaded loaded = load(text, "problem_4_4_set.toml");
