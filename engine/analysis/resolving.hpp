@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/analysis/slider_ranges.hpp"
 #include "engine/model.hpp"
 
 namespace kinema {
@@ -23,6 +24,7 @@ struct Resolving {
     Dimension dimension = Dimension::number;
     bool slider = false;             ///< Written with a value (not a formula), a length or an angle.
     bool sets_length_scale = false;  ///< Counted in the length scale (ConstraintSystem::length_scale).
+    SliderRange range;               ///< A slider's, where resolving() is given the rows (else NaN).
   };
   std::vector<Parameter> parameters;
   /// Inputs: the parameters in order; output k: the value of parameter formula_targets[k],
@@ -41,6 +43,7 @@ struct Resolving {
 /// Nullopt where the page cannot solve again: a joints-and-links file (its extra
 /// columns and its drawing come from the closed-form placement), a spatial chain, a
 /// model whose tape has no drawing stage, or parameter formulas the tape cannot take.
-std::optional<Resolving> resolving(const Model& model);
+/// Given the page's rows, each slider's range over their input values (slider_ranges).
+std::optional<Resolving> resolving(const Model& model, const MotionTable* rows = nullptr);
 
 }  // namespace kinema
