@@ -1246,7 +1246,7 @@
   if (solver) {
     node('h2', '', sliderArea, 'Dimensions');
     R.parameters.forEach(function (p, index) {
-      if (!p.slider) return;
+      if (!p.slider || !p.range) return;
       const shownValue = function (si) { return Number(outputValue(p, si).toPrecision(12)); };
       const fileValue = shownValue(p.value), low = shownValue(p.range.min), high = shownValue(p.range.max);
       // A move snaps to a round step (a power of ten, about a thousandth of the range) so that

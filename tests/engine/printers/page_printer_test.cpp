@@ -14,6 +14,7 @@
 #include "engine/printers/web/page_constructions.hpp"
 #include "engine/run/view.hpp"
 #include "engine/analysis/motion_drawing.hpp"
+#include "engine/analysis/resolving.hpp"
 #include "readers/mechanism_file.hpp"
 #include "tests/test_support.hpp"
 
@@ -122,6 +123,22 @@ TEST_CASE("engine/printers/web/page: a vector-loop file's page carries what solv
   CHECK(followers == std::vector<std::string>{"EF", "Lc"});
   CHECK(six_bar["formula_targets"].size() == 2);
   CHECK(six_bar["tape"]["code"].size() % 6 == 0);
+  // Each slider's range is the analysis's over the page's rows (engine/analysis/slider_ranges); a follower has none.
+  const kinema::Model model = kinema::load_model(kinema_test::sample("problem_4_4_six_bar.toml"));
+  const kinema::MotionTable table = kinema::analyse(model, turn_in_degrees(30));
+  const kinema::Resolving analysed = *kinema::resolving(model, &table);
+  for (std::size_t k = 0; k < analysed.parameters.size(); ++k) {
+    const kinema::Resolving::Parameter& p = analysed.parameters[k];
+    const nlohmann::json& written = six_bar["parameters"][k];
+    INFO(p.name);
+    REQUIRE(written.contains("range") == p.slider);
+    if (!p.slider) continue;
+    CHECK(written["range"]["min"].get<double>() == p.range.min);
+    CHECK(written["range"]["max"].get<double>() == p.range.max);
+    CHECK(written["range"]["whole_min"].get<double>() == p.range.whole_min);
+    CHECK(written["range"]["whole_max"].get<double>() == p.range.whole_max);
+    CHECK((p.range.min < p.value && p.value < p.range.max));
+  }
   CHECK(page_data("problem_4_4_joints.toml")["resolve"].is_null());
 }
 
