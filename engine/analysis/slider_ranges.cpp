@@ -22,12 +22,11 @@ namespace {
 constexpr double kLengthRatio = 1.5;
 constexpr double kLinearStep = 1.0 / 16;
 
-// What a run (or its values from `first` on) showed before it stopped: a value that
-// assembles (the first one, and the last of the values after it that all do), one that
-// does not (the first one).
+// What a run (or its values from `first` on) showed before it stopped: whether a value
+// assembles (the first one, and the last of those after it that all do), whether one does not.
 struct Assembly {
   bool any = false, all = true;
-  std::size_t first_ok = 0, last_ok = 0, first_failed = 0;
+  std::size_t first_ok = 0, last_ok = 0;
 };
 
 Assembly assembly_of(const MotionTable& table) {
@@ -36,7 +35,7 @@ Assembly assembly_of(const MotionTable& table) {
     const bool ok = table.status(row) != Status::unassembled;
     if (ok && !a.any) a.first_ok = a.last_ok = row, a.any = true;
     if (ok && a.last_ok + 1 == row) a.last_ok = row;
-    if (!ok && a.all) a.first_failed = row, a.all = false;
+    if (!ok) a.all = false;
   }
   return a;
 }
@@ -77,7 +76,7 @@ class RunProbe {
       const bool ok = table_.status(row) != Status::unassembled;
       if (ok && !a.any) a.first_ok = a.last_ok = row, a.any = true;
       if (ok) a.last_ok = row;
-      if (!ok && a.all) a.first_failed = row, a.all = false;
+      if (!ok) a.all = false;
       if (stop == Stop::at_failure && !ok) break;
       if (stop == Stop::after_success && !ok && a.any) break;
       if (stop == Stop::answered && a.any && !a.all) break;
@@ -177,6 +176,7 @@ std::vector<SliderRange> slider_ranges(const Model& model, const Resolving& reso
   const Assembly at_file = assembly_of(rows);
   std::vector<double> inputs;
   for (std::size_t row = 0; row < rows.size(); ++row) inputs.push_back(rows.input(row));
+  if (sliders.empty()) return ranges;
   if (!at_file.any) {  // nothing to search from: the caps
     for (std::size_t p : sliders) ranges[p].min = ranges[p].cap_min, ranges[p].max = ranges[p].cap_max;
     return ranges;
