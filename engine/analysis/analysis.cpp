@@ -53,7 +53,7 @@ Analysis analyse_for_views(const Model& model, const MotionTable* values, const 
   if ((needs.drawings || needs.motion) && values)
     analysis.values = analyse_values(model, *values, analysis.link_labels, needs.drawings);
   if (needs.motion && values) analysis.motion = motion_drawing(model, *values);
-  if (needs.motion) analysis.resolving = resolving(model);
+  if (needs.motion) analysis.resolving = resolving(model, needs.slider_ranges ? values : nullptr);
   return analysis;
 }
 

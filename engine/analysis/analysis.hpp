@@ -33,6 +33,8 @@ struct ViewNeeds {
   /// Every row moving (the web page): the drawing's geometry of the whole table, and per
   /// row the polygons and instant centres (ValueAnalysis without its one-value geometry).
   bool motion = false;
+  /// With motion: the dimension sliders' ranges over the rows (engine/analysis/slider_ranges).
+  bool slider_ranges = false;
   DerivationMethod method = DerivationMethod::loops;
   std::string basis;  ///< The frame a chain's vectors are given along (empty: the observer's).
 };

@@ -25,7 +25,7 @@ void compile_formulas(const ConstraintSystem& system, Resolving& out) {
 
 }  // namespace
 
-std::optional<Resolving> resolving(const Model& model) {
+std::optional<Resolving> resolving(const Model& model, const MotionTable* rows) {
   const ConstraintSystem& system = model.system;
   const Kinematics& k = model.kinematics;
   // Drawn from the drawing stage: a planar system's link vectors, a chain's frames.
@@ -45,7 +45,7 @@ std::optional<Resolving> resolving(const Model& model) {
   for (const SystemParameter& p : system.parameters) {
     const bool dimensioned = p.dimension == Dimension::length || p.dimension == Dimension::angle;
     out.parameters.push_back({p.symbol.get_name(), p.value, p.dimension, p.written && !p.formula && dimensioned,
-                              p.sets_length_scale});
+                              p.sets_length_scale, {}});
   }
   try {
     compile_formulas(system, out);
@@ -72,6 +72,10 @@ std::optional<Resolving> resolving(const Model& model) {
                    {"jacobi_sweeps", solver::kJacobiSweeps},
                    {"jacobi_tolerance", solver::kJacobiTolerance},
                    {"epsilon", solver::kEpsilon}};
+  if (rows) {
+    const std::vector<SliderRange> ranges = slider_ranges(model, out, *rows);
+    for (std::size_t p = 0; p < ranges.size(); ++p) out.parameters[p].range = ranges[p];
+  }
   return out;
 }
 

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/analysis/slider_ranges.hpp"
 #include "engine/model.hpp"
 
 namespace kinema {
@@ -23,6 +24,7 @@ struct Resolving {
     Dimension dimension = Dimension::number;
     bool slider = false;             ///< Written with a value (not a formula), a length or an angle.
     bool sets_length_scale = false;  ///< Counted in the length scale (ConstraintSystem::length_scale).
+    SliderRange range;               ///< A slider's, where resolving() is given the rows (else NaN).
   };
   std::vector<Parameter> parameters;
   /// Inputs: the parameters in order; output k: the value of parameter formula_targets[k],
@@ -38,11 +40,13 @@ struct Resolving {
   std::vector<std::pair<std::string, double>> constants;
 };
 
-/// Nullopt where the page cannot solve again: a model whose tape has no drawing stage, parameter formulas the tape cannot take, or a joints-and-links file
-/// with a parameter kinema took from its sketch. A joints-and-links file is solved by
-/// Newton from its guesses; its joints, blocks, guides and extra columns are the drawing
-/// stage's (TapeLayout::linkage_joint_output on); a spatial chain's frames are placed by the
-/// drawing stage (TapeLayout::frame_placement_output).
-std::optional<Resolving> resolving(const Model& model);
+/// Nullopt where the page cannot solve again: a model whose tape has no drawing stage,
+/// parameter formulas the tape cannot take, or a joints-and-links file with a parameter
+/// kinema took from its sketch. A joints-and-links file is solved by Newton from its
+/// guesses; its joints, blocks, guides and extra columns are the drawing stage's
+/// (TapeLayout::linkage_joint_output on); a spatial chain's frames are placed by the
+/// drawing stage (TapeLayout::frame_placement_output). Given the page's rows, each
+/// slider's range over their input values (slider_ranges).
+std::optional<Resolving> resolving(const Model& model, const MotionTable* rows = nullptr);
 
 }  // namespace kinema

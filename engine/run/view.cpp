@@ -20,6 +20,7 @@ void print_page(std::ostream& out, const Model& model, const MotionTable& table,
   // The page shows the derivation as `kinema derive --format latex` prints it (in MathML).
   ViewNeeds needs = find_printer(PrintKind::derivation, "latex")->needs(job);
   needs.motion = true;
+  needs.slider_ranges = !circuit;  // a circuit's page has no sliders
   const Analysis analysis = analyse_for_views(model, &table, needs);
   job.analysis = &analysis;
   write_page(out, job);

@@ -311,7 +311,7 @@ async function checkSlider(browser, sampleName, parameter, target, sweep) {
     const input = document.querySelector('#sliders input[data-parameter="' + name + '"]');
     input.value = value;
     input.dispatchEvent(new Event('input'));
-    return { value: input.value, shown: input.parentNode.querySelector('.shown').textContent };
+    return { value: input.value, shown: input.closest('.slider').querySelector('.shown').textContent };
   }, [parameter, target]);
   assert(set.value !== undefined && Number(set.value) === target, `${sampleName}: slider ${parameter} at ${set.value}, not ${target}`);
   const unit = set.shown.split(' ').pop();
@@ -412,6 +412,7 @@ async function checkSliders(browser) {
   const view = await shown(short.page);
   assert(view.status === 'unassembled' && view.statusText.startsWith('Not assembled: ') && view.joints.length === 0,
     `four_bar c = 40 mm: row ${failed} shown as "${view.statusText}" with ${view.joints.length} joints`);
+  await checkSliderRanges(short.page);
   // A full turn at 1 deg re-solved in the page: the time a slider move takes.
   const timing = await checkSlider(browser, 'four_bar', 'b', 130, '0:359:1');
   const times = await timing.page.evaluate(() => {
@@ -419,6 +420,43 @@ async function checkSliders(browser) {
     return window.kinemaPage.resolveTimes.slice(-20).sort((x, y) => x - y);
   });
   console.log(`sliders: ${compared} values equal eval's; a four-bar turn at 1 deg re-solved in ${times[10].toFixed(2)} ms (median of 20, max ${times[19].toFixed(2)} ms)`);
+}
+
+// The four-bar's sliders (its page at 4 deg steps open): each slider's ends and band are
+// the analysis's range as the page's data writes it (engine/analysis/slider_ranges, SI, in
+// the slider's unit here); the rocker just below the band where every value assembles
+// leaves rows unassembled, marked on the scrubber, and just above it leaves none.
+async function checkSliderRanges(page) {
+  const sliders = await page.evaluate(() => {
+    const R = JSON.parse(document.getElementById('kinema-data').textContent).resolve;
+    return R.parameters.filter((p) => p.slider).map((p) => {
+      const input = document.querySelector('#sliders input[data-parameter="' + p.name + '"]');
+      const whole = input.closest('.slider').querySelector('.band .whole');
+      const factor = p.dimension === 'angle' ? Math.PI / 180 : R.length_per_unit;
+      return { name: p.name, range: p.range, factor: factor, min: Number(input.min), max: Number(input.max),
+        wholeMin: whole ? Number(whole.getAttribute('data-min')) : null, wholeMax: whole ? Number(whole.getAttribute('data-max')) : null };
+    });
+  });
+  assert.strictEqual(sliders.length, 6, 'four_bar: a slider for each of a, b, c, d, p, delta');
+  const near = (shown, si, factor) => Math.abs(shown * factor - si) <= 1e-11 * Math.abs(si);
+  for (const s of sliders) {
+    for (const [shown, si, what] of [[s.min, s.range.min, 'min'], [s.max, s.range.max, 'max'],
+      [s.wholeMin, s.range.whole_min, 'band min'], [s.wholeMax, s.range.whole_max, 'band max']])
+      assert(near(shown, si, s.factor), `four_bar slider ${s.name}: ${what} ${shown}, the data's ${si / s.factor}`);
+  }
+  const rocker = sliders.find((s) => s.name === 'c');
+  const failedAt = async (value) => {
+    await page.evaluate((v) => window.kinemaPage.setDimensions({ c: v }), value);
+    return page.evaluate(() => ({
+      unassembled: window.kinemaPage.rows().filter((r) => r.status === 'unassembled').length,
+      marks: document.querySelectorAll('.mark-unassembled').length,
+      value: Number(document.querySelector('#sliders input[data-parameter="c"]').value) }));
+  };
+  const below = await failedAt(rocker.wholeMin * 0.995), above = await failedAt(rocker.wholeMin * 1.005);
+  assert(below.value < rocker.wholeMin && below.unassembled > 0 && below.marks === below.unassembled,
+    `four_bar c = ${below.value} mm, below the band (${rocker.wholeMin} mm): ${below.unassembled} rows unassembled, ${below.marks} marked`);
+  assert(above.value > rocker.wholeMin && above.unassembled === 0 && above.marks === 0,
+    `four_bar c = ${above.value} mm, in the band (from ${rocker.wholeMin} mm): ${above.unassembled} rows unassembled`);
 }
 
 // What the samples' constructions showed (each planar sample has polygons; joints-and-links

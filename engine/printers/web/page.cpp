@@ -245,9 +245,15 @@ json resolving_json(const PrintJob& job, const OutputScale& scale) {
   const Resolving& r = *job.analysis->resolving;
   const ConstraintSystem& system = job.model.system;
   json parameters = json::array();
-  for (const Resolving::Parameter& p : r.parameters)
-    parameters.push_back({{"name", p.name}, {"value", p.value}, {"dimension", dimension_name(p.dimension)},
-                          {"slider", p.slider}, {"sets_length_scale", p.sets_length_scale}});
+  for (const Resolving::Parameter& p : r.parameters) {
+    json parameter = {{"name", p.name}, {"value", p.value}, {"dimension", dimension_name(p.dimension)},
+                      {"slider", p.slider}, {"sets_length_scale", p.sets_length_scale}};
+    // A slider's range (SI): where the run assembles somewhere, and everywhere (null: nowhere said).
+    if (p.slider && std::isfinite(p.range.min))
+      parameter["range"] = {{"min", p.range.min}, {"max", p.range.max}, {"whole_min", p.range.whole_min},
+                            {"whole_max", p.range.whole_max}};
+    parameters.push_back(parameter);
+  }
   json unknowns = json::array();
   for (const Coordinate& q : system.unknowns) unknowns.push_back(dimension_name(q.dimension));
   json inputs = json::array();

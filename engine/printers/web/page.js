@@ -1116,9 +1116,10 @@
     return solver;
   }
 
-  // The sliders: one for each parameter the file writes as a length or an angle, from half
-  // to one and a half times its value (an angle of 0: +-30 deg); the file's other
-  // parameters follow through their formulas. A move solves every row of the page again (the
+  // The sliders: one for each parameter the file writes as a length or an angle, over the
+  // range the analysis found (engine/analysis/slider_ranges: where the mechanism assembles at
+  // one value of the run at least, a band on the track where it assembles at every one); the
+  // file's other parameters follow through their formulas. A move solves every row of the page again (the
   // same input values) and redraws whatever the page draws from rows.
   const R = data.resolve;
   const solver = R ? makeSolver(R) : null;
@@ -1283,23 +1284,40 @@
   if (solver) {
     node('h2', '', sliderArea, 'Dimensions');
     R.parameters.forEach(function (p, index) {
-      if (!p.slider) return;
-      const fileValue = Number(outputValue(p, p.value).toPrecision(12));
-      const spread = fileValue !== 0 ? Math.abs(fileValue) / 2 : p.dimension === 'angle' ? 30 : outputValue(p, 0.5 * solver.lengthScale);
-      // A round step (a power of ten, about a hundredth of the spread): the values read as written.
-      const step = Math.pow(10, Math.floor(Math.log10(spread / 100)));
+      if (!p.slider || !p.range) return;
+      const shownValue = function (si) { return Number(outputValue(p, si).toPrecision(12)); };
+      const fileValue = shownValue(p.value), low = shownValue(p.range.min), high = shownValue(p.range.max);
+      // A move snaps to a round step (a power of ten, about a thousandth of the range) so that
+      // the values read as written; the ends stay the analysis's, the file's value its own.
+      const step = Math.pow(10, Math.floor(Math.log10(Math.max(high - low, 1e-9) / 1000)));
       const label = node('label', 'slider', sliderArea);
       node('span', 'name', label, p.name);
-      const input = node('input', '', label);
+      const track = node('span', 'track', label);
+      const input = node('input', '', track);
       input.type = 'range';
-      input.step = step;
-      input.min = Number((Math.ceil((fileValue - spread) / step) * step).toPrecision(12));
-      input.max = Number((Math.floor((fileValue + spread) / step) * step).toPrecision(12));
+      input.step = 'any';
+      input.min = low;
+      input.max = high;
       input.value = fileValue;
       input.setAttribute('data-parameter', p.name);
+      // The band: where every value of the run assembles (green), the rest of the track where only some do.
+      const band = node('span', 'band', track);
+      band.title = 'green: the mechanism assembles at every value of the run; red: at some values only';
+      if (p.range.whole_min !== null && p.range.whole_max !== null) {
+        const whole = node('span', 'whole', band);
+        const at = function (si) { return (100 * (shownValue(si) - low) / (high - low || 1)).toFixed(3) + '%'; };
+        whole.style.left = at(p.range.whole_min);
+        whole.style.right = (100 - parseFloat(at(p.range.whole_max))).toFixed(3) + '%';
+        whole.setAttribute('data-min', shownValue(p.range.whole_min));
+        whole.setAttribute('data-max', shownValue(p.range.whole_max));
+      }
       const shown = node('span', 'shown', label);
-      const slider = { parameter: p, index: index, input: input, shown: shown, fileValue: Number(input.value) };
-      input.addEventListener('input', resolveRows);
+      const slider = { parameter: p, index: index, input: input, shown: shown, fileValue: fileValue };
+      input.addEventListener('input', function () {
+        const v = Number(input.value);
+        if (v > low && v < high && v !== fileValue) input.value = Number((Math.round(v / step) * step).toPrecision(12));
+        resolveRows();
+      });
       sliders.push(slider);
     });
     const reset = node('button', '', sliderArea, 'The file\'s dimensions');

@@ -14,6 +14,7 @@
 #include "engine/printers/web/page_constructions.hpp"
 #include "engine/run/view.hpp"
 #include "engine/analysis/motion_drawing.hpp"
+#include "engine/analysis/resolving.hpp"
 #include "readers/mechanism_file.hpp"
 #include "tests/test_support.hpp"
 
@@ -132,7 +133,23 @@ TEST_CASE("engine/printers/web/page: a vector-loop file's and a joints file's pa
   CHECK(linkage["block_count"] == 1);  // slider 5
   CHECK(linkage["guide_count"] == 1);  // its guide x = -Lc
   CHECK(linkage["column_kinds"].size() == 3 + 6 + 2);  // theta5; F5's vrel, arel, Coriolis; omega54, alpha54
-  CHECK(page_data("robot_arm_seed000.toml")["resolve"].is_null());
+  CHECK(page_data("robot_arm_seed000.toml")["resolve"]["frame_count"] == 3);
+  // Each slider's range is the analysis's over the page's rows (engine/analysis/slider_ranges); a follower has none.
+  const kinema::Model model = kinema::load_model(kinema_test::sample("problem_4_4_six_bar.toml"));
+  const kinema::MotionTable table = kinema::analyse(model, turn_in_degrees(30));
+  const kinema::Resolving analysed = *kinema::resolving(model, &table);
+  for (std::size_t k = 0; k < analysed.parameters.size(); ++k) {
+    const kinema::Resolving::Parameter& p = analysed.parameters[k];
+    const nlohmann::json& written = six_bar["parameters"][k];
+    INFO(p.name);
+    REQUIRE(written.contains("range") == p.slider);
+    if (!p.slider) continue;
+    CHECK(written["range"]["min"].get<double>() == p.range.min);
+    CHECK(written["range"]["max"].get<double>() == p.range.max);
+    CHECK(written["range"]["whole_min"].get<double>() == p.range.whole_min);
+    CHECK(written["range"]["whole_max"].get<double>() == p.range.whole_max);
+    CHECK((p.range.min < p.value && p.value < p.range.max));
+  }
 }
 
 TEST_CASE("engine/printers/web/page: base64 of hex digests as RFC 4648 gives them") {
