@@ -391,6 +391,43 @@ TEST_CASE("engine/printers/worked_solution: the points' paths (coupler curves) o
   CHECK(row == sweep.size());
 }
 
+// Every path inside its box with room to spare: the crank-shaper's ram C slides along the
+// line y = h, the top of the paths' extent, and was drawn on the axis's frame.
+TEST_CASE("engine/printers/worked_solution: the points' paths are inside their box, none on its frame") {
+  for (const char* name : {"crank_shaper.toml", "four_bar.toml"}) {
+    CAPTURE(std::string(name));
+    const kinema::Model model = kinema::load_model(kinema_test::sample(name));
+    const MotionTable sweep = kinema::analyse(model, kinema::plot_range(model.system, model.system.input.values.at(0)));
+    const std::string tex = document(model, nullptr, &sweep, true);
+    const auto paths = tex.find("Paths of the points over the run");
+    REQUIRE(paths != std::string::npos);
+    const auto axis = tex.find("\\begin{axis}[", paths);
+    const std::string options = tex.substr(axis, tex.find("]\n", axis) - axis);
+    const auto limit = [&](const std::string& key) {
+      const auto at = options.find(", " + key + "=");
+      REQUIRE(at != std::string::npos);
+      return std::stod(options.substr(at + key.size() + 3));
+    };
+    const double box[2][2] = {{limit("xmin"), limit("xmax")}, {limit("ymin"), limit("ymax")}};
+    const double room = 0.01 * std::max(box[0][1] - box[0][0], box[1][1] - box[1][0]);
+    std::size_t points = 0;
+    const auto end = tex.find("\\end{axis}", axis);
+    for (auto at = tex.find("coordinates {", axis); at < end; at = tex.find("coordinates {", at + 1)) {
+      std::istringstream in(tex.substr(at + 13, tex.find('}', at) - at - 13));
+      char open, comma, close;
+      double xy[2];
+      while (in >> open >> xy[0] >> comma >> xy[1] >> close) {
+        for (const int k : {0, 1}) {
+          CHECK(xy[k] >= box[k][0] + room);
+          CHECK(xy[k] <= box[k][1] - room);
+        }
+        ++points;
+      }
+    }
+    CHECK(points >= 2 * sweep.size());
+  }
+}
+
 // A curve is cut at values far past its own typical size (a pole). Judged over the whole
 // axis, a point a thousand times faster than eleven others (fewer than a tenth of the
 // values) was past the axis's limit everywhere and vanished from the speeds plot.
