@@ -277,6 +277,28 @@ TEST_CASE("engine/printers/worked_solution: polygons drawn to scale read off the
         const double per_cm = latex_value(tex.substr(at, tex.find("\\,", at) - at));
         const std::string figure = tex.substr(begin, stated - begin);
         ++figures;
+        // The table under it: each arrow's read-off is its length on the figure times the
+        // scale, written out as a number is in a table of lengths (7800, 78900: not
+        // 7.89\cdot 10^{4} beside 4950; a read-off of 10000 was written 1\cdot 10^{4}).
+        const auto rows = tex.find("\\midrule\n", at), end = tex.find("\\bottomrule", at);
+        REQUIRE(rows < end);
+        std::istringstream table(tex.substr(rows + 9, end - rows - 9));
+        int read = 0;
+        for (std::string row; std::getline(table, row);) {
+          std::vector<std::string> cells;
+          for (std::size_t from = 0, bar; from != std::string::npos; from = bar == std::string::npos ? bar : bar + 3) {
+            bar = row.find(" & ", from);
+            cells.push_back(row.substr(from, bar == std::string::npos ? bar : bar - from));
+          }
+          REQUIRE(cells.size() == 5);
+          CAPTURE(row);
+          const std::string cm = cells[2].substr(1, cells[2].size() - 2), value = cells[3].substr(1, cells[3].size() - 2);
+          const double read_off = latex_value(value);
+          CHECK(std::fabs(read_off - std::stod(cm) * per_cm) <= 5e-4 * std::fabs(read_off) + 1e-12 * per_cm);
+          if (std::fabs(read_off) < 1e6) CHECK_FALSE(has(value, "\\cdot"));
+          ++read;
+        }
+        CHECK(read >= 1);
         int labelled = 0;
         // \draw[->, style] (x1,y1) -- (x2,y2) node[...] {$label$};
         for (auto draw = figure.find("\\draw[->"); draw != std::string::npos; draw = figure.find("\\draw[->", draw + 1)) {
