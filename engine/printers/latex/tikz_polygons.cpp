@@ -191,11 +191,8 @@ void write_tikz_polygon(std::ostream& out, const ConstraintSystem& system, const
   const DocumentNumbers number(system);
   for (const PolygonArrow& a : polygon.arrows) {
     const double read_off = polygon_read_off(a, per_cm, scale.length);
-    // Its four digits, written out below 10^7 as the formula's value beside it is (78900,
-    // not 7.89 10^4 beside 4950).
-    const double read_digits = std::stod(format_significant(read_off, 4));
     out << "$" << a.latex << "$ & " << kind_name(a.kind) << " & $" << format_fixed(read_off / per_cm, 2) << "$ & $"
-        << number(read_digits, Dimension::length, polygon.order, 7) << "$ & $";
+        << number.read_off(read_off, Dimension::length, polygon.order) << "$ & $";
     if (!a.formula.is_zero()) out << form(a.formula, TextbookForm::Style::latex) << " = ";
     out << number(a.formula_value / scale.length, Dimension::length, polygon.order, 6) << "$ \\\\\n";
   }

@@ -330,6 +330,19 @@ TEST_CASE("engine/printers/worked_solution: polygons drawn to scale read off the
       }
     }
     CHECK(figures >= 2);
+    // The three methods' table reads the same arrows off (v_A = 15710 mm/s, not
+    // 1.571\cdot 10^{4} beside 8055).
+    const auto methods = tex.find("\\subsubsection*{Three methods, one answer}");
+    if (methods == std::string::npos) continue;
+    const auto end = tex.find("\\bottomrule", methods);
+    int read = 0;
+    for (auto lever = tex.find(",\\ r = ", methods); lever < end; lever = tex.find(",\\ r = ", lever + 1), ++read) {
+      const auto equals = tex.rfind(" = ", lever), unit = tex.rfind("\\,", lever);
+      const std::string value = tex.substr(equals + 3, unit - equals - 3);
+      CAPTURE(value);
+      if (std::fabs(latex_value(value)) < 1e6) CHECK_FALSE(has(value, "\\cdot"));
+    }
+    CHECK(read >= 1);
   }
 }
 
