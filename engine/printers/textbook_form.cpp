@@ -601,7 +601,11 @@ std::string TextbookForm::render_function(const ex& f, const ex& argument, Conte
     const bool single = GiNaC::is_a<GiNaC::symbol>(argument) && !(c.texts && c.texts->count(argument));
     // A name starting with a letter (u, or a file's latex = "q") would join the command: \cosu.
     const bool letter = !inner.empty() && std::isalpha(static_cast<unsigned char>(inner[0])) != 0;
-    return "\\" + name + (single ? (letter ? " " : "") + inner : "(" + inner + ")");
+    // A number put in for the symbol that comes in its own parentheses (a negative one,
+    // "(-12.827^\circ)") is not wrapped again: \cos(-12.827^\circ), not \cos((-12.827^\circ)).
+    const bool wrapped = GiNaC::is_a<GiNaC::symbol>(argument) && inner.size() > 2 && inner.front() == '(' &&
+                         inner.back() == ')';
+    return "\\" + name + (single ? (letter ? " " : "") + inner : wrapped ? inner : "(" + inner + ")");
   }
   std::string text = "\\operatorname{" + name + "}(";
   for (std::size_t i = 0; i < f.nops(); ++i) text += (i ? ", " : "") + render_argument(i == 0 ? argument : f.op(i), c);

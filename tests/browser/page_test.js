@@ -164,6 +164,39 @@ async function checkCentres(page, name) {
   return true;
 }
 
+// The plots' scales as a reader sees them: every label inside its chart (a wide one such as
+// "-1.50e+3" was cut by the chart's left edge) and left of the plotted area; a value's label
+// is 0 or of the size of its range (a speed's minimum of 1e-33 was written so); the input's
+// first and last values under the axis, the last with its unit.
+async function checkPlots(page, name, header, rows) {
+  const charts = await page.evaluate(() => Array.from(document.querySelectorAll('.plot svg')).map((chart) => {
+    const axis = chart.querySelector('line.axis');
+    return {
+      left: Math.min(Number(axis.getAttribute('x1')), Number(axis.getAttribute('x2'))),
+      labels: Array.from(chart.querySelectorAll('text.tick')).map((t) => {
+        const b = t.getBBox();
+        return { text: t.textContent, x: b.x, y: b.y, right: b.x + b.width, bottom: b.y + b.height };
+      }),
+    };
+  }));
+  assert(charts.length >= 1, `${name}: no plot`);
+  const input = header[0];
+  const unit = /\[(.*)\]$/.exec(input)[1];
+  const first = Number(rows[0].split(',')[0]), last = Number(rows[rows.length - 1].split(',')[0]);
+  for (const chart of charts) {
+    for (const l of chart.labels)
+      assert(l.x >= 0 && l.right <= 400 && l.y >= 0 && l.bottom <= 200, `${name}: the plot label "${l.text}" is cut: (${l.x}, ${l.y})-(${l.right}, ${l.bottom}) outside 400 x 200`);
+    const scale = chart.labels.filter((l) => l.bottom < 190);
+    assert.strictEqual(scale.length, 2, `${name}: a plot without its two scale values`);
+    for (const l of scale) assert(l.right <= chart.left, `${name}: the scale value "${l.text}" overlaps the plot (${l.right} > ${chart.left})`);
+    const [hi, lo] = scale.map((l) => Number(l.text));
+    for (const v of [hi, lo]) assert(v === 0 || Math.abs(v) >= 1e-6 * Math.abs(hi - lo), `${name}: the scale value ${v} is noise of the range ${lo} to ${hi}`);
+    const axis = chart.labels.filter((l) => l.bottom >= 190).map((l) => l.text);
+    assert.deepStrictEqual(axis, [String(Number(first.toPrecision(3))), String(Number(last.toPrecision(3))) + ' ' + unit],
+      `${name}: the plot's input axis`);
+  }
+}
+
 // A spatial chain in 3-D: each point drawn at eval's position (data-x/y/z) and at its
 // projection in pixels (turned by yaw about z and pitch, about the motion's centre: the
 // page's data-yaw, data-pitch, data-centre), every frame drawn; dragging turns the view.
@@ -230,6 +263,7 @@ async function checkSample(browser, file) {
   // Three values where the mechanism is assembled and regular, spread over the run.
   const ok = rows.map((r, k) => (r.split(',')[3] === 'ok' ? k : -1)).filter((k) => k >= 0);
   const picks = [ok[Math.floor(ok.length / 6)], ok[Math.floor(ok.length / 2)], ok[Math.floor((5 * ok.length) / 6)]];
+  await checkPlots(page, name, header, rows);
   let joints = 0;
   for (const row of picks) {
     await scrubTo(page, row);

@@ -96,6 +96,10 @@ std::string latex_figure_caption(const std::string& text) {
          "\\interlinepenalty=10000\\par}\n";
 }
 
+std::string DocumentNumbers::read_off(double shown, Dimension dimension, int order) const {
+  return latex_number(cleaned(std::stod(format_significant(shown, 4)), dimension, order), 7);
+}
+
 std::string DocumentNumbers::ratio(double value, int digits) const {
   return latex_number(std::fabs(value) < 1e-12 ? 0.0 : value, digits);
 }

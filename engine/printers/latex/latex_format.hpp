@@ -111,6 +111,10 @@ class DocumentNumbers {
   /// solver's accuracy relative to the driver's (the parallelogram's omega2/omega1 came out
   /// 1.96e-16).
   std::string ratio(double value, int digits = 6) const;
+  /// A value read off a figure (a polygon's arrow): its four significant digits, written
+  /// out below 10^7 as the formulas' values beside it are (78900, not 7.89\cdot 10^{4}
+  /// beside 4950); round-off as 0.
+  std::string read_off(double shown, Dimension dimension, int order) const;
   /// The value itself, 0 where it is round-off.
   double cleaned(double shown, Dimension dimension, int order) const;
   /// Below this (document units) a value of that kind is round-off.

@@ -18,6 +18,8 @@ namespace {
 // value of the plot flat, and pgfplots stops ("divide by 0.0", "Dimension too large") on
 // values some 1e6 times apart in the paths' equal scales.
 constexpr double kPlotSpan = 1000;
+// The paths' box past their extent on each side, as a fraction of its longer side.
+constexpr double kPathMargin = 0.04;
 
 // The largest magnitude a plot draws: kPlotSpan times the 90th percentile of the
 // magnitudes of its finite values that print as more than 0 (rounding noise around 0 is not
@@ -214,6 +216,12 @@ class PlotWriter {
       const double middle = (low[k] + high[k]) / 2, half = longest / kPlotSpan / 2;
       low[k] = middle - half;
       high[k] = middle + half;
+    }
+    // A margin round the paths: a path on the box's edge (a slider's, along its guide) was
+    // drawn on the axis's frame and could not be seen.
+    for (const int k : {0, 1}) {
+      low[k] -= kPathMargin * longest;
+      high[k] += kPathMargin * longest;
     }
     // One scale for x and y, the box at most 11 cm wide and 5.5 cm high (a page's last
     // third); its ticks chosen for those lengths.

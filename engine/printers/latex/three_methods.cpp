@@ -58,7 +58,7 @@ void write_three_methods(std::ostream& out, const ConstraintSystem& system, cons
   for (const ThreeMethodsRow& row : rows) {
     out << latex_escape_text(centres.bodies[row.body]) << " & $" << number(row.solved, angle, 1, 5) << "$ & ";
     if (row.from_polygon) {
-      out << "$" << row.polygon_arrow << " = " << number(row.read_off, length, 1, 4) << "\\," << velocity_unit << ",\\ r = "
+      out << "$" << row.polygon_arrow << " = " << number.read_off(row.read_off, length, 1) << "\\," << velocity_unit << ",\\ r = "
           << number(row.lever, length, 0, 4) << "\\," << length_unit << "$ & $" << number(*row.from_polygon, angle, 1, 3) << "$";
     } else {
       out << "--- & ---";

@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <array>
+#include <complex>
 #include <cmath>
 #include <map>
 
+#include "engine/printers/latex/label_boxes.hpp"
 #include "engine/printers/latex/latex_format.hpp"
 #include "engine/analysis/chain_instant.hpp"
 #include "engine/base/number_format.hpp"
@@ -14,6 +16,15 @@ namespace kinema {
 namespace {
 
 using Point3 = std::array<double, 3>;
+
+// Where \tdplotsetmaincoords{kTheta}{kPhi} puts a point (cm along the figure's x, y, z) on
+// the page, in cm: tikz-3dplot's main rotation.
+constexpr double kTheta = 65, kPhi = 120;
+std::complex<double> on_page(const Point3& p) {
+  const double t = kTheta * M_PI / 180, f = kPhi * M_PI / 180;
+  return {p[0] * std::cos(f) + p[1] * std::sin(f),
+          -p[0] * std::cos(t) * std::sin(f) + p[1] * std::cos(t) * std::cos(f) + p[2] * std::sin(t)};
+}
 
 }  // namespace
 
@@ -68,20 +79,39 @@ void write_tikz_chain(std::ostream& out, const ConstraintSystem& system, const s
   // Links: each frame's origin joined to its parent's (where they differ).
   for (const PlacedFrame& f : frames)
     out << "\\draw[very thick, blue!70!black] " << at(origin_of(f.parent)) << " -- " << at(f.origin) << ";\n";
-  // Each frame's triad; the names of the frames and points at each place, once.
-  std::map<std::string, std::string> names_at;
-  const auto name_at = [&](const std::string& where, const std::string& name) {
-    std::string& names = names_at[where];
+  // Each frame's triad; the names of the frames and points at each place, once. What is
+  // drawn is kept, on the page, so that the names are set where they cover none of it.
+  LabelBoxes drawn;
+  const double dot = 1.5 * 2.54 / 72.27;  // a place's dot (1.5 pt), cm
+  const auto page_of = [&](const Point3& p) { return on_page({p[0] * cm, p[1] * cm, p[2] * cm}); };
+  const auto line_on_page = [&](const Point3& a, const Point3& b) { drawn.add_line(page_of(a), page_of(b), 0.03); };
+  for (int c = 0; c < 3; ++c) {
+    Point3 end{0, 0, 0};
+    end[c] = reach / cm;
+    line_on_page({0, 0, 0}, end);
+  }
+  for (const PlacedFrame& f : frames) line_on_page(origin_of(f.parent), f.origin);
+  std::map<std::string, std::pair<Point3, std::string>> names_at;  // by the place as written
+  const auto name_at = [&](const Point3& p, const std::string& name) {
+    auto& [place, names] = names_at[at(p)];
+    place = p;
     names += (names.empty() ? "" : ", ") + latex_escape_text(name);
   };
-  name_at(at({0, 0, 0}), observer);
+  name_at({0, 0, 0}, observer);
   for (const PlacedFrame& f : frames) {
     static const char* const axis_names[3] = {"x", "y", "z"};
     for (std::size_t c = 0; c < 3; ++c) {
       out << "\\draw[->, thin] " << at(f.origin) << " -- ++" << plus(f.axes[c], axis_cm)
           << " node[font=\\tiny, anchor=west] {$" << axis_names[c] << "$};\n";
+      const std::complex<double> from = page_of(f.origin);
+      const std::complex<double> tip = from + on_page({f.axes[c][0] * axis_cm, f.axes[c][1] * axis_cm, f.axes[c][2] * axis_cm});
+      drawn.add_line(from, tip, 0.02);
+      LabelBox letter = label_box(axis_names[c], 5, 1.5);  // \tiny, anchored west at the tip
+      letter.centre = tip + letter.half_width;
+      drawn.add(letter);
     }
-    name_at(at(f.origin), f.name);
+    name_at(f.origin, f.name);
+    drawn.add(LabelBox{page_of(f.origin), dot, dot});
     out << "\\filldraw[fill=white] " << at(f.origin) << " circle (1.5pt);\n";
   }
   if (s.status == Status::ok) {
@@ -91,15 +121,26 @@ void write_tikz_chain(std::ostream& out, const ConstraintSystem& system, const s
       const std::string frame = system.points[p].terms ? system.points[p].terms->frame : observer;
       out << "\\draw[thick] " << at(origin_of(frame)) << " -- " << at(position) << ";\n"
           << "\\fill " << at(position) << " circle (1.5pt);\n";
-      name_at(at(position), system.points[p].name);
+      line_on_page(origin_of(frame), position);
+      drawn.add(LabelBox{page_of(position), dot, dot});
+      name_at(position, system.points[p].name);
       if (velocity_scale > 0 && m.speed() > 0) {
         out << "\\draw[->, red, thick] " << at(position) << " -- ++"
             << plus({m.velocity[0], m.velocity[1], m.velocity[2]}, velocity_scale) << ";\n";
+        const std::complex<double> from = page_of(position);
+        drawn.add_line(from, from + on_page({m.velocity[0] * velocity_scale, m.velocity[1] * velocity_scale,
+                                             m.velocity[2] * velocity_scale}), 0.03);
       }
     }
   }
-  for (const auto& [where, names] : names_at)
-    out << "\\node[anchor=north east, font=\\small, inner sep=2pt] at " << where << " {" << names << "};\n";
+  // Each name beside its place, below and left first (where the frames' axes seldom go),
+  // on no other name, dot, link or arrow where there is room: set on the page's own axes.
+  for (const auto& entry : names_at) {
+    const auto& [place, names] = entry.second;
+    const PlacedLabel label = drawn.place_near(page_of(place), label_box(names, 10, 2), -3 * M_PI / 4);
+    out << "\\node[font=\\small, inner sep=2pt] at (canvas cs:x=" << format_fixed(label.box.centre.real(), 3)
+        << "cm,y=" << format_fixed(label.box.centre.imag(), 3) << "cm) {" << names << "};\n";
+  }
   // The scales in the caption: on the drawing's page, as its key.
   const OutputScale scale(system);
   std::string key = "The chain at the instant. Drawing scale: 1\\,cm = $" + latex_number(1.0 / cm / scale.length, 3) + "$\\," +

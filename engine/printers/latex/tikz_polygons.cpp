@@ -192,7 +192,7 @@ void write_tikz_polygon(std::ostream& out, const ConstraintSystem& system, const
   for (const PolygonArrow& a : polygon.arrows) {
     const double read_off = polygon_read_off(a, per_cm, scale.length);
     out << "$" << a.latex << "$ & " << kind_name(a.kind) << " & $" << format_fixed(read_off / per_cm, 2) << "$ & $"
-        << number(read_off, Dimension::length, polygon.order, 4) << "$ & $";
+        << number.read_off(read_off, Dimension::length, polygon.order) << "$ & $";
     if (!a.formula.is_zero()) out << form(a.formula, TextbookForm::Style::latex) << " = ";
     out << number(a.formula_value / scale.length, Dimension::length, polygon.order, 6) << "$ \\\\\n";
   }

@@ -633,6 +633,17 @@
   // against the row, the input going back and forth); a cursor at the row; a click moves there.
   const colours = ['#1c3f94', '#c62828', '#2e7d32', '#d98b00', '#8e44ad', '#00838f', '#6d4c41', '#ad1457'];
   let plots = [];
+  // A scale's value in three digits; a value that is rounding noise of its range
+  // (a speed of 1e-33 at rest) is 0.
+  function tickLabel(v, range) {
+    return Math.abs(v) <= 1e-9 * Math.abs(range) ? '0' : String(Number(v.toPrecision(3)));
+  }
+  // A label's width in the chart's units: measured where the page is laid out, else
+  // estimated from its characters (10 px text).
+  function labelWidth(text) {
+    const measured = text.getComputedTextLength ? text.getComputedTextLength() : 0;
+    return measured > 0 ? measured : 6.5 * text.textContent.length;
+  }
   // Made again when the sliders solve new rows.
   function buildPlots() {
     plotArea.textContent = '';
@@ -647,13 +658,23 @@
       if (!isFinite(lo)) { lo = -1; hi = 1; }
       if (hi - lo < 1e-12 * Math.max(1, Math.abs(hi))) { lo -= 1; hi += 1; }
       const x0 = Math.min.apply(null, xs), x1 = Math.max.apply(null, xs);
-      const X = function (x) { return 40 + (x - x0) / ((x1 - x0) || 1) * 350; };
-      const Y = function (y) { return 185 - (y - lo) / (hi - lo) * 175; };
-      svg('line', { x1: 40, y1: 185, x2: 390, y2: 185, class: 'axis' }, chart);
-      svg('line', { x1: 40, y1: 10, x2: 40, y2: 185, class: 'axis' }, chart);
-      if (lo < 0 && hi > 0) svg('line', { x1: 40, y1: Y(0), x2: 390, y2: Y(0), class: 'axis' }, chart);
-      svg('text', { x: 36, y: 14, class: 'tick', 'text-anchor': 'end' }, chart, hi.toPrecision(3));
-      svg('text', { x: 36, y: 185, class: 'tick', 'text-anchor': 'end' }, chart, lo.toPrecision(3));
+      // The scale's labels first: the left margin is as wide as the wider of them, so a
+      // long one ("-1.50e+3") is not cut by the chart's edge.
+      const top = svg('text', { y: 14, class: 'tick', 'text-anchor': 'end' }, chart, tickLabel(hi, hi - lo));
+      const bottom = svg('text', { y: 182, class: 'tick', 'text-anchor': 'end' }, chart, tickLabel(lo, hi - lo));
+      const left = Math.max(40, 8 + Math.max(labelWidth(top), labelWidth(bottom)));
+      top.setAttribute('x', left - 4);
+      bottom.setAttribute('x', left - 4);
+      const X = function (x) { return left + (x - x0) / ((x1 - x0) || 1) * (390 - left); };
+      const Y = function (y) { return 182 - (y - lo) / (hi - lo) * 172; };
+      svg('line', { x1: left, y1: 182, x2: 390, y2: 182, class: 'axis' }, chart);
+      svg('line', { x1: left, y1: 10, x2: left, y2: 182, class: 'axis' }, chart);
+      if (lo < 0 && hi > 0) svg('line', { x1: left, y1: Y(0), x2: 390, y2: Y(0), class: 'axis' }, chart);
+      // The input's range under the axis (along a circuit: the rows).
+      const first = data.circuit ? 'row 1' : tickLabel(x0, x1 - x0);
+      const last = data.circuit ? 'row ' + count : tickLabel(x1, x1 - x0) + ' ' + data.input.unit;
+      svg('text', { x: left, y: 196, class: 'tick', 'text-anchor': 'start' }, chart, first);
+      svg('text', { x: 390, y: 196, class: 'tick', 'text-anchor': 'end' }, chart, last);
       plot.fields.forEach(function (f, k) {
         let path = '', pen = false;
         numbers.forEach(function (n, r) {
@@ -666,10 +687,10 @@
         const field = data.columns.fields[f];
         node('span', '', legend, '\u25a0 ' + field.name + ' [' + field.unit + ']').style.color = colour;
       });
-      const cursor = svg('line', { y1: 10, y2: 185, class: 'cursor', 'vector-effect': 'non-scaling-stroke' }, chart);
+      const cursor = svg('line', { y1: 10, y2: 182, class: 'cursor', 'vector-effect': 'non-scaling-stroke' }, chart);
       chart.addEventListener('click', function (event) {
         const b = chart.getBoundingClientRect();
-        const x = x0 + ((event.clientX - b.left) / b.width * 400 - 40) / 350 * ((x1 - x0) || 1);
+        const x = x0 + ((event.clientX - b.left) / b.width * 400 - left) / (390 - left) * ((x1 - x0) || 1);
         let best = 0;
         xs.forEach(function (v, r) { if (Math.abs(v - x) < Math.abs(xs[best] - x)) best = r; });
         setRow(best);

@@ -771,3 +771,60 @@ TEST_CASE("figures: every plot's tick labels apart at the axis's length, each it
   }
   CHECK(axes >= 5 * 18);  // every sample's plots
 }
+
+namespace {
+
+// Where \tdplotsetmaincoords{65}{120} puts a point of a chain's figure on the page (cm):
+// tikz-3dplot's main rotation.
+Point chain_on_page(double x, double y, double z) {
+  const double t = 65 * M_PI / 180, f = 120 * M_PI / 180;
+  return {x * std::cos(f) + y * std::sin(f), -x * std::cos(t) * std::sin(f) + y * std::cos(t) * std::cos(f) + z * std::sin(t)};
+}
+
+}  // namespace
+
+// The spatial chains' names of frames and points: in the robot arm with a sleeve "C" was
+// set on "E3, A" and the RSSR's "rocker" on "ground, crank" and on the triads, each name
+// anchored at its place whatever was there.
+TEST_CASE("figures: a spatial chain's names on no other name nor dot, each next to a place drawn") {
+  for (const char* name : {"robot_arm_slider.toml", "robot_arm_seed000.toml", "rssr_spatial_four_bar.toml"}) {
+    CAPTURE(std::string(name));
+    const kinema::Model model = kinema::load_model(kinema_test::sample(name));
+    const std::string tex = document_at_first_value(model);
+    const auto begin = tex.find("\\tdplotsetmaincoords");
+    REQUIRE(begin != std::string::npos);
+    std::istringstream figure(tex.substr(begin, tex.find("\\end{tikzpicture}", begin) - begin));
+    std::vector<Point> dots;
+    std::vector<kinema::LabelBox> names;
+    for (std::string line; std::getline(figure, line);) {
+      double x, y, z;
+      if (std::sscanf(line.c_str(), "\\fill (%lf,%lf,%lf) circle", &x, &y, &z) == 3 ||
+          std::sscanf(line.c_str(), "\\filldraw[fill=white] (%lf,%lf,%lf) circle", &x, &y, &z) == 3)
+        dots.push_back(chain_on_page(x, y, z));
+      if (line.rfind("\\node[", 0) != 0 || line.find("font=\\small") == std::string::npos) continue;
+      const std::string text = line.substr(line.rfind(" {") + 2, line.rfind("};") - line.rfind(" {") - 2);
+      kinema::LabelBox box = kinema::label_box(text, 10, 2);
+      const auto at = line.find(" at (");
+      if (std::sscanf(line.c_str() + at, " at (canvas cs:x=%lfcm,y=%lfcm)", &x, &y) == 2) {
+        box.centre = Point(x, y);
+      } else {  // anchored north east at a place of the figure
+        REQUIRE(std::sscanf(line.c_str() + at, " at (%lf,%lf,%lf)", &x, &y, &z) == 3);
+        box.centre = chain_on_page(x, y, z) - Point(box.half_width, box.half_height);
+      }
+      names.push_back(box);
+    }
+    REQUIRE(names.size() >= 3);
+    REQUIRE(dots.size() >= names.size());
+    const double dot = 1.5 * 2.54 / 72.27;
+    for (std::size_t i = 0; i < names.size(); ++i) {
+      CAPTURE(i);
+      for (std::size_t j = 0; j < i; ++j) CHECK_FALSE(names[i].overlaps(names[j]));
+      double nearest = INFINITY;
+      for (const Point& d : dots) {
+        CHECK(names[i].distance_to(d) > dot / 2);  // on no dot
+        nearest = std::min(nearest, names[i].distance_to(d));
+      }
+      CHECK(nearest <= 2 * kinema::label_reach(names[i]));  // beside a place
+    }
+  }
+}

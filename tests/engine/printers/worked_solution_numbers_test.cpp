@@ -367,3 +367,20 @@ TEST_CASE("engine/printers/latex: the driver's rate as the file wrote it, and it
   CHECK(has(four_bar, "= 10\\,\\mathrm{rad/s}$"));
   CHECK(!has(four_bar, "\\mathrm{rad/s} = 10"));
 }
+
+// A negative angle put in for a cosine's symbol is in parentheses once: the slider-crank's
+// substitution read \cos((-12.827^\circ)), and Problem 3.22's \sin((-120^\circ)).
+TEST_CASE("engine/printers/latex: a substituted negative angle in one pair of parentheses") {
+  const std::regex doubled(R"(\\(sin|cos|tan)\(\([^()]*\)\))");
+  for (const char* sample : {"slider_crank.toml", "problem_3_22_joints.toml", "piston_driven_crank.toml"}) {
+    CAPTURE(std::string(sample));
+    const std::string tex = worked_solution(sample);
+    const std::string substitution = between(tex, "Numeric substitution", "\\end{align*}");
+    REQUIRE(has(substitution, "(-"));  // it has negative numbers put in
+    std::smatch match;
+    const bool found = std::regex_search(substitution, match, doubled);
+    CAPTURE(found ? match.str() : std::string());
+    CHECK_FALSE(found);
+    CHECK(std::regex_search(substitution, std::regex(R"(\\(sin|cos)\(-[0-9.]+\^\{?\\circ)")));  // still in parentheses
+  }
+}

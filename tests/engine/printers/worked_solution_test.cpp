@@ -277,6 +277,28 @@ TEST_CASE("engine/printers/worked_solution: polygons drawn to scale read off the
         const double per_cm = latex_value(tex.substr(at, tex.find("\\,", at) - at));
         const std::string figure = tex.substr(begin, stated - begin);
         ++figures;
+        // The table under it: each arrow's read-off is its length on the figure times the
+        // scale, written out as a number is in a table of lengths (7800, 78900: not
+        // 7.89\cdot 10^{4} beside 4950; a read-off of 10000 was written 1\cdot 10^{4}).
+        const auto rows = tex.find("\\midrule\n", at), end = tex.find("\\bottomrule", at);
+        REQUIRE(rows < end);
+        std::istringstream table(tex.substr(rows + 9, end - rows - 9));
+        int read = 0;
+        for (std::string row; std::getline(table, row);) {
+          std::vector<std::string> cells;
+          for (std::size_t from = 0, bar; from != std::string::npos; from = bar == std::string::npos ? bar : bar + 3) {
+            bar = row.find(" & ", from);
+            cells.push_back(row.substr(from, bar == std::string::npos ? bar : bar - from));
+          }
+          REQUIRE(cells.size() == 5);
+          CAPTURE(row);
+          const std::string cm = cells[2].substr(1, cells[2].size() - 2), value = cells[3].substr(1, cells[3].size() - 2);
+          const double read_off = latex_value(value);
+          CHECK(std::fabs(read_off - std::stod(cm) * per_cm) <= 5e-4 * std::fabs(read_off) + 1e-12 * per_cm);
+          if (std::fabs(read_off) < 1e6) CHECK_FALSE(has(value, "\\cdot"));
+          ++read;
+        }
+        CHECK(read >= 1);
         int labelled = 0;
         // \draw[->, style] (x1,y1) -- (x2,y2) node[...] {$label$};
         for (auto draw = figure.find("\\draw[->"); draw != std::string::npos; draw = figure.find("\\draw[->", draw + 1)) {
@@ -308,6 +330,19 @@ TEST_CASE("engine/printers/worked_solution: polygons drawn to scale read off the
       }
     }
     CHECK(figures >= 2);
+    // The three methods' table reads the same arrows off (v_A = 15710 mm/s, not
+    // 1.571\cdot 10^{4} beside 8055).
+    const auto methods = tex.find("\\subsubsection*{Three methods, one answer}");
+    if (methods == std::string::npos) continue;
+    const auto end = tex.find("\\bottomrule", methods);
+    int read = 0;
+    for (auto lever = tex.find(",\\ r = ", methods); lever < end; lever = tex.find(",\\ r = ", lever + 1), ++read) {
+      const auto equals = tex.rfind(" = ", lever), unit = tex.rfind("\\,", lever);
+      const std::string value = tex.substr(equals + 3, unit - equals - 3);
+      CAPTURE(value);
+      if (std::fabs(latex_value(value)) < 1e6) CHECK_FALSE(has(value, "\\cdot"));
+    }
+    CHECK(read >= 1);
   }
 }
 
@@ -389,6 +424,43 @@ TEST_CASE("engine/printers/worked_solution: the points' paths (coupler curves) o
     ++row;
   }
   CHECK(row == sweep.size());
+}
+
+// Every path inside its box with room to spare: the crank-shaper's ram C slides along the
+// line y = h, the top of the paths' extent, and was drawn on the axis's frame.
+TEST_CASE("engine/printers/worked_solution: the points' paths are inside their box, none on its frame") {
+  for (const char* name : {"crank_shaper.toml", "four_bar.toml"}) {
+    CAPTURE(std::string(name));
+    const kinema::Model model = kinema::load_model(kinema_test::sample(name));
+    const MotionTable sweep = kinema::analyse(model, kinema::plot_range(model.system, model.system.input.values.at(0)));
+    const std::string tex = document(model, nullptr, &sweep, true);
+    const auto paths = tex.find("Paths of the points over the run");
+    REQUIRE(paths != std::string::npos);
+    const auto axis = tex.find("\\begin{axis}[", paths);
+    const std::string options = tex.substr(axis, tex.find("]\n", axis) - axis);
+    const auto limit = [&](const std::string& key) {
+      const auto at = options.find(", " + key + "=");
+      REQUIRE(at != std::string::npos);
+      return std::stod(options.substr(at + key.size() + 3));
+    };
+    const double box[2][2] = {{limit("xmin"), limit("xmax")}, {limit("ymin"), limit("ymax")}};
+    const double room = 0.01 * std::max(box[0][1] - box[0][0], box[1][1] - box[1][0]);
+    std::size_t points = 0;
+    const auto end = tex.find("\\end{axis}", axis);
+    for (auto at = tex.find("coordinates {", axis); at < end; at = tex.find("coordinates {", at + 1)) {
+      std::istringstream in(tex.substr(at + 13, tex.find('}', at) - at - 13));
+      char open, comma, close;
+      double xy[2];
+      while (in >> open >> xy[0] >> comma >> xy[1] >> close) {
+        for (const int k : {0, 1}) {
+          CHECK(xy[k] >= box[k][0] + room);
+          CHECK(xy[k] <= box[k][1] - room);
+        }
+        ++points;
+      }
+    }
+    CHECK(points >= 2 * sweep.size());
+  }
 }
 
 // A curve is cut at values far past its own typical size (a pole). Judged over the whole
