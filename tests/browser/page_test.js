@@ -393,16 +393,16 @@ async function checkSlider(browser, sampleName, parameter, target, sweep) {
     }
     // A chain's points (its frames drawn by the re-solved rows): at eval's, and a frame's
     // origin drawn where a point at that origin is (the robot arm's A at E3's).
-    const chain = await page.evaluate(() => {
-      const mark = (e) => { const m = /translate\(([^,]+),([^)]+)\)/.exec(e.getAttribute('transform')); return [Number(m[1]), Number(m[2])]; };
+    const chain = !sampleName.startsWith('robot_arm') ? null : await page.evaluate(() => {
+      const mark = (e) => { const m = /translate\(([^,]+),([^)]+)\)/.exec(e.getAttribute('transform') || ''); return m ? [Number(m[1]), Number(m[2])] : [NaN, NaN]; };
       const points = Array.from(document.querySelectorAll('#mechanism [data-point]')).map((e) => ({ name: e.getAttribute('data-point'),
-        at: ['data-x', 'data-y', 'data-z'].map((a) => Number(e.getAttribute(a))), px: mark(e) }));
+        at: ['data-x', 'data-y', 'data-z'].map((a) => Number(e.getAttribute(a))), px: mark(e) })).filter((p) => isFinite(p.px[0]));
       const frames = {};
       document.querySelectorAll('#mechanism [data-frame]').forEach((e) => { frames[e.getAttribute('data-frame')] = mark(e); });
       return { points: points, frames: frames };
     });
-    if (sampleName.startsWith('robot_arm')) {
-      assert(Object.keys(chain.frames).length === 3 && chain.points.length === 3, `${sampleName}: frames or points not drawn`);
+    if (chain) {
+      assert(Object.keys(chain.frames).length === 3 && chain.points.length === 3, `${sampleName}: frames ${Object.keys(chain.frames)} and points ${chain.points.map((p) => p.name)} drawn`);
       for (const point of chain.points) {
         const column = header.findIndex((h) => h.startsWith(point.name + '_x ['));
         assert(column >= 0, `${sampleName}: no column for point ${point.name}`);
