@@ -147,10 +147,19 @@ async function checkCentres(page, name) {
     const data = JSON.parse(document.getElementById('kinema-data').textContent);
     const row = Number(document.getElementById('scrubber').value);
     const structure = data.constructions.centre_structures[data.constructions.rows[row].centres[0]];
+    // The labels of the centres drawn (near-coincident ones were printed over each other).
+    const labels = Array.from(svg.querySelectorAll('#centres text.label:not(.centre-label)')).map((t) => {
+      const b = t.getBBox();
+      return { text: t.textContent, x0: b.x, x1: b.x + b.width, y0: b.y, y1: b.y + b.height };
+    });
     box.click();
-    return { drawn: drawn, joints: joints, structure: structure, jointNames: data.drawing.joint_names };
+    return { drawn: drawn, joints: joints, structure: structure, jointNames: data.drawing.joint_names, labels: labels };
   });
   if (!found) return false;
+  found.labels.forEach((a, i) => found.labels.slice(i + 1).forEach((b) => {
+    const across = Math.min(a.x1, b.x1) - Math.max(a.x0, b.x0), down = Math.min(a.y1, b.y1) - Math.max(a.y0, b.y0);
+    assert(across <= 0.5 || down <= 0.5, `${name}: centre labels "${a.text}" and "${b.text}" overlap`);
+  }));
   const n = found.structure.bodies.length;
   const names = new Set(found.drawn.map((c) => c.name));
   assert.strictEqual(names.size + found.structure.not_found.length, (n * (n - 1)) / 2,

@@ -439,6 +439,14 @@
   }
 
   // Labels of points that fall within a few pixels of each other, said once ("o = A").
+  // A label's box as drawn, measured once a text (measuring lays the page out again).
+  const labelSizes = new Map();
+  function labelSize(label, text) {
+    if (labelSizes.has(text)) return labelSizes.get(text);
+    const b = label.getBBox(), size = { width: b.width, height: b.height, y: b.y };
+    if (b.width > 0) labelSizes.set(text, size);
+    return size;
+  }
   function drawLabelled(list, place, parent, className, dataName, separator) {
     const groups = [];
     list.forEach(function (item) {
@@ -452,8 +460,36 @@
       mark.setAttribute('data-y', item.at[1]);
       svg('circle', { r: 3, class: className }, mark);
     });
+    // Each label beside its mark, on no label placed before it: the first free of eight
+    // places around the mark, else stacked below it. Its size as drawn (a hidden panel
+    // measures nothing: then about 8 px a character of the 13 px text).
+    const placed = [];
+    const overlaps = function (b) {
+      return placed.some(function (o) { return b.x0 < o.x1 && o.x0 < b.x1 && b.y0 < o.y1 && o.y0 < b.y1; });
+    };
     groups.forEach(function (g) {
-      svg('text', { x: fixed(g.p[0] + 6), y: fixed(g.p[1] + 14), class: 'label' }, parent, g.names.join(separator));
+      const text = g.names.join(separator);
+      const label = svg('text', { x: 0, y: 0, class: 'label' }, parent, text);
+      const measured = labelSize(label, text);
+      const width = (measured.width > 0 ? measured.width : 8 * text.length) + 2, height = measured.height > 0 ? measured.height + 2 : 17;
+      const above = measured.height > 0 ? -measured.y + 1 : 14;  // from the baseline to the box's top
+      const box = function (dx, dy) {  // dx, dy: the text's start and baseline from the mark
+        const x0 = g.p[0] + dx - 1, y0 = g.p[1] + dy - above;
+        return { x: g.p[0] + dx, y: g.p[1] + dy, x0: x0, x1: x0 + width, y0: y0, y1: y0 + height };
+      };
+      const around = [[6, 14], [6, -6], [-6 - width, 14], [-6 - width, -6], [8, 4], [-8 - width, 4], [-width / 2, 22], [-width / 2, -10]];
+      let chosen = null;
+      for (let k = 0; !chosen && k < around.length; ++k) {
+        const b = box(around[k][0], around[k][1]);
+        if (!overlaps(b)) chosen = b;
+      }
+      for (let k = 1; !chosen; ++k) {
+        const b = box(6, 14 + height * k);
+        if (!overlaps(b)) chosen = b;
+      }
+      placed.push(chosen);
+      label.setAttribute('x', fixed(chosen.x));
+      label.setAttribute('y', fixed(chosen.y));
     });
   }
 
