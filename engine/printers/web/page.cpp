@@ -151,9 +151,29 @@ json columns_json(const ConstraintSystem& system, const std::vector<ResultColumn
     column += 3 * d + 2;
   }
   out["points"] = points;
-  out["plots"] = json::array({{{"title", "rates"}, {"fields", rates}},
-                              {{"title", "second rates"}, {"fields", second_rates}},
-                              {{"title", "point speeds"}, {"fields", speeds}}});
+  // One plot a unit: an angle's rate in rad/s beside a length's in mm/s on one axis leaves
+  // the smaller flat. A plot of one unit keeps its plain title.
+  json plots = json::array();
+  const auto unit_of = [&](const json& field) -> const std::string& {  // csv_field undone
+    const std::size_t f = field.get<std::size_t>();
+    return columns[f > kInputColumns ? f - 1 : f].unit;
+  };
+  const auto by_unit = [&](const std::string& title, const json& fields) {
+    std::vector<std::string> units;
+    for (const json& f : fields)
+      if (std::find(units.begin(), units.end(), unit_of(f)) == units.end()) units.push_back(unit_of(f));
+    for (const std::string& unit : units) {
+      json mine = json::array();
+      for (const json& f : fields)
+        if (unit_of(f) == unit) mine.push_back(f);
+      plots.push_back({{"title", units.size() > 1 ? title + " in " + unit : title}, {"fields", mine}});
+    }
+    if (units.empty()) plots.push_back({{"title", title}, {"fields", fields}});
+  };
+  by_unit("rates", rates);
+  by_unit("second rates", second_rates);
+  by_unit("point speeds", speeds);
+  out["plots"] = plots;
   json names = json::array();
   for (std::size_t k = 0; k < columns.size(); ++k) {
     names.push_back({{"name", columns[k].name}, {"unit", columns[k].unit}});

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -103,16 +104,18 @@ TEST_CASE("engine/base/sha256: the digests of FIPS 180-4's examples") {
   CHECK(kinema::sha256_hex(std::string(1000000, 'a')) == "cdc76e5c9914fb9281a1c7e284d73e67f1809a48a497200e046d39ccc7112cd0");
 }
 
-TEST_CASE("engine/printers/web/page: a vector-loop file's and a joints file's pages carry what solving again needs; a chain's does not") {
-  const auto page_data = [](const std::string& name) {
-    const kinema::Model model = kinema::load_model(kinema_test::sample(name));
-    const kinema::MotionTable table = kinema::analyse(model, turn_in_degrees(30));
-    std::ostringstream out;
-    kinema::print_page(out, model, table, false);
-    const std::string page = out.str(), open = "id=\"kinema-data\">";
-    const std::size_t begin = page.find(open) + open.size();
-    return nlohmann::json::parse(page.substr(begin, page.find("</script>", begin) - begin));
-  };
+// The data a sample's page carries (a turn at 30 deg steps).
+nlohmann::json page_data(const std::string& name) {
+  const kinema::Model model = kinema::load_model(kinema_test::sample(name));
+  const kinema::MotionTable table = kinema::analyse(model, turn_in_degrees(30));
+  std::ostringstream out;
+  kinema::print_page(out, model, table, false);
+  const std::string page = out.str(), open = "id=\"kinema-data\">";
+  const std::size_t begin = page.find(open) + open.size();
+  return nlohmann::json::parse(page.substr(begin, page.find("</script>", begin) - begin));
+}
+
+TEST_CASE("engine/printers/web/page: vector-loop, joints and chain files' pages carry what solving again needs") {
   const nlohmann::json six_bar = page_data("problem_4_4_six_bar.toml")["resolve"];
   REQUIRE(six_bar.is_object());
   CHECK(six_bar["inputs"].size() == 12);
@@ -149,6 +152,36 @@ TEST_CASE("engine/printers/web/page: a vector-loop file's and a joints file's pa
     CHECK(written["range"]["whole_min"].get<double>() == p.range.whole_min);
     CHECK(written["range"]["whole_max"].get<double>() == p.range.whole_max);
     CHECK((p.range.min < p.value && p.value < p.range.max));
+  }
+}
+
+// A plot shows one unit: the crank-shaper's ram (mm/s) and its links' rates (rad/s) each get
+// their own, and every rate, second rate and speed is on one plot.
+TEST_CASE("engine/printers/web/page: each plot's curves share one unit") {
+  for (const char* name : {"crank_shaper.toml", "example_4_2_joints.toml", "four_bar.toml"}) {
+    const std::string sample = name;
+    CAPTURE(sample);
+    const nlohmann::json data = page_data(name);
+    const nlohmann::json& fields = data["columns"]["fields"];
+    std::set<std::size_t> plotted;
+    std::set<std::string> titles;
+    for (const nlohmann::json& plot : data["columns"]["plots"]) {
+      std::set<std::string> units;
+      for (const nlohmann::json& f : plot["fields"]) {
+        units.insert(fields[f.get<std::size_t>()]["unit"].get<std::string>());
+        CHECK(plotted.insert(f.get<std::size_t>()).second);
+      }
+      CHECK(units.size() == 1);
+      CHECK(titles.insert(plot["title"].get<std::string>()).second);
+    }
+    // Every coordinate's rate and second rate (CSV fields after the input's three and the
+    // status) and every point's speed, plotted once.
+    const kinema::Model model = kinema::load_model(kinema_test::sample(name));
+    const std::size_t n = model.system.unknowns.size();
+    CHECK(plotted.size() == 2 * n + model.system.points.size());
+    for (std::size_t k = 0; k < n; ++k) CHECK((plotted.count(4 + 3 * k + 1) && plotted.count(4 + 3 * k + 2)));
+    if (sample != "four_bar.toml") CHECK(titles.count("rates") == 0);  // mixed units: split
+    if (sample == "four_bar.toml") CHECK(titles.count("rates") == 1);
   }
 }
 
