@@ -3,15 +3,13 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <exception>
 #include <limits>
-#include <mutex>
 #include <optional>
-#include <thread>
 
 #include "engine/analysis/toggles.hpp"
 #include "engine/base/errors.hpp"
 #include "engine/base/number_format.hpp"
+#include "engine/base/threads.hpp"
 #include "engine/base/units.hpp"
 #include "engine/constraints/output_columns.hpp"
 #include "engine/numeric/design_lanes.hpp"
@@ -482,33 +480,21 @@ StudyResults run_design_study(const Model& model, const Designs& designs, const 
   constexpr std::size_t kDesignsATurn = 8;
   std::atomic<std::size_t> next{0};
   std::atomic<std::uint64_t> lane_values{0};
-  std::exception_ptr failure;
-  std::mutex failure_lock;
   const auto work = [&]() {
-    try {
-      DesignRunner runner(setup, inputs, options);
-      const std::size_t turn = runner.uses_lanes() ? DesignLanes::kLanes : kDesignsATurn;
-      for (std::size_t first = next.fetch_add(turn); first < count; first = next.fetch_add(turn)) {
-        const std::size_t last = std::min(count, first + turn);
-        if (runner.uses_lanes()) {
-          runner.run_lanes(designs, first, last - first, results);
-          continue;
-        }
-        for (std::size_t design = first; design < last; ++design) runner.run(designs, design, results);
+    DesignRunner runner(setup, inputs, options);
+    const std::size_t turn = runner.uses_lanes() ? DesignLanes::kLanes : kDesignsATurn;
+    for (std::size_t first = next.fetch_add(turn); first < count; first = next.fetch_add(turn)) {
+      const std::size_t last = std::min(count, first + turn);
+      if (runner.uses_lanes()) {
+        runner.run_lanes(designs, first, last - first, results);
+        continue;
       }
-      lane_values += runner.lane_values();
-    } catch (...) {
-      const std::lock_guard<std::mutex> lock(failure_lock);
-      if (!failure) failure = std::current_exception();
-      next = count;
+      for (std::size_t design = first; design < last; ++design) runner.run(designs, design, results);
     }
+    lane_values += runner.lane_values();
   };
   const unsigned threads = static_cast<unsigned>(std::max<std::size_t>(1, std::min<std::size_t>(options.threads, count)));
-  std::vector<std::thread> workers;
-  for (unsigned t = 1; t < threads; ++t) workers.emplace_back(work);
-  work();
-  for (std::thread& worker : workers) worker.join();
-  if (failure) std::rethrow_exception(failure);
+  run_on_threads(threads, work, [&] { next = count; });
   results.lane_values = lane_values;
   return results;
 }

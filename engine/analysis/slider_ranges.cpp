@@ -3,12 +3,11 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <exception>
 #include <memory>
-#include <mutex>
 #include <thread>
 
 #include "engine/analysis/resolving.hpp"
+#include "engine/base/threads.hpp"
 #include "engine/base/units.hpp"
 #include "engine/numeric/sweep.hpp"
 
@@ -183,26 +182,14 @@ std::vector<SliderRange> slider_ranges(const Model& model, const Resolving& reso
   }
   // The parameters' sides shared out among the cores, each thread with its own probe.
   std::atomic<std::size_t> next{0};
-  std::exception_ptr failure;
-  std::mutex failure_lock;
   const auto work = [&]() {
-    try {
-      RunProbe probe(model, resolving, inputs);
-      for (std::size_t k = next++; k < 2 * sliders.size(); k = next++) {
-        const std::size_t p = sliders[k / 2];
-        find_side(probe, p, resolving.parameters[p], at_file, inputs.size() - 1, k % 2 == 1, ranges[p]);
-      }
-    } catch (...) {
-      const std::lock_guard<std::mutex> lock(failure_lock);
-      if (!failure) failure = std::current_exception();
+    RunProbe probe(model, resolving, inputs);
+    for (std::size_t k = next++; k < 2 * sliders.size(); k = next++) {
+      const std::size_t p = sliders[k / 2];
+      find_side(probe, p, resolving.parameters[p], at_file, inputs.size() - 1, k % 2 == 1, ranges[p]);
     }
   };
-  const unsigned threads = std::max(1u, std::min(std::thread::hardware_concurrency(), 2u));
-  std::vector<std::thread> workers;
-  for (unsigned t = 1; t < threads; ++t) workers.emplace_back(work);
-  work();
-  for (std::thread& worker : workers) worker.join();
-  if (failure) std::rethrow_exception(failure);
+  run_on_threads(std::max(1u, std::min(std::thread::hardware_concurrency(), 2u)), work);
   return ranges;
 }
 
