@@ -12,6 +12,7 @@
 #include <thread>
 #include <cstring>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -38,6 +39,28 @@ namespace {
 
 using Value = std::variant<double, std::string>;
 
+/// GiNaC, under the derivations, is not thread-safe (expressions share reference-counted
+/// nodes and constants): Python threads take turns in kinema, every call and every
+/// model's end holding this. Waited for without the GIL, which the thread in kinema may be
+/// waiting for; recursive, as a model's last reference may go within a call. Never
+/// destroyed: a model may end after static destructors have run, at the interpreter's exit.
+std::recursive_mutex& engine_mutex() {
+  static auto* mutex = new std::recursive_mutex;
+  return *mutex;
+}
+
+class EngineTurn {
+ public:
+  EngineTurn() {
+    if (engine_mutex().try_lock()) return;
+    py::gil_scoped_release unlocked;
+    engine_mutex().lock();
+  }
+  ~EngineTurn() { engine_mutex().unlock(); }
+  EngineTurn(const EngineTurn&) = delete;
+  EngineTurn& operator=(const EngineTurn&) = delete;
+};
+
 /// A model as Python holds it: the engine's model (full derivation: derive() prints its
 /// formulas) and the facade over that same model.
 struct PyModel {
@@ -52,7 +75,10 @@ struct PyResult {
 };
 
 PyModel model_of(kinema::Model model) {
-  auto shared = std::make_shared<const kinema::Model>(std::move(model));
+  const std::shared_ptr<const kinema::Model> shared(new kinema::Model(std::move(model)), [](const kinema::Model* ended) {
+    const EngineTurn turn;
+    delete ended;
+  });
   return PyModel{shared, kinema::EngineAccess::facade(shared)};
 }
 
@@ -456,33 +482,33 @@ PYBIND11_MODULE(kinema, module) {
       });
 
   py::class_<PyResult>(module, "Result", "The mechanism at one input value (SI), read by name.")
-      .def_property_readonly("input", [](const PyResult& r) { return r.solution.input(); })
-      .def_property_readonly("status", [](const PyResult& r) { return status_name(r.solution.status()); })
-      .def_property_readonly("ok", [](const PyResult& r) { return r.solution.ok(); })
-      .def_property_readonly("message", [](const PyResult& r) { return r.solution.message(); })
+      .def_property_readonly("input", py::cpp_function([](const PyResult& r) { return r.solution.input(); }, py::call_guard<EngineTurn>()))
+      .def_property_readonly("status", py::cpp_function([](const PyResult& r) { return status_name(r.solution.status()); }, py::call_guard<EngineTurn>()))
+      .def_property_readonly("ok", py::cpp_function([](const PyResult& r) { return r.solution.ok(); }, py::call_guard<EngineTurn>()))
+      .def_property_readonly("message", py::cpp_function([](const PyResult& r) { return r.solution.message(); }, py::call_guard<EngineTurn>()))
       .def("__getitem__", [](const PyResult& r, const std::string& name) {
         return named(r.solution, r.model.facade.names(), name);
-      })
-      .def("keys", [](const PyResult& r) { return result_names(r.model.facade.names()); })
-      .def("point", [](const PyResult& r, const std::string& name) { return r.solution.point(name); }, py::arg("name"))
-      .def("_repr_html_", &result_html)
+      }, py::call_guard<EngineTurn>())
+      .def("keys", [](const PyResult& r) { return result_names(r.model.facade.names()); }, py::call_guard<EngineTurn>())
+      .def("point", [](const PyResult& r, const std::string& name) { return r.solution.point(name); }, py::arg("name"), py::call_guard<EngineTurn>())
+      .def("_repr_html_", &result_html, py::call_guard<EngineTurn>())
       .def("__repr__", [](const PyResult& r) {
         return std::string("<kinema.Result ") + r.model.facade.names().input + " = " +
                py::repr(py::float_(r.solution.input())).cast<std::string>() + ": " +
                status_name(r.solution.status()) + ">";
-      });
+      }, py::call_guard<EngineTurn>());
 
   py::class_<PyModel>(module, "Model", "A mechanism read, derived and compiled once.")
-      .def_property_readonly("title", [](const PyModel& m) { return m.engine->system.title; })
-      .def_property_readonly("input", [](const PyModel& m) { return m.facade.names().input; })
-      .def_property_readonly("unknowns", [](const PyModel& m) { return m.facade.names().unknowns; })
-      .def_property_readonly("rates", [](const PyModel& m) { return m.facade.names().rates; })
-      .def_property_readonly("second_rates", [](const PyModel& m) { return m.facade.names().second_rates; })
-      .def_property_readonly("points", [](const PyModel& m) { return m.facade.names().points; })
-      .def_property_readonly("parameters", &parameters, "Name, SI value, dimension and text as written, in file order.")
-      .def_property_readonly("units", &field_units, "The output unit of each field of sweep().")
+      .def_property_readonly("title", py::cpp_function([](const PyModel& m) { return m.engine->system.title; }, py::call_guard<EngineTurn>()))
+      .def_property_readonly("input", py::cpp_function([](const PyModel& m) { return m.facade.names().input; }, py::call_guard<EngineTurn>()))
+      .def_property_readonly("unknowns", py::cpp_function([](const PyModel& m) { return m.facade.names().unknowns; }, py::call_guard<EngineTurn>()))
+      .def_property_readonly("rates", py::cpp_function([](const PyModel& m) { return m.facade.names().rates; }, py::call_guard<EngineTurn>()))
+      .def_property_readonly("second_rates", py::cpp_function([](const PyModel& m) { return m.facade.names().second_rates; }, py::call_guard<EngineTurn>()))
+      .def_property_readonly("points", py::cpp_function([](const PyModel& m) { return m.facade.names().points; }, py::call_guard<EngineTurn>()))
+      .def_property_readonly("parameters", py::cpp_function(&parameters, py::call_guard<EngineTurn>()), "Name, SI value, dimension and text as written, in file order.")
+      .def_property_readonly("units", py::cpp_function(&field_units, py::call_guard<EngineTurn>()), "The output unit of each field of sweep().")
       .def("at", [](const PyModel& m, const Value& value) { return PyResult{solve(m, value), m}; }, py::arg("value"),
-           "At one input value: \"30 deg\", \"120 mm\", or a number in SI (rad, m, s).")
+           "At one input value: \"30 deg\", \"120 mm\", or a number in SI (rad, m, s).", py::call_guard<EngineTurn>())
       .def(
           "at",
           [](const PyModel& m, const std::vector<Value>& values) {
@@ -490,9 +516,9 @@ PYBIND11_MODULE(kinema, module) {
             for (kinema::Solution& s : solve_list(m, values)) results.push_back(PyResult{std::move(s), m});
             return results;
           },
-          py::arg("values"), "At each value in order, each continued from the one before (as `kinema eval` solves a list).")
+          py::arg("values"), "At each value in order, each continued from the one before (as `kinema eval` solves a list).", py::call_guard<EngineTurn>())
       .def("derive", &derivation, py::arg("method") = "loops", py::arg("format") = "text",
-           "The derivation as `kinema derive` prints it (format \"text\" or \"latex\").")
+           "The derivation as `kinema derive` prints it (format \"text\" or \"latex\").", py::call_guard<EngineTurn>())
       .def(
           "sweep",
           [](const PyModel& m, const Value& first, const Value& last, const Value& step) {
@@ -500,7 +526,7 @@ PYBIND11_MODULE(kinema, module) {
           },
           py::arg("first"), py::arg("last"), py::arg("step"),
           "From first to last by step (\"0 deg\", \"360 deg\", \"1 deg\"; or numbers in SI): a NumPy structured array "
-          "with the fields and output units of `kinema eval --format npy` (units: Model.units).")
+          "with the fields and output units of `kinema eval --format npy` (units: Model.units).", py::call_guard<EngineTurn>())
       .def(
           "circuit", [](const PyModel& m, const std::string& step, const std::optional<Value>& start) {
             return numpy_circuit(m, step, start);
@@ -508,17 +534,17 @@ PYBIND11_MODULE(kinema, module) {
           py::arg("step"), py::arg("start") = py::none(),
           "The whole circuit of a joints-and-links mechanism through its toggles by step (\"1 deg\"), from start (or "
           "the file's value): the structured array of `kinema eval --circuit STEP --format npy` (a direction and each "
-          "dyad's sign a row).")
+          "dyad's sign a row).", py::call_guard<EngineTurn>())
       .def("sensitivity", &sensitivity, py::arg("column"), py::arg("parameter"), py::arg("first"), py::arg("last"),
            py::arg("step"),
            "The exact derivative of an output column (an unknown, rate, second rate, or a point's or frame's "
            "field of sweep()) in a parameter, from first to last by step as sweep() takes them: a NumPy array "
            "in SI (d omega3 / d b in rad/s per m), NaN where a value is not ok. Derived symbolically, not by "
-           "differences: m.sensitivity(\"omega3\", \"b\", \"0 deg\", \"360 deg\", \"10 deg\").")
+           "differences: m.sensitivity(\"omega3\", \"b\", \"0 deg\", \"360 deg\", \"10 deg\").", py::call_guard<EngineTurn>())
       .def("with_parameters", &with_parameters,
            "The same mechanism with other parameter values, as the file edited to them: "
            "m.with_parameters(b=\"0.31 m\", delta=\"25 deg\", c=0.09) (numbers in SI). Nothing is derived or "
-           "compiled again: the new model shares this one's formulas and compiled code.")
+           "compiled again: the new model shares this one's formulas and compiled code.", py::call_guard<EngineTurn>())
       .def("study", &study, py::arg("designs"), py::arg("sweep"), py::arg("figures") = py::none(),
            py::arg("threads") = py::none(),
            "A design study: m.study({\"b\": b, \"c\": c}, sweep=(\"0 deg\", \"360 deg\", \"1 deg\")), design i "
@@ -528,9 +554,9 @@ PYBIND11_MODULE(kinema, module) {
            "field names): grashof (a code into kinema.GRASHOF_CLASSES), min_transmission_angle (rad), time_ratio, "
            "assembles, failed_values, max_abs_<rate> and max_abs_<second rate> of each unknown (max_abs_omega3, "
            "max_abs_alpha3), max_<point>_speed and max_<point>_acceleration. NaN where a figure is not defined. "
-           "threads: how many threads share the designs (default: one per core).")
-      .def("page", &page, "The page `kinema page FILE` writes (one self-contained HTML file).")
-      .def("_repr_latex_", &notebook_latex)
+           "threads: how many threads share the designs (default: one per core).", py::call_guard<EngineTurn>())
+      .def("page", &page, "The page `kinema page FILE` writes (one self-contained HTML file).", py::call_guard<EngineTurn>())
+      .def("_repr_latex_", &notebook_latex, py::call_guard<EngineTurn>())
       .def(
           "_repr_html_",
           [](const PyModel& m) {
@@ -539,8 +565,8 @@ PYBIND11_MODULE(kinema, module) {
             const std::string html = escaped(page(m));
             return "<iframe style=\"width: 100%; height: 720px; border: 0\" srcdoc=\"" +
                    html + "\"></iframe>";
-          })
-      .def("__repr__", [](const PyModel& m) { return "<kinema.Model \"" + m.engine->system.title + "\">"; });
+          }, py::call_guard<EngineTurn>())
+      .def("__repr__", [](const PyModel& m) { return "<kinema.Model \"" + m.engine->system.title + "\">"; }, py::call_guard<EngineTurn>());
 
   module.def(
       "to_dataframe",
@@ -554,13 +580,13 @@ PYBIND11_MODULE(kinema, module) {
   module.attr("GRASHOF_CLASSES") = classes;
   module.def("grid", &grid,
              "Every combination of the values given: kinema.grid(b=[...], c=[...]) -> {\"b\": array, \"c\": array} "
-             "for Model.study (the first name varies slowest).");
+             "for Model.study (the first name varies slowest).", py::call_guard<EngineTurn>());
   module.def("load", [](const std::string& path) { return model_of(kinema::load_model(path)); }, py::arg("path"),
-             "Reads a mechanism file (any of the three forms).");
+             "Reads a mechanism file (any of the three forms).", py::call_guard<EngineTurn>());
   module.def(
       "loads",
       [](const std::string& text, const std::string& name) {
         return model_of(kinema::make_model(kinema::read_mechanism_text(text, name)));
       },
-      py::arg("text"), py::arg("name") = "mechanism.toml", "The same from TOML text; name stands for the file in messages.");
+      py::arg("text"), py::arg("name") = "mechanism.toml", "The same from TOML text; name stands for the file in messages.", py::call_guard<EngineTurn>());
 }

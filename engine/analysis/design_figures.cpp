@@ -129,6 +129,7 @@ void transmission_over_a_turn(const Model& model, const FourBarLoop& loop, FourB
   const double first = system.input.values.empty() ? 0.0 : system.input.values.front();
   for (int k = 0; k <= 360; ++k) inputs.push_back(first + k * kPi / 180);
   const MotionTable turn = analyse(model, inputs);
+  const FourBarLoopValues values = loop.values();
   const double nan = std::numeric_limits<double>::quiet_NaN();
   f.least_transmission = f.greatest_transmission = f.least_at = f.greatest_at = nan;
   f.full_turn = true;
@@ -137,7 +138,7 @@ void transmission_over_a_turn(const Model& model, const FourBarLoop& loop, FourB
       f.full_turn = false;
       continue;
     }
-    const double mu = transmission_angle(loop, turn.q(row)[Eigen::Index(loop.coupler.unknown)],
+    const double mu = transmission_angle(values, turn.q(row)[Eigen::Index(loop.coupler.unknown)],
                                          turn.q(row)[Eigen::Index(loop.rocker.unknown)]);
     double at = std::fmod(turn.input(row) * 180 / kPi, 360.0);
     if (at < 0) at += 360;
@@ -166,11 +167,16 @@ std::optional<FourBarLoop> four_bar_loop(const ConstraintSystem& system) {
                      (*sides)[named->rocker].side};
 }
 
-double transmission_angle(const FourBarLoop& loop, double coupler_angle, double rocker_angle) {
+FourBarLoopValues FourBarLoop::values() const {
+  const auto numbers = [](const FourBarSide& side) { return FourBarSideValues{side.value, side.unknown, side.angle_value}; };
+  return FourBarLoopValues{numbers(ground), numbers(crank), numbers(coupler), numbers(rocker)};
+}
+
+double transmission_angle(const FourBarLoopValues& loop, double coupler_angle, double rocker_angle) {
   // The signed terms are the edges of the loop as it goes round (crank O2-A, coupler
   // A-B, rocker B-O4, ground O4-O2): at B, between B-A (back along the coupler) and
   // B-O4 (on along the rocker), from the solved angles.
-  const auto edge = [](const FourBarSide& side, double angle) { return std::polar(side.value < 0 ? -1.0 : 1.0, angle); };
+  const auto edge = [](const FourBarSideValues& side, double angle) { return std::polar(side.value < 0 ? -1.0 : 1.0, angle); };
   const std::complex<double> back = -edge(loop.coupler, coupler_angle), on = edge(loop.rocker, rocker_angle);
   double mu = std::abs(std::arg(on / back)) * 180 / kPi;
   if (mu < 1e-3) mu = 0;  // folded flat (a change point solved to sqrt(eps))

@@ -77,15 +77,26 @@ struct FourBarSide {
   GiNaC::ex angle = 0;
   double angle_value = 0;
 };
+/// A side's numbers alone: what work on several threads holds, as GiNaC expressions may
+/// not be copied on two threads at once (their reference counts are not atomic).
+struct FourBarSideValues {
+  double value = 0;
+  std::size_t unknown = 0;
+  double angle_value = 0;
+};
+struct FourBarLoopValues {
+  FourBarSideValues ground, crank, coupler, rocker;
+};
 struct FourBarLoop {
   FourBarSide ground, crank, coupler, rocker;
+  FourBarLoopValues values() const;
 };
 /// The loop of a vector-loop four-bar driven by its crank, its sides told apart as
 /// four_bar_figures tells them; nothing for other mechanisms.
 std::optional<FourBarLoop> four_bar_loop(const ConstraintSystem& system);
 /// The transmission angle (deg, 0 to 180) where the coupler's and the rocker's angles are
 /// solved: between them at their joint, the sides' signs those of the loop's values.
-double transmission_angle(const FourBarLoop& loop, double coupler_angle, double rocker_angle);
+double transmission_angle(const FourBarLoopValues& loop, double coupler_angle, double rocker_angle);
 
 /// The figures of a four-bar driven by its crank; nothing for other mechanisms.
 std::optional<FourBarFigures> four_bar_figures(const Model& model);

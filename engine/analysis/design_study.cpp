@@ -163,7 +163,7 @@ class DesignRunner {
     settings.second_rate = setup.base->system.input.second_rate_value;
     sweep_ = std::make_unique<RepeatedSweep>(kinematics_, inputs, settings);
     if (!setup.stroke_unknowns.empty()) limits_ = std::make_unique<Workspace>(kinematics_);
-    if (setup.loop) loop_ = *setup.loop;
+    if (setup.loop) loop_ = setup.loop->values();
     if (options.across_designs && solves() && settings.rate != 0 && !inputs.empty()) {
       lanes_ = std::make_unique<DesignLanes>(kinematics_, inputs, settings.rate, settings.second_rate);
       lane_designs_.resize(DesignLanes::kLanes);
@@ -323,12 +323,12 @@ class DesignRunner {
   std::vector<double> values_, tape_outputs_, tape_registers_, rates_;
   std::unique_ptr<RepeatedSweep> sweep_;
   std::unique_ptr<Workspace> limits_;
-  FourBarLoop loop_;
+  FourBarLoopValues loop_;
   // Designs across lanes: what each lane's design needs summed up after the run.
   struct LaneDesign {
     GrashofClass kind = GrashofClass::none;
     std::vector<double> values;
-    FourBarLoop loop;
+    FourBarLoopValues loop;
   };
   std::unique_ptr<DesignLanes> lanes_;
   std::vector<LaneDesign> lane_designs_;

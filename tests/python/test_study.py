@@ -104,3 +104,36 @@ def test_dask_example_equals_one_study_on_the_whole():
     assert len(rows) == 2000
     for field in whole.dtype.names:
         np.testing.assert_array_equal(rows[field], whole[field])
+
+
+def test_python_threads_may_call_kinema_at_once():
+    """GiNaC (the symbolic layer) is not thread-safe: calls from several Python threads at
+    once (reading, deriving, studying, sensitivities; kinema lets go of the GIL while it
+    solves) must take turns in the symbolic parts and give each thread its own numbers."""
+    import threading
+
+    text = (SAMPLES / "four_bar.toml").read_text()
+    designs = {"b": np.linspace(0.11, 0.13, 40), "c": np.linspace(0.07, 0.09, 40)}
+    sweep = ("0 deg", "360 deg", "5 deg")
+    whole = kinema.loads(text, "four_bar.toml").study(designs, sweep=sweep, threads=1)
+    failures = []
+
+    def work():
+        try:
+            for _ in range(6):
+                model = kinema.loads(text, "four_bar.toml")
+                rows = model.study(designs, sweep=sweep, threads=1)
+                for field in whole.dtype.names:
+                    np.testing.assert_array_equal(rows[field], whole[field])
+                model.derive()
+                model.sensitivity("omega3", "b", "0 deg", "360 deg", "30 deg")
+                del model
+        except Exception as error:  # noqa: BLE001 - reported below with the thread's failure
+            failures.append(repr(error))
+
+    threads = [threading.Thread(target=work) for _ in range(4)]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join()
+    assert failures == []
