@@ -110,6 +110,7 @@ class ChainBuilder {
   FormulaReader reader_;
   GiNaC::exmap values_;  // parameters, for evaluating their formulas
   LengthPower::Powers powers_;  // what each parameter and variable measures, where known
+  std::set<GiNaC::ex, GiNaC::ex_is_less> angles_;  // the angle parameters so far
   std::set<std::string> symbol_names_;
   std::map<std::string, std::size_t> frame_index_;
   GiNaC::exset moving_;  // time, the variables and their rates: what d/dt goes through
@@ -149,8 +150,12 @@ class ChainBuilder {
         entry.formula = formula;
         entry.value = formula_value(formula, values_, context, p.formula, " (only earlier parameters can be used)");
         power = LengthPower(powers_).of(formula.expand(), context);
+        entry.dimension = power == 1 ? Dimension::length
+                          : power == 0 && measures_an_angle(formula, angles_) ? Dimension::angle
+                                                                              : Dimension::number;
       }
       entry.symbol = symbol(p.name);
+      if (entry.dimension == Dimension::angle) angles_.insert(entry.symbol);
       if (power) powers_[entry.symbol] = *power;
       values_[entry.symbol] = entry.value;
       k_.parameters.push_back(entry);
@@ -529,7 +534,7 @@ ConstraintSystem build_spatial_system(const Mechanism& mechanism) {
   system.source_file = mechanism.source_file;
   system.output = mechanism.output;
   system.parameters = k.parameters;
-  for (SystemParameter& p : system.parameters) p.sets_length_scale = p.dimension == Dimension::length;
+  for (SystemParameter& p : system.parameters) p.sets_length_scale = p.dimension == Dimension::length && !p.formula;
   system.length_scale = length_scale_of(system.parameters);
   const std::size_t input = set_chain_input(system, mechanism, k);
   Driver& t = system.input;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <set>
 #include <utility>
 
 #include "engine/base/errors.hpp"
@@ -229,6 +230,7 @@ std::string PlanarSystemBuilder::unknown_list() const {
 
 void PlanarSystemBuilder::add_parameters() {
   GiNaC::exmap values;
+  std::set<ex, GiNaC::ex_is_less> angles;  // the angle parameters so far
   for (const Parameter& parameter : declarations_.parameters) {
     const std::string context = parameter.where.str() + ": parameter \"" + parameter.name + "\"";
     double value = 0.0;
@@ -266,6 +268,8 @@ void PlanarSystemBuilder::add_parameters() {
                       : *power == 0 && parameter.quantity && parameter.quantity->dimension == Dimension::angle
                           ? Dimension::angle
                           : Dimension::number;
+    if (!parameter.quantity && power == 0 && measures_an_angle(formula, angles)) entry.dimension = Dimension::angle;
+    if (entry.dimension == Dimension::angle) angles.insert(entry.symbol);
     if (power) powers_[entry.symbol] = *power;
     if (parameter.quantity) plain_power = power;
     if (parameter.quantity && parameter.quantity->dimension == Dimension::number) {

@@ -81,4 +81,44 @@ std::string LengthPower::describe(int power) {
   return "length^" + std::to_string(power);
 }
 
+namespace {
+
+// A number written as such: 2, Pi, Pi/2.
+bool is_a_number(const ex& e) {
+  if (GiNaC::is_a<GiNaC::numeric>(e) || GiNaC::is_a<GiNaC::constant>(e)) return true;
+  if (!GiNaC::is_a<GiNaC::mul>(e)) return false;
+  for (const ex& factor : e)
+    if (!is_a_number(factor)) return false;
+  return true;
+}
+
+}  // namespace
+
+bool measures_an_angle(const ex& e, const std::set<ex, GiNaC::ex_is_less>& angles) {
+  if (GiNaC::is_a<GiNaC::symbol>(e)) return angles.count(e) > 0;
+  if (GiNaC::is_a<GiNaC::function>(e)) {
+    const std::string name = GiNaC::ex_to<GiNaC::function>(e).get_name();
+    return name == "asin" || name == "acos" || name == "atan" || name == "atan2";
+  }
+  if (GiNaC::is_a<GiNaC::mul>(e)) {  // one angle times numbers
+    std::size_t angle_factors = 0;
+    for (const ex& factor : e) {
+      if (is_a_number(factor)) continue;
+      if (!measures_an_angle(factor, angles)) return false;
+      ++angle_factors;
+    }
+    return angle_factors == 1;
+  }
+  if (GiNaC::is_a<GiNaC::add>(e)) {  // angles and numbers, at least one angle
+    bool any = false;
+    for (const ex& term : e) {
+      if (is_a_number(term)) continue;
+      if (!measures_an_angle(term, angles)) return false;
+      any = true;
+    }
+    return any;
+  }
+  return false;
+}
+
 }  // namespace kinema

@@ -7,6 +7,7 @@
 
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 
 namespace kinema {
@@ -28,5 +29,10 @@ class LengthPower {
  private:
   const Powers& powers_;
 };
+
+/// Whether a formula measures an angle: one of `angles` (the angle parameters' symbols),
+/// an inverse circular function (asin, acos, atan, atan2), a number times one, or a sum
+/// of them and numbers ("theta + Pi/2"). A number alone, or an angle's sine, is not.
+bool measures_an_angle(const GiNaC::ex& e, const std::set<GiNaC::ex, GiNaC::ex_is_less>& angles);
 
 }  // namespace kinema

@@ -172,8 +172,10 @@ TEST_CASE("loops/planar_loops: points have x, y components and their position ex
 
 TEST_CASE("loops/planar_loops: parameters keep dimension, SI value, text and formula - length scale") {
   const ConstraintSystem s = build(replaced("d = \"100 mm\"", "d = \"100 mm\"\ndelta = \"30 deg\"\np = \"b/2\"\nk = \"2\"\n"
-                                                               "ratio = \"b/a\"\nturn = \"2*delta\""));
-  REQUIRE(s.parameters.size() == 9);
+                                                               "ratio = \"b/a\"\nturn = \"2*delta\"\n"
+                                                               "tilt = \"asin(a/b)\"\nopen = \"delta + Pi/2 - atan2(a, b)\"\n"
+                                                               "sine = \"sin(delta)\""));
+  REQUIRE(s.parameters.size() == 12);
   const auto& p = s.parameters;
   CHECK(p[0].symbol.get_name() == "a");
   CHECK(p[0].value == doctest::Approx(0.04).epsilon(1e-15));
@@ -195,6 +197,12 @@ TEST_CASE("loops/planar_loops: parameters keep dimension, SI value, text and for
   CHECK(p[7].dimension == Dimension::number);  // length / length
   CHECK(p[7].value == doctest::Approx(3.0).epsilon(1e-15));
   CHECK(p[8].value == doctest::Approx(60 * kinema_unit::kDeg).epsilon(1e-15));
+  // Formulas that measure angles are angles (printed in degrees); an angle's sine is not.
+  CHECK(p[8].dimension == Dimension::angle);
+  CHECK(p[9].dimension == Dimension::angle);
+  CHECK(p[9].value == doctest::Approx(std::asin(1.0 / 3)).epsilon(1e-15));
+  CHECK(p[10].dimension == Dimension::angle);
+  CHECK(p[11].dimension == Dimension::number);
   // The largest length: b = 120 mm.
   CHECK(s.length_scale == doctest::Approx(0.12).epsilon(1e-15));
 
