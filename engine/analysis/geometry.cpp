@@ -258,6 +258,20 @@ std::vector<DrawingSegment> MechanismGeometry::segments(const MotionState& state
     }
     first += count;
   }
+  // Pins: where a link vector ends, a block is, or a turning guide ends (in any loop).
+  const auto pinned = [&](std::complex<double> p) {
+    const auto at = [&](std::complex<double> q) { return std::abs(q - p) <= 1e-9 * std::max(size, 1e-30); };
+    for (const DrawingSegment& g : segments) {
+      const bool ends_here = at(g.from) || at(g.to);
+      if (g.kind == DrawingSegment::Kind::link && ends_here) return true;
+      if (g.kind == DrawingSegment::Kind::slider && (at(g.block) || (!g.fixed_guide && ends_here))) return true;
+    }
+    return false;
+  };
+  for (DrawingSegment& g : segments) {
+    g.pin_at_from = pinned(g.from);
+    g.pin_at_to = pinned(g.to);
+  }
   // Blocks numbered in the gaps the links leave.
   std::vector<std::string> used(link_labels_);
   used.push_back(std::find(used.begin(), used.end(), "1") != used.end() ? "0" : "1");

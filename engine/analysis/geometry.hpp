@@ -41,6 +41,10 @@ struct DrawingSegment {
   bool loop_start = false;
   bool block_at_from = false;  ///< A slider's block is at `from` (else at `to`).
   bool guide_from_tape = false;  ///< `along` is the drawing stage's guide (else to - from).
+  /// A pin is drawn at this end: an end of a link vector, a block's point, an end of a
+  /// turning guide; a ground vector's pinned ends are fixed pivots. The foot of a fixed
+  /// guide (a slider's end on a ground vector) is no joint.
+  bool pin_at_from = false, pin_at_to = false;
 };
 
 /// A named point on a link: its formula's last term is a link vector of fixed length

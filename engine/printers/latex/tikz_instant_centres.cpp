@@ -81,7 +81,16 @@ LinkageDrawing drawing_for_centres(const ValueAnalysis& at) {
       }
       drawing->links.push_back({{{"", segment.from}, {"", segment.to}}, false, 0, "", -1, 0, {}});
     }
-    drawing->ground_pivots.push_back({"", 0});
+    // Fixed pivots: each loop's start (the origin) and ground vectors' ends where pinned.
+    const auto pivot = [&](std::complex<double> at) {
+      for (const auto& p : drawing->ground_pivots)
+        if (std::abs(p.at - at) <= 1e-9 * std::max(std::abs(at), 1.0)) return;
+      drawing->ground_pivots.push_back({"", at});
+    };
+    for (const DrawingSegment& segment : at.segments) {
+      if (segment.pin_at_from && (segment.loop_start || segment.kind == DrawingSegment::Kind::ground)) pivot(segment.from);
+      if (segment.pin_at_to && segment.kind == DrawingSegment::Kind::ground) pivot(segment.to);
+    }
   }
   return *drawing;
 }

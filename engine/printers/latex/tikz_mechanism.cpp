@@ -241,7 +241,8 @@ void draw_segments(MechanismFigure& f, const std::vector<DrawingSegment>& segmen
   for (const Segment& g : segments) {
     if (g.kind == Segment::Kind::ground) {
       f.line(g.from, g.to, "gray, dashed");
-      for (const auto& end : {g.from, g.to}) f.pivot(end);
+      if (g.pin_at_from) f.pivot(g.from);
+      if (g.pin_at_to) f.pivot(g.to);
     } else if (g.kind == Segment::Kind::slider) {
       // The block at the slider's point, on the guide the geometry gives: a fixed guide
       // hatched across the drawing; a guide on a turning link drawn as that link, from the
@@ -275,8 +276,10 @@ void draw_segments(MechanismFigure& f, const std::vector<DrawingSegment>& segmen
     if (base) f.plate({base->from, base->to, on.at}, "thick");
     else f.bar({on.from, on.at});
   }
-  for (const Segment& g : segments)
-    for (const auto& end : {g.from, g.to}) f.dot(end, 0.07, "\\filldraw[fill=white]");
+  for (const Segment& g : segments) {
+    if (g.pin_at_from) f.dot(g.from, 0.07, "\\filldraw[fill=white]");
+    if (g.pin_at_to) f.dot(g.to, 0.07, "\\filldraw[fill=white]");
+  }
 }
 
 // A vector-loop file's link numbers beside each link's first segment (or the guide a link

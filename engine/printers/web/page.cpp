@@ -97,7 +97,7 @@ json drawing_json(const MotionDrawing& drawing, double per_unit) {
       out["segments"].push_back({{"kind", kind}, {"link", s.link}, {"fixed_guide", s.fixed_guide},
                                  {"guide_link", s.guide_link}, {"block_label", s.block_label}, {"term", s.term},
                                  {"loop_start", s.loop_start}, {"block_at_from", s.block_at_from},
-                                 {"guide_from_tape", s.guide_from_tape}});
+                                 {"guide_from_tape", s.guide_from_tape}, {"pins", {s.pin_at_from, s.pin_at_to}}});
     }
     out["points_on_links"] = json::array();
     for (const PointOnLink& p : drawing.points_on_links)

@@ -156,8 +156,8 @@
         const from = [v[0], v[1]], to = [v[2], v[3]];
         if (s.kind === 'ground') {
           out.parts.push({ kind: 'ground', ends: [from, to] });
-          out.parts.push({ kind: 'pivot', at: from });
-          out.parts.push({ kind: 'pivot', at: to });
+          if (s.pins[0]) out.parts.push({ kind: 'pivot', at: from });
+          if (s.pins[1]) out.parts.push({ kind: 'pivot', at: to });
         } else if (s.kind === 'slider') {
           const angle = Math.atan2(v[7], v[6]);
           if (s.fixed_guide) out.parts.push({ kind: 'guide', through: [v[4], v[5]], along: [v[6], v[7]] });
@@ -168,7 +168,8 @@
           if (s.link >= 0) numbered[s.link] = true;
           out.parts.push({ kind: 'bar', ends: [from, to], label: label });
         }
-        ends.push(from, to);
+        if (s.pins[0]) ends.push(from);
+        if (s.pins[1]) ends.push(to);
       });
       const base = 8 * drawing.segments.length;
       drawing.points_on_links.forEach(function (p, k) {

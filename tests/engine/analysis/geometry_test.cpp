@@ -51,6 +51,8 @@ TEST_CASE("engine/analysis/geometry: four-bar segments at a closed-form position
     CHECK(segments[1].kind == DrawingSegment::Kind::link);
     CHECK(segments[2].kind == DrawingSegment::Kind::link);
     CHECK(segments[3].kind == DrawingSegment::Kind::ground);
+    // Every joint is a pin; the ground's ends are the two fixed pivots.
+    for (const DrawingSegment& g : segments) CHECK((g.pin_at_from && g.pin_at_to));
   }
   // No position, no drawing.
   MotionState unassembled;
@@ -93,6 +95,25 @@ TEST_CASE("engine/analysis/geometry: a slider's guide, and two loops each closin
   CHECK(drawn[4].kind == DrawingSegment::Kind::ground);
   CHECK(drawn[5].kind == DrawingSegment::Kind::ground);
   CHECK(drawn[8].kind == DrawingSegment::Kind::slider);
+
+  // Problem 3.22: the second loop's -d - i r6 meet at (d, 0), the foot of D's fixed guide,
+  // which is no joint (drawn as a pivot there before); A, C, D, B and O2 are.
+  const kinema::Model p322 = kinema::load_model(kinema_test::sample("problem_3_22_six_bar_sliders.toml"));
+  const auto solved = kinema::analyse(p322, {-120 * kDeg});
+  REQUIRE(solved.status(0) == kinema::Status::ok);
+  const auto terms = kinema::MechanismGeometry(p322).segments(solved[0]);
+  double d = 0;
+  for (const auto& p : p322.system.parameters)
+    if (p.symbol.get_name() == "d") d = p.value;
+  std::size_t ends_at_foot = 0;
+  for (const DrawingSegment& g : terms) {
+    for (const auto& [end, pinned] : {std::pair(g.from, g.pin_at_from), std::pair(g.to, g.pin_at_to)}) {
+      const bool foot = near(end, d, 1e-12);
+      ends_at_foot += foot;
+      CHECK(pinned == !foot);
+    }
+  }
+  CHECK(ends_at_foot == 2);
 }
 
 TEST_CASE("engine/analysis/geometry: each link's angular velocity off the model's tape") {
