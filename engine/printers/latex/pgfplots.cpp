@@ -43,13 +43,19 @@ constexpr double kAxisWidthCm = 5.4, kAxisHeightCm = 4.0;
 // labels (\scriptsize, as label_box estimates them) stand apart with a gap, side by side
 // on x, one above the other on y; written with their labels, so that pgfplots neither
 // picks other ticks nor scales them.
-std::string axis_ticks(char axis, double lo, double hi, double length_cm, bool degrees_turn = false) {
+// Where `exponent` is given and the values reach 10^5, the labels count in 10^exponent
+// (a multiple of 3, set there for the axis's label): "-2000000" was too long to read.
+std::string axis_ticks(char axis, double lo, double hi, double length_cm, bool degrees_turn = false, int* exponent = nullptr) {
   if (!(hi - lo > 1e-6 * std::max(std::fabs(lo), std::fabs(hi)))) {  // a constant (to round-off): a tenth round it, 0 in -1..1
     const double pad = std::max(std::fabs(lo) * 0.1, lo == 0 ? 1.0 : 1e-6);
     lo -= pad;
     hi += pad;
   }
   const double per_cm = (hi - lo) / length_cm;
+  const double largest = std::max(std::fabs(lo), std::fabs(hi));
+  const int power = exponent && largest >= 1e5 ? 3 * static_cast<int>(std::floor(std::log10(largest) / 3)) : 0;
+  if (exponent) *exponent = power;
+  const double unit = std::pow(10.0, power);
   std::vector<double> ticks;
   std::vector<std::string> labels;
   int decimals = 0;
@@ -60,11 +66,13 @@ std::string axis_ticks(char axis, double lo, double hi, double length_cm, bool d
     for (double mantissa : mantissas) {
       const double step = mantissa * decade;
       decimals = std::max(0, static_cast<int>(std::ceil(-std::log10(step) - 1e-9)) + (mantissa == 2.5 ? 1 : 0));
+      const int label_decimals =
+          std::max(0, static_cast<int>(std::ceil(-std::log10(step / unit) - 1e-9)) + (mantissa == 2.5 ? 1 : 0));
       ticks.clear();
       labels.clear();
       for (double k = std::ceil(lo / step - 1e-9); k * step <= hi + 1e-9 * step; ++k) {
         ticks.push_back(k == 0 ? 0.0 : k * step);  // not -0
-        labels.push_back("$" + format_fixed(ticks.back(), decimals) + "$");
+        labels.push_back("$" + format_fixed(ticks.back() / unit, label_decimals) + "$");
       }
       fits = true;
       for (std::size_t i = 1; i < ticks.size() && fits; ++i) {
@@ -156,7 +164,7 @@ class PlotWriter {
           const Coordinate& q = system_.unknowns[j];
           legends.push_back("$" + to_latex(order == 0 ? q.symbol : order == 1 ? q.rate : q.second_rate) + "$");
         }
-        axis(x_label, what + " [$\\mathrm{" + y_unit + "}$]", plotted++, curves, legends);
+        axis(x_label, what, y_unit, plotted++, curves, legends);
       }
     }
     if (!system_.points.empty()) {
@@ -168,7 +176,7 @@ class PlotWriter {
           ys.push_back(row != kBreak && sweep_.status(row) == Status::ok ? sweep_.point(row, p).speed() / scale_.length : NAN);
         legends.push_back(latex_escape_text(system_.points[p].name));
       }
-      axis(x_label, "speed [$\\mathrm{" + scale_.length_unit + "/s}$]", plotted++, curves, legends);
+      axis(x_label, "speed", scale_.length_unit + "/s", plotted++, curves, legends);
     }
     out_ << "\n";
     if (system_.frames.empty()) paths();
@@ -263,7 +271,7 @@ class PlotWriter {
 
   // One axis of curves over rows_, each with its legend; a value past its curve's
   // plot_limit is a gap, as a non-finite one is.
-  void axis(const std::string& x_label, const std::string& y_label, int index,
+  void axis(const std::string& x_label, const std::string& y_name, const std::string& y_unit, int index,
             const std::vector<std::vector<double>>& curves, const std::vector<std::string>& legends) {
     // Each curve's own: pooled, a curve far larger than its neighbours (one of twenty)
     // was past the limit everywhere and vanished, and a small one kept its pole.
@@ -284,8 +292,11 @@ class PlotWriter {
     }
     if (!std::isfinite(y_lo)) y_lo = y_hi = 0;  // nothing drawn
     const double margin = (y_hi - y_lo) * 0.05;  // the curves off the frame
-    begin_axis(x_label, y_label, index,
-               axis_ticks('x', x_lo, x_hi, kAxisWidthCm, turn_) + axis_ticks('y', y_lo - margin, y_hi + margin, kAxisHeightCm));
+    int exponent = 0;
+    const std::string ticks =
+        axis_ticks('x', x_lo, x_hi, kAxisWidthCm, turn_) + axis_ticks('y', y_lo - margin, y_hi + margin, kAxisHeightCm, false, &exponent);
+    const std::string in_powers = exponent ? "10^{" + std::to_string(exponent) + "}\\," : "";
+    begin_axis(x_label, y_name + " [$" + in_powers + "\\mathrm{" + y_unit + "}$]", index, ticks);
     for (std::size_t k = 0; k < curves.size(); ++k) {
       const double limit = limits[k];
       out_ << "\\addplot+[" << curve_style(k, rows_.size()) << "] coordinates {";
