@@ -240,6 +240,34 @@ async function checkChain(page, name, header, rows, picks) {
       assert(Math.abs(p.px - px) <= 0.1 && Math.abs(p.py - py) <= 0.1, `${name}: point ${p.name} drawn at (${p.px}, ${p.py}), projected (${px}, ${py})`);
     }
   }
+  // Fitted to the motion as seen (every row's points inside the panel, filling it in one
+  // direction): fitted to the sphere that holds the motion, the arm took a third of it.
+  const fit = await page.evaluate(() => {
+    const svg = document.getElementById('mechanism');
+    const attribute = (n) => Number(svg.getAttribute(n));
+    const box = svg.getBoundingClientRect();
+    return { scale: attribute('data-scale'), ox: attribute('data-ox'), oy: attribute('data-oy'), yaw: attribute('data-yaw'),
+             pitch: attribute('data-pitch'), centre: svg.getAttribute('data-centre').split(',').map(Number),
+             width: box.width, height: box.height,
+             names: Array.from(svg.querySelectorAll('#overlay [data-point]')).map((p) => p.getAttribute('data-point')) };
+  });
+  const seen = [];
+  header.forEach((h, column) => {
+    if (!fit.names.some((point) => h.startsWith(point + '_x ['))) return;
+    rows.forEach((line) => {
+      const fields = line.split(',');
+      const d = [0, 1, 2].map((k) => Number(fields[column + k]) - fit.centre[k]);
+      if (!d.every(Number.isFinite)) return;
+      const u = Math.cos(fit.yaw) * d[0] - Math.sin(fit.yaw) * d[1];
+      const v = Math.cos(fit.pitch) * d[2] + Math.sin(fit.pitch) * (Math.sin(fit.yaw) * d[0] + Math.cos(fit.yaw) * d[1]);
+      seen.push([fit.ox + u * fit.scale, fit.oy - v * fit.scale]);
+    });
+  });
+  const xs = seen.map((p) => p[0]), ys = seen.map((p) => p[1]);
+  const spread = Math.max((Math.max(...xs) - Math.min(...xs)) / fit.width, (Math.max(...ys) - Math.min(...ys)) / fit.height);
+  assert(seen.length > 0 && Math.min(...xs) >= 0 && Math.max(...xs) <= fit.width && Math.min(...ys) >= 0 && Math.max(...ys) <= fit.height,
+    `${name}: a point drawn outside the panel at the fit: x ${Math.min(...xs)}..${Math.max(...xs)} of ${fit.width}, y ${Math.min(...ys)}..${Math.max(...ys)} of ${fit.height}`);
+  assert(spread >= 0.45, `${name}: the motion's points fill ${spread.toFixed(2)} of the panel at the fit`);
   const before = await drawingShot(page);
   const box = await page.locator('#mechanism').boundingBox();
   await page.mouse.move(box.x + 200, box.y + 200);

@@ -216,7 +216,7 @@
     const r = Math.max.apply(null, finite.map(function (p) {
       return Math.hypot(p[0] - camera.centre[0], p[1] - camera.centre[1], p[2] - camera.centre[2]);
     })) || 1;
-    return { minX: -r, minY: -r, maxX: r, maxY: r, size: 2 * r };
+    return { minX: -r, minY: -r, maxX: r, maxY: r, size: 2 * r, cloud: finite };
   })() : (function () {
     let minX = Infinity, minY = Infinity, maxX = -Infinity, maxY = -Infinity;
     const add = function (x, y) {
@@ -238,13 +238,24 @@
 
   // The view: model (x, y) to pixels (ox + x s, oy - y s); fitted, zoomed by the wheel, panned by dragging.
   const view = { scale: 1, ox: 0, oy: 0 };
+  // A chain fitted as seen from the camera's direction at the time (the whole motion's
+  // points projected): the sphere that holds it whichever way it is turned left the arm
+  // a third of the panel.
+  function fitted() {
+    if (!extent.cloud) return extent;
+    const seen = extent.cloud.map(project);
+    const xs = seen.map(function (p) { return p[0]; }), ys = seen.map(function (p) { return p[1]; });
+    return { minX: Math.min.apply(null, xs), maxX: Math.max.apply(null, xs), minY: Math.min.apply(null, ys),
+      maxY: Math.max.apply(null, ys) };
+  }
   function fit() {
     const box = picture.getBoundingClientRect();
     const w = Math.max(box.width, 100), h = Math.max(box.height, 100);
-    const sx = (extent.maxX - extent.minX) || extent.size, sy = (extent.maxY - extent.minY) || extent.size;
+    const e = fitted();
+    const sx = (e.maxX - e.minX) || extent.size, sy = (e.maxY - e.minY) || extent.size;
     view.scale = 0.8 * Math.min(w / sx, h / sy);
-    view.ox = w / 2 - view.scale * (extent.minX + extent.maxX) / 2;
-    view.oy = h / 2 + view.scale * (extent.minY + extent.maxY) / 2;
+    view.ox = w / 2 - view.scale * (e.minX + e.maxX) / 2;
+    view.oy = h / 2 + view.scale * (e.minY + e.maxY) / 2;
   }
   function px(p) { return [view.ox + p[0] * view.scale, view.oy - p[1] * view.scale]; }
   function xy(p) { const q = px(p); return fixed(q[0]) + ',' + fixed(q[1]); }
