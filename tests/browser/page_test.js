@@ -353,6 +353,9 @@ async function checkFailedRows(browser, file, status) {
   assert(expected.length > 0, `${name}: no ${status} row to show`);
   const marked = await page.evaluate((s) => Array.from(document.querySelectorAll('.mark-' + s)).map((m) => Number(m.getAttribute('data-row'))), status);
   assert.deepStrictEqual(marked, expected, `${name}: the scrubber's ${status} marks`);
+  // Opened at the first row that assembles.
+  const opened = await page.evaluate(() => Number(document.getElementById('scrubber').value));
+  assert.strictEqual(opened, rows.findIndex((r) => r.split(',')[3] === 'ok'), `${name}: opened at row ${opened}`);
   await scrubTo(page, expected[0]);
   const view = await shown(page);
   assert.strictEqual(view.status, status);
@@ -576,6 +579,7 @@ async function checkHostile(browser) {
     }
     await checkFailedRows(browser, path.join(samplesDir, 'problem_4_1_parallelogram.toml'), 'singular');
     await checkFailedRows(browser, path.join(samplesDir, 'triple_rocker_circuit.toml'), 'unassembled');
+    await checkFailedRows(browser, path.join(samplesDir, 'piston_driven_crank.toml'), 'unassembled');
     await checkHostile(browser);
     await checkSliders(browser);
     assert(constructions.images >= 20, `only ${constructions.images} polygon images checked against eval`);

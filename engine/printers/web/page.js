@@ -1417,5 +1417,7 @@
   fit();
   showKey();
   drawTraces();
-  setRow(0);
+  // Opened at the first value that assembles (the piston's run starts short of reach).
+  const firstAssembled = rows.findIndex(function (unused, r) { return status(r) === 'ok'; });
+  setRow(Math.max(firstAssembled, 0));
 })();
