@@ -96,7 +96,7 @@ std::vector<PlacedFrame> placed_frames(const Model& model, const MotionState& st
 
 /// The loops' terms of a vector-loop file as segments, and its named points on links, at
 /// a state: each term as the model derived and compiled it (its link vectors and their
-/// guides, TapeLayout::kDrawingStage), classed and numbered here.
+/// guides, TapeLayout::kDrawingStage), classed and numbered by classify_loop_terms.
 class MechanismGeometry {
  public:
   /// Reads the model's link vectors and tape; the model must outlive it.
