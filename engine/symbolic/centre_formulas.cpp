@@ -78,8 +78,8 @@ class BodyFinder {
     for (std::size_t p = 0; p < system.points.size(); ++p) {
       const std::vector<ex>& at = system.points[p].position;
       named_.emplace_back();
-      if (at.size() != 2) continue;
       const std::vector<ex>& velocity = derivation.points[p].velocity;
+      if (at.size() != 2 || velocity.size() != 2) continue;
       const auto sampled = sample_.at(at[0] + GiNaC::I * at[1]);
       if (sampled) named_.back() = KnownPoint{at[0], at[1], velocity[0], velocity[1], false, *sampled};
     }
