@@ -9,26 +9,6 @@
 
 namespace kinema {
 
-std::string link_label(const ConstraintSystem& system, const GiNaC::ex& angle) {
-  std::string name, rate;
-  for (std::size_t j = system.unknowns.size(); j-- > 0;)
-    if (angle.has(system.unknowns[j].symbol)) {
-      name = system.unknowns[j].name;
-      rate = system.unknowns[j].rate.get_name();
-    }
-  if (angle.has(system.input.symbol)) {
-    name = system.input.name;
-    rate = system.input.rate.get_name();
-  }
-  // The digits the name ends in, else those of its rate's name (phi turning at omega1: 1).
-  const auto number = [](const std::string& n) {
-    const auto digits = n.find_last_not_of("0123456789");
-    return digits != std::string::npos && digits + 1 < n.size() ? n.substr(digits + 1) : std::string();
-  };
-  if (!number(name).empty()) return number(name);
-  return !number(rate).empty() ? number(rate) : name;
-}
-
 std::vector<PlacedFrame> placed_frames(const Model& model, const MotionState& s) {
   count_work(Work::drawing);
   const std::vector<double> values = model.kinematics.drawing_values(s);
@@ -49,88 +29,18 @@ std::vector<PlacedFrame> placed_frames(const Model& model, const MotionState& s)
   return frames;
 }
 
-namespace {
-
-// True for an expression that changes with the input or an unknown.
-bool moves(const ConstraintSystem& system, const GiNaC::ex& e) {
-  bool moving = e.has(system.input.symbol);
-  for (const Coordinate& q : system.unknowns) moving = moving || e.has(q.symbol);
-  return moving;
-}
-
-// A link vector turning with a coordinate itself (theta3, not theta3 + beta): that
-// coordinate (0: the input, k + 1: unknown k), else -1.
-int angle_coordinate(const ConstraintSystem& system, const LinkVector& v) {
-  int coordinate = -1;
-  if (!v.polar) return coordinate;
-  if (v.angle.is_equal(system.input.symbol) && system.input.dimension == Dimension::angle) coordinate = 0;
-  for (std::size_t j = 0; j < system.unknowns.size(); ++j)
-    if (v.angle.is_equal(system.unknowns[j].symbol)) coordinate = static_cast<int>(j) + 1;
-  return coordinate;
-}
-
-}  // namespace
-
-int MechanismGeometry::link_of(const ConstraintSystem& system, const PlanarLinkVectors& link_vectors,
-                               std::size_t vector) {
-  const LinkVectorMotion& term = link_vectors.vectors[vector];
-  if (!term.link.polar || moves(system, term.link.length) || !moves(system, term.link.angle)) return -1;
-  return link_of_angle(system, link_vectors, vector);
-}
-
-int MechanismGeometry::link_of_angle(const ConstraintSystem& system, const PlanarLinkVectors& link_vectors,
-                                     std::size_t vector) {
-  const LinkVectorMotion& term = link_vectors.vectors[vector];
-  if (!term.derived) return -1;  // drawn as a plain segment when GiNaC cannot differentiate the term
-  for (std::size_t k = 0; k < link_rates_.size(); ++k)
-    if (link_rates_[k].is_equal(term.angle_rate)) return static_cast<int>(k);
-  link_rates_.push_back(term.angle_rate);
-  link_vectors_.push_back(vector);
-  link_labels_.push_back(link_label(system, term.link.angle));
-  return static_cast<int>(link_rates_.size() - 1);
-}
-
-MechanismGeometry::MechanismGeometry(const Model& model) : system_(&model.system), kinematics_(&model.kinematics) {
+MechanismGeometry::MechanismGeometry(const Model& model)
+    : system_(&model.system), kinematics_(&model.kinematics),
+      terms_(classify_loop_terms(model.system, model.derivation.link_vectors)) {
   count_work(Work::drawing);
-  classify(model.system, model.derivation.link_vectors);
-}
-
-void MechanismGeometry::classify(const ConstraintSystem& system, const PlanarLinkVectors& link_vectors) {
-  for (const PlanarLinkVectors::Chain& chain : link_vectors.chains) {
-    if (!chain.group) continue;
-    loop_term_count_.push_back(chain.vectors.size());
-    for (std::size_t v : chain.vectors) {
-      const LinkVectorMotion& term = link_vectors.vectors[v];
-      // A term that moves is a link; one whose length moves is a slider's guide, along
-      // the way the term moves as its length changes, the others held.
-      const bool sliding = sliding_length(system, term.term).has_value();
-      int guide_link = -1;
-      const bool guide_turns = term.guide && moves(system, *term.guide);
-      if (guide_turns && term.link.polar && moves(system, term.link.angle))
-        guide_link = link_of_angle(system, link_vectors, v);
-      term_coordinates_.push_back(angle_coordinate(system, term.link));
-      has_guide_.push_back(term.guide.has_value());
-      guide_turns_.push_back(guide_turns);
-      guide_links_.push_back(guide_link);
-      kinds_.push_back(!moves(system, term.term) ? DrawingSegment::Kind::ground
-                       : sliding                 ? DrawingSegment::Kind::slider
-                                                 : DrawingSegment::Kind::link);
-      term_links_.push_back(link_of(system, link_vectors, v));
-    }
-  }
-  for (const PlanarLinkVectors::Chain& chain : link_vectors.chains) {
-    if (!chain.point) continue;
-    const int link = link_of(system, link_vectors, chain.vectors.back());
-    if (link >= 0) points_.push_back({*chain.point, chain.vectors.back(), link});
-  }
 }
 
 std::vector<PointOnLink> MechanismGeometry::points_on_links(const MotionState& state) const {
   std::vector<PointOnLink> found;
-  if (state.status != Status::ok || points_.empty()) return found;
+  if (state.status != Status::ok || terms_.points.empty()) return found;
   const std::vector<double> values = kinematics_->drawing_values(state);
   if (values.empty()) return found;
-  for (const OnLink& on : points_) {
+  for (const LoopTerms::OnLink& on : terms_.points) {
     const double* xy = values.data() + kinematics_->layout().link_vector_output(on.vector) + TapeLayout::kVectorPositionAt;
     const PointMotion& m = state.points[on.point];
     const std::complex<double> at(m.position[0], m.position[1]), term(xy[0], xy[1]);
@@ -140,12 +50,12 @@ std::vector<PointOnLink> MechanismGeometry::points_on_links(const MotionState& s
 }
 
 std::vector<std::optional<double>> MechanismGeometry::link_angular_velocities(const MotionState& state) const {
-  std::vector<std::optional<double>> omegas(link_rates_.size());
+  std::vector<std::optional<double>> omegas(terms_.link_rates.size());
   if (state.status != Status::ok) return omegas;
   const std::vector<double> values = kinematics_->drawing_values(state);
   if (values.empty()) return omegas;
   for (std::size_t k = 0; k < omegas.size(); ++k) {
-    const double* w = values.data() + kinematics_->layout().link_vector_output(link_vectors_[k]) +
+    const double* w = values.data() + kinematics_->layout().link_vector_output(terms_.link_vectors[k]) +
                       TapeLayout::kVectorAngleRateAt;
     if (std::isfinite(w[0]) && w[1] == 0) omegas[k] = w[0];
   }
@@ -205,9 +115,9 @@ std::vector<DrawingSegment> MechanismGeometry::segments(const MotionState& state
   }
   std::vector<DrawingSegment> segments;
   std::size_t first = 0;  // the loop's first term
-  for (std::size_t count : loop_term_count_) {
+  for (std::size_t count : terms_.loop_term_count) {
     std::vector<std::complex<double>> terms;
-    std::vector<DrawingSegment::Kind> kinds(kinds_.begin() + first, kinds_.begin() + first + count);
+    std::vector<DrawingSegment::Kind> kinds(terms_.kinds.begin() + first, terms_.kinds.begin() + first + count);
     for (std::size_t k = 0; k < count; ++k) terms.push_back(vector_at(first + k, TapeLayout::kVectorPositionAt));
     for (const auto& v : terms) size = std::max(size, std::abs(v));
     const std::size_t begin = segments.size();
@@ -221,9 +131,9 @@ std::vector<DrawingSegment> MechanismGeometry::segments(const MotionState& state
       g.to = at + terms[k];
       g.term = term;
       g.loop_start = term_of.size() == 1;
-      g.kind = kinds_[term];
-      g.link = term_links_[term];
-      g.coordinate = term_coordinates_[term];
+      g.kind = terms_.kinds[term];
+      g.link = terms_.term_links[term];
+      g.coordinate = terms_.term_coordinates[term];
       if (g.coordinate >= 0) {
         g.angle = g.coordinate == 0 ? state.input : state.q[g.coordinate - 1];
         g.angle_at = std::real(terms[k] * std::polar(1.0, -g.angle)) >= 0 ? g.from : g.to;
@@ -247,12 +157,12 @@ std::vector<DrawingSegment> MechanismGeometry::segments(const MotionState& state
       g.block_at_from = grounded(g.to) && !grounded(g.from);
       g.block = g.block_at_from ? g.from : g.to;
       g.along = g.to - g.from;
-      if (has_guide_[term]) {
+      if (terms_.has_guide[term]) {
         const std::complex<double> d = vector_at(term, TapeLayout::kVectorGuideAt);
         g.guide_from_tape = std::abs(d) > 0 && std::isfinite(std::abs(d));
         if (g.guide_from_tape) g.along = d;
-        g.fixed_guide = !guide_turns_[term];
-        g.guide_link = guide_links_[term];
+        g.fixed_guide = !terms_.guide_turns[term];
+        g.guide_link = terms_.guide_links[term];
       }
       if (std::abs(g.along) > 0) g.along /= std::abs(g.along);
     }
@@ -273,7 +183,7 @@ std::vector<DrawingSegment> MechanismGeometry::segments(const MotionState& state
     g.pin_at_to = pinned(g.to);
   }
   // Blocks numbered in the gaps the links leave.
-  std::vector<std::string> used(link_labels_);
+  std::vector<std::string> used(terms_.link_labels);
   used.push_back(std::find(used.begin(), used.end(), "1") != used.end() ? "0" : "1");
   int next = 1;
   for (DrawingSegment& g : segments) {

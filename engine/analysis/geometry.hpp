@@ -10,11 +10,12 @@
 #include <vector>
 
 #include "engine/model.hpp"
+#include "engine/symbolic/loop_terms.hpp"
 
 namespace kinema {
 
 struct DrawingSegment {
-  enum class Kind { ground, link, slider };
+  using Kind = LoopTermKind;
   std::complex<double> from, to;  ///< SI.
   Kind kind = Kind::link;
   int link = -1;  ///< A link vector of fixed length: its link (MechanismGeometry::link_labels), else -1.
@@ -55,11 +56,6 @@ struct PointOnLink {
   std::size_t vector = 0;  ///< The link vector (drawing stage) its formula ends with.
   std::complex<double> from, at;  ///< SI.
 };
-
-/// A link of a vector-loop file known by the angle it turns with: its number, the digits
-/// the angle's coordinate name ends in (theta3 -> "3"), else that name; empty when the
-/// angle is not a coordinate's.
-std::string link_label(const ConstraintSystem& system, const GiNaC::ex& angle);
 
 /// A joints-and-links mechanism as drawn: its links with their joints where they are,
 /// ground pivots and fixed guides (SI, world positions).
@@ -104,7 +100,7 @@ std::vector<PlacedFrame> placed_frames(const Model& model, const MotionState& st
 
 /// The loops' terms of a vector-loop file as segments, and its named points on links, at
 /// a state: each term as the model derived and compiled it (its link vectors and their
-/// guides, TapeLayout::kDrawingStage), classed and numbered here.
+/// guides, TapeLayout::kDrawingStage), classed and numbered by classify_loop_terms.
 class MechanismGeometry {
  public:
   /// Reads the model's link vectors and tape; the model must outlive it.
@@ -120,41 +116,21 @@ class MechanismGeometry {
   /// The named points that lie on a link, at a state that is ok.
   std::vector<PointOnLink> points_on_links(const MotionState& state) const;
   /// Each link's number, as DrawingSegment::link and PointOnLink::link index them.
-  const std::vector<std::string>& link_labels() const { return link_labels_; }
+  const std::vector<std::string>& link_labels() const { return terms_.link_labels; }
   /// Each link's angular rate (omega3), indexed as link_labels.
-  const std::vector<GiNaC::ex>& link_rates() const { return link_rates_; }
+  const std::vector<GiNaC::ex>& link_rates() const { return terms_.link_rates; }
   /// Each link's angular velocity at a state that is ok (rad/s, link_rates as the model's
   /// tape evaluates them), indexed as link_labels; nullopt where it is not a finite real
   /// number, and for every link where the drawing stage gives no values.
   std::vector<std::optional<double>> link_angular_velocities(const MotionState& state) const;
+  /// The model's drawing stage's outputs at a state (Kinematics::drawing_values), and where they are.
+  std::vector<double> drawing_values(const MotionState& state) const { return kinematics_->drawing_values(state); }
+  const TapeLayout& layout() const { return kinematics_->layout(); }
 
  private:
-  /// Classes each loop term and finds the points on links.
-  void classify(const ConstraintSystem& system, const PlanarLinkVectors& link_vectors);
-  /// The link a term of fixed length turning with an angle is on (added when new), or -1.
-  int link_of(const ConstraintSystem& system, const PlanarLinkVectors& link_vectors, std::size_t vector);
-  /// The link turning with this vector's angle (added when new).
-  int link_of_angle(const ConstraintSystem& system, const PlanarLinkVectors& link_vectors, std::size_t vector);
-
   const ConstraintSystem* system_ = nullptr;  ///< The model's.
   const Kinematics* kinematics_ = nullptr;    ///< The model's.
-  /// Per loop term (the first link vectors of the model, in order): its kind, its link or
-  /// -1, whether it has a guide that turns (a guide on a link) and with which link, its
-  /// angle's coordinate (as DrawingSegment::coordinate) or -1.
-  std::vector<std::size_t> loop_term_count_;  ///< Terms of each loop, in order.
-  std::vector<DrawingSegment::Kind> kinds_;
-  std::vector<int> term_links_;
-  std::vector<bool> has_guide_, guide_turns_;
-  std::vector<int> guide_links_;
-  std::vector<int> term_coordinates_;
-  struct OnLink {
-    std::size_t point = 0, vector = 0;  ///< The point and its last term's link vector.
-    int link = 0;
-  };
-  std::vector<OnLink> points_;
-  std::vector<GiNaC::ex> link_rates_;  ///< Per link: the rate it turns with.
-  std::vector<std::size_t> link_vectors_;  ///< Per link: a link vector turning with it (its first).
-  std::vector<std::string> link_labels_;
+  LoopTerms terms_;
 };
 
 }  // namespace kinema

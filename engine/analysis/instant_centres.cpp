@@ -67,6 +67,7 @@ struct PointBody {
   Complex point, velocity;
   std::size_t order = 0;  ///< The driver, then the unknowns in file order.
   double omega = 0;
+  int slider_term = -1;  ///< A block: its slider's term (link vector).
 };
 
 // The driver's link first (0), then the unknowns' in file order (j + 1), then any other:
@@ -151,7 +152,7 @@ void add_drawn_bodies(const MechanismGeometry& geometry, const MotionState& s,
     const std::optional<double> w = g.fixed_guide ? std::optional<double>(0.0) : omegas[g.guide_link];
     const auto v = velocity_at(g.block);
     if (!w || !v) continue;
-    bodies.push_back({-1, 0, "", g.block, *v, geometry.system().unknowns.size() + 2, *w});
+    bodies.push_back({-1, 0, "", g.block, *v, geometry.system().unknowns.size() + 2, *w, static_cast<int>(g.term)});
   }
 }
 
@@ -190,39 +191,104 @@ Complex body_velocity(const std::vector<PointBody>& bodies, std::size_t b) {
   return b == 0 ? Complex() : bodies[b - 1].velocity;
 }
 
-// Ground and the bodies, and each pair's centre from their velocities:
-// v_a(I) = v_b(I) with v(P) = v_A + i omega (P - A); where the two turn alike, at infinity
-// across their relative velocity.
-InstantCentres centres_of_bodies(const ConstraintSystem& system, const MotionState& s,
-                                 const std::vector<PointBody>& bodies, const std::string& ground) {
+// Ground and the bodies: names, rates, the driver (angular velocities not yet).
+InstantCentres named_bodies(const ConstraintSystem& system, const std::vector<PointBody>& bodies,
+                            const std::string& ground) {
   InstantCentres result;
   result.bodies.push_back(ground);
-  result.angular_velocities.push_back(0);
   result.rates.push_back(0);
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     result.bodies.push_back(bodies[b].name);
     result.rates.push_back(bodies[b].rate);
-    result.angular_velocities.push_back(bodies[b].omega);
     if (bodies[b].rate.is_equal(system.input.rate)) result.driver = b + 1;
   }
-  const std::size_t n = result.bodies.size();
+  return result;
+}
+
+double fastest_point(const MotionState& s) {
   double fastest = 0;
   for (const PointMotion& m : s.points) fastest = std::max(fastest, m.speed());
+  return fastest;
+}
+
+std::string found_by(const InstantCentres& result, std::size_t a, std::size_t b) {
+  return "velocities of the points on " + result.bodies[a] + " and " + result.bodies[b];
+}
+
+// The construction from the bodies' numbers: each pair's centre from their velocities,
+// v_a(I) = v_b(I) with v(P) = v_A + i omega (P - A); where the two turn alike, at infinity
+// across their relative velocity.
+InstantCentres centres_of_bodies(const ConstraintSystem& system, const MotionState& s,
+                                 const std::vector<PointBody>& bodies, const std::string& ground) {
+  InstantCentres result = named_bodies(system, bodies, ground);
+  result.angular_velocities.push_back(0);
+  for (const PointBody& b : bodies) result.angular_velocities.push_back(b.omega);
+  const std::size_t n = result.bodies.size();
+  const double fastest = fastest_point(s);
   for (std::size_t a = 0; a < n; ++a) {
     for (std::size_t b = a + 1; b < n; ++b) {
       const double wa = result.angular_velocities[a], wb = result.angular_velocities[b];
       const Complex A = body_point(bodies, a), B = body_point(bodies, b), I(0, 1);
       const Complex va = body_velocity(bodies, a), vb = body_velocity(bodies, b);
-      const std::string how = "velocities of the points on " + result.bodies[a] + " and " + result.bodies[b];
-      if (std::fabs(wa - wb) <= 1e-12 * (std::fabs(wa) + std::fabs(wb))) {
+      const std::string how = found_by(result, a, b);
+      if (std::fabs(wa - wb) <= kCentreParallelTolerance * (std::fabs(wa) + std::fabs(wb))) {
         // Uniform where they turn alike: v_b(P) - v_a(P) = v_b(B) - v_a(A) + i omega (A - B).
         const Complex relative = vb - va + I * wa * (A - B);
         if (std::abs(relative) <= 1e-12 * fastest) continue;  // moving as one: no centre
-        result.centres.push_back({a, b, true, I * relative / std::abs(relative), how, {}, std::nullopt});
+        result.centres.push_back({a, b, true, I * relative / std::abs(relative), how, {}, std::nullopt, {}});
         continue;
       }
       const Complex at = (vb - va + I * (wa * A - wb * B)) / (I * (wa - wb));
-      result.centres.push_back({a, b, false, at, how, {}, std::nullopt});
+      result.centres.push_back({a, b, false, at, how, {}, std::nullopt, {}});
+    }
+  }
+  return result;
+}
+
+// The same centres read from the model's drawing stage (centre_formulas.hpp), the bodies
+// the construction found matched to the tape's by link or slider: each N / (i D), at
+// infinity across N where they turn alike. Nullopt where a body is not on the tape.
+// `points` gets each body's point as the tape gives it.
+std::optional<InstantCentres> centres_from_tape(const MechanismGeometry& geometry, const MotionState& s,
+                                                const std::vector<PointBody>& bodies, const std::string& ground,
+                                                std::vector<Complex>& points) {
+  const TapeLayout& layout = geometry.layout();
+  const std::vector<double> values = geometry.drawing_values(s);
+  if (values.size() != layout.drawing_output_count()) return std::nullopt;
+  InstantCentres result = named_bodies(geometry.system(), bodies, ground);
+  result.tape_bodies.push_back(0);
+  for (const PointBody& body : bodies) {
+    std::size_t found = 0;
+    for (std::size_t t = 0; t < layout.centre_bodies.size(); ++t) {
+      const CentreBody& c = layout.centre_bodies[t];
+      if (body.link >= 0 ? c.link == body.link && c.slider_term < 0 : c.slider_term == body.slider_term) found = t + 1;
+    }
+    if (found == 0) return std::nullopt;
+    result.tape_bodies.push_back(found);
+  }
+  points.assign(1, 0);
+  result.angular_velocities.push_back(0);
+  for (std::size_t b = 1; b < result.tape_bodies.size(); ++b) {
+    const double* body = values.data() + layout.centre_body_output(result.tape_bodies[b]);
+    result.angular_velocities.push_back(body[0]);
+    points.push_back({body[1], body[2]});
+  }
+  const std::size_t n = result.bodies.size();
+  const double fastest = fastest_point(s);
+  for (std::size_t a = 0; a < n; ++a) {
+    for (std::size_t b = a + 1; b < n; ++b) {
+      const std::size_t ta = result.tape_bodies[a], tb = result.tape_bodies[b];
+      const double* pair = values.data() + layout.centre_pair_output(std::min(ta, tb), std::max(ta, tb));
+      const double sign = ta < tb ? 1.0 : -1.0;  // the tape's pair the other way round: both negated
+      const Complex N(sign * pair[0], sign * pair[1]);
+      const double D = sign * pair[2], wa = result.angular_velocities[a], wb = result.angular_velocities[b];
+      if (std::fabs(D) <= kCentreParallelTolerance * (std::fabs(wa) + std::fabs(wb))) {
+        if (std::abs(N) <= 1e-12 * fastest) continue;  // moving as one: no centre
+        result.centres.push_back({a, b, true, Complex(-N.imag(), N.real()) / std::abs(N), found_by(result, a, b), {},
+                                  std::nullopt, {}});
+        continue;
+      }
+      result.centres.push_back({a, b, false, {N.imag() / D, -N.real() / D}, found_by(result, a, b), {}, std::nullopt, {}});
     }
   }
   return result;
@@ -231,7 +297,7 @@ InstantCentres centres_of_bodies(const ConstraintSystem& system, const MotionSta
 // Centres away from the joints: on the two Kennedy lines (through I_ab and I_bc for
 // another body b) that cross there most squarely. A centre at infinity is seen from the
 // block (rate 0, not ground), else from the moving body.
-void mark_kennedy_lines(InstantCentres& result, const std::vector<PointBody>& bodies, const MotionState& s,
+void mark_kennedy_lines(InstantCentres& result, const std::vector<Complex>& points, const MotionState& s,
                         double length_scale) {
   const std::size_t n = result.bodies.size();
   std::vector<Complex> joints = {0};
@@ -239,8 +305,12 @@ void mark_kennedy_lines(InstantCentres& result, const std::vector<PointBody>& bo
   for (InstantCentre& centre : result.centres) {
     if (centre.at_infinity) {
       const auto block = [&](std::size_t b) { return b != 0 && result.rates[b].is_zero(); };
-      const Complex a = body_point(bodies, centre.a), b = body_point(bodies, centre.b);
-      centre.seen_from = block(centre.b) || centre.a == 0 ? b : block(centre.a) ? a : (a + b) / 2.0;
+      centre.seen_bodies = block(centre.b) || centre.a == 0 ? std::vector<std::size_t>{centre.b}
+                           : block(centre.a)                ? std::vector<std::size_t>{centre.a}
+                                                            : std::vector<std::size_t>{centre.a, centre.b};
+      Complex sum = 0;
+      for (std::size_t b : centre.seen_bodies) sum += points[b];
+      centre.seen_from = sum / double(centre.seen_bodies.size());
       continue;
     }
     bool joint = false;
@@ -307,13 +377,13 @@ void complete_by_kennedy(InstantCentres& result, double length_scale) {
               how += (k == 0 ? "" : k == 2 ? ", " : " ") + centre_name(result.bodies, kennedy[k].first, kennedy[k].second);
             if (sine <= 1e-9) {  // parallel lines: a centre at infinity, unless they are one line
               if (std::fabs(cross(q.through - p.through, p.along)) > 1e-9 * length_scale && !chosen)
-                chosen = InstantCentre{a, c, true, p.along, how, kennedy, p.through};
+                chosen = InstantCentre{a, c, true, p.along, how, kennedy, p.through, {}};
               continue;
             }
             if (sine <= best) continue;
             best = sine;
             const double t = cross(q.through - p.through, q.along) / cross(p.along, q.along);
-            chosen = InstantCentre{a, c, false, p.through + t * p.along, how, kennedy, std::nullopt};
+            chosen = InstantCentre{a, c, false, p.through + t * p.along, how, kennedy, std::nullopt, {}};
           }
         }
         if (chosen) {
@@ -326,18 +396,24 @@ void complete_by_kennedy(InstantCentres& result, double length_scale) {
 }
 
 // A vector-loop file's centres: its bodies found from the points and the drawing, each
-// centre from two bodies' velocities.
-std::optional<InstantCentres> centres_from_points(const MechanismGeometry& geometry, const MotionState& s) {
+// centre from two bodies' velocities, read from the tape or (from_tape false) constructed
+// from the numbers the bodies were found by.
+std::optional<InstantCentres> centres_from_points(const MechanismGeometry& geometry, const MotionState& s,
+                                                  bool from_tape) {
   const ConstraintSystem& system = geometry.system();
   const std::vector<std::optional<double>> omegas = geometry.link_angular_velocities(s);
   std::vector<PointBody> bodies = bodies_of_points(geometry, s, omegas);
   if (bodies.empty()) return std::nullopt;
   add_drawn_bodies(geometry, s, omegas, bodies);
   const std::string ground = number_bodies(bodies);
-  InstantCentres result = centres_of_bodies(system, s, bodies, ground);
-  if (!list_missing_and_check_finite(result)) return std::nullopt;
-  mark_kennedy_lines(result, bodies, s, system.length_scale);
-  if (result.driver != 0) add_ratios(result, system.length_scale);
+  std::vector<Complex> points = {0};
+  for (const PointBody& b : bodies) points.push_back(b.point);
+  std::optional<InstantCentres> result =
+      from_tape ? centres_from_tape(geometry, s, bodies, ground, points)
+                : std::optional<InstantCentres>(centres_of_bodies(system, s, bodies, ground));
+  if (!result || !list_missing_and_check_finite(*result)) return std::nullopt;
+  mark_kennedy_lines(*result, points, s, system.length_scale);
+  if (result->driver != 0) add_ratios(*result, system.length_scale);
   return result;
 }
 
@@ -350,11 +426,17 @@ const InstantCentre* InstantCentres::find(std::size_t a, std::size_t b) const {
   return nullptr;
 }
 
+std::optional<InstantCentres> constructed_instant_centres(const MechanismGeometry& geometry, const MotionState& s) {
+  const ConstraintSystem& system = geometry.system();
+  if (s.status != Status::ok || system.plan || !system.frames.empty()) return std::nullopt;
+  return centres_from_points(geometry, s, false);
+}
+
 std::optional<InstantCentres> instant_centres(const MechanismGeometry& geometry, const MotionState& s) {
   count_work(Work::drawing);
   const ConstraintSystem& system = geometry.system();
   if (s.status != Status::ok || !system.frames.empty()) return std::nullopt;
-  if (!system.plan) return centres_from_points(geometry, s);
+  if (!system.plan) return centres_from_points(geometry, s, true);
   if (!system.plan->closed_form) return std::nullopt;
   const SolvingPlan& plan = *system.plan;
   const SolvingPlan& frames = plan;
@@ -391,7 +473,7 @@ std::optional<InstantCentres> instant_centres(const MechanismGeometry& geometry,
                        std::optional<Complex> seen_from = std::nullopt) {
     if (a > b) std::swap(a, b);
     if (a == b || result.find(a, b)) return;
-    result.centres.push_back({a, b, infinite, at, how, {}, seen_from});
+    result.centres.push_back({a, b, infinite, at, how, {}, seen_from, {}});
   };
   // Primary centres: pins, then sliders (at infinity across the line).
   for (const SolvingPlan::Pin& pin : frames.pins) {

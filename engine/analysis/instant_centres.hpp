@@ -29,6 +29,9 @@ struct InstantCentre {
   /// At infinity: a point of a line it lies on, where a drawing starts its arrow (a
   /// slider's joint, or a centre on the Kennedy line that fixed its direction).
   std::optional<std::complex<double>> seen_from;
+  /// A vector-loop file's centre at infinity: the bodies whose points (the tape's) it is
+  /// seen from, their mean (one body, or both).
+  std::vector<std::size_t> seen_bodies;
 };
 
 /// omega_j / omega_driver from the centres (I_0d, I_dj, I_0j on one line:
@@ -52,12 +55,26 @@ struct InstantCentres {
   std::vector<VelocityRatio> ratios;
   /// The centre of bodies a and b, if found.
   const InstantCentre* find(std::size_t a, std::size_t b) const;
+  /// A vector-loop file's: per body, the body of the model's drawing stage its angular
+  /// velocity, point and centres are read from (TapeLayout::centre_bodies, ground 0).
+  std::vector<std::size_t> tape_bodies;
 };
+
+/// The relative difference of angular velocities below which two bodies turn alike.
+constexpr double kCentreParallelTolerance = 1e-12;
 
 /// The instant centres at a state that is ok of the mechanism whose model `geometry` reads:
 /// a joints-and-links mechanism placed in closed form, or a vector-loop file with a named
 /// point on a link (its links and their angular velocities as the model derived and
 /// compiled them); nullopt for other systems (spatial chains) and states.
+/// A vector-loop file's centres are read from the model's drawing stage (centre_formulas.hpp):
+/// each N / (i D), or at infinity across N where |D| <= kCentreParallelTolerance (|omega_a| +
+/// |omega_b|), none where N is 0 too.
 std::optional<InstantCentres> instant_centres(const MechanismGeometry& geometry, const MotionState& state);
+
+/// A vector-loop file's centres constructed from the numbers its bodies were found by (a
+/// point on each and that point's velocity: v_a(I) = v_b(I) with v(P) = v_A + i omega
+/// (P - A)), not from the tape: what instant_centres' must equal (tested).
+std::optional<InstantCentres> constructed_instant_centres(const MechanismGeometry& geometry, const MotionState& state);
 
 }  // namespace kinema

@@ -6,6 +6,7 @@
 
 #include "engine/constraints/complex_parts.hpp"
 #include "engine/constraints/output_columns.hpp"
+#include "engine/symbolic/centre_formulas.hpp"
 
 namespace kinema {
 
@@ -206,7 +207,7 @@ Kinematics::Kinematics(const ConstraintSystem& system, const Derivation& d) : Ki
     points.insert(points.end(), frame.angular_velocity.begin(), frame.angular_velocity.end());
     points.insert(points.end(), frame.angular_acceleration.begin(), frame.angular_acceleration.end());
   }
-  compile(system, {position, d.acceleration_rhs, points}, d.link_vectors);
+  compile(system, {position, d.acceleration_rhs, points}, d);
 }
 
 Kinematics Kinematics::sharing_tape(const ConstraintSystem& system) const {
@@ -216,6 +217,7 @@ Kinematics Kinematics::sharing_tape(const ConstraintSystem& system) const {
   k.layout_.linkage_block_count = layout_.linkage_block_count;
   k.layout_.linkage_guide_count = layout_.linkage_guide_count;
   k.layout_.linkage_column_count = layout_.linkage_column_count;
+  k.layout_.centre_bodies = layout_.centre_bodies;
   k.evaluator_ = evaluator_;
   k.drawable_ = drawable_;
   return k;
@@ -234,7 +236,8 @@ void Kinematics::set_parameter_values(const double* values) {
 }
 
 void Kinematics::compile(const ConstraintSystem& system, const std::vector<std::vector<ex>>& solving,
-                         const PlanarLinkVectors& link_vectors) {
+                         const Derivation& derivation) {
+  const PlanarLinkVectors& link_vectors = derivation.link_vectors;
   // Inputs in the order of TapeLayout.
   std::vector<ex> inputs;
   for (const SystemParameter& parameter : system.parameters) inputs.push_back(parameter.symbol);
@@ -250,6 +253,13 @@ void Kinematics::compile(const ConstraintSystem& system, const std::vector<std::
     std::vector<ex> drawing = drawing_stage(system, link_vectors);
     const std::vector<ex> linkage = linkage_stage(system, solving.size() > 2 ? solving[2] : std::vector<ex>{}, layout_);
     drawing.insert(drawing.end(), linkage.begin(), linkage.end());
+    std::vector<ex> centres;
+    try {
+      centres = centre_stage(system, derivation, layout_.centre_bodies);
+    } catch (const std::exception&) {
+      layout_.centre_bodies.clear();  // no centres on the tape: the views show none
+    }
+    drawing.insert(drawing.end(), centres.begin(), centres.end());
     evaluator_ = std::make_shared<const CompiledExpressions>(inputs, layout_.input_levels(), solving, drawing);
   } catch (const std::exception&) {
     // A drawing formula the tape cannot take: the model solves as before and its views
@@ -257,6 +267,7 @@ void Kinematics::compile(const ConstraintSystem& system, const std::vector<std::
     layout_.link_vector_count = 0;
     layout_.linkage_joint_count = layout_.linkage_block_count = layout_.linkage_guide_count = 0;
     layout_.linkage_column_count = 0;
+    layout_.centre_bodies.clear();
     evaluator_ = std::make_shared<const CompiledExpressions>(inputs, layout_.input_levels(), solving,
                                                              std::vector<ex>{});
     drawable_ = false;

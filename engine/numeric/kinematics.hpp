@@ -67,7 +67,7 @@ class Kinematics {
   explicit Kinematics(const ConstraintSystem& system);
   /// The tape: the solving stages, then the drawing stage apart (TapeLayout::kDrawingStage).
   void compile(const ConstraintSystem& system, const std::vector<std::vector<GiNaC::ex>>& solving,
-               const PlanarLinkVectors& link_vectors);
+               const Derivation& derivation);
   TapeLayout layout_;
   /// Shared by the models that differ only in parameter values (with_parameters).
   std::shared_ptr<const CompiledExpressions> evaluator_ = std::make_shared<const CompiledExpressions>();

@@ -6,6 +6,8 @@
 #include <cstddef>
 #include <vector>
 
+#include "engine/symbolic/centre_body.hpp"
+
 namespace kinema {
 
 struct TapeLayout {
@@ -19,6 +21,9 @@ struct TapeLayout {
   std::size_t linkage_block_count = 0;   ///< Bodies that are slider blocks.
   std::size_t linkage_guide_count = 0;   ///< Sliders on a fixed guide (guide 0).
   std::size_t linkage_column_count = 0;  ///< The joints-and-links result columns (linkage_columns_begin on).
+  /// A vector-loop file's bodies whose instant centres the drawing stage holds (ground,
+  /// body 0, is not listed: body b >= 1 is centre_bodies[b - 1]); empty for anything else.
+  std::vector<CentreBody> centre_bodies;
 
   // Input registers: [parameters, theta, thetad, thetadd, q, qd, qdd].
   std::size_t parameter(std::size_t p) const { return p; }
@@ -81,7 +86,25 @@ struct TapeLayout {
   std::size_t linkage_block_output(std::size_t b) const { return linkage_joint_output(linkage_joint_count) + b; }
   std::size_t linkage_guide_output(std::size_t g) const { return linkage_block_output(linkage_block_count) + 4 * g; }
   std::size_t linkage_column_output(std::size_t c) const { return linkage_guide_output(linkage_guide_count) + c; }
-  std::size_t drawing_output_count() const { return linkage_column_output(linkage_column_count); }
+  /// Then, for a vector-loop file's instant centres (engine/symbolic/centre_formulas.hpp):
+  /// per body b >= 1 its angular velocity and a point on it (x, y); then per pair a < b of
+  /// bodies (ground, 0, included; in that order) N = c_b - c_a (x, y) and D = omega_a -
+  /// omega_b, where c = v_P - i omega P is the body's velocity at the origin. Their centre
+  /// is N / (i D), or at infinity across N where they turn alike.
+  static constexpr std::size_t kCentreBodyOutputs = 3, kCentrePairOutputs = 3;
+  std::size_t centre_body_output(std::size_t b) const {
+    return linkage_column_output(linkage_column_count) + kCentreBodyOutputs * (b - 1);
+  }
+  std::size_t centre_pair_output(std::size_t a, std::size_t b) const {
+    const std::size_t n = centre_bodies.size() + 1;
+    std::size_t before = 0;  // pairs before (a, b) in the order a < b
+    for (std::size_t i = 0; i < a; ++i) before += n - 1 - i;
+    return centre_body_output(n) + kCentrePairOutputs * (before + b - a - 1);
+  }
+  std::size_t drawing_output_count() const {
+    const std::size_t n = centre_bodies.size() + 1;
+    return centre_body_output(n) + kCentrePairOutputs * (n * (n - 1) / 2);
+  }
 
   // Input levels (how often an input changes): work on level-0 inputs runs once,
   // on the input and its rates once per value, on q once per Newton iterate.

@@ -457,9 +457,68 @@ async function checkSlider(browser, sampleName, parameter, target, sweep) {
         `${sampleName}: frame E3 drawn at ${chain.frames.E3} px, its origin point A at ${a && a.px}`);
     }
     assert(joints >= 1, `${sampleName}: no joint drawn at a point of eval's`);
+    // The constructions of re-solved rows: the polygons at this row, the centres at a third
+    // of the regular rows (the four-bar's middle row is folded, its centres at joints
+    // whatever the dimensions).
+    if (!chain) await checkSolvedConstructions(browser, page, sampleName, edited, sweep, ok[Math.floor(ok.length / 3)], header, fields);
   }
   assert.deepStrictEqual(seen.errors, [], `${sampleName}: console errors`);
   return { page: page, compared: compared, statuses: got.map((g) => g.status) };
+}
+
+// A re-solved row's constructions (page scrubbed to the row whose CSV fields are `fields`):
+// each polygon's images are eval's velocities and accelerations of the edited file; a
+// vector-loop file's instant centres at row `centresRow` are those the analysis finds for
+// the edited file (its own page, written by kinema, at the same row): within 0.1 px where
+// drawn, directions at infinity within 1e-6, the same centres at infinity.
+async function checkSolvedConstructions(browser, page, sampleName, edited, sweep, centresRow, header, fields) {
+  const got = await page.evaluate((r) => {
+    const panels = ['velocity-polygon', 'acceleration-polygon'].map((id) => {
+      const panel = document.getElementById(id);
+      return Array.from(panel.querySelectorAll('[data-vertex]')).map((v) => ({ name: v.getAttribute('data-vertex'),
+        x: Number(v.getAttribute('data-x')), y: Number(v.getAttribute('data-y')) }));
+    });
+    const svg = document.getElementById('mechanism');
+    return { panels: panels, centres: window.kinemaPage.centres(r), scale: Number(svg.getAttribute('data-scale')) };
+  }, centresRow);
+  let images = 0;
+  got.panels.forEach((vertices, k) => {
+    const suffix = k === 0 ? '_vx [' : '_ax [';
+    for (const v of vertices) {
+      const column = header.findIndex((h) => h.startsWith(v.name + suffix));
+      if (column < 0) continue;
+      const x = Number(fields[column]), y = Number(fields[column + 1]), size = Math.hypot(x, y) + 1e-300;
+      assert(Math.abs(v.x - x) <= 1e-12 * size && Math.abs(v.y - y) <= 1e-12 * size,
+        `${sampleName}: re-solved ${v.name} of the ${suffix} polygon at (${v.x}, ${v.y}), eval's (${x}, ${y})`);
+      ++images;
+    }
+  });
+  assert(images >= 2, `${sampleName}: ${images} images of a re-solved row's polygons checked`);
+  constructions.solvedImages += images;
+  // A joints-and-links file's centres are not on the tape: drawn at the file's dimensions only.
+  if (sampleName.includes('_joints')) return assert.strictEqual(got.centres, null, `${sampleName}: centres on a re-solved row`);
+  assert(got.centres, `${sampleName}: no instant centres on a re-solved row`);
+  assert(isFinite(got.scale) && got.scale > 0, `${sampleName}: the drawing's scale ${got.scale}`);
+  const html = path.join(workDir, sampleName + '_edited.html');
+  run(['page', edited, '--sweep', sweep, '-o', html]);
+  const other = await browser.newPage({ viewport: { width: 1100, height: 800 } });  // the slider's page stays open
+  await other.goto('file://' + html);
+  const want = await other.evaluate((r) => window.kinemaPage.centres(r), centresRow);
+  await other.close();
+  assert(want && want.centres.length === got.centres.centres.length, `${sampleName}: the edited file's centres differ in number`);
+  want.centres.forEach((c, k) => {
+    const have = got.centres.centres[k];
+    assert.strictEqual(have.name, c.name);
+    assert.strictEqual(have.infinite, c.infinite, `${sampleName}: ${c.name} at infinity in one page only`);
+    if (c.at) {
+      assert(have.at && Math.hypot(have.at[0] - c.at[0], have.at[1] - c.at[1]) * got.scale <= 0.1,
+        `${sampleName}: re-solved ${c.name} at (${have.at}), the edited file's at (${c.at})`);
+    } else if (c.direction) {
+      assert(have.direction && Math.hypot(have.direction[0] - c.direction[0], have.direction[1] - c.direction[1]) <= 1e-6,
+        `${sampleName}: re-solved ${c.name} toward (${have.direction}), the edited file's (${c.direction})`);
+    }
+  });
+  constructions.solvedCentres += want.centres.length;
 }
 
 async function checkSliders(browser) {
@@ -493,7 +552,7 @@ async function checkSliders(browser) {
     for (let k = 0; k < 20; ++k) window.kinemaPage.setDimensions({ b: 125 + (k % 2) * 5 });
     return window.kinemaPage.resolveTimes.slice(-20).sort((x, y) => x - y);
   });
-  console.log(`sliders: ${compared} values equal eval's; a four-bar turn at 1 deg re-solved in ${times[10].toFixed(2)} ms (median of 20, max ${times[19].toFixed(2)} ms)`);
+  console.log(`sliders: ${compared} values equal eval's, ${constructions.solvedImages} polygon images and ${constructions.solvedCentres} instant centres of re-solved rows; a four-bar turn at 1 deg re-solved in ${times[10].toFixed(2)} ms (median of 20, max ${times[19].toFixed(2)} ms)`);
 }
 
 // The four-bar's sliders (its page at 4 deg steps open): each slider's ends and band are
@@ -535,7 +594,7 @@ async function checkSliderRanges(page) {
 
 // What the samples' constructions showed (each planar sample has polygons; joints-and-links
 // ones have centres), checked after all ran.
-const constructions = { images: 0, centres: new Set() };
+const constructions = { images: 0, centres: new Set(), solvedImages: 0, solvedCentres: 0 };
 
 // A title, description and file name written to run script: shown as text, nothing runs.
 async function checkHostile(browser) {
@@ -582,6 +641,8 @@ async function checkHostile(browser) {
     await checkFailedRows(browser, path.join(samplesDir, 'piston_driven_crank.toml'), 'unassembled');
     await checkHostile(browser);
     await checkSliders(browser);
+    assert(constructions.solvedCentres >= 15, `only ${constructions.solvedCentres} re-solved instant centres checked`);
+    assert(constructions.solvedImages >= 20, `only ${constructions.solvedImages} re-solved polygon images checked against eval`);
     assert(constructions.images >= 20, `only ${constructions.images} polygon images checked against eval`);
     for (const joints of ['problem_4_4_joints', 'crank_shaper', 'example_4_2_joints', 'triple_rocker_circuit'])
       assert(constructions.centres.has(joints), `${joints}: no instant centres shown`);

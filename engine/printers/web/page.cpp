@@ -357,8 +357,11 @@ void write_page(std::ostream& out, const PrintJob& job) {
   PointFields point_fields;
   for (const auto& point : data["columns"]["points"])
     if (point["dimension"] == 2) point_fields[point["name"]] = {point["velocity"], point["acceleration"]};
-  data["constructions"] = constructions_json(job.analysis->values, drawing, scale.length, point_fields);
-  data["resolve"] = resolving_json(job, scale);
+  json resolve = resolving_json(job, scale);
+  // A page that solves again finds the centres of its rows from the drawing stage's outputs.
+  const TapeLayout* centre_tape = resolve.is_null() ? nullptr : &job.analysis->resolving->layout;
+  data["constructions"] = constructions_json(job.analysis->values, drawing, scale.length, point_fields, centre_tape);
+  data["resolve"] = std::move(resolve);
 
   // The derivation as the notes print it, in MathML (markup of kinema's own, every text escaped).
   std::ostringstream latex;

@@ -417,6 +417,9 @@
 
   // The constructions of a row (engine/printers/web/page_constructions.cpp): the rows give
   // coordinates, their structures the names, kinds and which points an arrow joins.
+  // A row the sliders solved takes the file's row's structure: its images of named points are
+  // the row's velocities and accelerations (the tape's); a vertex the analysis placed by
+  // its own construction has no value for these dimensions, so it and its arrows are left out.
   function rowPolygons(r) {
     const c = constructions.rows[r];
     if (!c || !c.polygons) return null;
@@ -428,13 +431,50 @@
         return v.pole ? [0, 0] : v.field !== undefined ? [numbers[r][v.field], numbers[r][v.field + 1]] : next();
       });
       while (k + 1 < p.length) ends.push(next());
-      return { order: s.order, vertices: s.vertices.map(function (v, j) { return { name: v.name, at: ends[j] }; }),
-        arrows: s.arrows.map(function (a) { return { kind: a[0], name: a[1], from: ends[a[2]], to: ends[a[3]] }; }) };
+      const known = function (j) { return !resolved || (j < s.vertices.length && (s.vertices[j].pole || s.vertices[j].field !== undefined)); };
+      const vertices = [], arrows = [];
+      s.vertices.forEach(function (v, j) { if (known(j)) vertices.push({ name: v.name, at: ends[j] }); });
+      s.arrows.forEach(function (a) {
+        if (known(a[2]) && known(a[3])) arrows.push({ kind: a[0], name: a[1], from: ends[a[2]], to: ends[a[3]] });
+      });
+      return { order: s.order, vertices: vertices, arrows: arrows };
     });
   }
+  // A row the sliders solved: its centres from the drawing stage's outputs the analysis reads
+  // its own from (engine/symbolic/centre_formulas.hpp), with the file's row's structure and
+  // Kennedy lines: each N / (i D), or at infinity across N where the bodies turn alike
+  // (instant_centres.cpp centres_from_tape).
+  function solvedCentres(r, c) {
+    const s = constructions.centre_structures[c.centres[0]];
+    const solved = lastSolved && lastSolved[r];
+    if (!solved || solved.status !== 'ok' || !solved.drawn || !s.centres.every(function (x) { return x.tape; })) return null;
+    const v = solved.drawn, f = R.length_per_unit;
+    const out = function (k) { return k < 0 ? 0 : v[k]; };
+    let fastest = 0;  // the fastest point: below a 1e-12th of it N is 0 (no centre)
+    R.point_dimensions.reduce(function (k, d) {
+      fastest = Math.max(fastest, Math.hypot(solved.points[k + d], solved.points[k + d + 1], d === 3 ? solved.points[k + 5] : 0));
+      return k + 3 * d;
+    }, 0);
+    const lines = constructions.kennedy_sets[c.centres[1]];
+    return { not_found: s.not_found, centres: s.centres.map(function (centre, j) {
+      const t = centre.tape, sign = t[1];
+      const N = [sign * out(t[0]), sign * out(t[0] + 1)], D = sign * out(t[0] + 2), size = Math.hypot(N[0], N[1]);
+      const infinite = Math.abs(D) <= constructions.centre_parallel_tolerance * (Math.abs(out(t[2])) + Math.abs(out(t[3])));
+      const result = { name: centre.name, infinite: infinite, kennedy: lines[j] };
+      if (!infinite) result.at = [N[1] / D / f, -N[0] / D / f];
+      else if (size > 1e-12 * fastest) {
+        result.direction = [-N[1] / size, N[0] / size];
+        result.seen_from = [0, 1].map(function (k) {
+          return t[4].reduce(function (sum, p) { return sum + out(p < 0 ? p : p + k); }, 0) / t[4].length / f;
+        });
+      }
+      return result;
+    }) };
+  }
   function rowCentres(r) {
-    const c = resolved ? null : constructions.rows[r];
+    const c = constructions.rows[r];
     if (!c || !c.centres) return null;
+    if (resolved) return solvedCentres(r, c);
     const s = constructions.centre_structures[c.centres[0]];
     const lines = constructions.kennedy_sets[c.centres[1]];
     const g = drawing.rows[r];
@@ -529,13 +569,12 @@
     const shown = toggles.polygons && toggles.polygons.checked;
     polygonArea.style.display = shown ? '' : 'none';
     if (!shown) return;
-    const polygons = status(row) === 'ok' && !resolved ? rowPolygons(row) : null;
+    const polygons = status(row) === 'ok' ? rowPolygons(row) : null;
     polygonPanels.forEach(function (panel) {
       panel.svg.textContent = '';
       if (!polygons) {
         panel.key.textContent = '';
-        svg('text', { x: 200, y: 150, class: 'message' }, panel.svg,
-          resolved ? 'Polygons: at the file\'s dimensions only.' : 'No polygon at this value.');
+        svg('text', { x: 200, y: 150, class: 'message' }, panel.svg, 'No polygon at this value.');
         return;
       }
       const polygon = polygons[panel.order];
@@ -1410,7 +1449,7 @@
   // and the time each frame's drawing took.
   // The sliders' rows for a test: every row's status and fields (numbers in the CSV's units).
   window.kinemaPage = { frameTimes: frameTimes, drawTimes: drawTimes, setPlaying: setPlaying, resolveTimes: resolveTimes,
-    setDimensions: setDimensions, setRow: setRow,
+    setDimensions: setDimensions, setRow: setRow, centres: rowCentres, polygons: rowPolygons,
     rows: function () { return numbers.map(function (n, r) { return { status: status(r), fields: n.slice() }; }); } };
   // The derivation (static MathML written by kinema) under everything the script made.
   document.body.appendChild(document.getElementById('derivation'));

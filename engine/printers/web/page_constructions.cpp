@@ -98,8 +98,23 @@ std::string centre_name(const InstantCentres& centres, const InstantCentre& c) {
 // drawing's row has its place already.
 // The Kennedy lines are a list of their own (one entry per centre): they change with the
 // row far more often than the rest of the structure, which then stays shared.
+// For a page whose sliders solve again, where a centre's values are among the drawing
+// stage's outputs (InstantCentres::tape_bodies, TapeLayout::centre_pair_output): its pair's
+// N and D, the sign to read them with (the tape's pair the other way round), each body's
+// angular velocity (-1: ground's, 0), then the points it is seen from (x, then y; -1: the
+// origin). Null where the centres are not the tape's.
+json centre_tape_json(const InstantCentres& centres, const InstantCentre& c, const TapeLayout* layout) {
+  if (!layout || centres.tape_bodies.size() != centres.bodies.size()) return nullptr;
+  const std::size_t ta = centres.tape_bodies[c.a], tb = centres.tape_bodies[c.b];
+  const auto omega = [&](std::size_t t) -> long long { return t == 0 ? -1 : static_cast<long long>(layout->centre_body_output(t)); };
+  const auto point = [&](std::size_t t) -> long long { return t == 0 ? -1 : static_cast<long long>(layout->centre_body_output(t) + 1); };
+  json seen = json::array();
+  for (std::size_t b : c.seen_bodies) seen.push_back(point(centres.tape_bodies[b]));
+  return json::array({layout->centre_pair_output(std::min(ta, tb), std::max(ta, tb)), ta < tb ? 1 : -1, omega(ta), omega(tb), seen});
+}
+
 json centres_json(const InstantCentres& centres, const std::vector<double>& joints, double per_unit, Structures& structures,
-                  Structures& kennedy_sets) {
+                  Structures& kennedy_sets, const TapeLayout* layout) {
   json structure = {{"bodies", centres.bodies}, {"centres", json::array()}};
   json kennedy = json::array();
   json row = json::array({0, 0});
@@ -124,6 +139,7 @@ json centres_json(const InstantCentres& centres, const std::vector<double>& join
     const json joint = c.at_infinity ? json(nullptr) : joint_at(c.at);
     structure["centres"].push_back({{"name", centre_name(centres, c)}, {"infinite", c.at_infinity}, {"joint", joint},
                                     {"seen_from", c.seen_from.has_value()}});
+    if (const json tape = centre_tape_json(centres, c, layout); !tape.is_null()) structure["centres"].back()["tape"] = tape;
     kennedy.push_back(std::move(lines));
     if (c.at_infinity) push_point(row, c.at, 1.0, 1.0);
     else if (joint.is_null()) push_point(row, c.at, per_unit, size);
@@ -140,7 +156,7 @@ json centres_json(const InstantCentres& centres, const std::vector<double>& join
 }  // namespace
 
 json constructions_json(const std::vector<ValueAnalysis>& values, const MotionDrawing& drawing, double per_unit,
-                        const PointFields& point_fields) {
+                        const PointFields& point_fields, const TapeLayout* centre_tape) {
   Structures polygon_structures, centre_structures, kennedy_sets;
   json rows = json::array();
   for (std::size_t r = 0; r < values.size(); ++r) {
@@ -158,12 +174,14 @@ json constructions_json(const std::vector<ValueAnalysis>& values, const MotionDr
       std::vector<double> joints;
       if (drawing.form == MotionDrawing::Form::linkage && r < drawing.rows.size())
         joints.assign(drawing.rows[r].begin(), drawing.rows[r].begin() + std::min(drawing.rows[r].size(), 2 * drawing.joint_names.size()));
-      row["centres"] = centres_json(*value.centres, joints, per_unit, centre_structures, kennedy_sets);
+      row["centres"] = centres_json(*value.centres, joints, per_unit, centre_structures, kennedy_sets, centre_tape);
     }
     rows.push_back(std::move(row));
   }
-  return {{"polygon_structures", polygon_structures.list()}, {"centre_structures", centre_structures.list()},
-          {"kennedy_sets", kennedy_sets.list()}, {"rows", rows}};
+  json out = {{"polygon_structures", polygon_structures.list()}, {"centre_structures", centre_structures.list()},
+              {"kennedy_sets", kennedy_sets.list()}, {"rows", rows}};
+  if (centre_tape) out["centre_parallel_tolerance"] = kCentreParallelTolerance;
+  return out;
 }
 
 }  // namespace kinema

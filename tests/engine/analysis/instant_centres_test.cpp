@@ -250,3 +250,60 @@ TEST_CASE("instant centres: every joints-and-links sample, each centre where the
   }
   CHECK(samples >= 6);
 }
+
+// A vector-loop file's centres are read from the model's drawing stage (the formulas the
+// page's sliders run for other dimensions): over a turn of every sample they are the
+// construction from the numbers the bodies were found by (a point on each and its velocity),
+// the same bodies, the same centres, each where the construction puts it, at infinity
+// where it does, in its direction, seen from its point.
+TEST_CASE("instant centres: a vector-loop file's centres from the tape are the construction from the bodies' velocities") {
+  int compared = 0, samples = 0;
+  for (const char* name : kinema_test::kSamples) {
+    const kinema::Model model = kinema::load_model(kinema_test::sample(name));
+    const kinema::ConstraintSystem& system = model.system;
+    if (system.plan || !system.frames.empty()) continue;
+    CAPTURE(std::string(name));
+    std::vector<double> inputs;
+    const double start = system.input.values.empty() ? 0.3 : system.input.values[0];
+    const double span = system.input.dimension == kinema::Dimension::angle ? 2 * M_PI : system.length_scale;
+    for (int k = 0; k < 24; ++k) inputs.push_back(start + k * span / 24);
+    const kinema::MotionTable table = kinema::analyse(model, inputs);
+    const kinema::MechanismGeometry geometry(model);
+    int rows = 0;
+    for (const kinema::MotionState& s : table) {
+      const auto built = kinema::constructed_instant_centres(geometry, s);
+      const auto read = kinema::instant_centres(geometry, s);
+      REQUIRE(built.has_value() == read.has_value());
+      if (!built) continue;
+      CAPTURE(s.input);
+      ++rows;
+      CHECK(read->bodies == built->bodies);
+      REQUIRE(read->centres.size() == built->centres.size());
+      double size = system.length_scale, fastest_turning = 0;
+      for (const kinema::PointMotion& m : s.points) size = std::max(size, std::hypot(m.position[0], m.position[1]));
+      for (double w : built->angular_velocities) fastest_turning = std::max(fastest_turning, std::fabs(w));
+      for (std::size_t k = 0; k < built->centres.size(); ++k) {
+        const kinema::InstantCentre &want = built->centres[k], &got = read->centres[k];
+        CAPTURE(built->bodies[want.a] + built->bodies[want.b]);
+        REQUIRE(got.a == want.a);
+        REQUIRE(got.b == want.b);
+        CHECK(read->angular_velocities[want.b] == doctest::Approx(built->angular_velocities[want.b]).epsilon(1e-12));
+        // Two bodies at rest relative to each other but for rounding (a slider-crank's rod
+        // and block at 90 deg: both omega ~1e-17) have a centre 0/0, rounding either way.
+        const double wa = built->angular_velocities[want.a], wb = built->angular_velocities[want.b];
+        if (!want.at_infinity && std::fabs(wa - wb) <= 1e-9 * fastest_turning) continue;
+        REQUIRE(got.at_infinity == want.at_infinity);
+        CHECK(std::abs(got.at - want.at) <= 1e-9 * (want.at_infinity ? 1.0 : std::max(size, std::abs(want.at))));
+        if (want.at_infinity) {
+          REQUIRE(got.seen_from.has_value());
+          // Seen from a point on the same line (the tape may know a body by another point).
+          CHECK(std::fabs(std::imag((*got.seen_from - *want.seen_from) * std::conj(want.at))) <= 1e-9 * size);
+        }
+        ++compared;
+      }
+    }
+    if (rows > 0) ++samples;
+  }
+  CHECK(samples >= 7);
+  CHECK(compared >= 500);
+}
