@@ -14,6 +14,27 @@ namespace {
 // value predicted from 1 deg back converges in 3 or 4, the first one from the guesses
 // in about 6).
 constexpr int kLaneIterations = 10;
+
+// The closed form is used where the two branches lie further apart than this fraction of
+// the terms' lengths (its angles then good to about 1e-16 over it), and the prediction
+// within a tenth of that distance of its branch (clearly on it) and 0.02 rad.
+constexpr double kFoldedTriangle = 1e-3;
+constexpr double kLargestCorrection = 0.02;
+
+// `guess` moved to the angle of (cos_angle, sin_angle) nearest it, without atan2 (which
+// has no vector form): atan of the difference's tangent by its series, which to t^11 is
+// exact in doubles for |t| < kLargestCorrection. `usable` falls to 0 where the difference
+// is larger than `largest` (NaN too).
+inline double angle_near(double guess, double cos_guess, double sin_guess, double cos_angle, double sin_angle,
+                         double largest, double& usable) {
+  const double sin_difference = sin_angle * cos_guess - cos_angle * sin_guess;
+  const double cos_difference = cos_angle * cos_guess + sin_angle * sin_guess;
+  const double t = sin_difference / cos_difference, t2 = t * t;
+  usable = cos_difference > 0 && std::fabs(t) < largest ? usable : 0.0;
+  const double atan_t =
+      t * (1 + t2 * (-1.0 / 3 + t2 * (1.0 / 5 + t2 * (-1.0 / 7 + t2 * (1.0 / 9 + t2 * (-1.0 / 11))))));
+  return guess + atan_t;
+}
 }  // namespace
 
 LoopReach::LoopReach(double crank, double fixed_x, double fixed_y, double first, double second)
@@ -72,7 +93,10 @@ DesignLanes::DesignLanes(const Kinematics& kinematics, const std::vector<double>
       largest_speed_(kinematics.point_count() * kLanes),
       largest_acceleration_(kinematics.point_count() * kLanes),
       largest_speed_square_(kinematics.point_count() * kLanes),
-      largest_acceleration_square_(kinematics.point_count() * kLanes) {
+      largest_acceleration_square_(kinematics.point_count() * kLanes),
+      largest_rate_(n_ * kLanes),
+      largest_second_rate_(n_ * kLanes),
+      predicted_(n_ * kLanes) {
   for (std::size_t row = 0; row < inputs.size(); ++row) {
     cos_inputs_[row] = std::cos(inputs[row]);
     sin_inputs_[row] = std::sin(inputs[row]);
@@ -102,6 +126,17 @@ void DesignLanes::set_reach(std::size_t lane, const LoopReach& reach) {
   reach_[lane] = reach.ever_open() ? reach : LoopReach();
 }
 
+void DesignLanes::set_closure(std::size_t lane, const LoopClosure& closure) {
+  closes_[lane] = 1.0;
+  closure_crank_[lane] = closure.crank;
+  closure_fixed_x_[lane] = closure.fixed_x;
+  closure_fixed_y_[lane] = closure.fixed_y;
+  closure_first_[lane] = closure.first;
+  closure_second_[lane] = closure.second;
+  closure_unknowns_[0] = closure.first_unknown;
+  closure_unknowns_[1] = closure.second_unknown;
+}
+
 void DesignLanes::solve(std::size_t count) {
   k_.evaluator().prepare_batch(registers_.data());  // each lane's work on its parameters
   for (std::size_t l = 0; l < count; ++l) {
@@ -112,10 +147,13 @@ void DesignLanes::solve(std::size_t count) {
     lanes_[l]->table.set_ok(0, inputs_.size());
   }
   lane_values_ = 0;
+  closed_form_values_ = 0;
   std::fill(largest_speed_.begin(), largest_speed_.end(), NAN);
   std::fill(largest_acceleration_.begin(), largest_acceleration_.end(), NAN);
   std::fill(largest_speed_square_.begin(), largest_speed_square_.end(), 0.0);
   std::fill(largest_acceleration_square_.begin(), largest_acceleration_square_.end(), 0.0);
+  std::fill(largest_rate_.begin(), largest_rate_.end(), NAN);
+  std::fill(largest_second_rate_.begin(), largest_second_rate_.end(), NAN);
   double take[kLanes], ok[kLanes], restart[kLanes], open[kLanes], out_of_reach[kLanes];
   for (std::size_t row = 0; row < inputs_.size(); ++row) {
     bool restarts = choose_lanes(row, count, take, restart, out_of_reach);
@@ -200,6 +238,8 @@ bool DesignLanes::choose_lanes(std::size_t row, std::size_t count, double* take,
     any_restart = any_restart || restarted;
   }
   if (row > 0) predict(h, take);
+  std::copy(start_.begin(), start_.end(), predicted_.begin());
+  if (row > 0) closed_form_values_ += close_loops(row, take);
   return any_restart;
 }
 
@@ -214,6 +254,42 @@ void DesignLanes::predict(double h, const double* predicted) {
       start[l] = predicted[l] != 0 ? value : start[l];
     }
   }
+}
+
+std::size_t DesignLanes::close_loops(std::size_t row, const double* predicted) {
+  const double cos_input = cos_inputs_[row], sin_input = sin_inputs_[row];
+  double* first_angle = start_.data() + closure_unknowns_[0] * kLanes;
+  double* second_angle = start_.data() + closure_unknowns_[1] * kLanes;
+  double moved = 0;
+  for (std::size_t l = 0; l < kLanes; ++l) {
+    const double u = closure_first_[l], v = closure_second_[l];
+    // first e^(i alpha) + second e^(i beta) = w, the known terms' sum negated: the first
+    // term P lies at x along w and y across it, |P| = |u|, |w - P| = |v|.
+    const double wx = -(closure_crank_[l] * cos_input + closure_fixed_x_[l]);
+    const double wy = -(closure_crank_[l] * sin_input + closure_fixed_y_[l]);
+    const double w = std::sqrt(wx * wx + wy * wy), ex = wx / w, ey = wy / w;
+    const double x = (u * u - v * v + w * w) / (2 * w), y_square = u * u - x * x;
+    double sin_first, cos_first, sin_second, cos_second;
+    simd::sincos_reduced(first_angle[l], sin_first, cos_first);
+    simd::sincos_reduced(second_angle[l], sin_second, cos_second);
+    // The branch of the predicted first term: its side of w.
+    const double side = u * (ey * -cos_first + ex * sin_first);
+    const double y = std::copysign(std::sqrt(std::fabs(y_square)), side);
+    const double px = x * ex - y * ey, py = x * ey + y * ex;
+    const double lengths = std::max(std::fabs(u), std::fabs(v));
+    double usable = predicted[l] != 0 && closes_[l] != 0 && y_square > kFoldedTriangle * kFoldedTriangle * lengths * lengths &&
+                            std::fabs(first_angle[l]) <= simd::kSinCosLimit && std::fabs(second_angle[l]) <= simd::kSinCosLimit
+                        ? 1.0
+                        : 0.0;
+    // Clearly on its branch: the other is 2|y| away, an angle of about 2|y| / length.
+    const double largest = std::min(kLargestCorrection, 0.1 * std::fabs(y) / lengths);
+    const double alpha = angle_near(first_angle[l], cos_first, sin_first, px / u, py / u, largest, usable);
+    const double beta = angle_near(second_angle[l], cos_second, sin_second, (wx - px) / v, (wy - py) / v, largest, usable);
+    first_angle[l] = usable != 0 ? alpha : first_angle[l];
+    second_angle[l] = usable != 0 ? beta : second_angle[l];
+    moved += usable;
+  }
+  return static_cast<std::size_t>(moved);
 }
 
 void DesignLanes::keep_previous(const double* ok) {
@@ -268,7 +344,7 @@ void DesignLanes::solve_value(double input, bool check_branch, const double* tak
   if (check_branch) {
     for (std::size_t i = 0; i < n; ++i) {
       const double* q = lanes(layout_.q(i));
-      const double* start = start_.data() + i * kLanes;
+      const double* start = predicted_.data() + i * kLanes;
       const double* scale = column_scale_.data() + i * kLanes;
       for (std::size_t l = 0; l < kLanes; ++l)
         ok[l] = std::fabs(q[l] - start[l]) / scale[l] > solver::kBranchTolerance ? 0.0 : ok[l];
@@ -407,6 +483,17 @@ inline double larger(double largest, double length) { return !(length <= largest
 }  // namespace
 
 void DesignLanes::keep_largest(const double* ok) {
+  for (std::size_t i = 0; i < n_; ++i) {
+    const double* qd = lanes(layout_.qd(i));
+    const double* qdd = lanes(layout_.qdd(i));
+    double* largest_rate = largest_rate_.data() + i * kLanes;
+    double* largest_second_rate = largest_second_rate_.data() + i * kLanes;
+    for (std::size_t l = 0; l < kLanes; ++l) {
+      const double rate = std::fabs(qd[l]), second_rate = std::fabs(qdd[l]);
+      largest_rate[l] = ok[l] != 0 && !(rate <= largest_rate[l]) ? rate : largest_rate[l];
+      largest_second_rate[l] = ok[l] != 0 && !(second_rate <= largest_second_rate[l]) ? second_rate : largest_second_rate[l];
+    }
+  }
   const std::vector<std::size_t>& dimensions = layout_.point_dimensions;
   for (std::size_t p = 0; p < dimensions.size(); ++p) {
     const std::size_t d = dimensions[p];
@@ -448,6 +535,10 @@ double DesignLanes::largest_acceleration(std::size_t lane, std::size_t p) const 
 
 void DesignLanes::keep_largest(std::size_t l, std::size_t row) {
   const MotionTable& table = lanes_[l]->table;
+  for (std::size_t i = 0; i < n_; ++i) {
+    largest_rate_[i * kLanes + l] = larger(largest_rate_[i * kLanes + l], std::fabs(table.qd_column(i)[row]));
+    largest_second_rate_[i * kLanes + l] = larger(largest_second_rate_[i * kLanes + l], std::fabs(table.qdd_column(i)[row]));
+  }
   for (std::size_t p = 0; p < table.point_count(); ++p) {
     const PointMotion point = table.point(row, p);
     largest_speed_[p * kLanes + l] = larger(largest_speed_[p * kLanes + l], point.speed());
