@@ -30,7 +30,7 @@ inline double angle_near(double guess, double cos_guess, double sin_guess, doubl
   const double sin_difference = sin_angle * cos_guess - cos_angle * sin_guess;
   const double cos_difference = cos_angle * cos_guess + sin_angle * sin_guess;
   const double t = sin_difference / cos_difference, t2 = t * t;
-  usable = cos_difference > 0 && std::fabs(t) < largest ? usable : 0.0;
+  usable = (cos_difference > 0) & (std::fabs(t) < largest) ? usable : 0.0;
   const double atan_t =
       t * (1 + t2 * (-1.0 / 3 + t2 * (1.0 / 5 + t2 * (-1.0 / 7 + t2 * (1.0 / 9 + t2 * (-1.0 / 11))))));
   return guess + atan_t;
@@ -277,8 +277,11 @@ std::size_t DesignLanes::close_loops(std::size_t row, const double* predicted) {
     const double y = std::copysign(std::sqrt(std::fabs(y_square)), side);
     const double px = x * ex - y * ey, py = x * ey + y * ex;
     const double lengths = std::max(std::fabs(u), std::fabs(v));
-    double usable = predicted[l] != 0 && closes_[l] != 0 && y_square > kFoldedTriangle * kFoldedTriangle * lengths * lengths &&
-                            std::fabs(first_angle[l]) <= simd::kSinCosLimit && std::fabs(second_angle[l]) <= simd::kSinCosLimit
+    // (& of the tests, not &&: no branches in a loop across lanes.)
+    double usable = (predicted[l] != 0) & (closes_[l] != 0) &
+                            (y_square > kFoldedTriangle * kFoldedTriangle * lengths * lengths) &
+                            (std::fabs(first_angle[l]) <= simd::kSinCosLimit) &
+                            (std::fabs(second_angle[l]) <= simd::kSinCosLimit)
                         ? 1.0
                         : 0.0;
     // Clearly on its branch: the other is 2|y| away, an angle of about 2|y| / length.
@@ -297,7 +300,11 @@ void DesignLanes::keep_previous(const double* ok) {
     const double* from[3] = {lanes(layout_.q(i)), lanes(layout_.qd(i)), lanes(layout_.qdd(i))};
     for (std::size_t k = 0; k < 3; ++k) {
       double* to = previous_.data() + (3 * i + k) * kLanes;
-      for (std::size_t l = 0; l < kLanes; ++l) to[l] = ok[l] != 0 ? from[k][l] : to[l];
+      const double* solved = from[k];
+      for (std::size_t l = 0; l < kLanes; ++l) {
+        const double value = solved[l], kept = to[l];  // both read: a select, not a masked load
+        to[l] = ok[l] != 0 ? value : kept;
+      }
     }
   }
 }
@@ -505,12 +512,16 @@ void DesignLanes::keep_largest(const double* ok) {
       }
       double* largest = (kind == 1 ? largest_speed_ : largest_acceleration_).data() + p * kLanes;
       double* largest_square = (kind == 1 ? largest_speed_square_ : largest_acceleration_square_).data() + p * kLanes;
-      int unusual = 0;  // squares that vector_length takes apart (std::hypot)
+      // Squares that vector_length takes apart (std::hypot): flagged, then counted (a
+      // count kept in the loop keeps it from vectorising).
+      double unusual_lanes[kLanes];
       for (std::size_t l = 0; l < kLanes; ++l) {
-        const bool normal = squares[l] > 1e-300 && squares[l] < 1e300;
-        unusual += ok[l] != 0 && !normal;
-        largest_square[l] = ok[l] != 0 && normal && squares[l] > largest_square[l] ? squares[l] : largest_square[l];
+        const bool normal = (squares[l] > 1e-300) & (squares[l] < 1e300);
+        unusual_lanes[l] = (ok[l] != 0) & !normal ? 1.0 : 0.0;
+        largest_square[l] = (ok[l] != 0) & normal & (squares[l] > largest_square[l]) ? squares[l] : largest_square[l];
       }
+      double unusual = 0;
+      for (std::size_t l = 0; l < kLanes; ++l) unusual += unusual_lanes[l];
       for (std::size_t l = 0; unusual > 0 && l < kLanes; ++l) {
         if (ok[l] == 0 || (squares[l] > 1e-300 && squares[l] < 1e300)) continue;
         double v[3] = {};
