@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
+#include <cstdint>
 
 #include "engine/numeric/solver.hpp"
 #include "engine/numeric/sweep.hpp"
@@ -23,14 +24,14 @@ constexpr double kLargestCorrection = 0.02;
 
 // `guess` moved to the angle of (cos_angle, sin_angle) nearest it, without atan2 (which
 // has no vector form): atan of the difference's tangent by its series, which to t^11 is
-// exact in doubles for |t| < kLargestCorrection. `usable` falls to 0 where the difference
-// is larger than `largest` (NaN too).
+// exact in doubles for |t| < kLargestCorrection. `usable` falls to 0 where the difference's
+// tangent squared is not below `largest_square` (NaN too).
 inline double angle_near(double guess, double cos_guess, double sin_guess, double cos_angle, double sin_angle,
-                         double largest, double& usable) {
+                         double largest_square, double& usable) {
   const double sin_difference = sin_angle * cos_guess - cos_angle * sin_guess;
   const double cos_difference = cos_angle * cos_guess + sin_angle * sin_guess;
   const double t = sin_difference / cos_difference, t2 = t * t;
-  usable = (cos_difference > 0) & (std::fabs(t) < largest) ? usable : 0.0;
+  usable = (cos_difference > 0) & (t2 < largest_square) ? usable : 0.0;
   const double atan_t =
       t * (1 + t2 * (-1.0 / 3 + t2 * (1.0 / 5 + t2 * (-1.0 / 7 + t2 * (1.0 / 9 + t2 * (-1.0 / 11))))));
   return guess + atan_t;
@@ -131,6 +132,9 @@ void DesignLanes::set_closure(std::size_t lane, const LoopClosure& closure) {
   closure_crank_[lane] = closure.crank;
   closure_fixed_x_[lane] = closure.fixed_x;
   closure_fixed_y_[lane] = closure.fixed_y;
+  closure_over_first_[lane] = 1 / closure.first;
+  closure_over_second_[lane] = 1 / closure.second;
+  closure_over_length_square_[lane] = 1 / std::max(closure.first * closure.first, closure.second * closure.second);
   closure_first_[lane] = closure.first;
   closure_second_[lane] = closure.second;
   closure_unknowns_[0] = closure.first_unknown;
@@ -264,30 +268,34 @@ std::size_t DesignLanes::close_loops(std::size_t row, const double* predicted) {
   for (std::size_t l = 0; l < kLanes; ++l) {
     const double u = closure_first_[l], v = closure_second_[l];
     // first e^(i alpha) + second e^(i beta) = w, the known terms' sum negated: the first
-    // term P lies at x along w and y across it, |P| = |u|, |w - P| = |v|.
+    // term P lies `along` times w along it and `across` times w across it (x and y of
+    // the triangle |P| = |u|, |w - P| = |v|, over |w|: no root of |w|^2 needed).
     const double wx = -(closure_crank_[l] * cos_input + closure_fixed_x_[l]);
     const double wy = -(closure_crank_[l] * sin_input + closure_fixed_y_[l]);
-    const double w = std::sqrt(wx * wx + wy * wy), ex = wx / w, ey = wy / w;
-    const double x = (u * u - v * v + w * w) / (2 * w), y_square = u * u - x * x;
+    const double w_square = wx * wx + wy * wy, over_w_square = 1 / w_square;
+    const double along = 0.5 * (u * u - v * v + w_square) * over_w_square;
+    const double across_square = u * u * over_w_square - along * along;
     double sin_first, cos_first, sin_second, cos_second;
     simd::sincos_reduced(first_angle[l], sin_first, cos_first);
     simd::sincos_reduced(second_angle[l], sin_second, cos_second);
     // The branch of the predicted first term: its side of w.
-    const double side = u * (ey * -cos_first + ex * sin_first);
-    const double y = std::copysign(std::sqrt(std::fabs(y_square)), side);
-    const double px = x * ex - y * ey, py = x * ey + y * ex;
-    const double lengths = std::max(std::fabs(u), std::fabs(v));
+    const double side = u * (wx * sin_first - wy * cos_first);
+    const double across = std::copysign(std::sqrt(std::fabs(across_square)), side);
+    const double px = along * wx - across * wy, py = along * wy + across * wx;
+    // y^2 over the longer term's length squared: how far from folded in line.
+    const double fold = across_square * w_square * closure_over_length_square_[l];
     // (& of the tests, not &&: no branches in a loop across lanes.)
-    double usable = (predicted[l] != 0) & (closes_[l] != 0) &
-                            (y_square > kFoldedTriangle * kFoldedTriangle * lengths * lengths) &
+    double usable = (predicted[l] != 0) & (closes_[l] != 0) & (fold > kFoldedTriangle * kFoldedTriangle) &
                             (std::fabs(first_angle[l]) <= simd::kSinCosLimit) &
                             (std::fabs(second_angle[l]) <= simd::kSinCosLimit)
                         ? 1.0
                         : 0.0;
     // Clearly on its branch: the other is 2|y| away, an angle of about 2|y| / length.
-    const double largest = std::min(kLargestCorrection, 0.1 * std::fabs(y) / lengths);
-    const double alpha = angle_near(first_angle[l], cos_first, sin_first, px / u, py / u, largest, usable);
-    const double beta = angle_near(second_angle[l], cos_second, sin_second, (wx - px) / v, (wy - py) / v, largest, usable);
+    const double largest_square = std::min(kLargestCorrection * kLargestCorrection, 0.01 * fold);
+    const double alpha = angle_near(first_angle[l], cos_first, sin_first, px * closure_over_first_[l],
+                                    py * closure_over_first_[l], largest_square, usable);
+    const double beta = angle_near(second_angle[l], cos_second, sin_second, (wx - px) * closure_over_second_[l],
+                                   (wy - py) * closure_over_second_[l], largest_square, usable);
     first_angle[l] = usable != 0 ? alpha : first_angle[l];
     second_angle[l] = usable != 0 ? beta : second_angle[l];
     moved += usable;
@@ -514,14 +522,15 @@ void DesignLanes::keep_largest(const double* ok) {
       double* largest_square = (kind == 1 ? largest_speed_square_ : largest_acceleration_square_).data() + p * kLanes;
       // Squares that vector_length takes apart (std::hypot): flagged, then counted (a
       // count kept in the loop keeps it from vectorising).
-      double unusual_lanes[kLanes];
+      // Flags of the lanes' width, or-ed: a sum of doubles is added in order, lane by lane.
+      std::int64_t unusual_lanes[kLanes];
       for (std::size_t l = 0; l < kLanes; ++l) {
         const bool normal = (squares[l] > 1e-300) & (squares[l] < 1e300);
-        unusual_lanes[l] = (ok[l] != 0) & !normal ? 1.0 : 0.0;
+        unusual_lanes[l] = (ok[l] != 0) & !normal;
         largest_square[l] = (ok[l] != 0) & normal & (squares[l] > largest_square[l]) ? squares[l] : largest_square[l];
       }
-      double unusual = 0;
-      for (std::size_t l = 0; l < kLanes; ++l) unusual += unusual_lanes[l];
+      std::int64_t unusual = 0;
+      for (std::size_t l = 0; l < kLanes; ++l) unusual |= unusual_lanes[l];
       for (std::size_t l = 0; unusual > 0 && l < kLanes; ++l) {
         if (ok[l] == 0 || (squares[l] > 1e-300 && squares[l] < 1e300)) continue;
         double v[3] = {};

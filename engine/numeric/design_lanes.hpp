@@ -126,6 +126,8 @@ class DesignLanes : LaneSystem {
   // Each lane's loop closure (closes_[l] 1 where set), in lanes for the loops across them.
   double closes_[kLanes] = {}, closure_crank_[kLanes] = {}, closure_fixed_x_[kLanes] = {},
          closure_fixed_y_[kLanes] = {}, closure_first_[kLanes] = {}, closure_second_[kLanes] = {};
+  // 1 / first, 1 / second, 1 / the longer's square: products in the loop, not quotients.
+  double closure_over_first_[kLanes] = {}, closure_over_second_[kLanes] = {}, closure_over_length_square_[kLanes] = {};
   std::size_t closure_unknowns_[2] = {0, 1};
   std::vector<double> predicted_;  ///< Each lane's predicted start (start_'s layout): the branch test's.
 
