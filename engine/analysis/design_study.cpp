@@ -199,6 +199,7 @@ class DesignRunner {
     if (setup.loop) loop_ = setup.loop->values();
     if (options.across_designs && solves() && settings.rate != 0 && !inputs.empty()) {
       lanes_ = std::make_unique<DesignLanes>(kinematics_, inputs, settings.rate, settings.second_rate);
+      lanes_->set_positions_and_rates_only(true);  // summarise reads no more of a lane's rows
       lane_designs_.resize(DesignLanes::kLanes);
     }
   }

@@ -180,8 +180,7 @@ void DesignLanes::solve(std::size_t count) {
     for (std::size_t l = 0; l < count; ++l) {
       Lane& lane = *lanes_[l];
       if (out_of_reach[l] != 0) {
-        if (lane.last_in_lanes) lane.rows.solved_elsewhere(lane.table, row - 1);
-        lane.last_in_lanes = false;
+        hand_over(l, row);
         // Where the gap starts only after an ok row (where the run continues from it).
         const double limit = lane.rows.on_branch() ? reach_[l].limit(inputs_[row - 1], inputs_[row]) : inputs_[row];
         lane.rows.unassembled_elsewhere(lane.table, row, limit, 0, reach_[l].distance(inputs_[row]));
@@ -198,8 +197,7 @@ void DesignLanes::solve(std::size_t count) {
         ++lane_values_;
         continue;
       }
-      if (lane.last_in_lanes) lane.rows.solved_elsewhere(lane.table, row - 1);
-      lane.last_in_lanes = false;
+      hand_over(l, row);
       lane.rows.solve(lane.table, row);
       if (lane.table.status(row) != Status::ok) continue;
       keep_largest(l, row);
@@ -482,13 +480,32 @@ void DesignLanes::restart_values(double input, const double* restart, double* op
 void DesignLanes::store(std::size_t l, std::size_t row) {
   MotionTable& table = lanes_[l]->table;
   const std::size_t rows = table.size();
+  double* q = table.q_values();
+  double* qd = table.qd_values();
+  for (std::size_t i = 0; i < n_; ++i) {
+    q[i * rows + row] = lanes(layout_.q(i))[l];
+    qd[i * rows + row] = lanes(layout_.qd(i))[l];
+  }
+  if (positions_and_rates_) return;
   table.loop_residuals()[row] = residual_[l];
   table.reciprocal_conditions()[row] = pivot_ratio_[l];
+  for (std::size_t i = 0; i < n_; ++i) table.qdd_values()[i * rows + row] = lanes(layout_.qdd(i))[l];
+}
+
+void DesignLanes::hand_over(std::size_t l, std::size_t row) {
+  Lane& lane = *lanes_[l];
+  if (!lane.last_in_lanes) return;
+  lane.last_in_lanes = false;
+  // The row before, the lanes' last: in full, as the scalar run reads it (its second
+  // rates predict the next), from the lane's last row kept.
+  MotionTable& table = lane.table;
+  const std::size_t rows = table.size();
   for (std::size_t i = 0; i < n_; ++i) {
-    table.q_values()[i * rows + row] = lanes(layout_.q(i))[l];
-    table.qd_values()[i * rows + row] = lanes(layout_.qd(i))[l];
-    table.qdd_values()[i * rows + row] = lanes(layout_.qdd(i))[l];
+    table.q_values()[i * rows + row - 1] = previous_[(3 * i) * kLanes + l];
+    table.qd_values()[i * rows + row - 1] = previous_[(3 * i + 1) * kLanes + l];
+    table.qdd_values()[i * rows + row - 1] = previous_[(3 * i + 2) * kLanes + l];
   }
+  lane.rows.solved_elsewhere(table, row - 1);
 }
 
 namespace {

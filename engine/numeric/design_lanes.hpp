@@ -86,6 +86,11 @@ class DesignLanes : LaneSystem {
   /// branch test; near a toggle (the two branches within 1e-3 of the lengths) or where
   /// the prediction is not clearly on one branch, from the prediction as before.
   void set_closure(std::size_t lane, const LoopClosure& closure);
+  /// Whether the values solved in the lanes are written to the tables with positions and
+  /// rates only (their second rates, residuals and conditions not: what a design study,
+  /// which keeps the largest second rates in the lanes, does not read), or in full (the
+  /// default). A row the scalar run goes on from is written in full either way.
+  void set_positions_and_rates_only(bool only) { positions_and_rates_ = only; }
   /// Solves the run for lanes [0, count).
   void solve(std::size_t count);
   /// Lane l's rows of the last solve(). The points' columns hold only the values the
@@ -122,6 +127,7 @@ class DesignLanes : LaneSystem {
   std::vector<double> largest_rate_, largest_second_rate_;  ///< Unknown i of lane l at i * kLanes + l (NaN: none).
   double tolerance_[kLanes], residual_[kLanes];
   std::size_t lane_values_ = 0, closed_form_values_ = 0;
+  bool positions_and_rates_ = false;
   LoopReach reach_[kLanes];
   // Each lane's loop closure (closes_[l] 1 where set), in lanes for the loops across them.
   double closes_[kLanes] = {}, closure_crank_[kLanes] = {}, closure_fixed_x_[kLanes] = {},
@@ -154,6 +160,9 @@ class DesignLanes : LaneSystem {
   /// (it closes, or needs a least-squares step).
   KINEMA_LANE_LOOPS void restart_values(double input, const double* restart, double* open);
   void store(std::size_t lane, std::size_t row);
+  /// Lane l goes to the scalar run at `row`: the row before, where it was last in the
+  /// lanes, written in full and told to the scalar run.
+  void hand_over(std::size_t lane, std::size_t row);
   /// The lanes' rates, second rates, point speeds and accelerations (ok[l] 1 where lane
   /// l's value is ok) into their largest.
   KINEMA_LANE_LOOPS void keep_largest(const double* ok);

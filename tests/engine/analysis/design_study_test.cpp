@@ -430,7 +430,8 @@ struct ClosedLanes {
   std::vector<Model> separate;
   std::unique_ptr<kinema::DesignLanes> lanes;
 };
-ClosedLanes closed_lanes(const std::vector<std::pair<double, double>>& designs, const std::vector<double>& inputs) {
+ClosedLanes closed_lanes(const std::vector<std::pair<double, double>>& designs, const std::vector<double>& inputs,
+                         bool positions_and_rates_only = false) {
   const Model base = kinema::with_parameters(sample_model("four_bar.toml"), {});
   const auto& input = base.system.input;
   ClosedLanes run;
@@ -446,6 +447,7 @@ ClosedLanes closed_lanes(const std::vector<std::pair<double, double>>& designs, 
     run.lanes->set_reach(l, kinema::LoopReach(closure.crank, closure.fixed_x, closure.fixed_y, closure.first, closure.second));
     run.lanes->set_closure(l, closure);
   }
+  run.lanes->set_positions_and_rates_only(positions_and_rates_only);
   run.lanes->solve(designs.size());
   return run;
 }
@@ -509,6 +511,27 @@ TEST_CASE("design lanes: positions from the loop's closed form equal the scalar 
       CHECK(run.lanes->largest_rate(l, i) == largest_over_ok_rows(table, [&](std::size_t r) { return table.qd(r)[j]; }));
       CHECK(run.lanes->largest_second_rate(l, i) ==
             largest_over_ok_rows(table, [&](std::size_t r) { return table.qdd(r)[j]; }));
+    }
+  }
+  // A study's lanes write positions and rates only: the same statuses, positions, rates
+  // and largest figures (the scalar run, going on from the lanes' last rows, as before).
+  const ClosedLanes light = closed_lanes(designs, inputs, true);
+  for (std::size_t l = 0; l < designs.size(); ++l) {
+    const MotionTable& full = run.lanes->table(l);
+    const MotionTable& table = light.lanes->table(l);
+    for (std::size_t r = 0; r < inputs.size(); ++r) {
+      INFO("design " << l << ", row " << r);
+      REQUIRE(table.status(r) == full.status(r));
+      CHECK(table.q(r) == full.q(r));
+      CHECK(table.qd(r) == full.qd(r));
+    }
+    for (std::size_t i = 0; i < full.unknown_count(); ++i) {
+      CHECK(light.lanes->largest_rate(l, i) == run.lanes->largest_rate(l, i));
+      CHECK(light.lanes->largest_second_rate(l, i) == run.lanes->largest_second_rate(l, i));
+    }
+    for (std::size_t p = 0; p < full.point_count(); ++p) {
+      CHECK(light.lanes->largest_speed(l, p) == run.lanes->largest_speed(l, p));
+      CHECK(light.lanes->largest_acceleration(l, p) == run.lanes->largest_acceleration(l, p));
     }
   }
 }
