@@ -31,7 +31,7 @@ inline double angle_near(double guess, double cos_guess, double sin_guess, doubl
   const double sin_difference = sin_angle * cos_guess - cos_angle * sin_guess;
   const double cos_difference = cos_angle * cos_guess + sin_angle * sin_guess;
   const double t = sin_difference / cos_difference, t2 = t * t;
-  usable = (cos_difference > 0) & (t2 < largest_square) ? usable : 0.0;
+  usable = ((cos_difference > 0) & (t2 < largest_square)) ? usable : 0.0;
   const double atan_t =
       t * (1 + t2 * (-1.0 / 3 + t2 * (1.0 / 5 + t2 * (-1.0 / 7 + t2 * (1.0 / 9 + t2 * (-1.0 / 11))))));
   return guess + atan_t;
@@ -283,11 +283,10 @@ std::size_t DesignLanes::close_loops(std::size_t row, const double* predicted) {
     // y^2 over the longer term's length squared: how far from folded in line.
     const double fold = across_square * w_square * closure_over_length_square_[l];
     // (& of the tests, not &&: no branches in a loop across lanes.)
-    double usable = (predicted[l] != 0) & (closes_[l] != 0) & (fold > kFoldedTriangle * kFoldedTriangle) &
-                            (std::fabs(first_angle[l]) <= simd::kSinCosLimit) &
-                            (std::fabs(second_angle[l]) <= simd::kSinCosLimit)
-                        ? 1.0
-                        : 0.0;
+    const bool closes = (predicted[l] != 0) & (closes_[l] != 0) & (fold > kFoldedTriangle * kFoldedTriangle) &
+                        (std::fabs(first_angle[l]) <= simd::kSinCosLimit) &
+                        (std::fabs(second_angle[l]) <= simd::kSinCosLimit);
+    double usable = closes ? 1.0 : 0.0;
     // Clearly on its branch: the other is 2|y| away, an angle of about 2|y| / length.
     const double largest_square = std::min(kLargestCorrection * kLargestCorrection, 0.01 * fold);
     const double alpha = angle_near(first_angle[l], cos_first, sin_first, px * closure_over_first_[l],
@@ -544,7 +543,8 @@ void DesignLanes::keep_largest(const double* ok) {
       for (std::size_t l = 0; l < kLanes; ++l) {
         const bool normal = (squares[l] > 1e-300) & (squares[l] < 1e300);
         unusual_lanes[l] = (ok[l] != 0) & !normal;
-        largest_square[l] = (ok[l] != 0) & normal & (squares[l] > largest_square[l]) ? squares[l] : largest_square[l];
+        const bool larger_square = (ok[l] != 0) & normal & (squares[l] > largest_square[l]);
+        largest_square[l] = larger_square ? squares[l] : largest_square[l];
       }
       std::int64_t unusual = 0;
       for (std::size_t l = 0; l < kLanes; ++l) unusual |= unusual_lanes[l];
