@@ -146,6 +146,39 @@ double transmission_measure(double x) {
   return std::fabs(x - turns * kTurn);
 }
 
+// The crank angles (rad, in (-pi, 2 pi)) where a four-bar's rocker stops: its crank and
+// coupler in line, stretched out or folded (their terms' sum L e^(i input), L = crank
+// +- coupler), where |L e^(i input) + ground| is the rocker's length; on either assembly,
+// up to four. The count.
+int rocker_stops(const FourBarLoopValues& loop, double stops[4]) {
+  const double gx = loop.ground.value * std::cos(loop.ground.angle_value);
+  const double gy = loop.ground.value * std::sin(loop.ground.angle_value);
+  const double g = std::hypot(gx, gy), towards = std::atan2(gy, gx), rocker = loop.rocker.value;
+  int count = 0;
+  for (const double in_line : {loop.crank.value + loop.coupler.value, loop.crank.value - loop.coupler.value}) {
+    // L^2 + 2 L g cos(input - towards) + g^2 = rocker^2.
+    const double cosine = (rocker * rocker - in_line * in_line - g * g) / (2 * in_line * g);
+    if (!(std::fabs(cosine) <= 1)) continue;
+    const double off = std::acos(cosine);
+    stops[count++] = towards + off;
+    stops[count++] = towards - off;
+  }
+  return count;
+}
+
+// The one rocker stop between two rows' inputs (on the assembly run: it has one there,
+// its rate changing sign), NaN where there is not exactly one.
+double rocker_stop_between(const double* stops, int count, double from, double to) {
+  const double low = std::min(from, to), high = std::max(from, to), turn = 2 * kPi;
+  double found = kNaN;
+  int inside = 0;
+  for (int k = 0; k < count; ++k) {
+    const double at = stops[k] + turn * std::ceil((low - stops[k]) / turn);  // the first at or after low
+    if (at <= high) found = at, ++inside;
+  }
+  return inside == 1 ? found : kNaN;
+}
+
 // One thread's designs: its own kinematics (sharing the tape), sweep, workspaces and
 // buffers, made once and reused design after design.
 class DesignRunner {
@@ -166,6 +199,7 @@ class DesignRunner {
     if (setup.loop) loop_ = setup.loop->values();
     if (options.across_designs && solves() && settings.rate != 0 && !inputs.empty()) {
       lanes_ = std::make_unique<DesignLanes>(kinematics_, inputs, settings.rate, settings.second_rate);
+      lanes_->set_positions_and_rates_only(true);  // summarise reads no more of a lane's rows
       lane_designs_.resize(DesignLanes::kLanes);
     }
   }
@@ -189,6 +223,7 @@ class DesignRunner {
       lane_designs_[l].loop = loop_;
       lanes_->set_design(l, values_.data());
       lanes_->set_reach(l, loop_reach());
+      if (vector_loop()) lanes_->set_closure(l, loop_closure());
     }
     lanes_->solve(count);
     lane_values_ += lanes_->lane_values();
@@ -225,13 +260,21 @@ class DesignRunner {
     return kind;
   }
 
-  // The loop reach of the design loaded (none for a mechanism that is not a vector-loop
-  // four-bar, or one placed in closed form, whose failures the scalar run tells otherwise).
-  LoopReach loop_reach() const {
-    if (!setup_.loop || kinematics_.closed_form() != nullptr) return {};
+  // The loop closure and reach of the design loaded: a vector-loop four-bar's (not one
+  // placed in closed form, whose failures the scalar run tells otherwise); no reach for
+  // other mechanisms.
+  bool vector_loop() const { return setup_.loop && kinematics_.closed_form() == nullptr; }
+  LoopClosure loop_closure() const {
     const double ground_angle = loop_.ground.angle_value;
-    return LoopReach(loop_.crank.value, loop_.ground.value * std::cos(ground_angle),
-                     loop_.ground.value * std::sin(ground_angle), loop_.coupler.value, loop_.rocker.value);
+    return LoopClosure{loop_.crank.value,   loop_.ground.value * std::cos(ground_angle),
+                       loop_.ground.value * std::sin(ground_angle),
+                       loop_.coupler.value, loop_.rocker.value,
+                       loop_.coupler.unknown, loop_.rocker.unknown};
+  }
+  LoopReach loop_reach() const {
+    if (!vector_loop()) return {};
+    const LoopClosure c = loop_closure();
+    return LoopReach(c.crank, c.fixed_x, c.fixed_y, c.first, c.second);
   }
 
   bool solves() const {
@@ -242,8 +285,8 @@ class DesignRunner {
     return false;
   }
 
-  // The figures of a design from its table; a lane's (`lane` < kLanes) points' largest
-  // from the lanes, which keep them instead of the points' columns.
+  // The figures of a design from its table; a lane's (`lane` < kLanes) largest rates and
+  // points' from the lanes, which keep them as values are solved (no scan of the table).
   void summarise(const MotionTable& table, GrashofClass kind, std::size_t design, StudyResults& results,
                  std::size_t lane = DesignLanes::kLanes) {
     const bool from_lanes = lane < DesignLanes::kLanes;
@@ -274,9 +317,11 @@ class DesignRunner {
     }
     const std::size_t n = table.unknown_count();
     for (std::size_t i = 0; i < n; ++i) {
-      if (options_.wants(StudyFigure::max_rates)) results.max_rate[i][design] = largest_magnitude(table, table.qd_column(i));
+      if (options_.wants(StudyFigure::max_rates))
+        results.max_rate[i][design] = from_lanes ? lanes_->largest_rate(lane, i) : largest_magnitude(table, table.qd_column(i));
       if (options_.wants(StudyFigure::max_second_rates))
-        results.max_second_rate[i][design] = largest_magnitude(table, table.qdd_column(i));
+        results.max_second_rate[i][design] =
+            from_lanes ? lanes_->largest_second_rate(lane, i) : largest_magnitude(table, table.qdd_column(i));
     }
     const std::vector<std::size_t>& dimensions = kinematics_.layout().point_dimensions;
     for (std::size_t p = 0; p < dimensions.size(); ++p) {
@@ -307,7 +352,13 @@ class DesignRunner {
       if (changes < 2 || changes > 3) continue;  // two limits (one more where one lies on a row twice round)
       if (!reloaded) limits_->reload_parameters();
       reloaded = true;
-      const std::vector<Toggle> limits = limit_positions_in_turn(table, rows, rates_.data(), j, *limits_);
+      // A four-bar's rocker stops in closed form; others (and a bracket with none or two
+      // of them) refined by the scalar solver.
+      double stops[4];
+      const int stop_count = setup_.loop ? rocker_stops(loop_, stops) : 0;
+      const KnownLimit known = [&](double from, double to) { return rocker_stop_between(stops, stop_count, from, to); };
+      const std::vector<Toggle> limits =
+          limit_positions_in_turn(table, rows, rates_.data(), j, *limits_, setup_.loop ? known : KnownLimit{});
       if (limits.size() != 2) continue;
       Strokes strokes;
       for (int k = 0; k < 2; ++k) strokes.limit_inputs[k] = limits[std::size_t(k)].input * 180 / kPi;

@@ -111,7 +111,7 @@ std::vector<Toggle> find_toggles(const Model& model) {
 }
 
 std::vector<Toggle> limit_positions_in_turn(const MotionTable& turn, std::size_t rows, const double* g,
-                                            std::size_t unknown, Workspace& workspace) {
+                                            std::size_t unknown, Workspace& workspace, const KnownLimit& known) {
   const auto j = Eigen::Index(unknown);
   std::vector<Toggle> found;
   const auto keep = [&](double input, const Eigen::VectorXd& q) {
@@ -130,6 +130,13 @@ std::vector<Toggle> limit_positions_in_turn(const MotionTable& turn, std::size_t
       continue;
     }
     if (!(ga * gb < 0)) continue;
+    if (known) {
+      const double at = known(turn.input(row), turn.input(row + 1));
+      if (!std::isnan(at)) {
+        keep(at, turn.q(std::fabs(at - turn.input(row)) <= std::fabs(at - turn.input(row + 1)) ? row : row + 1));
+        continue;
+      }
+    }
     // Regula falsi, Illinois variant: q solved from the nearer end of the bracket (1 deg
     // apart at most, so on the same assembly).
     double ta = turn.input(row), tb = turn.input(row + 1);

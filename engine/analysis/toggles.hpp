@@ -7,6 +7,7 @@
 
 #include <Eigen/Dense>
 
+#include <functional>
 #include <vector>
 
 #include "engine/model.hpp"
@@ -35,7 +36,11 @@ std::vector<std::vector<Toggle>> find_limit_positions(const Model& model, const 
 /// between neighbouring rows refined as a root of dq/dtheta, q solved at each trial on
 /// `workspace` (the model's); a row where g is 0 is one. What find_limit_positions does
 /// after its sweep, for a caller that has solved the turn already (a design study).
+/// `known`, where given, returns the root between two rows' inputs where it is known in
+/// closed form (NaN where not: that bracket is refined as above); such a limit's q is
+/// the nearer row's.
+using KnownLimit = std::function<double(double from, double to)>;
 std::vector<Toggle> limit_positions_in_turn(const MotionTable& turn, std::size_t rows, const double* g,
-                                            std::size_t unknown, Workspace& workspace);
+                                            std::size_t unknown, Workspace& workspace, const KnownLimit& known = {});
 
 }  // namespace kinema

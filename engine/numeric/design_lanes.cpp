@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
+#include <cstdint>
 
 #include "engine/numeric/solver.hpp"
 #include "engine/numeric/sweep.hpp"
@@ -14,6 +15,27 @@ namespace {
 // value predicted from 1 deg back converges in 3 or 4, the first one from the guesses
 // in about 6).
 constexpr int kLaneIterations = 10;
+
+// The closed form is used where the two branches lie further apart than this fraction of
+// the terms' lengths (its angles then good to about 1e-16 over it), and the prediction
+// within a tenth of that distance of its branch (clearly on it) and 0.02 rad.
+constexpr double kFoldedTriangle = 1e-3;
+constexpr double kLargestCorrection = 0.02;
+
+// `guess` moved to the angle of (cos_angle, sin_angle) nearest it, without atan2 (which
+// has no vector form): atan of the difference's tangent by its series, which to t^11 is
+// exact in doubles for |t| < kLargestCorrection. `usable` falls to 0 where the difference's
+// tangent squared is not below `largest_square` (NaN too).
+inline double angle_near(double guess, double cos_guess, double sin_guess, double cos_angle, double sin_angle,
+                         double largest_square, double& usable) {
+  const double sin_difference = sin_angle * cos_guess - cos_angle * sin_guess;
+  const double cos_difference = cos_angle * cos_guess + sin_angle * sin_guess;
+  const double t = sin_difference / cos_difference, t2 = t * t;
+  usable = ((cos_difference > 0) & (t2 < largest_square)) ? usable : 0.0;
+  const double atan_t =
+      t * (1 + t2 * (-1.0 / 3 + t2 * (1.0 / 5 + t2 * (-1.0 / 7 + t2 * (1.0 / 9 + t2 * (-1.0 / 11))))));
+  return guess + atan_t;
+}
 }  // namespace
 
 LoopReach::LoopReach(double crank, double fixed_x, double fixed_y, double first, double second)
@@ -72,7 +94,10 @@ DesignLanes::DesignLanes(const Kinematics& kinematics, const std::vector<double>
       largest_speed_(kinematics.point_count() * kLanes),
       largest_acceleration_(kinematics.point_count() * kLanes),
       largest_speed_square_(kinematics.point_count() * kLanes),
-      largest_acceleration_square_(kinematics.point_count() * kLanes) {
+      largest_acceleration_square_(kinematics.point_count() * kLanes),
+      largest_rate_(n_ * kLanes),
+      largest_second_rate_(n_ * kLanes),
+      predicted_(n_ * kLanes) {
   for (std::size_t row = 0; row < inputs.size(); ++row) {
     cos_inputs_[row] = std::cos(inputs[row]);
     sin_inputs_[row] = std::sin(inputs[row]);
@@ -102,6 +127,20 @@ void DesignLanes::set_reach(std::size_t lane, const LoopReach& reach) {
   reach_[lane] = reach.ever_open() ? reach : LoopReach();
 }
 
+void DesignLanes::set_closure(std::size_t lane, const LoopClosure& closure) {
+  closes_[lane] = 1.0;
+  closure_crank_[lane] = closure.crank;
+  closure_fixed_x_[lane] = closure.fixed_x;
+  closure_fixed_y_[lane] = closure.fixed_y;
+  closure_over_first_[lane] = 1 / closure.first;
+  closure_over_second_[lane] = 1 / closure.second;
+  closure_over_length_square_[lane] = 1 / std::max(closure.first * closure.first, closure.second * closure.second);
+  closure_first_[lane] = closure.first;
+  closure_second_[lane] = closure.second;
+  closure_unknowns_[0] = closure.first_unknown;
+  closure_unknowns_[1] = closure.second_unknown;
+}
+
 void DesignLanes::solve(std::size_t count) {
   k_.evaluator().prepare_batch(registers_.data());  // each lane's work on its parameters
   for (std::size_t l = 0; l < count; ++l) {
@@ -112,10 +151,13 @@ void DesignLanes::solve(std::size_t count) {
     lanes_[l]->table.set_ok(0, inputs_.size());
   }
   lane_values_ = 0;
+  closed_form_values_ = 0;
   std::fill(largest_speed_.begin(), largest_speed_.end(), NAN);
   std::fill(largest_acceleration_.begin(), largest_acceleration_.end(), NAN);
   std::fill(largest_speed_square_.begin(), largest_speed_square_.end(), 0.0);
   std::fill(largest_acceleration_square_.begin(), largest_acceleration_square_.end(), 0.0);
+  std::fill(largest_rate_.begin(), largest_rate_.end(), NAN);
+  std::fill(largest_second_rate_.begin(), largest_second_rate_.end(), NAN);
   double take[kLanes], ok[kLanes], restart[kLanes], open[kLanes], out_of_reach[kLanes];
   for (std::size_t row = 0; row < inputs_.size(); ++row) {
     bool restarts = choose_lanes(row, count, take, restart, out_of_reach);
@@ -138,8 +180,7 @@ void DesignLanes::solve(std::size_t count) {
     for (std::size_t l = 0; l < count; ++l) {
       Lane& lane = *lanes_[l];
       if (out_of_reach[l] != 0) {
-        if (lane.last_in_lanes) lane.rows.solved_elsewhere(lane.table, row - 1);
-        lane.last_in_lanes = false;
+        hand_over(l, row);
         // Where the gap starts only after an ok row (where the run continues from it).
         const double limit = lane.rows.on_branch() ? reach_[l].limit(inputs_[row - 1], inputs_[row]) : inputs_[row];
         lane.rows.unassembled_elsewhere(lane.table, row, limit, 0, reach_[l].distance(inputs_[row]));
@@ -156,8 +197,7 @@ void DesignLanes::solve(std::size_t count) {
         ++lane_values_;
         continue;
       }
-      if (lane.last_in_lanes) lane.rows.solved_elsewhere(lane.table, row - 1);
-      lane.last_in_lanes = false;
+      hand_over(l, row);
       lane.rows.solve(lane.table, row);
       if (lane.table.status(row) != Status::ok) continue;
       keep_largest(l, row);
@@ -200,6 +240,8 @@ bool DesignLanes::choose_lanes(std::size_t row, std::size_t count, double* take,
     any_restart = any_restart || restarted;
   }
   if (row > 0) predict(h, take);
+  std::copy(start_.begin(), start_.end(), predicted_.begin());
+  if (row > 0) closed_form_values_ += close_loops(row, take);
   return any_restart;
 }
 
@@ -216,12 +258,58 @@ void DesignLanes::predict(double h, const double* predicted) {
   }
 }
 
+std::size_t DesignLanes::close_loops(std::size_t row, const double* predicted) {
+  const double cos_input = cos_inputs_[row], sin_input = sin_inputs_[row];
+  double* first_angle = start_.data() + closure_unknowns_[0] * kLanes;
+  double* second_angle = start_.data() + closure_unknowns_[1] * kLanes;
+  double moved = 0;
+  for (std::size_t l = 0; l < kLanes; ++l) {
+    const double u = closure_first_[l], v = closure_second_[l];
+    // first e^(i alpha) + second e^(i beta) = w, the known terms' sum negated: the first
+    // term P lies `along` times w along it and `across` times w across it (x and y of
+    // the triangle |P| = |u|, |w - P| = |v|, over |w|: no root of |w|^2 needed).
+    const double wx = -(closure_crank_[l] * cos_input + closure_fixed_x_[l]);
+    const double wy = -(closure_crank_[l] * sin_input + closure_fixed_y_[l]);
+    const double w_square = wx * wx + wy * wy, over_w_square = 1 / w_square;
+    const double along = 0.5 * (u * u - v * v + w_square) * over_w_square;
+    const double across_square = u * u * over_w_square - along * along;
+    double sin_first, cos_first, sin_second, cos_second;
+    simd::sincos_reduced(first_angle[l], sin_first, cos_first);
+    simd::sincos_reduced(second_angle[l], sin_second, cos_second);
+    // The branch of the predicted first term: its side of w.
+    const double side = u * (wx * sin_first - wy * cos_first);
+    const double across = std::copysign(std::sqrt(std::fabs(across_square)), side);
+    const double px = along * wx - across * wy, py = along * wy + across * wx;
+    // y^2 over the longer term's length squared: how far from folded in line.
+    const double fold = across_square * w_square * closure_over_length_square_[l];
+    // (& of the tests, not &&: no branches in a loop across lanes.)
+    const bool closes = (predicted[l] != 0) & (closes_[l] != 0) & (fold > kFoldedTriangle * kFoldedTriangle) &
+                        (std::fabs(first_angle[l]) <= simd::kSinCosLimit) &
+                        (std::fabs(second_angle[l]) <= simd::kSinCosLimit);
+    double usable = closes ? 1.0 : 0.0;
+    // Clearly on its branch: the other is 2|y| away, an angle of about 2|y| / length.
+    const double largest_square = std::min(kLargestCorrection * kLargestCorrection, 0.01 * fold);
+    const double alpha = angle_near(first_angle[l], cos_first, sin_first, px * closure_over_first_[l],
+                                    py * closure_over_first_[l], largest_square, usable);
+    const double beta = angle_near(second_angle[l], cos_second, sin_second, (wx - px) * closure_over_second_[l],
+                                   (wy - py) * closure_over_second_[l], largest_square, usable);
+    first_angle[l] = usable != 0 ? alpha : first_angle[l];
+    second_angle[l] = usable != 0 ? beta : second_angle[l];
+    moved += usable;
+  }
+  return static_cast<std::size_t>(moved);
+}
+
 void DesignLanes::keep_previous(const double* ok) {
   for (std::size_t i = 0; i < n_; ++i) {
     const double* from[3] = {lanes(layout_.q(i)), lanes(layout_.qd(i)), lanes(layout_.qdd(i))};
     for (std::size_t k = 0; k < 3; ++k) {
       double* to = previous_.data() + (3 * i + k) * kLanes;
-      for (std::size_t l = 0; l < kLanes; ++l) to[l] = ok[l] != 0 ? from[k][l] : to[l];
+      const double* solved = from[k];
+      for (std::size_t l = 0; l < kLanes; ++l) {
+        const double value = solved[l], kept = to[l];  // both read: a select, not a masked load
+        to[l] = ok[l] != 0 ? value : kept;
+      }
     }
   }
 }
@@ -268,7 +356,7 @@ void DesignLanes::solve_value(double input, bool check_branch, const double* tak
   if (check_branch) {
     for (std::size_t i = 0; i < n; ++i) {
       const double* q = lanes(layout_.q(i));
-      const double* start = start_.data() + i * kLanes;
+      const double* start = predicted_.data() + i * kLanes;
       const double* scale = column_scale_.data() + i * kLanes;
       for (std::size_t l = 0; l < kLanes; ++l)
         ok[l] = std::fabs(q[l] - start[l]) / scale[l] > solver::kBranchTolerance ? 0.0 : ok[l];
@@ -391,13 +479,32 @@ void DesignLanes::restart_values(double input, const double* restart, double* op
 void DesignLanes::store(std::size_t l, std::size_t row) {
   MotionTable& table = lanes_[l]->table;
   const std::size_t rows = table.size();
+  double* q = table.q_values();
+  double* qd = table.qd_values();
+  for (std::size_t i = 0; i < n_; ++i) {
+    q[i * rows + row] = lanes(layout_.q(i))[l];
+    qd[i * rows + row] = lanes(layout_.qd(i))[l];
+  }
+  if (positions_and_rates_) return;
   table.loop_residuals()[row] = residual_[l];
   table.reciprocal_conditions()[row] = pivot_ratio_[l];
+  for (std::size_t i = 0; i < n_; ++i) table.qdd_values()[i * rows + row] = lanes(layout_.qdd(i))[l];
+}
+
+void DesignLanes::hand_over(std::size_t l, std::size_t row) {
+  Lane& lane = *lanes_[l];
+  if (!lane.last_in_lanes) return;
+  lane.last_in_lanes = false;
+  // The row before, the lanes' last: in full, as the scalar run reads it (its second
+  // rates predict the next), from the lane's last row kept.
+  MotionTable& table = lane.table;
+  const std::size_t rows = table.size();
   for (std::size_t i = 0; i < n_; ++i) {
-    table.q_values()[i * rows + row] = lanes(layout_.q(i))[l];
-    table.qd_values()[i * rows + row] = lanes(layout_.qd(i))[l];
-    table.qdd_values()[i * rows + row] = lanes(layout_.qdd(i))[l];
+    table.q_values()[i * rows + row - 1] = previous_[(3 * i) * kLanes + l];
+    table.qd_values()[i * rows + row - 1] = previous_[(3 * i + 1) * kLanes + l];
+    table.qdd_values()[i * rows + row - 1] = previous_[(3 * i + 2) * kLanes + l];
   }
+  lane.rows.solved_elsewhere(table, row - 1);
 }
 
 namespace {
@@ -407,6 +514,17 @@ inline double larger(double largest, double length) { return !(length <= largest
 }  // namespace
 
 void DesignLanes::keep_largest(const double* ok) {
+  for (std::size_t i = 0; i < n_; ++i) {
+    const double* qd = lanes(layout_.qd(i));
+    const double* qdd = lanes(layout_.qdd(i));
+    double* largest_rate = largest_rate_.data() + i * kLanes;
+    double* largest_second_rate = largest_second_rate_.data() + i * kLanes;
+    for (std::size_t l = 0; l < kLanes; ++l) {
+      const double rate = std::fabs(qd[l]), second_rate = std::fabs(qdd[l]);
+      largest_rate[l] = ok[l] != 0 && !(rate <= largest_rate[l]) ? rate : largest_rate[l];
+      largest_second_rate[l] = ok[l] != 0 && !(second_rate <= largest_second_rate[l]) ? second_rate : largest_second_rate[l];
+    }
+  }
   const std::vector<std::size_t>& dimensions = layout_.point_dimensions;
   for (std::size_t p = 0; p < dimensions.size(); ++p) {
     const std::size_t d = dimensions[p];
@@ -418,12 +536,18 @@ void DesignLanes::keep_largest(const double* ok) {
       }
       double* largest = (kind == 1 ? largest_speed_ : largest_acceleration_).data() + p * kLanes;
       double* largest_square = (kind == 1 ? largest_speed_square_ : largest_acceleration_square_).data() + p * kLanes;
-      int unusual = 0;  // squares that vector_length takes apart (std::hypot)
+      // Squares that vector_length takes apart (std::hypot): flagged, then counted (a
+      // count kept in the loop keeps it from vectorising).
+      // Flags of the lanes' width, or-ed: a sum of doubles is added in order, lane by lane.
+      std::int64_t unusual_lanes[kLanes];
       for (std::size_t l = 0; l < kLanes; ++l) {
-        const bool normal = squares[l] > 1e-300 && squares[l] < 1e300;
-        unusual += ok[l] != 0 && !normal;
-        largest_square[l] = ok[l] != 0 && normal && squares[l] > largest_square[l] ? squares[l] : largest_square[l];
+        const bool normal = (squares[l] > 1e-300) & (squares[l] < 1e300);
+        unusual_lanes[l] = (ok[l] != 0) & !normal;
+        const bool larger_square = (ok[l] != 0) & normal & (squares[l] > largest_square[l]);
+        largest_square[l] = larger_square ? squares[l] : largest_square[l];
       }
+      std::int64_t unusual = 0;
+      for (std::size_t l = 0; l < kLanes; ++l) unusual |= unusual_lanes[l];
       for (std::size_t l = 0; unusual > 0 && l < kLanes; ++l) {
         if (ok[l] == 0 || (squares[l] > 1e-300 && squares[l] < 1e300)) continue;
         double v[3] = {};
@@ -448,6 +572,10 @@ double DesignLanes::largest_acceleration(std::size_t lane, std::size_t p) const 
 
 void DesignLanes::keep_largest(std::size_t l, std::size_t row) {
   const MotionTable& table = lanes_[l]->table;
+  for (std::size_t i = 0; i < n_; ++i) {
+    largest_rate_[i * kLanes + l] = larger(largest_rate_[i * kLanes + l], std::fabs(table.qd_column(i)[row]));
+    largest_second_rate_[i * kLanes + l] = larger(largest_second_rate_[i * kLanes + l], std::fabs(table.qdd_column(i)[row]));
+  }
   for (std::size_t p = 0; p < table.point_count(); ++p) {
     const PointMotion point = table.point(row, p);
     largest_speed_[p * kLanes + l] = larger(largest_speed_[p * kLanes + l], point.speed());

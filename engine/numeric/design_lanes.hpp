@@ -56,6 +56,16 @@ class LoopReach {
   bool ever_open_ = false;
 };
 
+/// The same loop with its two terms of unknown angle told apart: their signed lengths
+/// (the loop is crank e^(i input) + fixed + first e^(i q[first_unknown]) + second
+/// e^(i q[second_unknown]) = 0) and unknowns. Its positions are where two circles meet:
+/// DesignLanes starts Newton there instead of at the prediction (one evaluation closes
+/// it where the prediction takes three or four).
+struct LoopClosure {
+  double crank = 0, fixed_x = 0, fixed_y = 0, first = 0, second = 0;
+  std::size_t first_unknown = 0, second_unknown = 1;
+};
+
 class DesignLanes : LaneSystem {
  public:
   using LaneSystem::kLanes;
@@ -71,6 +81,16 @@ class DesignLanes : LaneSystem {
   /// Lane l's loop reach (none: every value to Newton): a value clearly out of it is
   /// stored as not assembling without Newton or continuation (RowSolver::unassembled_elsewhere).
   void set_reach(std::size_t lane, const LoopReach& reach);
+  /// Lane l's loop closure (the same unknowns in every lane): each value predicted is
+  /// started from the closed form on the predicted branch, the prediction kept for the
+  /// branch test; near a toggle (the two branches within 1e-3 of the lengths) or where
+  /// the prediction is not clearly on one branch, from the prediction as before.
+  void set_closure(std::size_t lane, const LoopClosure& closure);
+  /// Whether the values solved in the lanes are written to the tables with positions and
+  /// rates only (their second rates, residuals and conditions not: what a design study,
+  /// which keeps the largest second rates in the lanes, does not read), or in full (the
+  /// default). A row the scalar run goes on from is written in full either way.
+  void set_positions_and_rates_only(bool only) { positions_and_rates_ = only; }
   /// Solves the run for lanes [0, count).
   void solve(std::size_t count);
   /// Lane l's rows of the last solve(). The points' columns hold only the values the
@@ -81,8 +101,15 @@ class DesignLanes : LaneSystem {
   /// ok in the last solve(), as MotionTable::point(row, p).speed() gives each; NaN with none.
   double largest_speed(std::size_t lane, std::size_t p) const;
   double largest_acceleration(std::size_t lane, std::size_t p) const;
+  /// Unknown i's largest |rate| (|second rate|) over lane l's values whose status is ok in
+  /// the last solve(), kept as they are solved (the table's columns need no scan); NaN
+  /// with none.
+  double largest_rate(std::size_t lane, std::size_t i) const { return largest_rate_[i * kLanes + lane]; }
+  double largest_second_rate(std::size_t lane, std::size_t i) const { return largest_second_rate_[i * kLanes + lane]; }
   /// Values the last solve() solved in the lanes (the others by the scalar run).
   std::size_t lane_values() const { return lane_values_; }
+  /// Values of the last solve() started from the loop's closed form.
+  std::size_t closed_form_values() const { return closed_form_values_; }
 
  private:
   struct Lane;
@@ -97,9 +124,18 @@ class DesignLanes : LaneSystem {
   /// and from squares vector_length takes apart (NaN: none), and the largest square of
   /// the others (0: none; its root is the largest length, the root being monotonic).
   std::vector<double> largest_speed_, largest_acceleration_, largest_speed_square_, largest_acceleration_square_;
+  std::vector<double> largest_rate_, largest_second_rate_;  ///< Unknown i of lane l at i * kLanes + l (NaN: none).
   double tolerance_[kLanes], residual_[kLanes];
-  std::size_t lane_values_ = 0;
+  std::size_t lane_values_ = 0, closed_form_values_ = 0;
+  bool positions_and_rates_ = false;
   LoopReach reach_[kLanes];
+  // Each lane's loop closure (closes_[l] 1 where set), in lanes for the loops across them.
+  double closes_[kLanes] = {}, closure_crank_[kLanes] = {}, closure_fixed_x_[kLanes] = {},
+         closure_fixed_y_[kLanes] = {}, closure_first_[kLanes] = {}, closure_second_[kLanes] = {};
+  // 1 / first, 1 / second, 1 / the longer's square: products in the loop, not quotients.
+  double closure_over_first_[kLanes] = {}, closure_over_second_[kLanes] = {}, closure_over_length_square_[kLanes] = {};
+  std::size_t closure_unknowns_[2] = {0, 1};
+  std::vector<double> predicted_;  ///< Each lane's predicted start (start_'s layout): the branch test's.
 
   /// Each lane's start at `row` into start_: take[l] 1 for a lane whose value is predicted
   /// (or the first, from the guesses), restart[l] 1 for one that starts Newton alone after
@@ -109,6 +145,9 @@ class DesignLanes : LaneSystem {
   /// start_ of the lanes predicted (predicted[l] 1) h on from their last row, as the
   /// scalar run predicts (solver::predict_second_order).
   KINEMA_LANE_LOOPS void predict(double h, const double* predicted);
+  /// start_ of the lanes predicted with a closure moved onto the closed form (see
+  /// set_closure), at the input of `row`; the count moved.
+  KINEMA_LANE_LOOPS std::size_t close_loops(std::size_t row, const double* predicted);
   /// The rows just solved in the lanes (ok[l] 1) as each lane's last row.
   KINEMA_LANE_LOOPS void keep_previous(const double* ok);
   /// Newton, rates and points at `input` for the lanes taken from start_; ok[l] 1 where
@@ -121,8 +160,11 @@ class DesignLanes : LaneSystem {
   /// (it closes, or needs a least-squares step).
   KINEMA_LANE_LOOPS void restart_values(double input, const double* restart, double* open);
   void store(std::size_t lane, std::size_t row);
-  /// The lanes' point speeds and accelerations (ok[l] 1 where lane l's value is ok) into
-  /// their largest.
+  /// Lane l goes to the scalar run at `row`: the row before, where it was last in the
+  /// lanes, written in full and told to the scalar run.
+  void hand_over(std::size_t lane, std::size_t row);
+  /// The lanes' rates, second rates, point speeds and accelerations (ok[l] 1 where lane
+  /// l's value is ok) into their largest.
   KINEMA_LANE_LOOPS void keep_largest(const double* ok);
   /// The same for a row of lane l's table the scalar run solved.
   void keep_largest(std::size_t lane, std::size_t row);

@@ -10,6 +10,7 @@
 #include <functional>
 #include <optional>
 #include <limits>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -23,6 +24,7 @@
 #include "engine/model.hpp"
 #include "engine/numeric/design_lanes.hpp"
 #include "engine/numeric/sweep.hpp"
+#include "engine/numeric/workspace.hpp"
 #include "readers/mechanism_file.hpp"
 #include "tests/test_support.hpp"
 
@@ -418,4 +420,138 @@ TEST_CASE("design lanes: a value out of the loop's reach stored as the scalar ru
   // each): Newton only those within its margin.
   CHECK(unassembled >= 30);
   CHECK(double(out_of_reach) >= 0.9 * double(unassembled));
+}
+
+namespace {
+
+// Lanes of the sample four-bar's designs (b, c), each with its loop's closure and reach,
+// solved over `inputs`, beside each design's separate model.
+struct ClosedLanes {
+  std::vector<Model> separate;
+  std::unique_ptr<kinema::DesignLanes> lanes;
+};
+ClosedLanes closed_lanes(const std::vector<std::pair<double, double>>& designs, const std::vector<double>& inputs,
+                         bool positions_and_rates_only = false) {
+  const Model base = kinema::with_parameters(sample_model("four_bar.toml"), {});
+  const auto& input = base.system.input;
+  ClosedLanes run;
+  run.lanes = std::make_unique<kinema::DesignLanes>(base.kinematics, inputs, input.rate_value, input.second_rate_value);
+  const std::optional<kinema::FourBarLoop> loop = kinema::four_bar_loop(base.system);
+  REQUIRE(loop);
+  for (std::size_t l = 0; l < designs.size(); ++l) {
+    run.separate.push_back(kinema::with_parameters(base, {{"b", designs[l].first}, {"c", designs[l].second}}));
+    run.lanes->set_design(l, run.separate.back().kinematics.parameter_values().data());
+    // a*exp(I*theta2) + b*exp(I*theta3) - c*exp(I*theta4) - d.
+    const kinema::LoopClosure closure{0.04, -0.1, 0, designs[l].first, -designs[l].second,
+                                      loop->coupler.unknown, loop->rocker.unknown};
+    run.lanes->set_reach(l, kinema::LoopReach(closure.crank, closure.fixed_x, closure.fixed_y, closure.first, closure.second));
+    run.lanes->set_closure(l, closure);
+  }
+  run.lanes->set_positions_and_rates_only(positions_and_rates_only);
+  run.lanes->solve(designs.size());
+  return run;
+}
+
+// Every lane's rows against its design's scalar run: the same statuses; positions equal
+// to 1e-12 relative where Phi_q is clearly regular, 1e-12 over the reciprocal condition
+// nearer a toggle (the scalar run's Newton stops within 1e-14 of the length scale, which
+// leaves its position free by that over the least singular value: the closed form's is
+// the exact one to rounding); rates and second rates equal to the same tolerance to
+// those the scalar solver gives at the lanes' position (from the scalar run's position
+// they differ by what that freedom makes of them, 1e-11 relative in second rates where
+// the condition is 0.3). The count of ok values and of those nearer a toggle.
+std::pair<std::size_t, std::size_t> check_closed_lanes(const ClosedLanes& run, const std::vector<double>& inputs) {
+  std::size_t ok_values = 0, near_toggles = 0;
+  for (std::size_t l = 0; l < run.separate.size(); ++l) {
+    const Model& design = run.separate[l];
+    const MotionTable alone = kinema::analyse(design, inputs);
+    const MotionTable& table = run.lanes->table(l);
+    kinema::Workspace workspace(design);
+    for (std::size_t r = 0; r < inputs.size(); ++r) {
+      INFO("design " << l << ", row " << r);
+      REQUIRE(table.status(r) == alone.status(r));
+      if (alone.status(r) != kinema::Status::ok) continue;
+      ++ok_values;
+      const double condition = alone.reciprocal_condition(r);
+      near_toggles += condition < 1e-2;
+      const double tolerance = condition < 1e-2 ? 1e-12 / condition : 1e-12;
+      const auto same = [&](const Eigen::VectorXd& got, const Eigen::VectorXd& expected) {
+        for (Eigen::Index i = 0; i < expected.size(); ++i)
+          CHECK(std::fabs(got[i] - expected[i]) <= tolerance * std::max(1.0, std::fabs(expected[i])));
+      };
+      same(table.q(r), alone.q(r));
+      const kinema::MotionState there =
+          workspace.motion(inputs[r], design.system.input.rate_value, design.system.input.second_rate_value, table.q(r));
+      same(table.qd(r), there.qd);
+      same(table.qdd(r), there.qdd);
+    }
+  }
+  return {ok_values, near_toggles};
+}
+
+}  // namespace
+
+TEST_CASE("design lanes: positions from the loop's closed form equal the scalar run's (Grashof or not)") {
+  // Crank-rockers (Grashof), non-Grashof designs with gaps near 0 deg (their lanes handed
+  // to Newton and the scalar run there) and designs near a change point (a + b = c + d
+  // within 1 mm), every value compared.
+  const std::vector<std::pair<double, double>> designs{{0.120, 0.080}, {0.100, 0.099}, {0.110, 0.066}, {0.140, 0.061},
+                                                       {0.135, 0.066}, {0.130, 0.071}, {0.127, 0.079}, {0.129, 0.0695}};
+  const std::vector<double> inputs = turn_from(0);
+  const ClosedLanes run = closed_lanes(designs, inputs);
+  const auto [ok_values, near_toggles] = check_closed_lanes(run, inputs);
+  CHECK(ok_values >= designs.size() * inputs.size() * 3 / 4);  // what the comparison is meant to include
+  // The closed form started nearly every value after each run's first (from the guesses).
+  CHECK(double(run.lanes->closed_form_values()) >= 0.95 * double(ok_values - designs.size()));
+  // The largest rates kept in the lanes as values are solved: the table's ok rows' largest.
+  for (std::size_t l = 0; l < designs.size(); ++l) {
+    const MotionTable& table = run.lanes->table(l);
+    for (std::size_t i = 0; i < table.unknown_count(); ++i) {
+      const auto j = Eigen::Index(i);
+      CHECK(run.lanes->largest_rate(l, i) == largest_over_ok_rows(table, [&](std::size_t r) { return table.qd(r)[j]; }));
+      CHECK(run.lanes->largest_second_rate(l, i) ==
+            largest_over_ok_rows(table, [&](std::size_t r) { return table.qdd(r)[j]; }));
+    }
+  }
+  // A study's lanes write positions and rates only: the same statuses, positions, rates
+  // and largest figures (the scalar run, going on from the lanes' last rows, as before).
+  const ClosedLanes light = closed_lanes(designs, inputs, true);
+  for (std::size_t l = 0; l < designs.size(); ++l) {
+    const MotionTable& full = run.lanes->table(l);
+    const MotionTable& table = light.lanes->table(l);
+    for (std::size_t r = 0; r < inputs.size(); ++r) {
+      INFO("design " << l << ", row " << r);
+      REQUIRE(table.status(r) == full.status(r));
+      CHECK(table.q(r) == full.q(r));
+      CHECK(table.qd(r) == full.qd(r));
+    }
+    for (std::size_t i = 0; i < full.unknown_count(); ++i) {
+      CHECK(light.lanes->largest_rate(l, i) == run.lanes->largest_rate(l, i));
+      CHECK(light.lanes->largest_second_rate(l, i) == run.lanes->largest_second_rate(l, i));
+    }
+    for (std::size_t p = 0; p < full.point_count(); ++p) {
+      CHECK(light.lanes->largest_speed(l, p) == run.lanes->largest_speed(l, p));
+      CHECK(light.lanes->largest_acceleration(l, p) == run.lanes->largest_acceleration(l, p));
+    }
+  }
+}
+
+TEST_CASE("design lanes: values nearing a toggle leave the closed form to Newton, as the scalar run solves them") {
+  // Non-Grashof designs run towards where their loop stops closing (coupler and rocker
+  // folding into line), halving the distance each value down to 1e-9 of it: there the
+  // closed form's two branches meet and the lanes go back to Newton from the prediction.
+  const std::vector<std::pair<double, double>> designs{{0.140, 0.061}, {0.135, 0.066}};
+  const kinema::LoopReach reach(0.04, -0.1, 0, 0.140, -0.061);
+  const std::vector<double> turn = turn_from(0);
+  std::size_t r = 0;
+  while (r + 1 < turn.size() && !(reach.distance(turn[r]) <= 0 && reach.distance(turn[r + 1]) > 0)) ++r;
+  REQUIRE(r + 1 < turn.size());
+  const double limit = reach.limit(turn[r], turn[r + 1]);
+  std::vector<double> inputs;
+  for (int k = 0; k <= 30; ++k) inputs.push_back(limit + (turn[r] - 30 * kDeg - limit) * std::ldexp(1.0, -k));
+  const ClosedLanes run = closed_lanes(designs, inputs);
+  const auto [ok_values, near_toggles] = check_closed_lanes(run, inputs);
+  CHECK(near_toggles >= 5);  // what the comparison is meant to include
+  CHECK(run.lanes->closed_form_values() + 5 <= ok_values);
+  CHECK(run.lanes->closed_form_values() >= 10);
 }
