@@ -108,6 +108,15 @@ function checkJoints(name, header, csvRow, view) {
 // The polygons of the row: the image of each named point in the velocity polygon is its
 // velocity in eval's row, in the acceleration polygon its acceleration (to the 5 digits the
 // page draws them with). Returns how many images were checked.
+// A number as the page writes it for people: "25000", "0.5", "2\u00d710\u2076", "10\u207b\u2074".
+function numberOf(text) {
+  const m = /^(-?[0-9.]*?)\u00d7?10([\u207b\u2070\u00b9\u00b2\u00b3\u2074-\u2079]+)$/.exec(text);
+  if (!m) return Number(text);
+  const digits = '\u2070\u00b9\u00b2\u00b3\u2074\u2075\u2076\u2077\u2078\u2079';
+  const power = Number(Array.from(m[2]).map((c) => (c === '\u207b' ? '-' : String(digits.indexOf(c)))).join(''));
+  return (m[1] === '' ? 1 : m[1] === '-' ? -1 : Number(m[1])) * Math.pow(10, power);
+}
+
 async function checkPolygons(page, name, header, csvRow) {
   const fields = csvRow.split(',').map(Number);
   const polygons = await page.evaluate(() => ['velocity-polygon', 'acceleration-polygon'].map((id) => {
@@ -116,6 +125,16 @@ async function checkPolygons(page, name, header, csvRow) {
       name: v.getAttribute('data-vertex'), x: Number(v.getAttribute('data-x')), y: Number(v.getAttribute('data-y')) })) : null;
   }));
   if (!polygons[0]) return 0;
+  // Each panel's scale bar: its length, not written out in six digits or more ("1000000 mm/s^2").
+  const bars = await page.evaluate(() => ['velocity-polygon', 'acceleration-polygon'].map((id) => {
+    const panel = document.getElementById(id);
+    return { text: panel.querySelector('text.tick').textContent, perPixel: Number(panel.getAttribute('data-per-pixel')) };
+  }));
+  for (const bar of bars) {
+    const [number] = bar.text.split(' ');
+    assert(!/[0-9]{6}/.test(number) && Math.abs(numberOf(number) - 50 * bar.perPixel) <= 1e-9 * 50 * bar.perPixel,
+      `${name}: the polygon's scale bar "${bar.text}" for 50 px at ${bar.perPixel} a pixel`);
+  }
   let checked = 0;
   [['_vx [', polygons[0]], ['_ax [', polygons[1]]].forEach(([suffix, vertices]) => {
     const size = Math.max(...vertices.map((v) => Math.hypot(v.x, v.y)));
@@ -198,7 +217,8 @@ async function checkPlots(page, name, header, rows) {
     const scale = chart.labels.filter((l) => l.bottom < 190);
     assert.strictEqual(scale.length, 2, `${name}: a plot without its two scale values`);
     for (const l of scale) assert(l.right <= chart.left, `${name}: the scale value "${l.text}" overlaps the plot (${l.right} > ${chart.left})`);
-    const [hi, lo] = scale.map((l) => Number(l.text));
+    for (const l of scale) assert(!/[0-9]{6}/.test(l.text), `${name}: the scale value "${l.text}" written out`);
+    const [hi, lo] = scale.map((l) => numberOf(l.text));
     for (const v of [hi, lo]) assert(v === 0 || Math.abs(v) >= 1e-6 * Math.abs(hi - lo), `${name}: the scale value ${v} is noise of the range ${lo} to ${hi}`);
     const axis = chart.labels.filter((l) => l.bottom >= 190).map((l) => l.text);
     assert.deepStrictEqual(axis, [String(Number(first.toPrecision(3))), String(Number(last.toPrecision(3))) + ' ' + unit],

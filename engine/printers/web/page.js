@@ -36,6 +36,17 @@
   }
   function status(r) { return rows[r][3]; }
   function fixed(v) { return Math.round(v * 1000) / 1000; }
+  // A number for people in `digits` significant digits: from 10^5 up and below 10^-3 as
+  // a power of ten ("2×10⁶"; "1000000" and "1.05e+3" were hard to read).
+  function readable(v, digits) {
+    const rounded = Number(v.toPrecision(digits));
+    const a = Math.abs(rounded);
+    if (a === 0 || (a >= 1e-3 && a < 1e5)) return String(rounded);
+    const power = Math.floor(Math.log10(a));
+    const mantissa = Number((rounded / Math.pow(10, power)).toPrecision(digits));
+    const superscript = String(power).replace(/-/g, '\u207b').replace(/[0-9]/g, function (d) { return '\u2070\u00b9\u00b2\u00b3\u2074\u2075\u2076\u2077\u2078\u2079'[d]; });
+    return (mantissa === 1 ? '' : mantissa === -1 ? '-' : mantissa + '\u00d7') + '10' + superscript;
+  }
 
   // Header and controls.
   document.title = (data.title || data.file) + ' (kinema page)';
@@ -583,7 +594,7 @@
       // A scale bar of 50 units of the panel (a round length).
       const bar = 50 * scale.perPixel;
       svg('path', { d: 'M12,280 v5 h50 v-5', class: 'scale-bar', fill: 'none' }, panel.svg);
-      svg('text', { x: 70, y: 286, class: 'tick' }, panel.svg, Number(bar.toPrecision(2)) + ' ' + panel.unit);
+      svg('text', { x: 70, y: 286, class: 'tick' }, panel.svg, readable(bar, 2) + ' ' + panel.unit);
       panel.key.textContent = '';
       const place = function (p) { return [scale.cx + p[0] / scale.perPixel, scale.cy - p[1] / scale.perPixel]; };
       polygon.arrows.forEach(function (a) {
@@ -684,9 +695,9 @@
     let text = drawing.form === 'chain' ? 'Drag to turn (shift-drag to pan), wheel to zoom, double-click to fit. Frames: x red, y green, z blue.'
       : 'Drag to pan, wheel to zoom, double-click to fit.';
     const unit = data.length_unit;
-    if (velocityScale > 0) text += ' Velocity arrows (red): 1 ' + unit + ' of drawing = ' + (1 / velocityScale).toPrecision(3) + ' ' + unit + '/s.';
+    if (velocityScale > 0) text += ' Velocity arrows (red): 1 ' + unit + ' of drawing = ' + readable(1 / velocityScale, 3) + ' ' + unit + '/s.';
     if (accelerationScale > 0) {
-      text += ' Acceleration arrows (green, dashed): 1 ' + unit + ' = ' + (1 / accelerationScale).toPrecision(3) + ' ' + unit + '/s^2.';
+      text += ' Acceleration arrows (green, dashed): 1 ' + unit + ' = ' + readable(1 / accelerationScale, 3) + ' ' + unit + '/s^2.';
     }
     key.textContent = text;
   }
@@ -723,7 +734,7 @@
   // A scale's value in three digits; a value that is rounding noise of its range
   // (a speed of 1e-33 at rest) is 0.
   function tickLabel(v, range) {
-    return Math.abs(v) <= 1e-9 * Math.abs(range) ? '0' : String(Number(v.toPrecision(3)));
+    return Math.abs(v) <= 1e-9 * Math.abs(range) ? '0' : readable(v, 3);
   }
   // A label's width in the chart's units: measured where the page is laid out, else
   // estimated from its characters (10 px text).
