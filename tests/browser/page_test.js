@@ -171,14 +171,28 @@ async function checkCentres(page, name) {
       const b = t.getBBox();
       return { text: t.textContent, x0: b.x, x1: b.x + b.width, y0: b.y, y1: b.y + b.height };
     });
+    // Centres beyond the panel, and the arrows at its edge towards them.
+    const panel = svg.getBoundingClientRect();
+    const beyond = Array.from(svg.querySelectorAll('#centres [data-centre]')).filter((c) => {
+      const m = /translate\(([^,]+),([^)]+)\)/.exec(c.getAttribute('transform') || '');
+      return m && (Number(m[1]) < 0 || Number(m[1]) > panel.width || Number(m[2]) < 0 || Number(m[2]) > panel.height);
+    }).map((c) => c.getAttribute('data-centre'));
+    const pointed = Array.from(svg.querySelectorAll('#centres [data-centre-beyond]')).map((a) => {
+      const x = [a.getAttribute('x1'), a.getAttribute('x2')].map(Number), y = [a.getAttribute('y1'), a.getAttribute('y2')].map(Number);
+      return { name: a.getAttribute('data-centre-beyond'), inside: x.every((v) => v >= 0 && v <= panel.width) && y.every((v) => v >= 0 && v <= panel.height) };
+    });
     box.click();
-    return { drawn: drawn, joints: joints, structure: structure, jointNames: data.drawing.joint_names, labels: labels };
+    return { drawn: drawn, joints: joints, structure: structure, jointNames: data.drawing.joint_names, labels: labels, beyond: beyond, pointed: pointed };
   });
   if (!found) return false;
   found.labels.forEach((a, i) => found.labels.slice(i + 1).forEach((b) => {
     const across = Math.min(a.x1, b.x1) - Math.max(a.x0, b.x0), down = Math.min(a.y1, b.y1) - Math.max(a.y0, b.y0);
     assert(across <= 0.5 || down <= 0.5, `${name}: centre labels "${a.text}" and "${b.text}" overlap`);
   }));
+  for (const c of found.beyond) {
+    const arrow = found.pointed.find((a) => c.split(', ').includes(a.name) || a.name === c);
+    assert(arrow && arrow.inside, `${name}: centre ${c} is beyond the panel with no arrow at its edge`);
+  }
   const n = found.structure.bodies.length;
   const names = new Set(found.drawn.map((c) => c.name));
   assert.strictEqual(names.size + found.structure.not_found.length, (n * (n - 1)) / 2,

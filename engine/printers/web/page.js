@@ -638,6 +638,21 @@
       svg('text', { x: fixed(q[0] + 4), y: fixed(q[1] - 4), class: 'label centre-label' }, g, centre.name + ' \u221e');
     });
     drawLabelled(finite, px, g, 'centre', 'data-centre', ', ');
+    // A centre beyond the panel (the triple rocker's I02): an arrow at the panel's edge
+    // towards it, with its name.
+    const box = picture.getBoundingClientRect(), inset = 30;
+    const middle = [box.width / 2, box.height / 2];
+    finite.forEach(function (centre) {
+      const p = px(centre.at);
+      if (p[0] >= 0 && p[0] <= box.width && p[1] >= 0 && p[1] <= box.height) return;
+      const d = [p[0] - middle[0], p[1] - middle[1]], length = Math.hypot(d[0], d[1]);
+      const reach = Math.min((middle[0] - inset) / Math.abs(d[0] / length || 1e-12), (middle[1] - inset) / Math.abs(d[1] / length || 1e-12));
+      const tip = [middle[0] + d[0] / length * reach, middle[1] + d[1] / length * reach];
+      const tail = [tip[0] - 40 * d[0] / length, tip[1] - 40 * d[1] / length];
+      svg('line', { x1: fixed(tail[0]), y1: fixed(tail[1]), x2: fixed(tip[0]), y2: fixed(tip[1]), class: 'centre-infinite',
+        'marker-end': 'url(#head-centre)', 'data-centre-beyond': centre.name }, g);
+      svg('text', { x: fixed(tail[0] - (d[0] > 0 ? 30 : -4)), y: fixed(tail[1] + (d[1] > 0 ? -6 : 14)), class: 'label centre-label' }, g, centre.name);
+    });
   }
 
   // A spatial chain: the observer's axes at the origin, each frame's origin joined to its
