@@ -171,6 +171,16 @@ async function checkCentres(page, name) {
       const b = t.getBBox();
       return { text: t.textContent, x0: b.x, x1: b.x + b.width, y0: b.y, y1: b.y + b.height };
     });
+    // The joints' and points' letters and the links' numbers, which no centre's name covers.
+    const frame = svg.getBoundingClientRect();
+    const letters = Array.from(svg.querySelectorAll('[data-joint] text, [data-point] text, .link-number')).map((t) => {
+      const r = t.getBoundingClientRect();
+      return { text: t.textContent, x0: r.left - frame.left, x1: r.right - frame.left, y0: r.top - frame.top, y1: r.bottom - frame.top };
+    });
+    const names = Array.from(svg.querySelectorAll('#centres text.label:not(.centre-label)')).map((t) => {
+      const r = t.getBoundingClientRect();
+      return { text: t.textContent, x0: r.left - frame.left, x1: r.right - frame.left, y0: r.top - frame.top, y1: r.bottom - frame.top };
+    });
     // Centres beyond the panel, and the arrows at its edge towards them.
     const panel = svg.getBoundingClientRect();
     const beyond = Array.from(svg.querySelectorAll('#centres [data-centre]')).filter((c) => {
@@ -182,13 +192,18 @@ async function checkCentres(page, name) {
       return { name: a.getAttribute('data-centre-beyond'), inside: x.every((v) => v >= 0 && v <= panel.width) && y.every((v) => v >= 0 && v <= panel.height) };
     });
     box.click();
-    return { drawn: drawn, joints: joints, structure: structure, jointNames: data.drawing.joint_names, labels: labels, beyond: beyond, pointed: pointed };
+    return { drawn: drawn, joints: joints, structure: structure, jointNames: data.drawing.joint_names, labels: labels, beyond: beyond, pointed: pointed, letters: letters, names: names };
   });
   if (!found) return false;
   found.labels.forEach((a, i) => found.labels.slice(i + 1).forEach((b) => {
     const across = Math.min(a.x1, b.x1) - Math.max(a.x0, b.x0), down = Math.min(a.y1, b.y1) - Math.max(a.y0, b.y0);
     assert(across <= 0.5 || down <= 0.5, `${name}: centre labels "${a.text}" and "${b.text}" overlap`);
   }));
+  for (const a of found.names)
+    for (const b of found.letters) {
+      const across = Math.min(a.x1, b.x1) - Math.max(a.x0, b.x0), down = Math.min(a.y1, b.y1) - Math.max(a.y0, b.y0);
+      assert(across <= 0.5 || down <= 0.5, `${name}: centre label "${a.text}" covers "${b.text}"`);
+    }
   for (const c of found.beyond) {
     const arrow = found.pointed.find((a) => c.split(', ').includes(a.name) || a.name === c);
     assert(arrow && arrow.inside, `${name}: centre ${c} is beyond the panel with no arrow at its edge`);

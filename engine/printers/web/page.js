@@ -510,7 +510,8 @@
     if (b.width > 0) labelSizes.set(text, size);
     return size;
   }
-  function drawLabelled(list, place, parent, className, dataName, separator) {
+  // `taken`: boxes already printed on (x0, y0, x1, y1 in the panel's pixels) that no label may cover.
+  function drawLabelled(list, place, parent, className, dataName, separator, taken) {
     const groups = [];
     list.forEach(function (item) {
       const p = place(item.at);
@@ -526,7 +527,7 @@
     // Each label beside its mark, on no label placed before it: the first free of eight
     // places around the mark, else stacked below it. Its size as drawn (a hidden panel
     // measures nothing: then about 8 px a character of the 13 px text).
-    const placed = [];
+    const placed = (taken || []).slice();
     const overlaps = function (b) {
       return placed.some(function (o) { return b.x0 < o.x1 && o.x0 < b.x1 && b.y0 < o.y1 && o.y0 < b.y1; });
     };
@@ -637,7 +638,13 @@
         'marker-end': 'url(#head-centre)' }, g).setAttribute('data-centre', centre.name);
       svg('text', { x: fixed(q[0] + 4), y: fixed(q[1] - 4), class: 'label centre-label' }, g, centre.name + ' \u221e');
     });
-    drawLabelled(finite, px, g, 'centre', 'data-centre', ', ');
+    // The joints' letters and the links' numbers stay readable under the centres' names.
+    const panel = picture.getBoundingClientRect();
+    const taken = Array.from(picture.querySelectorAll('[data-joint] text, [data-point] text, .link-number')).map(function (t) {
+      const r = t.getBoundingClientRect();
+      return { x0: r.left - panel.left, y0: r.top - panel.top, x1: r.right - panel.left, y1: r.bottom - panel.top };
+    }).filter(function (b) { return b.x1 > b.x0; });
+    drawLabelled(finite, px, g, 'centre', 'data-centre', ', ', taken);
     // A centre beyond the panel (the triple rocker's I02): an arrow at the panel's edge
     // towards it, with its name.
     const box = picture.getBoundingClientRect(), inset = 30;
