@@ -217,7 +217,8 @@ kinema::InputValues sweep_inputs(const PyModel& m, const Value& first, const Val
 
 /// m.sensitivity("omega3", "b", "0 deg", "360 deg", "10 deg"): the exact derivative of a
 /// column in a parameter over that sweep, SI (rad/s per m), NaN where a value is not ok;
-/// the parameter's derivatives derived and compiled on the call, solved without the GIL.
+/// the parameter's derivatives derived and compiled on the first call that asks for them
+/// (then kept with the tape, for with_parameters' copies too), solved without the GIL.
 py::array_t<double> sensitivity(const PyModel& m, const std::string& column, const std::string& parameter,
                                 const Value& first, const Value& last, const Value& step) {
   const kinema::InputValues inputs = sweep_inputs(m, first, last, step);

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <mutex>
 #include <stdexcept>
 
 #include "engine/constraints/complex_parts.hpp"
@@ -165,7 +167,13 @@ std::vector<ex> linkage_stage(const ConstraintSystem& system, const std::vector<
 
 }  // namespace
 
-Kinematics::Kinematics(const ConstraintSystem& system) : length_scale_(system.length_scale) {
+struct Kinematics::ParameterTapes {
+  std::mutex mutex;
+  std::map<std::pair<std::size_t, std::vector<bool>>, std::shared_ptr<const CompiledExpressions>> tapes;
+};
+
+Kinematics::Kinematics(const ConstraintSystem& system)
+    : parameter_tapes_(std::make_shared<ParameterTapes>()), length_scale_(system.length_scale) {
   const std::size_t n = system.unknowns.size();
   layout_.parameter_count = system.parameters.size();
   layout_.unknown_count = n;
@@ -219,8 +227,20 @@ Kinematics Kinematics::sharing_tape(const ConstraintSystem& system) const {
   k.layout_.linkage_column_count = layout_.linkage_column_count;
   k.layout_.centre_bodies = layout_.centre_bodies;
   k.evaluator_ = evaluator_;
+  k.parameter_tapes_ = parameter_tapes_;
   k.drawable_ = drawable_;
   return k;
+}
+
+std::shared_ptr<const CompiledExpressions> Kinematics::parameter_tape(
+    std::size_t parameter, const std::vector<bool>& follows_formula,
+    const std::function<std::shared_ptr<const CompiledExpressions>()>& compile) const {
+  if (!parameter_tapes_) return compile();  // a default-constructed Kinematics: nothing to share
+  // Held while compiling: the derivation is GiNaC's, which is not thread-safe.
+  const std::lock_guard<std::mutex> held(parameter_tapes_->mutex);
+  std::shared_ptr<const CompiledExpressions>& tape = parameter_tapes_->tapes[{parameter, follows_formula}];
+  if (!tape) tape = compile();
+  return tape;
 }
 
 void Kinematics::set_parameter_values(const double* values) {

@@ -6,6 +6,7 @@
 
 #include <Eigen/Dense>
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -46,6 +47,14 @@ class Kinematics {
   std::vector<double> drawing_values(const MotionState& state) const;
   /// The drawing formulas compiled onto the tape (a formula the tape cannot take leaves none).
   bool drawable() const { return drawable_; }
+  /// The compiled derivatives of the solved values in parameter `parameter`
+  /// (engine/numeric/sensitivity): `compile`d the first time any model sharing this tape
+  /// asks (with_parameters' copies too), then reused; the tape takes the parameters as
+  /// inputs. They depend on which parameters follow formulas (`follows_formula`, one per
+  /// parameter: with_parameters drops the formula of a parameter it is given). Thread-safe.
+  std::shared_ptr<const CompiledExpressions> parameter_tape(
+      std::size_t parameter, const std::vector<bool>& follows_formula,
+      const std::function<std::shared_ptr<const CompiledExpressions>()>& compile) const;
 
   /// Typical length (largest length parameter), for tolerances and scaling.
   double length_scale() const { return length_scale_; }
@@ -71,6 +80,8 @@ class Kinematics {
   TapeLayout layout_;
   /// Shared by the models that differ only in parameter values (with_parameters).
   std::shared_ptr<const CompiledExpressions> evaluator_ = std::make_shared<const CompiledExpressions>();
+  struct ParameterTapes;
+  std::shared_ptr<ParameterTapes> parameter_tapes_;  ///< Shared as evaluator_ is.
   std::vector<double> parameter_values_;
   std::vector<bool> sets_length_scale_;  ///< Per parameter: counted in the length scale (length_scale_of).
   std::vector<bool> length_unknown_;     ///< Per unknown: a length (its column scaled by the length scale).

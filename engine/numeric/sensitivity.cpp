@@ -28,13 +28,17 @@ ParameterSensitivity::ParameterSensitivity(const ConstraintSystem& system, const
                                            const Kinematics& kinematics, const std::string& name)
     : kinematics_(&kinematics), parameter_(written_parameter_index(system, name)) {
   check_sketch_lengths(system, name);
-  const ParameterDerivatives derivatives = parameter_derivatives(system, derivation, parameter_);
-  try {
-    tape_ = std::make_shared<const CompiledExpressions>(derivatives.inputs, derivatives.stages);
-  } catch (const std::invalid_argument& e) {
-    throw InputError(system.source_file + ": the derivatives in \"" + name +
-                     "\" cannot be evaluated: " + e.what());
-  }
+  std::vector<bool> follows_formula;
+  for (const SystemParameter& p : system.parameters) follows_formula.push_back(bool(p.formula));
+  tape_ = kinematics.parameter_tape(parameter_, follows_formula, [&] {
+    const ParameterDerivatives derivatives = parameter_derivatives(system, derivation, parameter_);
+    try {
+      return std::make_shared<const CompiledExpressions>(derivatives.inputs, derivatives.stages);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(system.source_file + ": the derivatives in \"" + name +
+                       "\" cannot be evaluated: " + e.what());
+    }
+  });
 }
 
 SensitivityWorkspace::SensitivityWorkspace(const ParameterSensitivity& sensitivity)

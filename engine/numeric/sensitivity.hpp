@@ -20,7 +20,8 @@
 
 namespace kinema {
 
-/// One parameter's derivatives of a model's solved values, derived and compiled once
+/// One parameter's derivatives of a model's solved values, derived and compiled once for
+/// every model that shares the tape (Kinematics::parameter_tape)
 /// (immutable: threads share it, each with its SensitivityWorkspace). It holds the
 /// model's compiled evaluator by reference: the model must outlive it.
 class ParameterSensitivity {

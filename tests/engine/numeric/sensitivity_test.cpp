@@ -16,6 +16,7 @@
 #include "engine/base/errors.hpp"
 #include "engine/base/units.hpp"
 #include "engine/model.hpp"
+#include "engine/numeric/sensitivity.hpp"
 #include "readers/mechanism_file.hpp"
 #include "tests/test_support.hpp"
 
@@ -155,6 +156,9 @@ TEST_CASE("engine/numeric/sensitivity: a formula parameter given alone does not 
   const std::vector<double> ce_alone = [&] {  // CE with EF held: EF given its value
     const Model held = kinema::with_parameters(model, {{"EF", model.system.parameters[kinema::written_parameter_index(model.system, "EF")].value}});
     const MotionTable t = kinema::analyse(held, {kinema::from_degrees(30)});
+    // Its derivatives are not the file's (EF no longer follows CE), though it shares the tape.
+    CHECK(&kinema::ParameterSensitivity(held.system, held.derivation, held.kinematics, "CE").tape() !=
+          &kinema::ParameterSensitivity(model.system, model.derivation, model.kinematics, "CE").tape());
     const kinema::Sensitivities s(held, kinema::sensitivity_columns(held.system, {"CE"}));
     std::vector<double> row(s.columns().size());
     s.rows(t, 0, 1, row.data(), true);
@@ -184,6 +188,38 @@ TEST_CASE("engine/numeric/sensitivity: columns asked one by one, named and in th
   const std::vector<kinema::SensitivityColumn> all = kinema::sensitivity_columns(model.system, {"omega3:b", "b"});
   CHECK(all.size() == kinema::differentiable_columns(model.system).size());
   CHECK(all[0].named.name == "d_omega3_d_b");
+}
+
+TEST_CASE("engine/numeric/sensitivity: a parameter's derivatives are compiled once for every model sharing the tape") {
+  // The Python module asks per call and a study per design: the second asking must not
+  // derive again, and a with_parameters copy's derivatives (the same tape, its own values)
+  // must still be its own.
+  const Model model = sample_model("four_bar.toml");
+  const kinema::ParameterSensitivity first(model.system, model.derivation, model.kinematics, "b");
+  const kinema::ParameterSensitivity again(model.system, model.derivation, model.kinematics, "b");
+  CHECK(&first.tape() == &again.tape());
+  const kinema::ParameterSensitivity other(model.system, model.derivation, model.kinematics, "c");
+  CHECK(&other.tape() != &first.tape());
+  const std::size_t b = kinema::written_parameter_index(model.system, "b");
+  const double changed = model.system.parameters[b].value * 1.1, h = 1e-5 * model.system.length_scale;
+  const Model copy = kinema::with_parameters(model, {{"b", changed}});
+  const kinema::ParameterSensitivity copied(copy.system, copy.derivation, copy.kinematics, "b");
+  CHECK(&copied.tape() == &first.tape());
+  const std::vector<double> inputs = inputs_between(0.1, 6.0, 7);
+  const MotionTable table = kinema::analyse(copy, inputs);
+  const Model above = kinema::with_parameters(model, {{"b", changed + h}});
+  const Model below = kinema::with_parameters(model, {{"b", changed - h}});
+  const MotionTable plus = kinema::analyse(above, inputs), minus = kinema::analyse(below, inputs);
+  kinema::SensitivityWorkspace workspace(copied);
+  kinema::StateDerivatives derivatives;
+  for (std::size_t r = 0; r < inputs.size(); ++r) {
+    REQUIRE(workspace.at(table, r, derivatives));
+    for (Eigen::Index i = 0; i < derivatives.qd.size(); ++i) {
+      const double difference = (plus.qd(r)[i] - minus.qd(r)[i]) / (2 * h);
+      INFO("row " << r << " rate " << i);
+      CHECK(derivatives.qd[i] == doctest::Approx(difference).epsilon(1e-6).scale(std::fabs(plus.qd(r)[i]) / model.system.length_scale));
+    }
+  }
 }
 
 TEST_CASE("engine/numeric/sensitivity: an unknown parameter or column is named with the list of names") {
