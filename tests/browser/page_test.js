@@ -130,6 +130,39 @@ async function checkPolygons(page, name, header, csvRow) {
     const panel = document.getElementById(id);
     return { text: panel.querySelector('text.tick').textContent, perPixel: Number(panel.getAttribute('data-per-pixel')) };
   }));
+  // Each vertex's name clear of every arrow's head (a small polygon's names were drawn
+  // over the heads), the panel one unit a pixel, the polygon filling a third of it or more.
+  const layouts = await page.evaluate(() => ['velocity-polygon', 'acceleration-polygon'].map((id) => {
+    const panel = document.getElementById(id);
+    const box = panel.getBoundingClientRect(), view = panel.viewBox.baseVal;
+    const heads = Array.from(panel.querySelectorAll('line[data-arrow]')).map((l) => {
+      const [x1, y1, x2, y2] = ['x1', 'y1', 'x2', 'y2'].map((a) => Number(l.getAttribute(a)));
+      const length = Math.hypot(x2 - x1, y2 - y1), u = [(x2 - x1) / length, (y2 - y1) / length];
+      const back = Math.min(9, length);  // the marker: 6 x 1.6 px long, half as wide each side
+      const corners = [[x2, y2], [x2 - u[0] * back - u[1] * 4, y2 - u[1] * back + u[0] * 4], [x2 - u[0] * back + u[1] * 4, y2 - u[1] * back - u[0] * 4]];
+      return { name: l.getAttribute('data-arrow'), x0: Math.min(...corners.map((c) => c[0])), x1: Math.max(...corners.map((c) => c[0])),
+        y0: Math.min(...corners.map((c) => c[1])), y1: Math.max(...corners.map((c) => c[1])) };
+    });
+    const labels = Array.from(panel.querySelectorAll('text.label')).map((t) => {
+      const b = t.getBBox();
+      return { text: t.textContent, x0: b.x, x1: b.x + b.width, y0: b.y, y1: b.y + b.height };
+    });
+    const marks = Array.from(panel.querySelectorAll('[data-vertex]')).map((m) => m.getBoundingClientRect());
+    const span = marks.length ? [Math.max(...marks.map((m) => m.right)) - Math.min(...marks.map((m) => m.left)),
+      Math.max(...marks.map((m) => m.bottom)) - Math.min(...marks.map((m) => m.top))] : [0, 0];
+    return { drawn: [box.width, box.height], view: [view.width, view.height], heads: heads, labels: labels, span: span };
+  }));
+  for (const layout of layouts) {
+    assert(Math.abs(layout.view[0] - layout.drawn[0]) <= 1 && Math.abs(layout.view[1] - layout.drawn[1]) <= 1,
+      `${name}: a polygon panel of ${layout.view} units drawn ${layout.drawn} px`);
+    const atOnePoint = layout.span[0] < 8 && layout.span[1] < 8;  // every image at the pole: nothing to fit
+    assert(atOnePoint || layout.span[0] >= (layout.drawn[0] - 60) / 1.6 || layout.span[1] >= 200 / 1.6,
+      `${name}: a polygon of ${layout.span} px in a panel of ${layout.drawn} px`);
+    for (const l of layout.labels)
+      for (const h of layout.heads)
+        assert(!(l.x0 < h.x1 - 0.5 && h.x0 + 0.5 < l.x1 && l.y0 < h.y1 - 0.5 && h.y0 + 0.5 < l.y1),
+          `${name}: the polygon's label "${l.text}" (${l.x0.toFixed(1)}, ${l.y0.toFixed(1)})-(${l.x1.toFixed(1)}, ${l.y1.toFixed(1)}) covers the head of ${h.name}`);
+  }
   for (const bar of bars) {
     const [number] = bar.text.split(' ');
     assert(!/[0-9]{6}/.test(number) && Math.abs(numberOf(number) - 50 * bar.perPixel) <= 1e-9 * 50 * bar.perPixel,
@@ -224,11 +257,14 @@ async function checkCentres(page, name) {
 // The plots' scales as a reader sees them: every label inside its chart (a wide one such as
 // "-1.50e+3" was cut by the chart's left edge) and left of the plotted area; a value's label
 // is 0 or of the size of its range (a speed's minimum of 1e-33 was written so); the input's
-// first and last values under the axis, the last with its unit.
+// first and last values under the axis, the last with its unit; a chart drawn one unit a
+// pixel (a full-width chart's text was stretched to twice its width).
 async function checkPlots(page, name, header, rows) {
   const charts = await page.evaluate(() => Array.from(document.querySelectorAll('.plot svg')).map((chart) => {
     const axis = chart.querySelector('line.axis');
+    const box = chart.getBoundingClientRect(), view = chart.viewBox.baseVal;
     return {
+      drawn: [box.width, box.height], view: [view.width, view.height],
       left: Math.min(Number(axis.getAttribute('x1')), Number(axis.getAttribute('x2'))),
       labels: Array.from(chart.querySelectorAll('text.tick')).map((t) => {
         const b = t.getBBox();
@@ -241,8 +277,10 @@ async function checkPlots(page, name, header, rows) {
   const unit = /\[(.*)\]$/.exec(input)[1];
   const first = Number(rows[0].split(',')[0]), last = Number(rows[rows.length - 1].split(',')[0]);
   for (const chart of charts) {
+    assert(Math.abs(chart.view[0] - chart.drawn[0]) <= 1 && Math.abs(chart.view[1] - chart.drawn[1]) <= 1,
+      `${name}: a plot of ${chart.view} units drawn ${chart.drawn} px (its text stretched)`);
     for (const l of chart.labels)
-      assert(l.x >= 0 && l.right <= 400 && l.y >= 0 && l.bottom <= 200, `${name}: the plot label "${l.text}" is cut: (${l.x}, ${l.y})-(${l.right}, ${l.bottom}) outside 400 x 200`);
+      assert(l.x >= 0 && l.right <= chart.view[0] && l.y >= 0 && l.bottom <= 200, `${name}: the plot label "${l.text}" is cut: (${l.x}, ${l.y})-(${l.right}, ${l.bottom}) outside ${chart.view[0]} x 200`);
     const scale = chart.labels.filter((l) => l.bottom < 190);
     assert.strictEqual(scale.length, 2, `${name}: a plot without its two scale values`);
     for (const l of scale) assert(l.right <= chart.left, `${name}: the scale value "${l.text}" overlaps the plot (${l.right} > ${chart.left})`);

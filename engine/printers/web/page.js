@@ -525,8 +525,9 @@
       svg('circle', { r: 3, class: className }, mark);
     });
     // Each label beside its mark, on no label placed before it: the first free of eight
-    // places around the mark, else stacked below it. Its size as drawn (a hidden panel
-    // measures nothing: then about 8 px a character of the 13 px text).
+    // places around the mark, else of the same eight moved out from it step by step (the
+    // nearest free place). Its size as drawn (a hidden panel measures nothing: then about
+    // 8 px a character of the 13 px text).
     const placed = (taken || []).slice();
     const overlaps = function (b) {
       return placed.some(function (o) { return b.x0 < o.x1 && o.x0 < b.x1 && b.y0 < o.y1 && o.y0 < b.y1; });
@@ -548,8 +549,12 @@
         if (!overlaps(b)) chosen = b;
       }
       for (let k = 1; !chosen; ++k) {
-        const b = box(6, 14 + height * k);
-        if (!overlaps(b)) chosen = b;
+        for (let j = 0; !chosen && j < around.length; ++j) {
+          const b = box(around[j][0], around[j][1]);
+          const cx = (b.x0 + b.x1) / 2 - g.p[0], cy = (b.y0 + b.y1) / 2 - g.p[1], d = Math.hypot(cx, cy) || 1;
+          const moved = box(around[j][0] + 5 * k * cx / d, around[j][1] + 5 * k * cy / d);
+          if (!overlaps(moved)) chosen = moved;
+        }
       }
       placed.push(chosen);
       label.setAttribute('x', fixed(chosen.x));
@@ -558,24 +563,36 @@
   }
 
   // The velocity and the acceleration polygon, each in a panel of its own, drawn as the
-  // notes draw them: at a round scale (1, 2 or 5 units a pixel times a power of ten) that
-  // fits the row's polygon, stated under it.
+  // notes draw them: at a round scale (1, 1.5, 2, 2.5, 3, 4, 5, 6 or 8 units a pixel times a power of ten)
+  // that fits the row's polygon into the panel as wide as it is drawn, stated under it.
   const polygonPanels = (function () {
     if (!hasPolygons) return [];
     return [['velocity polygon', '/s'], ['acceleration polygon', '/s^2']].map(function (kind, k) {
       const box = node('div', 'polygon', polygonArea);
       node('h2', '', box, kind[0]);
-      const panel = svg('svg', { viewBox: '0 0 400 300', id: k === 0 ? 'velocity-polygon' : 'acceleration-polygon' }, box);
+      const panel = svg('svg', { viewBox: '0 0 400 260', id: k === 0 ? 'velocity-polygon' : 'acceleration-polygon' }, box);
       return { svg: panel, key: node('p', 'key', box), unit: data.length_unit + kind[1], order: k };
     });
   })();
-  function roundScale(polygon) {
+  // A panel `width` by 260 units (pixels): the polygon within 30 of the sides, 20 of the
+  // top and 40 of the bottom (the scale bar's).
+  function roundScale(polygon, width) {
     const xs = polygon.vertices.map(function (v) { return v.at[0]; }), ys = polygon.vertices.map(function (v) { return v.at[1]; });
     const box = { x0: Math.min.apply(null, xs), x1: Math.max.apply(null, xs), y0: Math.min.apply(null, ys), y1: Math.max.apply(null, ys) };
-    const perPixel = Math.max((box.x1 - box.x0) / 340, (box.y1 - box.y0) / 250, 1e-300);
+    const perPixel = Math.max((box.x1 - box.x0) / (width - 60), (box.y1 - box.y0) / 200, 1e-300);
     const power = Math.pow(10, Math.floor(Math.log10(perPixel)));
-    const step = [1, 2, 5, 10].map(function (m) { return m * power; }).find(function (m) { return m >= perPixel * (1 - 1e-12); });
-    return { perPixel: step, cx: 200 - (box.x0 + box.x1) / 2 / step, cy: 150 + (box.y0 + box.y1) / 2 / step };
+    const step = [1, 1.5, 2, 2.5, 3, 4, 5, 6, 8, 10].map(function (m) { return m * power; }).find(function (m) { return m >= perPixel * (1 - 1e-12); });
+    return { perPixel: step, cx: width / 2 - (box.x0 + box.x1) / 2 / step, cy: 120 + (box.y0 + box.y1) / 2 / step };
+  }
+  // Boxes a polygon's labels keep off: each arrow's head (its marker, about 10 px long and
+  // 6 wide at the tip) and its shaft, sampled.
+  function arrowBoxes(p, q) {
+    const length = Math.hypot(q[0] - p[0], q[1] - p[1]), u = [(q[0] - p[0]) / length, (q[1] - p[1]) / length];
+    const boxes = [];
+    const around = function (c, r) { boxes.push({ x0: c[0] - r, x1: c[0] + r, y0: c[1] - r, y1: c[1] + r }); };
+    for (let d = 0; d < Math.min(10, length); d += 2) around([q[0] - u[0] * d, q[1] - u[1] * d], 4);
+    for (let d = 10; d < length; d += 4) around([q[0] - u[0] * d, q[1] - u[1] * d], 1.5);
+    return boxes;
   }
   function drawPolygons() {
     const shown = toggles.polygons && toggles.polygons.checked;
@@ -584,28 +601,33 @@
     const polygons = status(row) === 'ok' ? rowPolygons(row) : null;
     polygonPanels.forEach(function (panel) {
       panel.svg.textContent = '';
+      // One unit a pixel: the panel's viewBox as wide as the panel is drawn (text not stretched).
+      const width = Math.max(200, Math.round(panel.svg.getBoundingClientRect().width) || 400);
+      panel.svg.setAttribute('viewBox', '0 0 ' + width + ' 260');
       if (!polygons) {
         panel.key.textContent = '';
-        svg('text', { x: 200, y: 150, class: 'message' }, panel.svg, 'No polygon at this value.');
+        svg('text', { x: width / 2, y: 130, class: 'message' }, panel.svg, 'No polygon at this value.');
         return;
       }
       const polygon = polygons[panel.order];
-      const scale = roundScale(polygon);
+      const scale = roundScale(polygon, width);
       panel.svg.setAttribute('data-per-pixel', scale.perPixel);
       // A scale bar of 50 units of the panel (a round length).
       const bar = 50 * scale.perPixel;
-      svg('path', { d: 'M12,280 v5 h50 v-5', class: 'scale-bar', fill: 'none' }, panel.svg);
-      svg('text', { x: 70, y: 286, class: 'tick' }, panel.svg, readable(bar, 2) + ' ' + panel.unit);
+      svg('path', { d: 'M12,242 v5 h50 v-5', class: 'scale-bar', fill: 'none' }, panel.svg);
+      svg('text', { x: 70, y: 248, class: 'tick' }, panel.svg, readable(bar, 3) + ' ' + panel.unit);
       panel.key.textContent = '';
       const place = function (p) { return [scale.cx + p[0] / scale.perPixel, scale.cy - p[1] / scale.perPixel]; };
+      const taken = [];
       polygon.arrows.forEach(function (a) {
         const p = place(a.from), q = place(a.to);
         if (Math.hypot(q[0] - p[0], q[1] - p[1]) < 0.5) return;
         const arrowLine = svg('line', { x1: fixed(p[0]), y1: fixed(p[1]), x2: fixed(q[0]), y2: fixed(q[1]),
           class: 'polygon-arrow polygon-' + a.kind, 'marker-end': 'url(#head-polygon)' }, panel.svg);
         arrowLine.setAttribute('data-arrow', a.name);
+        Array.prototype.push.apply(taken, arrowBoxes(p, q));
       });
-      drawLabelled(polygon.vertices, place, panel.svg, 'point', 'data-vertex', ' = ');
+      drawLabelled(polygon.vertices, place, panel.svg, 'point', 'data-vertex', ' = ', taken);
     });
   }
 
@@ -767,11 +789,17 @@
   // Made again when the sliders solve new rows.
   function buildPlots() {
     plotArea.textContent = '';
-    plots = data.columns.plots.filter(function (p) { return p.fields.length > 0; }).map(function (plot) {
+    // Every chart placed before any is measured: each one added narrows those before it.
+    const shown = data.columns.plots.filter(function (p) { return p.fields.length > 0; }).map(function (plot) {
       const box = node('div', 'plot', plotArea);
       node('h2', '', box, plot.title + (data.circuit ? ' along the circuit' : ' against ' + data.input.name));
-      const chart = svg('svg', { viewBox: '0 0 400 200', preserveAspectRatio: 'none', class: 'chart' }, box);
-      const legend = node('div', 'legend', box);
+      return { plot: plot, chart: svg('svg', { class: 'chart' }, box), legend: node('div', 'legend', box) };
+    });
+    plots = shown.map(function (placed) {
+      const plot = placed.plot, chart = placed.chart, legend = placed.legend;
+      // One unit a pixel: as wide as the chart is drawn, so that its text is not stretched.
+      const W = Math.max(200, Math.round(chart.getBoundingClientRect().width) || 400);
+      chart.setAttribute('viewBox', '0 0 ' + W + ' 200');
       const xs = numbers.map(function (n, r) { return data.circuit ? r : n[0]; });
       let lo = Infinity, hi = -Infinity;
       plot.fields.forEach(function (f) { numbers.forEach(function (n) { if (isFinite(n[f])) { lo = Math.min(lo, n[f]); hi = Math.max(hi, n[f]); } }); });
@@ -785,16 +813,16 @@
       const left = Math.max(40, 8 + Math.max(labelWidth(top), labelWidth(bottom)));
       top.setAttribute('x', left - 4);
       bottom.setAttribute('x', left - 4);
-      const X = function (x) { return left + (x - x0) / ((x1 - x0) || 1) * (390 - left); };
+      const X = function (x) { return left + (x - x0) / ((x1 - x0) || 1) * (W - 10 - left); };
       const Y = function (y) { return 182 - (y - lo) / (hi - lo) * 172; };
-      svg('line', { x1: left, y1: 182, x2: 390, y2: 182, class: 'axis' }, chart);
+      svg('line', { x1: left, y1: 182, x2: W - 10, y2: 182, class: 'axis' }, chart);
       svg('line', { x1: left, y1: 10, x2: left, y2: 182, class: 'axis' }, chart);
-      if (lo < 0 && hi > 0) svg('line', { x1: left, y1: Y(0), x2: 390, y2: Y(0), class: 'axis' }, chart);
+      if (lo < 0 && hi > 0) svg('line', { x1: left, y1: Y(0), x2: W - 10, y2: Y(0), class: 'axis' }, chart);
       // The input's range under the axis (along a circuit: the rows).
       const first = data.circuit ? 'row 1' : tickLabel(x0, x1 - x0);
       const last = data.circuit ? 'row ' + count : tickLabel(x1, x1 - x0) + ' ' + data.input.unit;
       svg('text', { x: left, y: 196, class: 'tick', 'text-anchor': 'start' }, chart, first);
-      svg('text', { x: 390, y: 196, class: 'tick', 'text-anchor': 'end' }, chart, last);
+      svg('text', { x: W - 10, y: 196, class: 'tick', 'text-anchor': 'end' }, chart, last);
       plot.fields.forEach(function (f, k) {
         let path = '', pen = false;
         numbers.forEach(function (n, r) {
@@ -810,7 +838,7 @@
       const cursor = svg('line', { y1: 10, y2: 182, class: 'cursor', 'vector-effect': 'non-scaling-stroke' }, chart);
       chart.addEventListener('click', function (event) {
         const b = chart.getBoundingClientRect();
-        const x = x0 + ((event.clientX - b.left) / b.width * 400 - left) / (390 - left) * ((x1 - x0) || 1);
+        const x = x0 + ((event.clientX - b.left) / b.width * W - left) / (W - 10 - left) * ((x1 - x0) || 1);
         let best = 0;
         xs.forEach(function (v, r) { if (Math.abs(v - x) < Math.abs(xs[best] - x)) best = r; });
         setRow(best);
@@ -904,7 +932,11 @@
   });
   picture.addEventListener('pointerup', function () { drag = null; });
   picture.addEventListener('dblclick', function () { fit(); drawTraces(); draw(); });
-  window.addEventListener('resize', function () { fit(); drawTraces(); draw(); });
+  window.addEventListener('resize', function () {
+    fit(); drawTraces(); draw();
+    buildPlots(); drawPolygons();
+    plots.forEach(function (p) { p.cursor.setAttribute('x1', p.x()); p.cursor.setAttribute('x2', p.x()); });
+  });
 
 
   // Dimension sliders: the mechanism solved again in the page for other values of the
