@@ -184,6 +184,39 @@ async function checkPolygons(page, name, header, csvRow) {
   return checked;
 }
 
+// The velocity and acceleration arrows at the current value: every arrow from a point in the
+// panel ends in it (near the piston's toggle the accelerations ran thousands of pixels off
+// the panel); one stopped at the edge has its magnitude written there, which is the
+// point's speed or acceleration in eval's row. Returns how many were stopped.
+async function checkArrows(page, name, header, csvRow) {
+  const fields = csvRow.split(',').map(Number);
+  const found = await page.evaluate(() => {
+    const box = document.getElementById('show-acceleration');
+    if (!box.checked) box.click();
+    const svg = document.getElementById('mechanism'), size = svg.getBoundingClientRect();
+    const arrows = Array.from(svg.querySelectorAll('#overlay line.velocity, #overlay line.acceleration')).map((l) => ({
+      kind: l.classList.contains('velocity') ? 'velocity' : 'acceleration', beyond: l.hasAttribute('data-beyond'),
+      from: [Number(l.getAttribute('x1')), Number(l.getAttribute('y1'))], to: [Number(l.getAttribute('x2')), Number(l.getAttribute('y2'))] }));
+    const written = Array.from(svg.querySelectorAll('#overlay text.arrow-beyond')).map((t) => t.textContent);
+    const boxes = Array.from(svg.querySelectorAll('#overlay text.arrow-beyond')).map((t) => t.getBBox());
+    const overlapping = boxes.some((b, i) => boxes.some((o, j) => j > i && b.x < o.x + o.width && o.x < b.x + b.width && b.y < o.y + o.height && o.y < b.y + b.height));
+    box.click();
+    return { width: size.width, height: size.height, arrows: arrows, written: written, overlapping: overlapping };
+  });
+  assert(!found.overlapping, `${name}: the magnitudes of arrows beyond the panel written over each other: ${found.written}`);
+  const inside = (c) => c[0] >= 0 && c[0] <= found.width && c[1] >= 0 && c[1] <= found.height;
+  const beyond = found.arrows.filter((a) => a.beyond);
+  for (const a of found.arrows)
+    if (inside(a.from)) assert(inside(a.to), `${name}: a ${a.kind} arrow from (${a.from}) ends beyond the panel at (${a.to})`);
+  assert.strictEqual(found.written.length, beyond.length, `${name}: ${beyond.length} arrows stopped at the edge, ${found.written.length} magnitudes written`);
+  const magnitudes = header.map((h, k) => (/_(speed|acceleration) \[/.test(h) ? fields[k] : null)).filter((v) => v !== null);
+  for (const text of found.written) {
+    const value = numberOf(text.split(' ')[0]);
+    assert(magnitudes.some((m) => Math.abs(m - value) <= 5e-3 * Math.abs(m)), `${name}: "${text}" is no point's speed or acceleration in eval's row`);
+  }
+  return beyond.length;
+}
+
 // The instant centres with the toggle on: every pair of bodies has its centre drawn (a mark,
 // or an arrow toward one at infinity) or is listed as not found; a centre at a joint is there.
 async function checkCentres(page, name) {
@@ -388,6 +421,10 @@ async function checkSample(browser, file) {
   const ok = rows.map((r, k) => (r.split(',')[3] === 'ok' ? k : -1)).filter((k) => k >= 0);
   const picks = [ok[Math.floor(ok.length / 6)], ok[Math.floor(ok.length / 2)], ok[Math.floor((5 * ok.length) / 6)]];
   await checkPlots(page, name, header, rows);
+  if (!spatial) {  // at the value the page opens at (the piston's: next to its toggle)
+    const opened = await page.evaluate(() => Number(document.getElementById('scrubber').value));
+    arrowsBeyond[name] = await checkArrows(page, name, header, rows[opened]);
+  }
   let joints = 0;
   for (const row of picks) {
     await scrubTo(page, row);
@@ -396,6 +433,7 @@ async function checkSample(browser, file) {
     if (spatial) continue;
     joints += checkJoints(name, header, rows[row], view);
     constructions.images += await checkPolygons(page, name, header, rows[row]);
+    await checkArrows(page, name, header, rows[row]);
     if (await checkCentres(page, name)) constructions.centres.add(name);
   }
   if (!spatial) {
@@ -682,6 +720,7 @@ async function checkSliderRanges(page) {
 // What the samples' constructions showed (each planar sample has polygons; joints-and-links
 // ones have centres), checked after all ran.
 const constructions = { images: 0, centres: new Set(), solvedImages: 0, solvedCentres: 0 };
+const arrowsBeyond = {};  // per sample, at the value its page opens at
 
 // A title, description and file name written to run script: shown as text, nothing runs.
 async function checkHostile(browser) {
@@ -731,6 +770,7 @@ async function checkHostile(browser) {
     assert(constructions.solvedCentres >= 15, `only ${constructions.solvedCentres} re-solved instant centres checked`);
     assert(constructions.solvedImages >= 20, `only ${constructions.solvedImages} re-solved polygon images checked against eval`);
     assert(constructions.images >= 20, `only ${constructions.images} polygon images checked against eval`);
+    assert(arrowsBeyond.piston_driven_crank > 0, 'the piston opened next to its toggle with no arrow stopped at the edge');
     for (const joints of ['problem_4_4_joints', 'crank_shaper', 'example_4_2_joints', 'triple_rocker_circuit'])
       assert(constructions.centres.has(joints), `${joints}: no instant centres shown`);
     console.log(`page: ${samples.length} samples, failed rows and hostile strings checked in chromium in ${Date.now() - started} ms`);

@@ -265,6 +265,8 @@
     const e = fitted();
     const sx = (e.maxX - e.minX) || extent.size, sy = (e.maxY - e.minY) || extent.size;
     view.scale = 0.8 * Math.min(w / sx, h / sy);
+    view.width = w;
+    view.height = h;
     view.ox = w / 2 - view.scale * (e.minX + e.maxX) / 2;
     view.oy = h / 2 + view.scale * (e.minY + e.maxY) / 2;
   }
@@ -336,10 +338,42 @@
     svg('text', {}, g, part.label);
   }
 
-  function arrow(from, vector, factor, className, parent) {
+  // An arrow from a point in the panel whose tip would be beyond it (near a toggle the
+  // rates grow without bound) stops at the panel's edge, its magnitude written there:
+  // the arrow's scale stays the run's.
+  function arrow(from, vector, factor, className, parent, magnitude) {
     if (!(factor > 0) || !isFinite(vector[0]) || Math.hypot(vector[0], vector[1]) === 0) return;
     const tip = [from[0] + vector[0] * factor, from[1] + vector[1] * factor];
-    line(from, tip, className, parent).setAttribute('marker-end', 'url(#head-' + className + ')');
+    const p = px(from), q = px(tip), margin = 14;
+    const lo = [margin, margin], hi = [view.width - margin, view.height - margin];
+    const within = function (c) { return c[0] >= lo[0] && c[0] <= hi[0] && c[1] >= lo[1] && c[1] <= hi[1]; };
+    if (!within(p) || within(q)) {
+      line(from, tip, className, parent).setAttribute('marker-end', 'url(#head-' + className + ')');
+      return;
+    }
+    let t = 1;  // how far along p -> q the panel's edge is
+    for (let k = 0; k < 2; ++k) {
+      const d = q[k] - p[k];
+      if (d > 0) t = Math.min(t, (hi[k] - p[k]) / d);
+      if (d < 0) t = Math.min(t, (lo[k] - p[k]) / d);
+    }
+    const end = [p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1])];
+    const shaft = svg('line', { x1: p[0], y1: p[1], x2: end[0], y2: end[1], class: className + ' beyond',
+      'marker-end': 'url(#head-' + className + ')' }, parent);
+    shaft.setAttribute('data-beyond', '1');
+    const right = end[0] > view.width / 2, below = end[1] > view.height / 2;
+    const text = svg('text', { x: fixed(end[0] + (right ? -4 : 4)), class: 'arrow-beyond ' + className + '-beyond',
+      'text-anchor': right ? 'end' : 'start' }, parent,
+      readable(magnitude, 3) + ' ' + data.length_unit + (className === 'velocity' ? '/s' : '/s^2') + ' (beyond)');
+    // Off the magnitudes written before it (two points' arrows leave by the same edge):
+    // moved along the edge, inwards, a line at a time.
+    const before = Array.from(parent.querySelectorAll('text.arrow-beyond')).filter(function (t) { return t !== text; })
+      .map(function (t) { return t.getBBox(); });
+    for (let k = 0, y = end[1] + (below ? -6 : 14); k < 50; ++k, y += below ? -13 : 13) {
+      text.setAttribute('y', fixed(y));
+      const b = text.getBBox();
+      if (!before.some(function (o) { return b.x < o.x + o.width && o.x < b.x + b.width && b.y < o.y + o.height && o.y < b.y + b.height; })) break;
+    }
   }
 
   function message(text, parent) {
@@ -417,9 +451,9 @@
       const g = svg('g', { 'data-point': p.name, transform: 'translate(' + q[0] + ',' + q[1] + ')' }, overlay);
       svg('circle', { r: 2.5, class: 'point' }, g);
       if (!named) svg('text', { x: 6, y: -6, class: 'label' }, g, p.name);
-      if (toggles.velocity.checked) arrow(at, [n[p.velocity], n[p.velocity + 1]], velocityScale, 'velocity', overlay);
+      if (toggles.velocity.checked) arrow(at, [n[p.velocity], n[p.velocity + 1]], velocityScale, 'velocity', overlay, n[p.speed]);
       if (toggles.acceleration.checked) {
-        arrow(at, [n[p.acceleration], n[p.acceleration + 1]], accelerationScale, 'acceleration', overlay);
+        arrow(at, [n[p.acceleration], n[p.acceleration + 1]], accelerationScale, 'acceleration', overlay, n[p.acceleration + 2]);  // then its magnitude
       }
     });
     if (toggles.centres && toggles.centres.checked) drawCentres(overlay);
@@ -729,8 +763,10 @@
       svg('text', { x: 6, y: -6, class: 'label' }, mark, p.name);
       const d = p.dimension;
       const vector = function (k) { return projectVector([n[k], n[k + 1], d === 3 ? n[k + 2] : 0]); };
-      if (toggles.velocity.checked) arrow(flat, vector(p.velocity), velocityScale, 'velocity', overlay);
-      if (toggles.acceleration.checked) arrow(flat, vector(p.acceleration), accelerationScale, 'acceleration', overlay);
+      if (toggles.velocity.checked) arrow(flat, vector(p.velocity), velocityScale, 'velocity', overlay, n[p.speed]);
+      if (toggles.acceleration.checked) {
+        arrow(flat, vector(p.acceleration), accelerationScale, 'acceleration', overlay, n[p.acceleration + d]);
+      }
     });
     drawScaleBar(overlay);
   }
