@@ -205,6 +205,14 @@ InstantCentres named_bodies(const ConstraintSystem& system, const std::vector<Po
   return result;
 }
 
+// The fastest-turning body's angular velocity: two bodies' that differ by a
+// kCentreParallelTolerance of it turn alike.
+double fastest_turning(const InstantCentres& result) {
+  double fastest = 0;
+  for (double w : result.angular_velocities) fastest = std::max(fastest, std::fabs(w));
+  return fastest;
+}
+
 double fastest_point(const MotionState& s) {
   double fastest = 0;
   for (const PointMotion& m : s.points) fastest = std::max(fastest, m.speed());
@@ -224,14 +232,14 @@ InstantCentres centres_of_bodies(const ConstraintSystem& system, const MotionSta
   result.angular_velocities.push_back(0);
   for (const PointBody& b : bodies) result.angular_velocities.push_back(b.omega);
   const std::size_t n = result.bodies.size();
-  const double fastest = fastest_point(s);
+  const double fastest = fastest_point(s), turning = fastest_turning(result);
   for (std::size_t a = 0; a < n; ++a) {
     for (std::size_t b = a + 1; b < n; ++b) {
       const double wa = result.angular_velocities[a], wb = result.angular_velocities[b];
       const Complex A = body_point(bodies, a), B = body_point(bodies, b), I(0, 1);
       const Complex va = body_velocity(bodies, a), vb = body_velocity(bodies, b);
       const std::string how = found_by(result, a, b);
-      if (std::fabs(wa - wb) <= kCentreParallelTolerance * (std::fabs(wa) + std::fabs(wb))) {
+      if (std::fabs(wa - wb) <= kCentreParallelTolerance * turning) {
         // Uniform where they turn alike: v_b(P) - v_a(P) = v_b(B) - v_a(A) + i omega (A - B).
         const Complex relative = vb - va + I * wa * (A - B);
         if (std::abs(relative) <= 1e-12 * fastest) continue;  // moving as one: no centre
@@ -245,10 +253,45 @@ InstantCentres centres_of_bodies(const ConstraintSystem& system, const MotionSta
   return result;
 }
 
+// Each body's angular velocity and point as the drawing stage gives them (result.tape_bodies
+// says which of the tape's each body is; ground, 0, is at rest at the origin).
+void read_tape_bodies(InstantCentres& result, const TapeLayout& layout, const std::vector<double>& values,
+                      std::vector<Complex>& points) {
+  points.assign(1, 0);
+  result.angular_velocities.assign(1, 0);
+  for (std::size_t b = 1; b < result.tape_bodies.size(); ++b) {
+    const double* body = values.data() + layout.centre_body_output(result.tape_bodies[b]);
+    result.angular_velocities.push_back(body[0]);
+    points.push_back({body[1], body[2]});
+  }
+}
+
+// Every pair's centre as the drawing stage gives it: N / (i D), at infinity across N where
+// the two turn alike, none where N is 0 too (moving as one); each named `how`.
+void add_tape_centres(InstantCentres& result, const TapeLayout& layout, const std::vector<double>& values,
+                      const MotionState& s, const std::function<std::string(std::size_t, std::size_t)>& how) {
+  const std::size_t n = result.bodies.size();
+  const double fastest = fastest_point(s), turning = fastest_turning(result);
+  for (std::size_t a = 0; a < n; ++a) {
+    for (std::size_t b = a + 1; b < n; ++b) {
+      const std::size_t ta = result.tape_bodies[a], tb = result.tape_bodies[b];
+      const double* pair = values.data() + layout.centre_pair_output(std::min(ta, tb), std::max(ta, tb));
+      const double sign = ta < tb ? 1.0 : -1.0;  // the tape's pair the other way round: both negated
+      const Complex N(sign * pair[0], sign * pair[1]);
+      const double D = sign * pair[2];
+      if (std::fabs(D) <= kCentreParallelTolerance * turning) {
+        if (std::abs(N) <= 1e-12 * fastest) continue;  // moving as one: no centre
+        result.centres.push_back({a, b, true, Complex(-N.imag(), N.real()) / std::abs(N), how(a, b), {}, std::nullopt, {}});
+        continue;
+      }
+      result.centres.push_back({a, b, false, {N.imag() / D, -N.real() / D}, how(a, b), {}, std::nullopt, {}});
+    }
+  }
+}
+
 // The same centres read from the model's drawing stage (centre_formulas.hpp), the bodies
-// the construction found matched to the tape's by link or slider: each N / (i D), at
-// infinity across N where they turn alike. Nullopt where a body is not on the tape.
-// `points` gets each body's point as the tape gives it.
+// the construction found matched to the tape's by link or slider. Nullopt where a body is
+// not on the tape. `points` gets each body's point as the tape gives it.
 std::optional<InstantCentres> centres_from_tape(const MechanismGeometry& geometry, const MotionState& s,
                                                 const std::vector<PointBody>& bodies, const std::string& ground,
                                                 std::vector<Complex>& points) {
@@ -266,37 +309,27 @@ std::optional<InstantCentres> centres_from_tape(const MechanismGeometry& geometr
     if (found == 0) return std::nullopt;
     result.tape_bodies.push_back(found);
   }
-  points.assign(1, 0);
-  result.angular_velocities.push_back(0);
-  for (std::size_t b = 1; b < result.tape_bodies.size(); ++b) {
-    const double* body = values.data() + layout.centre_body_output(result.tape_bodies[b]);
-    result.angular_velocities.push_back(body[0]);
-    points.push_back({body[1], body[2]});
-  }
-  const std::size_t n = result.bodies.size();
-  const double fastest = fastest_point(s);
-  for (std::size_t a = 0; a < n; ++a) {
-    for (std::size_t b = a + 1; b < n; ++b) {
-      const std::size_t ta = result.tape_bodies[a], tb = result.tape_bodies[b];
-      const double* pair = values.data() + layout.centre_pair_output(std::min(ta, tb), std::max(ta, tb));
-      const double sign = ta < tb ? 1.0 : -1.0;  // the tape's pair the other way round: both negated
-      const Complex N(sign * pair[0], sign * pair[1]);
-      const double D = sign * pair[2], wa = result.angular_velocities[a], wb = result.angular_velocities[b];
-      if (std::fabs(D) <= kCentreParallelTolerance * (std::fabs(wa) + std::fabs(wb))) {
-        if (std::abs(N) <= 1e-12 * fastest) continue;  // moving as one: no centre
-        result.centres.push_back({a, b, true, Complex(-N.imag(), N.real()) / std::abs(N), found_by(result, a, b), {},
-                                  std::nullopt, {}});
-        continue;
-      }
-      result.centres.push_back({a, b, false, {N.imag() / D, -N.real() / D}, found_by(result, a, b), {}, std::nullopt, {}});
-    }
-  }
+  read_tape_bodies(result, layout, values, points);
+  add_tape_centres(result, layout, values, s,
+                   [&result](std::size_t a, std::size_t b) { return found_by(result, a, b); });
   return result;
 }
 
+// A centre at infinity is seen from the block of the two (rate 0, not ground), else from
+// the moving body, else from both: the mean of their points (the tape's).
+void see_from_bodies(InstantCentre& centre, const InstantCentres& result, const std::vector<Complex>& points) {
+  const auto block = [&](std::size_t b) { return b != 0 && result.rates[b].is_zero(); };
+  centre.seen_bodies = block(centre.b) || centre.a == 0 ? std::vector<std::size_t>{centre.b}
+                       : block(centre.a)                ? std::vector<std::size_t>{centre.a}
+                                                        : std::vector<std::size_t>{centre.a, centre.b};
+  Complex sum = 0;
+  for (std::size_t b : centre.seen_bodies) sum += points[b];
+  centre.seen_from = sum / double(centre.seen_bodies.size());
+}
+
 // Centres away from the joints: on the two Kennedy lines (through I_ab and I_bc for
-// another body b) that cross there most squarely. A centre at infinity is seen from the
-// block (rate 0, not ground), else from the moving body.
+// another body b) that cross there most squarely. A centre at infinity is seen from its
+// bodies (see_from_bodies).
 void mark_kennedy_lines(InstantCentres& result, const std::vector<Complex>& points, const MotionState& s,
                         double length_scale) {
   const std::size_t n = result.bodies.size();
@@ -304,13 +337,7 @@ void mark_kennedy_lines(InstantCentres& result, const std::vector<Complex>& poin
   for (const PointMotion& m : s.points) joints.push_back({m.position[0], m.position[1]});
   for (InstantCentre& centre : result.centres) {
     if (centre.at_infinity) {
-      const auto block = [&](std::size_t b) { return b != 0 && result.rates[b].is_zero(); };
-      centre.seen_bodies = block(centre.b) || centre.a == 0 ? std::vector<std::size_t>{centre.b}
-                           : block(centre.a)                ? std::vector<std::size_t>{centre.a}
-                                                            : std::vector<std::size_t>{centre.a, centre.b};
-      Complex sum = 0;
-      for (std::size_t b : centre.seen_bodies) sum += points[b];
-      centre.seen_from = sum / double(centre.seen_bodies.size());
+      see_from_bodies(centre, result, points);
       continue;
     }
     bool joint = false;
@@ -348,8 +375,10 @@ bool list_missing_and_check_finite(InstantCentres& result) {
 }
 
 // Kennedy: I_ac on the line I_ab I_bc and on the line I_ad I_dc; of all such pairs of
-// lines the one that crosses most squarely. Repeated until no centre is added.
-void complete_by_kennedy(InstantCentres& result, double length_scale) {
+// lines the one that crosses most squarely. Repeated until no centre is added. With
+// `given` (the tape's centres) each centre is put where that has it, found by the lines
+// the construction chose: where it stands is read, not constructed.
+void complete_by_kennedy(InstantCentres& result, double length_scale, const InstantCentres* given = nullptr) {
   const std::size_t n = result.bodies.size();
   for (bool found = true; found;) {
     found = false;
@@ -380,11 +409,19 @@ void complete_by_kennedy(InstantCentres& result, double length_scale) {
                 chosen = InstantCentre{a, c, true, p.along, how, kennedy, p.through, {}};
               continue;
             }
-            if (sine <= best) continue;
+            if (sine <= best + 1e-9) continue;  // a tie (lines that are one) to the first pair, however rounded
             best = sine;
             const double t = cross(q.through - p.through, q.along) / cross(p.along, q.along);
             chosen = InstantCentre{a, c, false, p.through + t * p.along, how, kennedy, std::nullopt, {}};
           }
+        }
+        if (chosen && given) {
+          const InstantCentre* there = given->find(a, c);
+          if (!there) continue;  // the two move as one
+          chosen->at_infinity = there->at_infinity;
+          chosen->at = there->at;
+          chosen->seen_from = there->seen_from;
+          chosen->seen_bodies = there->seen_bodies;
         }
         if (chosen) {
           result.centres.push_back(*chosen);
@@ -417,6 +454,123 @@ std::optional<InstantCentres> centres_from_points(const MechanismGeometry& geome
   return result;
 }
 
+// A joints-and-links mechanism's bodies (ground, then its links) by name, with the rates
+// they turn at (0 for ground and the blocks) and the driver.
+InstantCentres plan_bodies(const ConstraintSystem& system) {
+  const SolvingPlan& plan = *system.plan;
+  InstantCentres result;
+  result.driver = plan.driver_body;
+  bool zero_named = false;
+  for (const SolvingPlan::Link& link : plan.links) zero_named = zero_named || link.name == "0";
+  result.bodies.push_back(zero_named ? "g" : "0");
+  for (std::size_t b = 1; b < plan.bodies.size(); ++b) result.bodies.push_back(plan.links[b - 1].name);
+  for (std::size_t b = 0; b < plan.bodies.size(); ++b) {
+    const SolvingPlan::Body& body = plan.bodies[b];
+    result.rates.push_back(body.unknown >= 0                                   ? GiNaC::ex(system.unknowns[body.unknown].rate)
+                           : b == plan.driver_body && plan.driver_slider < 0 ? GiNaC::ex(system.input.rate)
+                                                                              : GiNaC::ex(0));
+  }
+  return result;
+}
+
+// The primary centres: each pin's at its joint, each slider's at infinity across its line
+// (seen from its joint), where `place` puts them (nullopt: none).
+void add_primary_centres(const SolvingPlan& plan, InstantCentres& result,
+                         const std::function<std::optional<InstantCentre>(bool slider, std::size_t k)>& place) {
+  const auto add = [&](std::size_t a, std::size_t b, std::optional<InstantCentre> centre, const std::string& how) {
+    if (a > b) std::swap(a, b);
+    if (a == b || result.find(a, b) || !centre) return;
+    centre->a = a;
+    centre->b = b;
+    centre->found_by = how;
+    result.centres.push_back(*centre);
+  };
+  for (std::size_t k = 0; k < plan.pins.size(); ++k)
+    add(plan.pins[k].a, plan.pins[k].b, place(false, k), "pin " + plan.joints[plan.pins[k].joint].name);
+  for (std::size_t k = 0; k < plan.sliders.size(); ++k)
+    add(plan.sliders[k].block, plan.sliders[k].guide, place(true, k), "slider " + plan.joints[plan.sliders[k].joint].name);
+}
+
+// A joints-and-links mechanism's centres as a course constructs them, from the bodies'
+// poses: the primary ones at the joints, the others by Kennedy.
+std::optional<InstantCentres> constructed_plan_centres(const MechanismGeometry& geometry, const MotionState& s) {
+  const ConstraintSystem& system = geometry.system();
+  const SolvingPlan& plan = *system.plan;
+  const std::vector<int> signs = signs_nearest(plan, s.input, s.q.data(), system.length_scale);
+  std::vector<BodyPose> poses;
+  if (place_dyads(plan, s.input, poses, &signs) < plan.dyads.size()) return std::nullopt;
+  InstantCentres result = plan_bodies(system);
+  const std::function<double(std::size_t)> omega = [&](std::size_t b) -> double {
+    const SolvingPlan::Body& body = plan.bodies[b];
+    if (b == 0) return 0.0;
+    if (body.unknown >= 0) return s.qd[body.unknown];
+    if (body.guide >= 0) return omega(static_cast<std::size_t>(body.guide));
+    return b == plan.driver_body && plan.driver_slider < 0 ? s.input_rate : 0.0;
+  };
+  for (std::size_t b = 0; b < plan.bodies.size(); ++b) result.angular_velocities.push_back(omega(b));
+  const auto world = [&](std::size_t b, std::size_t joint) {
+    for (const auto& [j, local] : plan.bodies[b].points)
+      if (j == joint) return b == 0 ? local : poses[b].origin + local * std::polar(1.0, poses[b].angle);
+    return Complex();
+  };
+  add_primary_centres(plan, result, [&](bool slider, std::size_t k) -> std::optional<InstantCentre> {
+    if (!slider) return InstantCentre{0, 0, false, world(plan.pins[k].a, plan.pins[k].joint), "", {}, std::nullopt, {}};
+    const SolvingPlan::Slider& sl = plan.sliders[k];
+    const double line = (sl.guide == 0 ? 0.0 : poses[sl.guide].angle) + sl.direction;
+    return InstantCentre{0, 0, true, std::polar(1.0, line + kPi / 2), "", {}, world(sl.block, sl.joint), {}};
+  });
+  complete_by_kennedy(result, system.length_scale);
+  return result;
+}
+
+// The same centres read from the model's drawing stage (centre_formulas.hpp: the tape's
+// bodies say which of the plan's they are), found by the joints and the Kennedy lines the
+// construction would choose. Nullopt where a body is not on the tape.
+std::optional<InstantCentres> plan_centres_from_tape(const MechanismGeometry& geometry, const MotionState& s) {
+  const TapeLayout& layout = geometry.layout();
+  const std::vector<double> values = geometry.drawing_values(s);
+  if (values.size() != layout.drawing_output_count()) return std::nullopt;
+  InstantCentres result = plan_bodies(geometry.system());
+  result.tape_bodies.assign(1, 0);
+  for (std::size_t b = 1; b < result.bodies.size(); ++b) {
+    std::size_t found = 0;
+    for (std::size_t t = 0; t < layout.centre_bodies.size(); ++t)
+      if (layout.centre_bodies[t].plan_body == static_cast<int>(b)) found = t + 1;
+    if (found == 0) return std::nullopt;
+    result.tape_bodies.push_back(found);
+  }
+  std::vector<Complex> points;
+  read_tape_bodies(result, layout, values, points);
+  InstantCentres tape = result;
+  add_tape_centres(tape, layout, values, s, [](std::size_t, std::size_t) { return std::string(); });
+  for (InstantCentre& centre : tape.centres)
+    if (centre.at_infinity) see_from_bodies(centre, tape, points);
+  const SolvingPlan& plan = *geometry.system().plan;
+  add_primary_centres(plan, result, [&](bool slider, std::size_t k) -> std::optional<InstantCentre> {
+    const InstantCentre* there = slider ? tape.find(plan.sliders[k].block, plan.sliders[k].guide)
+                                        : tape.find(plan.pins[k].a, plan.pins[k].b);
+    return there ? std::optional<InstantCentre>(*there) : std::nullopt;
+  });
+  complete_by_kennedy(result, geometry.system().length_scale, &tape);
+  // Where two bodies move as one (no centre of theirs) Kennedy may not reach a centre the
+  // tape has: found by the velocities, as a vector-loop file's.
+  for (const InstantCentre& centre : tape.centres)
+    if (!result.find(centre.a, centre.b)) {
+      result.centres.push_back(centre);
+      result.centres.back().found_by = found_by(result, centre.a, centre.b);
+    }
+  return result;
+}
+
+// The pairs not found, in order, and the ratios; nullopt where a centre is not finite.
+std::optional<InstantCentres> finish_plan_centres(InstantCentres result, double length_scale) {
+  if (!list_missing_and_check_finite(result)) return std::nullopt;
+  std::sort(result.centres.begin(), result.centres.end(),
+            [](const InstantCentre& p, const InstantCentre& q) { return std::pair(p.a, p.b) < std::pair(q.a, q.b); });
+  add_ratios(result, length_scale);
+  return result;
+}
+
 }  // namespace
 
 const InstantCentre* InstantCentres::find(std::size_t a, std::size_t b) const {
@@ -428,8 +582,11 @@ const InstantCentre* InstantCentres::find(std::size_t a, std::size_t b) const {
 
 std::optional<InstantCentres> constructed_instant_centres(const MechanismGeometry& geometry, const MotionState& s) {
   const ConstraintSystem& system = geometry.system();
-  if (s.status != Status::ok || system.plan || !system.frames.empty()) return std::nullopt;
-  return centres_from_points(geometry, s, false);
+  if (s.status != Status::ok || !system.frames.empty()) return std::nullopt;
+  if (!system.plan) return centres_from_points(geometry, s, false);
+  if (!system.plan->closed_form) return std::nullopt;
+  std::optional<InstantCentres> result = constructed_plan_centres(geometry, s);
+  return result ? finish_plan_centres(std::move(*result), system.length_scale) : std::nullopt;
 }
 
 std::optional<InstantCentres> instant_centres(const MechanismGeometry& geometry, const MotionState& s) {
@@ -438,64 +595,11 @@ std::optional<InstantCentres> instant_centres(const MechanismGeometry& geometry,
   if (s.status != Status::ok || !system.frames.empty()) return std::nullopt;
   if (!system.plan) return centres_from_points(geometry, s, true);
   if (!system.plan->closed_form) return std::nullopt;
-  const SolvingPlan& plan = *system.plan;
-  const SolvingPlan& frames = plan;
-  const std::vector<int> signs = signs_nearest(frames, s.input, s.q.data(), system.length_scale);
-  std::vector<BodyPose> poses;
-  if (place_dyads(frames, s.input, poses, &signs) < frames.dyads.size()) return std::nullopt;
-  const std::size_t n = frames.bodies.size();
-
-  InstantCentres result;
-  result.driver = frames.driver_body;
-  bool zero_named = false;
-  for (const SolvingPlan::Link& link : plan.links) zero_named = zero_named || link.name == "0";
-  result.bodies.push_back(zero_named ? "g" : "0");
-  for (std::size_t b = 1; b < n; ++b) result.bodies.push_back(plan.links[b - 1].name);
-  const std::function<double(std::size_t)> omega = [&](std::size_t b) -> double {
-    const SolvingPlan::Body& body = frames.bodies[b];
-    if (b == 0) return 0.0;
-    if (body.unknown >= 0) return s.qd[body.unknown];
-    if (body.guide >= 0) return omega(static_cast<std::size_t>(body.guide));
-    return b == frames.driver_body && frames.driver_slider < 0 ? s.input_rate : 0.0;
-  };
-  for (std::size_t b = 0; b < n; ++b) {
-    result.angular_velocities.push_back(omega(b));
-    const SolvingPlan::Body& body = frames.bodies[b];
-    result.rates.push_back(body.unknown >= 0                                      ? GiNaC::ex(system.unknowns[body.unknown].rate)
-                           : b == frames.driver_body && frames.driver_slider < 0 ? GiNaC::ex(system.input.rate)
-                                                                                 : GiNaC::ex(0));
-  }
-
-  const auto world = [&](std::size_t b, Complex local) {
-    return b == 0 ? local : poses[b].origin + local * std::polar(1.0, poses[b].angle);
-  };
-  const auto add = [&](std::size_t a, std::size_t b, bool infinite, Complex at, const std::string& how,
-                       std::optional<Complex> seen_from = std::nullopt) {
-    if (a > b) std::swap(a, b);
-    if (a == b || result.find(a, b)) return;
-    result.centres.push_back({a, b, infinite, at, how, {}, seen_from, {}});
-  };
-  // Primary centres: pins, then sliders (at infinity across the line).
-  for (const SolvingPlan::Pin& pin : frames.pins) {
-    Complex at = 0;
-    for (const auto& [joint, local] : frames.bodies[pin.a].points)
-      if (joint == pin.joint) at = world(pin.a, local);
-    add(pin.a, pin.b, false, at, "pin " + plan.joints[pin.joint].name);
-  }
-  for (const SolvingPlan::Slider& slider : frames.sliders) {
-    const double line = (slider.guide == 0 ? 0.0 : poses[slider.guide].angle) + slider.direction;
-    std::optional<Complex> joint_at;  // the arrow starts at the slider's joint
-    for (const auto& [joint, local] : frames.bodies[slider.block].points)
-      if (joint == slider.joint) joint_at = world(slider.block, local);
-    add(slider.block, slider.guide, true, std::polar(1.0, line + kPi / 2), "slider " + plan.joints[slider.joint].name,
-        joint_at);
-  }
-  complete_by_kennedy(result, system.length_scale);
-  if (!list_missing_and_check_finite(result)) return std::nullopt;
-  std::sort(result.centres.begin(), result.centres.end(),
-            [](const InstantCentre& p, const InstantCentre& q) { return std::pair(p.a, p.b) < std::pair(q.a, q.b); });
-  add_ratios(result, system.length_scale);
-  return result;
+  // Read from the tape; constructed only where the tape holds no centres (a drawing
+  // formula it could not take).
+  std::optional<InstantCentres> result = plan_centres_from_tape(geometry, s);
+  if (!result) result = constructed_plan_centres(geometry, s);
+  return result ? finish_plan_centres(std::move(*result), system.length_scale) : std::nullopt;
 }
 
 }  // namespace kinema

@@ -1,8 +1,10 @@
-// Instant centres of a planar joints-and-links mechanism at one solved position, found
-// as a course does: the primary ones at the joints (a pin's centre; a slider's at
-// infinity, across its line), every other by the Aronhold-Kennedy theorem (the three
-// centres of three bodies lie on one line), each as the meeting point of two such
-// lines. The angular-velocity ratios they give are set beside the analytic ones.
+// Instant centres of a planar mechanism at one solved position, found as a course does:
+// the primary ones at the joints (a pin's centre; a slider's at infinity, across its line),
+// every other by the Aronhold-Kennedy theorem (the three centres of three bodies lie on one
+// line), on two such lines. Where each stands is read from the model's drawing stage (the
+// formulas a page's sliders run for other dimensions); the construction from the bodies'
+// poses is kept to test them against. The angular-velocity ratios they give are set beside
+// the analytic ones.
 #pragma once
 
 #include <complex>
@@ -55,26 +57,32 @@ struct InstantCentres {
   std::vector<VelocityRatio> ratios;
   /// The centre of bodies a and b, if found.
   const InstantCentre* find(std::size_t a, std::size_t b) const;
-  /// A vector-loop file's: per body, the body of the model's drawing stage its angular
-  /// velocity, point and centres are read from (TapeLayout::centre_bodies, ground 0).
+  /// Per body, the body of the model's drawing stage its angular velocity, point and
+  /// centres are read from (TapeLayout::centre_bodies, ground 0); empty where the centres
+  /// were constructed instead.
   std::vector<std::size_t> tape_bodies;
 };
 
-/// The relative difference of angular velocities below which two bodies turn alike.
+/// The difference of two bodies' angular velocities, relative to the fastest-turning body's,
+/// below which they turn alike: a link that only translates has a rounding omega (1e-17
+/// rad/s, the parallelogram's coupler), which no other body's is to be measured against.
 constexpr double kCentreParallelTolerance = 1e-12;
 
 /// The instant centres at a state that is ok of the mechanism whose model `geometry` reads:
 /// a joints-and-links mechanism placed in closed form, or a vector-loop file with a named
 /// point on a link (its links and their angular velocities as the model derived and
 /// compiled them); nullopt for other systems (spatial chains) and states.
-/// A vector-loop file's centres are read from the model's drawing stage (centre_formulas.hpp):
-/// each N / (i D), or at infinity across N where |D| <= kCentreParallelTolerance (|omega_a| +
-/// |omega_b|), none where N is 0 too.
+/// The centres are read from the model's drawing stage (centre_formulas.hpp): each N / (i D),
+/// or at infinity across N where |D| <= kCentreParallelTolerance max_k |omega_k|, none
+/// where N is 0 too. A joints-and-links file's are found by its pins and sliders and
+/// the Kennedy lines its construction would choose (constructed only where the tape holds
+/// none of its bodies' centres).
 std::optional<InstantCentres> instant_centres(const MechanismGeometry& geometry, const MotionState& state);
 
-/// A vector-loop file's centres constructed from the numbers its bodies were found by (a
-/// point on each and that point's velocity: v_a(I) = v_b(I) with v(P) = v_A + i omega
-/// (P - A)), not from the tape: what instant_centres' must equal (tested).
+/// The centres constructed, not read from the tape: what instant_centres' must equal
+/// (tested). A vector-loop file's from the numbers its bodies were found by (a point on
+/// each and that point's velocity: v_a(I) = v_b(I) with v(P) = v_A + i omega (P - A)); a
+/// joints-and-links file's as a course does, from the bodies' poses (pins, sliders, Kennedy).
 std::optional<InstantCentres> constructed_instant_centres(const MechanismGeometry& geometry, const MotionState& state);
 
 }  // namespace kinema

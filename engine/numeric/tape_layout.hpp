@@ -21,8 +21,8 @@ struct TapeLayout {
   std::size_t linkage_block_count = 0;   ///< Bodies that are slider blocks.
   std::size_t linkage_guide_count = 0;   ///< Sliders on a fixed guide (guide 0).
   std::size_t linkage_column_count = 0;  ///< The joints-and-links result columns (linkage_columns_begin on).
-  /// A vector-loop file's bodies whose instant centres the drawing stage holds (ground,
-  /// body 0, is not listed: body b >= 1 is centre_bodies[b - 1]); empty for anything else.
+  /// A planar file's bodies whose instant centres the drawing stage holds (ground, body 0,
+  /// is not listed: body b >= 1 is centre_bodies[b - 1]); empty for anything else.
   std::vector<CentreBody> centre_bodies;
 
   // Input registers: [parameters, theta, thetad, thetadd, q, qd, qdd].
@@ -86,7 +86,7 @@ struct TapeLayout {
   std::size_t linkage_block_output(std::size_t b) const { return linkage_joint_output(linkage_joint_count) + b; }
   std::size_t linkage_guide_output(std::size_t g) const { return linkage_block_output(linkage_block_count) + 4 * g; }
   std::size_t linkage_column_output(std::size_t c) const { return linkage_guide_output(linkage_guide_count) + c; }
-  /// Then, for a vector-loop file's instant centres (engine/symbolic/centre_formulas.hpp):
+  /// Then, for a planar file's instant centres (engine/symbolic/centre_formulas.hpp):
   /// per body b >= 1 its angular velocity and a point on it (x, y); then per pair a < b of
   /// bodies (ground, 0, included; in that order) N = c_b - c_a (x, y) and D = omega_a -
   /// omega_b, where c = v_P - i omega P is the body's velocity at the origin. Their centre

@@ -1,4 +1,4 @@
-// A body whose instant centres the model's drawing stage holds (a vector-loop file's,
+// A body whose instant centres the model's drawing stage holds (a planar loop system's,
 // engine/symbolic/centre_formulas.hpp; TapeLayout::centre_bodies lists them).
 #pragma once
 
@@ -8,6 +8,8 @@ namespace kinema {
 struct CentreBody {
   int link = -1;
   int slider_term = -1;
+  /// A joints-and-links file's: the SolvingPlan body it is (-1: none, or another file).
+  int plan_body = -1;
 };
 
 }  // namespace kinema

@@ -109,6 +109,33 @@ class BodyFinder {
     return bodies_;
   }
 
+  // A joints-and-links file's bodies as its SolvingPlan numbers them: a link by the
+  // coordinate whose rate it turns at (the driver's, or its angle's); a block by its point,
+  // a joint on it (its rate tells it from neither ground nor its guide; a slider's own joint
+  // is no named point, the pin at its place is).
+  void number_as_plan(const ConstraintSystem& system, std::vector<Body>& bodies) const {
+    if (!system.plan) return;
+    const SolvingPlan& plan = *system.plan;
+    for (Body& body : bodies) {
+      if (body.id.slider_term < 0) {
+        for (std::size_t b = 1; b < plan.bodies.size(); ++b) {
+          const bool driven = b == plan.driver_body && plan.driver_slider < 0;
+          const int unknown = plan.bodies[b].unknown;
+          if (unknown < 0 && !driven) continue;
+          const ex rate = driven ? ex(system.input.rate) : ex(system.unknowns[std::size_t(unknown)].rate);
+          if ((body.omega - rate).expand().is_zero()) body.id.plan_body = static_cast<int>(b);
+        }
+        continue;
+      }
+      for (const SolvingPlan::Slider& slider : plan.sliders)
+        for (const auto& on_block : plan.bodies[slider.block].points)
+          for (std::size_t p = 0; p < system.points.size(); ++p)
+            if (system.points[p].name == plan.joints[on_block.first].name && named_[p] &&
+                sample_.same(named_[p]->sampled, body.point.sampled, 0))
+              body.id.plan_body = static_cast<int>(slider.block);
+    }
+  }
+
  private:
   ex link_omega(int link) const { return real_part_of(terms_.link_rates[std::size_t(link)]); }
 
@@ -194,8 +221,10 @@ class BodyFinder {
 std::vector<ex> centre_stage(const ConstraintSystem& system, const Derivation& derivation,
                              std::vector<CentreBody>& ids) {
   ids.clear();
-  if (system.plan || !system.frames.empty()) return {};
-  const std::vector<Body> bodies = BodyFinder(system, derivation).bodies();
+  if (!system.frames.empty()) return {};
+  BodyFinder finder(system, derivation);
+  std::vector<Body> bodies = finder.bodies();
+  finder.number_as_plan(system, bodies);
   std::vector<ex> out, cx = {0}, cy = {0}, omega = {0};
   for (const Body& b : bodies) {
     ids.push_back(b.id);

@@ -500,11 +500,15 @@
       fastest = Math.max(fastest, Math.hypot(solved.points[k + d], solved.points[k + d + 1], d === 3 ? solved.points[k + 5] : 0));
       return k + 3 * d;
     }, 0);
+    // The fastest-turning body (every body is in a pair): two turn alike within a
+    // centre_parallel_tolerance of its angular velocity.
+    let turning = 0;
+    s.centres.forEach(function (centre) { turning = Math.max(turning, Math.abs(out(centre.tape[2])), Math.abs(out(centre.tape[3]))); });
     const lines = constructions.kennedy_sets[c.centres[1]];
     return { not_found: s.not_found, centres: s.centres.map(function (centre, j) {
       const t = centre.tape, sign = t[1];
       const N = [sign * out(t[0]), sign * out(t[0] + 1)], D = sign * out(t[0] + 2), size = Math.hypot(N[0], N[1]);
-      const infinite = Math.abs(D) <= constructions.centre_parallel_tolerance * (Math.abs(out(t[2])) + Math.abs(out(t[3])));
+      const infinite = Math.abs(D) <= constructions.centre_parallel_tolerance * turning;
       const result = { name: centre.name, infinite: infinite, kennedy: lines[j] };
       if (!infinite) result.at = [N[1] / D / f, -N[0] / D / f];
       else if (size > 1e-12 * fastest) {

@@ -28,8 +28,8 @@ using PointFields = std::map<std::string, std::pair<std::size_t, std::size_t>>;
 /// [structure, Kennedy set (per centre, its lines: pairs of indices into the centres), each centre's x y unless the structure names the joint it is at (a unit
 /// direction when at infinity; then the point it is seen from when the structure says so)]}. Lengths in the output unit (`per_unit` metres each), times in s.
 /// With `centre_tape` (the model's layout, for a page whose sliders solve again) each centre
-/// of a vector-loop file's structure also says where its values are among the drawing
-/// stage's outputs ("tape": the offset of its N and D, the sign to read them with, its two
+/// of a structure read from the tape (InstantCentres::tape_bodies: a vector-loop or a
+/// joints-and-links file's) also says where its values are among the drawing stage's outputs ("tape": the offset of its N and D, the sign to read them with, its two
 /// bodies' angular velocities' offsets, the offsets of the points it is seen from; -1 for
 /// ground's and the origin), and "centre_parallel_tolerance" is kCentreParallelTolerance:
 /// the page finds a solved row's centres as the analysis does, from the same outputs.

@@ -594,8 +594,10 @@ Point anchored(Point at, const std::string& line, const kinema::LabelBox& box) {
   return at;
 }
 
-// Each label on none other nor on a dot, pivot or block, and within a label's height of what it names.
-void check_labels(const std::vector<ReadLabel>& labels, const std::vector<kinema::LabelBox>& dots) {
+// Each label on none other nor on a dot, pivot or block (`blocks`: each one's corners, as
+// turned), and within a label's height of what it names.
+void check_labels(const std::vector<ReadLabel>& labels, const std::vector<kinema::LabelBox>& dots,
+                  const std::vector<std::vector<Point>>& blocks = {}) {
   for (std::size_t i = 0; i < labels.size(); ++i) {
     CAPTURE(labels[i].text);
     CAPTURE(labels[i].box.centre);
@@ -617,6 +619,10 @@ void check_labels(const std::vector<ReadLabel>& labels, const std::vector<kinema
     for (const kinema::LabelBox& dot : dots) {
       CAPTURE(dot.centre);
       CHECK_FALSE(labels[i].box.overlaps(dot));
+    }
+    for (const std::vector<Point>& block : blocks) {
+      CAPTURE(block[0]);
+      CHECK_FALSE(labels[i].box.meets(block));
     }
   }
 }
@@ -658,12 +664,13 @@ TEST_CASE("figures: instant centres' labels on no other label, dot, pivot or blo
       if (line.find("-- ++(-0.15,-0.25) -- ++(0.3,0) -- cycle") == std::string::npos) continue;
       dots.push_back({coordinates(line)[0] + Point(0, -0.125), 0.15, 0.125});
     }
-    for (const Block& b : read_drawing(figure).blocks) {  // 0.6 by 0.3 cm, turned: the box round it
-      const double c = std::fabs(std::cos(b.degrees * M_PI / 180)), s = std::fabs(std::sin(b.degrees * M_PI / 180));
-      dots.push_back({b.centre, 0.3 * c + 0.15 * s, 0.3 * s + 0.15 * c});
+    std::vector<std::vector<Point>> blocks;
+    for (const Block& b : read_drawing(figure).blocks) {  // 0.6 by 0.3 cm, turned as drawn
+      const Point along = std::polar(0.6, b.degrees * M_PI / 180), across = along * Point(0, 0.5);
+      blocks.push_back(kinema::parallelogram(b.centre - along / 2.0 - across / 2.0, along, across));
     }
     REQUIRE(labels.size() >= 3);
-    check_labels(labels, dots);
+    check_labels(labels, dots, blocks);
   }
   CHECK(figures >= 8);  // every planar joints-and-links and vector-loop sample with centres
 }
