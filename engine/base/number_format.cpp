@@ -471,6 +471,8 @@ std::string format_round_trip(double value) { return format_significant(value, 1
 std::string format_fixed(double value, int decimals) {
   char buffer[512];
   std::snprintf(buffer, sizeof buffer, "%.*f", decimals, value);
+  // A value that rounds to zero is 0, not "-0.000" (rounding noise of a coordinate).
+  if (buffer[0] == '-' && std::strspn(buffer + 1, "0.") == std::strlen(buffer + 1)) return buffer + 1;
   return buffer;
 }
 

@@ -67,7 +67,8 @@ double round_significant(double value, int significant);
 /// Enough digits to read back the same double (17 significant).
 std::string format_round_trip(double value);
 
-/// Fixed point with `decimals` decimals ("0.129904"), for drawing coordinates.
+/// Fixed point with `decimals` decimals ("0.129904"), for drawing coordinates; a value
+/// that rounds to zero is "0.000", never "-0.000".
 std::string format_fixed(double value, int decimals = 6);
 
 }  // namespace kinema

@@ -54,6 +54,10 @@ TEST_CASE("engine/base/number_format: format_fixed") {
   CHECK(format_fixed(-12.3456, 1) == "-12.3");
   CHECK(format_fixed(1234567.0, 0) == "1234567");
   CHECK(format_fixed(1e-9, 6) == "0.000000");
+  CHECK(format_fixed(-1e-9, 3) == "0.000");  // not "-0.000"
+  CHECK(format_fixed(-0.0, 2) == "0.00");
+  CHECK(format_fixed(-0.0004, 3) == "0.000");
+  CHECK(format_fixed(-0.0006, 3) == "-0.001");
   // Large values are printed in full, not cut (the buffer holds them).
   CHECK(format_fixed(1e100, 2).size() == 101 + 3);
 }
