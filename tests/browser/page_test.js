@@ -7,7 +7,8 @@
 // has its instant centre drawn (or listed as not found); a spatial chain's points are drawn in
 // 3-D where eval puts them, projected, and dragging turns it; the derivation is laid out as
 // MathML. A singular row and an unassembled
-// range show as such; a hostile title, description and file name run no script. A dimension
+// range show as such; a hostile title, description and file name run no script, a hostile
+// joint or link name is refused. A dimension
 // slider moved in the four-bar's, a slider-crank's and Problem 4.4's pages solves the rows
 // again as `kinema eval` solves the file edited to that dimension (1e-12), and a rocker too
 // short to close shows its rows as not assembled.
@@ -748,6 +749,22 @@ async function checkHostile(browser) {
   assert.strictEqual(text.images, 0, 'a hostile string made elements');
   assert.strictEqual(text.scripts, 2, 'a hostile string made a script element');
   assert.deepStrictEqual(seen.errors, [], 'console errors');
+  // A joint's or a link's name is a name (letters, digits, _): a hostile one never reaches
+  // a page; the file is refused at its line, and no page is written.
+  const joints = fs.readFileSync(path.join(samplesDir, 'example_4_1_joints.toml'), 'utf8');
+  for (const [kind, edited] of [
+    ['joint', joints.replace(/^B = /m, JSON.stringify(hostile) + ' = ').replace(/"B"\]/g, JSON.stringify(hostile) + ']').replace(/\["B", /g, '[' + JSON.stringify(hostile) + ', ')],
+    ['link', joints.replace(/^3 = /m, JSON.stringify(hostile) + ' = ')]]) {
+    assert.notStrictEqual(edited, joints, `the ${kind} name was not put into the file`);
+    const named = path.join(workDir, `hostile_${kind}.toml`), out = path.join(workDir, `hostile_${kind}.html`);
+    fs.writeFileSync(named, edited);
+    let refused = null;
+    try { run(['page', named, '-o', out]); } catch (e) { refused = e; }
+    assert(refused && refused.status !== 0, `a hostile ${kind} name was not refused`);
+    assert(new RegExp(`hostile_${kind}\\.toml:[0-9]+: ${kind} name .* is not (a )?valid`).test(String(refused.stderr)),
+      `the hostile ${kind} name's message: ${refused.stderr}`);
+    assert(!fs.existsSync(out), `a page was written for a hostile ${kind} name`);
+  }
 }
 
 (async () => {
