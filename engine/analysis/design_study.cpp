@@ -61,6 +61,12 @@ struct StudySetup {
   double length_unit = 1;                    // SI metres per output length unit (Grashof's check)
   std::vector<std::size_t> stroke_unknowns;  // candidates for the time ratio, in order
   std::size_t turn_rows = 0;                 // rows of the run's first full turn (0: none)
+  // A four-bar's points as terms that turn with one variable (DesignLanes' rates in closed
+  // form), each one's length and angle offset among the tape's outputs from point_outputs
+  // on; empty (closed_points false) where a point is not such a sum.
+  std::vector<ClosedPointTerm> point_terms;
+  std::size_t point_outputs = 0;
+  bool closed_points = false;
 };
 
 StudySetup set_up(const Model& base, const Designs& designs, const std::vector<double>& inputs,
@@ -89,6 +95,15 @@ StudySetup set_up(const Model& base, const Designs& designs, const std::vector<d
     for (const FourBarSide* side : {&setup.loop->ground, &setup.loop->crank, &setup.loop->coupler, &setup.loop->rocker})
       outputs.push_back(side->length.subs(resolved));
     outputs.push_back(setup.loop->ground.angle.subs(resolved));
+    setup.point_outputs = outputs.size();
+    const std::optional<std::vector<MovingPointTerm>> moving = moving_point_terms(system);
+    setup.closed_points = moving && !designs.names.empty();
+    for (std::size_t t = 0; setup.closed_points && t < moving->size(); ++t) {
+      const MovingPointTerm& term = (*moving)[t];
+      setup.point_terms.push_back({term.point, term.variable});
+      outputs.push_back(term.length.subs(resolved));
+      outputs.push_back(term.offset.subs(resolved));
+    }
   }
   if (!outputs.empty() && !designs.names.empty()) {
     setup.tape = CompiledExpressions(symbols, outputs);
@@ -200,6 +215,7 @@ class DesignRunner {
     if (options.across_designs && solves() && settings.rate != 0 && !inputs.empty()) {
       lanes_ = std::make_unique<DesignLanes>(kinematics_, inputs, settings.rate, settings.second_rate);
       lanes_->set_positions_and_rates_only(true);  // summarise reads no more of a lane's rows
+      if (setup.closed_points) lanes_->set_point_terms(setup.point_terms);
       lane_designs_.resize(DesignLanes::kLanes);
     }
   }
@@ -224,6 +240,7 @@ class DesignRunner {
       lanes_->set_design(l, values_.data());
       lanes_->set_reach(l, loop_reach());
       if (vector_loop()) lanes_->set_closure(l, loop_closure());
+      if (vector_loop() && setup_.closed_points) lanes_->set_point_term_values(l, point_factors_.data());
     }
     lanes_->solve(count);
     lane_values_ += lanes_->lane_values();
@@ -255,6 +272,14 @@ class DesignRunner {
       }
       kind = grashof_class(loop_.ground.value, loop_.crank.value, loop_.coupler.value, loop_.rocker.value,
                            setup_.length_unit);
+      // Each moving point term's factor, length e^(i offset).
+      point_factors_.resize(2 * setup_.point_terms.size());
+      for (std::size_t t = 0; t < setup_.point_terms.size(); ++t) {
+        const double length = tape_outputs_[setup_.point_outputs + 2 * t];
+        const double offset = tape_outputs_[setup_.point_outputs + 2 * t + 1];
+        point_factors_[2 * t] = length * std::cos(offset);
+        point_factors_[2 * t + 1] = length * std::sin(offset);
+      }
     }
     if (options_.wants(StudyFigure::grashof)) results.grashof[design] = kind;
     return kind;
@@ -371,7 +396,7 @@ class DesignRunner {
   const StudySetup& setup_;
   const StudyOptions& options_;
   Kinematics kinematics_;  // this thread's, its parameter values the design's
-  std::vector<double> values_, tape_outputs_, tape_registers_, rates_;
+  std::vector<double> values_, tape_outputs_, tape_registers_, rates_, point_factors_;
   std::unique_ptr<RepeatedSweep> sweep_;
   std::unique_ptr<Workspace> limits_;
   FourBarLoopValues loop_;

@@ -66,6 +66,16 @@ struct LoopClosure {
   std::size_t first_unknown = 0, second_unknown = 1;
 };
 
+/// A term of a point's position that turns with one variable of a loop closure's
+/// mechanism: a factor fixed per design (x + i y: the term's length times e^(i offset))
+/// times e^(i variable), the variable the input (-1) or an unknown (its index). A point's
+/// position is the sum of its terms and of terms that do not move (those need no entry:
+/// they add nothing to its velocity or acceleration).
+struct ClosedPointTerm {
+  std::size_t point = 0;
+  int variable = -1;
+};
+
 class DesignLanes : LaneSystem {
  public:
   using LaneSystem::kLanes;
@@ -87,15 +97,27 @@ class DesignLanes : LaneSystem {
   /// the prediction is not clearly on one branch, from the prediction as before.
   void set_closure(std::size_t lane, const LoopClosure& closure);
   /// Whether the values solved in the lanes are written to the tables with positions and
-  /// rates only (their second rates, residuals and conditions not: what a design study,
-  /// which keeps the largest second rates in the lanes, does not read), or in full (the
-  /// default). A row the scalar run goes on from is written in full either way.
+  /// rates only (their second rates, residuals, conditions and points not: what a design
+  /// study, which keeps the largest second rates in the lanes, does not read), or in full
+  /// (the default; the points' velocities and accelerations, not their positions, and for
+  /// a value closed_value solved, max |Phi| of the closed form's own terms). A row the
+  /// scalar run goes on from is written in full either way.
   void set_positions_and_rates_only(bool only) { positions_and_rates_ = only; }
+  /// The points' moving terms (the same in every lane; every point planar and the sum of
+  /// these and fixed terms): with a closure in every lane and positions and rates only,
+  /// a value whose every lane the closed form starts is solved without the tape: its
+  /// rates and second rates from the loop's velocity and acceleration equations (the 2x2
+  /// system in the two angles at the closed-form position, Cramer's rule), its points'
+  /// velocities and accelerations from these terms (see closed_value).
+  void set_point_terms(const std::vector<ClosedPointTerm>& terms);
+  /// Lane l's factors of those terms: x, y of term t at 2 t, 2 t + 1.
+  void set_point_term_values(std::size_t lane, const double* factors);
   /// Solves the run for lanes [0, count).
   void solve(std::size_t count);
-  /// Lane l's rows of the last solve(). The points' columns hold only the values the
-  /// scalar run solved: of the others each point's largest speed and acceleration are
-  /// kept (largest_speed, largest_acceleration), not written value by value.
+  /// Lane l's rows of the last solve(). The points' columns hold the values the scalar run
+  /// solved (and, written in full, the lanes' velocities and accelerations): of the others
+  /// each point's largest speed and acceleration are kept (largest_speed,
+  /// largest_acceleration).
   const MotionTable& table(std::size_t lane) const;
   /// Point p's largest speed (acceleration magnitude) over lane l's values whose status is
   /// ok in the last solve(), as MotionTable::point(row, p).speed() gives each; NaN with none.
@@ -110,6 +132,9 @@ class DesignLanes : LaneSystem {
   std::size_t lane_values() const { return lane_values_; }
   /// Values of the last solve() started from the loop's closed form.
   std::size_t closed_form_values() const { return closed_form_values_; }
+  /// Values of the last solve() whose rates, second rates and points the closed form gave
+  /// (no tape, no LU), ok or not.
+  std::size_t closed_rate_values() const { return closed_rate_values_; }
 
  private:
   struct Lane;
@@ -126,7 +151,7 @@ class DesignLanes : LaneSystem {
   std::vector<double> largest_speed_, largest_acceleration_, largest_speed_square_, largest_acceleration_square_;
   std::vector<double> largest_rate_, largest_second_rate_;  ///< Unknown i of lane l at i * kLanes + l (NaN: none).
   double tolerance_[kLanes], residual_[kLanes];
-  std::size_t lane_values_ = 0, closed_form_values_ = 0;
+  std::size_t lane_values_ = 0, closed_form_values_ = 0, closed_rate_values_ = 0;
   bool positions_and_rates_ = false;
   LoopReach reach_[kLanes];
   // Each lane's loop closure (closes_[l] 1 where set), in lanes for the loops across them.
@@ -135,6 +160,16 @@ class DesignLanes : LaneSystem {
   // 1 / first, 1 / second, 1 / the longer's square: products in the loop, not quotients.
   double closure_over_first_[kLanes] = {}, closure_over_second_[kLanes] = {}, closure_over_length_square_[kLanes] = {};
   std::size_t closure_unknowns_[2] = {0, 1};
+  // Of the last close_loops: closed_[l] 1 where lane l was moved onto the closed form, and
+  // there the loop's two terms of unknown angle (first e^(i alpha), second e^(i beta)).
+  double closed_[kLanes] = {}, first_x_[kLanes] = {}, first_y_[kLanes] = {}, second_x_[kLanes] = {},
+         second_y_[kLanes] = {};
+  // set_point_terms': factor x, y of term t of lane l at (2 t + 0, 1) kLanes + l.
+  std::vector<ClosedPointTerm> point_terms_;
+  std::vector<double> point_term_factors_;
+  bool closed_rates_ = false;
+  /// closed_value's points: point stage outputs' layout (only velocities and accelerations set).
+  std::vector<double> closed_points_;
   std::vector<double> predicted_;  ///< Each lane's predicted start (start_'s layout): the branch test's.
 
   /// Each lane's start at `row` into start_: take[l] 1 for a lane whose value is predicted
@@ -154,18 +189,33 @@ class DesignLanes : LaneSystem {
   /// a lane's values are the scalar run's (check_branch: within the branch tolerance of
   /// the start, as a predicted value must be).
   KINEMA_LANE_LOOPS void solve_value(double input, bool check_branch, const double* take, double* ok);
+  /// Whether the value can go to closed_value: rates in closed form set up, and every
+  /// lane taken moved onto the closed form by close_loops.
+  bool closes_every_lane(const double* take) const;
+  /// solve_value's results for lanes whose start the closed form placed, from the loop:
+  /// the positions as placed; the rates and second rates from the loop's velocity and
+  /// acceleration equations, linear in them (a 2x2 system: the columns are the two
+  /// terms' derivatives in their angles, i first e^(i alpha) and i second e^(i beta)),
+  /// by Cramer's rule; the points from their terms. ok as solve_value's: the branch test,
+  /// Phi_q's column-scaled pivots clearly regular (their ratio as factorise() has it),
+  /// the numbers finite.
+  KINEMA_LANE_LOOPS void closed_value(std::size_t row, bool check_branch, const double* take, double* ok);
   /// Workspace::solve_position's damped Newton (halved steps) from start_ for the lanes
   /// restarted; open[l] 1 where it stops open as the scalar solver would (max |Phi| in
   /// residual_, its row in worst_row_), 0 where the scalar run is to solve the value
   /// (it closes, or needs a least-squares step).
   KINEMA_LANE_LOOPS void restart_values(double input, const double* restart, double* open);
-  void store(std::size_t lane, std::size_t row);
+  /// Lane l's value at `row` into its table (`closed`: closed_value's).
+  void store(std::size_t lane, std::size_t row, bool closed);
   /// Lane l goes to the scalar run at `row`: the row before, where it was last in the
   /// lanes, written in full and told to the scalar run.
   void hand_over(std::size_t lane, std::size_t row);
   /// The lanes' rates, second rates, point speeds and accelerations (ok[l] 1 where lane
   /// l's value is ok) into their largest.
-  KINEMA_LANE_LOOPS void keep_largest(const double* ok);
+  /// `closed`: the points from closed_value, else from the tape's point stage.
+  KINEMA_LANE_LOOPS void keep_largest(const double* ok, bool closed);
+  /// Component c of point p's velocity (kind 1) or acceleration (2), lane by lane.
+  const double* point_vector(bool closed, std::size_t p, std::size_t kind, std::size_t c);
   /// The same for a row of lane l's table the scalar run solved.
   void keep_largest(std::size_t lane, std::size_t row);
 };
