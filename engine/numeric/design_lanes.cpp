@@ -106,6 +106,7 @@ DesignLanes::DesignLanes(const Kinematics& kinematics, const std::vector<double>
     lanes_.push_back(std::make_unique<Lane>(kinematics, inputs, rate, second_rate));
     set_design(l, kinematics.parameter_values().data());
   }
+  std::fill_n(measure_offset_, kLanes, NAN);
   std::fill_n(lanes(layout_.rate()), kLanes, rate);
   std::fill_n(lanes(layout_.second_rate()), kLanes, second_rate);
 }
@@ -173,6 +174,11 @@ void DesignLanes::solve(std::size_t count) {
   std::fill(largest_acceleration_square_.begin(), largest_acceleration_square_.end(), 0.0);
   std::fill(largest_rate_.begin(), largest_rate_.end(), NAN);
   std::fill(largest_second_rate_.begin(), largest_second_rate_.end(), NAN);
+  std::fill_n(least_measure_, kLanes, NAN);
+  if (positions_and_rates_) {
+    kept_.resize(2 * n_ * inputs_.size() * kLanes);
+    kept_ok_.resize(inputs_.size() * kLanes);
+  }
   double take[kLanes], ok[kLanes], restart[kLanes], open[kLanes], out_of_reach[kLanes];
   for (std::size_t row = 0; row < inputs_.size(); ++row) {
     bool restarts = choose_lanes(row, count, take, restart, out_of_reach);
@@ -195,7 +201,8 @@ void DesignLanes::solve(std::size_t count) {
       restart[l] = take[l] != 0 && ok[l] == 0 && lanes_[l]->rows.restart_position() != nullptr ? 1.0 : 0.0;
       restarts = restarts || restart[l] != 0;
     }
-    for (std::size_t l = 0; l < count; ++l)
+    keep_row(row, ok);
+    for (std::size_t l = 0; l < count && !positions_and_rates_; ++l)
       if (ok[l] != 0) store(l, row, closed);
     if (restarts) restart_values(inputs_[row], restart, open);
     for (std::size_t l = 0; l < count; ++l) {
@@ -220,6 +227,7 @@ void DesignLanes::solve(std::size_t count) {
       }
       hand_over(l, row);
       lane.rows.solve(lane.table, row);
+      if (lane.table.status(row) != Status::unassembled) keep_measure(l, lane.table, row);
       if (lane.table.status(row) != Status::ok) continue;
       keep_largest(l, row);
       for (std::size_t i = 0; i < n_; ++i) {
@@ -614,7 +622,6 @@ void DesignLanes::store(std::size_t l, std::size_t row, bool closed) {
     q[i * rows + row] = lanes(layout_.q(i))[l];
     qd[i * rows + row] = lanes(layout_.qd(i))[l];
   }
-  if (positions_and_rates_) return;
   table.loop_residuals()[row] = residual_[l];
   table.reciprocal_conditions()[row] = pivot_ratio_[l];
   for (std::size_t i = 0; i < n_; ++i) table.qdd_values()[i * rows + row] = lanes(layout_.qdd(i))[l];
@@ -626,6 +633,61 @@ void DesignLanes::store(std::size_t l, std::size_t row, bool closed) {
         double* values = table.point_values() + (table.point_column(p, column) - table.point_values());
         values[row] = point_vector(closed, p, kind, c)[l];
       }
+}
+
+void DesignLanes::keep_row(std::size_t row, const double* ok) {
+  if (positions_and_rates_) {
+    double* kept = kept_.data() + 2 * n_ * row * kLanes;
+    for (std::size_t i = 0; i < n_; ++i) {
+      std::copy_n(lanes(layout_.q(i)), kLanes, kept + i * kLanes);
+      std::copy_n(lanes(layout_.qd(i)), kLanes, kept + (n_ + i) * kLanes);
+    }
+    std::copy_n(ok, kLanes, kept_ok_.data() + row * kLanes);
+  }
+  if (n_ < 2) return;  // no measure
+  const double* first = lanes(layout_.q(measure_unknowns_[0]));
+  const double* second = lanes(layout_.q(measure_unknowns_[1]));
+  for (std::size_t l = 0; l < kLanes; ++l) {
+    // A value solved in the lanes assembles; the first of equal measures kept (as a scan
+    // of the rows in order keeps it). A NaN offset: no measure.
+    const double offset = measure_offset_[l], measure = angle_magnitude(second[l] - first[l] + offset);
+    const bool less = (ok[l] != 0) & (offset == offset) & !(measure >= least_measure_[l]);
+    least_measure_[l] = less ? measure : least_measure_[l];
+    least_first_[l] = less ? first[l] : least_first_[l];
+    least_second_[l] = less ? second[l] : least_second_[l];
+  }
+}
+
+void DesignLanes::keep_measure(std::size_t l, const MotionTable& table, std::size_t row) {
+  if (std::isnan(measure_offset_[l])) return;
+  const double first = table.q_column(measure_unknowns_[0])[row], second = table.q_column(measure_unknowns_[1])[row];
+  const double measure = angle_magnitude(second - first + measure_offset_[l]);
+  if (measure >= least_measure_[l]) return;
+  least_measure_[l] = measure;
+  least_first_[l] = first;
+  least_second_[l] = second;
+}
+
+bool DesignLanes::least_measure_angles(std::size_t l, double& first, double& second) const {
+  first = least_first_[l];
+  second = least_second_[l];
+  return !std::isnan(least_measure_[l]);
+}
+
+Eigen::VectorXd DesignLanes::position(std::size_t l, std::size_t row) const {
+  if (!positions_and_rates_ || kept_ok_[row * kLanes + l] == 0) return lanes_[l]->table.q(row);
+  Eigen::VectorXd q(static_cast<Eigen::Index>(n_));
+  for (std::size_t i = 0; i < n_; ++i) q[Eigen::Index(i)] = kept_[(2 * n_ * row + i) * kLanes + l];
+  return q;
+}
+
+void DesignLanes::rates_at_ok_rows(std::size_t l, std::size_t i, std::size_t rows, double* rates) const {
+  const MotionTable& table = lanes_[l]->table;
+  const double* column = table.qd_column(i);
+  for (std::size_t row = 0; row < rows; ++row) {
+    const bool kept = positions_and_rates_ && kept_ok_[row * kLanes + l] != 0;
+    rates[row] = kept ? kept_[(2 * n_ * row + n_ + i) * kLanes + l] : table.status(row) == Status::ok ? column[row] : NAN;
+  }
 }
 
 void DesignLanes::hand_over(std::size_t l, std::size_t row) {

@@ -76,6 +76,14 @@ struct ClosedPointTerm {
   int variable = -1;
 };
 
+/// |x wrapped to [-pi, pi]|, rounding by adding and taking away 1.5 * 2^52 (no libm
+/// call; |x| < 2^51 turns): in a loop across lanes too.
+inline double angle_magnitude(double x) {
+  constexpr double kTurn = 2 * 3.14159265358979323846, kRound = 0x1.8p52;
+  const double turns = (x / kTurn + kRound) - kRound;
+  return std::fabs(x - turns * kTurn);
+}
+
 class DesignLanes : LaneSystem {
  public:
   using LaneSystem::kLanes;
@@ -91,17 +99,33 @@ class DesignLanes : LaneSystem {
   /// Lane l's loop reach (none: every value to Newton): a value clearly out of it is
   /// stored as not assembling without Newton or continuation (RowSolver::unassembled_elsewhere).
   void set_reach(std::size_t lane, const LoopReach& reach);
+  /// Lane l's angle measure (offset NaN: none; the unknowns the same in every lane): over
+  /// the values that assemble, the least |q[second] - q[first] + offset| wrapped to
+  /// [-pi, pi] (angle_magnitude) is kept, with the two angles where it is least (the first
+  /// such value): a four-bar's transmission measure.
+  void set_angle_measure(std::size_t lane, std::size_t first, std::size_t second, double offset) {
+    measure_unknowns_[0] = first, measure_unknowns_[1] = second, measure_offset_[lane] = offset;
+  }
+  /// The two angles where lane l's measure was least in the last solve(); false where no
+  /// value assembled (or no measure was set).
+  bool least_measure_angles(std::size_t lane, double& first, double& second) const;
+  /// Lane l's position at `row` of the last solve() (the lanes' kept, else the table's).
+  Eigen::VectorXd position(std::size_t lane, std::size_t row) const;
+  /// Unknown i's rate in lane l at rows [0, rows) of the last solve(): where the status is
+  /// ok, the lanes' kept or the table's; NaN elsewhere.
+  void rates_at_ok_rows(std::size_t lane, std::size_t i, std::size_t rows, double* rates) const;
   /// Lane l's loop closure (the same unknowns in every lane): each value predicted is
   /// started from the closed form on the predicted branch, the prediction kept for the
   /// branch test; near a toggle (the two branches within 1e-3 of the lengths) or where
   /// the prediction is not clearly on one branch, from the prediction as before.
   void set_closure(std::size_t lane, const LoopClosure& closure);
-  /// Whether the values solved in the lanes are written to the tables with positions and
-  /// rates only (their second rates, residuals, conditions and points not: what a design
-  /// study, which keeps the largest second rates in the lanes, does not read), or in full
-  /// (the default; the points' velocities and accelerations, not their positions, and for
-  /// a value closed_value solved, max |Phi| of the closed form's own terms). A row the
-  /// scalar run goes on from is written in full either way.
+  /// Whether the values solved in the lanes are kept lane by lane with their positions and
+  /// rates only (position(), rates_at_ok_rows(); their second rates, residuals, conditions
+  /// and points not: what a design study, which keeps the largest figures in the lanes,
+  /// does not read), not written to the tables; or written to the tables in full (the
+  /// default; the points' velocities and accelerations, not their positions, and for a
+  /// value closed_value solved, max |Phi| of the closed form's own terms). A row the
+  /// scalar run goes on from is written to the table in full either way.
   void set_positions_and_rates_only(bool only) { positions_and_rates_ = only; }
   /// The points' moving terms (the same in every lane; every point planar and the sum of
   /// these and fixed terms): with a closure in every lane and positions and rates only,
@@ -170,6 +194,13 @@ class DesignLanes : LaneSystem {
   bool closed_rates_ = false;
   /// closed_value's points: point stage outputs' layout (only velocities and accelerations set).
   std::vector<double> closed_points_;
+  /// Positions and rates only: row r's q_i of lane l at (2 n r + i) kLanes + l, qd_i at
+  /// (2 n r + n + i) kLanes + l; kept_ok_ 1 at r kLanes + l where the lanes solved it.
+  std::vector<double> kept_, kept_ok_;
+  // set_angle_measure's offsets (NaN: none); the least measure so far (NaN: none) and the
+  // two angles there.
+  double measure_offset_[kLanes], least_measure_[kLanes], least_first_[kLanes], least_second_[kLanes];
+  std::size_t measure_unknowns_[2] = {0, 1};
   std::vector<double> predicted_;  ///< Each lane's predicted start (start_'s layout): the branch test's.
 
   /// Each lane's start at `row` into start_: take[l] 1 for a lane whose value is predicted
@@ -205,7 +236,12 @@ class DesignLanes : LaneSystem {
   /// residual_, its row in worst_row_), 0 where the scalar run is to solve the value
   /// (it closes, or needs a least-squares step).
   KINEMA_LANE_LOOPS void restart_values(double input, const double* restart, double* open);
-  /// Lane l's value at `row` into its table (`closed`: closed_value's).
+  /// The lanes' value at `row` kept (positions and rates only; ok[l] 1 where lane l's is
+  /// ok), and the measure.
+  KINEMA_LANE_LOOPS void keep_row(std::size_t row, const double* ok);
+  /// Lane l's measure at a row the scalar run solved (that assembles).
+  void keep_measure(std::size_t lane, const MotionTable& table, std::size_t row);
+  /// Lane l's value at `row` into its table in full (`closed`: closed_value's).
   void store(std::size_t lane, std::size_t row, bool closed);
   /// Lane l goes to the scalar run at `row`: the row before, where it was last in the
   /// lanes, written in full and told to the scalar run.

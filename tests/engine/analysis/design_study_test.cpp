@@ -454,6 +454,7 @@ ClosedLanes closed_lanes(const std::vector<std::pair<double, double>>& designs, 
                                       loop->coupler.unknown, loop->rocker.unknown};
     run.lanes->set_reach(l, kinema::LoopReach(closure.crank, closure.fixed_x, closure.fixed_y, closure.first, closure.second));
     run.lanes->set_closure(l, closure);
+    run.lanes->set_angle_measure(l, loop->coupler.unknown, loop->rocker.unknown, 0.0);
     // The points' moving terms, their factors length e^(i offset) at the design's values.
     GiNaC::exmap values;
     for (const kinema::SystemParameter& p : run.separate.back().system.parameters) values[p.symbol] = p.value;
@@ -532,18 +533,37 @@ TEST_CASE("design lanes: positions from the loop's closed form equal the scalar 
             largest_over_ok_rows(table, [&](std::size_t r) { return table.qdd(r)[j]; }));
     }
   }
-  // A study's lanes write positions and rates only: the same statuses, positions, rates
-  // and largest figures (the scalar run, going on from the lanes' last rows, as before).
+  // A study's lanes keep positions and rates only: the same statuses, positions, rates
+  // and largest figures (the scalar run, going on from the lanes' last rows, as before),
+  // and the least transmission measure of a scan of the rows that assemble.
   const ClosedLanes light = closed_lanes(designs, inputs, true);
   for (std::size_t l = 0; l < designs.size(); ++l) {
     const MotionTable& full = run.lanes->table(l);
     const MotionTable& table = light.lanes->table(l);
+    std::vector<std::vector<double>> rates(full.unknown_count(), std::vector<double>(inputs.size()));
+    for (std::size_t i = 0; i < full.unknown_count(); ++i) light.lanes->rates_at_ok_rows(l, i, inputs.size(), rates[i].data());
+    double least = kNaN, coupler = kNaN, rocker = kNaN;
     for (std::size_t r = 0; r < inputs.size(); ++r) {
       INFO("design " << l << ", row " << r);
       REQUIRE(table.status(r) == full.status(r));
-      CHECK(table.q(r) == full.q(r));
-      CHECK(table.qd(r) == full.qd(r));
+      CHECK(light.lanes->position(l, r) == full.q(r));
+      for (std::size_t i = 0; i < full.unknown_count(); ++i) {
+        if (full.status(r) == kinema::Status::ok) {
+          CHECK(rates[i][r] == full.qd(r)[Eigen::Index(i)]);
+        } else {
+          CHECK(std::isnan(rates[i][r]));
+        }
+      }
+      if (full.status(r) == kinema::Status::unassembled) continue;
+      // a*exp(I*theta2) + b*exp(I*theta3) - c*exp(I*theta4) - d: theta4 - theta3, its
+      // lengths of unlike signs.
+      const double measure = kinema::angle_magnitude(full.q(r)[1] - full.q(r)[0]);
+      if (!(measure >= least)) least = measure, coupler = full.q(r)[0], rocker = full.q(r)[1];
     }
+    double kept_coupler = kNaN, kept_rocker = kNaN;
+    CHECK(light.lanes->least_measure_angles(l, kept_coupler, kept_rocker) == !std::isnan(least));
+    CHECK(kept_coupler == coupler);
+    CHECK(kept_rocker == rocker);
     for (std::size_t i = 0; i < full.unknown_count(); ++i) {
       CHECK(light.lanes->largest_rate(l, i) == run.lanes->largest_rate(l, i));
       CHECK(light.lanes->largest_second_rate(l, i) == run.lanes->largest_second_rate(l, i));
