@@ -186,12 +186,12 @@ void DesignLanes::solve(std::size_t count) {
     std::fill_n(open, kLanes, 0.0);
     bool closed = false;
     if (std::find(take, take + kLanes, 1.0) != take + kLanes) {
-      closed = closes_every_lane(take);
-      if (closed) {
-        closed_value(row, row > 0, take, ok);
-      } else {
-        solve_value(inputs_[row], row > 0, take, ok);
-      }
+      // Lanes on the loop's closed form take its numbers, the others Newton's: each lane's
+      // the same whichever designs share the batch.
+      const bool every = closes_lanes(take, true), some = closes_lanes(take, false);
+      if (!every) solve_value(inputs_[row], row > 0, take, ok);
+      if (some) closed_value(row, row > 0, !every, ok);
+      closed = some;
       keep_largest(ok, closed);
       keep_previous(ok);
     }
@@ -404,17 +404,19 @@ void DesignLanes::solve_value(double input, bool check_branch, const double* tak
   for (std::size_t l = 0; l < kLanes; ++l) ok[l] = nonfinite[l] == 0.0 ? ok[l] : 0.0;
 }
 
-bool DesignLanes::closes_every_lane(const double* take) const {
+bool DesignLanes::closes_lanes(const double* take, bool every) const {
   if (!closed_rates_) return false;
-  for (std::size_t l = 0; l < kLanes; ++l)
-    if (take[l] != 0 && closed_[l] == 0) return false;
-  return true;
+  std::size_t taken = 0, closed = 0;
+  for (std::size_t l = 0; l < kLanes; ++l) {
+    taken += take[l] != 0;
+    closed += take[l] != 0 && closed_[l] != 0;
+  }
+  return every ? closed == taken : closed > 0;
 }
 
-void DesignLanes::closed_value(std::size_t row, bool check_branch, const double* take, double* ok) {
+void DesignLanes::closed_value(std::size_t row, bool check_branch, bool merge, double* ok) {
   ++closed_rate_values_;
   const std::size_t first = closure_unknowns_[0], second = closure_unknowns_[1];
-  for (std::size_t i = 0; i < n_; ++i) std::copy_n(start_.data() + i * kLanes, kLanes, lanes(layout_.q(i)));
   const double* first_scale = column_scale_.data() + first * kLanes;
   const double* second_scale = column_scale_.data() + second * kLanes;
   const double cos_input = cos_inputs_[row], sin_input = sin_inputs_[row];
@@ -457,13 +459,19 @@ void DesignLanes::closed_value(std::size_t row, bool check_branch, const double*
     omega_rate[1][l] = (rx * by - ry * bx) * over;
     omega_rate[2][l] = (ax * ry - ay * rx) * over;
   }
-  std::copy_n(omega[1], kLanes, lanes(layout_.qd(first)));
-  std::copy_n(omega[2], kLanes, lanes(layout_.qd(second)));
-  std::copy_n(omega_rate[1], kLanes, lanes(layout_.qdd(first)));
-  std::copy_n(omega_rate[2], kLanes, lanes(layout_.qdd(second)));
-  std::copy_n(ratios, kLanes, pivot_ratio_);
-  std::copy_n(residuals, kLanes, residual_);
-  for (std::size_t l = 0; l < kLanes; ++l) ok[l] = take[l] != 0 && regular[l] != 0 ? 1.0 : 0.0;
+  // The lanes on the closed form (closed_) take its numbers; the others keep solve_value's.
+  const auto take_closed = [&](double* target, const double* value) {
+    for (std::size_t l = 0; l < kLanes; ++l) target[l] = closed_[l] != 0 ? value[l] : target[l];
+  };
+  for (std::size_t i = 0; i < n_; ++i) take_closed(lanes(layout_.q(i)), start_.data() + i * kLanes);
+  take_closed(lanes(layout_.qd(first)), omega[1]);
+  take_closed(lanes(layout_.qd(second)), omega[2]);
+  take_closed(lanes(layout_.qdd(first)), omega_rate[1]);
+  take_closed(lanes(layout_.qdd(second)), omega_rate[2]);
+  take_closed(pivot_ratio_, ratios);
+  take_closed(residual_, residuals);
+  double closed_ok[kLanes];
+  for (std::size_t l = 0; l < kLanes; ++l) closed_ok[l] = regular[l];
   // The points: each term Z = factor e^(i variable) moves at i omega Z and accelerates at
   // (i omega' - omega^2) Z.
   std::fill(closed_points_.begin(), closed_points_.end(), 0.0);
@@ -490,11 +498,11 @@ void DesignLanes::closed_value(std::size_t row, bool check_branch, const double*
   // A predicted value stays on its branch (as solve_value tests it).
   if (check_branch) {
     for (std::size_t i = 0; i < n_; ++i) {
-      const double* q = lanes(layout_.q(i));
-      const double* start = predicted_.data() + i * kLanes;
+      const double* q = start_.data() + i * kLanes;
+      const double* predicted = predicted_.data() + i * kLanes;
       const double* scale = column_scale_.data() + i * kLanes;
       for (std::size_t l = 0; l < kLanes; ++l)
-        ok[l] = std::fabs(q[l] - start[l]) / scale[l] > solver::kBranchTolerance ? 0.0 : ok[l];
+        closed_ok[l] = std::fabs(q[l] - predicted[l]) / scale[l] > solver::kBranchTolerance ? 0.0 : closed_ok[l];
     }
   }
   double nonfinite[kLanes] = {};  // x * 0 is 0 for finite x, NaN otherwise
@@ -502,8 +510,16 @@ void DesignLanes::closed_value(std::size_t row, bool check_branch, const double*
     for (std::size_t l = 0; l < kLanes; ++l) nonfinite[l] += closed_points_[k + l] * 0.0;
   for (std::size_t l = 0; l < kLanes; ++l) {
     nonfinite[l] += (omega[1][l] + omega[2][l] + omega_rate[1][l] + omega_rate[2][l]) * 0.0;
-    ok[l] = nonfinite[l] == 0.0 ? ok[l] : 0.0;
+    ok[l] = closed_[l] != 0 ? (nonfinite[l] == 0.0 ? closed_ok[l] : 0.0) : ok[l];
   }
+  // The others' points from the tape's point stage (solve_value's), beside these.
+  for (std::size_t p = 0; merge && p < layout_.point_dimensions.size(); ++p)
+    for (std::size_t kind = 1; kind <= 2; ++kind)
+      for (std::size_t c = 0; c < 2; ++c) {
+        const double* tape = output(TapeLayout::kPointStage, layout_.point_output(p) + 2 * kind + c);
+        double* value = closed_points_.data() + (layout_.point_output(p) + 2 * kind + c) * kLanes;
+        for (std::size_t l = 0; l < kLanes; ++l) value[l] = closed_[l] != 0 ? value[l] : tape[l];
+      }
 }
 
 void DesignLanes::restart_values(double input, const double* restart, double* open) {

@@ -220,17 +220,18 @@ class DesignLanes : LaneSystem {
   /// a lane's values are the scalar run's (check_branch: within the branch tolerance of
   /// the start, as a predicted value must be).
   KINEMA_LANE_LOOPS void solve_value(double input, bool check_branch, const double* take, double* ok);
-  /// Whether the value can go to closed_value: rates in closed form set up, and every
-  /// lane taken moved onto the closed form by close_loops.
-  bool closes_every_lane(const double* take) const;
-  /// solve_value's results for lanes whose start the closed form placed, from the loop:
-  /// the positions as placed; the rates and second rates from the loop's velocity and
-  /// acceleration equations, linear in them (a 2x2 system: the columns are the two
-  /// terms' derivatives in their angles, i first e^(i alpha) and i second e^(i beta)),
-  /// by Cramer's rule; the points from their terms. ok as solve_value's: the branch test,
-  /// Phi_q's column-scaled pivots clearly regular (their ratio as factorise() has it),
-  /// the numbers finite.
-  KINEMA_LANE_LOOPS void closed_value(std::size_t row, bool check_branch, const double* take, double* ok);
+  /// Whether, rates in closed form set up, every lane taken (`every`), or any, was moved
+  /// onto the closed form by close_loops.
+  bool closes_lanes(const double* take, bool every) const;
+  /// solve_value's results for the lanes whose start the closed form placed (closed_),
+  /// from the loop: the positions as placed; the rates and second rates from the loop's
+  /// velocity and acceleration equations, linear in them (a 2x2 system: the columns are
+  /// the two terms' derivatives in their angles, i first e^(i alpha) and i second
+  /// e^(i beta)), by Cramer's rule; the points from their terms. ok as solve_value's: the
+  /// branch test, Phi_q's column-scaled pivots clearly regular (their ratio as
+  /// factorise() has it), the numbers finite. The other lanes keep what solve_value gave
+  /// them (`merge`: it ran, their points copied beside the closed form's).
+  KINEMA_LANE_LOOPS void closed_value(std::size_t row, bool check_branch, bool merge, double* ok);
   /// Workspace::solve_position's damped Newton (halved steps) from start_ for the lanes
   /// restarted; open[l] 1 where it stops open as the scalar solver would (max |Phi| in
   /// residual_, its row in worst_row_), 0 where the scalar run is to solve the value
@@ -248,7 +249,7 @@ class DesignLanes : LaneSystem {
   void hand_over(std::size_t lane, std::size_t row);
   /// The lanes' rates, second rates, point speeds and accelerations (ok[l] 1 where lane
   /// l's value is ok) into their largest.
-  /// `closed`: the points from closed_value, else from the tape's point stage.
+  /// `closed`: the points from closed_value (beside the others'), else from the tape's point stage.
   KINEMA_LANE_LOOPS void keep_largest(const double* ok, bool closed);
   /// Component c of point p's velocity (kind 1) or acceleration (2), lane by lane.
   const double* point_vector(bool closed, std::size_t p, std::size_t kind, std::size_t c);
