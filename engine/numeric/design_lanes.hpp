@@ -9,8 +9,10 @@
 // the scalar run (RowSolver), and goes on in the lanes from the next value after one it
 // solves ok. After a value that does not assemble, the scalar run's Newton alone from the
 // last position (its steps halved where they do not lower the residual) runs lane by
-// lane too, and a value it leaves open is stored as the scalar run stores it. Each lane's
-// table is what solve_sweep gives its design, to rounding.
+// lane too, and a value it leaves open is stored as the scalar run stores it. A lane a
+// four-bar's loop closure places in closed form is solved without the tape (closed_value).
+// Each lane's rows are what solve_sweep gives its design, to rounding, whichever designs
+// share the lanes.
 #pragma once
 
 #include <cmath>
