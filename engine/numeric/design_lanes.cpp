@@ -188,7 +188,8 @@ void DesignLanes::solve(std::size_t count) {
     if (std::find(take, take + kLanes, 1.0) != take + kLanes) {
       // Lanes on the loop's closed form take its numbers, the others Newton's: each lane's
       // the same whichever designs share the batch.
-      const bool every = closes_lanes(take, true), some = closes_lanes(take, false);
+      const std::size_t taken = static_cast<std::size_t>(std::count(take, take + kLanes, 1.0));
+      const bool some = closed_rates_ && closed_lanes_ > 0, every = some && closed_lanes_ == taken;
       if (!every) solve_value(inputs_[row], row > 0, take, ok);
       if (some) closed_value(row, row > 0, !every, ok);
       closed = some;
@@ -271,7 +272,8 @@ bool DesignLanes::choose_lanes(std::size_t row, std::size_t count, double* take,
   if (row > 0) predict(h, take);
   std::copy(start_.begin(), start_.end(), predicted_.begin());
   std::fill_n(closed_, kLanes, 0.0);
-  if (row > 0) closed_form_values_ += close_loops(row, take);
+  closed_lanes_ = row > 0 ? close_loops(row, take) : 0;
+  closed_form_values_ += closed_lanes_;
   return any_restart;
 }
 
@@ -402,16 +404,6 @@ void DesignLanes::solve_value(double input, bool check_branch, const double* tak
   double nonfinite[kLanes];
   nonfinite_results(nonfinite);
   for (std::size_t l = 0; l < kLanes; ++l) ok[l] = nonfinite[l] == 0.0 ? ok[l] : 0.0;
-}
-
-bool DesignLanes::closes_lanes(const double* take, bool every) const {
-  if (!closed_rates_) return false;
-  std::size_t taken = 0, closed = 0;
-  for (std::size_t l = 0; l < kLanes; ++l) {
-    taken += take[l] != 0;
-    closed += take[l] != 0 && closed_[l] != 0;
-  }
-  return every ? closed == taken : closed > 0;
 }
 
 void DesignLanes::closed_value(std::size_t row, bool check_branch, bool merge, double* ok) {

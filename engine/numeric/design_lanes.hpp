@@ -188,6 +188,7 @@ class DesignLanes : LaneSystem {
   std::size_t closure_unknowns_[2] = {0, 1};
   // Of the last close_loops: closed_[l] 1 where lane l was moved onto the closed form, and
   // there the loop's two terms of unknown angle (first e^(i alpha), second e^(i beta)).
+  std::size_t closed_lanes_ = 0;  // the lanes with closed_ 1
   double closed_[kLanes] = {}, first_x_[kLanes] = {}, first_y_[kLanes] = {}, second_x_[kLanes] = {},
          second_y_[kLanes] = {};
   // set_point_terms': factor x, y of term t of lane l at (2 t + 0, 1) kLanes + l.
@@ -222,9 +223,6 @@ class DesignLanes : LaneSystem {
   /// a lane's values are the scalar run's (check_branch: within the branch tolerance of
   /// the start, as a predicted value must be).
   KINEMA_LANE_LOOPS void solve_value(double input, bool check_branch, const double* take, double* ok);
-  /// Whether, rates in closed form set up, every lane taken (`every`), or any, was moved
-  /// onto the closed form by close_loops.
-  bool closes_lanes(const double* take, bool every) const;
   /// solve_value's results for the lanes whose start the closed form placed (closed_),
   /// from the loop: the positions as placed; the rates and second rates from the loop's
   /// velocity and acceleration equations, linear in them (a 2x2 system: the columns are
