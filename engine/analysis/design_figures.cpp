@@ -167,6 +167,42 @@ std::optional<FourBarLoop> four_bar_loop(const ConstraintSystem& system) {
                      (*sides)[named->rocker].side};
 }
 
+std::optional<std::vector<MovingPointTerm>> moving_point_terms(const ConstraintSystem& system) {
+  if (!system.frames.empty()) return std::nullopt;
+  std::vector<ex> variables{system.input.symbol};
+  for (const auto& u : system.unknowns) variables.push_back(u.symbol);
+  const auto moves = [&](const ex& e) {
+    return std::any_of(variables.begin(), variables.end(), [&](const ex& v) { return e.has(v); });
+  };
+  GiNaC::exmap parameters;
+  for (const SystemParameter& p : system.parameters) parameters[p.symbol] = p.value;
+  const auto real_number = [&](const ex& e) {
+    const ex value = GiNaC::evalf(e.subs(parameters));
+    return GiNaC::is_a<GiNaC::numeric>(value) && GiNaC::ex_to<GiNaC::numeric>(value).is_real();
+  };
+  std::vector<MovingPointTerm> terms;
+  for (std::size_t p = 0; p < system.points.size(); ++p) {
+    const PointObservable& point = system.points[p];
+    if (!point.written || point.written_terms.empty() || point.position.size() != 2) return std::nullopt;
+    ex sum = 0;
+    for (const ex& term : point.written_terms) sum += term;
+    if (!(sum - *point.written).expand().is_zero()) return std::nullopt;
+    for (const ex& term : point.written_terms) {
+      if (!moves(term)) continue;
+      const LinkVector v = split_link_vector(term);
+      if (!v.polar || moves(v.length) || !real_number(v.length)) return std::nullopt;
+      std::size_t found = variables.size();
+      for (std::size_t k = 0; k < variables.size(); ++k)
+        if (v.angle.has(variables[k])) found = found == variables.size() ? k : variables.size() + 1;
+      if (found >= variables.size()) return std::nullopt;  // none (a moving length), or two
+      const ex offset = (v.angle - variables[found]).expand();
+      if (moves(offset) || !real_number(offset)) return std::nullopt;
+      terms.push_back({p, static_cast<int>(found) - 1, v.length, offset});
+    }
+  }
+  return terms;
+}
+
 FourBarLoopValues FourBarLoop::values() const {
   const auto numbers = [](const FourBarSide& side) { return FourBarSideValues{side.value, side.unknown, side.angle_value}; };
   return FourBarLoopValues{numbers(ground), numbers(crank), numbers(coupler), numbers(rocker)};

@@ -94,6 +94,20 @@ struct FourBarLoop {
 /// The loop of a vector-loop four-bar driven by its crank, its sides told apart as
 /// four_bar_figures tells them; nothing for other mechanisms.
 std::optional<FourBarLoop> four_bar_loop(const ConstraintSystem& system);
+/// A term of a point's position that turns with one variable: length e^(i (variable +
+/// offset)), the variable the input (-1) or an unknown (its index), length and offset
+/// free of both (formulas of the parameters, real at the file's values).
+struct MovingPointTerm {
+  std::size_t point = 0;
+  int variable = -1;
+  GiNaC::ex length, offset;
+};
+/// Every point of a planar system written as a sum of such terms and of terms that do not
+/// move (left out: they add nothing to its velocity or acceleration), the terms in the
+/// points' order; nullopt where a point has a term that is neither (a sliding length, an
+/// angle of two variables). What a design study's lanes give the points' motion from.
+std::optional<std::vector<MovingPointTerm>> moving_point_terms(const ConstraintSystem& system);
+
 /// The transmission angle (deg, 0 to 180) where the coupler's and the rocker's angles are
 /// solved: between them at their joint, the sides' signs those of the loop's values.
 double transmission_angle(const FourBarLoopValues& loop, double coupler_angle, double rocker_angle);

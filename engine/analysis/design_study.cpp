@@ -61,6 +61,12 @@ struct StudySetup {
   double length_unit = 1;                    // SI metres per output length unit (Grashof's check)
   std::vector<std::size_t> stroke_unknowns;  // candidates for the time ratio, in order
   std::size_t turn_rows = 0;                 // rows of the run's first full turn (0: none)
+  // A four-bar's points as terms that turn with one variable (DesignLanes' rates in closed
+  // form), each one's length and angle offset among the tape's outputs from point_outputs
+  // on; empty (closed_points false) where a point is not such a sum.
+  std::vector<ClosedPointTerm> point_terms;
+  std::size_t point_outputs = 0;
+  bool closed_points = false;
 };
 
 StudySetup set_up(const Model& base, const Designs& designs, const std::vector<double>& inputs,
@@ -89,6 +95,15 @@ StudySetup set_up(const Model& base, const Designs& designs, const std::vector<d
     for (const FourBarSide* side : {&setup.loop->ground, &setup.loop->crank, &setup.loop->coupler, &setup.loop->rocker})
       outputs.push_back(side->length.subs(resolved));
     outputs.push_back(setup.loop->ground.angle.subs(resolved));
+    setup.point_outputs = outputs.size();
+    const std::optional<std::vector<MovingPointTerm>> moving = moving_point_terms(system);
+    setup.closed_points = moving && !designs.names.empty();
+    for (std::size_t t = 0; setup.closed_points && t < moving->size(); ++t) {
+      const MovingPointTerm& term = (*moving)[t];
+      setup.point_terms.push_back({term.point, term.variable});
+      outputs.push_back(term.length.subs(resolved));
+      outputs.push_back(term.offset.subs(resolved));
+    }
   }
   if (!outputs.empty() && !designs.names.empty()) {
     setup.tape = CompiledExpressions(symbols, outputs);
@@ -136,16 +151,6 @@ double largest_vector(const MotionTable& table, std::size_t p, std::size_t dimen
   return largest;
 }
 
-// |the angle x wrapped to [-pi, pi]|: transmission_angle is this (in degrees) of
-// rocker - coupler + pi (+ pi more where one of their lengths is written negative), the
-// direction from the rocker's edge to the coupler's back. Rounding by adding and taking
-// away 1.5 * 2^52 (no libm call): |x| < 2^51 turns.
-double transmission_measure(double x) {
-  constexpr double kTurn = 2 * kPi, kRound = 0x1.8p52;
-  const double turns = (x / kTurn + kRound) - kRound;
-  return std::fabs(x - turns * kTurn);
-}
-
 // The crank angles (rad, in (-pi, 2 pi)) where a four-bar's rocker stops: its crank and
 // coupler in line, stretched out or folded (their terms' sum L e^(i input), L = crank
 // +- coupler), where |L e^(i input) + ground| is the rocker's length; on either assembly,
@@ -190,7 +195,8 @@ class DesignRunner {
         values_(setup.values),
         tape_outputs_(setup.has_tape ? setup.tape.output_count() : 0),
         tape_registers_(setup.has_tape ? setup.tape.make_workspace() : std::vector<double>{}),
-        rates_(inputs.size()) {
+        rates_(inputs.size()),
+        inputs_(inputs) {
     SweepSettings settings;
     settings.rate = setup.base->system.input.rate_value;
     settings.second_rate = setup.base->system.input.second_rate_value;
@@ -200,6 +206,7 @@ class DesignRunner {
     if (options.across_designs && solves() && settings.rate != 0 && !inputs.empty()) {
       lanes_ = std::make_unique<DesignLanes>(kinematics_, inputs, settings.rate, settings.second_rate);
       lanes_->set_positions_and_rates_only(true);  // summarise reads no more of a lane's rows
+      if (setup.closed_points) lanes_->set_point_terms(setup.point_terms);
       lane_designs_.resize(DesignLanes::kLanes);
     }
   }
@@ -224,6 +231,9 @@ class DesignRunner {
       lanes_->set_design(l, values_.data());
       lanes_->set_reach(l, loop_reach());
       if (vector_loop()) lanes_->set_closure(l, loop_closure());
+      lanes_->set_angle_measure(l, loop_.coupler.unknown, loop_.rocker.unknown,
+                                lane_designs_[l].kind != GrashofClass::none ? transmission_offset() : kNaN);
+      if (vector_loop() && setup_.closed_points) lanes_->set_point_term_values(l, point_factors_.data());
     }
     lanes_->solve(count);
     lane_values_ += lanes_->lane_values();
@@ -255,6 +265,14 @@ class DesignRunner {
       }
       kind = grashof_class(loop_.ground.value, loop_.crank.value, loop_.coupler.value, loop_.rocker.value,
                            setup_.length_unit);
+      // Each moving point term's factor, length e^(i offset).
+      point_factors_.resize(2 * setup_.point_terms.size());
+      for (std::size_t t = 0; t < setup_.point_terms.size(); ++t) {
+        const double length = tape_outputs_[setup_.point_outputs + 2 * t];
+        const double offset = tape_outputs_[setup_.point_outputs + 2 * t + 1];
+        point_factors_[2 * t] = length * std::cos(offset);
+        point_factors_[2 * t + 1] = length * std::sin(offset);
+      }
     }
     if (options_.wants(StudyFigure::grashof)) results.grashof[design] = kind;
     return kind;
@@ -276,6 +294,11 @@ class DesignRunner {
     const LoopClosure c = loop_closure();
     return LoopReach(c.crank, c.fixed_x, c.fixed_y, c.first, c.second);
   }
+
+  // |rocker - coupler + this| wrapped to [-pi, pi] (angle_magnitude) is what
+  // transmission_angle gives (in degrees): the direction from the rocker's edge to the
+  // coupler's back, pi (2 pi where one of their lengths is written negative).
+  double transmission_offset() const { return (loop_.coupler.value < 0) == (loop_.rocker.value < 0) ? kPi : 0; }
 
   bool solves() const {
     for (StudyFigure f : {StudyFigure::min_transmission_angle, StudyFigure::time_ratio, StudyFigure::assembles,
@@ -299,19 +322,23 @@ class DesignRunner {
     if (options_.wants(StudyFigure::min_transmission_angle)) {
       double least = kNaN;
       if (kind != GrashofClass::none) {  // as four_bar_figures: no figures where there is nothing to classify
-        const double* coupler = table.q_column(loop_.coupler.unknown);
-        const double* rocker = table.q_column(loop_.rocker.unknown);
         // The row where the angle is least by a measure without trigonometry, its angle
-        // as transmission_angle gives it (the least of every row's, to rounding).
-        const double offset = (loop_.coupler.value < 0) == (loop_.rocker.value < 0) ? kPi : 0;
-        double least_measure = kNaN;
-        std::size_t least_row = table.size();
-        for (std::size_t row = 0; row < table.size(); ++row) {
-          if (table.status(row) == Status::unassembled) continue;
-          const double measure = transmission_measure(rocker[row] - coupler[row] + offset);
-          if (!(measure >= least_measure)) least_measure = measure, least_row = row;
+        // as transmission_angle gives it (the least of every row's, to rounding); the
+        // lanes keep it as they solve.
+        double coupler_angle = kNaN, rocker_angle = kNaN;
+        if (from_lanes) {
+          lanes_->least_measure_angles(lane, coupler_angle, rocker_angle);
+        } else {
+          const double* coupler = table.q_column(loop_.coupler.unknown);
+          const double* rocker = table.q_column(loop_.rocker.unknown);
+          double least_measure = kNaN;
+          for (std::size_t row = 0; row < table.size(); ++row) {
+            if (table.status(row) == Status::unassembled) continue;
+            const double measure = angle_magnitude(rocker[row] - coupler[row] + transmission_offset());
+            if (!(measure >= least_measure)) least_measure = measure, coupler_angle = coupler[row], rocker_angle = rocker[row];
+          }
         }
-        if (least_row < table.size()) least = transmission_angle(loop_, coupler[least_row], rocker[least_row]);
+        if (!std::isnan(coupler_angle)) least = transmission_angle(loop_, coupler_angle, rocker_angle);
       }
       results.min_transmission_angle[design] = least * kPi / 180;
     }
@@ -332,21 +359,28 @@ class DesignRunner {
         results.max_acceleration[p][design] = from_lanes ? lanes_->largest_acceleration(lane, p)
                                                          : largest_vector(table, p, dimensions[p], 2 * dimensions[p]);
     }
-    if (options_.wants(StudyFigure::time_ratio)) results.time_ratio[design] = time_ratio(table);
+    if (options_.wants(StudyFigure::time_ratio)) results.time_ratio[design] = time_ratio(table, lane);
   }
 
   // The time ratio of the first candidate unknown with exactly two limit positions over
-  // the run's first turn (find_limit_positions' refinement, set_strokes' ratio).
-  double time_ratio(const MotionTable& table) {
+  // the run's first turn (find_limit_positions' refinement, set_strokes' ratio); a lane's
+  // (`lane` < kLanes) rows from the lanes.
+  double time_ratio(const MotionTable& table, std::size_t lane) {
     if (setup_.stroke_unknowns.empty()) return kNaN;
+    const bool from_lanes = lane < DesignLanes::kLanes;
     const double rate = table.input_rate();
     const std::size_t rows = setup_.turn_rows;
     bool reloaded = false;
     for (std::size_t j : setup_.stroke_unknowns) {
-      const double* qd = table.qd_column(j);
+      if (from_lanes) {
+        lanes_->rates_at_ok_rows(lane, j, rows, rates_.data());
+      } else {
+        for (std::size_t row = 0; row < rows; ++row)
+          rates_[row] = table.status(row) == Status::ok ? table.qd_column(j)[row] : kNaN;
+      }
       std::size_t changes = 0;
       for (std::size_t row = 0; row < rows; ++row) {
-        rates_[row] = table.status(row) == Status::ok ? qd[row] / rate : kNaN;
+        rates_[row] /= rate;
         if (row > 0 && (rates_[row - 1] == 0 || rates_[row - 1] * rates_[row] < 0)) ++changes;
       }
       if (changes < 2 || changes > 3) continue;  // two limits (one more where one lies on a row twice round)
@@ -357,8 +391,11 @@ class DesignRunner {
       double stops[4];
       const int stop_count = setup_.loop ? rocker_stops(loop_, stops) : 0;
       const KnownLimit known = [&](double from, double to) { return rocker_stop_between(stops, stop_count, from, to); };
-      const std::vector<Toggle> limits =
-          limit_positions_in_turn(table, rows, rates_.data(), j, *limits_, setup_.loop ? known : KnownLimit{});
+      const RowPosition position = [&](std::size_t row) {
+        return from_lanes ? lanes_->position(lane, row) : Eigen::VectorXd(table.q(row));
+      };
+      const std::vector<Toggle> limits = limit_positions_in_turn(inputs_.data(), position, rows, rates_.data(), j,
+                                                                 *limits_, setup_.loop ? known : KnownLimit{});
       if (limits.size() != 2) continue;
       Strokes strokes;
       for (int k = 0; k < 2; ++k) strokes.limit_inputs[k] = limits[std::size_t(k)].input * 180 / kPi;
@@ -371,7 +408,8 @@ class DesignRunner {
   const StudySetup& setup_;
   const StudyOptions& options_;
   Kinematics kinematics_;  // this thread's, its parameter values the design's
-  std::vector<double> values_, tape_outputs_, tape_registers_, rates_;
+  std::vector<double> values_, tape_outputs_, tape_registers_, rates_, point_factors_;
+  const std::vector<double>& inputs_;
   std::unique_ptr<RepeatedSweep> sweep_;
   std::unique_ptr<Workspace> limits_;
   FourBarLoopValues loop_;

@@ -112,6 +112,15 @@ std::vector<Toggle> find_toggles(const Model& model) {
 
 std::vector<Toggle> limit_positions_in_turn(const MotionTable& turn, std::size_t rows, const double* g,
                                             std::size_t unknown, Workspace& workspace, const KnownLimit& known) {
+  std::vector<double> inputs(rows);
+  for (std::size_t row = 0; row < rows; ++row) inputs[row] = turn.input(row);
+  return limit_positions_in_turn(inputs.data(), [&](std::size_t row) { return Eigen::VectorXd(turn.q(row)); }, rows, g,
+                                 unknown, workspace, known);
+}
+
+std::vector<Toggle> limit_positions_in_turn(const double* inputs, const RowPosition& position, std::size_t rows,
+                                            const double* g, std::size_t unknown, Workspace& workspace,
+                                            const KnownLimit& known) {
   const auto j = Eigen::Index(unknown);
   std::vector<Toggle> found;
   const auto keep = [&](double input, const Eigen::VectorXd& q) {
@@ -126,21 +135,21 @@ std::vector<Toggle> limit_positions_in_turn(const MotionTable& turn, std::size_t
     if (std::isnan(g[row]) || std::isnan(g[row + 1])) continue;
     double ga = g[row], gb = g[row + 1];
     if (ga == 0) {
-      keep(turn.input(row), turn.q(row));
+      keep(inputs[row], position(row));
       continue;
     }
     if (!(ga * gb < 0)) continue;
     if (known) {
-      const double at = known(turn.input(row), turn.input(row + 1));
+      const double at = known(inputs[row], inputs[row + 1]);
       if (!std::isnan(at)) {
-        keep(at, turn.q(std::fabs(at - turn.input(row)) <= std::fabs(at - turn.input(row + 1)) ? row : row + 1));
+        keep(at, position(std::fabs(at - inputs[row]) <= std::fabs(at - inputs[row + 1]) ? row : row + 1));
         continue;
       }
     }
     // Regula falsi, Illinois variant: q solved from the nearer end of the bracket (1 deg
     // apart at most, so on the same assembly).
-    double ta = turn.input(row), tb = turn.input(row + 1);
-    Eigen::VectorXd qa = turn.q(row), qb = turn.q(row + 1), q, dq;
+    double ta = inputs[row], tb = inputs[row + 1];
+    Eigen::VectorXd qa = position(row), qb = position(row + 1), q, dq;
     double t = ta, last = std::numeric_limits<double>::quiet_NaN();
     bool solved = false;
     for (int iteration = 0; iteration < 200; ++iteration) {

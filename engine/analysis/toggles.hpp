@@ -42,5 +42,11 @@ std::vector<std::vector<Toggle>> find_limit_positions(const Model& model, const 
 using KnownLimit = std::function<double(double from, double to)>;
 std::vector<Toggle> limit_positions_in_turn(const MotionTable& turn, std::size_t rows, const double* g,
                                             std::size_t unknown, Workspace& workspace, const KnownLimit& known = {});
+/// The same from the rows' inputs and a row's position as `position` gives it (rows kept
+/// elsewhere than in a table: a design study's lanes).
+using RowPosition = std::function<Eigen::VectorXd(std::size_t row)>;
+std::vector<Toggle> limit_positions_in_turn(const double* inputs, const RowPosition& position, std::size_t rows,
+                                            const double* g, std::size_t unknown, Workspace& workspace,
+                                            const KnownLimit& known = {});
 
 }  // namespace kinema

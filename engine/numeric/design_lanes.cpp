@@ -106,6 +106,7 @@ DesignLanes::DesignLanes(const Kinematics& kinematics, const std::vector<double>
     lanes_.push_back(std::make_unique<Lane>(kinematics, inputs, rate, second_rate));
     set_design(l, kinematics.parameter_values().data());
   }
+  std::fill_n(measure_offset_, kLanes, NAN);
   std::fill_n(lanes(layout_.rate()), kLanes, rate);
   std::fill_n(lanes(layout_.second_rate()), kLanes, second_rate);
 }
@@ -141,6 +142,20 @@ void DesignLanes::set_closure(std::size_t lane, const LoopClosure& closure) {
   closure_unknowns_[1] = closure.second_unknown;
 }
 
+void DesignLanes::set_point_terms(const std::vector<ClosedPointTerm>& terms) {
+  point_terms_ = terms;
+  point_term_factors_.assign(2 * terms.size() * kLanes, 0.0);
+  closed_points_.assign(layout_.point_output_count() * kLanes, 0.0);
+  // Two angles and planar points only: what the loop's closed form covers.
+  closed_rates_ = n_ == 2 && layout_.frame_count == 0 &&
+                  std::all_of(layout_.point_dimensions.begin(), layout_.point_dimensions.end(),
+                              [](std::size_t d) { return d == 2; });
+}
+
+void DesignLanes::set_point_term_values(std::size_t lane, const double* factors) {
+  for (std::size_t t = 0; t < 2 * point_terms_.size(); ++t) point_term_factors_[t * kLanes + lane] = factors[t];
+}
+
 void DesignLanes::solve(std::size_t count) {
   k_.evaluator().prepare_batch(registers_.data());  // each lane's work on its parameters
   for (std::size_t l = 0; l < count; ++l) {
@@ -152,20 +167,33 @@ void DesignLanes::solve(std::size_t count) {
   }
   lane_values_ = 0;
   closed_form_values_ = 0;
+  closed_rate_values_ = 0;
   std::fill(largest_speed_.begin(), largest_speed_.end(), NAN);
   std::fill(largest_acceleration_.begin(), largest_acceleration_.end(), NAN);
   std::fill(largest_speed_square_.begin(), largest_speed_square_.end(), 0.0);
   std::fill(largest_acceleration_square_.begin(), largest_acceleration_square_.end(), 0.0);
   std::fill(largest_rate_.begin(), largest_rate_.end(), NAN);
   std::fill(largest_second_rate_.begin(), largest_second_rate_.end(), NAN);
+  std::fill_n(least_measure_, kLanes, NAN);
+  if (positions_and_rates_) {
+    kept_.resize(2 * n_ * inputs_.size() * kLanes);
+    kept_ok_.resize(inputs_.size() * kLanes);
+  }
   double take[kLanes], ok[kLanes], restart[kLanes], open[kLanes], out_of_reach[kLanes];
   for (std::size_t row = 0; row < inputs_.size(); ++row) {
     bool restarts = choose_lanes(row, count, take, restart, out_of_reach);
     std::fill_n(ok, kLanes, 0.0);
     std::fill_n(open, kLanes, 0.0);
+    bool closed = false;
     if (std::find(take, take + kLanes, 1.0) != take + kLanes) {
-      solve_value(inputs_[row], row > 0, take, ok);
-      keep_largest(ok);
+      // Lanes on the loop's closed form take its numbers, the others Newton's: each lane's
+      // the same whichever designs share the batch.
+      const std::size_t taken = static_cast<std::size_t>(std::count(take, take + kLanes, 1.0));
+      const bool some = closed_rates_ && closed_lanes_ > 0, every = some && closed_lanes_ == taken;
+      if (!every) solve_value(inputs_[row], row > 0, take, ok);
+      if (some) closed_value(row, row > 0, !every, ok);
+      closed = some;
+      keep_largest(ok, closed);
       keep_previous(ok);
     }
     // The first value, from the guesses, is Newton alone: where the undamped steps did
@@ -174,8 +202,9 @@ void DesignLanes::solve(std::size_t count) {
       restart[l] = take[l] != 0 && ok[l] == 0 && lanes_[l]->rows.restart_position() != nullptr ? 1.0 : 0.0;
       restarts = restarts || restart[l] != 0;
     }
-    for (std::size_t l = 0; l < count; ++l)
-      if (ok[l] != 0) store(l, row);
+    keep_row(row, ok);
+    for (std::size_t l = 0; l < count && !positions_and_rates_; ++l)
+      if (ok[l] != 0) store(l, row, closed);
     if (restarts) restart_values(inputs_[row], restart, open);
     for (std::size_t l = 0; l < count; ++l) {
       Lane& lane = *lanes_[l];
@@ -199,6 +228,7 @@ void DesignLanes::solve(std::size_t count) {
       }
       hand_over(l, row);
       lane.rows.solve(lane.table, row);
+      if (lane.table.status(row) != Status::unassembled) keep_measure(l, lane.table, row);
       if (lane.table.status(row) != Status::ok) continue;
       keep_largest(l, row);
       for (std::size_t i = 0; i < n_; ++i) {
@@ -241,7 +271,9 @@ bool DesignLanes::choose_lanes(std::size_t row, std::size_t count, double* take,
   }
   if (row > 0) predict(h, take);
   std::copy(start_.begin(), start_.end(), predicted_.begin());
-  if (row > 0) closed_form_values_ += close_loops(row, take);
+  std::fill_n(closed_, kLanes, 0.0);
+  closed_lanes_ = row > 0 ? close_loops(row, take) : 0;
+  closed_form_values_ += closed_lanes_;
   return any_restart;
 }
 
@@ -295,6 +327,11 @@ std::size_t DesignLanes::close_loops(std::size_t row, const double* predicted) {
                                    (wy - py) * closure_over_second_[l], largest_square, usable);
     first_angle[l] = usable != 0 ? alpha : first_angle[l];
     second_angle[l] = usable != 0 ? beta : second_angle[l];
+    closed_[l] = usable;
+    first_x_[l] = px;
+    first_y_[l] = py;
+    second_x_[l] = wx - px;
+    second_y_[l] = wy - py;
     moved += usable;
   }
   return static_cast<std::size_t>(moved);
@@ -367,6 +404,114 @@ void DesignLanes::solve_value(double input, bool check_branch, const double* tak
   double nonfinite[kLanes];
   nonfinite_results(nonfinite);
   for (std::size_t l = 0; l < kLanes; ++l) ok[l] = nonfinite[l] == 0.0 ? ok[l] : 0.0;
+}
+
+void DesignLanes::closed_value(std::size_t row, bool check_branch, bool merge, double* ok) {
+  ++closed_rate_values_;
+  const std::size_t first = closure_unknowns_[0], second = closure_unknowns_[1];
+  const double* first_scale = column_scale_.data() + first * kLanes;
+  const double* second_scale = column_scale_.data() + second * kLanes;
+  const double cos_input = cos_inputs_[row], sin_input = sin_inputs_[row];
+  const double rate = rate_, input_second_rate = second_rate_;
+  // Each variable's e^(i angle), rate and second rate (the input, the first and second
+  // unknowns): what the points' terms turn with. Written to local arrays only, so that
+  // the loop runs across lanes (no store that might alias what it reads).
+  double turn_x[3][kLanes], turn_y[3][kLanes], omega[3][kLanes], omega_rate[3][kLanes], regular[kLanes],
+      ratios[kLanes], residuals[kLanes];
+  for (std::size_t l = 0; l < kLanes; ++l) {
+    // The loop: C + fixed + A + B = 0, A = first e^(i alpha), B = second e^(i beta), the
+    // crank's term C = crank e^(i input). Its velocity equations: i (input' C + alpha' A +
+    // beta' B) = 0, so alpha' A + beta' B = -input' C.
+    const double ax = first_x_[l], ay = first_y_[l], bx = second_x_[l], by = second_y_[l];
+    const double cx = closure_crank_[l] * cos_input, cy = closure_crank_[l] * sin_input;
+    const double determinant = ax * by - ay * bx, over = 1 / determinant;
+    const double alpha_rate = -rate * (cx * by - cy * bx) * over;
+    const double beta_rate = -rate * (ax * cy - ay * cx) * over;
+    // Differentiated once more: alpha'' A + beta'' B = -input'' C - i S, S = alpha'^2 A +
+    // beta'^2 B + input'^2 C.
+    const double sx = alpha_rate * alpha_rate * ax + beta_rate * beta_rate * bx + rate * rate * cx;
+    const double sy = alpha_rate * alpha_rate * ay + beta_rate * beta_rate * by + rate * rate * cy;
+    const double rx = -input_second_rate * cx + sy, ry = -input_second_rate * cy - sx;
+    // Phi_q (rows: the loop's real and imaginary parts; columns i A, i B) column-scaled,
+    // factorised with partial pivoting: its pivots' ratio, as factorise() finds it.
+    const double m00 = std::fabs(ay * first_scale[l]), m10 = std::fabs(ax * first_scale[l]);
+    const double pivot = m00 > m10 ? m00 : m10;
+    const double other = std::fabs(determinant * first_scale[l] * second_scale[l]) / pivot;
+    const double ratio = (pivot < other ? pivot : other) / (pivot < other ? other : pivot);
+    regular[l] = ratio >= solver::kClearlyRegularPivotRatio ? 1.0 : 0.0;
+    ratios[l] = ratio;
+    // max |Phi| of the closed form's own terms (rounding: they close by construction).
+    const double phi_x = std::fabs(cx + closure_fixed_x_[l] + ax + bx), phi_y = std::fabs(cy + closure_fixed_y_[l] + ay + by);
+    residuals[l] = phi_x > phi_y ? phi_x : phi_y;
+    turn_x[0][l] = cos_input, turn_y[0][l] = sin_input;
+    turn_x[1][l] = ax * closure_over_first_[l], turn_y[1][l] = ay * closure_over_first_[l];
+    turn_x[2][l] = bx * closure_over_second_[l], turn_y[2][l] = by * closure_over_second_[l];
+    omega[0][l] = rate, omega[1][l] = alpha_rate, omega[2][l] = beta_rate;
+    omega_rate[0][l] = input_second_rate;
+    omega_rate[1][l] = (rx * by - ry * bx) * over;
+    omega_rate[2][l] = (ax * ry - ay * rx) * over;
+  }
+  // The lanes on the closed form (closed_) take its numbers; the others keep solve_value's.
+  const auto take_closed = [&](double* target, const double* value) {
+    for (std::size_t l = 0; l < kLanes; ++l) target[l] = closed_[l] != 0 ? value[l] : target[l];
+  };
+  for (std::size_t i = 0; i < n_; ++i) take_closed(lanes(layout_.q(i)), start_.data() + i * kLanes);
+  take_closed(lanes(layout_.qd(first)), omega[1]);
+  take_closed(lanes(layout_.qd(second)), omega[2]);
+  take_closed(lanes(layout_.qdd(first)), omega_rate[1]);
+  take_closed(lanes(layout_.qdd(second)), omega_rate[2]);
+  take_closed(pivot_ratio_, ratios);
+  take_closed(residual_, residuals);
+  double closed_ok[kLanes];
+  for (std::size_t l = 0; l < kLanes; ++l) closed_ok[l] = regular[l];
+  // The points: each term Z = factor e^(i variable) moves at i omega Z and accelerates at
+  // (i omega' - omega^2) Z.
+  std::fill(closed_points_.begin(), closed_points_.end(), 0.0);
+  for (std::size_t t = 0; t < point_terms_.size(); ++t) {
+    const int variable = point_terms_[t].variable;
+    const std::size_t slot = variable < 0 ? 0 : std::size_t(variable) == first ? 1 : 2;
+    const std::size_t at = layout_.point_output(point_terms_[t].point);
+    const double* factor_x = point_term_factors_.data() + (2 * t) * kLanes;
+    const double* factor_y = point_term_factors_.data() + (2 * t + 1) * kLanes;
+    double* velocity_x = closed_points_.data() + (at + 2) * kLanes;
+    double* velocity_y = velocity_x + kLanes;
+    double* acceleration_x = closed_points_.data() + (at + 4) * kLanes;
+    double* acceleration_y = acceleration_x + kLanes;
+    for (std::size_t l = 0; l < kLanes; ++l) {
+      const double zx = factor_x[l] * turn_x[slot][l] - factor_y[l] * turn_y[slot][l];
+      const double zy = factor_x[l] * turn_y[slot][l] + factor_y[l] * turn_x[slot][l];
+      const double w = omega[slot][l], w_rate = omega_rate[slot][l], w_square = w * w;
+      velocity_x[l] -= w * zy;
+      velocity_y[l] += w * zx;
+      acceleration_x[l] -= w_rate * zy + w_square * zx;
+      acceleration_y[l] += w_rate * zx - w_square * zy;
+    }
+  }
+  // A predicted value stays on its branch (as solve_value tests it).
+  if (check_branch) {
+    for (std::size_t i = 0; i < n_; ++i) {
+      const double* q = start_.data() + i * kLanes;
+      const double* predicted = predicted_.data() + i * kLanes;
+      const double* scale = column_scale_.data() + i * kLanes;
+      for (std::size_t l = 0; l < kLanes; ++l)
+        closed_ok[l] = std::fabs(q[l] - predicted[l]) / scale[l] > solver::kBranchTolerance ? 0.0 : closed_ok[l];
+    }
+  }
+  double nonfinite[kLanes] = {};  // x * 0 is 0 for finite x, NaN otherwise
+  for (std::size_t k = 0; k < closed_points_.size(); k += kLanes)
+    for (std::size_t l = 0; l < kLanes; ++l) nonfinite[l] += closed_points_[k + l] * 0.0;
+  for (std::size_t l = 0; l < kLanes; ++l) {
+    nonfinite[l] += (omega[1][l] + omega[2][l] + omega_rate[1][l] + omega_rate[2][l]) * 0.0;
+    ok[l] = closed_[l] != 0 ? (nonfinite[l] == 0.0 ? closed_ok[l] : 0.0) : ok[l];
+  }
+  // The others' points from the tape's point stage (solve_value's), beside these.
+  for (std::size_t p = 0; merge && p < layout_.point_dimensions.size(); ++p)
+    for (std::size_t kind = 1; kind <= 2; ++kind)
+      for (std::size_t c = 0; c < 2; ++c) {
+        const double* tape = output(TapeLayout::kPointStage, layout_.point_output(p) + 2 * kind + c);
+        double* value = closed_points_.data() + (layout_.point_output(p) + 2 * kind + c) * kLanes;
+        for (std::size_t l = 0; l < kLanes; ++l) value[l] = closed_[l] != 0 ? value[l] : tape[l];
+      }
 }
 
 void DesignLanes::restart_values(double input, const double* restart, double* open) {
@@ -476,7 +621,7 @@ void DesignLanes::restart_values(double input, const double* restart, double* op
   }
 }
 
-void DesignLanes::store(std::size_t l, std::size_t row) {
+void DesignLanes::store(std::size_t l, std::size_t row, bool closed) {
   MotionTable& table = lanes_[l]->table;
   const std::size_t rows = table.size();
   double* q = table.q_values();
@@ -485,10 +630,72 @@ void DesignLanes::store(std::size_t l, std::size_t row) {
     q[i * rows + row] = lanes(layout_.q(i))[l];
     qd[i * rows + row] = lanes(layout_.qd(i))[l];
   }
-  if (positions_and_rates_) return;
   table.loop_residuals()[row] = residual_[l];
   table.reciprocal_conditions()[row] = pivot_ratio_[l];
   for (std::size_t i = 0; i < n_; ++i) table.qdd_values()[i * rows + row] = lanes(layout_.qdd(i))[l];
+  const std::vector<std::size_t>& dimensions = layout_.point_dimensions;
+  for (std::size_t p = 0; p < dimensions.size(); ++p)
+    for (std::size_t kind = 1; kind <= 2; ++kind)
+      for (std::size_t c = 0; c < dimensions[p]; ++c) {
+        const std::size_t column = kind * dimensions[p] + c;
+        double* values = table.point_values() + (table.point_column(p, column) - table.point_values());
+        values[row] = point_vector(closed, p, kind, c)[l];
+      }
+}
+
+void DesignLanes::keep_row(std::size_t row, const double* ok) {
+  if (positions_and_rates_) {
+    double* kept = kept_.data() + 2 * n_ * row * kLanes;
+    for (std::size_t i = 0; i < n_; ++i) {
+      std::copy_n(lanes(layout_.q(i)), kLanes, kept + i * kLanes);
+      std::copy_n(lanes(layout_.qd(i)), kLanes, kept + (n_ + i) * kLanes);
+    }
+    std::copy_n(ok, kLanes, kept_ok_.data() + row * kLanes);
+  }
+  if (n_ < 2) return;  // no measure
+  const double* first = lanes(layout_.q(measure_unknowns_[0]));
+  const double* second = lanes(layout_.q(measure_unknowns_[1]));
+  for (std::size_t l = 0; l < kLanes; ++l) {
+    // A value solved in the lanes assembles; the first of equal measures kept (as a scan
+    // of the rows in order keeps it). A NaN offset: no measure.
+    const double offset = measure_offset_[l], measure = angle_magnitude(second[l] - first[l] + offset);
+    const bool less = (ok[l] != 0) & (offset == offset) & !(measure >= least_measure_[l]);
+    least_measure_[l] = less ? measure : least_measure_[l];
+    least_first_[l] = less ? first[l] : least_first_[l];
+    least_second_[l] = less ? second[l] : least_second_[l];
+  }
+}
+
+void DesignLanes::keep_measure(std::size_t l, const MotionTable& table, std::size_t row) {
+  if (std::isnan(measure_offset_[l])) return;
+  const double first = table.q_column(measure_unknowns_[0])[row], second = table.q_column(measure_unknowns_[1])[row];
+  const double measure = angle_magnitude(second - first + measure_offset_[l]);
+  if (measure >= least_measure_[l]) return;
+  least_measure_[l] = measure;
+  least_first_[l] = first;
+  least_second_[l] = second;
+}
+
+bool DesignLanes::least_measure_angles(std::size_t l, double& first, double& second) const {
+  first = least_first_[l];
+  second = least_second_[l];
+  return !std::isnan(least_measure_[l]);
+}
+
+Eigen::VectorXd DesignLanes::position(std::size_t l, std::size_t row) const {
+  if (!positions_and_rates_ || kept_ok_[row * kLanes + l] == 0) return lanes_[l]->table.q(row);
+  Eigen::VectorXd q(static_cast<Eigen::Index>(n_));
+  for (std::size_t i = 0; i < n_; ++i) q[Eigen::Index(i)] = kept_[(2 * n_ * row + i) * kLanes + l];
+  return q;
+}
+
+void DesignLanes::rates_at_ok_rows(std::size_t l, std::size_t i, std::size_t rows, double* rates) const {
+  const MotionTable& table = lanes_[l]->table;
+  const double* column = table.qd_column(i);
+  for (std::size_t row = 0; row < rows; ++row) {
+    const bool kept = positions_and_rates_ && kept_ok_[row * kLanes + l] != 0;
+    rates[row] = kept ? kept_[(2 * n_ * row + n_ + i) * kLanes + l] : table.status(row) == Status::ok ? column[row] : NAN;
+  }
 }
 
 void DesignLanes::hand_over(std::size_t l, std::size_t row) {
@@ -513,7 +720,12 @@ namespace {
 inline double larger(double largest, double length) { return !(length <= largest) ? length : largest; }
 }  // namespace
 
-void DesignLanes::keep_largest(const double* ok) {
+const double* DesignLanes::point_vector(bool closed, std::size_t p, std::size_t kind, std::size_t c) {
+  const std::size_t k = layout_.point_output(p) + kind * layout_.point_dimensions[p] + c;
+  return closed ? closed_points_.data() + k * kLanes : output(TapeLayout::kPointStage, k);
+}
+
+void DesignLanes::keep_largest(const double* ok, bool closed) {
   for (std::size_t i = 0; i < n_; ++i) {
     const double* qd = lanes(layout_.qd(i));
     const double* qdd = lanes(layout_.qdd(i));
@@ -531,7 +743,7 @@ void DesignLanes::keep_largest(const double* ok) {
     for (std::size_t kind = 1; kind <= 2; ++kind) {  // velocity, then acceleration
       double squares[kLanes] = {};
       for (std::size_t c = 0; c < d; ++c) {
-        const double* v = output(TapeLayout::kPointStage, layout_.point_output(p) + kind * d + c);
+        const double* v = point_vector(closed, p, kind, c);
         for (std::size_t l = 0; l < kLanes; ++l) squares[l] += v[l] * v[l];
       }
       double* largest = (kind == 1 ? largest_speed_ : largest_acceleration_).data() + p * kLanes;
@@ -551,7 +763,7 @@ void DesignLanes::keep_largest(const double* ok) {
       for (std::size_t l = 0; unusual > 0 && l < kLanes; ++l) {
         if (ok[l] == 0 || (squares[l] > 1e-300 && squares[l] < 1e300)) continue;
         double v[3] = {};
-        for (std::size_t c = 0; c < d; ++c) v[c] = output(TapeLayout::kPointStage, layout_.point_output(p) + kind * d + c)[l];
+        for (std::size_t c = 0; c < d; ++c) v[c] = point_vector(closed, p, kind, c)[l];
         largest[l] = larger(largest[l], vector_length(v[0], v[1], v[2]));
       }
     }

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <optional>
 #include <limits>
@@ -438,6 +439,14 @@ ClosedLanes closed_lanes(const std::vector<std::pair<double, double>>& designs, 
   run.lanes = std::make_unique<kinema::DesignLanes>(base.kinematics, inputs, input.rate_value, input.second_rate_value);
   const std::optional<kinema::FourBarLoop> loop = kinema::four_bar_loop(base.system);
   REQUIRE(loop);
+  // A, B and P of the sample: a*exp(I*theta2); c*exp(I*theta4) (d does not move);
+  // a*exp(I*theta2) and p*exp(I*(theta3 + delta)).
+  const std::optional<std::vector<kinema::MovingPointTerm>> terms = kinema::moving_point_terms(base.system);
+  REQUIRE(terms);
+  REQUIRE(terms->size() == 4);
+  std::vector<kinema::ClosedPointTerm> closed_terms;
+  for (const kinema::MovingPointTerm& term : *terms) closed_terms.push_back({term.point, term.variable});
+  run.lanes->set_point_terms(closed_terms);
   for (std::size_t l = 0; l < designs.size(); ++l) {
     run.separate.push_back(kinema::with_parameters(base, {{"b", designs[l].first}, {"c", designs[l].second}}));
     run.lanes->set_design(l, run.separate.back().kinematics.parameter_values().data());
@@ -446,6 +455,18 @@ ClosedLanes closed_lanes(const std::vector<std::pair<double, double>>& designs, 
                                       loop->coupler.unknown, loop->rocker.unknown};
     run.lanes->set_reach(l, kinema::LoopReach(closure.crank, closure.fixed_x, closure.fixed_y, closure.first, closure.second));
     run.lanes->set_closure(l, closure);
+    run.lanes->set_angle_measure(l, loop->coupler.unknown, loop->rocker.unknown, 0.0);
+    // The points' moving terms, their factors length e^(i offset) at the design's values.
+    GiNaC::exmap values;
+    for (const kinema::SystemParameter& p : run.separate.back().system.parameters) values[p.symbol] = p.value;
+    std::vector<double> factors;
+    for (const kinema::MovingPointTerm& term : *terms) {
+      const double length = GiNaC::ex_to<GiNaC::numeric>(GiNaC::evalf(term.length.subs(values))).to_double();
+      const double offset = GiNaC::ex_to<GiNaC::numeric>(GiNaC::evalf(term.offset.subs(values))).to_double();
+      factors.push_back(length * std::cos(offset));
+      factors.push_back(length * std::sin(offset));
+    }
+    run.lanes->set_point_term_values(l, factors.data());
   }
   run.lanes->set_positions_and_rates_only(positions_and_rates_only);
   run.lanes->solve(designs.size());
@@ -513,18 +534,37 @@ TEST_CASE("design lanes: positions from the loop's closed form equal the scalar 
             largest_over_ok_rows(table, [&](std::size_t r) { return table.qdd(r)[j]; }));
     }
   }
-  // A study's lanes write positions and rates only: the same statuses, positions, rates
-  // and largest figures (the scalar run, going on from the lanes' last rows, as before).
+  // A study's lanes keep positions and rates only: the same statuses, positions, rates
+  // and largest figures (the scalar run, going on from the lanes' last rows, as before),
+  // and the least transmission measure of a scan of the rows that assemble.
   const ClosedLanes light = closed_lanes(designs, inputs, true);
   for (std::size_t l = 0; l < designs.size(); ++l) {
     const MotionTable& full = run.lanes->table(l);
     const MotionTable& table = light.lanes->table(l);
+    std::vector<std::vector<double>> rates(full.unknown_count(), std::vector<double>(inputs.size()));
+    for (std::size_t i = 0; i < full.unknown_count(); ++i) light.lanes->rates_at_ok_rows(l, i, inputs.size(), rates[i].data());
+    double least = kNaN, coupler = kNaN, rocker = kNaN;
     for (std::size_t r = 0; r < inputs.size(); ++r) {
       INFO("design " << l << ", row " << r);
       REQUIRE(table.status(r) == full.status(r));
-      CHECK(table.q(r) == full.q(r));
-      CHECK(table.qd(r) == full.qd(r));
+      CHECK(light.lanes->position(l, r) == full.q(r));
+      for (std::size_t i = 0; i < full.unknown_count(); ++i) {
+        if (full.status(r) == kinema::Status::ok) {
+          CHECK(rates[i][r] == full.qd(r)[Eigen::Index(i)]);
+        } else {
+          CHECK(std::isnan(rates[i][r]));
+        }
+      }
+      if (full.status(r) == kinema::Status::unassembled) continue;
+      // a*exp(I*theta2) + b*exp(I*theta3) - c*exp(I*theta4) - d: theta4 - theta3, its
+      // lengths of unlike signs.
+      const double measure = kinema::angle_magnitude(full.q(r)[1] - full.q(r)[0]);
+      if (!(measure >= least)) least = measure, coupler = full.q(r)[0], rocker = full.q(r)[1];
     }
+    double kept_coupler = kNaN, kept_rocker = kNaN;
+    CHECK(light.lanes->least_measure_angles(l, kept_coupler, kept_rocker) == !std::isnan(least));
+    CHECK(kept_coupler == coupler);
+    CHECK(kept_rocker == rocker);
     for (std::size_t i = 0; i < full.unknown_count(); ++i) {
       CHECK(light.lanes->largest_rate(l, i) == run.lanes->largest_rate(l, i));
       CHECK(light.lanes->largest_second_rate(l, i) == run.lanes->largest_second_rate(l, i));
@@ -554,4 +594,89 @@ TEST_CASE("design lanes: values nearing a toggle leave the closed form to Newton
   CHECK(near_toggles >= 5);  // what the comparison is meant to include
   CHECK(run.lanes->closed_form_values() + 5 <= ok_values);
   CHECK(run.lanes->closed_form_values() >= 10);
+}
+
+TEST_CASE("design lanes: rates, second rates and points from the loop's closed form equal the scalar run's") {
+  // A grid of couplers and rockers (crank-rockers, non-Grashof designs with gaps, designs
+  // near change points): each value the closed form solved (no tape, no LU: the loop's
+  // velocity and acceleration equations at its position, the points from their terms)
+  // against the scalar run's, every rate, second rate and point velocity and acceleration.
+  std::vector<std::pair<double, double>> designs;
+  for (const double b : {0.100, 0.112, 0.124, 0.136})
+    for (const double c : {0.062, 0.075, 0.088, 0.099}) designs.emplace_back(b, c);
+  const std::vector<double> inputs = turn_from(0);
+  const ClosedLanes run = closed_lanes(designs, inputs);
+  // Nearly every value after the first (from the guesses) solved in closed form.
+  CHECK(double(run.lanes->closed_rate_values()) >= 0.9 * double(inputs.size() - 1));
+  std::size_t compared = 0;
+  for (std::size_t l = 0; l < designs.size(); ++l) {
+    const MotionTable alone = kinema::analyse(run.separate[l], inputs);
+    const MotionTable& table = run.lanes->table(l);
+    // 1e-9 relative to the size of each vector (both unknowns' rates, a point's velocity),
+    // or where that vanishes (a rocker at rest, its pivot's point) to a thousandth of its
+    // largest over the run.
+    const auto same = [&](const std::function<Eigen::VectorXd(const MotionTable&, std::size_t)>& of, const char* what) {
+      double largest = 0;
+      for (std::size_t r = 0; r < inputs.size(); ++r)
+        if (alone.status(r) == kinema::Status::ok) largest = std::max(largest, of(alone, r).cwiseAbs().maxCoeff());
+      for (std::size_t r = 0; r < inputs.size(); ++r) {
+        if (alone.status(r) != kinema::Status::ok) continue;
+        const Eigen::VectorXd expected = of(alone, r), got = of(table, r);
+        INFO("design " << l << ", row " << r << ", " << what << ": " << got.transpose() << " against " << expected.transpose());
+        CHECK((got - expected).cwiseAbs().maxCoeff() <= 1e-9 * std::max(expected.cwiseAbs().maxCoeff(), 1e-3 * largest));
+      }
+    };
+    same([](const MotionTable& t, std::size_t r) { return Eigen::VectorXd(t.qd(r)); }, "rates");
+    same([](const MotionTable& t, std::size_t r) { return Eigen::VectorXd(t.qdd(r)); }, "second rates");
+    for (std::size_t p = 0; p < alone.point_count(); ++p) {
+      same([p](const MotionTable& t, std::size_t r) -> Eigen::VectorXd {
+        const kinema::PointMotion m = t.point(r, p);
+        return Eigen::Vector2d(m.velocity[0], m.velocity[1]);
+      }, "velocity");
+      same([p](const MotionTable& t, std::size_t r) -> Eigen::VectorXd {
+        const kinema::PointMotion m = t.point(r, p);
+        return Eigen::Vector2d(m.acceleration[0], m.acceleration[1]);
+      }, "acceleration");
+    }
+    for (std::size_t r = 0; r < inputs.size(); ++r) compared += alone.status(r) == kinema::Status::ok;
+  }
+  CHECK(compared >= designs.size() * inputs.size() / 2);  // what the comparison is meant to include
+}
+
+TEST_CASE("design lanes: points with a sliding length are not given in closed form") {
+  // The slider-crank's piston B = x + I*e moves with the length x: no term that turns.
+  CHECK_FALSE(kinema::moving_point_terms(sample_model("slider_crank.toml").system).has_value());
+  CHECK(kinema::moving_point_terms(sample_model("four_bar.toml").system).has_value());
+}
+
+TEST_CASE("design study across lanes: a design's figures bit for bit whichever designs share its lanes") {
+  // Crank-rockers and non-Grashof designs whose values leave the closed form near their
+  // gaps: a lane's value is the closed form's or Newton's by its own state alone, so the
+  // same designs batched otherwise (five fewer before them) give the same numbers.
+  const Model model = sample_model("four_bar.toml");
+  const Designs all = kinema::design_grid({"b", "c"}, {{0.100, 0.110, 0.120, 0.127, 0.130, 0.135, 0.140, 0.125},
+                                                       {0.061, 0.066, 0.071, 0.079, 0.086, 0.091, 0.099, 0.075}});
+  constexpr std::size_t kDropped = 5;
+  Designs later = all;
+  for (std::vector<double>& values : later.values) values.erase(values.begin(), values.begin() + kDropped);
+  const std::vector<double> inputs = turn_from(0);
+  kinema::StudyOptions options;
+  const StudyResults whole = kinema::run_design_study(model, all, inputs, options);
+  const StudyResults part = kinema::run_design_study(model, later, inputs, options);
+  const auto same = [&](const std::vector<double>& a, const std::vector<double>& b, const char* what) {
+    for (std::size_t i = 0; i < b.size(); ++i) {
+      INFO(what << ", design " << i + kDropped);
+      CHECK(std::memcmp(&a[i + kDropped], &b[i], sizeof(double)) == 0);
+    }
+  };
+  same(whole.min_transmission_angle, part.min_transmission_angle, "least transmission angle");
+  same(whole.time_ratio, part.time_ratio, "time ratio");
+  for (std::size_t j = 0; j < whole.max_rate.size(); ++j) {
+    same(whole.max_rate[j], part.max_rate[j], "max rate");
+    same(whole.max_second_rate[j], part.max_second_rate[j], "max second rate");
+  }
+  for (std::size_t p = 0; p < whole.max_speed.size(); ++p) {
+    same(whole.max_speed[p], part.max_speed[p], "max speed");
+    same(whole.max_acceleration[p], part.max_acceleration[p], "max acceleration");
+  }
 }
