@@ -541,6 +541,9 @@ std::optional<InstantCentres> plan_centres_from_tape(const MechanismGeometry& ge
   }
   std::vector<Complex> points;
   read_tape_bodies(result, layout, values, points);
+  // At rest (an input rate of 0) the velocities the tape's centres come from are all 0:
+  // constructed from the poses instead (pins, sliders, Kennedy).
+  if (fastest_turning(result) == 0 && fastest_point(s) == 0) return std::nullopt;
   InstantCentres tape = result;
   add_tape_centres(tape, layout, values, s, [](std::size_t, std::size_t) { return std::string(); });
   for (InstantCentre& centre : tape.centres)

@@ -175,6 +175,8 @@ void DesignLanes::solve(std::size_t count) {
   std::fill(largest_rate_.begin(), largest_rate_.end(), NAN);
   std::fill(largest_second_rate_.begin(), largest_second_rate_.end(), NAN);
   std::fill_n(least_measure_, kLanes, NAN);
+  std::fill_n(least_first_, kLanes, NAN);  // a design that never assembles has no angles
+  std::fill_n(least_second_, kLanes, NAN);
   if (positions_and_rates_) {
     kept_.resize(2 * n_ * inputs_.size() * kLanes);
     kept_ok_.resize(inputs_.size() * kLanes);
@@ -677,9 +679,10 @@ void DesignLanes::keep_measure(std::size_t l, const MotionTable& table, std::siz
 }
 
 bool DesignLanes::least_measure_angles(std::size_t l, double& first, double& second) const {
-  first = least_first_[l];
-  second = least_second_[l];
-  return !std::isnan(least_measure_[l]);
+  const bool measured = !std::isnan(least_measure_[l]);
+  first = measured ? least_first_[l] : NAN;
+  second = measured ? least_second_[l] : NAN;
+  return measured;
 }
 
 Eigen::VectorXd DesignLanes::position(std::size_t l, std::size_t row) const {

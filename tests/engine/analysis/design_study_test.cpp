@@ -680,3 +680,37 @@ TEST_CASE("design study across lanes: a design's figures bit for bit whichever d
     same(whole.max_acceleration[p], part.max_acceleration[p], "max acceleration");
   }
 }
+
+TEST_CASE("design study across lanes: a design that never assembles has no least transmission angle, whatever its lane held") {
+  // Ground 100 mm, crank 40 mm: coupler 20 mm and rocker 30 mm never close the loop (the
+  // ground is longer than the other three together). Such designs in the first batch of
+  // lanes (design 5, 21: lanes not used before) and in the second (design 38: lane 6, which
+  // design 6 used), on one thread: designs 0-31, then 32-39, in the same lanes.
+  const Model model = sample_model("four_bar.toml");
+  Designs designs{{"b", "c"}, {{}, {}}};
+  const auto add = [&](double b, double c) { designs.values[0].push_back(b); designs.values[1].push_back(c); };
+  for (std::size_t i = 0; i < 40; ++i) {
+    const bool never = i == 5 || i == 21 || i == 38;
+    add(never ? 0.020 : 0.110 + 0.0005 * double(i), never ? 0.030 : 0.080);
+  }
+  kinema::StudyOptions options;
+  options.threads = 1;
+  const StudyResults lanes = kinema::run_design_study(model, designs, turn_from(0), options);
+  options.across_designs = false;
+  const StudyResults alone = kinema::run_design_study(model, designs, turn_from(0), options);
+  std::size_t never = 0;
+  for (std::size_t i = 0; i < designs.size(); ++i) {
+    INFO("design " << i);
+    if (designs.values[0][i] != 0.020) {
+      CHECK(std::isfinite(lanes.min_transmission_angle[i]));
+      continue;
+    }
+    ++never;
+    CHECK_FALSE(alone.assembles[i]);
+    CHECK_FALSE(lanes.assembles[i]);
+    CHECK(std::isnan(alone.min_transmission_angle[i]));
+    CHECK(std::isnan(lanes.min_transmission_angle[i]));
+  }
+  CHECK(never == 3);
+  CHECK(lanes.lane_values > 0);
+}

@@ -353,3 +353,36 @@ TEST_CASE("instant centres: a joints-and-links file's centres from the tape are 
   CHECK(samples >= 4);
   CHECK(compared >= 300);
 }
+
+TEST_CASE("instant centres: a joints-and-links file at rest has the centres it has in motion") {
+  // The centres depend on the positions alone; at an input rate of 0 every velocity the
+  // tape's centres are read from is 0, and the pins must not vanish with them.
+  int compared = 0;
+  for (const char* name : kinema_test::kSamples) {
+    const kinema::Model model = kinema::load_model(kinema_test::sample(name));
+    if (!model.system.plan || !model.system.plan->closed_form) continue;
+    CAPTURE(std::string(name));
+    std::vector<double> inputs = model.system.input.values;
+    if (inputs.empty()) inputs = {0.3};
+    kinema::AnalysisOptions at_rest;
+    at_rest.rate = 0.0;
+    at_rest.second_rate = 0.0;
+    const kinema::MotionTable moving = kinema::analyse(model, inputs), resting = kinema::analyse(model, inputs, at_rest);
+    const kinema::MechanismGeometry geometry(model);
+    for (std::size_t r = 0; r < moving.size(); ++r) {
+      if (moving.status(r) != kinema::Status::ok || resting.status(r) != kinema::Status::ok) continue;
+      const auto in_motion = kinema::instant_centres(geometry, moving[r]), still = kinema::instant_centres(geometry, resting[r]);
+      REQUIRE(in_motion);
+      REQUIRE(still);
+      CHECK(still->centres.size() == in_motion->centres.size());
+      for (const kinema::InstantCentre& c : in_motion->centres) {
+        const kinema::InstantCentre* same = still->find(c.a, c.b);
+        REQUIRE(same);
+        CHECK(same->at_infinity == c.at_infinity);
+        if (!c.at_infinity) CHECK(std::abs(same->at - c.at) <= 1e-9 * model.system.length_scale);
+        ++compared;
+      }
+    }
+  }
+  CHECK(compared >= 20);
+}
