@@ -367,12 +367,12 @@
       readable(magnitude, 3) + ' ' + data.length_unit + (className === 'velocity' ? '/s' : '/s^2') + ' (beyond)');
     // Off the magnitudes written before it (two points' arrows leave by the same edge):
     // moved along the edge, inwards, a line at a time.
-    const before = Array.from(parent.querySelectorAll('text.arrow-beyond')).filter(function (t) { return t !== text; })
-      .map(function (t) { return t.getBBox(); });
+    const corners = function (t) { const b = t.getBBox(); return { x0: b.x, y0: b.y, x1: b.x + b.width, y1: b.y + b.height }; };
+    const before = Array.from(parent.querySelectorAll('text.arrow-beyond')).filter(function (t) { return t !== text; }).map(corners);
     for (let k = 0, y = end[1] + (below ? -6 : 14); k < 50; ++k, y += below ? -13 : 13) {
       text.setAttribute('y', fixed(y));
-      const b = text.getBBox();
-      if (!before.some(function (o) { return b.x < o.x + o.width && o.x < b.x + b.width && b.y < o.y + o.height && o.y < b.y + b.height; })) break;
+      const b = corners(text);
+      if (!before.some(function (o) { return boxesOverlap(b, o); })) break;
     }
   }
 
@@ -549,6 +549,10 @@
     return size;
   }
   // `taken`: boxes already printed on (x0, y0, x1, y1 in the panel's pixels) that no label may cover.
+  function boxesOverlap(a, b) { return a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1; }
+  // A panel's width as drawn, in pixels (a hidden one: 400): its viewBox is made as wide, so
+  // that one unit is a pixel and its text is not stretched.
+  function drawnWidth(element) { return Math.max(200, Math.round(element.getBoundingClientRect().width) || 400); }
   function drawLabelled(list, place, parent, className, dataName, separator, taken) {
     const groups = [];
     list.forEach(function (item) {
@@ -567,9 +571,7 @@
     // nearest free place). Its size as drawn (a hidden panel measures nothing: then about
     // 8 px a character of the 13 px text).
     const placed = (taken || []).slice();
-    const overlaps = function (b) {
-      return placed.some(function (o) { return b.x0 < o.x1 && o.x0 < b.x1 && b.y0 < o.y1 && o.y0 < b.y1; });
-    };
+    const overlaps = function (b) { return placed.some(function (o) { return boxesOverlap(b, o); }); };
     groups.forEach(function (g) {
       const text = g.names.join(separator);
       const label = svg('text', { x: 0, y: 0, class: 'label' }, parent, text);
@@ -639,8 +641,7 @@
     const polygons = status(row) === 'ok' ? rowPolygons(row) : null;
     polygonPanels.forEach(function (panel) {
       panel.svg.textContent = '';
-      // One unit a pixel: the panel's viewBox as wide as the panel is drawn (text not stretched).
-      const width = Math.max(200, Math.round(panel.svg.getBoundingClientRect().width) || 400);
+      const width = drawnWidth(panel.svg);
       panel.svg.setAttribute('viewBox', '0 0 ' + width + ' 260');
       if (!polygons) {
         panel.key.textContent = '';
@@ -837,8 +838,7 @@
     });
     plots = shown.map(function (placed) {
       const plot = placed.plot, chart = placed.chart, legend = placed.legend;
-      // One unit a pixel: as wide as the chart is drawn, so that its text is not stretched.
-      const W = Math.max(200, Math.round(chart.getBoundingClientRect().width) || 400);
+      const W = drawnWidth(chart);
       chart.setAttribute('viewBox', '0 0 ' + W + ' 200');
       const xs = numbers.map(function (n, r) { return data.circuit ? r : n[0]; });
       let lo = Infinity, hi = -Infinity;
@@ -888,11 +888,15 @@
   }
   buildPlots();
 
+  function moveCursors() {
+    plots.forEach(function (p) { p.cursor.setAttribute('x1', p.x()); p.cursor.setAttribute('x2', p.x()); });
+  }
+
   function setRow(r) {
     row = Math.max(0, Math.min(count - 1, r));
     scrubber.value = row;
     showReadout();
-    plots.forEach(function (p) { p.cursor.setAttribute('x1', p.x()); p.cursor.setAttribute('x2', p.x()); });
+    moveCursors();
     draw();
     drawPolygons();
   }
@@ -975,7 +979,7 @@
   window.addEventListener('resize', function () {
     fit(); drawTraces(); draw();
     buildPlots(); drawPolygons();
-    plots.forEach(function (p) { p.cursor.setAttribute('x1', p.x()); p.cursor.setAttribute('x2', p.x()); });
+    moveCursors();
   });
 
 
