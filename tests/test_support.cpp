@@ -1,10 +1,13 @@
 #include "tests/test_support.hpp"
 
+#include "engine/base/number_format.hpp"
 #include "linkages/vector_loop_file.hpp"
+#include "readers/mechanism_file.hpp"
 
 #include <sys/resource.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -107,6 +110,56 @@ kinema::AnalysisOptions with_rates(double rate, double second_rate, unsigned thr
 }
 
 std::string sample(const std::string& name) { return std::string(KINEMA_SAMPLES_DIR) + "/" + name; }
+
+std::string six_bar_turning_back_text() {
+  std::string text = read_file(sample("problem_4_4_six_bar.toml"));
+  text = replaced(R"(BC = "0.400 m")", R"(BC = "0.38 m")", text);
+  return replaced(R"(CD = "0.370 m")", R"(CD = "0.35 m")", text);
+}
+
+std::string six_bar_turning_back_joints_text() {
+  const kinema::Model loops = kinema::make_model(kinema::read_mechanism_text(six_bar_turning_back_text(), "six.toml"));
+  const kinema::MotionTable at = kinema::analyse(loops, loops.system.input.values);
+  if (at.status(0) != kinema::Status::ok) throw std::runtime_error("the six-bar does not assemble at its file value");
+  const auto coordinate = [&](const std::string& point, int k) {
+    for (std::size_t p = 0; p < loops.system.points.size(); ++p)
+      if (loops.system.points[p].name == point) return kinema::format_round_trip(at[0].points[p].position[k]) + " m";
+    throw std::runtime_error("no point " + point);
+  };
+  std::string text = read_file(sample("problem_4_4_joints.toml"));
+  text = replaced(R"(BC = "0.400 m")", R"(BC = "0.38 m")", text);
+  text = replaced(R"(CD = "0.370 m")", R"(CD = "0.35 m")", text);
+  text = replaced(R"(C = { at = ["-0.0689445 m", "0.422073 m"] })",
+                  "C = { at = [\"" + coordinate("C", 0) + "\", \"" + coordinate("C", 1) + "\"] }", text);
+  text = replaced(R"(E = { at = ["-0.298288 m", "0.404712 m"] })",
+                  "E = { at = [\"" + coordinate("E", 0) + "\", \"" + coordinate("E", 1) + "\"] }", text);
+  for (int k = 0; k < 2; ++k) text = replaced("\"0.186177 m\"", "\"" + coordinate("F", 1) + "\"", text);  // F and F5
+  return text;
+}
+
+std::vector<ScannedExtremum> scanned_extrema(const kinema::Model& model, std::size_t j, double step_deg) {
+  const double first = model.system.input.values.empty() ? 0.0 : model.system.input.values.front();
+  const int steps = static_cast<int>(std::lround(360 / step_deg));
+  std::vector<double> inputs;
+  for (int k = -1; k <= steps + 1; ++k) inputs.push_back(first + k * step_deg * M_PI / 180);
+  const kinema::MotionTable turn = kinema::analyse(model, inputs);
+  std::vector<ScannedExtremum> found;
+  for (int k = 1; k <= steps; ++k) {
+    const auto row = std::size_t(k);
+    if (turn.status(row - 1) == kinema::Status::unassembled || turn.status(row) == kinema::Status::unassembled ||
+        turn.status(row + 1) == kinema::Status::unassembled)
+      continue;
+    const double before = turn.q(row - 1)[Eigen::Index(j)], here = turn.q(row)[Eigen::Index(j)],
+                 after = turn.q(row + 1)[Eigen::Index(j)];
+    const bool maximum = here > before && here >= after, minimum = here < before && here <= after;
+    if (!maximum && !minimum) continue;
+    double deg = std::fmod(turn.input(row) * 180 / M_PI, 360.0);
+    if (deg < 0) deg += 360;
+    found.push_back({deg, here, maximum});
+  }
+  std::sort(found.begin(), found.end(), [](const ScannedExtremum& a, const ScannedExtremum& b) { return a.input_deg < b.input_deg; });
+  return found;
+}
 
 std::string loops_file(const kinema::Mechanism& written) {
   return kinema::vector_loop_file(written, kinema::build_constraint_system(written));

@@ -72,6 +72,22 @@ const std::string& four_bar_text();
 /// text with the first `from` replaced by `to` (the test fails if `from` is missing).
 std::string replaced(const std::string& from, const std::string& to, std::string text = four_bar_text());
 
+/// Problem 4.4 with BC = 0.38 m and CD = 0.35 m (issue 45), whose slider F turns back twice
+/// a turn: the vector-loop file, and the joints-and-links file with its sketch the vector-loop
+/// file's solved joints at phi = 30 deg.
+std::string six_bar_turning_back_text();
+std::string six_bar_turning_back_joints_text();
+
+/// An extremum of unknown j found by scanning the position solution over a turn from the
+/// file's input value (no rates used): the input (deg in [0, 360)) where the solved
+/// coordinate is larger (a maximum) or smaller than at both neighbours `step_deg` away.
+struct ScannedExtremum {
+  double input_deg = 0;
+  double value = 0;  ///< SI.
+  bool maximum = false;
+};
+std::vector<ScannedExtremum> scanned_extrema(const kinema::Model& model, std::size_t j, double step_deg = 0.05);
+
 /// Analysis options with the input's rates given (and threads, SIMD on or off).
 kinema::AnalysisOptions with_rates(double rate, double second_rate, unsigned threads = 1, bool simd = true);
 

@@ -291,36 +291,65 @@ std::vector<Strokes> slider_strokes(const Model& model) {
   std::vector<std::size_t> lengths;
   for (std::size_t j = 0; j < system.unknowns.size(); ++j)
     if (system.unknowns[j].dimension == Dimension::length) lengths.push_back(j);
-  const std::vector<std::vector<Toggle>> found = find_limit_positions(model, lengths);  // one sweep for all
+  bool whole_turn = false;
+  const std::vector<std::vector<Toggle>> found = find_limit_positions(model, lengths, &whole_turn);  // one sweep for all
   for (std::size_t w = 0; w < lengths.size(); ++w) {
     const std::size_t j = lengths[w];
     const std::vector<Toggle>& limits = found[w];
-    if (limits.size() != 2) continue;
+    if (limits.empty()) continue;
     Strokes s;
     s.name = system.unknowns[j].name;
-    for (int k = 0; k < 2; ++k) {
-      s.limit_inputs[k] = limits[std::size_t(k)].input * 180 / kPi;
-      s.limit_values[k] = limits[std::size_t(k)].q[Eigen::Index(j)] / scale.length;
+    for (const Toggle& limit : limits) {
+      s.limit_inputs.push_back(limit.input * 180 / kPi);
+      s.limit_values.push_back(limit.q[Eigen::Index(j)] / scale.length);
+      s.maxima.push_back(limit.maximum);
     }
-    set_strokes(s, system.input.rate_value);
+    // Across a part of the turn that does not assemble the crank does not pass from one
+    // limit to the next: no strokes.
+    s.whole_turn = whole_turn;
+    if (whole_turn) set_strokes(s, system.input.rate_value);
     all.push_back(s);
   }
   return all;
 }
 
 void set_strokes(Strokes& s, double rate) {
-  // The crank turns the way its rate says: the stroke from the first limit to the second.
-  const double between = s.limit_inputs[1] - s.limit_inputs[0];
-  s.first_stroke = rate >= 0 ? between : 360 - between;
-  s.second_stroke = 360 - s.first_stroke;
-  s.time_ratio = std::max(s.first_stroke, s.second_stroke) / std::min(s.first_stroke, s.second_stroke);
+  // The crank turns the way its rate says: each stroke from a limit to the next it reaches.
+  const std::size_t n = s.limit_inputs.size();
+  s.strokes.clear();
+  s.time_ratio = std::numeric_limits<double>::quiet_NaN();
+  if (n < 2) return;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double ahead = k + 1 < n ? s.limit_inputs[k + 1] - s.limit_inputs[k] : 360 - (s.limit_inputs[k] - s.limit_inputs[0]);
+    const double behind = k > 0 ? s.limit_inputs[k] - s.limit_inputs[k - 1] : 360 - (s.limit_inputs[n - 1] - s.limit_inputs[0]);
+    s.strokes.push_back(rate >= 0 ? ahead : behind);
+  }
+  // A quick return's figure: with more limit positions the slider turns back on its way.
+  if (n == 2) s.time_ratio = std::max(s.strokes[0], s.strokes[1]) / std::min(s.strokes[0], s.strokes[1]);
 }
 
 std::string describe_strokes(const Strokes& s, const std::string& input_name, const std::string& unit) {
-  return s.name + " at its limits at " + input_name + " = " + format_fixed(s.limit_inputs[0], 4) + " deg (" +
-         format_significant(s.limit_values[0]) + " " + unit + ") and " + format_fixed(s.limit_inputs[1], 4) + " deg (" +
-         format_significant(s.limit_values[1]) + " " + unit + "); strokes of " + format_significant(s.first_stroke) +
-         " and " + format_significant(s.second_stroke) + " deg of crank, time ratio " + format_significant(s.time_ratio);
+  if (s.two_limits()) {
+    return s.name + " at its limits at " + input_name + " = " + format_fixed(s.limit_inputs[0], 4) + " deg (" +
+           format_significant(s.limit_values[0]) + " " + unit + ") and " + format_fixed(s.limit_inputs[1], 4) +
+           " deg (" + format_significant(s.limit_values[1]) + " " + unit + "); strokes of " +
+           format_significant(s.strokes[0]) + " and " + format_significant(s.strokes[1]) +
+           " deg of crank, time ratio " + format_significant(s.time_ratio);
+  }
+  // Other than two: each limit said a maximum or a minimum (with four, one maximum may lie
+  // below the other's value), and the strokes between them.
+  const std::size_t n = s.limit_inputs.size();
+  const auto separator = [n](std::size_t k) { return k == 0 ? " " : k + 1 == n ? " and " : ", "; };
+  std::string text = s.name + " at " + std::to_string(n) + (n == 1 ? " limit position" : " limit positions") + " at " +
+                     input_name + " =";
+  for (std::size_t k = 0; k < n; ++k)
+    text += separator(k) + format_fixed(s.limit_inputs[k], 4) + " deg (" + (s.maxima[k] ? "maximum " : "minimum ") +
+            format_significant(s.limit_values[k]) + " " + unit + ")";
+  if (!s.whole_turn) return text + "; no strokes: part of the turn does not assemble";
+  if (s.strokes.empty()) return text;
+  text += "; strokes of";
+  for (std::size_t k = 0; k < n; ++k) text += separator(k) + format_significant(s.strokes[k]);
+  return text + " deg of crank, each from a limit to the next";
 }
 
 }  // namespace kinema

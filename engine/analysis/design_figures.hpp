@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -30,15 +31,24 @@ struct FourBarFigures {
   std::vector<double> toggles;
 };
 
-/// A slider driven by a crank (an offset slider-crank, a shaper): its two limit positions
-/// over a turn and the crank angles of the strokes between them.
+/// A slider driven by a crank (an offset slider-crank, a shaper, a six-bar whose slider
+/// turns back twice a turn): every limit position over a turn and the crank angles of the
+/// strokes between them.
 struct Strokes {
-  std::string name;           ///< The slider's coordinate.
-  double limit_inputs[2]{};   ///< Crank angles of the limit positions, deg in [0, 360), increasing.
-  double limit_values[2]{};   ///< The coordinate there (output units).
-  double first_stroke = 0;    ///< Crank angle from the first limit to the second (deg, as the crank turns), ...
-  double second_stroke = 0;   ///< ... and back to the first.
-  double time_ratio = 0;      ///< The longer stroke's crank angle over the shorter's (at a constant crank rate).
+  std::string name;                  ///< The slider's coordinate.
+  std::vector<double> limit_inputs;  ///< Crank angles of the limit positions, deg in [0, 360), increasing.
+  std::vector<double> limit_values;  ///< The coordinate there (output units).
+  std::vector<bool> maxima;          ///< Each limit a maximum of the coordinate (else a minimum).
+  /// strokes[k]: the crank angle (deg) from limit k to the next limit the crank reaches as it
+  /// turns the way its rate says (k + 1, or k - 1 turning clockwise; round the turn after the
+  /// last); they add up to 360. Empty where part of the turn does not assemble (the crank
+  /// does not pass from one limit to the next) or there is one limit only.
+  std::vector<double> strokes;
+  /// The longer stroke's crank angle over the shorter's (at a constant crank rate), for
+  /// exactly two limit positions over a whole turn; NaN otherwise.
+  double time_ratio = std::numeric_limits<double>::quiet_NaN();
+  bool whole_turn = true;  ///< Every value of the turn assembles.
+  bool two_limits() const { return limit_inputs.size() == 2 && strokes.size() == 2; }
 };
 
 /// The strokes and time ratio of s from its limit_inputs, for a crank turning the way
@@ -50,9 +60,10 @@ void set_strokes(Strokes& s, double rate);
 /// strokes in eval's header, which would otherwise cost as much as a sweep of the turn.
 constexpr std::size_t kMaxStrokeUnknowns = 128;
 
-/// The strokes of every slider coordinate of a crank-driven mechanism that has exactly two
-/// limit positions over a turn (engine/analysis/toggles: dq/dtheta = 0, solved); none for a
-/// mechanism of more than kMaxStrokeUnknowns unknowns.
+/// Every limit position over a turn (engine/analysis/toggles: dq/dtheta = 0, solved) of each
+/// slider coordinate of a crank-driven mechanism that has one, and the strokes between them
+/// where the whole turn assembles; none for a mechanism of more than kMaxStrokeUnknowns
+/// unknowns.
 std::vector<Strokes> slider_strokes(const Model& model);
 std::string describe_strokes(const Strokes& strokes, const std::string& input_name, const std::string& unit);
 

@@ -398,7 +398,7 @@ class DesignRunner {
                                                                  *limits_, setup_.loop ? known : KnownLimit{});
       if (limits.size() != 2) continue;
       Strokes strokes;
-      for (int k = 0; k < 2; ++k) strokes.limit_inputs[k] = limits[std::size_t(k)].input * 180 / kPi;
+      for (const Toggle& limit : limits) strokes.limit_inputs.push_back(limit.input * 180 / kPi);
       set_strokes(strokes, setup_.base->system.input.rate_value);
       return strokes.time_ratio;
     }

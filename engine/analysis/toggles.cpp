@@ -123,26 +123,30 @@ std::vector<Toggle> limit_positions_in_turn(const double* inputs, const RowPosit
                                             const KnownLimit& known) {
   const auto j = Eigen::Index(unknown);
   std::vector<Toggle> found;
-  const auto keep = [&](double input, const Eigen::VectorXd& q) {
+  // `maximum`: the unknown's rate goes from positive to negative there as the input grows.
+  const auto keep = [&](double input, const Eigen::VectorXd& q, bool maximum) {
     const double at = wrapped(input);
     const bool known = std::any_of(found.begin(), found.end(), [&](const Toggle& t) {
       const double d = std::fabs(t.input - at);
       return std::min(d, 2 * kPi - d) < 1e-7;
     });
-    if (!known) found.push_back({at, q});
+    if (!known) found.push_back({at, q, maximum});
   };
   for (std::size_t row = 0; row + 1 < rows; ++row) {
     if (std::isnan(g[row]) || std::isnan(g[row + 1])) continue;
     double ga = g[row], gb = g[row + 1];
     if (ga == 0) {
-      keep(inputs[row], position(row));
+      // On a row: a maximum where the rate was positive before it, or is negative after.
+      const bool before = row > 0 && !std::isnan(g[row - 1]) && g[row - 1] != 0;
+      keep(inputs[row], position(row), before ? g[row - 1] > 0 : gb < 0);
       continue;
     }
     if (!(ga * gb < 0)) continue;
+    const bool maximum = ga > 0;
     if (known) {
       const double at = known(inputs[row], inputs[row + 1]);
       if (!std::isnan(at)) {
-        keep(at, position(std::fabs(at - inputs[row]) <= std::fabs(at - inputs[row + 1]) ? row : row + 1));
+        keep(at, position(std::fabs(at - inputs[row]) <= std::fabs(at - inputs[row + 1]) ? row : row + 1), maximum);
         continue;
       }
     }
@@ -183,13 +187,14 @@ std::vector<Toggle> limit_positions_in_turn(const double* inputs, const RowPosit
       }
       tb = t, gb = value, qb = q;
     }
-    if (solved) keep(t, q);
+    if (solved) keep(t, q, maximum);
   }
   std::sort(found.begin(), found.end(), [](const Toggle& a, const Toggle& b) { return a.input < b.input; });
   return found;
 }
 
-std::vector<std::vector<Toggle>> find_limit_positions(const Model& model, const std::vector<std::size_t>& unknowns) {
+std::vector<std::vector<Toggle>> find_limit_positions(const Model& model, const std::vector<std::size_t>& unknowns,
+                                                      bool* whole_turn) {
   // One sweep of the turn in 1-deg steps, shared by every unknown asked for: dq/dtheta of all
   // unknowns from one LU per row, then each sign change of dq_j/dtheta refined alone (a
   // root of one function of theta, q solved at each trial). Newton in (q, theta) per unknown,
@@ -197,6 +202,7 @@ std::vector<std::vector<Toggle>> find_limit_positions(const Model& model, const 
   // loops took 15-23 s in eval's header (issue 33); this is one sweep and a few solves a limit.
   std::vector<std::vector<Toggle>> limits(unknowns.size());
   const ConstraintSystem& system = model.system;
+  if (whole_turn) *whole_turn = false;
   if (system.input.dimension != Dimension::angle || system.unknowns.empty() || unknowns.empty()) return limits;
   const double first = system.input.values.empty() ? 0.0 : system.input.values.front();
   std::vector<double> inputs;
@@ -205,8 +211,12 @@ std::vector<std::vector<Toggle>> find_limit_positions(const Model& model, const 
   const MotionTable turn = analyse(model, inputs);
   Workspace workspace(model);
   std::vector<Eigen::VectorXd> rates(turn.size());  // dq/dtheta; empty where not assembled or singular
+  if (whole_turn) *whole_turn = true;
   for (std::size_t row = 0; row < turn.size(); ++row) {
-    if (turn.status(row) == Status::unassembled) continue;
+    if (turn.status(row) == Status::unassembled) {
+      if (whole_turn) *whole_turn = false;
+      continue;
+    }
     Eigen::VectorXd dq;
     if (workspace.sensitivity(turn.input(row), turn.q(row), dq)) rates[row] = dq;
   }

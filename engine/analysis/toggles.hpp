@@ -18,6 +18,9 @@ namespace kinema {
 struct Toggle {
   double input = 0;  ///< SI (a crank's angle in [0, 2 pi)).
   Eigen::VectorXd q;
+  /// A limit position: the unknown is at a maximum there (its rate goes from positive to
+  /// negative as the input grows), else a minimum. False for a toggle.
+  bool maximum = false;
 };
 
 /// The toggle positions of a crank-driven mechanism over a turn (none for other inputs),
@@ -28,8 +31,10 @@ std::vector<Toggle> find_toggles(const Model& model);
 /// rate is 0 (a slider's dead centres), solved the same way from Phi = 0 and dq_j/dtheta = 0.
 std::vector<Toggle> find_limit_positions(const Model& model, std::size_t j);
 /// The same for several unknowns at once (one sweep of the turn shared by all): the limit
-/// positions of unknowns[w] in element w.
-std::vector<std::vector<Toggle>> find_limit_positions(const Model& model, const std::vector<std::size_t>& unknowns);
+/// positions of unknowns[w] in element w. `whole_turn`, where given, is set to whether every
+/// value of the turn assembled (else the crank does not pass from each limit to the next).
+std::vector<std::vector<Toggle>> find_limit_positions(const Model& model, const std::vector<std::size_t>& unknowns,
+                                                      bool* whole_turn = nullptr);
 
 /// The limit positions of unknown `unknown` in rows [0, rows) of a solved turn, given
 /// g[row] = dq/dtheta of that unknown (NaN where the row has none): each sign change of g

@@ -27,6 +27,10 @@ std::vector<DesignAnswer> design_answers(const Model& model) {
   const std::vector<Strokes> strokes = slider_strokes(model);
   for (std::size_t k = 0; k < strokes.size(); ++k) {
     const Strokes& s = strokes[k];
+    // A stroke and a time ratio are a slider's with two limit positions over a whole turn;
+    // the first slider's are `stroke` and `time_ratio`, missing (as the variant's) where it
+    // has other than two.
+    if (!s.two_limits()) continue;
     // limit_values are in output units: a length's in the file's length unit.
     const double stroke = std::fabs(s.limit_values[1] - s.limit_values[0]);
     const DesignAnswer length{"stroke", stroke * scale.length, stroke, scale.length_unit, ""};
@@ -39,6 +43,11 @@ std::vector<DesignAnswer> design_answers(const Model& model) {
     answers.push_back({"time_ratio_" + s.name, ratio.si, ratio.value, "", ""});
   }
   return answers;
+}
+
+std::string missing_figure_reason(const std::string& name) {
+  const bool slider = name.rfind("stroke", 0) == 0 || name.rfind("time_ratio", 0) == 0;
+  return "no " + name + (slider ? " (not two limit positions over a whole turn)" : "");
 }
 
 std::optional<DesignAnswer> design_answer(const std::vector<DesignAnswer>& answers, const std::string& name) {

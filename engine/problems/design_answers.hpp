@@ -25,9 +25,14 @@ struct DesignAnswer {
 bool is_design_figure_name(const std::string& name);
 
 /// The figures `model` has: grashof, min_transmission_angle, max_transmission_angle for a
-/// four-bar driven by its crank; stroke and time_ratio of the first slider with two limit
-/// positions over the crank's turn, and stroke_S, time_ratio_S for each such slider S.
+/// four-bar driven by its crank; stroke_S and time_ratio_S of each slider S with two limit
+/// positions over a whole turn of the crank, and stroke and time_ratio of the first slider
+/// with limit positions when it has two (none where it has four: it turns back on its way).
 std::vector<DesignAnswer> design_answers(const Model& model);
+
+/// Why a mechanism has not figure `name` (a name is_design_figure_name knows), as the
+/// redraw report of a problem set counts it: "no stroke (not two limit positions over a whole turn)".
+std::string missing_figure_reason(const std::string& name);
 
 /// The figure `name` of `answers`, nothing when the mechanism has none of that name.
 std::optional<DesignAnswer> design_answer(const std::vector<DesignAnswer>& answers, const std::string& name);

@@ -5,6 +5,7 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <set>
 
 #include "engine/analysis/design_figures.hpp"
 #include "engine/analysis/output_scale.hpp"
@@ -161,8 +162,17 @@ void check_find_names(const Model& model, const Problem& problem) {
   }
 }
 
-// The order the redraw report names conditions in.
-const char* const kConditionNames[] = {"assembles", "grashof", "min_transmission_angle", "toggle_margin", "min_answer"};
+// The order the redraw report names conditions in: assembling, then the figures asked that
+// a variant lacks, then [problem.conditions].
+std::vector<std::string> condition_names(const Problem& problem) {
+  std::vector<std::string> names = {"assembles"};
+  for (const ProblemFind& f : problem.find) {
+    const std::string reason = missing_figure_reason(f.name);
+    if (is_design_figure_name(f.name) && std::find(names.begin(), names.end(), reason) == names.end()) names.push_back(reason);
+  }
+  for (const char* name : {"grashof", "min_transmission_angle", "toggle_margin", "min_answer"}) names.push_back(name);
+  return names;
+}
 
 // The digits after the point that write every value of a range's grid in `factor`'s unit
 // alike: those of its step and of its low end (a 5 mm step in m: 3, so 0.380 beside 0.385).
@@ -255,6 +265,16 @@ std::vector<std::string> failed_conditions(const Model& variant, const Problem& 
   for (std::size_t row = 0; row < table.size(); ++row) {
     if (table.status(row) != Status::ok) return {"assembles"};  // the other figures need it to move there
   }
+  // A figure asked that this variant has not (a slider that turns back twice a turn has no
+  // one stroke): always refused, as the figure it lacks.
+  std::optional<std::vector<DesignAnswer>> figures;
+  std::set<std::string> missing;
+  for (const ProblemFind& f : problem.find) {
+    if (!is_design_figure_name(f.name)) continue;
+    if (!figures) figures = design_answers(variant);
+    if (design_answer(*figures, f.name) || !missing.insert(f.name).second) continue;
+    failed.push_back(missing_figure_reason(f.name));
+  }
   const ProblemConditions& c = problem.conditions;
   if (!c.grashof.empty() || c.min_transmission_angle) {
     const std::optional<FourBarFigures> figures = four_bar_figures(variant);
@@ -271,7 +291,7 @@ std::vector<std::string> failed_conditions(const Model& variant, const Problem& 
     // fair problem either way.
     std::vector<double> folds;
     for (const Toggle& toggle : find_toggles(variant)) folds.push_back(toggle.input);
-    for (const Strokes& s : slider_strokes(variant))
+    for (const Strokes& s : slider_strokes(variant))  // every limit position, however many
       for (double limit : s.limit_inputs) folds.push_back(from_degrees(limit));
     bool near = false;
     for (double fold : folds)
@@ -280,8 +300,10 @@ std::vector<std::string> failed_conditions(const Model& variant, const Problem& 
   }
   if (c.min_answer) {
     bool small = false;
-    for (const ProblemAnswer& answer : problem_answers(variant, problem.find, at, {}))
+    for (const ProblemAnswer& answer : problem_answers(variant, problem.find, at, {})) {
+      if (answer.figure && missing.count(answer.quantity)) continue;  // counted as missing above
       small = small || (answer.text.empty() && !(std::fabs(answer.value) >= *c.min_answer));
+    }
     if (small) failed.push_back("min_answer");
   }
   return failed;
@@ -310,8 +332,8 @@ ProblemSet make_problem_set(const Model& model, const Problem& problem, std::siz
   while (set.variants.size() < count) {
     if (set.draws >= count * kMaxDrawsPerVariant) {
       std::string why;
-      for (const char* name : kConditionNames)
-        if (refused.count(name)) why += (why.empty() ? "" : ", ") + std::string(name) + " " + std::to_string(refused[name]);
+      for (const std::string& name : condition_names(problem))
+        if (refused.count(name)) why += (why.empty() ? "" : ", ") + name + " " + std::to_string(refused[name]);
       throw InputError(problem.where.str() + ": [problem]: only " + std::to_string(set.variants.size()) + " of " +
                        std::to_string(count) + " variants met the conditions in " + std::to_string(set.draws) +
                        " draws (refused by: " + why + "); widen the ranges or loosen [problem.conditions]");
@@ -337,7 +359,7 @@ ProblemSet make_problem_set(const Model& model, const Problem& problem, std::siz
     variant.answers = problem_answers(variant.model, problem.find, variant.at, variant.at_texts);
     set.variants.push_back(std::move(variant));
   }
-  for (const char* name : kConditionNames)
+  for (const std::string& name : condition_names(problem))
     if (refused.count(name)) set.redrawn.emplace_back(name, refused[name]);
   return set;
 }

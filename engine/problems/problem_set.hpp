@@ -97,9 +97,10 @@ ProblemSet make_problem_set(const Model& model, const Problem& problem, std::siz
 std::vector<std::string> find_names(const ConstraintSystem& system);
 
 /// The conditions of `problem` that `variant` (a model) fails at the asked values (SI;
-/// toggle_margin: within the margin of a toggle or of a slider's limit position):
-/// "assembles", "grashof", "min_transmission_angle", "toggle_margin", "min_answer". Empty
-/// when it meets them all.
+/// toggle_margin: within the margin of a toggle or of any of a slider's limit positions):
+/// "assembles", a figure asked that the variant has not (missing_figure_reason: "no stroke
+/// (not two limit positions over a whole turn)"), "grashof", "min_transmission_angle",
+/// "toggle_margin", "min_answer" (of the answers it has). Empty when it meets them all.
 std::vector<std::string> failed_conditions(const Model& variant, const Problem& problem, const std::vector<double>& at);
 
 /// The answers of `variant` at `at` (SI; `at_texts` as shown) for the find names, as kinema

@@ -256,11 +256,12 @@ class JsonPrinter : public ResultsPrinter {
     if (!strokes.empty()) {  // a crank-driven slider's limits and time ratio
       json list = json::array();
       for (const Strokes& s : strokes) {
+        // Every limit position; a time ratio only between two (null otherwise).
         list.push_back({{"coordinate", s.name},
-                        {"limit_inputs", {s.limit_inputs[0], s.limit_inputs[1]}},
-                        {"limit_values", {s.limit_values[0], s.limit_values[1]}},
-                        {"strokes", {s.first_stroke, s.second_stroke}},
-                        {"time_ratio", s.time_ratio}});
+                        {"limit_inputs", s.limit_inputs},
+                        {"limit_values", s.limit_values},
+                        {"strokes", s.strokes},
+                        {"time_ratio", std::isfinite(s.time_ratio) ? json(s.time_ratio) : json(nullptr)}});
       }
       doc["strokes"] = list;
     }

@@ -411,10 +411,25 @@ class DocumentWriter {
     const auto length = [&](double v) {
       return numbers_(v, Dimension::length, 0) + "\\,\\mathrm{" + latex_escape_text(scale_.length_unit) + "}";
     };
-    return "$" + name + "$ at its limits at $" + to_latex(system_.input.symbol) + " = " + degrees(s.limit_inputs[0]) +
-           "$ ($" + length(s.limit_values[0]) + "$) and $" + degrees(s.limit_inputs[1]) + "$ ($" +
-           length(s.limit_values[1]) + "$); strokes of $" + degrees(s.first_stroke) + "$ and $" +
-           degrees(s.second_stroke) + "$ of crank, time ratio $" + latex_number(s.time_ratio) + "$";
+    const std::string input = to_latex(system_.input.symbol);
+    if (s.two_limits()) {
+      return "$" + name + "$ at its limits at $" + input + " = " + degrees(s.limit_inputs[0]) + "$ ($" +
+             length(s.limit_values[0]) + "$) and $" + degrees(s.limit_inputs[1]) + "$ ($" + length(s.limit_values[1]) +
+             "$); strokes of $" + degrees(s.strokes[0]) + "$ and $" + degrees(s.strokes[1]) + "$ of crank, time ratio $" +
+             latex_number(s.time_ratio) + "$";
+    }
+    // As describe_strokes words it: each limit a maximum or a minimum, the strokes between.
+    const std::size_t n = s.limit_inputs.size();
+    const auto separator = [n](std::size_t k) { return k == 0 ? " " : k + 1 == n ? " and " : ", "; };
+    std::string text = "$" + name + "$ at " + std::to_string(n) + (n == 1 ? " limit position" : " limit positions") + " at";
+    for (std::size_t k = 0; k < n; ++k)
+      text += std::string(separator(k)) + "$" + input + " = " + degrees(s.limit_inputs[k]) + "$ (" +
+              (s.maxima[k] ? "maximum" : "minimum") + " $" + length(s.limit_values[k]) + "$)";
+    if (!s.whole_turn) return text + "; no strokes: part of the turn does not assemble";
+    if (s.strokes.empty()) return text;
+    text += "; strokes of";
+    for (std::size_t k = 0; k < n; ++k) text += std::string(separator(k)) + "$" + degrees(s.strokes[k]) + "$";
+    return text + " of crank, each from a limit to the next";
   }
 
   // After a coordinate's value: the degree sign, or its unit.

@@ -8,6 +8,7 @@
 #include "engine/model.hpp"
 #include "engine/analysis/toggles.hpp"
 #include "engine/analysis/design_figures.hpp"
+#include "engine/base/number_format.hpp"
 #include "readers/mechanism_file.hpp"
 
 #include "tests/test_support.hpp"
@@ -113,7 +114,8 @@ TEST_CASE("design figures: an offset slider-crank's limit positions and time rat
   CHECK(s.limit_inputs[1] == doctest::Approx(folded).epsilon(1e-9));
   CHECK(s.limit_values[0] == doctest::Approx(std::sqrt(200.0 * 200 - 100)).epsilon(1e-9));  // x = sqrt((a+b)^2 - e^2)
   CHECK(s.limit_values[1] == doctest::Approx(std::sqrt(100.0 * 100 - 100)).epsilon(1e-9));
-  CHECK(s.first_stroke == doctest::Approx(folded - extended).epsilon(1e-9));  // the crank turns counter-clockwise
+  REQUIRE(s.strokes.size() == 2);
+  CHECK(s.strokes[0] == doctest::Approx(folded - extended).epsilon(1e-9));  // the crank turns counter-clockwise
   CHECK(s.time_ratio == doctest::Approx((folded - extended) / (360 - folded + extended)).epsilon(1e-9));
   // Problem 4.4's slider F reaches its limits where its velocity changes sign (eval's rows).
   const auto six = kinema::slider_strokes(kinema::load_model(kinema_test::sample("problem_4_4_six_bar.toml")));
@@ -187,4 +189,91 @@ TEST_CASE("design figures: the strokes of 128 sliders in eval's header within th
   REQUIRE(largest.exit_status == 0);
   CHECK(largest.out.find("slider: ") == std::string::npos);
   CHECK(kinema::kMaxStrokeUnknowns == 128);
+}
+
+// Issue 45: Problem 4.4 with BC = 0.38 m and CD = 0.35 m moves its slider up, down, up a
+// little and down again over a turn. Every limit position is listed, each where a scan of
+// the position solution (no rates) finds an extremum of the same kind, its value the
+// position solved there and beyond both neighbours; the strokes are the crank angles
+// between consecutive ones; text, JSON and LaTeX show them all.
+TEST_CASE("design figures: a slider that turns back twice a turn has every limit position listed, each an extremum") {
+  const std::string forms[] = {kinema_test::six_bar_turning_back_text(), kinema_test::six_bar_turning_back_joints_text()};
+  for (const std::string& text : forms) {
+    const kinema::Model model = kinema::make_model(kinema::read_mechanism_text(text, "six_bar_turning_back.toml"));
+    CAPTURE(model.system.title);
+    std::size_t yF = 0;
+    while (yF < model.system.unknowns.size() && model.system.unknowns[yF].name != "yF") ++yF;
+    REQUIRE(yF < model.system.unknowns.size());
+    const std::vector<kinema_test::ScannedExtremum> scan = kinema_test::scanned_extrema(model, yF);
+    REQUIRE(scan.size() == 4);  // what makes this variant the issue's
+    const std::vector<kinema::Strokes> strokes = kinema::slider_strokes(model);
+    REQUIRE(strokes.size() == 1);
+    const kinema::Strokes& s = strokes.front();
+    CHECK(s.name == "yF");
+    REQUIRE(s.limit_inputs.size() == scan.size());
+    REQUIRE(s.limit_values.size() == scan.size());
+    REQUIRE(s.maxima.size() == scan.size());
+    const double degree = M_PI / 180, nudge = 0.01 * degree;
+    for (std::size_t k = 0; k < scan.size(); ++k) {
+      CAPTURE(k);
+      CHECK(std::fabs(s.limit_inputs[k] - scan[k].input_deg) <= 0.05);  // within the scan's step
+      CHECK(s.maxima[k] == scan[k].maximum);
+      // The position solution at the limit and either side of it: the value listed, an extremum.
+      const double at = s.limit_inputs[k] * degree;
+      const kinema::MotionTable near = kinema::analyse(model, {at - nudge, at, at + nudge});
+      for (std::size_t r = 0; r < 3; ++r) REQUIRE(near.status(r) == kinema::Status::ok);
+      const double before = near.q(0)[Eigen::Index(yF)], here = near.q(1)[Eigen::Index(yF)], after = near.q(2)[Eigen::Index(yF)];
+      CHECK(s.limit_values[k] == doctest::Approx(here).epsilon(1e-12));
+      CHECK((scan[k].maximum ? here > before && here > after : here < before && here < after));
+      CHECK(here == doctest::Approx(scan[k].value).epsilon(1e-6));
+    }
+    // Strokes: the crank angle from each limit to the next (counter-clockwise), round to the first.
+    REQUIRE(s.strokes.size() == scan.size());
+    double turn = 0;
+    for (std::size_t k = 0; k < scan.size(); ++k) {
+      const double next = k + 1 < scan.size() ? s.limit_inputs[k + 1] : s.limit_inputs[0] + 360;
+      CHECK(s.strokes[k] == doctest::Approx(next - s.limit_inputs[k]).epsilon(1e-12));
+      turn += s.strokes[k];
+    }
+    CHECK(turn == doctest::Approx(360).epsilon(1e-12));
+    CHECK(std::isnan(s.time_ratio));  // no quick-return figure with four limits
+
+    // Every view: the table's header line, JSON, the worked solution.
+    const std::string file = kinema_test::write_temporary("six_bar_turning_back.toml", text);
+    const kinema_test::CommandResult table = kinema_test::run_kinema({"eval", file});
+    REQUIRE(table.exit_status == 0);
+    const std::size_t line = table.out.find("slider: yF at 4 limit positions at phi = ");
+    REQUIRE(line != std::string::npos);
+    const std::string header = table.out.substr(line, table.out.find('\n', line) - line);
+    CAPTURE(header);
+    for (std::size_t k = 0; k < scan.size(); ++k) {
+      CHECK(header.find(kinema::format_fixed(s.limit_inputs[k], 4) + " deg (" + (s.maxima[k] ? "maximum " : "minimum ") +
+                        kinema::format_significant(s.limit_values[k]) + " m)") != std::string::npos);
+      CHECK(header.find(kinema::format_significant(s.strokes[k])) != std::string::npos);
+    }
+    const kinema_test::CommandResult json_run = kinema_test::run_kinema({"eval", file, "--format", "json"});
+    REQUIRE(json_run.exit_status == 0);
+    const nlohmann::json json = nlohmann::json::parse(json_run.out)["strokes"][0];
+    REQUIRE(json["limit_inputs"].size() == scan.size());
+    REQUIRE(json["strokes"].size() == scan.size());
+    for (std::size_t k = 0; k < scan.size(); ++k) {
+      CHECK(json["limit_inputs"][k].get<double>() == doctest::Approx(s.limit_inputs[k]).epsilon(1e-12));
+      CHECK(json["limit_values"][k].get<double>() == doctest::Approx(s.limit_values[k]).epsilon(1e-12));
+      CHECK(json["strokes"][k].get<double>() == doctest::Approx(s.strokes[k]).epsilon(1e-12));
+    }
+    CHECK(json["time_ratio"].is_null());
+    const std::string tex = kinema_test::write_temporary("six_bar_turning_back.tex", "");
+    REQUIRE(kinema_test::run_kinema({"latex", file, "-o", tex}).exit_status == 0);
+    const std::string latex = kinema_test::read_file(tex);
+    const std::size_t sentence = latex.find("Slider: $y_{F}$ at 4 limit positions at $\\phi = ");
+    REQUIRE(sentence != std::string::npos);
+    const std::string said = latex.substr(sentence, latex.find("\n", sentence) - sentence);
+    CAPTURE(said);
+    std::size_t maxima = 0, minima = 0;
+    for (auto at = said.find("(maximum $"); at != std::string::npos; at = said.find("(maximum $", at + 1)) ++maxima;
+    for (auto at = said.find("(minimum $"); at != std::string::npos; at = said.find("(minimum $", at + 1)) ++minima;
+    CHECK(maxima == 2);
+    CHECK(minima == 2);
+    CHECK(said.find("strokes of $") != std::string::npos);
+  }
 }

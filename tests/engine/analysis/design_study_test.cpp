@@ -75,7 +75,7 @@ double separate_time_ratio(const Model& design, std::size_t j) {
   const std::vector<kinema::Toggle> limits = kinema::find_limit_positions(design, j);
   if (limits.size() != 2) return kNaN;
   kinema::Strokes s;
-  for (int k = 0; k < 2; ++k) s.limit_inputs[k] = limits[std::size_t(k)].input * 180 / kinema::kPi;
+  for (const kinema::Toggle& limit : limits) s.limit_inputs.push_back(limit.input * 180 / kinema::kPi);
   kinema::set_strokes(s, design.system.input.rate_value);
   return s.time_ratio;
 }

@@ -5,6 +5,7 @@
 // compile without an overfull line, and a bad [problem] is refused at its line.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <random>
@@ -233,6 +234,80 @@ toggle_margin = "5 deg"
     const double e = variant.given.at(0).si, limit = std::asin(e / (0.05 + 0.15)) * 180 / M_PI;
     CAPTURE(e);
     CHECK(std::fabs(limit - 10) >= 5);
+  }
+}
+
+// Issue 45: a slider that turns back twice a turn (Problem 4.4 with BC = 0.38 m, CD = 0.35 m)
+// has four limit positions; toggle_margin keeps the asked value off each of them, found here
+// by scanning the position solution.
+TEST_CASE("problems: toggle_margin counts each of a slider's four limit positions") {
+  const std::string text = kinema_test::six_bar_turning_back_text() + R"toml(
+[problem]
+find = ["omega3"]
+at = ["30 deg"]
+[problem.vary]
+omega1 = { range = ["50 rpm", "70 rpm"], step = "5 rpm" }
+[problem.conditions]
+toggle_margin = "5 deg"
+)toml";
+  const Loaded loaded = load(text, "six_bar_turning_back.toml");
+  const std::vector<kinema_test::ScannedExtremum> limits = kinema_test::scanned_extrema(loaded.model, 3);  // yF
+  REQUIRE(limits.size() == 4);
+  const Problem& problem = *loaded.mechanism.problem;
+  const double degree = M_PI / 180;
+  for (const kinema_test::ScannedExtremum& limit : limits) {
+    CAPTURE(limit.input_deg);
+    for (const double off : {-3.0, 3.0}) {
+      const std::vector<std::string> failed = failed_conditions(loaded.model, problem, {(limit.input_deg + off) * degree});
+      CHECK(std::find(failed.begin(), failed.end(), "toggle_margin") != failed.end());
+    }
+  }
+  // Midway along the longest stroke: farther than the margin from every limit.
+  double away = 0, longest = 0;
+  for (std::size_t k = 0; k < limits.size(); ++k) {
+    const double next = k + 1 < limits.size() ? limits[k + 1].input_deg : limits[0].input_deg + 360;
+    if (next - limits[k].input_deg > longest) {
+      longest = next - limits[k].input_deg;
+      away = limits[k].input_deg + longest / 2;
+    }
+  }
+  REQUIRE(longest > 12);
+  CHECK(failed_conditions(loaded.model, problem, {away * degree}).empty());
+  // A margin of 179 deg leaves no value a quarter of the turn from every limit: all refused.
+  Problem wide = problem;
+  wide.conditions.toggle_margin = 179 * degree;
+  CHECK(failed_conditions(loaded.model, wide, {away * degree}) == std::vector<std::string>{"toggle_margin"});
+}
+
+// A variant whose slider has four limit positions has no one stroke or time ratio: drawn
+// again for that, said so, not counted as an answer too small (min_answer).
+TEST_CASE("problems: a variant without the stroke asked is redrawn as missing it, not as min_answer") {
+  const std::string text = kinema_test::replaced("find = [\"omega3\", \"alpha3\", \"vF\"]", "find = [\"stroke\", \"time_ratio\"]",
+                                                 kinema_test::read_file(kinema_test::sample("problem_4_4_set.toml")));
+  const Loaded loaded = load(text, "six_bar_strokes.toml");
+  const Problem& problem = *loaded.mechanism.problem;
+  REQUIRE(problem.conditions.min_answer);
+  const std::string no_stroke = "no stroke (not two limit positions over a whole turn)";
+  const std::string no_ratio = "no time_ratio (not two limit positions over a whole turn)";
+  // The file's own dimensions have both; BC = 0.38 m, CD = 0.35 m neither.
+  CHECK(failed_conditions(loaded.model, problem, {M_PI / 6}).empty());
+  const Model four_limits = with_parameters(loaded.model, {{"BC", 0.38}, {"CD", 0.35}});
+  REQUIRE(slider_strokes(four_limits).at(0).limit_inputs.size() == 4);
+  CHECK(failed_conditions(four_limits, problem, {M_PI / 6}) == std::vector<std::string>{no_stroke, no_ratio});
+  // Every draw of those dimensions refused, and the report says why.
+  const std::string only = kinema_test::replaced(
+      "CD = { range = [\"0.35 m\", \"0.39 m\"], step = \"5 mm\" }", "CD = { range = [\"0.35 m\", \"0.351 m\"], step = \"5 mm\" }",
+      kinema_test::replaced("BC = { range = [\"0.38 m\", \"0.42 m\"], step = \"5 mm\" }",
+                            "BC = { range = [\"0.38 m\", \"0.381 m\"], step = \"5 mm\" }", text));
+  const Loaded fixed = load(only, "six_bar_four_limits.toml");
+  try {
+    make_problem_set(fixed.model, *fixed.mechanism.problem, 1, 7);
+    FAIL("every draw has four limit positions: no set");
+  } catch (const InputError& error) {
+    const std::string message = error.what();
+    CAPTURE(message);
+    CHECK(message.find("(refused by: " + no_stroke + " 200, " + no_ratio + " 200)") != std::string::npos);
+    CHECK(message.find("min_answer") == std::string::npos);
   }
 }
 
