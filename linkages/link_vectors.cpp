@@ -41,7 +41,10 @@ Operand LinkageWriter::length_factor(const Body& body, std::size_t ja, std::size
   if (const std::string* text = given_length(body, a, b)) {
     return as_factor(*text, pair, Dimension::length, body.link->where, "link " + body.name + " length");
   }
-  return {add_parameter(pair, value, Dimension::length, body.link->where)};
+  std::set<std::string> follows = joint_follows(ja);
+  const std::set<std::string> other = joint_follows(jb);
+  follows.insert(other.begin(), other.end());
+  return {add_parameter(pair, value, Dimension::length, body.link->where, follows)};
 }
 
 // The angle of the vector from the body's first joint to joint j, minus the body's
@@ -88,7 +91,8 @@ double LinkageWriter::offset(const Body& body, std::size_t j, double d_first_j) 
 // factor * e^{i(angle + beta)} as a term of a loop.
 // An angle written as a formula (`beta`) stays that formula in the loop.
 Term LinkageWriter::rotated(const Operand& factor, const std::string& angle, double beta,
-                            const std::string& beta_name, const SourceLocation& where, const std::string& written) {
+                            const std::string& beta_name, const SourceLocation& where, const std::string& written,
+                            const std::set<std::string>& follows) {
   const double tolerance = 1e-12;
   Term term{false, false, factor, {}};
   if (angle != "0") term.angle.push_back({angle});
@@ -103,7 +107,7 @@ Term LinkageWriter::rotated(const Operand& factor, const std::string& angle, dou
     term.times_i = true;
     term.negative = true;
   } else {
-    term.angle.push_back({add_parameter(beta_name, beta, Dimension::angle, where)});
+    term.angle.push_back({add_parameter(beta_name, beta, Dimension::angle, where, follows)});
   }
   return term;
 }
@@ -120,7 +124,7 @@ std::vector<Term> LinkageWriter::body_vector(std::size_t b, std::size_t j) {
       if (joint == linkage_.joints[j].name && !looks_like_quantity(text)) written = text;
   }
   return {rotated(length_factor(body, first, j), body.angle, wrapped(beta + body.offset),
-                  "beta_" + body.name + "_" + linkage_.joints[j].name, body.link->where, written)};
+                  "beta_" + body.name + "_" + linkage_.joints[j].name, body.link->where, written, body_follows(body))};
 }
 
 // A point of ground as written: x + I*y.
@@ -150,9 +154,13 @@ std::vector<Term> LinkageWriter::through_vector(std::size_t j) {
   const Body& guide = bodies_[g];
   const Point2 t = through0(j), first = at_[guide.joints[0]];
   if (std::abs(t - first) <= 1e-12 * (1 + std::abs(first))) return {};
-  const std::string factor = add_parameter("r_" + guide.name + "_" + joint.name, std::abs(t - first), Dimension::length, joint.where);
+  std::set<std::string> follows = body_follows(guide);
+  const std::set<std::string> own = joint_follows(j);
+  follows.insert(own.begin(), own.end());
+  const std::string factor =
+      add_parameter("r_" + guide.name + "_" + joint.name, std::abs(t - first), Dimension::length, joint.where, follows);
   const double beta = wrapped(std::arg(t - first) - guide.angle0 + guide.offset);
-  return {rotated({factor}, guide.angle, beta, "beta_" + guide.name + "_" + joint.name, joint.where)};
+  return {rotated({factor}, guide.angle, beta, "beta_" + guide.name + "_" + joint.name, joint.where, "", follows)};
 }
 
 // s * e^{i(guide angle + line offset)}: the slider's travel along its line.
@@ -160,7 +168,10 @@ Term LinkageWriter::travel(std::size_t j) {
   const Joint& joint = linkage_.joints[j];
   const Body& guide = bodies_[body_index_.at(joint.guide)];
   const double beta = wrapped(slider_direction(j) - guide.angle0 + guide.offset);
-  return rotated({slider_coordinate_[j]}, guide.angle, beta, "gamma_" + joint.name, joint.where);
+  std::set<std::string> follows = body_follows(guide);
+  const std::set<std::string> own = joint_follows(j);
+  follows.insert(own.begin(), own.end());
+  return rotated({slider_coordinate_[j]}, guide.angle, beta, "gamma_" + joint.name, joint.where, "", follows);
 }
 
 }  // namespace kinema::linkage_detail

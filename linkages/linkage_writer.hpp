@@ -108,6 +108,8 @@ class LinkageWriter {
   GiNaC::exmap symbol_values_;            // the file's parameters by their symbols in reader_
   std::set<std::string> taken_;           // symbol names
   std::map<std::string, std::string> generated_;  // parameters made here, by the name wanted
+  std::map<std::string, std::set<std::string>> parameter_follows_;  // a name and the file's parameters it follows
+  std::map<std::string, std::size_t> file_parameters_;  // the file's own, by name: index into m_.parameters
   FormulaReader reader_;
   std::vector<Point2> at_;                // joints in the sketch
   std::vector<Body> bodies_;              // 0 = ground
@@ -129,7 +131,12 @@ class LinkageWriter {
   double evaluate(const std::string& formula, const SourceLocation& where, const std::string& what);
   double value_of(const std::string& text, Dimension dimension, const SourceLocation& where, const std::string& what);
   std::string fresh_name(const std::string& wanted);
-  std::string add_parameter(const std::string& wanted, double value, Dimension dimension, const SourceLocation& where);
+  std::string add_parameter(const std::string& wanted, double value, Dimension dimension, const SourceLocation& where,
+                            const std::set<std::string>& follows = {});
+  // The file's parameters a number of the sketch was worked out from (Parameter::follows).
+  std::set<std::string> text_follows(const std::string& text);
+  std::set<std::string> joint_follows(std::size_t j);
+  std::set<std::string> body_follows(const Body& body, std::size_t depth = 0);
   Operand as_factor(const std::string& text, const std::string& wanted, Dimension dimension,
                         const SourceLocation& where, const std::string& what);
 
@@ -160,7 +167,7 @@ class LinkageWriter {
   Operand length_factor(const Body& body, std::size_t ja, std::size_t jb);
   double offset(const Body& body, std::size_t j, double d_first_j);
   Term rotated(const Operand& factor, const std::string& angle, double beta, const std::string& beta_name,
-               const SourceLocation& where, const std::string& written = "");
+               const SourceLocation& where, const std::string& written = "", const std::set<std::string>& follows = {});
   std::vector<Term> body_vector(std::size_t b, std::size_t j);
   std::vector<Term> ground_point(const std::string& x, const std::string& y, const std::string& name,
                                  const SourceLocation& where);

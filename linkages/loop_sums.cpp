@@ -126,9 +126,14 @@ void LinkageWriter::write_points() {
     std::vector<Term> terms = flatten(reference(it->second), 0);
     const Point2 v = at - at_[body.joints[0]];
     if (std::abs(v) > 1e-12 * (1 + std::abs(at))) {
-      const std::string factor = add_parameter("r_" + body.name + "_" + p.name, std::abs(v), Dimension::length, p.where);
+      std::set<std::string> follows = body_follows(body);
+      for (const std::string* text : {&p.x, &p.y}) {
+        const std::set<std::string> more = text_follows(*text);
+        follows.insert(more.begin(), more.end());
+      }
+      const std::string factor = add_parameter("r_" + body.name + "_" + p.name, std::abs(v), Dimension::length, p.where, follows);
       terms.push_back(rotated({factor}, body.angle, wrapped(std::arg(v) - body.angle0 + body.offset),
-                              "beta_" + body.name + "_" + p.name, p.where));
+                              "beta_" + body.name + "_" + p.name, p.where, "", follows));
     }
     points_.push_back({p.name, p.where, terms});
   }

@@ -281,6 +281,7 @@ void PlanarSystemBuilder::add_parameters() {
     values[entry.symbol] = value;
     entry.sets_length_scale = entry.dimension == Dimension::length && parameter.quantity;
     entry.written = !parameter.generated;
+    entry.follows = parameter.follows;
     system_.parameters.push_back(entry);
   }
   system_.length_scale = length_scale_of(system_.parameters);

@@ -22,6 +22,10 @@ struct Parameter {
   std::string formula;       ///< Set when written as a formula.
   SourceLocation where;
   bool generated = false;    ///< Made by kinema from a joints file's sketch, not written.
+  /// Generated: the parameters of the file its value was worked out from (those the sketch's
+  /// places, lengths and angles are written with, and those they follow); empty where it is
+  /// a constant whatever they are.
+  std::vector<std::string> follows;
 };
 
 /// A coordinate whose value the loops determine (angle or slider length).

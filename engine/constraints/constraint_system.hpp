@@ -28,6 +28,9 @@ struct SystemParameter {
   /// In the file as the user wrote it; false for one kinema made (a joints file's sketch
   /// numbers, a spatial chain's starting motion), which with_parameters does not set.
   bool written = true;
+  /// Not written: the written parameters its value was worked out from (a joints file's
+  /// sketch placed with them); empty where it is a constant of the file whatever they are.
+  std::vector<std::string> follows;
   /// Counted in ConstraintSystem::length_scale (each front end chooses which).
   bool sets_length_scale = false;
 };

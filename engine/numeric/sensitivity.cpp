@@ -1,5 +1,6 @@
 #include "engine/numeric/sensitivity.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "engine/base/errors.hpp"
@@ -9,16 +10,21 @@ namespace kinema {
 
 namespace {
 
-// The lengths a joints file's sketch gave (parameters kinema made) follow no parameter
-// of the file: refused, as with_parameters refuses them.
+// The lengths and angles kinema took from a joints file's sketch (parameters it made) are
+// constants of the file, held in a derivative as any constant is: right for a parameter
+// they were not worked out from. One whose sketch places joints with the parameter (a joint
+// at ["La", ...] a length is measured from) would move with it, and the derivative holding
+// it would be wrong: refused, naming them.
 void check_sketch_lengths(const ConstraintSystem& system, const std::string& name) {
   if (!system.plan) return;
   std::string made;
   for (const SystemParameter& p : system.parameters)
-    if (!p.written) made += (made.empty() ? "" : ", ") + p.symbol.get_name();
+    if (!p.written && std::find(p.follows.begin(), p.follows.end(), name) != p.follows.end())
+      made += (made.empty() ? "" : ", ") + p.symbol.get_name();
   if (!made.empty()) {
     throw InputError(system.source_file + ": no sensitivity in \"" + name + "\" for this joints file: kinema took " +
-                     made + " from its sketch, and those do not follow the parameters; give them in [parameters]");
+                     made + " from its sketch, which places joints with " + name + "; they would move with " + name +
+                     " but are held as the file's constants; give them in [parameters] as formulas of " + name);
   }
 }
 

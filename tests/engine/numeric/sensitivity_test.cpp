@@ -8,12 +8,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <regex>
 #include <string>
 #include <vector>
 
 #include "engine/analysis/output_scale.hpp"
 #include "engine/analysis/sensitivities.hpp"
 #include "engine/base/errors.hpp"
+#include "engine/base/number_format.hpp"
 #include "engine/base/units.hpp"
 #include "engine/model.hpp"
 #include "engine/numeric/sensitivity.hpp"
@@ -61,9 +64,13 @@ double difference_step(const kinema::SystemParameter& p, double length_scale) {
 // derivative over the sweep and the size a derivative of it has (its largest value per the
 // parameter's size). So a derivative near zero is compared with its column's size, and one
 // that is zero everywhere with the size of the differences' rounding (~1e-8 of that).
-void check_against_finite_differences(const std::string& sample, const std::vector<double>& inputs) {
+// The model with one parameter moved (default: with_parameters; a joints file whose sketch
+// gave lengths is read again from its text edited).
+using Moved = std::function<Model(const Model&, const std::string& name, double value)>;
+
+void check_against_finite_differences(const std::string& sample, const std::vector<double>& inputs, const Model& model,
+                                      const Moved& moved, const std::vector<std::string>& only = {}) {
   INFO(sample);
-  const Model model = sample_model(sample);
   const kinema::ConstraintSystem& system = model.system;
   const kinema::OutputScale scale(system);
   const std::size_t width = kinema::result_column_count(system), rows = inputs.size();
@@ -73,6 +80,7 @@ void check_against_finite_differences(const std::string& sample, const std::vect
   for (const kinema::SystemParameter& p : system.parameters) {
     if (!p.written) continue;
     const std::string name = p.symbol.get_name();
+    if (!only.empty() && std::find(only.begin(), only.end(), name) == only.end()) continue;
     INFO("parameter " << name);
     const kinema::Sensitivities sensitivities(model, kinema::sensitivity_columns(system, {name}));
     const std::size_t asked = sensitivities.columns().size();
@@ -80,8 +88,7 @@ void check_against_finite_differences(const std::string& sample, const std::vect
     std::vector<double> exact(asked * rows);
     sensitivities.rows(table, 0, rows, exact.data());
     const double h = difference_step(p, system.length_scale);
-    const Model above = kinema::with_parameters(model, {{name, p.value + h}});
-    const Model below = kinema::with_parameters(model, {{name, p.value - h}});
+    const Model above = moved(model, name, p.value + h), below = moved(model, name, p.value - h);
     const MotionTable above_table = kinema::analyse(above, inputs), below_table = kinema::analyse(below, inputs);
     for (std::size_t r = 0; r < rows; ++r)
       REQUIRE((table.status(r) == kinema::Status::ok && above_table.status(r) == kinema::Status::ok &&
@@ -107,6 +114,21 @@ void check_against_finite_differences(const std::string& sample, const std::vect
     }
   }
   CHECK(compared > 0);
+}
+
+void check_against_finite_differences(const std::string& sample, const std::vector<double>& inputs) {
+  check_against_finite_differences(sample, inputs, sample_model(sample), [](const Model& model, const std::string& name, double value) {
+    return kinema::with_parameters(model, {{name, value}});
+  });
+}
+
+// A joints file's text with parameter `name` written as `value` (SI, in mm), read again.
+Model read_with(const std::string& text, const std::string& name, double value) {
+  const std::regex line("\\n" + name + " = \"[^\"]*\"");
+  REQUIRE(std::regex_search(text, line));
+  const std::string edited = std::regex_replace(text, line, "\n" + name + " = \"" + kinema::format_round_trip(value * 1e3) + " mm\"",
+                                                std::regex_constants::format_first_only);
+  return kinema::make_model(kinema::read_mechanism_text(edited, "edited.toml"), kinema::DerivationScope::evaluation);
 }
 
 }  // namespace
@@ -220,6 +242,49 @@ TEST_CASE("engine/numeric/sensitivity: a parameter's derivatives are compiled on
       CHECK(derivatives.qd[i] == doctest::Approx(difference).epsilon(1e-6).scale(std::fabs(plus.qd(r)[i]) / model.system.length_scale));
     }
   }
+}
+
+// Issue 45: the triple rocker's sketch gives kinema x_D, r_2_P and beta_2_P (written there as
+// quantities: constants of the file whatever its parameters). Its derivatives in AB, BC and
+// CD were refused for them; they equal central differences of the file read again with the
+// parameter edited. A parameter the sketch places a joint with (P at ["Px", ...]) moves
+// r_2_P and beta_2_P: refused, naming them, while AB is still allowed.
+TEST_CASE("engine/numeric/sensitivity: a joints file with lengths from its sketch, in the parameters they do not follow") {
+  const std::string text = kinema_test::read_file(kinema_test::sample("triple_rocker_circuit.toml"));
+  const Model model = kinema::make_model(kinema::read_mechanism_text(text, "triple_rocker_circuit.toml"),
+                                         kinema::DerivationScope::evaluation);
+  std::vector<std::string> made;
+  for (const kinema::SystemParameter& p : model.system.parameters)
+    if (!p.written) made.push_back(p.symbol.get_name());
+  CHECK(made == std::vector<std::string>{"x_D", "r_2_P", "beta_2_P"});
+  const Moved reread = [&](const Model&, const std::string& name, double value) { return read_with(text, name, value); };
+  check_against_finite_differences("triple_rocker_circuit.toml", inputs_between(kinema::from_degrees(40), kinema::from_degrees(320), 8),
+                                   model, reread, {"AB", "BC", "CD"});
+  const auto refusal = [](const std::string& file_text, const std::string& name) {
+    const Model m = kinema::make_model(kinema::read_mechanism_text(file_text, "placed.toml"), kinema::DerivationScope::evaluation);
+    try {
+      kinema::Sensitivities(m, kinema::sensitivity_columns(m.system, {name}));
+    } catch (const kinema::InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  // P placed with a parameter: its offsets on link 2 follow Px, the ground pivot's x does not.
+  const std::string placed = kinema_test::replaced(
+      "P = { link = \"2\", at = [\"37.034762 mm\"", "P = { link = \"2\", at = [\"Px\"",
+      kinema_test::replaced("CD = \"45 mm\"\n", "CD = \"45 mm\"\nPx = \"37.034762 mm\"\n", text));
+  const std::string message = refusal(placed, "Px");
+  CAPTURE(message);
+  CHECK(message.find("no sensitivity in \"Px\" for this joints file: kinema took r_2_P, beta_2_P from its sketch, which "
+                     "places joints with Px") != std::string::npos);
+  CHECK(message.find("x_D") == std::string::npos);
+  CHECK(refusal(placed, "AB").empty());
+  // And through the command line.
+  const kinema_test::CommandResult run =
+      kinema_test::run_kinema({"eval", kinema_test::sample("triple_rocker_circuit.toml"), "--sensitivity", "omega2:AB"});
+  CAPTURE(run.err);
+  CHECK(run.exit_status == 0);
+  CHECK(run.out.find("d_omega2_d_AB") != std::string::npos);
 }
 
 TEST_CASE("engine/numeric/sensitivity: an unknown parameter or column is named with the list of names") {
