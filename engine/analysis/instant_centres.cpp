@@ -113,12 +113,11 @@ std::vector<PointBody> bodies_of_points(const MechanismGeometry& geometry, const
 // point, or a ground one), and the slider blocks (at their sliding points, turning with
 // their guides): every body of the mechanism, as a course counts them. A block is added
 // without a name (number_bodies names it).
-void add_drawn_bodies(const MechanismGeometry& geometry, const MotionState& s,
+void add_drawn_bodies(const MechanismGeometry& geometry, const MotionState& s, const std::vector<DrawingSegment>& segments,
                       const std::vector<std::optional<double>>& omegas, std::vector<PointBody>& bodies) {
   const double length_scale = geometry.system().length_scale;
   std::vector<std::pair<Complex, Complex>> known;  // position, velocity
   for (const PointMotion& m : s.points) known.push_back({{m.position[0], m.position[1]}, {m.velocity[0], m.velocity[1]}});
-  const std::vector<DrawingSegment> segments = geometry.segments(s);
   known.push_back({0, 0});
   for (const DrawingSegment& g : segments)
     if (g.kind == DrawingSegment::Kind::ground) {
@@ -242,7 +241,10 @@ InstantCentres centres_of_bodies(const ConstraintSystem& system, const MotionSta
       if (std::fabs(wa - wb) <= kCentreParallelTolerance * turning) {
         // Uniform where they turn alike: v_b(P) - v_a(P) = v_b(B) - v_a(A) + i omega (A - B).
         const Complex relative = vb - va + I * wa * (A - B);
-        if (std::abs(relative) <= 1e-12 * fastest) continue;  // moving as one: no centre
+        if (std::abs(relative) <= 1e-12 * fastest) {  // moving as one: no centre
+          result.moving_as_one.push_back({a, b});
+          continue;
+        }
         result.centres.push_back({a, b, true, I * relative / std::abs(relative), how, {}, std::nullopt, {}});
         continue;
       }
@@ -280,7 +282,10 @@ void add_tape_centres(InstantCentres& result, const TapeLayout& layout, const st
       const Complex N(sign * pair[0], sign * pair[1]);
       const double D = sign * pair[2];
       if (std::fabs(D) <= kCentreParallelTolerance * turning) {
-        if (std::abs(N) <= 1e-12 * fastest) continue;  // moving as one: no centre
+        if (std::abs(N) <= 1e-12 * fastest) {  // moving as one: no centre
+          result.moving_as_one.push_back({a, b});
+          continue;
+        }
         result.centres.push_back({a, b, true, Complex(-N.imag(), N.real()) / std::abs(N), how(a, b), {}, std::nullopt, {}});
         continue;
       }
@@ -369,6 +374,10 @@ bool list_missing_and_check_finite(InstantCentres& result) {
   for (std::size_t a = 0; a < n; ++a)
     for (std::size_t b = a + 1; b < n; ++b)
       if (!result.find(a, b)) result.not_found.push_back({a, b});
+  std::vector<std::pair<std::size_t, std::size_t>> as_one;  // a pin's pair moving as one has its pin
+  for (const auto& pair : result.moving_as_one)
+    if (!result.find(pair.first, pair.second)) as_one.push_back(pair);
+  result.moving_as_one = as_one;
   for (const InstantCentre& c : result.centres)
     if (!std::isfinite(c.at.real()) || !std::isfinite(c.at.imag())) return false;
   return true;
@@ -432,23 +441,92 @@ void complete_by_kennedy(InstantCentres& result, double length_scale, const Inst
   }
 }
 
+// A vector-loop file's pins: the pinned ends of its drawn vectors, each joining the bodies
+// whose parts end there (a link's vectors; ground's vectors and the origin; a block's point;
+// a turning guide's end on its link). Where two of them have the same velocity there, the
+// pin is their centre whatever their rates: moved there (the velocities' N / (i D) loses
+// digits as the two come to turn alike), or added where the velocities gave none (they turn
+// alike: the four-bar's coupler and rocker at theta2 = 0, a rocker at rest at its limit).
+void place_pins(InstantCentres& result, const std::vector<PointBody>& bodies, const std::vector<DrawingSegment>& segments,
+                const MotionState& s, double length_scale) {
+  const auto same = [&](Complex p, Complex q) { return std::abs(p - q) <= 1e-9 * length_scale; };
+  const auto body_of = [&](int link, int slider_term) -> std::optional<std::size_t> {
+    for (std::size_t b = 0; b < bodies.size(); ++b)
+      if (link >= 0 ? bodies[b].link == link : bodies[b].slider_term == slider_term) return b + 1;
+    return std::nullopt;
+  };
+  std::vector<Complex> pins;
+  for (const DrawingSegment& g : segments) {
+    if (g.pin_at_from) pins.push_back(g.from);
+    if (g.pin_at_to) pins.push_back(g.to);
+    if (g.kind == DrawingSegment::Kind::slider) pins.push_back(g.block);
+  }
+  const double fastest = fastest_point(s);
+  std::vector<Complex> done;
+  for (const Complex p : pins) {
+    if (std::any_of(done.begin(), done.end(), [&](Complex q) { return same(p, q); })) continue;
+    done.push_back(p);
+    std::vector<std::size_t> there;
+    const auto add = [&](std::optional<std::size_t> b) {
+      if (b && std::find(there.begin(), there.end(), *b) == there.end()) there.push_back(*b);
+    };
+    if (same(p, 0)) add(0);
+    for (const DrawingSegment& g : segments) {
+      const bool ends_here = same(g.from, p) || same(g.to, p);
+      if (g.kind == DrawingSegment::Kind::ground && ends_here) add(0);
+      if (g.kind == DrawingSegment::Kind::link && g.link >= 0 && ends_here) add(body_of(g.link, -1));
+      if (g.kind != DrawingSegment::Kind::slider) continue;
+      if (same(g.block, p)) add(body_of(-1, static_cast<int>(g.term)));
+      const Complex other = same(g.block, g.from) ? g.to : g.from;
+      if (!g.fixed_guide && g.guide_link >= 0 && same(other, p)) add(body_of(g.guide_link, -1));
+    }
+    // Body b's velocity at p (ground at rest).
+    const auto velocity = [&](std::size_t b) {
+      return b == 0 ? Complex() : bodies[b - 1].velocity + Complex(0, bodies[b - 1].omega) * (p - bodies[b - 1].point);
+    };
+    for (std::size_t i = 0; i < there.size(); ++i)
+      for (std::size_t j = i + 1; j < there.size(); ++j) {
+        const auto [a, b] = std::minmax(there[i], there[j]);
+        if (std::abs(velocity(a) - velocity(b)) > 1e-9 * fastest) continue;  // not joined here after all
+        InstantCentre* centre = nullptr;
+        for (InstantCentre& c : result.centres)
+          if (c.a == a && c.b == b) centre = &c;
+        if (!centre) {
+          result.centres.push_back({a, b, false, p, "the pin joining " + result.bodies[a] + " and " + result.bodies[b], {},
+                                    std::nullopt, {}});
+          centre = &result.centres.back();
+        }
+        centre->at_infinity = false;
+        centre->at = p;
+        centre->seen_from.reset();
+        centre->seen_bodies.clear();
+        centre->pin = true;
+      }
+  }
+}
+
 // A vector-loop file's centres: its bodies found from the points and the drawing, each
 // centre from two bodies' velocities, read from the tape or (from_tape false) constructed
-// from the numbers the bodies were found by.
+// from the numbers the bodies were found by; each pin's at the pin.
 std::optional<InstantCentres> centres_from_points(const MechanismGeometry& geometry, const MotionState& s,
                                                   bool from_tape) {
   const ConstraintSystem& system = geometry.system();
   const std::vector<std::optional<double>> omegas = geometry.link_angular_velocities(s);
   std::vector<PointBody> bodies = bodies_of_points(geometry, s, omegas);
   if (bodies.empty()) return std::nullopt;
-  add_drawn_bodies(geometry, s, omegas, bodies);
+  const std::vector<DrawingSegment> segments = geometry.segments(s);
+  add_drawn_bodies(geometry, s, segments, omegas, bodies);
   const std::string ground = number_bodies(bodies);
   std::vector<Complex> points = {0};
   for (const PointBody& b : bodies) points.push_back(b.point);
   std::optional<InstantCentres> result =
       from_tape ? centres_from_tape(geometry, s, bodies, ground, points)
                 : std::optional<InstantCentres>(centres_of_bodies(system, s, bodies, ground));
-  if (!result || !list_missing_and_check_finite(*result)) return std::nullopt;
+  if (!result) return std::nullopt;
+  place_pins(*result, bodies, segments, s, system.length_scale);
+  std::sort(result->centres.begin(), result->centres.end(),
+            [](const InstantCentre& p, const InstantCentre& q) { return std::pair(p.a, p.b) < std::pair(q.a, q.b); });
+  if (!list_missing_and_check_finite(*result)) return std::nullopt;
   mark_kennedy_lines(*result, points, s, system.length_scale);
   if (result->driver != 0) add_ratios(*result, system.length_scale);
   return result;
@@ -477,18 +555,20 @@ InstantCentres plan_bodies(const ConstraintSystem& system) {
 // (seen from its joint), where `place` puts them (nullopt: none).
 void add_primary_centres(const SolvingPlan& plan, InstantCentres& result,
                          const std::function<std::optional<InstantCentre>(bool slider, std::size_t k)>& place) {
-  const auto add = [&](std::size_t a, std::size_t b, std::optional<InstantCentre> centre, const std::string& how) {
+  const auto add = [&](std::size_t a, std::size_t b, std::optional<InstantCentre> centre, const std::string& how, bool pin) {
     if (a > b) std::swap(a, b);
     if (a == b || result.find(a, b) || !centre) return;
     centre->a = a;
     centre->b = b;
     centre->found_by = how;
+    centre->pin = pin;
     result.centres.push_back(*centre);
   };
   for (std::size_t k = 0; k < plan.pins.size(); ++k)
-    add(plan.pins[k].a, plan.pins[k].b, place(false, k), "pin " + plan.joints[plan.pins[k].joint].name);
+    add(plan.pins[k].a, plan.pins[k].b, place(false, k), "pin " + plan.joints[plan.pins[k].joint].name, true);
   for (std::size_t k = 0; k < plan.sliders.size(); ++k)
-    add(plan.sliders[k].block, plan.sliders[k].guide, place(true, k), "slider " + plan.joints[plan.sliders[k].joint].name);
+    add(plan.sliders[k].block, plan.sliders[k].guide, place(true, k), "slider " + plan.joints[plan.sliders[k].joint].name,
+        false);
 }
 
 // A joints-and-links mechanism's centres as a course constructs them, from the bodies'
@@ -549,11 +629,27 @@ std::optional<InstantCentres> plan_centres_from_tape(const MechanismGeometry& ge
   for (InstantCentre& centre : tape.centres)
     if (centre.at_infinity) see_from_bodies(centre, tape, points);
   const SolvingPlan& plan = *geometry.system().plan;
+  // A pin is the centre of the two bodies it joins whatever their rates: where it is on the
+  // drawing stage (the tape's N / (i D) is 0 / 0 where they turn alike, and loses digits as
+  // they come to). A slider's centre where the tape has it, else as constructed (the block
+  // at rest on its guide at a limit position: moving as one for the instant).
+  if (layout.linkage_joint_count != plan.joints.size()) return std::nullopt;
+  std::optional<std::optional<InstantCentres>> constructed;
   add_primary_centres(plan, result, [&](bool slider, std::size_t k) -> std::optional<InstantCentre> {
-    const InstantCentre* there = slider ? tape.find(plan.sliders[k].block, plan.sliders[k].guide)
-                                        : tape.find(plan.pins[k].a, plan.pins[k].b);
-    return there ? std::optional<InstantCentre>(*there) : std::nullopt;
+    if (!slider) {
+      const double* at = values.data() + layout.linkage_joint_output(plan.pins[k].joint);
+      return InstantCentre{0, 0, false, {at[0], at[1]}, "", {}, std::nullopt, {}};
+    }
+    const SolvingPlan::Slider& sl = plan.sliders[k];
+    if (const InstantCentre* there = tape.find(sl.block, sl.guide)) return *there;
+    if (!constructed) constructed = constructed_plan_centres(geometry, s);
+    const InstantCentre* built = *constructed ? (*constructed)->find(sl.block, sl.guide) : nullptr;
+    if (!built) return std::nullopt;
+    InstantCentre across = *built;  // seen from the bodies' points, as the tape's are
+    if (across.at_infinity) see_from_bodies(across, tape, points);
+    return across;
   });
+  result.moving_as_one = tape.moving_as_one;
   complete_by_kennedy(result, geometry.system().length_scale, &tape);
   // Where two bodies move as one (no centre of theirs) Kennedy may not reach a centre the
   // tape has: found by the velocities, as a vector-loop file's.

@@ -34,6 +34,9 @@ struct InstantCentre {
   /// A vector-loop file's centre at infinity: the bodies whose points (the tape's) it is
   /// seen from, their mean (one body, or both).
   std::vector<std::size_t> seen_bodies;
+  /// At a pin joining the two bodies: their centre whatever their rates (where they turn
+  /// alike, or one is at rest at a limit position, the velocities give none or a poor one).
+  bool pin = false;
 };
 
 /// omega_j / omega_driver from the centres (I_0d, I_dj, I_0j on one line:
@@ -53,6 +56,9 @@ struct InstantCentres {
   /// squarely, as the joints-and-links ones do.
   std::vector<InstantCentre> centres;
   std::vector<std::pair<std::size_t, std::size_t>> not_found;  ///< Pairs no two Kennedy lines fix.
+  /// Of those, the pairs at rest relative to each other for the instant (the same angular
+  /// velocity, no relative velocity: every point is their centre).
+  std::vector<std::pair<std::size_t, std::size_t>> moving_as_one;
   std::size_t driver = 0;
   std::vector<VelocityRatio> ratios;
   /// The centre of bodies a and b, if found.

@@ -211,13 +211,15 @@ void write_centres_table(std::ostream& out, const ConstraintSystem& system, cons
   const DocumentNumbers number(system);  // round-off as 0, as everywhere in the document
   out << "\\medskip\n\\begin{tabular}{lrrl}\n\\toprule\ncentre & $x$ & $y$ & found by \\\\\n & $\\mathrm{" << l << "}$ & $\\mathrm{"
       << l << "}$ & \\\\\n\\midrule\n";
-  // Those no two lines fix say so.
+  // Those no two lines fix say so; two bodies at rest relative to each other have any point.
   for (std::size_t a = 0; a < c.bodies.size(); ++a) {
     for (std::size_t b = a + 1; b < c.bodies.size(); ++b) {
       const InstantCentre* found = c.find(a, b);
       if (!found) {
-        out << "$I_{" << latex_escape_text(c.bodies[a]) << latex_escape_text(c.bodies[b])
-            << "}$ & \\multicolumn{2}{c}{not found} & no two lines of known centres cross there \\\\\n";
+        const bool as_one = std::find(c.moving_as_one.begin(), c.moving_as_one.end(), std::pair(a, b)) != c.moving_as_one.end();
+        out << "$I_{" << latex_escape_text(c.bodies[a]) << latex_escape_text(c.bodies[b]) << "}$ & \\multicolumn{2}{c}{"
+            << (as_one ? "any point} & the two move as one for the instant" : "not found} & no two lines of known centres cross there")
+            << " \\\\\n";
         continue;
       }
       const InstantCentre& centre = *found;

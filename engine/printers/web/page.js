@@ -488,7 +488,7 @@
   // A row the sliders solved: its centres from the drawing stage's outputs the analysis reads
   // its own from (engine/symbolic/centre_formulas.hpp), with the file's row's structure and
   // Kennedy lines: each N / (i D), or at infinity across N where the bodies turn alike
-  // (instant_centres.cpp centres_from_tape).
+  // (instant_centres.cpp centres_from_tape); a pin's at its joint as the row draws it.
   function solvedCentres(r, c) {
     const s = constructions.centre_structures[c.centres[0]];
     const solved = lastSolved && lastSolved[r];
@@ -505,7 +505,10 @@
     let turning = 0;
     s.centres.forEach(function (centre) { turning = Math.max(turning, Math.abs(out(centre.tape[2])), Math.abs(out(centre.tape[3]))); });
     const lines = constructions.kennedy_sets[c.centres[1]];
+    const g = drawing.rows[r];
     return { not_found: s.not_found, centres: s.centres.map(function (centre, j) {
+      // A pin's centre: where this row draws the joint, whatever the bodies' rates.
+      if (centre.pin && g) return { name: centre.name, infinite: false, kennedy: lines[j], at: [g[2 * centre.joint], g[2 * centre.joint + 1]] };
       const t = centre.tape, sign = t[1];
       const N = [sign * out(t[0]), sign * out(t[0] + 1)], D = sign * out(t[0] + 2), size = Math.hypot(N[0], N[1]);
       const infinite = Math.abs(D) <= constructions.centre_parallel_tolerance * turning;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <limits>
 #include <map>
 #include <string>
 
@@ -139,6 +140,10 @@ json centres_json(const InstantCentres& centres, const std::vector<double>& join
     const json joint = c.at_infinity ? json(nullptr) : joint_at(c.at);
     structure["centres"].push_back({{"name", centre_name(centres, c)}, {"infinite", c.at_infinity}, {"joint", joint},
                                     {"seen_from", c.seen_from.has_value()}});
+    // A pin's centre is at its joint whatever the dimensions: a page that solves again
+    // puts it where it draws the joint, not at the tape's N / (i D) (0 / 0 where the two
+    // bodies turn alike).
+    if (c.pin && !joint.is_null()) structure["centres"].back()["pin"] = true;
     if (const json tape = centre_tape_json(centres, c, layout); !tape.is_null()) structure["centres"].back()["tape"] = tape;
     kennedy.push_back(std::move(lines));
     if (c.at_infinity) push_point(row, c.at, 1.0, 1.0);
@@ -170,10 +175,18 @@ json constructions_json(const std::vector<ValueAnalysis>& values, const MotionDr
       row["polygons"] = json::array({polygon_json(value.polygons->first, per_unit, point_fields, polygon_structures),
                                      polygon_json(value.polygons->second, per_unit, point_fields, polygon_structures)});
     if (value.centres) {
-      // The joints' places (SI) of a drawing of joints and links; none otherwise.
+      // The joints' places (SI) of a drawing of joints and links; of a vector-loop file's,
+      // its row's places (the vectors' ends and blocks, the points on links) with each
+      // vector's direction left out (NaN: no centre is there): a centre at one is named by
+      // its index in the row, as the page reads the row's places.
       std::vector<double> joints;
       if (drawing.form == MotionDrawing::Form::linkage && r < drawing.rows.size())
         joints.assign(drawing.rows[r].begin(), drawing.rows[r].begin() + std::min(drawing.rows[r].size(), 2 * drawing.joint_names.size()));
+      if (drawing.form == MotionDrawing::Form::loops && r < drawing.rows.size()) {
+        joints = drawing.rows[r];
+        for (std::size_t g = 0; g < drawing.segments.size() && 8 * g + 7 < joints.size(); ++g)
+          joints[8 * g + 6] = joints[8 * g + 7] = std::numeric_limits<double>::quiet_NaN();
+      }
       row["centres"] = centres_json(*value.centres, joints, per_unit, centre_structures, kennedy_sets, centre_tape);
     }
     rows.push_back(std::move(row));

@@ -11,6 +11,9 @@
 
 #include "engine/model.hpp"
 #include "engine/analysis/instant_centres.hpp"
+#include "engine/analysis/design_figures.hpp"
+#include "engine/analysis/toggles.hpp"
+#include "engine/base/number_format.hpp"
 #include "engine/symbolic/derivation.hpp"
 #include "engine/constraints/expression_parts.hpp"
 
@@ -385,4 +388,131 @@ TEST_CASE("instant centres: a joints-and-links file at rest has the centres it h
     }
   }
   CHECK(compared >= 20);
+}
+
+namespace {
+
+// Where the pins' centres are asked: theta = 0 (the four-bar's coupler and rocker turn alike
+// there), the file's values, and every limit position of every unknown over a turn (a
+// rocker or a slider at rest for the instant).
+std::vector<double> pin_test_inputs(const kinema::Model& model) {
+  std::vector<double> inputs = {0.0};
+  inputs.insert(inputs.end(), model.system.input.values.begin(), model.system.input.values.end());
+  if (model.system.input.dimension != kinema::Dimension::angle) return inputs;
+  std::vector<std::size_t> all(model.system.unknowns.size());
+  for (std::size_t j = 0; j < all.size(); ++j) all[j] = j;
+  for (const std::vector<kinema::Toggle>& limits : kinema::find_limit_positions(model, all))
+    for (const kinema::Toggle& limit : limits) inputs.push_back(limit.input);
+  return inputs;
+}
+
+}  // namespace
+
+// Issue 45: a pin joining two bodies is their instant centre whatever their rates. At
+// theta = 0 and at every limit position, every pin's centre is found, at the pin (where the
+// closed-form drawing puts the joint), for every joints-and-links sample; and the
+// vector-loop four-bar's four pins are where a textbook puts them (O2, A, B, O4).
+TEST_CASE("instant centres: every pin's centre is at its pin at theta = 0 and at the limit positions") {
+  int pins = 0, alike = 0, at_rest = 0;
+  std::size_t as_one = 0;
+  for (const char* name : kinema_test::kSamples) {
+    const kinema::Model model = kinema::load_model(kinema_test::sample(name));
+    if (!model.system.plan || !model.system.plan->closed_form) continue;
+    CAPTURE(std::string(name));
+    const kinema::SolvingPlan& plan = *model.system.plan;
+    const kinema::MechanismGeometry geometry(model);
+    for (const double input : pin_test_inputs(model)) {
+      CAPTURE(input);
+      const kinema::MotionTable table = kinema::analyse(model, {input});
+      if (table.status(0) != kinema::Status::ok) continue;
+      const auto centres = kinema::instant_centres(geometry, table[0]);
+      REQUIRE(centres);
+      const std::optional<kinema::LinkageDrawing> drawing = kinema::linkage_drawing(model.system, table[0]);
+      REQUIRE(drawing);
+      const auto joint_at = [&](const std::string& joint) {
+        for (const auto& link : drawing->links)
+          for (const auto& j : link.joints)
+            if (j.name == joint) return j.at;
+        for (const auto& j : drawing->ground_pivots)
+          if (j.name == joint) return j.at;
+        FAIL("no joint " << joint << " drawn");
+        return Complex();
+      };
+      double turning = 0;
+      for (double w : centres->angular_velocities) turning = std::max(turning, std::fabs(w));
+      for (const kinema::SolvingPlan::Pin& pin : plan.pins) {
+        CAPTURE(plan.joints[pin.joint].name);
+        const kinema::InstantCentre* centre = centres->find(pin.a, pin.b);
+        REQUIRE(centre);
+        CHECK(!centre->at_infinity);
+        CHECK(centre->pin);
+        CHECK(std::abs(centre->at - joint_at(plan.joints[pin.joint].name)) <= 1e-9 * model.system.length_scale);
+        const double wa = centres->angular_velocities[pin.a], wb = centres->angular_velocities[pin.b];
+        alike += std::fabs(wa - wb) <= kinema::kCentreParallelTolerance * turning;
+        at_rest += std::min(pin.a, pin.b) == 0 && std::fabs(wa - wb) <= 1e-9 * turning;
+        ++pins;
+      }
+      // What is left unfound is two bodies at rest relative to each other (Problem 4.4's
+      // links 3, 4 and 5 at its slider's limits), said so: any point is their centre.
+      CHECK(centres->moving_as_one == centres->not_found);
+      for (const auto& [a, b] : centres->moving_as_one)
+        CHECK(std::fabs(centres->angular_velocities[a] - centres->angular_velocities[b]) <= 1e-9 * turning);
+      as_one += centres->moving_as_one.size();
+    }
+  }
+  CHECK(pins >= 100);
+  CHECK(alike >= 1);    // bodies joined by a pin turning alike: the velocities give no centre
+  CHECK(at_rest >= 1);  // a link at rest at its limit position
+  CHECK(as_one >= 2);   // I04 and I35 of Problem 4.4 at its slider's limits
+
+  // The vector-loop four-bar: at theta2 = 0 the coupler and the rocker turn alike.
+  const kinema::Model four_bar = kinema::load_model(kinema_test::sample("four_bar.toml"));
+  const kinema::MechanismGeometry geometry(four_bar);
+  int checked = 0;
+  for (const double input : pin_test_inputs(four_bar)) {
+    CAPTURE(input);
+    const kinema::MotionTable table = kinema::analyse(four_bar, {input});
+    REQUIRE(table.status(0) == kinema::Status::ok);
+    const kinema::MotionState& s = table[0];
+    const auto centres = kinema::instant_centres(geometry, s);
+    REQUIRE(centres);
+    REQUIRE(centres->bodies == std::vector<std::string>{"1", "2", "3", "4"});
+    const auto point = [&](const char* name) {
+      for (std::size_t p = 0; p < four_bar.system.points.size(); ++p)
+        if (four_bar.system.points[p].name == name) return Complex(s.points[p].position[0], s.points[p].position[1]);
+      return Complex(NAN, NAN);
+    };
+    const std::pair<std::pair<std::size_t, std::size_t>, Complex> pin_places[] = {
+        {{0, 1}, 0.0}, {{1, 2}, point("A")}, {{2, 3}, point("B")}, {{0, 3}, Complex(0.1, 0)}};  // d = 100 mm
+    for (const auto& [bodies, at] : pin_places) {
+      CAPTURE(bodies.first);
+      CAPTURE(bodies.second);
+      const kinema::InstantCentre* centre = centres->find(bodies.first, bodies.second);
+      REQUIRE(centre);
+      CHECK(!centre->at_infinity);
+      CHECK(centre->pin);
+      CHECK(std::abs(centre->at - at) <= 1e-12);
+      ++checked;
+    }
+    CHECK(centres->not_found.empty());
+    // Where the coupler and the rocker turn alike (theta2 = 0) I34 is at B all the same.
+    if (input == 0.0) CHECK(std::fabs(s.qd[0] - s.qd[1]) <= 1e-12 * std::fabs(s.input_rate));
+  }
+  CHECK(checked >= 12);
+  // The worked solution's table of centres at theta2 = 0: I34 at B, none not found.
+  const std::string tex = kinema_test::write_temporary("four_bar_at_0.tex", "");
+  REQUIRE(kinema_test::run_kinema({"latex", kinema_test::sample("four_bar.toml"), "--at", "0", "-o", tex}).exit_status == 0);
+  const std::string latex = kinema_test::read_file(tex);
+  CHECK(latex.find("not found") == std::string::npos);
+  CHECK(latex.find("$I_{34}$ & $") != std::string::npos);
+  // And Problem 4.4's at its slider's limit: I04 any point, as the two move as one.
+  const auto limits = kinema::slider_strokes(kinema::load_model(kinema_test::sample("problem_4_4_joints.toml")));
+  REQUIRE(limits.size() == 1);
+  const std::string at_limit = kinema_test::write_temporary("six_bar_at_limit.tex", "");
+  REQUIRE(kinema_test::run_kinema({"latex", kinema_test::sample("problem_4_4_joints.toml"), "--at",
+                                   kinema::format_round_trip(limits[0].limit_inputs[0]), "-o", at_limit})
+              .exit_status == 0);
+  const std::string six = kinema_test::read_file(at_limit);
+  CHECK(six.find("not found") == std::string::npos);
+  CHECK(six.find("$I_{04}$ & \\multicolumn{2}{c}{any point} & the two move as one for the instant") != std::string::npos);
 }

@@ -14,6 +14,7 @@
 #include "engine/printers/web/page.hpp"
 #include "engine/printers/web/page_constructions.hpp"
 #include "engine/run/view.hpp"
+#include "engine/analysis/design_figures.hpp"
 #include "engine/analysis/motion_drawing.hpp"
 #include "engine/analysis/resolving.hpp"
 #include "readers/mechanism_file.hpp"
@@ -254,6 +255,49 @@ TEST_CASE("engine/printers/web/page_constructions: each row's centres and polygo
   }
   CHECK(centres >= table.size());  // a Kennedy centre or one at infinity in every row
   CHECK(vertices >= 8 * table.size());
+}
+
+// Issue 45: a pin's centre is in the page's data at every row, at the joint the row draws,
+// and marked a pin (a page that solves again puts it where it draws that joint): the
+// vector-loop four-bar at theta2 = 0, where its coupler and rocker turn alike, and Problem
+// 4.4 as joints and links at its slider's limit positions (links 3, 4 and 5 at rest there).
+TEST_CASE("engine/printers/web/page_constructions: every pin's centre at its joint in the rows, marked a pin") {
+  for (const char* name : {"four_bar.toml", "problem_4_4_joints.toml"}) {
+    CAPTURE(std::string(name));
+    const kinema::Model model = kinema::load_model(kinema_test::sample(name), kinema::DerivationScope::evaluation);
+    std::vector<double> inputs = {0.0, 0.5};
+    if (model.system.plan)
+      for (const kinema::Strokes& s : kinema::slider_strokes(model))
+        for (double limit : s.limit_inputs) inputs.push_back(limit * M_PI / 180);
+    const kinema::MotionTable table = kinema::analyse(model, inputs);
+    kinema::ViewNeeds needs;
+    needs.motion = true;
+    const kinema::Analysis analysis = kinema::analyse_for_views(model, &table, needs);
+    REQUIRE(analysis.motion);
+    const nlohmann::ordered_json data = kinema::constructions_json(analysis.values, *analysis.motion, 1.0, {});
+    const std::size_t pins = model.system.plan ? model.system.plan->pins.size() : 4;  // O2, A, B, O4
+    for (std::size_t r = 0; r < table.size(); ++r) {
+      CAPTURE(r);
+      REQUIRE(table.status(r) == kinema::Status::ok);
+      const auto& structure = data["centre_structures"][data["rows"][r]["centres"][0].get<std::size_t>()];
+      // (At the six-bar's slider limits links 3, 4 and 5 are at rest with ground: I04 and
+      // I35 are any point. The four-bar's pairs all have a centre.)
+      if (!model.system.plan) CHECK(structure["not_found"].empty());
+      std::size_t marked = 0;
+      for (std::size_t c = 0; c < structure["centres"].size(); ++c) {
+        const auto& written = structure["centres"][c];
+        const kinema::InstantCentre& centre = analysis.values[r].centres->centres[c];
+        CHECK(written.value("pin", false) == centre.pin);
+        if (!centre.pin) continue;
+        ++marked;
+        REQUIRE(!written["joint"].is_null());
+        const std::size_t j = written["joint"];
+        CHECK(std::abs(centre.at - std::complex<double>(analysis.motion->rows[r][2 * j], analysis.motion->rows[r][2 * j + 1])) <
+              1e-12);
+      }
+      CHECK(marked == pins);
+    }
+  }
 }
 
 // Issue 35's target: Problem 4.4 at 0.5 deg steps (kinema page --sweep 0:360:0.5, 721 rows)
