@@ -297,6 +297,13 @@ std::vector<Strokes> slider_strokes(const Model& model) {
     const std::size_t j = lengths[w];
     const std::vector<Toggle>& limits = found[w];
     if (limits.empty()) continue;
+    // A coordinate that does not move (its rate 0 at every row, or rounding's sign) has none.
+    double low = limits.front().q[Eigen::Index(j)], high = low;
+    for (const Toggle& limit : limits) {
+      low = std::min(low, limit.q[Eigen::Index(j)]);
+      high = std::max(high, limit.q[Eigen::Index(j)]);
+    }
+    if (high - low <= 1e-9 * system.length_scale) continue;
     Strokes s;
     s.name = system.unknowns[j].name;
     for (const Toggle& limit : limits) {

@@ -277,3 +277,32 @@ TEST_CASE("design figures: a slider that turns back twice a turn has every limit
     CHECK(said.find("strokes of $") != std::string::npos);
   }
 }
+
+// A length unknown that does not move over the turn (a loop the input does not reach) has
+// no limit positions: its rate is 0 at every row, not a limit at each.
+TEST_CASE("design figures: a slider coordinate that does not move has no limit positions") {
+  const std::string text = R"toml(title = "a slider that does not move"
+[parameters]
+a = "50 mm"
+b = "150 mm"
+c = "80 mm"
+d = "60 mm"
+[input]
+name = "theta2"
+value = "30 deg"
+rate = "10 rad/s"
+[unknowns]
+theta3 = "-10 deg"
+x = "190 mm"
+theta4 = "50 deg"
+s = "60 mm"
+[loops]
+ABC = "a*exp(I*theta2) + b*exp(I*theta3) - x"
+DE = "c*exp(I*theta4) - (d + I*s)"
+)toml";
+  const std::vector<kinema::Strokes> strokes =
+      kinema::slider_strokes(kinema::make_model(kinema::read_mechanism_text(text, "still.toml")));
+  REQUIRE(strokes.size() == 1);
+  CHECK(strokes[0].name == "x");
+  CHECK(strokes[0].limit_inputs.size() == 2);
+}
