@@ -2,8 +2,8 @@
 // every sample, no value printed is below 1e-12 of the largest magnitude of its column (the
 // numbers shown together for one quantity: a table column, a vector's components) unless it
 // is exactly 0. The views read back as printed: the text table (kinema eval), the worked
-// solution (kinema latex: its tables, vectors and figures), the derivation (kinema derive:
-// a chain's vectors) and the page's drawing data (kinema page). The page's readout is checked
+// solution (kinema latex: its tables, vectors and figures; a problem set's keys), the
+// derivation (kinema derive: a chain's vectors) and the page's drawing data (kinema page). The page's readout is checked
 // in the browser (tests/browser/page_test.js). CSV, JSON and npy are data: the values as solved.
 #include <doctest/doctest.h>
 
@@ -280,6 +280,21 @@ TEST_CASE("numbers for people: every sample's table, worked solution and derivat
     REQUIRE(derive.exit_status == 0);
     check_none(round_off_shown(derivation_groups(file, derive.out)), 1);
   }
+  // A problem set's keys: each variant's worked solution and its answers.
+  const std::string set = kinema_test::fresh_directory("numbers_for_people_set");
+  const kinema_test::CommandResult problems = kinema_test::run_kinema(
+      {"problems", kinema_test::sample("problem_4_4_set.toml"), "--count", "4", "--seed", "7", "-o", set});
+  REQUIRE(problems.exit_status == 0);
+  std::size_t keys = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(set)) {
+    const std::string key = entry.path().filename().string();
+    if (key.find("_key.tex") == std::string::npos) continue;
+    CAPTURE(key);
+    const std::vector<Group> document = latex_groups(key, kinema_test::read_file(entry.path().string()));
+    check_none(round_off_shown(document), document.size());
+    ++keys;
+  }
+  CHECK(keys == 4);
 }
 
 TEST_CASE("numbers for people: every sample's page writes its drawing's and centres' round-off as 0") {
