@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "engine/base/number_format.hpp"
 #include "engine/base/units.hpp"
@@ -47,13 +48,14 @@ RowScales::RowScales(const ConstraintSystem& system, const std::vector<ResultCol
   add(system.unknowns.size(), {1, 1, 1});
   // Points: a column over the points of its dimension (the table's header runs), each of a
   // point's vectors with its magnitude.
-  Section planar{{}, {2, 3, 3}}, spatial{{}, {3, 4, 4}};
+  std::map<std::size_t, Section> points;  // by dimension
   for (const PointObservable& p : system.points) {
-    (p.components.size() == 3 ? spatial : planar).entries.push_back(at);
-    at += 3 * p.components.size() + 2;
+    const std::size_t d = p.components.size();
+    Section& section = points.try_emplace(d, Section{{}, {d, d + 1, d + 1}}).first->second;
+    section.entries.push_back(at);
+    at += 3 * d + 2;
   }
-  sections_.push_back(std::move(planar));
-  sections_.push_back(std::move(spatial));
+  for (auto& [d, section] : points) sections_.push_back(std::move(section));
   add(system.frames.size(), {3, 3});
   add(block_links(system).size(), {1, 1, 1});
   if (system.plan) {
