@@ -317,9 +317,11 @@ void set_strokes(Strokes& s, double rate) {
 }
 
 std::string describe_strokes(const Strokes& s, const std::string& input_name, const std::string& unit) {
+  // The two limits shown together: a limit at round-off from 0 beside the other is 0.
+  const double with = largest_magnitude(s.limit_values, 2);
   return s.name + " at its limits at " + input_name + " = " + format_fixed(s.limit_inputs[0], 4) + " deg (" +
-         format_significant(s.limit_values[0]) + " " + unit + ") and " + format_fixed(s.limit_inputs[1], 4) + " deg (" +
-         format_significant(s.limit_values[1]) + " " + unit + "); strokes of " + format_significant(s.first_stroke) +
+         format_at_scale(s.limit_values[0], with) + " " + unit + ") and " + format_fixed(s.limit_inputs[1], 4) + " deg (" +
+         format_at_scale(s.limit_values[1], with) + " " + unit + "); strokes of " + format_significant(s.first_stroke) +
          " and " + format_significant(s.second_stroke) + " deg of crank, time ratio " + format_significant(s.time_ratio);
 }
 
