@@ -29,6 +29,7 @@
 #include "engine/analysis/design_study.hpp"
 #include "engine/analysis/output_scale.hpp"
 #include "engine/analysis/sensitivities.hpp"
+#include "engine/base/number_format.hpp"
 #include "engine/analysis/plot_range.hpp"
 #include "engine/symbolic/dyad_method.hpp"
 #include "readers/mechanism_file.hpp"
@@ -96,14 +97,23 @@ std::vector<kinema::Solution> solve_list(const PyModel& m, const std::vector<Val
   return m.facade.solve(si);
 }
 
-/// m.with_parameters(b="0.31 m", c=0.09): quantities with units, or numbers in SI.
+/// m.with_parameters(b="0.31 m", c=0.09): quantities with units, or numbers in SI. Any
+/// other value is a TypeError naming the parameter (a bare cast would say only "Unable to
+/// cast Python instance of type NoneType to C++ type double", naming neither).
 PyModel with_parameters(const PyModel& m, const py::kwargs& values) {
+  const py::object real = py::module_::import("numbers").attr("Real");
   std::vector<std::pair<std::string, double>> si;
   for (const auto& [key, value] : values) {
     const std::string name = py::str(key);
-    const double number = py::isinstance<py::str>(value)
-                              ? kinema::parse_parameter_value(m.engine->system, name, value.cast<std::string>())
-                              : value.cast<double>();
+    double number = 0;
+    if (py::isinstance<py::str>(value)) {
+      number = kinema::parse_parameter_value(m.engine->system, name, value.cast<std::string>());
+    } else if (py::isinstance(value, real) && !py::isinstance<py::bool_>(value)) {  // True is no length
+      number = value.cast<double>();
+    } else {
+      throw py::type_error("with_parameters: " + name + " must be a quantity with units (\"0.31 m\", \"25 deg\") "
+                           "or a number in SI (0.31), not " + py::str(py::type::of(value).attr("__name__")).cast<std::string>());
+    }
     si.emplace_back(name, number);
   }
   return model_of(kinema::with_parameters(*m.engine, si));
@@ -184,6 +194,16 @@ std::string result_html(const PyResult& r) {
 
 py::tuple components(const std::array<double, 3>& v, std::size_t dimension) {
   return dimension == 3 ? py::make_tuple(v[0], v[1], v[2]) : py::make_tuple(v[0], v[1]);
+}
+
+/// "<kinema.Result theta2 = 30 deg: ok>": the input as `kinema eval` heads its block (in the
+/// file's output unit, six significant digits), not in SI as the result's numbers are.
+std::string result_repr(const PyResult& r) {
+  const kinema::ConstraintSystem& system = r.model.engine->system;
+  const kinema::OutputScale scale(system);
+  return "<kinema.Result " + r.model.facade.names().input + " = " +
+         kinema::format_significant(scale.input(r.solution.input())) + " " + scale.coordinate_unit(system.input.dimension) +
+         ": " + status_name(r.solution.status()) + ">";
 }
 
 /// The derivation as `kinema derive --method METHOD --format FORMAT` prints it.
@@ -482,6 +502,16 @@ PYBIND11_MODULE(kinema, module) {
                py::repr(components(p.acceleration, p.dimension)).cast<std::string>() + ")";
       });
 
+  py::class_<kinema::FrameResult>(module, "Frame",
+                                  "A spatial chain frame's angular velocity and acceleration (SI, observer's basis).")
+      .def_property_readonly("angular_velocity", [](const kinema::FrameResult& f) { return components(f.angular_velocity, 3); })
+      .def_property_readonly("angular_acceleration",
+                             [](const kinema::FrameResult& f) { return components(f.angular_acceleration, 3); })
+      .def("__repr__", [](const kinema::FrameResult& f) {
+        return "Frame(angular_velocity=" + py::repr(components(f.angular_velocity, 3)).cast<std::string>() +
+               ", angular_acceleration=" + py::repr(components(f.angular_acceleration, 3)).cast<std::string>() + ")";
+      });
+
   py::class_<PyResult>(module, "Result", "The mechanism at one input value (SI), read by name.")
       .def_property_readonly("input", py::cpp_function([](const PyResult& r) { return r.solution.input(); }, py::call_guard<EngineTurn>()))
       .def_property_readonly("status", py::cpp_function([](const PyResult& r) { return status_name(r.solution.status()); }, py::call_guard<EngineTurn>()))
@@ -492,12 +522,11 @@ PYBIND11_MODULE(kinema, module) {
       }, py::call_guard<EngineTurn>())
       .def("keys", [](const PyResult& r) { return result_names(r.model.facade.names()); }, py::call_guard<EngineTurn>())
       .def("point", [](const PyResult& r, const std::string& name) { return r.solution.point(name); }, py::arg("name"), py::call_guard<EngineTurn>())
+      .def("frame", [](const PyResult& r, const std::string& name) { return r.solution.frame(name); }, py::arg("name"),
+           "A spatial chain frame's angular velocity and acceleration (rad/s, rad/s^2, observer's basis).",
+           py::call_guard<EngineTurn>())
       .def("_repr_html_", &result_html, py::call_guard<EngineTurn>())
-      .def("__repr__", [](const PyResult& r) {
-        return std::string("<kinema.Result ") + r.model.facade.names().input + " = " +
-               py::repr(py::float_(r.solution.input())).cast<std::string>() + ": " +
-               status_name(r.solution.status()) + ">";
-      }, py::call_guard<EngineTurn>());
+      .def("__repr__", &result_repr, py::call_guard<EngineTurn>());
 
   py::class_<PyModel>(module, "Model", "A mechanism read, derived and compiled once.")
       .def_property_readonly("title", py::cpp_function([](const PyModel& m) { return m.engine->system.title; }, py::call_guard<EngineTurn>()))
@@ -506,6 +535,8 @@ PYBIND11_MODULE(kinema, module) {
       .def_property_readonly("rates", py::cpp_function([](const PyModel& m) { return m.facade.names().rates; }, py::call_guard<EngineTurn>()))
       .def_property_readonly("second_rates", py::cpp_function([](const PyModel& m) { return m.facade.names().second_rates; }, py::call_guard<EngineTurn>()))
       .def_property_readonly("points", py::cpp_function([](const PyModel& m) { return m.facade.names().points; }, py::call_guard<EngineTurn>()))
+      .def_property_readonly("frames", py::cpp_function([](const PyModel& m) { return m.facade.names().frames; }, py::call_guard<EngineTurn>()),
+                             "A spatial chain's frames (Result.frame reads each); empty for a planar mechanism.")
       .def_property_readonly("parameters", py::cpp_function(&parameters, py::call_guard<EngineTurn>()), "Name, SI value, dimension and text as written, in file order.")
       .def_property_readonly("units", py::cpp_function(&field_units, py::call_guard<EngineTurn>()), "The output unit of each field of sweep().")
       .def("at", [](const PyModel& m, const Value& value) { return PyResult{solve(m, value), m}; }, py::arg("value"),

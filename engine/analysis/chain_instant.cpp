@@ -107,8 +107,8 @@ double largest_number(const ex& e) {
 }
 
 // Each term with its number as one float where it has a float in it (0.17101*sqrt(3)
-// reads as 0.296198), and without the terms whose float number is round-off: below 1e-12
-// of the vector's largest (sin(Pi/9)^2 + cos(Pi/9)^2 - 1 in floats is 2.7e-20, not a term).
+// reads as 0.296198), and without the terms whose float number is round-off: zero at the
+// scale of the vector's largest (zero_at_scale) (sin(Pi/9)^2 + cos(Pi/9)^2 - 1 in floats is 2.7e-20, not a term).
 // Sums inside products too: combining sin and cos products (cos(2*alpha)*(... +
 // 2.7e-20*L3*alpha5)) adds floats that cancel.
 struct TidyTerms : GiNaC::map_function {
@@ -116,7 +116,7 @@ struct TidyTerms : GiNaC::map_function {
   explicit TidyTerms(double s) : scale(s) {}
   ex tidy(const ex& term) const {
     const auto [number, rest] = split_term(term);
-    if (has_float(number) && magnitude(number) < 1e-12 * scale) return 0;
+    if (has_float(number) && zero_at_scale(magnitude(number), scale) == 0) return 0;
     return number * rest;
   }
   ex operator()(const ex& e) override {
@@ -242,7 +242,7 @@ struct Instant {
   double number(const ex& e) const try {
     const ex value = GiNaC::evalf(e.subs(numbers, GiNaC::subs_options::no_pattern));
     double x = GiNaC::is_a<GiNaC::numeric>(value) ? GiNaC::ex_to<GiNaC::numeric>(value).to_double() : NAN;
-    return std::fabs(x) < 1e-12 ? 0.0 : x;  // rounding of an exact zero
+    return zero_at_scale(x, 1);  // rounding of an exact zero (SI: at the scale of a unit; views again at theirs)
   } catch (const std::domain_error& error) {
     undefined(error);
   }

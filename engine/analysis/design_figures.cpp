@@ -336,10 +336,12 @@ void set_strokes(Strokes& s, double rate) {
 }
 
 std::string describe_strokes(const Strokes& s, const std::string& input_name, const std::string& unit) {
+  // The limits shown together: a limit at round-off from 0 beside the others is 0.
+  const double with = largest_magnitude(s.limit_values.data(), s.limit_values.size());
   if (s.two_limits()) {
     return s.name + " at its limits at " + input_name + " = " + format_fixed(s.limit_inputs[0], 4) + " deg (" +
-           format_significant(s.limit_values[0]) + " " + unit + ") and " + format_fixed(s.limit_inputs[1], 4) +
-           " deg (" + format_significant(s.limit_values[1]) + " " + unit + "); strokes of " +
+           format_at_scale(s.limit_values[0], with) + " " + unit + ") and " + format_fixed(s.limit_inputs[1], 4) +
+           " deg (" + format_at_scale(s.limit_values[1], with) + " " + unit + "); strokes of " +
            format_significant(s.strokes[0]) + " and " + format_significant(s.strokes[1]) +
            " deg of crank, time ratio " + format_significant(s.time_ratio);
   }
@@ -351,7 +353,7 @@ std::string describe_strokes(const Strokes& s, const std::string& input_name, co
                      input_name + " =";
   for (std::size_t k = 0; k < n; ++k)
     text += separator(k) + format_fixed(s.limit_inputs[k], 4) + " deg (" + (s.maxima[k] ? "maximum " : "minimum ") +
-            format_significant(s.limit_values[k]) + " " + unit + ")";
+            format_at_scale(s.limit_values[k], with) + " " + unit + ")";
   if (!s.whole_turn) return text + "; no strokes: part of the turn does not assemble";
   if (s.strokes.empty()) return text;
   text += "; strokes of";

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/base/units.hpp"
 #include "engine/base/work_count.hpp"
 #include "engine/numeric/dyad_positions.hpp"
 #include "engine/symbolic/link_vectors.hpp"
@@ -193,6 +194,39 @@ std::vector<DrawingSegment> MechanismGeometry::segments(const MotionState& state
     used.push_back(g.block_label);
   }
   return segments;
+}
+
+namespace {
+
+double distance_to_segment(std::complex<double> p, std::complex<double> a, std::complex<double> b) {
+  const std::complex<double> d = b - a;
+  const double t = std::norm(d) > 0 ? std::clamp(std::real((p - a) * std::conj(d)) / std::norm(d), 0.0, 1.0) : 0.0;
+  return std::abs(p - (a + t * d));
+}
+
+}  // namespace
+
+double arrows_distance(std::complex<double> first_from, std::complex<double> first, std::complex<double> second_from,
+                       std::complex<double> second) {
+  const std::complex<double> first_to = first_from + first, second_to = second_from + second;
+  double nearest = std::min(distance_to_segment(first_to, second_from, second_to), distance_to_segment(second_to, first_from, first_to));
+  if (first_from == second_from) return nearest;
+  const auto side = [](std::complex<double> p, std::complex<double> q, std::complex<double> r) {
+    return std::imag((q - p) * std::conj(r - p));
+  };
+  if (side(first_from, first_to, second_from) * side(first_from, first_to, second_to) < 0 &&
+      side(second_from, second_to, first_from) * side(second_from, second_to, first_to) < 0)
+    return 0;  // they cross
+  return std::min({nearest, distance_to_segment(first_from, second_from, second_to),
+                   distance_to_segment(second_from, first_from, first_to)});
+}
+
+double angle_mark_radius(double radians, double symbol, double arm, double smallest, double largest, double on_arm) {
+  const double half = std::fabs(radians) / 2;
+  const double fits = half > 0 ? symbol / std::sin(std::min(half, kPi / 2)) : largest;
+  double r = std::clamp(fits, smallest, largest);
+  if (arm > 0) r = std::min(r, on_arm * arm);
+  return r;
 }
 
 std::optional<LinkageDrawing> linkage_drawing(const ConstraintSystem& system, const MotionState& state) {

@@ -87,6 +87,21 @@ struct LinkageDrawing {
 /// placed in closed form; nullopt for anything else.
 std::optional<LinkageDrawing> linkage_drawing(const ConstraintSystem& system, const MotionState& state);
 
+/// How near two arrows come (drawing units; each drawn from its start, `first` and
+/// `second` as drawn): from each tip to the other arrow, where heads meet shafts or heads;
+/// for arrows from two starts, also from each start to the other arrow (0 where they
+/// cross). Two arrows from one point meet there by design: that is not counted.
+double arrows_distance(std::complex<double> first_from, std::complex<double> first, std::complex<double> second_from,
+                       std::complex<double> second);
+
+/// The radius of the arc marking an angle of `radians` at its vertex (drawing units): as
+/// wide as its symbol needs to stand between the angle's arms (`symbol`: the symbol's
+/// reach from its centre with a margin) where that is between `smallest` and `largest`;
+/// never wider than `largest` (a small angle's symbol then stands beside its arc, not
+/// between arms a long way out), nor than `on_arm` times `arm`, the length of the drawn
+/// link whose angle it is (0: none known), so that the arc ends on that link.
+double angle_mark_radius(double radians, double symbol, double arm, double smallest, double largest, double on_arm);
+
 /// A frame of a spatial chain where a state puts it: its origin and axes (observer basis, SI).
 struct PlacedFrame {
   std::string name, parent;

@@ -457,6 +457,23 @@ std::string format_significant(double value, int significant) {
   return std::string(buffer, put_significant(buffer, value, significant));
 }
 
+double zero_at_scale(double value, double scale) {
+  return std::fabs(value) < kRoundOffFraction * scale ? 0.0 : value;
+}
+
+std::string format_at_scale(double value, double scale, int significant) {
+  return format_significant(zero_at_scale(value, scale), significant);
+}
+
+double largest_magnitude(const double* values, std::size_t count) {
+  double largest = 0;
+  for (std::size_t k = 0; k < count; ++k)
+    if (std::isfinite(values[k])) largest = std::max(largest, std::fabs(values[k]));
+  return largest;
+}
+
+double largest_magnitude(std::initializer_list<double> values) { return largest_magnitude(values.begin(), values.size()); }
+
 double round_significant(double value, int significant) {
   char buffer[64];
   const auto end =

@@ -3,12 +3,34 @@
 #pragma once
 
 #include <cstddef>
+#include <initializer_list>
 #include <string>
 
 namespace kinema {
 
 /// `significant` significant digits, %g style ("0.129904", "1e-05"); never "-0".
 std::string format_significant(double value, int significant = 6);
+
+/// Zero at the problem's scale: a value below this fraction of the scale it is shown at
+/// is the solvers' round-off (their relative accuracy, about 1e-15, with room) and is
+/// shown as 0, not as "1.00804e-16" beside 1.64625. Every view of numbers for people
+/// (the table, the LaTeX, the page, the derivation) shows values through zero_at_scale;
+/// the data formats (CSV, JSON, npy) write the values as solved.
+inline constexpr double kRoundOffFraction = 1e-12;
+
+/// `value`, or 0 where |value| < kRoundOffFraction * scale. `scale`: what the view knows
+/// of the value's size, the largest of the magnitudes shown with it (its column, its
+/// vector's components; largest_magnitude) and the problem's own size for its kind
+/// (engine/analysis/problem_scale); 0 zeroes nothing. NaN and infinities stay.
+double zero_at_scale(double value, double scale);
+
+/// format_significant of zero_at_scale(value, scale).
+std::string format_at_scale(double value, double scale, int significant = 6);
+
+/// The largest finite magnitude among values (0 where there is none): the scale of numbers
+/// shown together.
+double largest_magnitude(const double* values, std::size_t count);
+double largest_magnitude(std::initializer_list<double> values);
 
 /// The same characters written at `out` (at least kMaxNumberChars free); returns
 /// the end. What long result runs use: no allocation per number.

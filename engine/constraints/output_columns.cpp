@@ -64,60 +64,62 @@ struct ColumnOwner {
 std::vector<ResultColumn> named_columns(const ConstraintSystem& system, const OutputScale& scale, bool circuit,
                                         std::vector<ColumnOwner>* owners) {
   std::vector<ResultColumn> columns;
-  const auto add = [&](std::string name, std::string unit, const std::string& what, const SourceLocation& where) {
-    columns.push_back({std::move(name), std::move(unit)});
+  const auto add = [&](std::string name, std::string unit, const std::string& what, const SourceLocation& where,
+                       Dimension dimension = Dimension::number, int order = 0) {
+    columns.push_back({std::move(name), std::move(unit), dimension, order});
     if (owners) owners->push_back({what, where});
   };
   const auto add_coordinate = [&](const Coordinate& q, const std::string& kind) {
     const std::string named = kind + " \"" + q.name + "\"";
-    add(q.name, scale.coordinate_unit(q.dimension), named, q.where);
-    add(q.rate.get_name(), scale.rate_unit(q.dimension), "the rate of " + named, q.where);
-    add(q.second_rate.get_name(), scale.second_rate_unit(q.dimension), "the second rate of " + named, q.where);
+    add(q.name, scale.coordinate_unit(q.dimension), named, q.where, q.dimension, 0);
+    add(q.rate.get_name(), scale.rate_unit(q.dimension), "the rate of " + named, q.where, q.dimension, 1);
+    add(q.second_rate.get_name(), scale.second_rate_unit(q.dimension), "the second rate of " + named, q.where, q.dimension, 2);
   };
   add_coordinate(system.input, "input");
   for (const Coordinate& q : system.unknowns) add_coordinate(q, "unknown");
   const std::string& l = scale.length_unit;
   for (const PointObservable& p : system.points) {
     const std::string what = (p.is_joint ? "joint \"" : "point \"") + p.name + "\"";
-    for (const auto& c : p.components) add(p.name + "_" + c, l, what, p.where);
-    for (const auto& c : p.components) add(p.name + "_v" + c, l + "/s", what, p.where);
-    add(p.name + "_speed", l + "/s", what, p.where);
-    for (const auto& c : p.components) add(p.name + "_a" + c, l + "/s^2", what, p.where);
-    add(p.name + "_acceleration", l + "/s^2", what, p.where);
+    const Dimension length = Dimension::length;
+    for (const auto& c : p.components) add(p.name + "_" + c, l, what, p.where, length, 0);
+    for (const auto& c : p.components) add(p.name + "_v" + c, l + "/s", what, p.where, length, 1);
+    add(p.name + "_speed", l + "/s", what, p.where, length, 1);
+    for (const auto& c : p.components) add(p.name + "_a" + c, l + "/s^2", what, p.where, length, 2);
+    add(p.name + "_acceleration", l + "/s^2", what, p.where, length, 2);
   }
   for (const FrameObservable& f : system.frames) {
     const std::string what = "frame \"" + f.name + "\"";
-    for (const char* c : {"x", "y", "z"}) add(f.name + "_omega_" + c, "rad/s", what, f.where);
-    for (const char* c : {"x", "y", "z"}) add(f.name + "_alpha_" + c, "rad/s^2", what, f.where);
+    for (const char* c : {"x", "y", "z"}) add(f.name + "_omega_" + c, "rad/s", what, f.where, Dimension::angle, 1);
+    for (const char* c : {"x", "y", "z"}) add(f.name + "_alpha_" + c, "rad/s^2", what, f.where, Dimension::angle, 2);
   }
   for (const auto& [body, angle] : block_links(system)) {
     const SolvingPlan::Link& link = system.plan->links[body - 1];
     const std::string what = "slider block link \"" + link.name + "\"";
-    add(angle, "deg", what, link.where);
-    add(default_rate_name(angle, 1), "rad/s", what, link.where);
-    add(default_rate_name(angle, 2), "rad/s^2", what, link.where);
+    add(angle, "deg", what, link.where, Dimension::angle, 0);
+    add(default_rate_name(angle, 1), "rad/s", what, link.where, Dimension::angle, 1);
+    add(default_rate_name(angle, 2), "rad/s^2", what, link.where, Dimension::angle, 2);
   }
   if (system.plan) {
     for (const SolvingPlan::Slider& slider : system.plan->sliders) {
       const SolvingPlan::Joint& joint = system.plan->joints[slider.joint];
       const std::string what = "slider \"" + joint.name + "\"";
-      for (const char* part : {"_vrel_x", "_vrel_y"}) add(joint.name + part, l + "/s", what, joint.where);
+      for (const char* part : {"_vrel_x", "_vrel_y"}) add(joint.name + part, l + "/s", what, joint.where, Dimension::length, 1);
       for (const char* part : {"_arel_x", "_arel_y", "_coriolis_x", "_coriolis_y"})
-        add(joint.name + part, l + "/s^2", what, joint.where);
+        add(joint.name + part, l + "/s^2", what, joint.where, Dimension::length, 2);
     }
     for (const GuidePoint& g : guide_points(system)) {
       const SolvingPlan::Slider& slider = system.plan->sliders[g.slider];
       const SolvingPlan::Joint& joint = system.plan->joints[slider.joint];
       const std::string what = "the point of link \"" + system.plan->links[slider.guide - 1].name +
                                "\" under slider \"" + joint.name + "\"";
-      for (const char* part : {"_vx", "_vy"}) add(g.name + part, l + "/s", what, joint.where);
-      for (const char* part : {"_ax", "_ay"}) add(g.name + part, l + "/s^2", what, joint.where);
+      for (const char* part : {"_vx", "_vy"}) add(g.name + part, l + "/s", what, joint.where, Dimension::length, 1);
+      for (const char* part : {"_ax", "_ay"}) add(g.name + part, l + "/s^2", what, joint.where, Dimension::length, 2);
     }
     for (const RelativeTurning& r : relative_turnings(system)) {
       const SolvingPlan::Joint& joint = system.plan->joints[r.joint];
       const std::string what = "the relative turning at pin \"" + joint.name + "\"";
-      add(r.rate_name, "rad/s", what, joint.where);
-      add(r.second_rate_name, "rad/s^2", what, joint.where);
+      add(r.rate_name, "rad/s", what, joint.where, Dimension::angle, 1);
+      add(r.second_rate_name, "rad/s^2", what, joint.where, Dimension::angle, 2);
     }
   }
   if (circuit) {

@@ -32,9 +32,13 @@ struct OutputScale {
   std::string second_rate_unit(Dimension dimension) const;
 };
 
-/// A column of the tabular formats (CSV, npy): its name and output unit.
+/// A column of the tabular formats (CSV, npy): its name and output unit, and the kind of
+/// quantity it holds (a length, an angle or a number, differentiated `order` times): the
+/// views of numbers for people show its values at the problem's size for that kind.
 struct ResultColumn {
   std::string name, unit;
+  Dimension dimension = Dimension::number;
+  int order = 0;
 };
 
 /// The value columns of one row, in order: input, its rate and second rate; each

@@ -9,6 +9,7 @@
 
 #include "engine/analysis/design_figures.hpp"
 #include "engine/analysis/output_scale.hpp"
+#include "engine/analysis/problem_scale.hpp"
 #include "engine/analysis/toggles.hpp"
 #include "engine/base/errors.hpp"
 #include "engine/base/number_format.hpp"
@@ -235,14 +236,16 @@ std::vector<ProblemAnswer> problem_answers(const Model& variant, const std::vect
   const MotionTable table = analyse(variant, at);
   std::vector<double> shown(columns.size()), si(columns.size());
   std::vector<ProblemAnswer> answers;
+  const RowScales row_scales(system, columns);
   for (std::size_t row = 0; row < table.size(); ++row) {
     result_values(system, scale, table, row, shown.data());
     result_values(system, si_scale, table, row, si.data());
+    const std::vector<double> with = row_scales(shown.data());
     for (const ProblemFind& f : find) {
       if (is_design_figure_name(f.name) && !column_of(system, columns, f.name)) continue;
       const std::size_t k = *column_of(system, columns, f.name);
       const double in_si = columns[k].unit == "deg" ? from_degrees(si[k]) : si[k];
-      answers.push_back({f.name, row < at_texts.size() ? at_texts[row] : "", at[row], in_si, shown[k], columns[k].unit, "", false});
+      answers.push_back({f.name, row < at_texts.size() ? at_texts[row] : "", at[row], in_si, shown[k], columns[k].unit, "", false, with[k]});
     }
   }
   std::optional<std::vector<DesignAnswer>> figures;

@@ -50,6 +50,7 @@ struct ProblemAnswer {
   std::string unit;     ///< Those units ("rad/s", "mm/s").
   std::string text;     ///< A figure that is a class in words (grashof); value and si NaN then.
   bool figure = false;  ///< A design figure: no input value (at_text empty).
+  double scale = 0.0;   ///< What `value` is shown at for people (RowScales; 0: as it is).
 };
 
 struct ProblemVariant {

@@ -4,6 +4,7 @@ Run by ctest ("python: ..."), which sets KINEMA_PROGRAM (the kinema program), KI
 (samples/) and PYTHONPATH (the built module).
 """
 import html
+import json
 import math
 import os
 import pathlib
@@ -79,6 +80,54 @@ def test_a_spatial_chain_reads_its_points_in_three_dimensions():
     result = model.at(0.0)
     point = result.point(model.points[-1])
     assert len(point.position) == len(point.velocity) == len(point.acceleration) == 3
+
+
+CHAINS = [path for path in ALL_SAMPLES if "frames" in tomllib.loads(path.read_text())]
+
+
+@pytest.mark.parametrize("sample", CHAINS, ids=lambda path: path.stem)
+def test_a_spatial_chain_reads_each_frames_angular_motion_as_the_program_prints_it(sample):
+    # Issue 45: a Result gave points only; a chain's frames were in sweep columns alone.
+    model = kinema.load(str(sample))
+    first, last, step = run_of(model)
+    values = [first + k * step for k in range(4)]  # in the input's output unit, as --at takes them
+    at = [argument for v in values for argument in ("--at", str(v))]
+    printed = json.loads(program("eval", str(sample), *at, "--format", "json"))
+    assert model.frames == printed["frames"] and len(model.frames) > 0
+    unit = model.units[model.input]
+    results = model.at([f"{v} {unit}" for v in values])
+    for result, row in zip(results, printed["results"]):
+        assert result.ok and row["status"] == "ok"
+        for name in model.frames:
+            frame = result.frame(name)
+            assert frame.angular_velocity == pytest.approx(row["frames"][name]["angular_velocity"], rel=1e-12, abs=1e-14)
+            assert frame.angular_acceleration == pytest.approx(row["frames"][name]["angular_acceleration"], rel=1e-12, abs=1e-14)
+            assert repr(frame).startswith("Frame(angular_velocity=(")
+    with pytest.raises(kinema.Error, match=r'no frame named "E9" \(there are: ' + ", ".join(model.frames) + r"\)"):
+        results[0].frame("E9")
+
+
+def test_a_planar_mechanism_has_no_frames():
+    model = kinema.load(str(SAMPLES / "four_bar.toml"))
+    assert model.frames == []
+    with pytest.raises(kinema.Error, match=r'no frame named "E1" \(there are: none\)'):
+        model.at("30 deg").frame("E1")
+
+
+@pytest.mark.parametrize("sample", ["four_bar.toml", "piston_driven_crank.toml", "robot_arm_seed000.toml",
+                                    "problem_4_4_joints.toml"])
+def test_a_results_repr_shows_the_input_as_kinema_eval_heads_its_block(sample):
+    # Issue 45: repr gave the input in SI (theta2 = 0.5235987755982988) where everything else
+    # shown is in the file's units; now as `kinema eval --at` prints it ("theta2 = 37.5 deg").
+    model = kinema.load(str(SAMPLES / sample))
+    first, last, step = run_of(model)
+    value = first + 2.5 * step  # not a round number of SI units
+    unit = model.units[model.input]
+    printed = program("eval", str(SAMPLES / sample), "--at", str(value)).decode()
+    head = next(line for line in printed.splitlines() if line.startswith(model.input + " = "))
+    shown = repr(model.at(f"{value} {unit}"))
+    assert shown.startswith("<kinema.Result " + head.split("   ")[0] + ": ")
+    assert head.split("   ")[0].endswith(" " + unit)
 
 
 def test_parameters_are_the_files_in_si():
@@ -227,6 +276,21 @@ def test_with_parameters_errors_name_the_parameter():
         model.with_parameters(bb="1 m")
     with pytest.raises(kinema.UnitError, match='parameter "b" is a length'):
         model.with_parameters(b="30 deg")
+
+
+@pytest.mark.parametrize("value", [None, True, [0.1], {"value": 0.1}], ids=["None", "bool", "list", "dict"])
+def test_with_parameters_refuses_a_value_that_is_neither_text_nor_a_number_naming_the_parameter(value):
+    # Issue 45: with_parameters(delta=None) raised RuntimeError "Unable to cast ..." naming
+    # neither the parameter nor what it takes.
+    model = kinema.load(str(SAMPLES / "four_bar.toml"))
+    with pytest.raises(TypeError) as refused:
+        model.with_parameters(delta=value)
+    message = str(refused.value)
+    assert "delta" in message and type(value).__name__ in message
+    assert "quantity with units" in message and "number in SI" in message
+    # Numbers of NumPy's and Python's own kinds are numbers in SI.
+    for number in (np.float64(0.5), np.int64(1), 1):
+        assert model.with_parameters(delta=number).parameters[5]["value"] == pytest.approx(float(number), rel=1e-15)
 
 
 @pytest.mark.parametrize(

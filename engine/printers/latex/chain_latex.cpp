@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "engine/analysis/output_scale.hpp"
+#include "engine/base/number_format.hpp"
 
 namespace kinema {
 namespace {
@@ -28,7 +29,9 @@ void vector_rows(std::vector<LatexRow>& rows, const TextbookForm& form, const st
     return;
   }
   std::string numbers = "(";
-  for (std::size_t c = 0; c < 3; ++c) numbers += (c ? ",\\ " : "") + latex_number(v.value[c]);
+  // Each component shown with the others: round-off beside them is 0.
+  const double with = largest_magnitude(v.value.data(), 3);
+  for (std::size_t c = 0; c < 3; ++c) numbers += (c ? ",\\ " : "") + latex_number(zero_at_scale(v.value[c], with));
   numbers += ")\\,\\mathrm{" + unit + "}";
   if (boxed) numbers = "\\boxed{" + numbers + "}";
   double longest = 0;

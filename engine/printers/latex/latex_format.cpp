@@ -55,38 +55,14 @@ std::string latex_number(double value, int digits) {
   return text;
 }
 
-DocumentNumbers::DocumentNumbers(const ConstraintSystem& system) {
-  const OutputScale scale(system);
-  double size = 0;
-  for (const SystemParameter& p : system.parameters)
-    if (p.dimension == Dimension::length && std::isfinite(p.value)) size = std::max(size, std::fabs(p.value));
-  if (size == 0) size = 1;  // no length given: the metre
-  length_ = size / scale.length;
-  // A length driver's rate over the size is its angular rate.
-  const Driver& input = system.input;
-  const double per = input.dimension == Dimension::length ? 1 / size : 1;
-  rate_ = std::fabs(input.rate_value) * per;
-  second_rate_ = rate_ * rate_ + std::fabs(input.second_rate_value) * per;
-  if (!(rate_ > 0) || !std::isfinite(rate_)) rate_ = 1;
-  if (!(second_rate_ > 0) || !std::isfinite(second_rate_)) second_rate_ = 1;
+DocumentNumbers::DocumentNumbers(const ConstraintSystem& system) : problem_(system) {}
+
+double DocumentNumbers::cleaned(double shown, Dimension dimension, int order, double shown_with) const {
+  return zero_at_scale(shown, std::max(problem_.of(dimension, order), shown_with));
 }
 
-double DocumentNumbers::zero_below(Dimension dimension, int order) const {
-  constexpr double accuracy = 1e-12;  // the solvers' relative accuracy, with room
-  const double time = order == 0 ? 1 : order == 1 ? rate_ : second_rate_;
-  switch (dimension) {
-    case Dimension::length: return accuracy * length_ * time;
-    case Dimension::angle: return accuracy * time * (order == 0 ? 180 / kPi : 1);  // values in deg, rates in rad/s
-    default: return 0;
-  }
-}
-
-double DocumentNumbers::cleaned(double shown, Dimension dimension, int order) const {
-  return std::fabs(shown) < zero_below(dimension, order) ? 0.0 : shown;
-}
-
-std::string DocumentNumbers::operator()(double shown, Dimension dimension, int order, int digits) const {
-  return latex_number(cleaned(shown, dimension, order), digits);
+std::string DocumentNumbers::operator()(double shown, Dimension dimension, int order, int digits, double shown_with) const {
+  return latex_number(cleaned(shown, dimension, order, shown_with), digits);
 }
 
 std::string latex_figure_caption(const std::string& text) {
@@ -101,7 +77,7 @@ std::string DocumentNumbers::read_off(double shown, Dimension dimension, int ord
 }
 
 std::string DocumentNumbers::ratio(double value, int digits) const {
-  return latex_number(std::fabs(value) < 1e-12 ? 0.0 : value, digits);
+  return latex_number(zero_at_scale(value, 1), digits);
 }
 
 std::string to_latex(const GiNaC::ex& e) { return TextbookForm()(e, TextbookForm::Style::latex); }

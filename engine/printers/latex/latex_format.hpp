@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/analysis/problem_scale.hpp"
 #include "engine/constraints/constraint_system.hpp"
 #include "engine/printers/textbook_form.hpp"
 
@@ -94,36 +95,31 @@ std::string latex_figure_caption(const std::string& text);
 /// A number for math mode, `digits` significant ("1\cdot 10^{-5}" for 1e-05).
 std::string latex_number(double value, int digits = 6);
 
-/// Numbers as a document shows them. A value that is zero to the solver's accuracy at
-/// the problem's scale prints as 0: below 1e-12 of the mechanism's size for its kind
-/// (lengths: the longest length parameter; angles: 1 rad; rates: the driver's rate
-/// times those; second rates: its rate squared plus its second rate), so that round-off
-/// (1.00804e-16 m/s, -6.6262e-15 deg) never reads as a value. Every number of the
-/// worked solution is written through this.
+/// Numbers as a document shows them, zero at the problem's scale as 0 (zero_at_scale,
+/// engine/base/number_format): below 1e-12 of the larger of the mechanism's size for the
+/// value's kind (ProblemScale) and `shown_with`, the largest magnitude shown with it (its
+/// vector's components, its table column), so that round-off (1.00804e-16 m/s,
+/// -6.6262e-15 deg) never reads as a value. Every number of the worked solution is
+/// written through this.
 class DocumentNumbers {
  public:
   explicit DocumentNumbers(const ConstraintSystem& system);
   /// `shown`: a value in the document's units (OutputScale: lengths in its unit, angles
   /// in degrees, angular rates in rad/s) of a quantity of `dimension` (length, angle,
-  /// or number: never zeroed) differentiated `order` times (0, 1, 2).
-  std::string operator()(double shown, Dimension dimension, int order, int digits = 6) const;
-  /// A ratio of two of the mechanism's rates (omega_j / omega_driver): 0 below 1e-12, the
-  /// solver's accuracy relative to the driver's (the parallelogram's omega2/omega1 came out
-  /// 1.96e-16).
+  /// or number: no size of its own) differentiated `order` times (0, 1, 2).
+  std::string operator()(double shown, Dimension dimension, int order, int digits = 6, double shown_with = 0) const;
+  /// A ratio of two of the mechanism's rates (omega_j / omega_driver): its scale is 1, the
+  /// driver's own (the parallelogram's omega2/omega1 came out 1.96e-16).
   std::string ratio(double value, int digits = 6) const;
   /// A value read off a figure (a polygon's arrow): its four significant digits, written
   /// out below 10^7 as the formulas' values beside it are (78900, not 7.89\cdot 10^{4}
   /// beside 4950); round-off as 0.
   std::string read_off(double shown, Dimension dimension, int order) const;
   /// The value itself, 0 where it is round-off.
-  double cleaned(double shown, Dimension dimension, int order) const;
-  /// Below this (document units) a value of that kind is round-off.
-  double zero_below(Dimension dimension, int order) const;
+  double cleaned(double shown, Dimension dimension, int order, double shown_with = 0) const;
 
  private:
-  double length_ = 1;      ///< The mechanism's size, in document units.
-  double rate_ = 1;        ///< Its typical angular rate (rad/s).
-  double second_rate_ = 1; ///< Its typical angular second rate (rad/s^2).
+  ProblemScale problem_;
 };
 
 }  // namespace kinema

@@ -20,8 +20,14 @@ namespace {
 
 constexpr double kCmPerPt = 2.54 / 72.27;
 // Half a line's width in cm: thin (0.4 pt), thick (0.8 pt), very thick (1.2 pt), a bar's body (6 pt).
-constexpr double kArrowSeparation = 0.12;  // cm between parallel arrows of one point
 constexpr double kThin = 0.2 * kCmPerPt, kThick = 0.4 * kCmPerPt, kVeryThick = 0.6 * kCmPerPt, kBody = 3 * kCmPerPt;
+// cm between a point's two arrows where they would meet: a thick -latex head reaches
+// 3.75 (0.28 pt + 0.3 x 0.8 pt) = 0.07 cm either side of its shaft (pgfcorearrows), so two
+// heads side by side need 0.14 cm; the rest is white between them.
+constexpr double kArrowClearance = 0.25;
+// An angle's arc: 0.55 cm from its vertex, wider up to 0.9 cm where its symbol then fits
+// between the arms, and at most 0.8 of the link it measures.
+constexpr double kArcSmallest = 0.55, kArcLargest = 0.9, kArcOnArm = 0.8;
 
 using Planar = std::complex<double>;  // a point of the plane
 
@@ -137,12 +143,49 @@ class MechanismFigure {
     pending_.push_back({path, "inner sep=1pt, font=\\scriptsize, " + style.substr(0, style.find(", ")), name,
                         label_box(name, 8, 0), {at_cm(from) + tip, 0, 0}, std::arg(tip), false, 0, 2});
   }
-  // An angle that is a coordinate: a dashed x direction at `at` and an arc to `degrees`.
-  void angle_arc(Planar at, double degrees, const std::string& symbol) {
-    // 0.55 cm, or wider where a small angle leaves its symbol no room between the lines.
+  // Where a point's second arrow (`second`, cm) starts, from the point `at`: at the point
+  // unless it would run into the first (`first`, drawn from the point: along it, or a few
+  // degrees off with a head on the other's shaft); then beside it, as drawn by hand, at
+  // least kArrowClearance from it: on the side away from the first arrow at that step,
+  // unless it would run over what is drawn there (a block's edge, a link, hatching) and
+  // a step further out (up to 1.8 times), or the other side, runs over less of it.
+  Planar beside(Planar at, Planar first, Planar second) const {
+    const Planar from = at_cm(at);
+    if (std::abs(first) == 0 || arrows_distance(from, first, from, second) >= kArrowClearance) return 0;
+    const Planar left = second / std::abs(second) * Planar(0, 1);
+    const double away = std::imag(first * std::conj(second)) > 0 ? -1 : 1;  // `first` on the left: step right
+    Planar best = 0;
+    int least = -1;
+    int rank = 0;  // each step out costs as much as two squares run over, the other side one
+    for (const double step : {1.0, 1.4, 1.8}) {
+      for (const double side : {away, -away}) {
+        const Planar start = from + side * step * kArrowClearance * left;
+        const int cost = crowding(start, start + second) + rank + (side == away ? 0 : 1);
+        if (arrows_distance(from, first, start, second) >= kArrowClearance && (least < 0 || cost < least)) {
+          least = cost;
+          best = start - from;
+        }
+      }
+      rank += 2;
+    }
+    return best;
+  }
+  // How much of what is drawn (lines, areas, dots) a thick arrow from a to b (cm) would run
+  // over: how many of the squares its head's width wide along it meet something.
+  int crowding(Planar a, Planar b) const {
+    const double half = 0.07;  // a thick -latex head's half-width, cm
+    const int squares = std::max(1, static_cast<int>(std::ceil(std::abs(b - a) / half)));
+    int met = 0;
+    for (int k = 0; k <= squares; ++k) met += !placed_.free({a + (b - a) * (double(k) / squares), half, half});
+    return met;
+  }
+
+  // An angle that is a coordinate: a dashed x direction at `at` and an arc to `degrees`,
+  // near the vertex and within the link it measures (`arm` long, in metres; 0: not known).
+  void angle_arc(Planar at, double degrees, double arm, const std::string& symbol) {
     const LabelBox size = label_box(symbol, 8, 0);
-    const double room = (std::hypot(size.half_width, size.half_height) + 0.25) / std::sin(from_degrees(std::fabs(degrees)) / 2);
-    const double r = std::clamp(room, 0.55, 2.5);  // cm
+    const double reach = std::hypot(size.half_width, size.half_height);
+    const double r = angle_mark_radius(from_degrees(degrees), reach + 0.25, arm * cm_, kArcSmallest, kArcLargest, kArcOnArm);  // cm
     out_ << "\\draw[gray, dashed] " << xy(at) << " -- ++(" << format_fixed(r + 0.25) << ",0);\n"
          << "\\draw[->, gray] " << xy(at) << " ++(" << format_fixed(r) << ",0) arc[start angle=0, end angle="
          << format_fixed(degrees) << ", radius=" << format_fixed(r) << "];\n";
@@ -152,9 +195,15 @@ class MechanismFigure {
     for (int k = 0; k < chords; ++k)
       placed_.add_line(c + std::polar(r, from_degrees(degrees * k / chords)),
                        c + std::polar(r, from_degrees(degrees * (k + 1) / chords)), kThin);
-    const Planar middle = c + std::polar(r, from_degrees(degrees / 2));
-    pending_.push_back({"", "font=\\scriptsize, inner sep=0pt, gray!30!black", symbol, size, {middle, 0, 0},
-                        from_degrees(degrees / 2), false, 0, 5});
+    // The symbol beyond the middle of its arc; where even there the angle is too narrow
+    // for it (between the arms it would sit on a line, and the placing would move it
+    // anywhere near, onto a neighbouring angle), past the end of its dashed x direction,
+    // on the side away from the link: where the narrow angle opens.
+    const double half = from_degrees(std::fabs(degrees) / 2);
+    const bool between = (r + 2 * reach) * std::sin(half) >= reach;
+    const Planar named = between ? c + std::polar(r, from_degrees(degrees / 2)) : c + (r + 0.25);
+    const double preferred = from_degrees(between ? degrees / 2 : -std::copysign(45.0, degrees));
+    pending_.push_back({"", "font=\\scriptsize, inner sep=0pt, gray!30!black", symbol, size, {named, 0, 0}, preferred, false, 0, 5});
   }
 
   void pivot_label(Planar at, const std::string& text) {
@@ -359,19 +408,29 @@ void write_tikz_mechanism(std::ostream& out, const ConstraintSystem& system, con
   // The angles that are coordinates, each once: an arc from the x direction at the joint
   // its link vector (or, for joints and links, its link) starts from.
   std::vector<bool> arced(system.unknowns.size() + 1, false);
-  const auto arc = [&](int coordinate, double angle, Planar from) {
+  const auto arc = [&](int coordinate, double angle, Planar from, double arm) {
     const double degrees = std::remainder(to_degrees(angle), 360.0);
     if (coordinate < 0 || arced[std::size_t(coordinate)] || std::fabs(degrees) < 1) return;
     arced[std::size_t(coordinate)] = true;
     const GiNaC::ex symbol = coordinate == 0 ? GiNaC::ex(system.input.symbol)
                                              : GiNaC::ex(system.unknowns[std::size_t(coordinate) - 1].symbol);
-    f.angle_arc(from, degrees, "$" + to_latex(symbol) + "$");
+    f.angle_arc(from, degrees, arm, "$" + to_latex(symbol) + "$");
   };
   for (const DrawingSegment& g : segments)
-    if (!f.same(g.to, g.from)) arc(g.coordinate, g.angle, g.angle_at);
-  if (drawing)
-    for (const LinkageDrawing::Link& link : drawing->links)
-      if (!link.block) arc(link.coordinate, link.coordinate_angle, link.origin);
+    if (!f.same(g.to, g.from)) arc(g.coordinate, g.angle, g.angle_at, std::abs(g.to - g.from));
+  if (drawing) {
+    for (const LinkageDrawing::Link& link : drawing->links) {
+      if (link.block) continue;
+      // The link's reach from the vertex along its angle: its farthest joint that way.
+      const Planar along = std::polar(1.0, link.coordinate_angle);
+      double arm = 0;
+      for (const auto& joint : link.joints) {
+        const Planar d = (joint.at - link.origin) * std::conj(along);
+        if (d.real() > 0 && std::fabs(d.imag()) <= 1e-9 * size) arm = std::max(arm, d.real());
+      }
+      arc(link.coordinate, link.coordinate_angle, link.origin, arm);
+    }
+  }
   // The points, their letters and their arrows (v_B, a_B at the arrows' tips).
   for (std::size_t p = 0; p < points.size(); ++p) {
     f.point(points[p], latex_escape_text(system.points[p].name));
@@ -379,13 +438,10 @@ void write_tikz_mechanism(std::ostream& out, const ConstraintSystem& system, con
     if (velocity_scale > 0 && std::abs(velocities[p]) > 0)
       f.arrow(points[p], velocities[p] * velocity_scale, "red, thick", "$\\mathbf{v}_{" + name + "}$");
     if (acceleration_scale > 0 && std::abs(accelerations[p]) > 0) {
-      // An acceleration along the velocity would hide under its arrow: it starts a
-      // little to its left instead, as drawn by hand.
       const Planar a = accelerations[p] * acceleration_scale;
-      const bool hidden = velocity_scale > 0 && std::abs(velocities[p]) > 0 &&
-                          std::fabs(std::arg(accelerations[p] / velocities[p])) < from_degrees(15);
-      const Planar start = hidden ? points[p] + a / std::abs(a) * Planar(0, kArrowSeparation) / f.cm() : points[p];
-      f.arrow(start, a, "green!50!black, thick, dashed", "$\\mathbf{a}_{" + name + "}$");
+      const Planar v = velocity_scale > 0 ? velocities[p] * velocity_scale : Planar(0);
+      f.arrow(points[p] + f.beside(points[p], v, a) / f.cm(), a, "green!50!black, thick, dashed",
+              "$\\mathbf{a}_{" + name + "}$");
     }
   }
   f.place_labels();

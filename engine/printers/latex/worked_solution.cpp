@@ -24,6 +24,7 @@
 #include "engine/analysis/diagnostics.hpp"
 #include "engine/base/number_format.hpp"
 #include "engine/analysis/output_scale.hpp"
+#include "engine/analysis/problem_scale.hpp"
 #include "engine/constraints/expression_parts.hpp"
 #include "engine/base/naming.hpp"
 #include "engine/analysis/polygons.hpp"
@@ -247,7 +248,14 @@ class DocumentWriter {
   }
 
   // Value `row` of the printed values, with what the analysis drew and found there.
-  void results(const MotionState& s, const ValueAnalysis& at) {
+  void results(const MotionTable& table, std::size_t index, const ValueAnalysis& at) {
+    const MotionState s = table[index];
+    // The row as the table prints it, each value at its scale (RowScales): the tables below
+    // show round-off beside their columns and at the problem's size as 0.
+    const std::vector<ResultColumn> columns = result_columns(system_, scale_, table.is_circuit());
+    row_.assign(columns.size(), 0.0);
+    result_values(system_, scale_, table, index, row_.data());
+    with_ = RowScales(system_, columns)(row_.data());
     const Driver& input = system_.input;
     const Dimension kind = input.dimension;
     out_ << kLatexPartBreak << "\\subsection*{Results at $" << to_latex(input.symbol) << " = "
@@ -260,13 +268,13 @@ class DocumentWriter {
     for (std::size_t j = 0; j < system_.unknowns.size(); ++j) {
       const Coordinate& q = system_.unknowns[j];
       const Dimension k = q.dimension;
-      out_ << "$" << to_latex(q.symbol) << "$ & $" << numbers_(scale_.coordinate(k, s.q[j]), k, 0) << coordinate_unit(k)
-           << "$ & ";
+      const std::size_t v = kInputColumns + 3 * j;
+      out_ << "$" << to_latex(q.symbol) << "$ & $" << shown(v, k, 0, 6) << coordinate_unit(k) << "$ & ";
       if (s.status == Status::ok) {
         // The answers boxed, as a worked solution marks them.
-        out_ << "$" << to_latex(q.rate) << " = \\boxed{" << numbers_(scale_.rate(k, s.qd[j]), k, 1) << "}\\,\\mathrm{"
+        out_ << "$" << to_latex(q.rate) << " = \\boxed{" << shown(v + 1, k, 1, 6) << "}\\,\\mathrm{"
              << scale_.rate_unit(k) << "}$ & $" << to_latex(q.second_rate) << " = \\boxed{"
-             << numbers_(scale_.rate(k, s.qdd[j]), k, 2) << "}\\,\\mathrm{" << scale_.second_rate_unit(k) << "}$";
+             << shown(v + 2, k, 2, 6) << "}\\,\\mathrm{" << scale_.second_rate_unit(k) << "}$";
       } else {
         out_ << "undefined & undefined";
       }
@@ -274,13 +282,13 @@ class DocumentWriter {
     }
     out_ << "\\bottomrule\n\\end{tabular}\n\n";
     if (!system_.frames.empty()) {  // a spatial chain: 3-D points, the frames, a 3-D sketch
-      if (s.status == Status::ok) spatial_tables(s);
+      if (s.status == Status::ok) spatial_tables();
       if (s.status == Status::ok && !is_driven_chain(system_)) substitution(s);
       write_tikz_chain(out_, system_, at.frames, s);
       return;
     }
-    if (s.status == Status::ok && !system_.points.empty()) point_table(s);
-    if (s.status == Status::ok && system_.plan) linkage_table(s);
+    if (s.status == Status::ok && !system_.points.empty()) point_table();
+    if (s.status == Status::ok && system_.plan) linkage_table();
     if (s.status == Status::ok) substitution(s);
     write_tikz_mechanism(out_, system_, at, analysis_.link_labels, s);
     const auto& polygons = at.polygons;
@@ -318,6 +326,13 @@ class DocumentWriter {
   OutputScale scale_;
   TextbookForm textbook_;
   DocumentNumbers numbers_;
+  // The current value's row as the table prints it and each value's scale (results).
+  std::vector<double> row_, with_;
+
+  // Value k of the current row at its scale, in `digits` (the tables of vectors: 5).
+  std::string shown(std::size_t k, Dimension dimension, int order, int digits = 5) const {
+    return numbers_(row_[k], dimension, order, digits, with_[k]);
+  }
 
   // The loop equations' numbers as the text cites them: "(1)", "(1) and (2)", "(1)--(4)".
   std::string equation_range() const {
@@ -546,10 +561,8 @@ class DocumentWriter {
 
   // Joints and links: slider blocks turning with their guides, and at each slider the
   // relative velocity and acceleration along its line and the Coriolis acceleration.
-  void linkage_table(const MotionState& s) {
-    std::vector<double> values(result_columns(system_, scale_).size() - linkage_columns_begin(system_));
-    linkage_values(system_, scale_, s, values.data());
-    const double* v = values.data();
+  void linkage_table() {
+    std::size_t v = linkage_columns_begin(system_);  // the row's joints-and-links values
     const std::string l = scale_.length_unit;
     const auto blocks = block_links(system_);
     if (!blocks.empty()) {
@@ -557,15 +570,15 @@ class DocumentWriter {
               " & $^{\\circ}$ & $\\mathrm{rad/s}$ & $\\mathrm{rad/s^2}$ \\\\\n\\midrule\n";
       for (const auto& block : blocks) {
         out_ << latex_escape_text(system_.plan->links[block.first - 1].name) << " & $"
-             << numbers_(v[0], Dimension::angle, 0, 5) << "$ & $" << numbers_(v[1], Dimension::angle, 1, 5) << "$ & $"
-             << numbers_(v[2], Dimension::angle, 2, 5) << "$ \\\\\n";
+             << shown(v, Dimension::angle, 0) << "$ & $" << shown(v + 1, Dimension::angle, 1) << "$ & $"
+             << shown(v + 2, Dimension::angle, 2) << "$ \\\\\n";
         v += 3;
       }
       out_ << "\\bottomrule\n\\end{tabular}\n\n";
     }
     if (system_.plan->sliders.empty()) return;  // no slider: no table of empty rows
-    const auto pair = [&](const double* c, int order) {
-      return "$(" + numbers_(c[0], Dimension::length, order, 5) + ",\\ " + numbers_(c[1], Dimension::length, order, 5) + ")$";
+    const auto pair = [&](std::size_t c, int order) {
+      return "$(" + shown(c, Dimension::length, order) + ",\\ " + shown(c + 1, Dimension::length, order) + ")$";
     };
     out_ << "\\medskip\n\\begin{tabular}{lccc}\n\\toprule\nslider & relative velocity $\\mathbf{v}^r$ & relative "
             "acceleration $\\mathbf{a}^r$ & Coriolis $2\\boldsymbol{\\omega}\\times\\mathbf{v}^r$ \\\\\n & $\\mathrm{"
@@ -602,8 +615,8 @@ class DocumentWriter {
         out_ << latex_escape_text(system_.plan->links[r.block - 1].name) << ", "
              << latex_escape_text(system_.plan->links[r.other - 1].name) << " & "
              << latex_escape_text(system_.plan->joints[r.joint].name) << " & $" << latex_symbol_name(r.rate_name)
-             << " = " << numbers_(v[0], Dimension::angle, 1, 5) << "$ & $" << latex_symbol_name(r.second_rate_name)
-             << " = " << numbers_(v[1], Dimension::angle, 2, 5) << "$ \\\\\n";
+             << " = " << shown(v, Dimension::angle, 1) << "$ & $" << latex_symbol_name(r.second_rate_name)
+             << " = " << shown(v + 1, Dimension::angle, 2) << "$ \\\\\n";
         v += 2;
       }
       out_ << "\\bottomrule\n\\end{tabular}\n\n";
@@ -612,43 +625,43 @@ class DocumentWriter {
 
   // Spatial chains: each point's position, velocity and acceleration as vectors, and
   // each frame's angular velocity and acceleration (observer basis).
-  void spatial_tables(const MotionState& s) {
+  void spatial_tables() {
     const std::string l = latex_escape_text(scale_.length_unit);
-    const auto triple = [&](const std::array<double, 3>& v, double f, Dimension dimension, int order) {
-      return "$(" + numbers_(v[0] / f, dimension, order, 5) + ",\\ " + numbers_(v[1] / f, dimension, order, 5) + ",\\ " +
-             numbers_(v[2] / f, dimension, order, 5) + ")$";
+    const auto triple = [&](std::size_t v, Dimension dimension, int order) {
+      return "$(" + shown(v, dimension, order) + ",\\ " + shown(v + 1, dimension, order) + ",\\ " +
+             shown(v + 2, dimension, order) + ")$";
     };
     // A point's three vectors as columns: three triples in a row were wider than the text
     // (45 pt past it for robot_arm_slider at t = 0.67 s), and a column's width is one number's.
-    const auto column = [&](const std::array<double, 3>& v, int order) {
-      const double f = scale_.length;
-      return "\\begin{pmatrix} " + numbers_(v[0] / f, Dimension::length, order, 5) + " \\\\ " +
-             numbers_(v[1] / f, Dimension::length, order, 5) + " \\\\ " + numbers_(v[2] / f, Dimension::length, order, 5) +
-             " \\end{pmatrix}";
+    const auto column = [&](std::size_t v, int order) {
+      return "\\begin{pmatrix} " + shown(v, Dimension::length, order) + " \\\\ " + shown(v + 1, Dimension::length, order) +
+             " \\\\ " + shown(v + 2, Dimension::length, order) + " \\end{pmatrix}";
     };
+    std::size_t v = kInputColumns + 3 * system_.unknowns.size();  // the row's points, then its frames
     if (!system_.points.empty()) {
       out_ << "\\medskip\n\\begin{tabular}{lccc}\n\\toprule\npoint & position ($\\mathrm{" << l
            << "}$) & velocity ($\\mathrm{" << l << "/s}$) & acceleration ($\\mathrm{" << l
            << "/s^2}$) \\\\\n\\midrule\n";
       for (std::size_t p = 0; p < system_.points.size(); ++p) {
-        const PointMotion& m = s.points[p];
+        const std::size_t d = system_.points[p].components.size();  // position, velocity, speed, acceleration, magnitude
         // The velocity and acceleration are the point's answers: boxed.
-        out_ << (p ? "\\addlinespace\n" : "") << latex_escape_text(system_.points[p].name) << " & $" << column(m.position, 0)
-             << "$ & $\\boxed{" << column(m.velocity, 1) << "}$ & $\\boxed{" << column(m.acceleration, 2) << "}$ \\\\\n";
+        out_ << (p ? "\\addlinespace\n" : "") << latex_escape_text(system_.points[p].name) << " & $" << column(v, 0)
+             << "$ & $\\boxed{" << column(v + d, 1) << "}$ & $\\boxed{" << column(v + 2 * d + 1, 2) << "}$ \\\\\n";
+        v += 3 * d + 2;
       }
       out_ << "\\bottomrule\n\\end{tabular}\n\n";
     }
     out_ << "\\medskip\n\\begin{tabular}{lcc}\n\\toprule\nframe & $\\boldsymbol{\\omega}$ relative to "
          << latex_escape_text(chain_observer(system_)) << " ($\\mathrm{rad/s}$) & $\\boldsymbol{\\alpha}$ "
          << "($\\mathrm{rad/s^2}$) \\\\\n\\midrule\n";
-    for (std::size_t f = 0; f < system_.frames.size(); ++f) {
-      out_ << latex_escape_text(system_.frames[f].name) << " & " << triple(s.frames[f].angular_velocity, 1, Dimension::angle, 1)
-           << " & " << triple(s.frames[f].angular_acceleration, 1, Dimension::angle, 2) << " \\\\\n";
+    for (std::size_t f = 0; f < system_.frames.size(); ++f, v += 6) {
+      out_ << latex_escape_text(system_.frames[f].name) << " & " << triple(v, Dimension::angle, 1) << " & "
+           << triple(v + 3, Dimension::angle, 2) << " \\\\\n";
     }
     out_ << "\\bottomrule\n\\end{tabular}\n\n";
   }
 
-  void point_table(const MotionState& s) {
+  void point_table() {
     // Planar points (the drawing and the table's columns are 2-D).
     const std::string l = scale_.length_unit;
     // Nine columns, two of them boxed: closer than the default 6 pt, so that six-character
@@ -657,21 +670,14 @@ class DocumentWriter {
             "$a_y$ & $|a|$ \\\\\n & \\multicolumn{2}{c}{$\\mathrm{"
          << l << "}$} & \\multicolumn{3}{c}{$\\mathrm{" << l << "/s}$} & \\multicolumn{3}{c}{$\\mathrm{" << l
          << "/s^2}$} \\\\\n\\midrule\n";
-    for (std::size_t p = 0; p < system_.points.size(); ++p) {
-      const PointMotion& m = s.points[p];
-      const double f = scale_.length;
+    std::size_t v = kInputColumns + 3 * system_.unknowns.size();
+    for (std::size_t p = 0; p < system_.points.size(); ++p, v += 8) {
       out_ << latex_escape_text(system_.points[p].name);
-      // A component that is rounding noise next to its vector's length prints as 0, not 3e-15.
-      const auto shown = [](double v, double size) { return std::fabs(v) <= 1e-12 * size ? 0.0 : v; };
-      const double r = std::hypot(m.position[0], m.position[1]), speed = m.speed(), a = m.acceleration_magnitude();
-      static constexpr int order[8] = {0, 0, 1, 1, 1, 2, 2, 2};  // x, y, v_x, v_y, |v|, a_x, a_y, |a|
-      int k = 0;
-      for (double v : {shown(m.position[0], r), shown(m.position[1], r), shown(m.velocity[0], speed),
-                       shown(m.velocity[1], speed), speed, shown(m.acceleration[0], a), shown(m.acceleration[1], a), a}) {
-        const std::string number = numbers_(v / f, Dimension::length, order[k], 5);
+      static constexpr int order[8] = {0, 0, 1, 1, 1, 2, 2, 2};  // x, y, v_x, v_y, |v|, a_x, a_y, |a|: the row's order
+      for (int k = 0; k < 8; ++k) {
+        const std::string number = shown(v + k, Dimension::length, order[k]);
         // The point's speed and acceleration are its answers: boxed.
         out_ << " & $" << (k == 4 || k == 7 ? "\\boxed{" + number + "}" : number) << "$";
-        ++k;
       }
       out_ << " \\\\\n";
     }
@@ -817,7 +823,7 @@ class WorkedSolutionPrinter : public Printer {
     if (job.values) {
       if (analysis.values.size() != job.values->size())
         throw std::logic_error("a document was given no analysis of its values: build it with analyse_for_views");
-      for (std::size_t row = 0; row < job.values->size(); ++row) writer.results((*job.values)[row], analysis.values[row]);
+      for (std::size_t row = 0; row < job.values->size(); ++row) writer.results(*job.values, row, analysis.values[row]);
     }
     if (job.answers) out << problem_answers_latex(job.model.system, *job.answers);
     if (job.sweep) writer.plots(*job.sweep);

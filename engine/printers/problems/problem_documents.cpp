@@ -142,7 +142,7 @@ std::string problem_answers_latex(const ConstraintSystem& system, const std::vec
       continue;
     }
     out << "$" << problem_quantity_latex(system, a.quantity) << "$ & $" << to_latex(system.input.symbol) << " = $ "
-        << latex_escape_text(a.at_text) << " & $\\boxed{" << latex_number(a.value, 6) << "}\\," << latex_unit(a.unit)
+        << latex_escape_text(a.at_text) << " & $\\boxed{" << latex_number(zero_at_scale(a.value, a.scale), 6) << "}\\," << latex_unit(a.unit)
         << "$ \\\\\n";
   }
   out << "\\bottomrule\n\\end{tabular}\n\n";

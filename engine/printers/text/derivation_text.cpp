@@ -3,6 +3,7 @@
 #include "engine/printers/textbook_form.hpp"
 #include "engine/analysis/chain_instant.hpp"
 #include "engine/base/number_format.hpp"
+#include "engine/analysis/problem_scale.hpp"
 #include "engine/analysis/output_scale.hpp"
 #include "engine/constraints/solving_plan.hpp"
 
@@ -58,10 +59,12 @@ void print_method(std::ostream& out, const ConstraintSystem& system, const DyadD
 // and acceleration term by term, at the instant, as formulas and as numbers.
 void print_chain(std::ostream& out, const ConstraintSystem& system, const ChainAtInstant& chain) {
   const OutputScale scale(system);
+  const ProblemScale problem(system);
   std::string values;
   for (const auto& [q, value] : chain.values)
-    values += (values.empty() ? "" : ", ") + q.name + " = " + format_significant(scale.coordinate(q.dimension, value)) +
-              " " + scale.coordinate_unit(q.dimension);
+    values += (values.empty() ? "" : ", ") + q.name + " = " +
+              format_at_scale(scale.coordinate(q.dimension, value), problem.of(q.dimension, 0)) + " " +
+              scale.coordinate_unit(q.dimension);
   TextbookForm textbook(system);
   textbook.set_exact_floats(true);  // the chain's floats carry the digits they need
   const auto text = [&](const ex& e) { return textbook(e, TextbookForm::Style::text); };
@@ -69,7 +72,8 @@ void print_chain(std::ostream& out, const ConstraintSystem& system, const ChainA
     std::string formula = "[", number = "(";
     for (std::size_t c = 0; c < 3; ++c) {
       formula += (c ? ", " : "") + text(v.formula[c]);
-      number += (c ? ", " : "") + format_significant(v.value[c]);
+      // Shown with its vector's components: round-off beside them is 0.
+      number += (c ? ", " : "") + format_at_scale(v.value[c], largest_magnitude(v.value.data(), 3));
     }
     return formula + "] = " + number + ")";
   };

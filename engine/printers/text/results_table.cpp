@@ -9,6 +9,7 @@
 #include "engine/analysis/diagnostics.hpp"
 #include "engine/base/number_format.hpp"
 #include "engine/analysis/output_scale.hpp"
+#include "engine/analysis/problem_scale.hpp"
 
 namespace kinema {
 namespace {
@@ -47,20 +48,22 @@ class ResultsTablePrinter : public ResultsPrinter {
     const Driver& input = system.input;
     const Dimension input_kind = input.dimension;
     const int digits = job.precision > 0 ? job.precision : 6;
-    const auto number = [&](double value) { return format_significant(value, digits); };
-    // The rows as the data formats print them, for their check: a value past the largest
-    // number in the output unit is refused, not printed as inf.
+    // The rows as the data formats print them (a value past the largest number in the
+    // output unit is refused, not printed as inf), each value shown at its scale: zero at
+    // the problem's scale and beside its column as 0 (row_scales).
     const std::size_t width = printed_column_count(job), results = result_column_count(system, table.is_circuit());
+    const RowScales row_scales(system, result_columns(system, scale, table.is_circuit()));
     std::vector<double> checked(width * (last - first));
     printed_rows(job, table, first, last, checked.data());
     std::ostringstream out;
     for (std::size_t row = first; row < last; ++row) {
       const MotionState s = table[row];
-      out << "\n" << input.name << " = " << number(scale.input(s.input)) << " "
-          << scale.coordinate_unit(input_kind) << "   " << input.rate.get_name() << " = "
-          << number(scale.rate(input_kind, s.input_rate)) << " " << scale.rate_unit(input_kind) << "   "
-          << input.second_rate.get_name() << " = " << number(scale.rate(input_kind, s.input_second_rate)) << " "
-          << scale.second_rate_unit(input_kind) << "\n";
+      const double* values = checked.data() + (row - first) * width;
+      const std::vector<double> scales = row_scales(values);
+      const Shown number{values, scales.data(), digits};
+      out << "\n" << input.name << " = " << number(0) << " " << scale.coordinate_unit(input_kind) << "   "
+          << input.rate.get_name() << " = " << number(1) << " " << scale.rate_unit(input_kind) << "   "
+          << input.second_rate.get_name() << " = " << number(2) << " " << scale.second_rate_unit(input_kind) << "\n";
       const std::string message = describe_failure(system, s);
       if (s.status == Status::unassembled) {
         out << "  not assembled: " << message << "\n";
@@ -78,68 +81,77 @@ class ResultsTablePrinter : public ResultsPrinter {
       out << "  " << pad("coordinate", 12) << pad("value", 16) << pad("rate", 26) << "second rate\n";
       for (std::size_t i = 0; i < system.unknowns.size(); ++i) {
         const Coordinate& q = system.unknowns[i];
-        out << "  " << pad(q.name, 12)
-            << pad(number(scale.coordinate(q.dimension, s.q[i])) + " " + scale.coordinate_unit(q.dimension), 16);
+        const std::size_t at = kInputColumns + 3 * i;
+        out << "  " << pad(q.name, 12) << pad(number(at) + " " + scale.coordinate_unit(q.dimension), 16);
         if (s.status == Status::ok) {
-          out << pad(q.rate.get_name() + " = " + number(scale.rate(q.dimension, s.qd[i])) + " " +
-                         scale.rate_unit(q.dimension),
-                     26)
-              << q.second_rate.get_name() << " = " << number(scale.rate(q.dimension, s.qdd[i])) << " "
-              << scale.second_rate_unit(q.dimension);
+          out << pad(q.rate.get_name() + " = " + number(at + 1) + " " + scale.rate_unit(q.dimension), 26)
+              << q.second_rate.get_name() << " = " << number(at + 2) << " " << scale.second_rate_unit(q.dimension);
         } else {
           out << "undefined (singular)";
         }
         out << "\n";
       }
       if (s.status != Status::ok) continue;
-      if (!system.points.empty()) print_points(out, system, scale, s, digits);
-      if (!system.frames.empty()) print_frames(out, system, s, digits);
-      if (system.plan) print_sliders(out, system, scale, table, row, digits);
+      std::size_t at = kInputColumns + 3 * system.unknowns.size();
+      if (!system.points.empty()) at = print_points(out, system, number, at);
+      if (!system.frames.empty()) print_frames(out, system, number, at);
+      if (system.plan) print_sliders(out, system, scale, number, linkage_columns_begin(system));
       if (job.sensitivities) {
         out << "  " << pad("sensitivity", 24) << "value (the column's unit per the parameter's)\n";
-        const double* derivative = checked.data() + (row - first) * width + results;
-        for (const SensitivityColumn& c : *job.sensitivities)
-          out << "  " << pad(c.named.name, 24) << number(*derivative++) << " " << c.named.unit << "\n";
+        // Shown with the sensitivities of the same unit: those of other units are other quantities.
+        const auto& sensitivities = *job.sensitivities;
+        for (std::size_t k = 0; k < sensitivities.size(); ++k) {
+          double with = 0;
+          for (std::size_t j = 0; j < sensitivities.size(); ++j)
+            if (sensitivities[j].named.unit == sensitivities[k].named.unit)
+              with = std::max(with, largest_magnitude({values[results + j]}));
+          out << "  " << pad(sensitivities[k].named.name, 24) << format_at_scale(values[results + k], with, digits) << " "
+              << sensitivities[k].named.unit << "\n";
+        }
       }
     }
     text += out.str();
   }
 
  private:
+  // Value k of a printed row at its scale (row_scales), in the table's digits.
+  struct Shown {
+    const double* values;
+    const double* scales;
+    int digits;
+    std::string operator()(std::size_t k) const { return format_at_scale(values[k], scales[k], digits); }
+  };
+
   // Joints and links: slider blocks (turning with their guides), and at each slider its
-  // relative velocity and acceleration along the line and the Coriolis acceleration.
+  // relative velocity and acceleration along the line and the Coriolis acceleration; the
+  // row's values from `at` on.
   static void print_sliders(std::ostream& out, const ConstraintSystem& system, const OutputScale& scale,
-                            const MotionTable& table, std::size_t row, int digits) {
-    const auto number = [&](double value) { return format_significant(value, digits); };
-    std::vector<double> values(result_column_count(system, table.is_circuit()));
-    result_values(system, scale, table, row, values.data());
-    const double* v = values.data() + linkage_columns_begin(system);
+                            const Shown& number, std::size_t at) {
     const auto blocks = block_links(system);
     if (!blocks.empty()) out << "  " << pad("block", 8) << pad("angle", 26) << pad("rate", 26) << "second rate\n";
     for (const auto& [body, angle] : blocks) {
-      out << "  " << pad(system.plan->links[body - 1].name, 8) << pad(angle + " = " + number(v[0]) + " deg", 26)
-          << pad(default_rate_name(angle, 1) + " = " + number(v[1]) + " rad/s", 26) << default_rate_name(angle, 2)
-          << " = " << number(v[2]) << " rad/s^2\n";
-      v += 3;
+      out << "  " << pad(system.plan->links[body - 1].name, 8) << pad(angle + " = " + number(at) + " deg", 26)
+          << pad(default_rate_name(angle, 1) + " = " + number(at + 1) + " rad/s", 26) << default_rate_name(angle, 2)
+          << " = " << number(at + 2) << " rad/s^2\n";
+      at += 3;
     }
     const auto& sliders = system.plan->sliders;
     if (sliders.empty()) return;
     const std::string& l = scale.length_unit;
+    const auto pair = [&](std::size_t k) { return "(" + number(k) + ", " + number(k + 1) + ")"; };
     out << "  " << pad("slider", 8) << pad("v_rel (" + l + "/s)", 26) << pad("a_rel (" + l + "/s^2)", 26)
         << "Coriolis 2 w x v_rel (" << l << "/s^2)\n";
     for (const SolvingPlan::Slider& slider : sliders) {
-      const auto pair = [&](const double* c) { return "(" + number(c[0]) + ", " + number(c[1]) + ")"; };
-      out << "  " << pad(system.plan->joints[slider.joint].name, 8) << pad(pair(v), 26) << pad(pair(v + 2), 26)
-          << pair(v + 4) << "\n";
-      v += 6;
+      out << "  " << pad(system.plan->joints[slider.joint].name, 8) << pad(pair(at), 26) << pad(pair(at + 2), 26)
+          << pair(at + 4) << "\n";
+      at += 6;
     }
-    const auto pair = [&](const double* c) { return "(" + number(c[0]) + ", " + number(c[1]) + ")"; };
     const auto guides = guide_points(system);
     if (!guides.empty()) {
       out << "  " << pad("guide", 8) << pad("v (" + l + "/s)", 26) << "a (" << l << "/s^2)   (the guide's point under the slider)\n";
       for (const GuidePoint& g : guides) {
-        out << "  " << pad(g.name, 8) << pad(pair(v), 26) << pair(v + 2) << "\n";
-        v += 4;
+        out << "  " << pad(g.name, 8) << pad(pair(at), 26) << pair(at + 2) << "\n";
+        at += 4;
       }
     }
     const auto turnings = relative_turnings(system);
@@ -147,30 +159,25 @@ class ResultsTablePrinter : public ResultsPrinter {
       out << "  " << pad("links", 8) << pad("relative rate", 30) << "relative second rate\n";
       for (const RelativeTurning& r : turnings) {
         out << "  " << pad(system.plan->links[r.block - 1].name + "/" + system.plan->links[r.other - 1].name, 8)
-            << pad(r.rate_name + " = " + number(v[0]) + " rad/s", 30) << r.second_rate_name << " = " << number(v[1])
+            << pad(r.rate_name + " = " + number(at) + " rad/s", 30) << r.second_rate_name << " = " << number(at + 1)
             << " rad/s^2\n";
-        v += 2;
+        at += 2;
       }
     }
   }
 
   // Spatial chains: each frame's angular velocity and acceleration relative to the observer.
-  static void print_frames(std::ostream& out, const ConstraintSystem& system, const MotionState& s, int digits) {
-    const auto triple = [&](const std::array<double, 3>& v) {
-      return "(" + format_significant(v[0], digits) + ", " + format_significant(v[1], digits) + ", " +
-             format_significant(v[2], digits) + ")";
-    };
+  static void print_frames(std::ostream& out, const ConstraintSystem& system, const Shown& number, std::size_t at) {
+    const auto triple = [&](std::size_t k) { return "(" + number(k) + ", " + number(k + 1) + ", " + number(k + 2) + ")"; };
     out << "  " << pad("frame", 8) << pad("w relative to " + chain_observer(system) + " (rad/s)", 40)
         << "alpha (rad/s^2)\n";
-    for (std::size_t f = 0; f < system.frames.size(); ++f)
-      out << "  " << pad(system.frames[f].name, 8) << pad(triple(s.frames[f].angular_velocity), 40)
-          << triple(s.frames[f].angular_acceleration) << "\n";
+    for (std::size_t f = 0; f < system.frames.size(); ++f, at += 6)
+      out << "  " << pad(system.frames[f].name, 8) << pad(triple(at), 40) << triple(at + 3) << "\n";
   }
 
-  // One header per run of points with the same components.
-  static void print_points(std::ostream& out, const ConstraintSystem& system, const OutputScale& scale,
-                           const MotionState& s, int digits) {
-    const auto number = [&](double value) { return format_significant(value, digits); };
+  // One header per run of points with the same components; returns where the row's values
+  // after the points begin.
+  static std::size_t print_points(std::ostream& out, const ConstraintSystem& system, const Shown& number, std::size_t at) {
     const std::vector<std::string>* header = nullptr;
     for (std::size_t p = 0; p < system.points.size(); ++p) {
       const PointObservable& point = system.points[p];
@@ -183,16 +190,14 @@ class ResultsTablePrinter : public ResultsPrinter {
         for (const auto& c : point.components) out << pad("a" + c, 12);
         out << "|a|\n";
       }
-      const PointMotion& motion = s.points[p];
-      const double l = scale.length;
+      // Position, velocity, speed, acceleration, its magnitude: the row's order.
+      const std::size_t values = 3 * point.components.size() + 2;
       out << "  " << pad(point.name, 8);
-      for (std::size_t c = 0; c < motion.dimension; ++c) out << pad(number(motion.position[c] / l), 12);
-      for (std::size_t c = 0; c < motion.dimension; ++c) out << pad(number(motion.velocity[c] / l), 12);
-      out << pad(number(motion.speed() / l), 12);
-      for (std::size_t c = 0; c < motion.dimension; ++c)
-        out << pad(number(motion.acceleration[c] / l), 12);
-      out << number(motion.acceleration_magnitude() / l) << "\n";
+      for (std::size_t k = 0; k + 1 < values; ++k) out << pad(number(at + k), 12);
+      out << number(at + values - 1) << "\n";
+      at += values;
     }
+    return at;
   }
 };
 

@@ -15,6 +15,7 @@
 #include "engine/base/number_format.hpp"
 #include "engine/analysis/diagnostics.hpp"
 #include "engine/analysis/output_scale.hpp"
+#include "engine/analysis/problem_scale.hpp"
 #include "engine/base/sha256.hpp"
 #include "engine/printers/code/tape_emitter.hpp"
 #include "engine/printers/web/mathml.hpp"
@@ -34,8 +35,9 @@ using json = nlohmann::ordered_json;
 // the page offers and keep a long run's file small. NaN stays NaN (null in JSON).
 double drawn(double value) { return std::isfinite(value) ? round_significant(value, 7) : value; }
 
-json point_json(std::complex<double> z, double per_unit) {
-  return json::array({drawn(z.real() / per_unit), drawn(z.imag() / per_unit)});
+// A point or a direction (per_unit 1) of the drawing, round-off at `size` (its unit's) as 0.
+json point_json(std::complex<double> z, double per_unit, double size) {
+  return json::array({drawn(zero_at_scale(z.real() / per_unit, size)), drawn(zero_at_scale(z.imag() / per_unit, size))});
 }
 
 // A row's values each written once: the row is [its pattern, its distinct values], the
@@ -71,8 +73,10 @@ class RowPatterns {
 };
 
 // The drawing's parts that stay from row to row, and each row's coordinates, in the file's
-// output length unit (angles stay in rad).
-json drawing_json(const MotionDrawing& drawing, double per_unit) {
+// output length unit (angles stay in rad). Round-off is written 0 (zero_at_scale): a
+// length's at the larger of the mechanism's size (`size`, output units) and the largest
+// length drawn over the run, a unit direction's or an angle's (rad) at 1.
+json drawing_json(const MotionDrawing& drawing, double per_unit, double size) {
   json out = json::object();
   out["form"] = drawing.form == MotionDrawing::Form::linkage ? "linkage"
                 : drawing.form == MotionDrawing::Form::loops ? "loops"
@@ -86,7 +90,7 @@ json drawing_json(const MotionDrawing& drawing, double per_unit) {
     out["pivots"] = drawing.ground_pivots;
     out["guides"] = json::array();
     for (const auto& guide : drawing.guides)
-      out["guides"].push_back({{"through", point_json(guide.through, per_unit)}, {"along", point_json(guide.along, 1)}});
+      out["guides"].push_back({{"through", point_json(guide.through, per_unit, size)}, {"along", point_json(guide.along, 1, 1)}});
   } else if (drawing.form == MotionDrawing::Form::loops) {
     out["segments"] = json::array();
     for (const DrawingSegment& s : drawing.segments) {
@@ -109,16 +113,22 @@ json drawing_json(const MotionDrawing& drawing, double per_unit) {
   }
   // Lengths in the output unit; the loops' unit directions (along) and blocks' angles as they are.
   const std::size_t segment_values = 8 * drawing.segments.size();
+  const auto is_length = [&](std::size_t k) {
+    const bool direction = drawing.form == MotionDrawing::Form::loops && k < segment_values && k % 8 >= 6;
+    const bool angle = (drawing.form == MotionDrawing::Form::linkage && k >= 2 * drawing.joint_names.size()) ||
+                       (drawing.form == MotionDrawing::Form::chain && k % 12 >= 3);  // unit axes
+    return !direction && !angle;
+  };
+  double lengths = size;
+  for (const std::vector<double>& row : drawing.rows)
+    for (std::size_t k = 0; k < row.size(); ++k)
+      if (is_length(k)) lengths = std::max(lengths, largest_magnitude({row[k] / per_unit}));
   json rows = json::array();
   RowPatterns patterns;
   for (const std::vector<double>& row : drawing.rows) {
     std::vector<double> values;
-    for (std::size_t k = 0; k < row.size(); ++k) {
-      const bool direction = drawing.form == MotionDrawing::Form::loops && k < segment_values && k % 8 >= 6;
-      const bool angle = (drawing.form == MotionDrawing::Form::linkage && k >= 2 * drawing.joint_names.size()) ||
-                         (drawing.form == MotionDrawing::Form::chain && k % 12 >= 3);  // unit axes
-      values.push_back(drawn(direction || angle ? row[k] : row[k] / per_unit));
-    }
+    for (std::size_t k = 0; k < row.size(); ++k)
+      values.push_back(drawn(is_length(k) ? zero_at_scale(row[k] / per_unit, lengths) : zero_at_scale(row[k], 1)));
     rows.push_back(values.empty() ? json(nullptr) : patterns.pack(values));
   }
   out["row_patterns"] = patterns.list();
@@ -132,6 +142,7 @@ std::size_t csv_field(std::size_t column) { return column < kInputColumns ? colu
 
 // Where each point's values are among the CSV fields, and which fields the plots show.
 json columns_json(const ConstraintSystem& system, const std::vector<ResultColumn>& columns) {
+  const ProblemScale problem(system);
   json out = json::object();
   const std::size_t n = system.unknowns.size();
   json rates = json::array(), second_rates = json::array(), speeds = json::array(), points = json::array();
@@ -175,8 +186,9 @@ json columns_json(const ConstraintSystem& system, const std::vector<ResultColumn
   by_unit("point speeds", speeds);
   out["plots"] = plots;
   json names = json::array();
+  // Each field with the problem's size for its kind: the readout shows it zero at that scale.
   for (std::size_t k = 0; k < columns.size(); ++k) {
-    names.push_back({{"name", columns[k].name}, {"unit", columns[k].unit}});
+    names.push_back({{"name", columns[k].name}, {"unit", columns[k].unit}, {"size", problem.of(columns[k])}});
     if (k + 1 == kInputColumns) names.push_back({{"name", "status"}, {"unit", ""}});
   }
   names.push_back({{"name", "note"}, {"unit", ""}});
@@ -353,14 +365,18 @@ void write_page(std::ostream& out, const PrintJob& job) {
   for (std::size_t r = 0; r < table.size(); ++r)
     reasons.push_back(table.status(r) == Status::ok ? std::string() : describe_failure(system, table.input(r), table.failure(r)));
   data["reasons"] = reasons;
-  data["drawing"] = drawing_json(drawing, scale.length);
+  const double size = ProblemScale(system).of(Dimension::length, 0);  // output units
+  data["drawing"] = drawing_json(drawing, scale.length, size);
   PointFields point_fields;
   for (const auto& point : data["columns"]["points"])
     if (point["dimension"] == 2) point_fields[point["name"]] = {point["velocity"], point["acceleration"]};
   json resolve = resolving_json(job, scale);
   // A page that solves again finds the centres of its rows from the drawing stage's outputs.
   const TapeLayout* centre_tape = resolve.is_null() ? nullptr : &job.analysis->resolving->layout;
-  data["constructions"] = constructions_json(job.analysis->values, drawing, scale.length, point_fields, centre_tape);
+  data["constructions"] = constructions_json(job.analysis->values, drawing, scale.length, point_fields, centre_tape, size * scale.length);
+  // The readout's zero at the problem's scale: the fraction of a field's scale below which
+  // a value is shown as 0 (zero_at_scale's, engine/base/number_format).
+  data["round_off"] = kRoundOffFraction;
   data["resolve"] = std::move(resolve);
 
   // The derivation as the notes print it, in MathML (markup of kinema's own, every text escaped).

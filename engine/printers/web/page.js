@@ -47,6 +47,17 @@
     const superscript = String(power).replace(/-/g, '\u207b').replace(/[0-9]/g, function (d) { return '\u2070\u00b9\u00b2\u00b3\u2074\u2075\u2076\u2077\u2078\u2079'[d]; });
     return (mantissa === 1 ? '' : mantissa === -1 ? '-' : mantissa + '\u00d7') + '10' + superscript;
   }
+  // A number as kinema's text table writes it (format_significant: %g, 6 significant
+  // digits, no trailing zeros, a power of ten below 10^-4 and from 10^6: "1.64625", "1e-05").
+  function tableNumber(v) {
+    if (v === 0) return '0';
+    const parts = v.toExponential(5).split('e');  // rounded first: its power decides the form
+    const power = Number(parts[1]);
+    if (power < -4 || power >= 6)
+      return parts[0].replace(/\.?0+$/, '') + 'e' + (power < 0 ? '-' : '+') + String(Math.abs(power)).padStart(2, '0');
+    const text = v.toFixed(5 - power);
+    return text.indexOf('.') < 0 ? text : text.replace(/\.?0+$/, '');
+  }
 
   // Header and controls.
   document.title = (data.title || data.file) + ' (kinema page)';
@@ -790,29 +801,69 @@
     key.textContent = text;
   }
 
-  // The readout: every field of the row as kinema eval --format csv writes it.
+  // The readout: every field of the row, in the text table's digits (tableNumber), each
+  // value zero at its scale as kinema's views show it (zero_at_scale, engine/base/number_format):
+  // below data.round_off of the larger of the problem's size for the field's kind (kinema
+  // writes it) and the field's largest magnitude over the run, it is 0. Each cell holds the
+  // full value as kinema eval --format csv writes it (data-value, its title), and that is
+  // what is copied (the button, the text box, or cells selected and copied).
   const readoutCells = data.columns.fields.map(function (field) {
     const tr = node('tr', '', readout);
     node('th', '', tr, field.name + (field.unit ? ' [' + field.unit + ']' : ''));
     return node('td', '', tr);
   });
+  let readoutScales = [];
+  function measureReadout() {  // again when the sliders solve new rows
+    readoutScales = data.columns.fields.map(function (field, k) {
+      let largest = field.size || 0;
+      numbers.forEach(function (n) { if (isFinite(n[k])) largest = Math.max(largest, Math.abs(n[k])); });
+      return largest;
+    });
+  }
+  measureReadout();
+  // Row r's fields for people ("shown": a number in the table's digits, zero at its scale;
+  // text as it is) and as kinema wrote them ("full").
+  function readoutOf(r) {
+    return data.columns.fields.map(function (field, k) {
+      const full = rows[r][k] === undefined ? '' : rows[r][k];
+      const v = numbers[r][k];
+      if (full === '' || typeof field.size !== 'number' || !isFinite(v)) return { shown: full, full: full };
+      return { shown: tableNumber(Math.abs(v) < data.round_off * readoutScales[k] ? 0 : v), full: full };
+    });
+  }
+  function readoutLine(k, full) {
+    const f = data.columns.fields[k];
+    return f.name + (f.unit ? ' [' + f.unit + ']' : '') + '\t' + full + '\n';
+  }
   function showReadout() {
-    const fields = rows[row];
+    const fields = readoutOf(row);
     let text = '';
     readoutCells.forEach(function (cell, k) {
-      cell.textContent = fields[k] === undefined ? '' : fields[k];
-      const f = data.columns.fields[k];
-      text += f.name + (f.unit ? ' [' + f.unit + ']' : '') + '\t' + cell.textContent + '\n';
+      cell.textContent = fields[k].shown;
+      cell.setAttribute('data-value', fields[k].full);
+      cell.title = fields[k].full;
+      text += readoutLine(k, fields[k].full);
     });
     readoutText.value = text;
     const s = status(row);
     statusBox.className = s === 'ok' ? '' : s;
     statusBox.textContent = s === 'ok' ? '' : (s === 'singular' ? 'Singular: ' : 'Not assembled: ') + data.reasons[row];
-    value.textContent = data.input.name + ' = ' + fields[0] + ' ' + data.input.unit + '  (' + (row + 1) + ' of ' + count + ')';
+    value.textContent = data.input.name + ' = ' + fields[0].shown + ' ' + data.input.unit + '  (' + (row + 1) + ' of ' + count + ')';
   }
   copy.addEventListener('click', function () {
     readoutText.select();
     if (navigator.clipboard) navigator.clipboard.writeText(readoutText.value).catch(function () {});
+  });
+  // Cells selected in the readout copy as their full values, a line a field.
+  readout.addEventListener('copy', function (event) {
+    const selection = window.getSelection();
+    let text = '';
+    readoutCells.forEach(function (cell, k) {
+      if (selection.containsNode(cell.parentNode, true)) text += readoutLine(k, cell.getAttribute('data-value'));
+    });
+    if (!text) return;
+    event.clipboardData.setData('text/plain', text);
+    event.preventDefault();
   });
 
   // Plots of rates, second rates and point speeds against the input (along a circuit:
@@ -1496,6 +1547,7 @@
       : 'Solved here in ' + resolveTimes[resolveTimes.length - 1].toFixed(1) + ' ms' +
         (failed ? ': ' + failed + ' of ' + count + ' values not assembled or singular (marked on the scrubber).' : '.');
     drawMarks();
+    measureReadout();
     buildPlots();
     drawTraces();
     setRow(row);
@@ -1559,9 +1611,10 @@
 
   // What a measurement reads (bench/page_timing.js): the times between frames while playing,
   // and the time each frame's drawing took.
-  // The sliders' rows for a test: every row's status and fields (numbers in the CSV's units).
+  // The sliders' rows for a test: every row's status and fields (numbers in the CSV's units);
+  // the readout of any row as it is shown (readoutOf).
   window.kinemaPage = { frameTimes: frameTimes, drawTimes: drawTimes, setPlaying: setPlaying, resolveTimes: resolveTimes,
-    setDimensions: setDimensions, setRow: setRow, centres: rowCentres, polygons: rowPolygons,
+    setDimensions: setDimensions, setRow: setRow, centres: rowCentres, polygons: rowPolygons, readout: readoutOf,
     rows: function () { return numbers.map(function (n, r) { return { status: status(r), fields: n.slice() }; }); } };
   // The derivation (static MathML written by kinema) under everything the script made.
   document.body.appendChild(document.getElementById('derivation'));

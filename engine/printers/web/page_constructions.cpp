@@ -17,9 +17,10 @@ using json = nlohmann::ordered_json;
 // Five significant digits: a hundredth of a pixel on any panel the page draws them in.
 double drawn(double value) { return std::isfinite(value) ? round_significant(value, 5) : value; }
 
-// Rounding noise of a construction (5.6e-17 for a zero) written as the zero it is.
+// Rounding noise of a construction (5.6e-17 for a zero) written as the zero it is, at the
+// scale `size` (the unit of z).
 void push_point(json& out, std::complex<double> z, double per_unit, double size = 0) {
-  for (double part : {z.real(), z.imag()}) out.push_back(std::fabs(part) <= 1e-12 * size ? 0.0 : drawn(part / per_unit));
+  for (double part : {z.real(), z.imag()}) out.push_back(drawn(zero_at_scale(part, size) / per_unit));
 }
 
 const char* kind_name(PolygonArrow::Kind kind) {
@@ -115,7 +116,7 @@ json centre_tape_json(const InstantCentres& centres, const InstantCentre& c, con
 }
 
 json centres_json(const InstantCentres& centres, const std::vector<double>& joints, double per_unit, Structures& structures,
-                  Structures& kennedy_sets, const TapeLayout* layout) {
+                  Structures& kennedy_sets, const TapeLayout* layout, double mechanism_size) {
   json structure = {{"bodies", centres.bodies}, {"centres", json::array()}};
   json kennedy = json::array();
   json row = json::array({0, 0});
@@ -126,11 +127,12 @@ json centres_json(const InstantCentres& centres, const std::vector<double>& join
     const auto found = index.find(bodies);
     return found == index.end() ? json(nullptr) : json(found->second);
   };
-  double size = 0;
-  for (std::size_t j = 0; j + 1 < joints.size(); j += 2) size = std::max(size, std::hypot(joints[j], joints[j + 1]));
+  double joints_size = 0;
+  for (std::size_t j = 0; j + 1 < joints.size(); j += 2) joints_size = std::max(joints_size, std::hypot(joints[j], joints[j + 1]));
+  const double size = std::max(joints_size, mechanism_size);  // what a centre's coordinates are written at
   const auto joint_at = [&](std::complex<double> z) -> json {
     for (std::size_t j = 0; j + 1 < joints.size(); j += 2)
-      if (std::abs(z - std::complex<double>(joints[j], joints[j + 1])) <= 1e-12 * size) return j / 2;
+      if (std::abs(z - std::complex<double>(joints[j], joints[j + 1])) <= 1e-12 * joints_size) return j / 2;
     return nullptr;
   };
   for (const InstantCentre& c : centres.centres) {
@@ -161,7 +163,7 @@ json centres_json(const InstantCentres& centres, const std::vector<double>& join
 }  // namespace
 
 json constructions_json(const std::vector<ValueAnalysis>& values, const MotionDrawing& drawing, double per_unit,
-                        const PointFields& point_fields, const TapeLayout* centre_tape) {
+                        const PointFields& point_fields, const TapeLayout* centre_tape, double size) {
   Structures polygon_structures, centre_structures, kennedy_sets;
   json rows = json::array();
   for (std::size_t r = 0; r < values.size(); ++r) {
@@ -187,7 +189,7 @@ json constructions_json(const std::vector<ValueAnalysis>& values, const MotionDr
         for (std::size_t g = 0; g < drawing.segments.size() && 8 * g + 7 < joints.size(); ++g)
           joints[8 * g + 6] = joints[8 * g + 7] = std::numeric_limits<double>::quiet_NaN();
       }
-      row["centres"] = centres_json(*value.centres, joints, per_unit, centre_structures, kennedy_sets, centre_tape);
+      row["centres"] = centres_json(*value.centres, joints, per_unit, centre_structures, kennedy_sets, centre_tape, size);
     }
     rows.push_back(std::move(row));
   }

@@ -33,8 +33,11 @@ using PointFields = std::map<std::string, std::pair<std::size_t, std::size_t>>;
 /// bodies' angular velocities' offsets, the offsets of the points it is seen from; -1 for
 /// ground's and the origin), and "centre_parallel_tolerance" is kCentreParallelTolerance:
 /// the page finds a solved row's centres as the analysis does, from the same outputs.
+/// Each coordinate is written zero at its scale (zero_at_scale): a polygon's at its
+/// largest vertex's, a centre's at the larger of the drawing's joints and `size` (metres:
+/// the mechanism's, ProblemScale), a direction's at 1.
 nlohmann::ordered_json constructions_json(const std::vector<ValueAnalysis>& values, const MotionDrawing& drawing,
                                           double per_unit, const PointFields& point_fields,
-                                          const TapeLayout* centre_tape = nullptr);
+                                          const TapeLayout* centre_tape = nullptr, double size = 0);
 
 }  // namespace kinema

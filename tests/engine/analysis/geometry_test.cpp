@@ -224,3 +224,23 @@ TEST_CASE("engine/analysis/geometry: a joints file's drawing stage places its jo
     CHECK(checked > 0);
   }
 }
+
+// What the drawing's arrows and angle marks are placed by: two arrows from one point are as
+// near as a tip comes to the other arrow (their common start left out); from two starts,
+// also a start to the other arrow, and 0 where they cross. An angle mark's radius is its
+// symbol's where that is within the bounds, and never past its link.
+TEST_CASE("engine/analysis/geometry: distances between arrows, an angle mark's radius") {
+  using P = std::complex<double>;
+  CHECK(kinema::arrows_distance(0, P(2, 0), 0, P(1, 0)) == 0);                            // one along the other
+  CHECK(kinema::arrows_distance(0, P(2, 0), 0, P(-1, 0)) == doctest::Approx(1));         // opposite: 1 tip to start
+  CHECK(kinema::arrows_distance(0, P(2, 0), 0, P(0, 1)) == doctest::Approx(1));          // square: the short tip
+  CHECK(kinema::arrows_distance(0, P(2, 0), P(0, 0.3), P(1, 0)) == doctest::Approx(0.3)); // side by side
+  CHECK(kinema::arrows_distance(0, P(2, 0), P(1, -1), P(0, 2)) == 0);                     // crossing
+  const double pi = 3.14159265358979323846;
+  CHECK(kinema::angle_mark_radius(pi / 2, 0.4, 10, 0.55, 0.9, 0.8) == doctest::Approx(0.4 / std::sin(pi / 4)));
+  CHECK(kinema::angle_mark_radius(pi, 0.4, 10, 0.55, 0.9, 0.8) == doctest::Approx(0.55));
+  CHECK(kinema::angle_mark_radius(pi / 60, 0.4, 10, 0.55, 0.9, 0.8) == doctest::Approx(0.9));  // 3 degrees: no wider
+  CHECK(kinema::angle_mark_radius(-pi / 60, 0.4, 10, 0.55, 0.9, 0.8) == doctest::Approx(0.9));
+  CHECK(kinema::angle_mark_radius(pi / 60, 0.4, 0.5, 0.55, 0.9, 0.8) == doctest::Approx(0.4));  // a short link
+  CHECK(kinema::angle_mark_radius(pi / 60, 0.4, 0, 0.55, 0.9, 0.8) == doctest::Approx(0.9));    // no link known
+}

@@ -35,6 +35,25 @@ TEST_CASE("engine/base/number_format: format_significant") {
   CHECK(format_significant(std::nan("")).find("nan") != std::string::npos);
 }
 
+TEST_CASE("engine/base/number_format: zero at the scale a value is shown at") {
+  // Below 1e-12 of the scale, round-off: 0; from there on, the value, its sign kept.
+  CHECK(kinema::zero_at_scale(1.00804e-16, 1.64625) == 0);
+  CHECK(kinema::zero_at_scale(-9.9e-13, 1.0) == 0);
+  CHECK(kinema::zero_at_scale(-1e-12, 1.0) == -1e-12);
+  CHECK(kinema::zero_at_scale(3e-9, 1000.0) == 3e-9);
+  CHECK(kinema::zero_at_scale(1e-300, 0.0) == 1e-300);  // no scale known: nothing is zeroed
+  CHECK(std::isnan(kinema::zero_at_scale(std::nan(""), 1.0)));
+  CHECK(kinema::format_at_scale(1.00804e-16, 1.64625) == "0");
+  CHECK(kinema::format_at_scale(-2.01615e-16, 3.29262) == "0");
+  CHECK(kinema::format_at_scale(1.64625, 1.64625) == "1.64625");
+  CHECK(kinema::format_at_scale(0.000123456, 1.0, 2) == "0.00012");
+  // A column's scale: its largest finite magnitude (an undefined value counts for nothing).
+  const double column[] = {0.5, -7.25, std::nan(""), 3.0};
+  CHECK(kinema::largest_magnitude(column, 4) == 7.25);
+  CHECK(kinema::largest_magnitude({std::numeric_limits<double>::infinity(), -2.0}) == 2.0);
+  CHECK(kinema::largest_magnitude(column, 0) == 0);
+}
+
 TEST_CASE("engine/base/number_format: format_round_trip reads back the same double") {
   for (double value : {0.1, 1.0 / 3.0, M_PI, -2.5e17, 1e-300, 4.9e-324, 0.30000000000000004, 123.456,
                        std::numeric_limits<double>::max()}) {

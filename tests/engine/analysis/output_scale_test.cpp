@@ -7,6 +7,7 @@
 #include "engine/model.hpp"
 #include "engine/numeric/circuit.hpp"
 #include "engine/analysis/output_scale.hpp"
+#include "engine/analysis/problem_scale.hpp"
 #include "tests/engine/unit_support.hpp"
 #include "tests/test_support.hpp"
 
@@ -134,4 +135,80 @@ TEST_CASE("engine/analysis/output_scale: result_rows of a block = result_values 
   REQUIRE(circuit.table.is_circuit());
   check_table(rocker.system, circuit.table);
   CHECK(undefined_rows > 0);  // rows with NaN were compared too
+}
+
+TEST_CASE("engine/analysis/problem_scale: each value of a row is shown at its column's, its vector's and the problem's size") {
+  for (const char* name : kinema_test::kSamples) {
+    CAPTURE(name);
+    const kinema::Model model = kinema::load_model(kinema_test::sample(name));
+    const kinema::ConstraintSystem& system = model.system;
+    const OutputScale scale(system);
+    const kinema::ProblemScale problem(system);
+    const std::vector<kinema::ResultColumn> columns = kinema::result_columns(system, scale);
+    const kinema::RowScales row_scales(system, columns);
+    const double start = system.input.values.empty() ? 0.0 : system.input.values.front();
+    const kinema::MotionTable table = kinema::analyse(model, {start, start + 0.7, start + 1.9});
+    for (std::size_t r = 0; r < table.size(); ++r) {
+      if (table.status(r) != kinema::Status::ok) continue;
+      std::vector<double> row(columns.size());
+      kinema::result_values(system, scale, table, r, row.data());
+      const std::vector<double> with = row_scales(row.data());
+      REQUIRE(with.size() == columns.size());
+      for (std::size_t k = 0; k < columns.size(); ++k) {
+        CAPTURE(columns[k].name);
+        CHECK(with[k] >= problem.of(columns[k]));
+        if (k < kinema::kInputColumns) CHECK(with[k] == problem.of(columns[k]));  // the input's stand alone
+        else CHECK(with[k] >= std::fabs(row[k]));
+      }
+      // Each member of a group (the places `at` of each entry) shown at its largest at least.
+      const auto shown_together = [&](const std::vector<std::size_t>& at) {
+        double largest = 0;
+        for (std::size_t k : at) largest = std::max(largest, std::fabs(row[k]));
+        for (std::size_t k : at) CHECK(with[k] >= largest);
+        return largest;
+      };
+      const std::size_t n = system.unknowns.size();
+      for (std::size_t order = 0; order < 3; ++order) {  // the table's value, rate and second rate columns
+        std::vector<std::size_t> column;
+        for (std::size_t i = 0; i < n; ++i) column.push_back(kinema::kInputColumns + 3 * i + order);
+        shown_together(column);
+      }
+      // Points: a point's vector (with its magnitude), and each place over the points of its dimension.
+      std::size_t at = kinema::kInputColumns + 3 * n;
+      std::vector<std::size_t> begins, positions;
+      for (const kinema::PointObservable& p : system.points) {
+        const std::size_t d = p.components.size();
+        begins.push_back(at);
+        std::vector<std::size_t> position, velocity, acceleration;
+        for (std::size_t c = 0; c < d; ++c) position.push_back(at + c);
+        for (std::size_t c = 0; c <= d; ++c) velocity.push_back(at + d + c);
+        for (std::size_t c = 0; c <= d; ++c) acceleration.push_back(at + 2 * d + 1 + c);
+        shown_together(position);
+        shown_together(velocity);
+        shown_together(acceleration);
+        if (d == 2) positions.insert(positions.end(), position.begin(), position.end());
+        at += 3 * d + 2;
+      }
+      // A position is shown with positions only: the velocities' sizes do not enter.
+      double extent = problem.of(Dimension::length, 0);
+      for (std::size_t k : positions) extent = std::max(extent, std::fabs(row[k]));
+      for (std::size_t k : positions) CHECK(with[k] <= extent);
+      for (std::size_t place = 0; place < 8; ++place) {  // the planar table's columns x, y, v_x, v_y, |v|, a_x, a_y, |a|
+        std::vector<std::size_t> column;
+        for (std::size_t p = 0; p < system.points.size(); ++p)
+          if (system.points[p].components.size() == 2) column.push_back(begins[p] + place);
+        shown_together(column);
+      }
+      // A slider's relative velocity, relative acceleration and Coriolis term: vectors over the sliders.
+      if (system.plan) {
+        std::size_t v = kinema::linkage_columns_begin(system) + 3 * kinema::block_links(system).size();
+        for (std::size_t part = 0; part < 3; ++part) {
+          std::vector<std::size_t> column;
+          for (std::size_t s = 0; s < system.plan->sliders.size(); ++s)
+            for (std::size_t c = 0; c < 2; ++c) column.push_back(v + 6 * s + 2 * part + c);
+          shown_together(column);
+        }
+      }
+    }
+  }
 }

@@ -840,3 +840,146 @@ TEST_CASE("figures: a spatial chain's names on no other name nor dot, each next 
     }
   }
 }
+
+namespace {
+
+// The worked solution's drawings at several values of each planar sample: the file's own
+// values and eight more spread over the plotting range (a turn of a crank), each drawing
+// the tikzpicture after the sentence that introduces it.
+struct DrawnAt {
+  std::string sample, figure;
+  double input = 0;
+};
+
+std::vector<DrawnAt> drawings_over_the_range() {
+  std::vector<DrawnAt> drawn;
+  for (const char* name : kinema_test::kSamples) {
+    const kinema::Model model = kinema::load_model(kinema_test::sample(name));
+    if (!model.system.frames.empty()) continue;  // spatial chains: no planar drawing
+    const double first = model.system.input.values.empty() ? 0.0 : model.system.input.values.front();
+    const std::vector<double> range = kinema::plot_range(model.system, first);
+    std::vector<double> inputs = model.system.input.values;
+    for (std::size_t k = 0; k < 8; ++k) inputs.push_back(range[k * (range.size() - 1) / 8]);
+    const MotionTable values = kinema::analyse(model, inputs);
+    const std::string tex = document(model, &values);
+    const std::string sentence = "The mechanism at this instant, drawn to scale";
+    std::size_t row = 0;
+    for (std::size_t at = tex.find(sentence); at != std::string::npos; at = tex.find(sentence, at + 1)) {
+      // Each drawing follows its value's substitutions; rows that do not assemble have none.
+      while (row < values.size() && values.status(row) == kinema::Status::unassembled) ++row;
+      drawn.push_back({name, mechanism_figure(tex, at), row < values.size() ? values.input(row) : 0.0});
+      ++row;
+    }
+  }
+  return drawn;
+}
+
+struct Arrow {
+  Point from, to;
+};
+
+double distance_to_segment(Point p, const Arrow& s) {
+  const Point d = s.to - s.from;
+  const double t = std::norm(d) > 0 ? std::clamp(std::real((p - s.from) * std::conj(d)) / std::norm(d), 0.0, 1.0) : 0.0;
+  return std::abs(p - (s.from + t * d));
+}
+
+bool segments_cross(const Arrow& a, const Arrow& b) {
+  const auto side = [](Point p, Point q, Point r) { return std::imag((q - p) * std::conj(r - p)); };
+  return side(a.from, a.to, b.from) * side(a.from, a.to, b.to) < 0 && side(b.from, b.to, a.from) * side(b.from, b.to, a.to) < 0;
+}
+
+// A drawing's arrows of one kind by the point they belong to ("E" from {$\mathbf{v}_{E}$}).
+std::vector<std::pair<std::string, Arrow>> point_arrows(const std::string& figure, const std::string& style) {
+  std::vector<std::pair<std::string, Arrow>> arrows;
+  for (const std::string& line : lines_starting(figure, "\\draw[-latex, " + style + "] ")) {
+    double x = 0, y = 0, dx = 0, dy = 0;
+    REQUIRE(std::sscanf(line.c_str() + line.find("] (") + 2, "(%lf,%lf) -- ++(%lf,%lf)", &x, &y, &dx, &dy) == 4);
+    const auto name = line.find("}_{", line.rfind(" {$"));
+    REQUIRE(name != std::string::npos);
+    arrows.push_back({line.substr(name + 3, line.find("}$}", name) - name - 3), {{x, y}, {x + dx, y + dy}}});
+  }
+  return arrows;
+}
+
+}  // namespace
+
+// Issue 45: a point's acceleration along its velocity (example 4.2's E, on its guide; 4.4's
+// F) was drawn 0.12 cm beside it, where the two arrowheads touch each other's shafts, and
+// one starting a few degrees off it ran its head into the other's. Read back at values
+// over a turn: both arrows of a point from the point with each tip clear of the other
+// arrow, or side by side, no nearer anywhere; clear meaning the two heads' half-widths
+// and a gap between the lines (a thick -latex head is 3.75 (0.28 pt + 0.3 x 0.8 pt) each
+// side of its shaft, pgfcorearrows.code.tex).
+TEST_CASE("figures: a point's velocity and acceleration arrows stand apart at every value drawn") {
+  constexpr double kCmPerPt = 2.54 / 72.27;
+  const double head = 3.75 * (0.28 + 0.3 * 0.8) * kCmPerPt;
+  const double apart = 2 * head + 0.05;
+  int pairs = 0, side_by_side = 0;
+  for (const DrawnAt& d : drawings_over_the_range()) {
+    const auto velocities = point_arrows(d.figure, "red, thick");
+    for (const auto& [point, a] : point_arrows(d.figure, "green!50!black, thick, dashed")) {
+      for (const auto& [other, v] : velocities) {
+        if (other != point) continue;
+        ++pairs;
+        CAPTURE(d.sample);
+        CAPTURE(d.input);
+        CAPTURE(point);
+        const bool from_one_point = std::abs(a.from - v.from) < 0.002;
+        side_by_side += !from_one_point;
+        double nearest = std::min(distance_to_segment(a.to, v), distance_to_segment(v.to, a));
+        if (!from_one_point) {
+          nearest = std::min({nearest, distance_to_segment(a.from, v), distance_to_segment(v.from, a)});
+          CHECK_FALSE(segments_cross(a, v));
+        }
+        CHECK(nearest >= apart);
+      }
+    }
+  }
+  CHECK(pairs >= 100);
+  CHECK(side_by_side >= 1);  // example 4.2's E at least: along its guide
+}
+
+// Issue 45: a small angle's arc was drawn up to 2.5 cm from its vertex (wide enough for its
+// symbol between the arms), far out along or past the link it measures. Read back at values
+// over a turn: every arc within a centimetre of its vertex, and ending on the link whose
+// angle it marks (a bar or plate edge drawn from the vertex that way, at least as long).
+TEST_CASE("figures: an angle's arc stays by its vertex and ends on its link at every value drawn") {
+  int arcs = 0, small = 0;
+  for (const DrawnAt& d : drawings_over_the_range()) {
+    // The links as drawn: bars and plates' edges.
+    std::vector<Line> links;
+    for (const std::string& line : lines_starting(d.figure, "\\draw[very thick, blue!70!black] ")) {
+      const auto c = coordinates(line);
+      for (std::size_t k = 1; k < c.size(); ++k) links.push_back({c[k - 1], c[k]});
+    }
+    for (const std::string& line : lines_starting(d.figure, "\\filldraw[fill=blue!10, draw=blue!70!black")) {
+      const auto c = coordinates(line);
+      for (std::size_t k = 0; k < c.size(); ++k) links.push_back({c[k], c[(k + 1) % c.size()]});
+    }
+    for (const std::string& line : lines_starting(d.figure, "\\draw[->, gray] (")) {
+      double x = 0, y = 0, dx = 0, dy = 0, degrees = 0, radius = 0;
+      if (std::sscanf(line.c_str(), "\\draw[->, gray] (%lf,%lf) ++(%lf,%lf) arc[start angle=0, end angle=%lf, radius=%lf]", &x,
+                      &y, &dx, &dy, &degrees, &radius) != 6)
+        continue;  // the axes
+      ++arcs;
+      small += std::fabs(degrees) < 25;
+      const Point vertex(x, y), towards = std::polar(1.0, degrees * M_PI / 180);
+      // The longest link drawn from the vertex in the angle's direction.
+      double arm = 0;
+      for (const Line& l : links)
+        for (const auto& [from, to] : {std::pair{l.a, l.b}, std::pair{l.b, l.a}})
+          if (std::abs(from - vertex) < 0.002 && std::abs(to - from) > 0 &&
+              std::fabs(std::arg((to - from) / towards)) < 0.01)
+            arm = std::max(arm, std::abs(to - from));
+      CAPTURE(d.sample);
+      CAPTURE(d.input);
+      CAPTURE(line);
+      CHECK(radius <= 1.0);
+      CHECK(arm > 0);
+      CHECK(radius <= arm);
+    }
+  }
+  CHECK(arcs >= 100);
+  CHECK(small >= 5);  // angles under 25 degrees among them
+}
