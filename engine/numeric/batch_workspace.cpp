@@ -75,11 +75,11 @@ bool BatchWorkspace::predict(const MotionTable& table, std::size_t first, std::s
   return true;
 }
 
-bool BatchWorkspace::solve(MotionTable& table, std::size_t first, std::size_t history_begin) {
-  return solve_lanes(table, first, history_begin);
+bool BatchWorkspace::solve(MotionTable& table, std::size_t first, std::size_t history_begin, int sign) {
+  return solve_lanes(table, first, history_begin, sign);
 }
 
-bool BatchWorkspace::solve_lanes(MotionTable& table, std::size_t first, std::size_t history_begin) {
+bool BatchWorkspace::solve_lanes(MotionTable& table, std::size_t first, std::size_t history_begin, int sign) {
   const std::size_t n = n_;
   const auto& e = k_.evaluator();
   const auto& column_scale = k_.column_scale();
@@ -125,6 +125,18 @@ bool BatchWorkspace::solve_lanes(MotionTable& table, std::size_t first, std::siz
       jumped += !(std::fabs(q[l] - predicted[l]) <= solver::kBranchTolerance * column_scale[i]);
   }
   if (jumped) return false;
+  // No toggle between the rows: det Phi_q keeps its sign (solver::lu_determinant_sign, lane by lane).
+  if (sign == 0) return false;
+  int turned = 0;
+  for (std::size_t l = 0; l < kLanes; ++l) {
+    int lane_sign = 1;
+    for (std::size_t c = 0; c < n; ++c) {
+      const double pivot = lu_[(c * n + c) * kLanes + l];
+      lane_sign = (pivot < 0) != (pivots_[c * kLanes + l] != static_cast<double>(c)) ? -lane_sign : lane_sign;
+    }
+    turned += lane_sign != sign;
+  }
+  if (turned) return false;
 
   solve_rates(rate);
   const std::size_t point_values = layout_.observable_output_count();

@@ -248,15 +248,16 @@ bool DesignLanes::choose_lanes(std::size_t row, std::size_t count, double* take,
   bool any_restart = false;
   const double h = row > 0 ? inputs_[row] - inputs_[row - 1] : 0.0;
   for (std::size_t l = 0; l < kLanes; ++l) {
-    const Lane& lane = *lanes_[l];
+    Lane& lane = *lanes_[l];
     const Eigen::VectorXd* from = &lane.kinematics.guess();  // any finite position keeps a lane not solved quiet
     bool predicted = false, restarted = false;
     out_of_reach[l] = l < count && reach_[l].clearly_open(cos_inputs_[row], sin_inputs_[row]) ? 1.0 : 0.0;
     if (out_of_reach[l] != 0) {
       // Neither predicted nor restarted: solve() stores it as not assembling.
     } else if (l < count && row == 0) {
-      // The first value from the guesses, as the scalar run starts (Newton alone).
-      predicted = lane.kinematics.closed_form() == nullptr;
+      // The first value from the guesses where the scalar run starts so (Newton alone);
+      // else the scalar run's (the file's assembly carried to it).
+      predicted = lane.kinematics.closed_form() == nullptr && lane.rows.restart_position() != nullptr;
     } else if (l < count && (lane.last_in_lanes || lane.rows.on_branch())) {
       // The scalar run's fast path: from the last row, ok, predicted by its rates.
       predicted = std::fabs(h) <= lane.kinematics.max_continuation_step();

@@ -9,6 +9,8 @@
 #include "engine/constraints/complex_parts.hpp"
 #include "engine/constraints/output_columns.hpp"
 #include "engine/symbolic/centre_formulas.hpp"
+#include "engine/base/units.hpp"
+#include "engine/numeric/workspace.hpp"
 
 namespace kinema {
 
@@ -167,6 +169,30 @@ std::vector<ex> linkage_stage(const ConstraintSystem& system, const std::vector<
 
 }  // namespace
 
+namespace {
+
+// Phi, Phi_q and Phi_theta the same a turn on, at a few positions (the guesses moved):
+// the input enters only through its sine and cosine.
+bool position_periodic(const Kinematics& k) {
+  Workspace workspace(k);
+  Eigen::VectorXd phi[2], phi_theta[2];
+  Eigen::MatrixXd phi_q[2];
+  for (const double input : {0.3, 1.9, -2.6}) {
+    Eigen::VectorXd q = k.guess();
+    for (Eigen::Index i = 0; i < q.size(); ++i) q[i] += 0.01 * double(i + 1) * input * k.column_scale()[std::size_t(i)];
+    for (int turn = 0; turn < 2; ++turn) workspace.position_system(input + 2 * turn * kPi, q, phi[turn], phi_q[turn], phi_theta[turn]);
+    const double tolerance = 1e-9 * k.length_scale();
+    if (!phi[0].allFinite() || !phi_q[0].allFinite()) continue;
+    if (!((phi[0] - phi[1]).lpNorm<Eigen::Infinity>() <= tolerance) ||
+        !((phi_q[0] - phi_q[1]).lpNorm<Eigen::Infinity>() <= tolerance) ||
+        !((phi_theta[0] - phi_theta[1]).lpNorm<Eigen::Infinity>() <= tolerance))
+      return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 struct Kinematics::ParameterTapes {
   std::mutex mutex;
   std::map<std::pair<std::size_t, std::vector<bool>>, std::shared_ptr<const CompiledExpressions>> tapes;
@@ -196,6 +222,7 @@ Kinematics::Kinematics(const ConstraintSystem& system)
   }
   for (const Equation& equation : system.equations) equation_group_.push_back(equation.group);
   if (system.plan && system.plan->closed_form) closed_form_ = *system.plan;
+  guess_input_ = system.plan ? system.plan->sketch_input : system.input.values.empty() ? 0.0 : system.input.values[0];
 }
 
 Kinematics::Kinematics(const ConstraintSystem& system, const Derivation& d) : Kinematics(system) {
@@ -216,6 +243,7 @@ Kinematics::Kinematics(const ConstraintSystem& system, const Derivation& d) : Ki
     points.insert(points.end(), frame.angular_acceleration.begin(), frame.angular_acceleration.end());
   }
   compile(system, {position, d.acceleration_rhs, points}, d);
+  periodic_input_ = system.input.dimension == Dimension::angle && (closed_form_ || position_periodic(*this));
 }
 
 Kinematics Kinematics::sharing_tape(const ConstraintSystem& system) const {
@@ -229,6 +257,7 @@ Kinematics Kinematics::sharing_tape(const ConstraintSystem& system) const {
   k.evaluator_ = evaluator_;
   k.parameter_tapes_ = parameter_tapes_;
   k.drawable_ = drawable_;
+  k.periodic_input_ = periodic_input_;
   return k;
 }
 

@@ -65,6 +65,13 @@ class Kinematics {
   double max_continuation_step() const { return max_continuation_step_; }
   /// Starting guesses from the file, SI.
   const Eigen::VectorXd& guess() const { return guess_; }
+  /// The input value the guesses stand for (SI): a joints file's sketch value, else the
+  /// file's first input value (0 where it gives none). The file's assembly is the one the
+  /// guesses give there, carried along the input (engine/numeric/sweep).
+  double guess_input() const { return guess_input_; }
+  /// An angle input on which the equations depend only through its sine and cosine: a
+  /// value and that value plus a turn are the same position, reached the short way round.
+  bool periodic_input() const { return periodic_input_; }
   /// The equation group of each row of Phi (for "which loop stays open").
   std::size_t equation_group(std::size_t row) const { return equation_group_[row]; }
   /// A joints-and-links mechanism whose every link is in a dyad: its positions in
@@ -86,6 +93,8 @@ class Kinematics {
   std::vector<bool> sets_length_scale_;  ///< Per parameter: counted in the length scale (length_scale_of).
   std::vector<bool> length_unknown_;     ///< Per unknown: a length (its column scaled by the length scale).
   bool length_input_ = false;            ///< The input is a length (its continuation step follows the scale).
+  bool periodic_input_ = false;
+  double guess_input_ = 0.0;
   double length_scale_ = 1.0, max_continuation_step_ = 0.0;
   std::vector<double> column_scale_;
   Eigen::VectorXd guess_;

@@ -25,6 +25,7 @@ struct RunCursor {
   bool after_gap = false;           ///< The last row failed or was singular after solved rows.
   bool q_singular = false;          ///< q is a singular position (Newton from it has no direction).
   bool any_solved = false;
+  int sign = 0;                     ///< det Phi_q's sign at the last row solved ok (0: not known).
   std::size_t next_batch_try = 0;   ///< Run row: after a refused SIMD block, one by one until here.
   std::size_t batch_rows = 0;       ///< Rows solved in SIMD blocks.
   // Joints and links (rows placed in closed form):
@@ -124,12 +125,119 @@ void predict_position(const Q& q, const Rate& qd, const SecondRate& qdd, double 
   for (Eigen::Index i = 0; i < out.size(); ++i) out[i] = solver::predict_second_order(q[i], qd[i], qdd[i], rate, second_rate, h);
 }
 
+// The file's assembly: the position the guesses give at the input value they stand for
+// (home), carried along the input each way as far as its branch goes, in steps of the
+// largest continuation step from home (so that the positions on the way are the same
+// whichever value asked for them first). A value with no solved value before it (the
+// first of a run, one after a gap, one a list's step cannot reach) lands there: the short
+// way round for a periodic angle, else the long way; so a value's assembly is the same
+// however it is asked.
+class FileAssembly {
+ public:
+  explicit FileAssembly(const Kinematics& kinematics) : k_(kinematics) {}
+  /// The parameters changed (a design study's next design): home is found again.
+  void reset() {
+    started_ = false;
+    for (Way& way : ways_) way = Way{};
+  }
+  /// Whether the guesses close at their own input value (else values are solved from the
+  /// guesses, as they stand).
+  bool has_home(Workspace& workspace) { return start(workspace); }
+  int home_sign() const { return home_sign_; }
+  double home_input() const { return k_.guess_input(); }
+  /// The position at `input` on the file's assembly into q; false where its branch does not
+  /// reach the value either way (then *stopped_at: where it stops on the shorter way).
+  bool reach(Workspace& workspace, double input, Eigen::VectorXd& q, double* stopped_at, bool* too_far = nullptr) {
+    reached_ = false;
+    if (!start(workspace)) return false;
+    const double home = k_.guess_input();
+    double ahead = input - home;
+    if (k_.periodic_input()) ahead = std::remainder(ahead, 2 * kPi);
+    double ways[2] = {ahead, ahead - std::copysign(2 * kPi, ahead)};
+    const int count = k_.periodic_input() && ahead != 0 ? 2 : 1;
+    for (int w = 0; w < count; ++w) {
+      const double target = home + ways[w];
+      Way& way = ways_[ways[w] < 0 ? 1 : 0];
+      if (!(std::fabs(ways[w]) <= kMostSteps * k_.max_continuation_step())) {
+        if (w == 0 && too_far) *too_far = true;
+        continue;
+      }
+      if (!extend(workspace, way, ways[w])) {
+        if (w == 0 && stopped_at) *stopped_at = way.stopped_at;
+        continue;
+      }
+      // The last position on the way not past the target, then on to it.
+      std::size_t k = 0;
+      while (k + 1 < way.inputs.size() && std::fabs(way.inputs[k + 1] - home) <= std::fabs(ways[w])) ++k;
+      q = way.q[k];
+      double stuck = way.inputs[k];
+      if (!workspace.continue_to(way.inputs[k], target, q, &stuck)) {
+        if (w == 0 && stopped_at) *stopped_at = stuck;
+        continue;
+      }
+      if (target == input || workspace.solve_position(input, q)) return reached_ = true;
+    }
+    return false;
+  }
+  /// The last reach() landed.
+  bool reached() const { return reached_; }
+
+ private:
+  struct Way {
+    std::vector<double> inputs;
+    std::vector<Eigen::VectorXd> q;
+    bool stopped = false;
+    double stopped_at = 0;
+  };
+  bool start(Workspace& workspace) {
+    if (started_) return home_ok_;
+    started_ = true;
+    Eigen::VectorXd q = k_.guess();
+    const double home = k_.guess_input();
+    home_ok_ = workspace.solve_position(home, q);
+    home_sign_ = home_ok_ ? workspace.jacobian_sign(home, q) : 0;
+    for (Way& way : ways_) {
+      way = Way{};
+      way.inputs.push_back(home);
+      way.q.push_back(q);
+    }
+    return home_ok_;
+  }
+  // The way towards home + `ahead` carried past it (true), or as far as it goes (false).
+  bool extend(Workspace& workspace, Way& way, double ahead) {
+    const double home = k_.guess_input(), step = k_.max_continuation_step();
+    while (std::fabs(way.inputs.back() - home) < std::fabs(ahead)) {
+      if (way.stopped) return false;
+      const double from = way.inputs.back();
+      const double to = home + std::copysign(double(way.inputs.size()) * step, ahead);
+      Eigen::VectorXd q = way.q.back();
+      double stuck = from;
+      if (!workspace.continue_to(from, to, q, &stuck)) {
+        way.stopped = true;
+        way.stopped_at = stuck;
+        return false;
+      }
+      way.inputs.push_back(to);
+      way.q.push_back(q);
+    }
+    return true;
+  }
+  /// Farther than this many steps from home a value is solved from the guesses as it
+  /// stands (a time far on).
+  static constexpr double kMostSteps = 2000;
+  const Kinematics& k_;
+  bool started_ = false, home_ok_ = false, reached_ = false;
+  int home_sign_ = 0;
+  Way ways_[2];  ///< Onwards from home, and back.
+};
+
 struct Solvers {
-  explicit Solvers(const Kinematics& kinematics, bool batch, double rate) : scalar(kinematics) {
+  explicit Solvers(const Kinematics& kinematics, bool batch, double rate) : scalar(kinematics), assembly(kinematics) {
     if (batch && rate != 0) simd = std::make_unique<BatchWorkspace>(kinematics);
   }
   Workspace scalar;
   std::unique_ptr<BatchWorkspace> simd;
+  FileAssembly assembly;
 };
 
 // Every value solve_rows solved in this process (values_solved_in_process()).
@@ -153,7 +261,8 @@ std::size_t solve_rows(const Kinematics& kinematics, Solvers& solvers, MotionTab
     const double input = table.input(row);
     if (solvers.simd && at.have_previous && offset + row >= at.next_batch_try && row + BatchWorkspace::kLanes <= limit &&
         table.failure(row - 1).kind == Failure::Kind::none) {
-      if (solvers.simd->solve(table, row, history_begin)) {
+      if (at.sign == 0) at.sign = solvers.scalar.jacobian_sign(table.input(row - 1), at.q);
+      if (solvers.simd->solve(table, row, history_begin, at.sign)) {
         at.batch_rows += BatchWorkspace::kLanes;
         row += BatchWorkspace::kLanes - 1;
         at.ok_row(table, row);  // the flags as they were: a block follows an ok row
@@ -171,7 +280,8 @@ std::size_t solve_rows(const Kinematics& kinematics, Solvers& solvers, MotionTab
       const double h = input - previous_input;
       if (rate != 0 && std::fabs(h) <= kinematics.max_continuation_step()) {
         predict_position(at.q, table.qd(row - 1), table.qdd(row - 1), rate, second_rate, h, predicted);
-        solved = solvers.scalar.predict_and_correct(input, predicted, trial);
+        if (at.sign == 0) at.sign = solvers.scalar.jacobian_sign(previous_input, at.q);
+        solved = solvers.scalar.predict_and_correct(previous_input, input, predicted, trial, at.sign);
       }
       double stuck_at = previous_input;
       bool too_far = false;
@@ -190,21 +300,52 @@ std::size_t solve_rows(const Kinematics& kinematics, Solvers& solvers, MotionTab
           why.group = dyad;
         }
       } else if (!solved) {
-        solved = solvers.scalar.continue_to(previous_input, input, trial, &stuck_at, &too_far);
+        // A periodic angle goes the short way round (300 deg after 0 is -60 deg).
+        const double target =
+            kinematics.periodic_input() ? previous_input + std::remainder(h, 2 * kPi) : input;
+        solved = solvers.scalar.continue_to(previous_input, target, trial, &stuck_at, &too_far) &&
+                 (target == input || solvers.scalar.solve_position(input, trial));
         if (!solved) {
           why.kind = too_far ? Failure::Kind::too_far : Failure::Kind::branch_stops;
           why.from = previous_input;
           why.stopped_at = stuck_at;
+          // Past a gap the value is the file's assembly's where its branch reaches it (the
+          // other way round, or another stretch), as the value asked alone would be.
+          if (closed_form == nullptr && solvers.assembly.reach(solvers.scalar, input, trial, nullptr)) {
+            solved = true;
+            at.after_gap = true;
+          }
         }
       }
     } else {
       std::size_t worst_group = 0;
       double residual = 0;
       std::uint32_t dyad = 0;
+      double stopped_at = 0;
+      bool too_far = false;
+      // Not a joints file placed dyad by dyad: the file's assembly, carried from its
+      // guesses to the value; unless the guesses do not close at their own value, or the
+      // value is too far from it to carry them (then Newton from where the run stands).
+      const bool from_home = closed_form == nullptr && solvers.assembly.has_home(solvers.scalar) &&
+                             (solvers.assembly.reach(solvers.scalar, input, trial, &stopped_at, &too_far) || !too_far);
       if (closed_form != nullptr) choose_signs(kinematics, *closed_form, input, rate, second_rate, angle_input, at);
       if (closed_form != nullptr && !closed_form_position(*closed_form, input, at.signs, trial, dyad)) {
         why.kind = Failure::Kind::dyad_open;
         why.group = dyad;
+      } else if (from_home) {
+        solved = solvers.assembly.reached();
+        if (!solved) {
+          // Its branch does not reach the value: where it stops, or, where nothing closes
+          // there at all, the loop that stays open.
+          trial = kinematics.guess();
+          if (solvers.scalar.solve_position(input, trial, &worst_group, &residual)) {
+            why.kind = Failure::Kind::branch_stops;
+            why.from = solvers.assembly.home_input();
+            why.stopped_at = stopped_at;
+          } else {
+            why = group_open(worst_group, residual, !at.after_gap);
+          }
+        }
       } else {
         solved = solvers.scalar.solve_position(input, trial, &worst_group, &residual);
         if (!solved && at.q_singular && at.have_last_ok && rate != 0) {
@@ -224,6 +365,7 @@ std::size_t solve_rows(const Kinematics& kinematics, Solvers& solvers, MotionTab
     at.q = trial;
     at.any_solved = true;
     solvers.scalar.motion_into(input, rate, second_rate, at.q, state);
+    at.sign = solvers.scalar.factorised_sign();
     at.q_singular = state.status == Status::singular;
     if (at.after_gap && state.status == Status::ok) state.failure.kind = Failure::Kind::resumed_after_gap;
     // Past a singular position the branch may change: treat it like a gap.
@@ -263,8 +405,10 @@ MotionTable solve_sweep(const Kinematics& kinematics, const std::vector<double>&
     // (coarse steps), so every chunk is on the branch the serial run would be on.
     // Where that is impossible (a gap or a toggle), the run stays serial.
     Workspace workspace(kinematics);
+    FileAssembly assembly(kinematics);
     Eigen::VectorXd q = start[0];
-    bool ok = workspace.solve_position(inputs[0], q);
+    bool ok = assembly.has_home(workspace) ? assembly.reach(workspace, inputs[0], q, nullptr)
+                                           : workspace.solve_position(inputs[0], q);
     for (unsigned t = 1; t < threads && ok; ++t) {
       ok = workspace.continue_to(inputs[begin[t - 1]], inputs[begin[t]], q, nullptr);
       start[t] = q;
@@ -368,6 +512,7 @@ RepeatedSweep::~RepeatedSweep() = default;
 const MotionTable& RepeatedSweep::solve() {
   State& s = *state_;
   s.solvers.scalar.reload_parameters();
+  s.solvers.assembly.reset();
   if (s.solvers.simd) s.solvers.simd->reload_parameters();
   // solve_sweep's one chunk: from the guesses, every row set again.
   RunCursor cursor;
@@ -390,6 +535,7 @@ RowSolver::~RowSolver() = default;
 void RowSolver::start() {
   State& s = *state_;
   s.solvers.scalar.reload_parameters();
+  s.solvers.assembly.reset();
   s.at = RunCursor{};
   s.at.q = s.kinematics.guess();
 }
@@ -405,9 +551,11 @@ void RowSolver::solved_elsewhere(const MotionTable& table, std::size_t row) {
 
 bool RowSolver::on_branch() const { return state_->at.have_previous; }
 
-const Eigen::VectorXd* RowSolver::restart_position() const {
-  const State& s = *state_;
-  const bool newton_alone = !s.at.have_previous && !s.at.q_singular && s.kinematics.closed_form() == nullptr;
+const Eigen::VectorXd* RowSolver::restart_position() {
+  State& s = *state_;
+  // Where the file's assembly has a home, a value without one before it is carried from there.
+  const bool newton_alone = !s.at.have_previous && !s.at.q_singular && s.kinematics.closed_form() == nullptr &&
+                            !s.solvers.assembly.has_home(s.solvers.scalar);
   return newton_alone ? &s.at.q : nullptr;
 }
 

@@ -103,10 +103,11 @@ class RowSolver {
   /// The last row solved is ok: solve() predicts the next from its rates.
   bool on_branch() const;
   /// Where solve() starts Newton alone (Workspace::solve_position) for the next row: after
-  /// a row that did not assemble, from the last position solved (or the guesses); nullptr
-  /// where it does anything else (predicts, restarts past a singular position, places
-  /// dyads in closed form).
-  const Eigen::VectorXd* restart_position() const;
+  /// a row that did not assemble, from the last position solved (or the guesses), where the
+  /// guesses do not close at their own input value; nullptr where it does anything else
+  /// (predicts, carries the file's assembly to the value, restarts past a singular
+  /// position, places dyads in closed form).
+  const Eigen::VectorXd* restart_position();
   /// The next row, `row`, did not assemble: Newton from restart_position() stopped open
   /// with max |Phi| = residual, largest in equation group `group`, found elsewhere as
   /// solve() would have found it. Stored as solve() stores it.

@@ -23,7 +23,8 @@ Workspace::Workspace(const Kinematics& k)
       least_squares_scratch_(n_ * n_),
       step_(n_),
       trial_(n_),
-      predicted_(n_) {
+      predicted_(n_),
+      corrected_(n_) {
   reload_parameters();
 }
 
@@ -182,13 +183,54 @@ bool Workspace::solve_jacobian(double input, const Eigen::VectorXd& q, const dou
   return true;
 }
 
-bool Workspace::predict_and_correct(double to, const Eigen::VectorXd& predicted, Eigen::VectorXd& q) {
-  trial_q_ = predicted;
-  if (!solve_position(to, trial_q_)) return false;
+int Workspace::jacobian_sign(double input, const Eigen::VectorXd& q) {
+  if (!evaluated_at(input, q)) evaluate_position(input, q);
+  factorise();
+  return solver::lu_determinant_sign(lu_.data(), pivots_.data(), n_);
+}
+
+bool Workspace::predict_and_correct(double from, double to, const Eigen::VectorXd& predicted, Eigen::VectorXd& q,
+                                    int from_sign) {
+  corrected_ = predicted;
+  if (!solve_position(to, corrected_)) return false;
+  double correction = 0, step = solver::kLeastStep * std::fabs(to - from) / max_continuation_step();
   for (std::size_t i = 0; i < n_; ++i) {
-    if (std::fabs(trial_q_[i] - predicted[i]) / k_.column_scale()[i] > solver::kBranchTolerance) return false;
+    const double scale = k_.column_scale()[i];
+    const double off = std::fabs(corrected_[i] - predicted[i]) / scale;
+    if (!(off <= solver::kBranchTolerance)) return false;
+    correction = std::max(correction, off);
+    step = std::max(step, std::fabs(predicted[i] - q[i]) / scale);
   }
-  q = trial_q_;
+  if (!(correction <= solver::kStepCorrection * step)) return false;
+  const int to_sign = jacobian_sign(to, corrected_);
+  if (to_sign != from_sign && !change_point_between(from, q, from_sign, to, corrected_, to_sign)) return false;
+  q = corrected_;
+  return true;
+}
+
+bool Workspace::change_point_between(double from, const Eigen::VectorXd& from_q, int from_sign, double to,
+                                     const Eigen::VectorXd& to_q, int to_sign) {
+  if (from_sign == 0 || to_sign == 0) return false;
+  double lo = from, hi = to;
+  Eigen::VectorXd lo_q = from_q, hi_q = to_q, mid_q;
+  const double width = solver::kCrossingWidth * max_continuation_step();
+  while (std::fabs(hi - lo) > width) {
+    const double mid = 0.5 * (lo + hi);
+    if (mid == lo || mid == hi) break;
+    mid_q = 0.5 * (lo_q + hi_q);
+    if (!solve_position(mid, mid_q)) return false;  // a value in between does not close: a gap
+    const int sign = jacobian_sign(mid, mid_q);
+    if (sign == from_sign) {
+      lo = mid;
+      lo_q = mid_q;
+    } else {
+      hi = mid;
+      hi_q = mid_q;
+    }
+  }
+  for (std::size_t i = 0; i < n_; ++i)
+    if (!(std::fabs(hi_q[Eigen::Index(i)] - lo_q[Eigen::Index(i)]) / k_.column_scale()[i] <= solver::kCrossingJump))
+      return false;  // two assemblies side by side: a toggle
   return true;
 }
 
@@ -209,8 +251,9 @@ bool Workspace::continue_to(double from, double to, Eigen::VectorXd& q, double* 
     if (t + h == t) return refuse(t);  // the input is too large for a step to change it
     bool accepted = sensitivity(t, q, slope_);
     if (accepted) {
+      const int sign = solver::lu_determinant_sign(lu_.data(), pivots_.data(), n_);
       predicted_ = q + slope_ * h;
-      accepted = predict_and_correct(t + h, predicted_, q);
+      accepted = predict_and_correct(t, t + h, predicted_, q, sign);
     }
     if (accepted) {
       t = (h == to - t) ? to : t + h;
@@ -237,7 +280,7 @@ bool Workspace::advance(double input, double rate, double second_rate, MotionSta
       predicted_[i] = solver::predict_second_order(state.q[i], state.qd[i], state.qdd[i], state.input_rate,
                                                    state.input_second_rate, h);
     }
-    solved = predict_and_correct(input, predicted_, trial_q_);
+    solved = predict_and_correct(state.input, input, predicted_, trial_q_, jacobian_sign(state.input, state.q));
   }
   if (!solved) {
     trial_q_ = state.q;

@@ -10,6 +10,7 @@
 
 #include "engine/numeric/kinematics.hpp"
 #include "engine/numeric/motion_table.hpp"
+#include "engine/numeric/solver.hpp"
 
 namespace kinema {
 
@@ -56,8 +57,23 @@ class Workspace {
   bool continue_to(double from, double to, Eigen::VectorXd& q, double* stuck_at, bool* too_far = nullptr);
 
   /// Newton from `predicted` at `to`; accepts (into q) only a solution close to the
-  /// prediction, i.e. on the same branch.
-  bool predict_and_correct(double to, const Eigen::VectorXd& predicted, Eigen::VectorXd& q);
+  /// prediction, i.e. on the same branch. q holds the position the step starts from, whose
+  /// input is `from` and whose determinant sign is `from_sign` (jacobian_sign there): a step is refused where it did
+  /// not stay on its branch (its correction large beside the step, solver::kStepCorrection;
+  /// det Phi_q of another sign without a change point between), so no toggle is stepped over.
+  bool predict_and_correct(double from, double to, const Eigen::VectorXd& predicted, Eigen::VectorXd& q,
+                           int from_sign);
+  /// The sign of det Phi_q at (input, q) (solver::lu_determinant_sign): the same along a
+  /// branch between singular positions.
+  int jacobian_sign(double input, const Eigen::VectorXd& q);
+  /// det Phi_q's sign differs at two positions of a step (from_sign at from_q, to_sign at
+  /// to_q): true where the branch passes a change point between them (the sign changes at
+  /// one input and the position does not jump there), false where a toggle or a gap lies
+  /// between (a value in between that does not close, or two assemblies side by side).
+  bool change_point_between(double from, const Eigen::VectorXd& from_q, int from_sign, double to,
+                            const Eigen::VectorXd& to_q, int to_sign);
+  /// The same at the position motion_into() last solved rates at.
+  int factorised_sign() const { return solver::lu_determinant_sign(lu_.data(), pivots_.data(), n_); }
   /// Largest input step continuation takes at once (2 deg, or 1 % of the length scale).
   double max_continuation_step() const { return k_.max_continuation_step(); }
 
@@ -80,7 +96,7 @@ class Workspace {
   std::vector<std::size_t> pivots_;
   std::vector<double> rhs_;
   std::vector<double> least_squares_matrix_, least_squares_scratch_;  ///< Near-singular Newton steps.
-  Eigen::VectorXd step_, trial_, predicted_, slope_, trial_q_;
+  Eigen::VectorXd step_, trial_, predicted_, slope_, trial_q_, corrected_;
   bool evaluated_ = false;  ///< The position stage's registers hold (evaluated_input_, q).
   /// solve_jacobian's LU is that of the evaluated position (reset by evaluate_position and
   /// factorise), and whether Phi_q is regular there.

@@ -211,16 +211,28 @@ TEST_CASE("engine/numeric/workspace: predict_and_correct and continue_to keep th
   Eigen::VectorXd open(2);
   open << kFourBar.theta3(t2), kFourBar.theta4(t2);
 
-  // A prediction close to the solution: corrected onto it.
-  Eigen::VectorXd predicted = open + Eigen::Vector2d(0.01, -0.01);
-  Eigen::VectorXd q = Eigen::VectorXd::Zero(2);
-  REQUIRE(workspace.predict_and_correct(t2, predicted, q));
+  // A step of 2 deg predicted close to the solution: corrected onto it.
+  const double before = t2 - 2 * kDeg;
+  Eigen::VectorXd from(2);
+  from << kFourBar.theta3(before), kFourBar.theta4(before);
+  const int sign = workspace.jacobian_sign(before, from);
+  CHECK(sign != 0);
+  Eigen::VectorXd predicted = open + Eigen::Vector2d(0.001, -0.001);
+  Eigen::VectorXd q = from;
+  REQUIRE(workspace.predict_and_correct(before, t2, predicted, q, sign));
   CHECK((q - open).norm() < 1e-12);
   // A prediction 0.3 rad off: whatever Newton finds is not near it: refused, q unchanged.
   predicted = open + Eigen::Vector2d(0.3, 0.0);
-  Eigen::VectorXd kept = Eigen::Vector2d(7, 8);
-  CHECK_FALSE(workspace.predict_and_correct(t2, predicted, kept));
-  CHECK(kept == Eigen::VectorXd(Eigen::Vector2d(7, 8)));
+  Eigen::VectorXd kept = from;
+  CHECK_FALSE(workspace.predict_and_correct(before, t2, predicted, kept, sign));
+  CHECK(kept == from);
+  // Corrected onto the solution, but the correction is large beside the step predicted
+  // (a step predicted to barely move): refused, as a step over a narrow gap is.
+  kept = from;
+  CHECK_FALSE(workspace.predict_and_correct(before, t2, from, kept, sign));
+  // The determinant's sign at the end is not the start's (as on the crossed assembly): refused.
+  q = from;
+  CHECK_FALSE(workspace.predict_and_correct(before, t2, open + Eigen::Vector2d(0.001, -0.001), q, -sign));
 
   // Half a turn in one call, on the open branch all the way.
   q = open;
