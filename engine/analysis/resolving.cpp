@@ -56,6 +56,8 @@ std::optional<Resolving> resolving(const Model& model, const MotionTable* rows) 
     out.guess.push_back(k.guess()[Eigen::Index(i)]);
     out.length_unknowns.push_back(system.unknowns[i].dimension == Dimension::length);
   }
+  out.guess_input = k.guess_input();
+  out.periodic_input = k.periodic_input();
   out.rate = system.input.rate_value;
   out.second_rate = system.input.second_rate_value;
   out.max_step = k.max_continuation_step();
@@ -67,6 +69,11 @@ std::optional<Resolving> resolving(const Model& model, const MotionTable* rows) 
                    {"least_squares_pivot_ratio", solver::kLeastSquaresPivotRatio},
                    {"max_continuation_steps", solver::kMaxContinuationSteps},
                    {"branch_tolerance", solver::kBranchTolerance},
+                   {"step_correction", solver::kStepCorrection},
+                   {"least_step", solver::kLeastStep},
+                   {"crossing_width", solver::kCrossingWidth},
+                   {"crossing_jump", solver::kCrossingJump},
+                   {"most_entry_steps", solver::kMostEntrySteps},
                    {"clearly_regular_pivot_ratio", solver::kClearlyRegularPivotRatio},
                    {"singular_threshold", solver::kSingularThreshold},
                    {"jacobi_sweeps", solver::kJacobiSweeps},

@@ -32,6 +32,8 @@ struct Resolving {
   CompiledExpressions formulas;
   std::vector<std::size_t> formula_targets;
   std::vector<double> guess;            ///< The file's guesses (SI): the branch a run starts on.
+  double guess_input = 0;               ///< Kinematics::guess_input: the value the guesses stand for.
+  bool periodic_input = false;          ///< Kinematics::periodic_input.
   std::vector<bool> length_unknowns;    ///< Column scaled by the length scale (else 1).
   double rate = 0, second_rate = 0;     ///< The input's (SI).
   double max_step = 0;                  ///< Kinematics::max_continuation_step at the file's dimensions.

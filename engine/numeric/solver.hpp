@@ -120,6 +120,10 @@ constexpr double kLeastStep = 0.02;
 constexpr double kCrossingWidth = 1e-10;
 /// The largest scaled jump of the position across that width at a change point.
 constexpr double kCrossingJump = 1e-6;
+/// A value with no solved value before it is carried from the guesses' own input value in
+/// steps of the largest continuation step, at most this many; farther (a time far on), it
+/// is solved from the guesses as it stands.
+constexpr double kMostEntrySteps = 2000;
 
 /// Sweeps of one-sided Jacobi before it gives up (it converges in a handful).
 constexpr int kJacobiSweeps = 60;

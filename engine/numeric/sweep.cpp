@@ -158,7 +158,7 @@ class FileAssembly {
     for (int w = 0; w < count; ++w) {
       const double target = home + ways[w];
       Way& way = ways_[ways[w] < 0 ? 1 : 0];
-      if (!(std::fabs(ways[w]) <= kMostSteps * k_.max_continuation_step())) {
+      if (!(std::fabs(ways[w]) <= solver::kMostEntrySteps * k_.max_continuation_step())) {
         if (w == 0 && too_far) *too_far = true;
         continue;
       }
@@ -222,9 +222,6 @@ class FileAssembly {
     }
     return true;
   }
-  /// Farther than this many steps from home a value is solved from the guesses as it
-  /// stands (a time far on).
-  static constexpr double kMostSteps = 2000;
   const Kinematics& k_;
   bool started_ = false, home_ok_ = false, reached_ = false;
   int home_sign_ = 0;

@@ -307,6 +307,8 @@ json resolving_json(const PrintJob& job, const OutputScale& scale) {
           {"formulas", tape_json(r.formulas)},
           {"formula_targets", r.formula_targets},
           {"guess", r.guess},
+          {"guess_input", r.guess_input},
+          {"periodic_input", r.periodic_input},
           {"unknowns", unknowns},
           {"length_unknowns", r.length_unknowns},
           {"rate", r.rate},

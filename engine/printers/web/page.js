@@ -1078,6 +1078,24 @@
       for (let r = 0; r < c; ++r) x[r] -= a[r * n + c] * x[c];
     }
   }
+  // solver.hpp's lu_determinant_sign: a step whose ends differ in it passed a singular position.
+  function luDeterminantSign(a, pivots, n) {
+    let sign = 1;
+    for (let c = 0; c < n; ++c) {
+      const pivot = a[c * n + c];
+      if (!(Math.abs(pivot) > 0) || !isFinite(pivot)) return 0;
+      if (pivot < 0) sign = -sign;
+      if (pivots[c] !== c) sign = -sign;
+    }
+    return sign;
+  }
+  // std::remainder(x, 2 pi): the short way round a turn.
+  function remainderTurn(x) {
+    const turn = 2 * Math.PI, k = x / turn;
+    let m = Math.round(k);
+    if (Math.abs(k - Math.trunc(k)) === 0.5) m = 2 * Math.round(k / 2);
+    return x - turn * m;
+  }
   function pivotRatio(a, n, lengthScale) {
     let smallest = Infinity, largest = n === 1 ? lengthScale : 0;
     for (let c = 0; c < n; ++c) {
@@ -1272,13 +1290,44 @@
       solveRhs(dq);
       return allFinite(dq) ? dq : null;
     }
-    // Workspace::predict_and_correct: Newton from the prediction, refused on another branch.
-    function predictAndCorrect(to, predicted, q) {
+    function jacobianSign(input, q) {
+      if (!evaluatedAt(input, q)) evaluatePosition(input, q);
+      factorise();
+      return luDeterminantSign(lu, pivots, n);
+    }
+    // Workspace::predict_and_correct: Newton from the prediction, refused on another branch
+    // or past a toggle; q holds the position the step starts from (at `from`, sign fromSign).
+    function predictAndCorrect(from, to, predicted, q, fromSign) {
       const trial = corrected;
       trial.set(predicted);
       if (!solvePosition(to, trial)) return false;
-      for (let i = 0; i < n; ++i) if (Math.abs(trial[i] - predicted[i]) / solver.columnScale[i] > K.branch_tolerance) return false;
+      let correction = 0, step = K.least_step * Math.abs(to - from) / solver.maxStep;
+      for (let i = 0; i < n; ++i) {
+        const off = Math.abs(trial[i] - predicted[i]) / solver.columnScale[i];
+        if (!(off <= K.branch_tolerance)) return false;
+        correction = Math.max(correction, off);
+        step = Math.max(step, Math.abs(predicted[i] - q[i]) / solver.columnScale[i]);
+      }
+      if (!(correction <= K.step_correction * step)) return false;
+      const toSign = jacobianSign(to, trial);
+      if (toSign !== fromSign && !changePointBetween(from, q, fromSign, to, Float64Array.from(trial), toSign)) return false;
       q.set(trial);
+      return true;
+    }
+    // Workspace::change_point_between: the sign changes at one input without a jump.
+    function changePointBetween(from, fromQ, fromSign, to, toQ, toSign) {
+      if (fromSign === 0 || toSign === 0) return false;
+      let lo = from, hi = to, loQ = Float64Array.from(fromQ), hiQ = toQ;
+      const width = K.crossing_width * solver.maxStep;
+      while (Math.abs(hi - lo) > width) {
+        const mid = 0.5 * (lo + hi);
+        if (mid === lo || mid === hi) break;
+        const midQ = new Float64Array(n);
+        for (let i = 0; i < n; ++i) midQ[i] = 0.5 * (loQ[i] + hiQ[i]);
+        if (!solvePosition(mid, midQ)) return false;
+        if (jacobianSign(mid, midQ) === fromSign) { lo = mid; loQ = midQ; } else { hi = mid; hiQ = midQ; }
+      }
+      for (let i = 0; i < n; ++i) if (!(Math.abs(hiQ[i] - loQ[i]) / solver.columnScale[i] <= K.crossing_jump)) return false;
       return true;
     }
     // Workspace::continue_to: small predicted steps, halved where refused.
@@ -1293,8 +1342,9 @@
         const slope = sensitivity(t, q);
         let accepted = false;
         if (slope) {
+          const sign = luDeterminantSign(lu, pivots, n);
           for (let i = 0; i < n; ++i) predicted[i] = q[i] + slope[i] * h;
-          accepted = predictAndCorrect(t + h, predicted, q);
+          accepted = predictAndCorrect(t, t + h, predicted, q, sign);
         }
         if (accepted) {
           t = h === to - t ? to : t + h;
@@ -1340,11 +1390,61 @@
       if (!allFinite(qd) || !allFinite(qdd) || !allFinite(row.points)) { row.status = 'singular'; row.why = 'rates'; }
       return row;
     }
+    // sweep.cpp's FileAssembly: the guesses' position at their own input value, carried
+    // each way along the input in steps of the largest continuation step from there.
+    function fileAssembly() {
+      let started = false, homeOk = false;
+      const ways = [];
+      const home = R.guess_input;
+      function start() {
+        if (started) return homeOk;
+        started = true;
+        const q = Float64Array.from(R.guess);
+        homeOk = solvePosition(home, q);
+        for (let w = 0; w < 2; ++w) ways.push({ inputs: [home], q: [Float64Array.from(q)], stopped: false });
+        return homeOk;
+      }
+      function extend(way, ahead) {
+        while (Math.abs(way.inputs[way.inputs.length - 1] - home) < Math.abs(ahead)) {
+          if (way.stopped) return false;
+          const from = way.inputs[way.inputs.length - 1];
+          const to = home + Math.sign(ahead) * way.inputs.length * solver.maxStep;
+          const q = Float64Array.from(way.q[way.q.length - 1]);
+          if (!continueTo(from, to, q)) { way.stopped = true; return false; }
+          way.inputs.push(to);
+          way.q.push(q);
+        }
+        return true;
+      }
+      // The position at `input` into q: { ok }, and whether the value was too far to carry.
+      function reach(input, q) {
+        const result = { ok: false, tooFar: false };
+        if (!start()) return result;
+        let ahead = input - home;
+        if (R.periodic_input) ahead = remainderTurn(ahead);
+        const tries = [ahead, ahead - Math.sign(ahead) * 2 * Math.PI];
+        const count = R.periodic_input && ahead !== 0 ? 2 : 1;
+        for (let w = 0; w < count; ++w) {
+          const target = home + tries[w], way = ways[tries[w] < 0 ? 1 : 0];
+          if (!(Math.abs(tries[w]) <= K.most_entry_steps * solver.maxStep)) { if (w === 0) result.tooFar = true; continue; }
+          if (!extend(way, tries[w])) continue;
+          let k = 0;
+          while (k + 1 < way.inputs.length && Math.abs(way.inputs[k + 1] - home) <= Math.abs(tries[w])) ++k;
+          const p = Float64Array.from(way.q[k]);
+          if (!continueTo(way.inputs[k], target, p)) continue;
+          if (target === input || solvePosition(input, p)) { q.set(p); result.ok = true; return result; }
+        }
+        return result;
+      }
+      return { hasHome: start, reach: reach };
+    }
     // The sweep over the page's inputs (sweep.cpp solve_rows, one value at a time): each row
-    // continued from the last, the first from the file's guesses.
+    // continued from the last (the short way round a periodic angle), a row without one
+    // before it (the first, one past a gap) the file's assembly carried from its guesses.
     solver.sweep = function (inputs) {
       const rows = [];
-      let q = Float64Array.from(R.guess), havePrevious = false, qSingular = false, lastOk = null;
+      const assembly = fileAssembly();
+      let q = Float64Array.from(R.guess), havePrevious = false, qSingular = false, lastOk = null, sign = 0;
       const predicted = new Float64Array(n);
       inputs.forEach(function (input, k) {
         let solved = false;
@@ -1353,14 +1453,29 @@
           const before = rows[k - 1], h = input - before.input;
           if (R.rate !== 0 && Math.abs(h) <= solver.maxStep) {
             predict(before, h, predicted);
-            solved = predictAndCorrect(input, predicted, trial);
+            if (sign === 0) sign = jacobianSign(before.input, q);
+            solved = predictAndCorrect(before.input, input, predicted, trial, sign);
           }
-          if (!solved) { trial.set(q); solved = continueTo(before.input, input, trial); }
+          if (!solved) {
+            trial.set(q);
+            const target = R.periodic_input ? before.input + remainderTurn(h) : input;
+            solved = continueTo(before.input, target, trial) && (target === input || solvePosition(input, trial));
+            if (!solved) solved = assembly.reach(input, trial).ok;
+          }
         } else {
-          solved = solvePosition(input, trial);
-          if (!solved && qSingular && lastOk && R.rate !== 0) {
-            predict(lastOk, input - lastOk.input, trial);
+          let fromHome = false;
+          if (assembly.hasHome()) {
+            const reached = assembly.reach(input, trial);
+            fromHome = reached.ok || !reached.tooFar;
+            solved = reached.ok;
+          }
+          if (!fromHome) {
+            trial.set(q);
             solved = solvePosition(input, trial);
+            if (!solved && qSingular && lastOk && R.rate !== 0) {
+              predict(lastOk, input - lastOk.input, trial);
+              solved = solvePosition(input, trial);
+            }
           }
         }
         if (!solved) {
@@ -1370,6 +1485,7 @@
         }
         q = trial;
         const row = motion(input, q);
+        sign = luDeterminantSign(lu, pivots, n);
         qSingular = row.status === 'singular';
         havePrevious = row.status === 'ok';
         if (havePrevious) lastOk = row;
