@@ -74,6 +74,7 @@ std::optional<Resolving> resolving(const Model& model, const MotionTable* rows) 
                    {"crossing_width", solver::kCrossingWidth},
                    {"crossing_jump", solver::kCrossingJump},
                    {"most_entry_steps", solver::kMostEntrySteps},
+                   {"home_search_steps", solver::kHomeSearchSteps},
                    {"clearly_regular_pivot_ratio", solver::kClearlyRegularPivotRatio},
                    {"singular_threshold", solver::kSingularThreshold},
                    {"jacobi_sweeps", solver::kJacobiSweeps},

@@ -124,6 +124,10 @@ constexpr double kCrossingJump = 1e-6;
 /// steps of the largest continuation step, at most this many; farther (a time far on), it
 /// is solved from the guesses as it stands.
 constexpr double kMostEntrySteps = 2000;
+/// Guesses that do not close at their own input value (a copy with other lengths) stand
+/// for the nearest value, in largest continuation steps up to this many each way, at which
+/// they close.
+constexpr int kHomeSearchSteps = 90;
 
 /// Sweeps of one-sided Jacobi before it gives up (it converges in a handful).
 constexpr int kJacobiSweeps = 60;

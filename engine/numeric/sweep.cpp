@@ -72,41 +72,35 @@ Failure group_open(std::size_t group, double residual, bool from_guesses) {
   return why;
 }
 
-// The dyads' signs for a row placed in closed form: the assembly the motion runs on
-// from the last ok row, marched there in small steps (the short way round for an angle),
-// each step placed on the signs nearest the position extrapolated from the steps before
-// (the first from the last ok row's rates). A dyad's sign may change on the way without
-// a jump — through a change point, where two assemblies meet (the parallelogram at 180
-// deg). Where the march cannot pass (a gap), the last ok row's signs; before any ok row,
-// the sketch's.
-void choose_signs(const Kinematics& kinematics, const SolvingPlan& frames, double input, double rate,
-                  double second_rate, bool angle_input, RunCursor& at) {
-  if (!at.have_last_ok) {
-    at.signs.clear();
-    return;
-  }
+// The dyads' signs at `input` marched from a position at `from` (q, with rates qd and qdd
+// at the run's input rates where `rates`) in small steps, `total` on (the short way round
+// for an angle), each step placed on the signs nearest the position extrapolated from the
+// steps before. A dyad's sign may change on the way without a jump — through a change
+// point, where two assemblies meet (the parallelogram at 180 deg). False where the march
+// cannot pass (a gap).
+bool march_signs(const Kinematics& kinematics, const SolvingPlan& frames, double from, const Eigen::VectorXd& q0,
+                 const Eigen::VectorXd* qd, const Eigen::VectorXd* qdd, double rate, double second_rate, double total,
+                 std::vector<int>& signs) {
   const double scale = kinematics.length_scale();
-  at.signs = signs_nearest(frames, at.last_ok_input, at.last_ok_q.data(), scale);
-  double total = input - at.last_ok_input;
-  if (angle_input) total = std::remainder(total, 2 * kPi);  // the same position, the short way
+  signs = signs_nearest(frames, from, q0.data(), scale);
   const int steps = static_cast<int>(std::ceil(std::fabs(total) / (0.5 * kinematics.max_continuation_step())));
-  if (steps > 100000) return;
+  if (steps > 100000) return false;
   const double h = total / std::max(steps, 1);
-  std::vector<Eigen::VectorXd> q{at.last_ok_q};  // the last three positions marched
+  std::vector<Eigen::VectorXd> q{q0};  // the last three positions marched
   std::vector<BodyPose> poses;
-  std::vector<int> signs = at.signs;
+  std::vector<int> marched = signs;
   for (int k = 1; k <= steps; ++k) {
-    const double x = at.last_ok_input + k * h;
+    const double x = from + k * h;
     Eigen::VectorXd predicted(q.back().size());
     for (Eigen::Index i = 0; i < predicted.size(); ++i) {
       const std::size_t m = q.size();
-      predicted[i] = m >= 3   ? 3 * q[m - 1][i] - 3 * q[m - 2][i] + q[m - 3][i]
-                     : rate != 0 ? solver::predict_second_order(at.last_ok_q[i], at.last_ok_qd[i], at.last_ok_qdd[i],
-                                                                rate, second_rate, k * h)
-                                 : q.back()[i];
+      predicted[i] = m >= 3                    ? 3 * q[m - 1][i] - 3 * q[m - 2][i] + q[m - 3][i]
+                     : qd && rate != 0 ? solver::predict_second_order(q0[i], (*qd)[i], (*qdd)[i], rate, second_rate, k * h)
+                     : m == 2                  ? 2 * q[1][i] - q[0][i]
+                                               : q.back()[i];
     }
-    signs = signs_nearest(frames, x, predicted.data(), scale);
-    if (place_dyads(frames, x, poses, &signs) < frames.dyads.size()) return;  // a gap: the last ok row's signs
+    marched = signs_nearest(frames, x, predicted.data(), scale);
+    if (place_dyads(frames, x, poses, &marched) < frames.dyads.size()) return false;
     Eigen::VectorXd placed = predicted;
     unknowns_from_poses(frames, poses, placed.data());
     for (const SolvingPlan::Body& body : frames.bodies)
@@ -115,7 +109,36 @@ void choose_signs(const Kinematics& kinematics, const SolvingPlan& frames, doubl
     q.push_back(placed);
     if (q.size() > 3) q.erase(q.begin());
   }
-  at.signs = signs;
+  signs = marched;
+  return true;
+}
+
+// The dyads' signs for a row placed in closed form: the assembly the motion runs on from
+// the last ok row, marched there (the short way round for an angle); where there is no ok
+// row before it or the march cannot pass (a gap), the file's assembly: marched from the
+// sketch, the short way round or else the long way; where that cannot pass either, the
+// sketch's signs.
+void choose_signs(const Kinematics& kinematics, const SolvingPlan& frames, double input, double rate,
+                  double second_rate, bool angle_input, RunCursor& at) {
+  auto ahead = [&](double from) {
+    const double total = input - from;
+    return angle_input ? std::remainder(total, 2 * kPi) : total;  // the same position, the short way
+  };
+  if (at.have_last_ok && march_signs(kinematics, frames, at.last_ok_input, at.last_ok_q, &at.last_ok_qd,
+                                     &at.last_ok_qdd, rate, second_rate, ahead(at.last_ok_input), at.signs))
+    return;
+  std::vector<BodyPose> poses;
+  Eigen::VectorXd home = kinematics.guess();
+  if (place_dyads(frames, frames.sketch_input, poses) == frames.dyads.size()) {  // the sketch's signs
+    unknowns_from_poses(frames, poses, home.data());
+    const double short_way = ahead(frames.sketch_input);
+    if (march_signs(kinematics, frames, frames.sketch_input, home, nullptr, nullptr, 0, 0, short_way, at.signs)) return;
+    if (angle_input && short_way != 0 &&
+        march_signs(kinematics, frames, frames.sketch_input, home, nullptr, nullptr, 0, 0,
+                    short_way - std::copysign(2 * kPi, short_way), at.signs))
+      return;
+  }
+  at.signs.clear();
 }
 
 // The position h on from one whose rates are qd and qdd at the run's input rates.
@@ -144,13 +167,13 @@ class FileAssembly {
   /// guesses, as they stand).
   bool has_home(Workspace& workspace) { return start(workspace); }
   int home_sign() const { return home_sign_; }
-  double home_input() const { return k_.guess_input(); }
+  double home_input() const { return home_; }
   /// The position at `input` on the file's assembly into q; false where its branch does not
   /// reach the value either way (then *stopped_at: where it stops on the shorter way).
   bool reach(Workspace& workspace, double input, Eigen::VectorXd& q, double* stopped_at, bool* too_far = nullptr) {
     reached_ = false;
     if (!start(workspace)) return false;
-    const double home = k_.guess_input();
+    const double home = home_;
     double ahead = input - home;
     if (k_.periodic_input()) ahead = std::remainder(ahead, 2 * kPi);
     double ways[2] = {ahead, ahead - std::copysign(2 * kPi, ahead)};
@@ -192,9 +215,22 @@ class FileAssembly {
   bool start(Workspace& workspace) {
     if (started_) return home_ok_;
     started_ = true;
+    // Where the guesses do not close at their own value (a copy with other lengths), at
+    // the nearest value in steps of the largest continuation step that they close at.
     Eigen::VectorXd q = k_.guess();
-    const double home = k_.guess_input();
-    home_ok_ = workspace.solve_position(home, q);
+    const double step = k_.max_continuation_step();
+    home_ = k_.guess_input();
+    home_ok_ = workspace.solve_position(home_, q);
+    for (int k = 1; !home_ok_ && k <= solver::kHomeSearchSteps; ++k)
+      for (const double side : {1.0, -1.0}) {
+        q = k_.guess();
+        if (workspace.solve_position(k_.guess_input() + side * k * step, q)) {
+          home_ = k_.guess_input() + side * k * step;
+          home_ok_ = true;
+          break;
+        }
+      }
+    const double home = home_;
     home_sign_ = home_ok_ ? workspace.jacobian_sign(home, q) : 0;
     for (Way& way : ways_) {
       way = Way{};
@@ -205,7 +241,7 @@ class FileAssembly {
   }
   // The way towards home + `ahead` carried past it (true), or as far as it goes (false).
   bool extend(Workspace& workspace, Way& way, double ahead) {
-    const double home = k_.guess_input(), step = k_.max_continuation_step();
+    const double home = home_, step = k_.max_continuation_step();
     while (std::fabs(way.inputs.back() - home) < std::fabs(ahead)) {
       if (way.stopped) return false;
       const double from = way.inputs.back();
@@ -223,6 +259,7 @@ class FileAssembly {
     return true;
   }
   const Kinematics& k_;
+  double home_ = 0;
   bool started_ = false, home_ok_ = false, reached_ = false;
   int home_sign_ = 0;
   Way ways_[2];  ///< Onwards from home, and back.

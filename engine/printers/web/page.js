@@ -1393,14 +1393,20 @@
     // sweep.cpp's FileAssembly: the guesses' position at their own input value, carried
     // each way along the input in steps of the largest continuation step from there.
     function fileAssembly() {
-      let started = false, homeOk = false;
+      let started = false, homeOk = false, home = R.guess_input;
       const ways = [];
-      const home = R.guess_input;
       function start() {
         if (started) return homeOk;
         started = true;
-        const q = Float64Array.from(R.guess);
+        let q = Float64Array.from(R.guess);
         homeOk = solvePosition(home, q);
+        // Guesses that do not close at their own value: the nearest value they close at.
+        for (let k = 1; !homeOk && k <= K.home_search_steps; ++k) {
+          for (const side of [1, -1]) {
+            q = Float64Array.from(R.guess);
+            if (solvePosition(R.guess_input + side * k * solver.maxStep, q)) { home = R.guess_input + side * k * solver.maxStep; homeOk = true; break; }
+          }
+        }
         for (let w = 0; w < 2; ++w) ways.push({ inputs: [home], q: [Float64Array.from(q)], stopped: false });
         return homeOk;
       }
