@@ -118,8 +118,11 @@ constexpr double kLeastStep = 0.02;
 /// is a gap stepped over (two toggles, however close); else the sign changes at one input,
 /// a change point (two branches crossing) if the position does not jump there.
 constexpr double kCrossingWidth = 1e-10;
-/// The largest scaled jump of the position across that width at a change point.
-constexpr double kCrossingJump = 1e-6;
+/// The largest scaled jump of the position across that width at a change point, per
+/// largest continuation step of the input the width spans: a branch through a change
+/// point moves in proportion to the input; two assemblies beside a toggle g away are
+/// sqrt(g * width) apart, far more.
+constexpr double kCrossingJump = 1.0;
 /// A value with no solved value before it is carried from the guesses' own input value in
 /// steps of the largest continuation step, at most this many; farther (a time far on), it
 /// is solved from the guesses as it stands.

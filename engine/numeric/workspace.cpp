@@ -228,8 +228,9 @@ bool Workspace::change_point_between(double from, const Eigen::VectorXd& from_q,
       hi_q = mid_q;
     }
   }
+  const double largest_jump = solver::kCrossingJump * std::fabs(hi - lo) / max_continuation_step();
   for (std::size_t i = 0; i < n_; ++i)
-    if (!(std::fabs(hi_q[Eigen::Index(i)] - lo_q[Eigen::Index(i)]) / k_.column_scale()[i] <= solver::kCrossingJump))
+    if (!(std::fabs(hi_q[Eigen::Index(i)] - lo_q[Eigen::Index(i)]) / k_.column_scale()[i] <= largest_jump))
       return false;  // two assemblies side by side: a toggle
   return true;
 }

@@ -1327,7 +1327,8 @@
         if (!solvePosition(mid, midQ)) return false;
         if (jacobianSign(mid, midQ) === fromSign) { lo = mid; loQ = midQ; } else { hi = mid; hiQ = midQ; }
       }
-      for (let i = 0; i < n; ++i) if (!(Math.abs(hiQ[i] - loQ[i]) / solver.columnScale[i] <= K.crossing_jump)) return false;
+      const largestJump = K.crossing_jump * Math.abs(hi - lo) / solver.maxStep;
+      for (let i = 0; i < n; ++i) if (!(Math.abs(hiQ[i] - loQ[i]) / solver.columnScale[i] <= largestJump)) return false;
       return true;
     }
     // Workspace::continue_to: small predicted steps, halved where refused.
