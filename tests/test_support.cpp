@@ -29,8 +29,7 @@ namespace {
 // Runs a /bin/sh command with stdout and stderr captured in files.
 CommandResult run_captured(std::string command) {
   static int counter = 0;
-  const auto directory = std::filesystem::temp_directory_path() / "kinema_tests";
-  std::filesystem::create_directories(directory);
+  const auto directory = scratch_directory();
   const std::string stem = (directory / ("run" + std::to_string(::getpid()) + "_" + std::to_string(counter++))).string();
   command += " > " + shell_quote(stem + ".out") + " 2> " + shell_quote(stem + ".err");
   const int raw = std::system(command.c_str());
@@ -184,9 +183,28 @@ bool matches_printed(double actual, const std::string& printed) {
   return std::fabs(actual - value) <= tolerance;
 }
 
+namespace {
+
+// Removes the process's scratch directory at exit, once it was made.
+struct ScratchDirectory {
+  std::filesystem::path path =
+      std::filesystem::temp_directory_path() / "kinema_tests" / ("p" + std::to_string(::getpid()));
+  ~ScratchDirectory() {
+    std::error_code ignored;
+    std::filesystem::remove_all(path, ignored);
+  }
+};
+
+}  // namespace
+
+std::filesystem::path scratch_directory() {
+  static const ScratchDirectory scratch;
+  std::filesystem::create_directories(scratch.path);
+  return scratch.path;
+}
+
 std::string write_temporary(const std::string& name, const std::string& text) {
-  const auto directory = std::filesystem::temp_directory_path() / "kinema_tests";
-  std::filesystem::create_directories(directory);
+  const auto directory = scratch_directory();
   const std::string path = (directory / name).string();
   std::ofstream(path) << text;
   return path;

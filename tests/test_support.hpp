@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/model.hpp"
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -94,7 +95,12 @@ kinema::AnalysisOptions with_rates(double rate, double second_rate, unsigned thr
 /// The whole content of a file ("" if it cannot be read).
 std::string read_file(const std::string& path);
 
-/// Writes text to a fresh file in the build tree and returns its path.
+/// This test process's own directory for the files a test writes: ctest runs test cases in
+/// parallel processes, and two cases writing the same name in one shared directory read each
+/// other's files. Removed when the process ends.
+std::filesystem::path scratch_directory();
+
+/// Writes text to a fresh file in the scratch directory and returns its path.
 std::string write_temporary(const std::string& name, const std::string& text);
 
 /// An empty directory of that name under the build tree (removed and made again), for tests that

@@ -63,7 +63,7 @@ TEST_CASE("a formula GiNaC cannot evaluate as written says what is wrong in the 
             {2, {"pole.toml:", "parameter \"k\"", "tan(...) is infinite at the value written"}});
   for (const char* name : {"divides_by_zero", "log_zero", "pole"}) {
     CAPTURE(name);
-    const auto path = std::filesystem::temp_directory_path() / "kinema_tests" / (std::string(name) + ".toml");  // check_bad's
+    const auto path = kinema_test::scratch_directory() / (std::string(name) + ".toml");  // check_bad's
     const auto result = kinema_test::run_kinema({"eval", path.string()});
     CHECK(result.exit_status == 2);
     CHECK(result.err.find("eval()") == std::string::npos);

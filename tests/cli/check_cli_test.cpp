@@ -24,7 +24,7 @@ using kinema::format_round_trip;
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
 
 std::filesystem::path check_directory() {
-  const auto directory = std::filesystem::temp_directory_path() / "kinema_tests" / "check";
+  const auto directory = kinema_test::scratch_directory() / "check";
   std::filesystem::create_directories(directory);
   return directory;
 }

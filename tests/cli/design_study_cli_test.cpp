@@ -21,7 +21,7 @@ namespace {
 using json = nlohmann::json;
 
 std::filesystem::path scratch() {
-  const auto directory = std::filesystem::temp_directory_path() / "kinema_tests" / "design_study_cli";
+  const auto directory = kinema_test::scratch_directory() / "design_study_cli";
   std::filesystem::create_directories(directory);
   return directory;
 }

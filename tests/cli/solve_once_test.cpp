@@ -29,7 +29,7 @@ std::uint64_t values_solved_by(std::vector<std::string> arguments) {
 }  // namespace
 
 TEST_CASE("kinema eval solves each value of an --angle list once, in every format") {
-  const auto directory = std::filesystem::temp_directory_path() / "kinema_tests" / "solve_once";
+  const auto directory = kinema_test::scratch_directory() / "solve_once";
   std::filesystem::create_directories(directory);
   const std::string out = (directory / "out").string();
   for (const char* sample : {"four_bar.toml", "example_4_2_joints.toml", "robot_arm_seed000.toml"}) {
@@ -50,7 +50,7 @@ TEST_CASE("kinema eval solves each value of an --angle list once, in every forma
 }
 
 TEST_CASE("each command works out what its view shows once: design figures, dyads, drawings") {
-  const auto directory = std::filesystem::temp_directory_path() / "kinema_tests" / "analyse_once";
+  const auto directory = kinema_test::scratch_directory() / "analyse_once";
   std::filesystem::create_directories(directory);
   const std::string out = (directory / "out").string();
   const auto work_by = [&](kinema::Work work, const std::vector<std::string>& arguments) {

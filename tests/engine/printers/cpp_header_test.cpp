@@ -157,7 +157,7 @@ const char* status_name(int status) {
 }  // namespace
 
 TEST_CASE("kinema codegen: the header's numbers and singular positions are the engine's, for every sample") {
-  const auto directory = std::filesystem::temp_directory_path() / "kinema_tests" / "codegen";
+  const auto directory = kinema_test::scratch_directory() / "codegen";
   std::filesystem::create_directories(directory);
   std::size_t piston_singular = 0;
   for (const char* sample : kSamples) {
@@ -344,7 +344,7 @@ struct RenamedHeader {
 RenamedHeader four_bar_header_named(const std::string& case_name, const std::array<std::string, 4>& names,
                                     const std::string& header_name) {
   RenamedHeader made;
-  made.directory = std::filesystem::temp_directory_path() / "kinema_tests" / case_name;
+  made.directory = kinema_test::scratch_directory() / case_name;
   std::filesystem::create_directories(made.directory);
   std::string text = kinema_test::four_bar_text();
   for (std::size_t k = 0; k < 4; ++k) text = kinema_test::replaced(std::string(1, "abcd"[k]) + " = ", names[k] + " = ", text);
@@ -418,7 +418,7 @@ TEST_CASE("kinema codegen: macro names of g++ and the C headers, and reserved na
 // refused now (tests/cli/bad_input_test.cpp); what is left, a multi-line title and a path
 // from the command line with a line break and U+202E, goes into the comments on one line.
 TEST_CASE("kinema codegen: a multi-line title and a path with a line break and U+202E give a header that compiles") {
-  const auto directory = std::filesystem::temp_directory_path() / "kinema_tests" / "codegen_text";
+  const auto directory = kinema_test::scratch_directory() / "codegen_text";
   std::filesystem::create_directories(directory);
   const std::string mechanism = (directory / "four\xe2\x80\xae\nbar.toml").string();
   std::ofstream(mechanism) << kinema_test::replaced("title = \"four-bar\"",

@@ -20,7 +20,7 @@ namespace kinema_test {
 namespace {
 
 std::filesystem::path latex_directory() {
-  const auto directory = std::filesystem::temp_directory_path() / "kinema_tests" / "latex";
+  const auto directory = kinema_test::scratch_directory() / "latex";
   std::filesystem::create_directories(directory);
   return directory;
 }

@@ -34,7 +34,7 @@ using kinema_test::methods_of;
 
 // Compiles an align* block in a minimal document; returns the log on failure.
 bool compiles(const std::string& block, const std::string& name, std::string& log) {
-  const auto directory = std::filesystem::temp_directory_path() / "kinema_tests" / "latex";
+  const auto directory = kinema_test::scratch_directory() / "latex";
   std::filesystem::create_directories(directory);
   const std::string tex = (directory / (name + ".tex")).string();
   std::ofstream(tex) << "\\documentclass{article}\n\\usepackage{amsmath}\n\\begin{document}\n"
@@ -300,7 +300,7 @@ TEST_CASE("kinema latex: one results page per requested value, fragments and hos
 }
 
 TEST_CASE("kinema latex: a value that cannot be assembled is an error, nothing written") {
-  const std::string output = (std::filesystem::temp_directory_path() / "kinema_tests" / "never.tex").string();
+  const std::string output = (kinema_test::scratch_directory() / "never.tex").string();
   std::filesystem::remove(output);
   const auto result = kinema_test::run_kinema(
       {"latex", kinema_test::sample("piston_driven_crank.toml"), "--at", "260", "-o", output});
