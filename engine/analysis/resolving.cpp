@@ -72,6 +72,7 @@ std::optional<Resolving> resolving(const Model& model, const MotionTable* rows) 
                    {"step_correction", solver::kStepCorrection},
                    {"least_step", solver::kLeastStep},
                    {"crossing_width", solver::kCrossingWidth},
+                   {"crossing_residual", solver::kCrossingResidual},
                    {"crossing_jump", solver::kCrossingJump},
                    {"most_entry_steps", solver::kMostEntrySteps},
                    {"home_search_steps", solver::kHomeSearchSteps},

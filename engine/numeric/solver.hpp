@@ -118,6 +118,10 @@ constexpr double kLeastStep = 0.02;
 /// is a gap stepped over (two toggles, however close); else the sign changes at one input,
 /// a change point (two branches crossing) if the position does not jump there.
 constexpr double kCrossingWidth = 1e-10;
+/// A value bisected there closes where max |Phi| <= this times the length scale (Newton's
+/// own tolerance with room for rounding): the least miss inside a gap of 1e-6 turn is
+/// about 1e-12 of the lengths.
+constexpr double kCrossingResidual = 1e-13;
 /// The largest scaled jump of the position across that width at a change point, per
 /// largest continuation step of the input the width spans: a branch through a change
 /// point moves in proportion to the input; two assemblies beside a toggle g away are
@@ -127,9 +131,9 @@ constexpr double kCrossingJump = 1.0;
 /// steps of the largest continuation step, at most this many; farther (a time far on), it
 /// is solved from the guesses as it stands.
 constexpr double kMostEntrySteps = 2000;
-/// Guesses that do not close at their own input value (a copy with other lengths) stand
-/// for the nearest value, in largest continuation steps up to this many each way, at which
-/// they close.
+/// Guesses that do not close at their own input value (a copy with other lengths), or close
+/// on a singular position there, stand for the nearest value, in largest continuation
+/// steps up to this many each way, at which they close on a regular one.
 constexpr int kHomeSearchSteps = 90;
 
 /// Sweeps of one-sided Jacobi before it gives up (it converges in a handful).

@@ -185,10 +185,9 @@ class FileAssembly {
         if (w == 0 && too_far) *too_far = true;
         continue;
       }
-      if (!extend(workspace, way, ways[w])) {
-        if (w == 0 && stopped_at) *stopped_at = way.stopped_at;
-        continue;
-      }
+      // The way carried past the target where it goes so far; where it stops before, it
+      // may still reach the target (a limit between the target and the next step's end).
+      extend(workspace, way, ways[w]);
       // The last position on the way not past the target, then on to it.
       std::size_t k = 0;
       while (k + 1 < way.inputs.size() && std::fabs(way.inputs[k + 1] - home) <= std::fabs(ways[w])) ++k;
@@ -215,16 +214,21 @@ class FileAssembly {
   bool start(Workspace& workspace) {
     if (started_) return home_ok_;
     started_ = true;
-    // Where the guesses do not close at their own value (a copy with other lengths), at
-    // the nearest value in steps of the largest continuation step that they close at.
-    Eigen::VectorXd q = k_.guess();
+    // Where the guesses do not close at their own value (a copy with other lengths), or
+    // close on a singular position (a toggle: two assemblies meet, neither is the file's),
+    // at the nearest value in steps of the largest continuation step where they close on a
+    // regular one.
+    Eigen::VectorXd q, slope;
     const double step = k_.max_continuation_step();
+    auto regular_at = [&](double input) {
+      q = k_.guess();
+      return workspace.solve_position(input, q) && workspace.sensitivity(input, q, slope);
+    };
     home_ = k_.guess_input();
-    home_ok_ = workspace.solve_position(home_, q);
+    home_ok_ = regular_at(home_);
     for (int k = 1; !home_ok_ && k <= solver::kHomeSearchSteps; ++k)
       for (const double side : {1.0, -1.0}) {
-        q = k_.guess();
-        if (workspace.solve_position(k_.guess_input() + side * k * step, q)) {
+        if (regular_at(k_.guess_input() + side * k * step)) {
           home_ = k_.guess_input() + side * k * step;
           home_ok_ = true;
           break;
@@ -248,7 +252,14 @@ class FileAssembly {
       const double to = home + std::copysign(double(way.inputs.size()) * step, ahead);
       Eigen::VectorXd q = way.q.back();
       double stuck = from;
-      if (!workspace.continue_to(from, to, q, &stuck)) {
+      bool on = workspace.continue_to(from, to, q, &stuck);
+      if (!on && way.q.size() >= 2) {
+        // The last position kept is singular (a change point on a step's end): from the
+        // one before, over it.
+        q = way.q[way.q.size() - 2];
+        on = workspace.continue_to(way.inputs[way.inputs.size() - 2], to, q, &stuck);
+      }
+      if (!on) {
         way.stopped = true;
         way.stopped_at = stuck;
         return false;

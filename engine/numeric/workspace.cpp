@@ -201,8 +201,15 @@ bool Workspace::predict_and_correct(double from, double to, const Eigen::VectorX
     correction = std::max(correction, off);
     step = std::max(step, std::fabs(predicted[i] - q[i]) / scale);
   }
-  if (!(correction <= solver::kStepCorrection * step)) return false;
   const int to_sign = jacobian_sign(to, corrected_);
+  // Landed on a singular position (the motion's own toggle or change point at `to`): a
+  // branch ending there is a square root, its correction as large as the step, and the
+  // sign says nothing; the step goes no further than it.
+  if (reciprocal_condition() < solver::kSingularThreshold) {
+    q = corrected_;
+    return true;
+  }
+  if (!(correction <= solver::kStepCorrection * step)) return false;
   if (to_sign != from_sign && !change_point_between(from, q, from_sign, to, corrected_, to_sign)) return false;
   q = corrected_;
   return true;
@@ -214,11 +221,16 @@ bool Workspace::change_point_between(double from, const Eigen::VectorXd& from_q,
   double lo = from, hi = to;
   Eigen::VectorXd lo_q = from_q, hi_q = to_q, mid_q;
   const double width = solver::kCrossingWidth * max_continuation_step();
+  const double closes_between = solver::kCrossingResidual * k_.length_scale();
   while (std::fabs(hi - lo) > width) {
     const double mid = 0.5 * (lo + hi);
     if (mid == lo || mid == hi) break;
     mid_q = 0.5 * (lo_q + hi_q);
-    if (!solve_position(mid, mid_q)) return false;  // a value in between does not close: a gap
+    double residual = 0;
+    // A value in between that does not close is a gap. Closing at Newton's stall level
+    // (kRoundingTolerance) is not enough: inside a gap of 1e-4 turn or less the loop misses
+    // by less than that.
+    if (!solve_position(mid, mid_q, nullptr, &residual) || !(residual <= closes_between)) return false;
     const int sign = jacobian_sign(mid, mid_q);
     if (sign == from_sign) {
       lo = mid;
@@ -247,14 +259,27 @@ bool Workspace::continue_to(double from, double to, Eigen::VectorXd& q, double* 
   if (!(std::fabs(to - from) <= solver::kMaxContinuationSteps * max_step)) return refuse(from);
   double t = from;
   double h = std::copysign(std::min(max_step, std::fabs(to - from)), to - from);
+  bool have_regular = false;
   while (t != to) {
     if (std::fabs(to - t) <= std::fabs(h) * (1 + 1e-12)) h = to - t;
     if (t + h == t) return refuse(t);  // the input is too large for a step to change it
     bool accepted = sensitivity(t, q, slope_);
     if (accepted) {
       const int sign = solver::lu_determinant_sign(lu_.data(), pivots_.data(), n_);
+      regular_input_ = t;
+      regular_q_ = q;
+      regular_slope_ = slope_;
+      regular_sign_ = sign;
+      have_regular = true;
       predicted_ = q + slope_ * h;
       accepted = predict_and_correct(t, t + h, predicted_, q, sign);
+    } else if (have_regular) {
+      // A step landed on a singular position (a change point, where the branch goes on):
+      // the step is taken from the last regular position, over it.
+      predicted_ = regular_q_ + regular_slope_ * (t + h - regular_input_);
+      restart_q_ = regular_q_;
+      accepted = predict_and_correct(regular_input_, t + h, predicted_, restart_q_, regular_sign_);
+      if (accepted) q = restart_q_;
     }
     if (accepted) {
       t = (h == to - t) ? to : t + h;

@@ -97,6 +97,11 @@ class Workspace {
   std::vector<double> rhs_;
   std::vector<double> least_squares_matrix_, least_squares_scratch_;  ///< Near-singular Newton steps.
   Eigen::VectorXd step_, trial_, predicted_, slope_, trial_q_, corrected_;
+  /// continue_to's last regular position (input, q, dq/dinput, det sign), and a copy to
+  /// step from it again.
+  Eigen::VectorXd regular_q_, regular_slope_, restart_q_;
+  double regular_input_ = 0;
+  int regular_sign_ = 0;
   bool evaluated_ = false;  ///< The position stage's registers hold (evaluated_input_, q).
   /// solve_jacobian's LU is that of the evaluated position (reset by evaluate_position and
   /// factorise), and whether Phi_q is regular there.

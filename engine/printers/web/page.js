@@ -1308,8 +1308,11 @@
         correction = Math.max(correction, off);
         step = Math.max(step, Math.abs(predicted[i] - q[i]) / solver.columnScale[i]);
       }
-      if (!(correction <= K.step_correction * step)) return false;
       const toSign = jacobianSign(to, trial);
+      // Landed on a singular position (the motion's own toggle or change point): a branch
+      // ending there corrects as much as it steps, and its sign says nothing.
+      if (reciprocalCondition() < K.singular_threshold) { q.set(trial); return true; }
+      if (!(correction <= K.step_correction * step)) return false;
       if (toSign !== fromSign && !changePointBetween(from, q, fromSign, to, Float64Array.from(trial), toSign)) return false;
       q.set(trial);
       return true;
@@ -1324,7 +1327,8 @@
         if (mid === lo || mid === hi) break;
         const midQ = new Float64Array(n);
         for (let i = 0; i < n; ++i) midQ[i] = 0.5 * (loQ[i] + hiQ[i]);
-        if (!solvePosition(mid, midQ)) return false;
+        // Closing at Newton's stall level is not enough: inside a narrow gap the loop misses by less.
+        if (!solvePosition(mid, midQ) || !(residualNorm() <= K.crossing_residual * solver.lengthScale)) return false;
         if (jacobianSign(mid, midQ) === fromSign) { lo = mid; loQ = midQ; } else { hi = mid; hiQ = midQ; }
       }
       const largestJump = K.crossing_jump * Math.abs(hi - lo) / solver.maxStep;
@@ -1337,6 +1341,7 @@
       if (!(Math.abs(to - from) <= K.max_continuation_steps * maxStep)) return false;
       let t = from, h = Math.sign(to - from) * Math.min(maxStep, Math.abs(to - from));
       const predicted = new Float64Array(n);
+      let regular = null;
       while (t !== to) {
         if (Math.abs(to - t) <= Math.abs(h) * (1 + 1e-12)) h = to - t;
         if (t + h === t) return false;
@@ -1344,8 +1349,15 @@
         let accepted = false;
         if (slope) {
           const sign = luDeterminantSign(lu, pivots, n);
+          regular = { input: t, q: Float64Array.from(q), slope: slope, sign: sign };
           for (let i = 0; i < n; ++i) predicted[i] = q[i] + slope[i] * h;
           accepted = predictAndCorrect(t, t + h, predicted, q, sign);
+        } else if (regular) {
+          // A step landed on a singular position (a change point): from the last regular one, over it.
+          for (let i = 0; i < n; ++i) predicted[i] = regular.q[i] + regular.slope[i] * (t + h - regular.input);
+          const restart = Float64Array.from(regular.q);
+          accepted = predictAndCorrect(regular.input, t + h, predicted, restart, regular.sign);
+          if (accepted) q.set(restart);
         }
         if (accepted) {
           t = h === to - t ? to : t + h;
@@ -1399,13 +1411,17 @@
       function start() {
         if (started) return homeOk;
         started = true;
-        let q = Float64Array.from(R.guess);
-        homeOk = solvePosition(home, q);
-        // Guesses that do not close at their own value: the nearest value they close at.
+        let q = null;
+        // Guesses that do not close at their own value, or close on a singular position: the
+        // nearest value they close at on a regular one.
+        const regularAt = function (input) {
+          q = Float64Array.from(R.guess);
+          return solvePosition(input, q) && sensitivity(input, q) !== null;
+        };
+        homeOk = regularAt(home);
         for (let k = 1; !homeOk && k <= K.home_search_steps; ++k) {
           for (const side of [1, -1]) {
-            q = Float64Array.from(R.guess);
-            if (solvePosition(R.guess_input + side * k * solver.maxStep, q)) { home = R.guess_input + side * k * solver.maxStep; homeOk = true; break; }
+            if (regularAt(R.guess_input + side * k * solver.maxStep)) { home = R.guess_input + side * k * solver.maxStep; homeOk = true; break; }
           }
         }
         for (let w = 0; w < 2; ++w) ways.push({ inputs: [home], q: [Float64Array.from(q)], stopped: false });
@@ -1417,7 +1433,13 @@
           const from = way.inputs[way.inputs.length - 1];
           const to = home + Math.sign(ahead) * way.inputs.length * solver.maxStep;
           const q = Float64Array.from(way.q[way.q.length - 1]);
-          if (!continueTo(from, to, q)) { way.stopped = true; return false; }
+          let on = continueTo(from, to, q);
+          if (!on && way.q.length >= 2) {
+            // The last position kept is singular (a change point on a step's end): from the one before.
+            q.set(way.q[way.q.length - 2]);
+            on = continueTo(way.inputs[way.inputs.length - 2], to, q);
+          }
+          if (!on) { way.stopped = true; return false; }
           way.inputs.push(to);
           way.q.push(q);
         }
@@ -1434,7 +1456,8 @@
         for (let w = 0; w < count; ++w) {
           const target = home + tries[w], way = ways[tries[w] < 0 ? 1 : 0];
           if (!(Math.abs(tries[w]) <= K.most_entry_steps * solver.maxStep)) { if (w === 0) result.tooFar = true; continue; }
-          if (!extend(way, tries[w])) continue;
+          // Where the way stops before the target, it may still reach it.
+          extend(way, tries[w]);
           let k = 0;
           while (k + 1 < way.inputs.length && Math.abs(way.inputs[k + 1] - home) <= Math.abs(tries[w])) ++k;
           const p = Float64Array.from(way.q[k]);

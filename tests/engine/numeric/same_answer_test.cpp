@@ -26,15 +26,25 @@ std::vector<double> turn(double first, double last, double step) {
   return inputs;
 }
 
+std::string digits(double value) {
+  std::ostringstream out;
+  out << std::setprecision(17) << value;
+  return out.str();
+}
+
 // The same position: angles a whole number of turns apart, lengths equal (scaled).
 bool same_position(const kinema::Model& model, const kinema::MotionTable& a, std::size_t ra,
                    const kinema::MotionTable& b, std::size_t rb, std::string& why) {
+  // At a singular position (a change point, a toggle) Newton's position is only
+  // sqrt(eps)-accurate, whichever way it came.
+  const double tolerance =
+      a.status(ra) == kinema::Status::singular || b.status(rb) == kinema::Status::singular ? 1e-5 : 1e-8;
   for (std::size_t i = 0; i < a.unknown_count(); ++i) {
     const double x = a.q_column(i)[ra], y = b.q_column(i)[rb];
     const bool angle = model.system.unknowns[i].dimension == kinema::Dimension::angle;
     const double difference = angle ? std::remainder(x - y, 2 * M_PI) : (x - y) / model.kinematics.length_scale();
-    if (!(std::fabs(difference) <= 1e-8)) {
-      why = model.system.unknowns[i].name + ": " + std::to_string(x) + " against " + std::to_string(y);
+    if (!(std::fabs(difference) <= tolerance)) {
+      why = model.system.unknowns[i].name + ": " + digits(x) + " against " + digits(y);
       return false;
     }
   }
@@ -43,7 +53,9 @@ bool same_position(const kinema::Model& model, const kinema::MotionTable& a, std
 
 // Every value of `inputs` asked alone is the sweep's row there: the same status, and where
 // the sweep has a position, the same position.
-void check_alone_equals_sweep(const kinema::Model& model, const std::vector<double>& inputs, const std::string& what) {
+// A sample's own lengths assemble somewhere in the turn (a copy's need not).
+void check_alone_equals_sweep(const kinema::Model& model, const std::vector<double>& inputs, const std::string& what,
+                              bool assembles = true) {
   const kinema::MotionTable sweep = kinema::analyse(model, inputs);
   std::size_t compared = 0;
   for (std::size_t row = 0; row < inputs.size(); ++row) {
@@ -55,7 +67,7 @@ void check_alone_equals_sweep(const kinema::Model& model, const std::vector<doub
     CHECK_MESSAGE(same_position(model, alone, 0, sweep, row, why), why);
     ++compared;
   }
-  CHECK(compared > 0);
+  if (assembles) CHECK_MESSAGE(compared > 0, what);
 }
 
 std::vector<std::string> planar_samples() {
@@ -67,12 +79,6 @@ std::vector<std::string> planar_samples() {
     names.push_back(name);
   }
   return names;
-}
-
-std::string digits(double value) {
-  std::ostringstream out;
-  out << std::setprecision(17) << value;
-  return out.str();
 }
 
 // The sample four-bar with coupler b (mm): below 60 mm a triple rocker that cannot pass
@@ -105,7 +111,8 @@ TEST_CASE("engine/numeric/same answer: every sample's values alone are its sweep
         } catch (const kinema::InputError&) {
           continue;  // a joints file whose lengths kinema took from its sketch: no copies
         }
-        check_alone_equals_sweep(*copy, inputs, name + " with " + parameter.symbol.get_name() + " x" + std::to_string(factor));
+        check_alone_equals_sweep(*copy, inputs, name + " with " + parameter.symbol.get_name() + " x" + std::to_string(factor),
+                                 false);
       }
     }
   }
@@ -150,19 +157,21 @@ TEST_CASE("engine/numeric/same answer: a crank through a change point is not a g
 }
 
 TEST_CASE("engine/numeric/same answer: a vector-loop rocker goes the short way round a turn") {
-  // A triple rocker (a, b, c, d = 100, 50, 90, 60 mm) that moves within about +-63 deg.
+  // A triple rocker (a, b, c, d = 60, 40, 50, 100 mm) that moves within +-62.72 deg: b and
+  // c in line there, a^2 + d^2 - 2 a d cos(theta2) = (b + c)^2. Stepping from 0 to 300 deg
+  // the long way, it stopped at 62.72 deg.
   const char* const text = R"toml(title = "triple rocker"
 [parameters]
-a = "100 mm"
-b = "50 mm"
-c = "90 mm"
-d = "60 mm"
+a = "60 mm"
+b = "40 mm"
+c = "50 mm"
+d = "100 mm"
 [input]
 name = "theta2"
 rate = "1 rad/s"
 [unknowns]
-theta3 = "80 deg"
-theta4 = "100 deg"
+theta3 = "77 deg"
+theta4 = "129 deg"
 [loops]
 ABCD = "a*exp(I*theta2) + b*exp(I*theta3) - c*exp(I*theta4) - d"
 )toml";

@@ -5,6 +5,8 @@
 // that stays open, branch keeping in predict_and_correct and continue_to.
 #include <doctest/doctest.h>
 
+#include <complex>
+
 #include <cmath>
 
 #include "engine/numeric/workspace.hpp"
@@ -230,9 +232,17 @@ TEST_CASE("engine/numeric/workspace: predict_and_correct and continue_to keep th
   // (a step predicted to barely move): refused, as a step over a narrow gap is.
   kept = from;
   CHECK_FALSE(workspace.predict_and_correct(before, t2, from, kept, sign));
-  // The determinant's sign at the end is not the start's (as on the crossed assembly): refused.
-  q = from;
-  CHECK_FALSE(workspace.predict_and_correct(before, t2, open + Eigen::Vector2d(0.001, -0.001), q, -sign));
+  // Open 2 deg before and crossed at t2 (C mirrored across BD): det Phi_q's sign differs,
+  // and no change point lies between (the two assemblies stay apart): not a step on a branch.
+  const std::complex<double> b_pin = std::polar(kFourBar.a, t2), d_pin(kFourBar.d, 0);
+  const std::complex<double> c_pin = b_pin + std::polar(kFourBar.b, open[0]);
+  const std::complex<double> along = (d_pin - b_pin) / std::abs(d_pin - b_pin);
+  const std::complex<double> mirrored = b_pin + along * std::conj((c_pin - b_pin) / along);
+  Eigen::VectorXd crossed(2);
+  crossed << std::arg(mirrored - b_pin), std::arg(mirrored - d_pin);
+  const int crossed_sign = workspace.jacobian_sign(t2, crossed);
+  CHECK(crossed_sign == -sign);
+  CHECK_FALSE(workspace.change_point_between(before, from, sign, t2, crossed, crossed_sign));
 
   // Half a turn in one call, on the open branch all the way.
   q = open;
