@@ -26,6 +26,7 @@ struct RunCursor {
   bool q_singular = false;          ///< q is a singular position (Newton from it has no direction).
   bool any_solved = false;
   int sign = 0;                     ///< det Phi_q's sign at the last row solved ok (0: not known).
+  bool start_given = false;         ///< q was carried to the next row's value by the caller (a chunk's start).
   std::size_t next_batch_try = 0;   ///< Run row: after a refused SIMD block, one by one until here.
   std::size_t batch_rows = 0;       ///< Rows solved in SIMD blocks.
   // Joints and links (rows placed in closed form):
@@ -304,6 +305,8 @@ std::size_t solve_rows(const Kinematics& kinematics, Solvers& solvers, MotionTab
   std::size_t row = first;
   for (; row < stop; ++row) {
     const double input = table.input(row);
+    const bool start_given = at.start_given;  // this row only
+    at.start_given = false;
     if (solvers.simd && at.have_previous && offset + row >= at.next_batch_try && row + BatchWorkspace::kLanes <= limit &&
         table.failure(row - 1).kind == Failure::Kind::none) {
       if (at.sign == 0) at.sign = solvers.scalar.jacobian_sign(table.input(row - 1), at.q);
@@ -371,7 +374,7 @@ std::size_t solve_rows(const Kinematics& kinematics, Solvers& solvers, MotionTab
       // Not a joints file placed dyad by dyad: the file's assembly, carried from its
       // guesses to the value; unless the guesses do not close at their own value, or the
       // value is too far from it to carry them (then Newton from where the run stands).
-      const bool from_home = closed_form == nullptr && solvers.assembly.has_home(solvers.scalar) &&
+      const bool from_home = closed_form == nullptr && !start_given && solvers.assembly.has_home(solvers.scalar) &&
                              (solvers.assembly.reach(solvers.scalar, input, trial, &stopped_at, &too_far) || !too_far);
       if (closed_form != nullptr) choose_signs(kinematics, *closed_form, input, rate, second_rate, angle_input, at);
       if (closed_form != nullptr && !closed_form_position(*closed_form, input, at.signs, trial, dyad)) {
@@ -454,6 +457,7 @@ MotionTable solve_sweep(const Kinematics& kinematics, const std::vector<double>&
     Eigen::VectorXd q = start[0];
     bool ok = assembly.has_home(workspace) ? assembly.reach(workspace, inputs[0], q, nullptr)
                                            : workspace.solve_position(inputs[0], q);
+    start[0] = q;
     for (unsigned t = 1; t < threads && ok; ++t) {
       ok = workspace.continue_to(inputs[begin[t - 1]], inputs[begin[t]], q, nullptr);
       start[t] = q;
@@ -467,6 +471,7 @@ MotionTable solve_sweep(const Kinematics& kinematics, const std::vector<double>&
   auto solve_chunk = [&](unsigned t) {
     Solvers solvers(kinematics, settings.simd, settings.rate);
     cursors[t].q = start[t];
+    cursors[t].start_given = threads > 1;  // carried there along the inputs from the first value's assembly
     solve_rows(kinematics, solvers, table, begin[t], begin[t + 1], begin[t + 1], begin[t], 0, cursors[t]);
   };
   if (threads == 1) {

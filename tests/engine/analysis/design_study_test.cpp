@@ -339,12 +339,14 @@ TEST_CASE("design study across lanes: the scalar run's figures, designs that fai
   // leaves the position free by that over the least singular value: the scalar run's own
   // answer is fixed only to that, so where the run started from rows rounded otherwise
   // (the lanes') it may differ by as much, the rates more. There: 1e-12 over the least
-  // reciprocal condition (a least condition of 1e-4 allows 1e-8).
+  // reciprocal condition (a least condition of 1e-4 allows 1e-8; of 0.05, next to a gap
+  // the scalar run enters from the file's assembly and the lanes by Newton from the last
+  // position, 2e-11).
   std::size_t near_limits = 0;
   check_same_figures(lanes, alone, [&](std::size_t i) {
     const double condition = least_condition(model, designs, i, inputs);
     near_limits += condition < 1e-2;
-    return condition < 1e-2 ? 1e-12 / condition : 1e-12;
+    return 1e-12 / std::min(1.0, condition);
   });
   CHECK(near_limits < designs.size() / 2);  // most compared to 1e-12
 }
@@ -357,7 +359,9 @@ TEST_CASE("design study across lanes: a slider-crank (a length unknown, each lan
   const Designs designs = kinema::design_grid({"a", "e"}, {a, e});
   const std::vector<double> inputs = turn_from(0);
   const auto [lanes, alone] = both_ways(model, designs, inputs);
-  CHECK(lanes.lane_values > designs.size() * (inputs.size() - 1));
+  // Every value after the first in lanes (the first is the file's assembly carried from
+  // the guesses' own value, the scalar run's).
+  CHECK(lanes.lane_values >= designs.size() * (inputs.size() - 1));
   check_same_figures(lanes, alone, [](std::size_t) { return 1e-12; });
 }
 

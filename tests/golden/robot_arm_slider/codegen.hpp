@@ -92,6 +92,51 @@ inline double pivot_ratio(const double* a, std::size_t n, double length_scale) {
   return std::isfinite(ratio) ? ratio : 0.0;
 }
 
+/// The sign of the determinant of an lu_factor result: +1 or -1, 0 where a pivot is 0 or
+/// not finite. Along one branch of the motion it changes only where Phi_q is singular (a
+/// toggle, where two assemblies meet, or a change point), so it certifies a step: a step
+/// whose two ends have other signs has passed such a point, or jumped a gap.
+inline int lu_determinant_sign(const double* a, const std::size_t* pivots, std::size_t n) {
+  int sign = 1;
+  for (std::size_t c = 0; c < n; ++c) {
+    const double pivot = a[c * n + c];
+    if (!(std::fabs(pivot) > 0.0) || !std::isfinite(pivot)) return 0;
+    if (pivot < 0) sign = -sign;
+    if (pivots[c] != c) sign = -sign;
+  }
+  return sign;
+}
+
+/// How far a corrected position may lie from its prediction, beside the step predicted,
+/// for the step to have stayed on its branch: a step over a gap lands on a position the
+/// prediction did not point to.
+constexpr double kStepCorrection = 0.25;
+/// The least step counted (scaled), per largest continuation step of the input: where the
+/// position barely moves (a dwell) the correction is compared with this.
+constexpr double kLeastStep = 0.02;
+/// Where det Phi_q's sign changes within a step, the step is bisected in the input down to
+/// this fraction of the largest continuation step: a value in between that does not close
+/// is a gap stepped over (two toggles, however close); else the sign changes at one input,
+/// a change point (two branches crossing) if the position does not jump there.
+constexpr double kCrossingWidth = 1e-10;
+/// A value bisected there closes where max |Phi| <= this times the length scale (Newton's
+/// own tolerance with room for rounding): the least miss inside a gap of 1e-6 turn is
+/// about 1e-12 of the lengths.
+constexpr double kCrossingResidual = 1e-13;
+/// The largest scaled jump of the position across that width at a change point, per
+/// largest continuation step of the input the width spans: a branch through a change
+/// point moves in proportion to the input; two assemblies beside a toggle g away are
+/// sqrt(g * width) apart, far more.
+constexpr double kCrossingJump = 1.0;
+/// A value with no solved value before it is carried from the guesses' own input value in
+/// steps of the largest continuation step, at most this many; farther (a time far on), it
+/// is solved from the guesses as it stands.
+constexpr double kMostEntrySteps = 2000;
+/// Guesses that do not close at their own input value (a copy with other lengths), or close
+/// on a singular position there, stand for the nearest value, in largest continuation
+/// steps up to this many each way, at which they close on a regular one.
+constexpr int kHomeSearchSteps = 90;
+
 /// Sweeps of one-sided Jacobi before it gives up (it converges in a handful).
 constexpr int kJacobiSweeps = 60;
 /// Two columns count as orthogonal when |cosine of their angle| is at most this.
