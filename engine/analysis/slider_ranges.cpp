@@ -75,7 +75,9 @@ class RunProbe {
       const bool ok = table_.status(row) != Status::unassembled;
       if (ok && !a.any) a.first_ok = a.last_ok = row, a.any = true;
       if (ok) a.last_ok = row;
-      if (!ok) a.all = false;
+      // A gap between two values (however narrow) stops the motion as one that holds a
+      // value: the mechanism no longer runs through the whole run.
+      if (!ok || table_.failure(row).kind == Failure::Kind::resumed_after_gap) a.all = false;
       if (stop == Stop::at_failure && !ok) break;
       if (stop == Stop::after_success && !ok && a.any) break;
       if (stop == Stop::answered && a.any && !a.all) break;

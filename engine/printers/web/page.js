@@ -1535,7 +1535,7 @@
 
   // The sliders: one for each parameter the file writes as a length or an angle, over the
   // range the analysis found (engine/analysis/slider_ranges: where the mechanism assembles at
-  // one value of the run at least, a band on the track where it assembles at every one); the
+  // one value of the run at least, a band on the track where it runs through every one); the
   // file's other parameters follow through their formulas. A move solves every row of the page again (the
   // same input values) and redraws whatever the page draws from rows.
   const R = data.resolve;
@@ -1718,9 +1718,9 @@
       input.max = high;
       input.value = fileValue;
       input.setAttribute('data-parameter', p.name);
-      // The band: where every value of the run assembles (green), the rest of the track where only some do.
+      // The band: where the run goes through every value, no gap between (green); the rest of the track where only some assemble.
       const band = node('span', 'band', track);
-      band.title = 'green: the mechanism assembles at every value of the run; red: at some values only';
+      band.title = 'green: the mechanism runs through every value of the run; red: it assembles at some values only, or a gap lies between two';
       if (p.range.whole_min !== null && p.range.whole_max !== null) {
         const whole = node('span', 'whole', band);
         const at = function (si) { return (100 * (shownValue(si) - low) / (high - low || 1)).toFixed(3) + '%'; };

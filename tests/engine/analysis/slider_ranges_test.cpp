@@ -60,6 +60,25 @@ void check_end(double found, double expected, const std::string& what) {
 
 }  // namespace
 
+TEST_CASE("slider ranges: every value's band ends where a gap opens between two values of the run") {
+  // A run from 1 deg in 3 deg steps has no value at 180 deg: a coupler just short of
+  // d + a - c opens a gap around 180 deg between 178 and 181 deg, each value still
+  // assembling. The motion no longer runs through the run: b's band starts at 0.06 m and
+  // d's ends at b + c - a = 0.16 m (they were 0.0599957 and 0.1600049, gaps stepped over).
+  const kinema::Model model = kinema::make_model(kinema::read_mechanism_file(kinema_test::sample("four_bar.toml")),
+                                                 kinema::DerivationScope::evaluation);
+  std::vector<double> inputs;
+  for (double deg = 1; deg < 360; deg += 3) inputs.push_back(deg * kinema::kPi / 180);
+  kinema::SweepSettings settings;
+  settings.rate = model.system.input.rate_value;
+  const kinema::MotionTable rows = kinema::solve_sweep(model.kinematics, inputs, settings);
+  const kinema::Resolving resolving = *kinema::resolving(model, &rows);
+  for (const kinema::Resolving::Parameter& p : resolving.parameters) {
+    if (p.name == "b") check_end(p.range.whole_min, 0.06, "b, every value");
+    if (p.name == "d") check_end(p.range.whole_max, 0.16, "d, every value");
+  }
+}
+
 TEST_CASE("slider ranges: the four-bar's links end where the loop stops closing; an angle that opens none goes half a turn") {
   // Rows at 0 and 180 deg: the crank pin's distance from the rocker's pivot s runs over
   // [d - a, d + a]; the loop closes where |b - c| <= s <= b + c.
