@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <thread>
 
@@ -170,7 +171,11 @@ class FileAssembly {
   int home_sign() const { return home_sign_; }
   double home_input() const { return home_; }
   /// The position at `input` on the file's assembly into q; false where its branch does not
-  /// reach the value either way (then *stopped_at: where it stops on the shorter way).
+  /// reach the value either way (then *stopped_at: where it stops on the shorter way). A
+  /// periodic angle goes the short way round, unless only the long way reaches the value
+  /// without passing a change point: there the branch through it does not come back to the
+  /// same assembly a turn on (a four-bar with s + l = p + q), and a run from home that
+  /// meets no change point (a sweep over the turn) gives the long way's.
   bool reach(Workspace& workspace, double input, Eigen::VectorXd& q, double* stopped_at, bool* too_far = nullptr) {
     reached_ = false;
     if (!start(workspace)) return false;
@@ -179,6 +184,7 @@ class FileAssembly {
     if (k_.periodic_input()) ahead = std::remainder(ahead, 2 * kPi);
     double ways[2] = {ahead, ahead - std::copysign(2 * kPi, ahead)};
     const int count = k_.periodic_input() && ahead != 0 ? 2 : 1;
+    bool have_crossed = false;
     for (int w = 0; w < count; ++w) {
       const double target = home + ways[w];
       Way& way = ways_[ways[w] < 0 ? 1 : 0];
@@ -192,15 +198,24 @@ class FileAssembly {
       // The last position on the way not past the target, then on to it.
       std::size_t k = 0;
       while (k + 1 < way.inputs.size() && std::fabs(way.inputs[k + 1] - home) <= std::fabs(ways[w])) ++k;
-      q = way.q[k];
+      Eigen::VectorXd p = way.q[k];
       double stuck = way.inputs[k];
-      if (!workspace.continue_to(way.inputs[k], target, q, &stuck)) {
+      const std::size_t passed = workspace.change_points_passed();
+      if (!workspace.continue_to(way.inputs[k], target, p, &stuck)) {
         if (w == 0 && stopped_at) *stopped_at = stuck;
         continue;
       }
-      if (target == input || workspace.solve_position(input, q)) return reached_ = true;
+      if (target != input && !workspace.solve_position(input, p)) continue;
+      const bool crossed = way.crossed_at <= k || workspace.change_points_passed() != passed;
+      if (!crossed || have_crossed) {
+        if (crossed) continue;  // the short way's, kept below
+        q = p;
+        return reached_ = true;
+      }
+      q = p;  // through a change point: kept unless the long way reaches without one
+      have_crossed = true;
     }
-    return false;
+    return reached_ = have_crossed;
   }
   /// The last reach() landed.
   bool reached() const { return reached_; }
@@ -211,6 +226,8 @@ class FileAssembly {
     std::vector<Eigen::VectorXd> q;
     bool stopped = false;
     double stopped_at = 0;
+    /// The first position kept past a change point (past the end: none).
+    std::size_t crossed_at = std::numeric_limits<std::size_t>::max();
   };
   bool start(Workspace& workspace) {
     if (started_) return home_ok_;
@@ -253,6 +270,7 @@ class FileAssembly {
       const double to = home + std::copysign(double(way.inputs.size()) * step, ahead);
       Eigen::VectorXd q = way.q.back();
       double stuck = from;
+      const std::size_t passed = workspace.change_points_passed();
       bool on = workspace.continue_to(from, to, q, &stuck);
       if (!on && way.q.size() >= 2) {
         // The last position kept is singular (a change point on a step's end): from the
@@ -265,6 +283,7 @@ class FileAssembly {
         way.stopped_at = stuck;
         return false;
       }
+      if (workspace.change_points_passed() != passed) way.crossed_at = std::min(way.crossed_at, way.inputs.size());
       way.inputs.push_back(to);
       way.q.push_back(q);
     }

@@ -210,7 +210,10 @@ bool Workspace::predict_and_correct(double from, double to, const Eigen::VectorX
     return true;
   }
   if (!(correction <= solver::kStepCorrection * step)) return false;
-  if (to_sign != from_sign && !change_point_between(from, q, from_sign, to, corrected_, to_sign)) return false;
+  if (to_sign != from_sign) {
+    if (!change_point_between(from, q, from_sign, to, corrected_, to_sign)) return false;
+    ++change_points_passed_;
+  }
   q = corrected_;
   return true;
 }

@@ -72,6 +72,8 @@ class Workspace {
   /// between (a value in between that does not close, or two assemblies side by side).
   bool change_point_between(double from, const Eigen::VectorXd& from_q, int from_sign, double to,
                             const Eigen::VectorXd& to_q, int to_sign);
+  /// Steps accepted through a change point so far (predict_and_correct).
+  std::size_t change_points_passed() const { return change_points_passed_; }
   /// The same at the position motion_into() last solved rates at.
   int factorised_sign() const { return solver::lu_determinant_sign(lu_.data(), pivots_.data(), n_); }
   /// Largest input step continuation takes at once (2 deg, or 1 % of the length scale).
@@ -101,6 +103,7 @@ class Workspace {
   /// step from it again.
   Eigen::VectorXd regular_q_, regular_slope_, restart_q_;
   double regular_input_ = 0;
+  std::size_t change_points_passed_ = 0;
   int regular_sign_ = 0;
   bool evaluated_ = false;  ///< The position stage's registers hold (evaluated_input_, q).
   /// solve_jacobian's LU is that of the evaluated position (reset by evaluate_position and

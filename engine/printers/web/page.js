@@ -1297,6 +1297,7 @@
     }
     // Workspace::predict_and_correct: Newton from the prediction, refused on another branch
     // or past a toggle; q holds the position the step starts from (at `from`, sign fromSign).
+    let changePointsPassed = 0;  // Workspace::change_points_passed
     function predictAndCorrect(from, to, predicted, q, fromSign) {
       const trial = corrected;
       trial.set(predicted);
@@ -1313,7 +1314,10 @@
       // ending there corrects as much as it steps, and its sign says nothing.
       if (reciprocalCondition() < K.singular_threshold) { q.set(trial); return true; }
       if (!(correction <= K.step_correction * step)) return false;
-      if (toSign !== fromSign && !changePointBetween(from, q, fromSign, to, Float64Array.from(trial), toSign)) return false;
+      if (toSign !== fromSign) {
+        if (!changePointBetween(from, q, fromSign, to, Float64Array.from(trial), toSign)) return false;
+        ++changePointsPassed;
+      }
       q.set(trial);
       return true;
     }
@@ -1424,7 +1428,7 @@
             if (regularAt(R.guess_input + side * k * solver.maxStep)) { home = R.guess_input + side * k * solver.maxStep; homeOk = true; break; }
           }
         }
-        for (let w = 0; w < 2; ++w) ways.push({ inputs: [home], q: [Float64Array.from(q)], stopped: false });
+        for (let w = 0; w < 2; ++w) ways.push({ inputs: [home], q: [Float64Array.from(q)], stopped: false, crossedAt: Infinity });
         return homeOk;
       }
       function extend(way, ahead) {
@@ -1433,6 +1437,7 @@
           const from = way.inputs[way.inputs.length - 1];
           const to = home + Math.sign(ahead) * way.inputs.length * solver.maxStep;
           const q = Float64Array.from(way.q[way.q.length - 1]);
+          const passed = changePointsPassed;
           let on = continueTo(from, to, q);
           if (!on && way.q.length >= 2) {
             // The last position kept is singular (a change point on a step's end): from the one before.
@@ -1440,12 +1445,14 @@
             on = continueTo(way.inputs[way.inputs.length - 2], to, q);
           }
           if (!on) { way.stopped = true; return false; }
+          if (changePointsPassed !== passed) way.crossedAt = Math.min(way.crossedAt, way.inputs.length);
           way.inputs.push(to);
           way.q.push(q);
         }
         return true;
       }
       // The position at `input` into q: { ok }, and whether the value was too far to carry.
+      // The short way round, unless only the long way reaches it without a change point.
       function reach(input, q) {
         const result = { ok: false, tooFar: false };
         if (!start()) return result;
@@ -1461,8 +1468,14 @@
           let k = 0;
           while (k + 1 < way.inputs.length && Math.abs(way.inputs[k + 1] - home) <= Math.abs(tries[w])) ++k;
           const p = Float64Array.from(way.q[k]);
+          const passed = changePointsPassed;
           if (!continueTo(way.inputs[k], target, p)) continue;
-          if (target === input || solvePosition(input, p)) { q.set(p); result.ok = true; return result; }
+          if (target !== input && !solvePosition(input, p)) continue;
+          const crossed = way.crossedAt <= k || changePointsPassed !== passed;
+          if (crossed && result.ok) continue;  // the short way's, kept
+          q.set(p);
+          result.ok = true;
+          if (!crossed) return result;
         }
         return result;
       }

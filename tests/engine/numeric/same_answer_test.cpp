@@ -156,6 +156,20 @@ TEST_CASE("engine/numeric/same answer: a crank through a change point is not a g
   CHECK(table.failure(1).kind == kinema::Failure::Kind::none);
 }
 
+TEST_CASE("engine/numeric/same answer: past a change point a turn does not come back to its assembly; a value alone is the sweep's") {
+  // d = 80 mm: s + l = 40 + 120 = p + q = 80 + 80, the branches cross at 0 deg. The branch
+  // through it comes back a turn on on the other assembly, so the short way round from the
+  // guesses' value (through 0 deg) and a sweep over the turn (which meets 0 deg only at its
+  // start) disagreed from 221 deg on: a value alone is carried the way that meets no change
+  // point.
+  std::string text = kinema_test::read_file(kinema_test::sample("four_bar.toml"));
+  const std::string from = "d = \"100 mm\"";
+  text.replace(text.find(from), from.size(), "d = \"80 mm\"");
+  const kinema::Model model = kinema::make_model(kinema::read_mechanism_text(text, "d80.toml"));
+  check_alone_equals_sweep(model, turn(0, 359, 1), "d = 80 mm");
+  check_alone_equals_sweep(model, turn(-180, 180, 15), "d = 80 mm");
+}
+
 TEST_CASE("engine/numeric/same answer: a vector-loop rocker goes the short way round a turn") {
   // A triple rocker (a, b, c, d = 60, 40, 50, 100 mm) that moves within +-62.72 deg: b and
   // c in line there, a^2 + d^2 - 2 a d cos(theta2) = (b + c)^2. Stepping from 0 to 300 deg
