@@ -1,5 +1,6 @@
 #include "cli/problems_command.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -34,8 +35,17 @@ int run_problems(const ProblemsOptions& options) {
   }
   const Model model = make_model(mechanism);  // full scope: the keys print its formulas
   const ProblemSet set = make_problem_set(model, *mechanism.problem, options.count, options.seed);
-  const std::string source_name = std::filesystem::path(options.file).filename().string();
+  std::string source_name = std::filesystem::path(options.file).filename().string();
   std::vector<NamedFile> files = problem_set_files(set, source_name, mechanism.title);
+  // The source's copy gets a name no generated file has (a mechanism file named class.json
+  // would replace the class table, and check would then read the mechanism as one).
+  const auto generated = [&files](const std::string& name) {
+    return std::any_of(files.begin(), files.end(), [&name](const NamedFile& file) { return file.first == name; });
+  };
+  if (generated(source_name)) {
+    while (generated(source_name)) source_name = "source_" + source_name;
+    files = problem_set_files(set, source_name, mechanism.title);
+  }
   std::ifstream source(options.file, std::ios::binary);
   std::ostringstream text;
   text << source.rdbuf();
@@ -46,6 +56,14 @@ int run_problems(const ProblemsOptions& options) {
   std::filesystem::create_directories(directory, error);
   if (!std::filesystem::is_directory(directory)) {
     throw OutputError(options.output_dir + ": cannot make the directory" + (error ? " (" + error.message() + ")" : ""));
+  }
+  for (const auto& [name, content] : files) {  // nothing generated replaces the file read
+    std::error_code same;
+    if (name != source_name && std::filesystem::equivalent(directory / name, options.file, same)) {
+      throw InputError(terminal_text(options.file) + ": writing the set into " + terminal_text(options.output_dir) +
+                       " would replace this file with the set's " + terminal_text(name) +
+                       "; give another directory (-o) or rename the file");
+    }
   }
   for (const auto& [name, content] : files) {
     const std::filesystem::path path = directory / name;

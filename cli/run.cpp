@@ -64,6 +64,11 @@ const Printer& printer(PrintKind kind, const std::string& name) {
 // A circuit as the command line asks for it (engine/run/circuit_run words its messages so).
 const CircuitAsked kCommandLineCircuit{"--circuit", "--circuit 1", "--angle"};
 
+// Rows a page holds: each is drawn and plotted in the browser, and the file grows by about a
+// kilobyte a row. A circuit on a page is held to them too.
+constexpr std::size_t kMaxPageRows = 20000;
+const CircuitAsked kPageCircuit{"--circuit", "--circuit 1", "--angle", kMaxPageRows, "a page"};
+
 const ResultsPrinter& results_printer(const std::string& format) {
   const ResultsPrinter* found = find_results_printer(format);
   if (!found) throw InputError("no output format \"" + format + "\"");
@@ -107,9 +112,6 @@ InputValues sweep_values(const ConstraintSystem& m, const std::string& sweep, st
   return parse_sweep(sweep, unit, max_values);
 }
 
-// Rows a page holds: each is drawn and plotted in the browser, and the file grows by about a
-// kilobyte a row.
-constexpr std::size_t kMaxPageRows = 20000;
 
 // kinema page: the rows solved once (a sweep, a circuit, or by default the worked solution's
 // plotting range: a turn of a crank from the file's value), then the page printed over them.
@@ -119,7 +121,7 @@ void write_page_file(const Model& model, const std::string& sweep, const std::st
   std::optional<Circuit> circuit;
   MotionTable swept;
   if (!circuit_step.empty()) {
-    circuit = solve_circuit_from(model, circuit_step, inputs, kCommandLineCircuit);
+    circuit = solve_circuit_from(model, circuit_step, inputs, kPageCircuit);
   } else {
     if (!sweep.empty() && !inputs.empty()) throw InputError("page: give --sweep or --angle (the start of the default turn), not both");
     const double first = !inputs.empty() ? inputs.front() : m.input.values.empty() ? 0.0 : m.input.values.front();
@@ -478,6 +480,7 @@ int write_study(const Model& model, const CommandLine& line, const InputValues& 
   StudyOptions options;
   options.threads = line.threads > 0 ? line.threads : std::max(1u, std::thread::hardware_concurrency());
   const Designs designs = design_grid(names, axes);
+  check_study_size(designs.size(), run_inputs.size(), "--vary");
   const StudyResults results = run_design_study(model, designs, run_inputs.to_vector(), options);
   write_output(print_study_table(study_columns(m, designs, results, StudyUnits::file), line.format, line.precision),
                line.output_path);

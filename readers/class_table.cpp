@@ -2,10 +2,12 @@
 
 #include <cmath>
 #include <filesystem>
+#include <set>
 
 #include <nlohmann/json.hpp>
 
 #include "engine/base/errors.hpp"
+#include "engine/base/units.hpp"
 #include "engine/base/user_text.hpp"
 #include "readers/file_reader.hpp"
 
@@ -42,6 +44,19 @@ class ClassTableReader {
     return value.get<double>();
   }
 
+  // A unit kinema reads ("m", "rpm", "deg"), or none: the table's text reaches reports
+  // and messages, so nothing else is taken from it.
+  std::string unit(const json& value, const std::string& where) const {
+    const std::string written = text(value, where);
+    if (written.empty()) return written;
+    try {
+      parse_quantity("1 " + written);
+    } catch (const Error&) {
+      fail(where, "\"" + one_line(written) + "\" is not a unit kinema reads (" + understood_units() + ")");
+    }
+    return written;
+  }
+
   long whole_number(const json& value, const std::string& where) const {
     if (!value.is_number_integer()) fail(where, "expected a whole number");
     return value.get<long>();
@@ -74,7 +89,7 @@ class ClassTableReader {
         const std::string at = named + ".parameters." + name;
         ClassParameter p{name, number(member(value, "si", at), at + ".si"), "", ""};
         if (value.contains("value")) p.value = text(value.at("value"), at + ".value");
-        if (value.contains("unit")) p.unit = text(value.at("unit"), at + ".unit");
+        if (value.contains("unit")) p.unit = unit(value.at("unit"), at + ".unit");
         variant.parameters.push_back(std::move(p));
       }
     }
@@ -107,8 +122,14 @@ class ClassTableReader {
     table.tolerance = tolerance(root);
     const json& variants = member(root, "variants", "the top level");
     if (!variants.is_array() || variants.empty()) fail("variants", "expected an array of variants");
-    for (std::size_t i = 0; i < variants.size(); ++i)
-      table.variants.push_back(variant(variants[i], "variants[" + std::to_string(i) + "]"));
+    std::set<long> numbers;
+    for (std::size_t i = 0; i < variants.size(); ++i) {
+      const std::string where = "variants[" + std::to_string(i) + "]";
+      table.variants.push_back(variant(variants[i], where));
+      if (!numbers.insert(table.variants.back().number).second)
+        fail(where + ".variant", "variant " + std::to_string(table.variants.back().number) +
+                                     " is given twice; each variant has one number");
+    }
     return table;
   }
 

@@ -220,6 +220,11 @@ struct ProblemConditions {
   SourceLocation grashof_where, transmission_where, toggle_where, min_answer_where;
 };
 
+/// Most values a problem is asked at, and most quantities it asks for: each variant's sheet
+/// and key give every one at every value, and each value is solved for every draw.
+constexpr std::size_t kMaxProblemAt = 24;
+constexpr std::size_t kMaxProblemFind = 24;
+
 /// The [problem] table: what a problem asks and, for a problem set, what varies.
 struct Problem {
   std::string statement;

@@ -36,7 +36,7 @@ class ProblemReader {
     problem.statement = r_.optional_string(table, "statement", "");
     read_find(table, problem);
     if (FileReader::has(table, "at")) {
-      for (const Node* value : list(FileReader::at(table, "at"), "at", "[\"30 deg\", \"120 deg\"]"))
+      for (const Node* value : list(FileReader::at(table, "at"), "at", "[\"30 deg\", \"120 deg\"]", kMaxProblemAt))
         problem.at.push_back({r_.string_value(*value, "at"), r_.where(*value)});
     }
     if (FileReader::has(table, "vary")) read_vary(FileReader::at(table, "vary"), problem);
@@ -48,10 +48,14 @@ class ProblemReader {
   const FileReader& r_;
   Mechanism& mechanism_;
 
-  // A non-empty list's entries.
-  std::vector<const Node*> list(const Node& value, const std::string& key, const std::string& example) const {
+  // A non-empty list's entries, at most `most` of them (checked before any is solved).
+  std::vector<const Node*> list(const Node& value, const std::string& key, const std::string& example,
+                                std::size_t most) const {
     if (!value.is_array() || value.as_array()->empty())
       r_.fail(value, "[problem] " + key + " must be a list of one or more entries, e.g. " + key + " = " + example);
+    if (value.as_array()->size() > most)
+      r_.fail(value, "[problem] " + key + " lists " + std::to_string(value.as_array()->size()) + " entries; a problem has at most " +
+                         std::to_string(most) + " (each is answered on every variant's sheet and key): split it into several problems");
     std::vector<const Node*> entries;
     for (const auto& entry : *value.as_array()) entries.push_back(&entry);
     return entries;
@@ -61,7 +65,7 @@ class ProblemReader {
     if (!FileReader::has(table, "find"))
       throw InputError(problem.where.str() + ": [problem] needs find = [...], the quantities to find, e.g. "
                        "find = [\"omega3\", \"alpha3\"]");
-    for (const Node* value : list(FileReader::at(table, "find"), "find", "[\"omega3\", \"alpha3\"]")) {
+    for (const Node* value : list(FileReader::at(table, "find"), "find", "[\"omega3\", \"alpha3\"]", kMaxProblemFind)) {
       if (!value->is_string()) r_.fail(*value, "[problem] find lists names of quantities as strings, e.g. \"omega3\"");
       problem.find.push_back({value->as_string()->get(), r_.where(*value)});
     }
@@ -139,8 +143,9 @@ class ProblemReader {
     }
     if (FileReader::has(table, "min_answer")) {
       const Node& value = FileReader::at(table, "min_answer");
-      if (!value.is_number() || !(value.value<double>().value_or(0) > 0))
-        r_.fail(value, "min_answer must be a positive number (in the answers' output units), e.g. min_answer = 0.01");
+      const double least = value.value<double>().value_or(0);
+      if (!value.is_number() || !(least > 0) || !std::isfinite(least))
+        r_.fail(value, "min_answer must be a positive finite number (in the answers' output units), e.g. min_answer = 0.01");
       c.min_answer = value.value<double>().value_or(0);
       c.min_answer_where = r_.where(value);
     }

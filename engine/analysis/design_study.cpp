@@ -444,11 +444,29 @@ StudyResults sized_results(const Model& model, std::size_t designs, const StudyO
 
 }  // namespace
 
+void check_study_size(std::size_t designs, std::size_t values, const std::string& asked) {
+  if (designs > kMaxStudyDesigns)
+    throw InputError(asked + ": " + std::to_string(designs) + " designs, more than the " + std::to_string(kMaxStudyDesigns) +
+                     " a study may have; vary fewer parameters or give larger steps");
+  if (values != 0 && designs > kMaxStudyValues / values)
+    throw InputError(asked + ": " + std::to_string(designs) + " designs of " + std::to_string(values) + " values each, " +
+                     "more than the " + std::to_string(kMaxStudyValues) + " values a study may solve; give fewer designs "
+                     "or a larger step of the run");
+}
+
 Designs design_grid(const std::vector<std::string>& names, const std::vector<std::vector<double>>& axes) {
   Designs grid;
   grid.names = names;
   std::size_t count = axes.empty() ? 0 : 1;
-  for (const std::vector<double>& axis : axes) count *= axis.size();
+  for (const std::vector<double>& axis : axes) {  // counted without overflow, refused before any is held
+    if (!axis.empty() && count > kMaxStudyDesigns / axis.size()) {
+      std::string sizes;
+      for (const std::vector<double>& a : axes) sizes += (sizes.empty() ? "" : " x ") + std::to_string(a.size());
+      throw InputError("a design study of " + sizes + " designs: more than the " + std::to_string(kMaxStudyDesigns) +
+                       " a study may have; vary fewer parameters or give larger steps");
+    }
+    count *= axis.size();
+  }
   grid.values.assign(axes.size(), std::vector<double>(count));
   for (std::size_t i = 0; i < count; ++i) {
     std::size_t rest = i;
@@ -559,6 +577,7 @@ std::vector<StudyColumn> study_columns(const ConstraintSystem& system, const Des
 StudyResults run_design_study(const Model& model, const Designs& designs, const std::vector<double>& inputs,
                               const StudyOptions& options) {
   varied_parameters(model.system, designs);  // refused before anything else
+  check_study_size(designs.size(), inputs.size(), "a design study");
   const Model base = with_parameters(model, {});
   const StudySetup setup = set_up(base, designs, inputs, options);
   const std::size_t count = designs.size();

@@ -29,8 +29,18 @@ struct Designs {
   std::size_t size() const { return values.empty() ? 0 : values.front().size(); }
 };
 
+/// Most designs in a study, and most values a study solves in all (designs times the run's
+/// values): each design's values of every parameter are held, and a study is solved before
+/// its table is written, so a typo's 10^8 designs are refused before anything is held.
+constexpr std::size_t kMaxStudyDesigns = 1'000'000;
+constexpr std::size_t kMaxStudyValues = 100'000'000;
+
+/// InputError unless `designs` designs over `values` values each are within the bounds
+/// above (the caller's words: "--vary", "study").
+void check_study_size(std::size_t designs, std::size_t values, const std::string& asked);
+
 /// Every combination of the axes' values (axes[k] for names[k]), the first name varying
-/// slowest.
+/// slowest; InputError for more than kMaxStudyDesigns of them.
 Designs design_grid(const std::vector<std::string>& names, const std::vector<std::vector<double>>& axes);
 
 /// The figures a study can compute (StudyOptions::figures asks for a set of them).

@@ -19,7 +19,9 @@ unsigned long next_code_point(const std::string& text, std::size_t& i) {
   return value;
 }
 
-bool is_control_character(unsigned long c) { return c < 0x20 || (c >= 0x7F && c <= 0x9F); }
+bool is_control_character(unsigned long c) {
+  return c < 0x20 || (c >= 0x7F && c <= 0x9F) || c == 0x2028 || c == 0x2029;
+}
 
 bool is_bidi_control(unsigned long c) {
   return c == 0x061C || c == 0x200E || c == 0x200F || (c >= 0x202A && c <= 0x202E) || (c >= 0x2066 && c <= 0x2069);

@@ -13,7 +13,8 @@ namespace kinema {
 /// that are not UTF-8 (a library caller's text need not be).
 unsigned long next_code_point(const std::string& text, std::size_t& i);
 
-/// C0 and C1 control characters and DEL (line breaks and tabs among them).
+/// C0 and C1 control characters and DEL (line breaks and tabs among them), and the line
+/// and paragraph separators U+2028 and U+2029, which break a line as a line feed does.
 bool is_control_character(unsigned long c);
 
 /// The bidirectional controls: U+061C, U+200E, U+200F, U+202A-U+202E, U+2066-U+2069.

@@ -125,6 +125,11 @@ struct Evaluated {
 Evaluated& evaluated_at(std::map<double, Evaluated>& cache, const CheckSubject& subject, const AnswerVerdict& verdict) {
   const auto found = cache.find(verdict.at_si);
   if (found != cache.end()) return found->second;
+  try {  // one angle limit for every command: what eval refuses is not graded
+    check_input_range(subject.model->system, std::vector<double>{verdict.at_si});
+  } catch (const InputError& error) {
+    throw InputError(verdict.where.str() + ": " + verdict.quantity + " at " + verdict.at + ": " + error.what());
+  }
   const EvaluationPoint point{subject.model, verdict.at_si, subject.rate, subject.second_rate, subject.rate_text};
   SolvedRow correct;
   try {

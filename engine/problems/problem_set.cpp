@@ -112,6 +112,7 @@ void asked_values(const ConstraintSystem& system, const Problem& problem, std::v
   for (const ProblemAt& value : problem.at) {
     try {
       at.push_back(parse_input_value(system, value.text));
+      check_input_range(system, std::vector<double>{at.back()});
     } catch (const std::exception& error) {
       throw InputError(value.where.str() + ": [problem] at = \"" + value.text + "\": " + error.what());
     }
@@ -126,6 +127,10 @@ void asked_values(const ConstraintSystem& system, const Problem& problem, std::v
   if (at.empty())
     throw InputError(problem.where.str() + ": [problem] needs at = [...], the input values the answers are asked at "
                      "(the file gives none), e.g. at = [\"30 deg\"]");
+  if (at.size() > kMaxProblemAt)
+    throw InputError(problem.where.str() + ": [problem] is asked at the file's " + std::to_string(at.size()) +
+                     " input values; a problem has at most " + std::to_string(kMaxProblemAt) +
+                     ": give at = [...] with the values the answers are asked at");
 }
 
 // Refuses conditions the mechanism has no figure for, before any draw.
@@ -332,16 +337,19 @@ ProblemSet make_problem_set(const Model& model, const Problem& problem, std::siz
   set.tolerance = {problem.relative_tolerance, problem.sig_figs};
   std::map<std::string, std::size_t> refused;
   ProblemDraws draws(seed);
+  std::size_t draws_since_met = 0;
   while (set.variants.size() < count) {
-    if (set.draws >= count * kMaxDrawsPerVariant) {
+    if (draws_since_met >= kMaxDrawsPerVariant) {
       std::string why;
       for (const std::string& name : condition_names(problem))
         if (refused.count(name)) why += (why.empty() ? "" : ", ") + name + " " + std::to_string(refused[name]);
       throw InputError(problem.where.str() + ": [problem]: only " + std::to_string(set.variants.size()) + " of " +
                        std::to_string(count) + " variants met the conditions in " + std::to_string(set.draws) +
-                       " draws (refused by: " + why + "); widen the ranges or loosen [problem.conditions]");
+                       " draws, the last " + std::to_string(kMaxDrawsPerVariant) + " in a row meeting none (refused by: " +
+                       why + "); widen the ranges or loosen [problem.conditions]");
     }
     ++set.draws;
+    ++draws_since_met;
     Draw draw = draw_values(targets, draws);
     ProblemVariant variant;
     variant.model = with_parameters(model, draw.parameters);
@@ -357,6 +365,7 @@ ProblemSet make_problem_set(const Model& model, const Problem& problem, std::siz
       for (const std::string& name : failed) ++refused[name];
       continue;
     }
+    draws_since_met = 0;
     variant.number = static_cast<int>(set.variants.size()) + 1;
     variant.given = std::move(draw.given);
     variant.answers = problem_answers(variant.model, problem.find, variant.at, variant.at_texts);

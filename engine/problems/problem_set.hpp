@@ -81,7 +81,8 @@ struct ProblemSet {
   std::vector<std::pair<std::string, std::size_t>> redrawn;
 };
 
-/// Most draws per asked variant before the set is refused as unsatisfiable.
+/// Most draws in a row that meet no condition before the set is refused as unsatisfiable
+/// (conditions nothing meets are told in a second, not after count times as many).
 constexpr std::size_t kMaxDrawsPerVariant = 200;
 /// Most variants in a set (each is a LaTeX sheet and key).
 constexpr std::size_t kMaxProblemVariants = 1000;

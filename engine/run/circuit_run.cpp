@@ -42,14 +42,18 @@ Circuit solve_circuit_from(const Model& model, const std::string& step_text, con
   // refused before the walk (its rows would be computed first).
   const std::size_t unknowns = std::max<std::size_t>(1, m.unknowns.size());
   settings.max_rows = std::min(kMaxCircuitRows, kMaxCircuitRowUnknowns / unknowns);
+  const bool holder_bound = asked.max_rows != 0 && asked.max_rows < settings.max_rows;
+  if (holder_bound) settings.max_rows = asked.max_rows;
+  const std::string bound_reason =
+      holder_bound ? " rows " + asked.rows_holder + " may hold"
+                   : " rows a circuit of " + std::to_string(unknowns) + " unknowns may have (" +
+                         std::to_string(kMaxCircuitRowUnknowns) + " rows times unknowns: each row solves them all)";
   if (m.input.dimension == Dimension::angle && 2 * kPi / settings.step > double(settings.max_rows)) {
     throw InputError(asked.step + " " + step_text + ": a turn of the input is " +
                      std::to_string(static_cast<unsigned long long>(std::min(std::ceil(2 * kPi / settings.step), 1e18))) +
-                     " rows, more than the " +
-                     std::to_string(settings.max_rows) + " rows a circuit of " + std::to_string(unknowns) +
-                     " unknowns may have (" + std::to_string(kMaxCircuitRowUnknowns) +
-                     " rows times unknowns: each row solves them all); give a step of at least " +
-                     format_significant(1.005 * 360.0 / double(settings.max_rows), 3) + " deg");
+                     " rows, more than the " + std::to_string(settings.max_rows) + bound_reason +
+                     "; give a step of at least " + format_significant(1.005 * 360.0 / double(settings.max_rows), 3) +
+                     " deg");
   }
   const Circuit circuit = solve_circuit(model.kinematics, settings);
   switch (circuit.stop) {
@@ -63,8 +67,8 @@ Circuit solve_circuit_from(const Model& model, const std::string& step_text, con
                           ": " + describe_dyad(*m.plan, circuit.dyad) +
                           " is at a toggle on both sides (the mechanism is locked); check the lengths");
     case Circuit::Stop::too_many_rows:
-      throw InputError(m.source_file + ": the circuit does not close within " + std::to_string(settings.max_rows) +
-                       " rows of " + asked.step + " " + step_text + "; give a larger step");
+      throw InputError(m.source_file + ": the circuit does not close within the " + std::to_string(settings.max_rows) +
+                       bound_reason + ", at " + asked.step + " " + step_text + "; give a larger step");
   }
   return circuit;
 }

@@ -4,6 +4,7 @@
 // close. The words of a message name the caller's options.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -14,9 +15,12 @@ namespace kinema {
 
 /// How the caller asks for a circuit, as its messages name it: the step's option, a step
 /// written as the caller writes one, and the start's option ("--circuit", "--circuit 1",
-/// "--angle" on the command line).
+/// "--angle" on the command line), and the rows its output may hold (0: the circuit's own
+/// bound; a page draws every row, so it holds fewer).
 struct CircuitAsked {
   std::string step, example, start;
+  std::size_t max_rows = 0;
+  std::string rows_holder = "a circuit";  ///< What holds the rows, as the message says ("a page").
 };
 
 /// The whole circuit of a mechanism of joints and links solved in closed form, by `step_text`
