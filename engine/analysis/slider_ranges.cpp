@@ -28,10 +28,21 @@ struct Assembly {
   std::size_t first_ok = 0, last_ok = 0;
 };
 
-Assembly assembly_of(const MotionTable& table) {
+// The rows searched over: every row, or where the run has more than kMaxSliderRangeRows, every
+// k-th and the last (each probe solves the run again, tens of times a parameter).
+std::vector<std::size_t> searched_rows(std::size_t count) {
+  const std::size_t every = count > kMaxSliderRangeRows ? (count + kMaxSliderRangeRows - 1) / kMaxSliderRangeRows : 1;
+  std::vector<std::size_t> rows;
+  for (std::size_t row = 0; row < count; row += every) rows.push_back(row);
+  if (count > 0 && rows.back() != count - 1) rows.push_back(count - 1);
+  return rows;
+}
+
+// The assembly of the searched rows (indices among them).
+Assembly assembly_of(const MotionTable& table, const std::vector<std::size_t>& searched) {
   Assembly a;
-  for (std::size_t row = 0; row < table.size(); ++row) {
-    const bool ok = table.status(row) != Status::unassembled;
+  for (std::size_t row = 0; row < searched.size(); ++row) {
+    const bool ok = table.status(searched[row]) != Status::unassembled;
     if (ok && !a.any) a.first_ok = a.last_ok = row, a.any = true;
     if (ok && a.last_ok + 1 == row) a.last_ok = row;
     if (!ok) a.all = false;
@@ -174,9 +185,10 @@ std::vector<SliderRange> slider_ranges(const Model& model, const Resolving& reso
     set_caps(resolving.parameters[p], model.kinematics.length_scale(), ranges[p]);
     sliders.push_back(p);
   }
-  const Assembly at_file = assembly_of(rows);
+  const std::vector<std::size_t> searched = searched_rows(rows.size());
+  const Assembly at_file = assembly_of(rows, searched);
   std::vector<double> inputs;
-  for (std::size_t row = 0; row < rows.size(); ++row) inputs.push_back(rows.input(row));
+  for (std::size_t row : searched) inputs.push_back(rows.input(row));
   if (sliders.empty()) return ranges;
   if (!at_file.any) {  // nothing to search from: the caps
     for (std::size_t p : sliders) ranges[p].min = ranges[p].cap_min, ranges[p].max = ranges[p].cap_max;

@@ -5,6 +5,7 @@
 // serial run from the file's guesses), computed once by the analysis.
 #pragma once
 
+#include <cstddef>
 #include <limits>
 #include <vector>
 
@@ -31,8 +32,15 @@ struct SliderRange {
 /// Relative width (of the caps' interval) to which each end found is bisected.
 constexpr double kSliderRangeTolerance = 1e-7;
 
+/// Most values of the run the ranges are searched over: a longer run (a page holds 20,000)
+/// is searched over every k-th value and its last, at most this many (a turn at 1 deg) (a probe solves the run
+/// again, and a parameter takes tens of probes), so a page of any length is written in
+/// seconds. Where the run is thinned so, the bands are the thinned run's.
+constexpr std::size_t kMaxSliderRangeRows = 360;
+
 /// The range of every parameter `resolving` gives a slider (default ranges, NaN, for the
-/// others), over the run of `rows` (the page's table at the file's dimensions).
+/// others), over the run of `rows` (the page's table at the file's dimensions; thinned to
+/// kMaxSliderRangeRows values).
 std::vector<SliderRange> slider_ranges(const Model& model, const Resolving& resolving, const MotionTable& rows);
 
 }  // namespace kinema

@@ -386,16 +386,42 @@ async function checkPlots(page, name, header, rows) {
       `${name}: a plot of ${chart.view} units drawn ${chart.drawn} px (its text stretched)`);
     for (const l of chart.labels)
       assert(l.x >= 0 && l.right <= chart.view[0] && l.y >= 0 && l.bottom <= 200, `${name}: the plot label "${l.text}" is cut: (${l.x}, ${l.y})-(${l.right}, ${l.bottom}) outside ${chart.view[0]} x 200`);
+    // Round ticks (issue 49; the raw minimum and maximum were the only two): at least two
+    // up the side and along the input, a round step apart (1, 2, 2.5 or 5 times a power of
+    // ten; a turn's 45, 90 or 180 deg), no two labels touching.
     const scale = chart.labels.filter((l) => l.bottom < 190);
-    assert.strictEqual(scale.length, 2, `${name}: a plot without its two scale values`);
+    assert(scale.length >= 2, `${name}: a plot with ${scale.length} scale values`);
     for (const l of scale) assert(l.right <= chart.left, `${name}: the scale value "${l.text}" overlaps the plot (${l.right} > ${chart.left})`);
     for (const l of scale) assert(!/[0-9]{6}/.test(l.text), `${name}: the scale value "${l.text}" written out`);
-    const [hi, lo] = scale.map((l) => numberOf(l.text));
-    for (const v of [hi, lo]) assert(v === 0 || Math.abs(v) >= 1e-6 * Math.abs(hi - lo), `${name}: the scale value ${v} is noise of the range ${lo} to ${hi}`);
-    const axis = chart.labels.filter((l) => l.bottom >= 190).map((l) => l.text);
-    assert.deepStrictEqual(axis, [String(Number(first.toPrecision(3))), String(Number(last.toPrecision(3))) + ' ' + unit],
-      `${name}: the plot's input axis`);
+    const values = scale.map((l) => numberOf(l.text));
+    assertRoundSteps(values, `${name}: the scale values ${values}`);
+    for (let i = 1; i < scale.length; ++i)
+      assert(scale[i].y >= scale[i - 1].bottom || scale[i - 1].y >= scale[i].bottom, `${name}: the scale values ${scale[i - 1].text} and ${scale[i].text} overlap`);
+    const axis = chart.labels.filter((l) => l.bottom >= 190);
+    assert(axis.length >= 2, `${name}: a plot's input axis with ${axis.length} values`);
+    assert(axis[axis.length - 1].text.endsWith(' ' + unit), `${name}: the input axis's last value "${axis[axis.length - 1].text}" without its unit ${unit}`);
+    const inputs = axis.map((l) => numberOf(l.text.replace(' ' + unit, '')));
+    assertRoundSteps(inputs, `${name}: the input axis ${inputs}`, unit === 'deg');
+    const span = Math.abs(last - first);
+    assert(inputs[0] >= Math.min(first, last) - 1e-9 * span && inputs[inputs.length - 1] <= Math.max(first, last) + 1e-9 * span,
+      `${name}: the input axis ${inputs} outside the run ${first} to ${last}`);
+    for (let i = 1; i < axis.length; ++i)
+      assert(axis[i].x >= axis[i - 1].right, `${name}: the input axis's ${axis[i - 1].text} and ${axis[i].text} overlap`);
   }
+}
+
+// Values a round step apart: equal steps of 1, 2, 2.5 or 5 times a power of ten (of 45, 90
+// or 180 where a turn of degrees may be ticked so), to the labels' three digits.
+function assertRoundSteps(values, what, degrees) {
+  const sorted = values.slice().sort((a, b) => a - b);
+  const step = sorted[1] - sorted[0];
+  assert(step > 0, `${what}: two ticks at one value`);
+  for (let i = 2; i < sorted.length; ++i)
+    assert(Math.abs(sorted[i] - sorted[i - 1] - step) <= 0.02 * step, `${what}: ticks not evenly spaced`);
+  const mantissa = step / Math.pow(10, Math.floor(Math.log10(step) + 1e-9));
+  const round = [1, 2, 2.5, 5, 10].some((m) => Math.abs(mantissa - m) <= 0.01 * m) || (degrees && [45, 90, 180].includes(Math.round(step)));
+  assert(round, `${what}: a step of ${step}, not a round one`);
+  for (const v of sorted) assert(Math.abs(v / step - Math.round(v / step)) <= 0.02, `${what}: ${v} is not a multiple of the step ${step}`);
 }
 
 // A spatial chain in 3-D: each point drawn at eval's position (data-x/y/z) and at its

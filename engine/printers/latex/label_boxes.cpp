@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <initializer_list>
 
 namespace kinema {
 
@@ -274,14 +275,21 @@ LabelBox LabelBoxes::place_along(std::complex<double> a, std::complex<double> b,
   std::vector<PlacedLabel> candidates;
   const std::complex<double> across = (b - a) / std::abs(b - a) * std::complex<double>(0, 1);
   // On it, then to either side, a little further each time; nearest the middle first.
-  // Past its ends too, where a label is still within reach of it.
-  for (double side : {0.0, 1.0, -1.0, 1.5, -1.5, 2.0, -2.0, 2.5, -2.5, 3.0, -3.0, 3.5, -3.5}) {
+  // First its middle half, either side before a step further out: a label slid along one
+  // side to the line's end would stand on the joint there (a link's number on its pivot).
+  // Then past the middle half and its ends too, where a label is still within reach of it.
+  const auto add = [&](double side, double t) {
+    const LabelBox c{a + (b - a) * t + across * (side * size.half_height), size.half_width, size.half_height};
+    if (c.distance_to_segment(a, b) <= label_reach(size)) candidates.push_back({c});
+  };
+  const std::initializer_list<double> sides{0.0, 1.0, -1.0, 1.5, -1.5, 2.0, -2.0, 2.5, -2.5, 3.0, -3.0, 3.5, -3.5};
+  for (double side : sides) {
     if (side == 0 && !on_it) continue;
-    for (int k = 0; k < 35; ++k) {
-      const double t = 0.5 + (k % 2 ? 1 : -1) * ((k + 1) / 2) * 0.05;
-      const LabelBox c{a + (b - a) * t + across * (side * size.half_height), size.half_width, size.half_height};
-      if (c.distance_to_segment(a, b) <= label_reach(size)) candidates.push_back({c});
-    }
+    for (int k = 0; k < 11; ++k) add(side, 0.5 + (k % 2 ? 1 : -1) * ((k + 1) / 2) * 0.05);
+  }
+  for (double side : sides) {
+    if (side == 0 && !on_it) continue;
+    for (int k = 11; k < 35; ++k) add(side, 0.5 + (k % 2 ? 1 : -1) * ((k + 1) / 2) * 0.05);
   }
   // The line itself, when the label may stand on it.
   const Line* itself = nullptr;

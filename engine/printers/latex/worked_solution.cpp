@@ -298,10 +298,18 @@ class DocumentWriter {
               "$\\omega r$ across it, a sliding point's velocity along its line; accelerations in the parts "
               "normal ($\\omega^{2} r$, towards the link's start), tangential ($\\alpha r$), Coriolis "
               "($2\\omega v^{r}$) and relative (along the line).";
+      // Each sliding point's image on its turning line, named from the polygon (A' under A
+      // in the crank-shaper, B' under B elsewhere).
+      const auto math_name = [](const std::string& name) {
+        std::string escaped;
+        for (char c : name) escaped += c == '_' ? std::string("\\_") : std::string(1, c);
+        return "$" + (name.find('_') == std::string::npos ? name : "\\mathit{" + escaped + "}") + "$";
+      };
       for (const PolygonVertex& v : polygons->first.vertices)
-        if (v.name.back() == '\'') {
-          out_ << " $B'$ is the point of a turning line under the point $B$ that slides along it.";
-          break;
+        if (!v.name.empty() && v.name.back() == '\'') {
+          const std::string sliding = v.name.substr(0, v.name.size() - 1);
+          out_ << " " << math_name(v.name) << " is the point of a turning line under the point " << math_name(sliding)
+               << " that slides along it.";
         }
       out_ << "\n\n";
       write_tikz_polygon(out_, system_, textbook_, polygons->first);

@@ -870,10 +870,34 @@
   // against the row, the input going back and forth); a cursor at the row; a click moves there.
   const colours = ['#1c3f94', '#c62828', '#2e7d32', '#d98b00', '#8e44ad', '#00838f', '#6d4c41', '#ad1457'];
   let plots = [];
-  // A scale's value in three digits; a value that is rounding noise of its range
-  // (a speed of 1e-33 at rest) is 0.
-  function tickLabel(v, range) {
-    return Math.abs(v) <= 1e-9 * Math.abs(range) ? '0' : readable(v, 3);
+  // Round ticks over [lo, hi] drawn `length` px long, as the worked solution's plots take
+  // them (engine/printers/latex/pgfplots.cpp, axis_ticks): the smallest step of 1, 2, 2.5 or
+  // 5 times a power of ten (a turn's degrees at 45, 90 or 180) at which neighbouring labels
+  // stand `gap(a, b)` px apart at least.
+  function roundTicks(lo, hi, length, gap, turn) {
+    const range = hi - lo, perPx = range / length;
+    if (!(range > 0) || !isFinite(range)) return [lo];
+    const mantissas = turn ? [45, 90, 180] : [1, 2, 2.5, 5];
+    for (let decade = turn ? 1 : Math.pow(10, Math.floor(Math.log10(range)) - 3); decade < 1e300; decade *= 10) {
+      for (let m = 0; m < mantissas.length; ++m) {
+        const step = mantissas[m] * decade, ticks = [];
+        for (let k = Math.ceil(lo / step - 1e-9); k * step <= hi + 1e-9 * step && ticks.length < 50; ++k) ticks.push(k === 0 ? 0 : k * step);
+        if (ticks.length >= 50) continue;
+        let fits = true;
+        for (let i = 1; i < ticks.length && fits; ++i) fits = (ticks[i] - ticks[i - 1]) / perPx >= gap(ticks[i - 1], ticks[i]);
+        if (fits) return ticks.length ? ticks : [lo];
+      }
+    }
+    return [lo, hi];
+  }
+  // A tick's label in as many digits as its step needs (2.5 steps one more): 102.5, not 103.
+  function tickText(v, ticks) {
+    const step = ticks.length > 1 ? Math.abs(ticks[1] - ticks[0]) : Math.abs(v) || 1;
+    if (Math.abs(v) <= 1e-9 * step) return '0';
+    const extra = Math.abs(step / Math.pow(10, Math.floor(Math.log10(step) + 1e-9)) - 2.5) < 1e-6 ? 1 : 0;
+    const largest = Math.max.apply(null, ticks.map(Math.abs));
+    if (largest < 1e5 && step >= 1e-3) return v.toFixed(Math.max(0, Math.ceil(-Math.log10(step) - 1e-9) + extra));
+    return readable(v, Math.max(1, Math.floor(Math.log10(Math.abs(v)) + 1e-9) - Math.floor(Math.log10(step) + 1e-9) + 1 + extra));
   }
   // A label's width in the chart's units: measured where the page is laid out, else
   // estimated from its characters (10 px text).
@@ -900,23 +924,38 @@
       if (!isFinite(lo)) { lo = -1; hi = 1; }
       if (hi - lo < 1e-12 * Math.max(1, Math.abs(hi))) { lo -= 1; hi += 1; }
       const x0 = Math.min.apply(null, xs), x1 = Math.max.apply(null, xs);
-      // The scale's labels first: the left margin is as wide as the wider of them, so a
-      // long one ("-1.50e+3") is not cut by the chart's edge.
-      const top = svg('text', { y: 14, class: 'tick', 'text-anchor': 'end' }, chart, tickLabel(hi, hi - lo));
-      const bottom = svg('text', { y: 182, class: 'tick', 'text-anchor': 'end' }, chart, tickLabel(lo, hi - lo));
-      const left = Math.max(40, 8 + Math.max(labelWidth(top), labelWidth(bottom)));
-      top.setAttribute('x', left - 4);
-      bottom.setAttribute('x', left - 4);
-      const X = function (x) { return left + (x - x0) / ((x1 - x0) || 1) * (W - 10 - left); };
+      // Round ticks up the side, 22 px apart at least (a label's height and a gap); their
+      // labels first: the left margin is as wide as the widest of them, so a long one is
+      // not cut by the chart's edge.
       const Y = function (y) { return 182 - (y - lo) / (hi - lo) * 172; };
+      const yTicks = roundTicks(lo, hi, 172, function () { return 22; }, false);
+      const yLabels = yTicks.map(function (v) {
+        return svg('text', { y: fixed(Y(v) + 3.5), class: 'tick', 'text-anchor': 'end' }, chart, tickText(v, yTicks));
+      });
+      const left = Math.max(40, 8 + Math.max.apply(null, yLabels.map(labelWidth)));
+      const X = function (x) { return left + (x - x0) / ((x1 - x0) || 1) * (W - 10 - left); };
+      yTicks.forEach(function (v, k) {
+        yLabels[k].setAttribute('x', left - 4);
+        svg('line', { x1: left - 3, y1: fixed(Y(v)), x2: left, y2: fixed(Y(v)), class: 'axis' }, chart);
+      });
       svg('line', { x1: left, y1: 182, x2: W - 10, y2: 182, class: 'axis' }, chart);
       svg('line', { x1: left, y1: 10, x2: left, y2: 182, class: 'axis' }, chart);
       if (lo < 0 && hi > 0) svg('line', { x1: left, y1: Y(0), x2: W - 10, y2: Y(0), class: 'axis' }, chart);
-      // The input's range under the axis (along a circuit: the rows).
-      const first = data.circuit ? 'row 1' : tickLabel(x0, x1 - x0);
-      const last = data.circuit ? 'row ' + count : tickLabel(x1, x1 - x0) + ' ' + data.input.unit;
-      svg('text', { x: left, y: 196, class: 'tick', 'text-anchor': 'start' }, chart, first);
-      svg('text', { x: W - 10, y: 196, class: 'tick', 'text-anchor': 'end' }, chart, last);
+      // Round ticks of the input under the axis (along a circuit: of the rows, counted from
+      // 1), each label clear of the next by 12 px; the unit after the last.
+      const xFrom = data.circuit ? 1 : x0, xTo = data.circuit ? count : x1;
+      const turn = !data.circuit && data.input.unit === 'deg' && xTo - xFrom >= 180;
+      const xTicks = roundTicks(xFrom, xTo, W - 10 - left, function (a, b) {
+        return 12 + 3.25 * (tickText(a, [a, b]).length + tickText(b, [a, b]).length);
+      }, turn).filter(function (v) { return !data.circuit || v === Math.round(v); });
+      const xText = function (v) { return data.circuit ? String(Math.round(v)) : tickText(v, xTicks); };
+      xTicks.forEach(function (v, k) {
+        const at = X(data.circuit ? v - 1 : v);
+        svg('line', { x1: fixed(at), y1: 182, x2: fixed(at), y2: 185, class: 'axis' }, chart);
+        const anchor = xTicks.length > 1 && k === xTicks.length - 1 && at > W - 40 ? 'end' : 'middle';
+        svg('text', { x: fixed(anchor === 'end' ? Math.min(at + 4, W - 2) : at), y: 196, class: 'tick', 'text-anchor': anchor }, chart,
+            xText(v) + (k === xTicks.length - 1 ? ' ' + (data.circuit ? '(row)' : data.input.unit) : ''));
+      });
       plot.fields.forEach(function (f, k) {
         let path = '', pen = false;
         numbers.forEach(function (n, r) {
