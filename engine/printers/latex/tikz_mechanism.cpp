@@ -149,19 +149,26 @@ class MechanismFigure {
   // least kArrowClearance from it: on the side away from the first arrow at that step,
   // unless it would run over what is drawn there (a block's edge, a link, hatching) and
   // a step further out (up to 1.8 times), or the other side, runs over less of it.
-  Planar beside(Planar at, Planar first, Planar second) const {
-    const Planar from = at_cm(at);
-    if (std::abs(first) == 0 || arrows_distance(from, first, from, second) >= kArrowClearance) return 0;
+  // An arrow that would run along a link or a guide (most of it over what is drawn: a_B
+  // toward the crank's pivot, hidden under the crank and ending on the pivot) is moved
+  // beside it too; a point's first arrow is `second` with no `first`.
+  Planar beside(Planar at, Planar first, Planar second, Planar first_offset = 0) const {
+    const Planar from = at_cm(at), first_from = from + first_offset;
+    const bool apart = std::abs(first) == 0 || arrows_distance(first_from, first, from, second) >= kArrowClearance;
+    const bool hidden = along_drawing(from, second);
+    if (apart && !hidden) return 0;
     const Planar left = second / std::abs(second) * Planar(0, 1);
     const double away = std::imag(first * std::conj(second)) > 0 ? -1 : 1;  // `first` on the left: step right
     Planar best = 0;
-    int least = -1;
+    // Along a link it moves, whatever it crosses beside it (a pivot's hatching, an axis).
+    int least = apart && !hidden ? crowding(from, from + second) : -1;
     int rank = 0;  // each step out costs as much as two squares run over, the other side one
     for (const double step : {1.0, 1.4, 1.8}) {
       for (const double side : {away, -away}) {
         const Planar start = from + side * step * kArrowClearance * left;
         const int cost = crowding(start, start + second) + rank + (side == away ? 0 : 1);
-        if (arrows_distance(from, first, start, second) >= kArrowClearance && (least < 0 || cost < least)) {
+        const bool clear = std::abs(first) == 0 || arrows_distance(first_from, first, start, second) >= kArrowClearance;
+        if (clear && (least < 0 || cost < least)) {
           least = cost;
           best = start - from;
         }
@@ -169,6 +176,21 @@ class MechanismFigure {
       rank += 2;
     }
     return best;
+  }
+  // Whether a point's two arrows, each from the point moved by its offset (cm), stand clear.
+  bool arrows_clear(Planar at, Planar first, Planar first_offset, Planar second, Planar second_offset) const {
+    if (std::abs(first) == 0 || std::abs(second) == 0) return true;
+    const Planar from = at_cm(at);
+    return arrows_distance(from + first_offset, first, from + second_offset, second) >= kArrowClearance;
+  }
+  // Whether an arrow from a, `tip` cm long, runs along what is drawn: more than half its
+  // length (past the point's own dot) over lines, areas or dots.
+  bool along_drawing(Planar a, Planar tip) const {
+    const double length = std::abs(tip);
+    if (length < 0.3) return false;
+    const Planar start = a + tip / length * 0.15;  // past the dot and the joints' lines there
+    const int squares = std::max(1, static_cast<int>(std::ceil((length - 0.15) / 0.07)));
+    return 2 * crowding(start, a + tip) > squares + 1;
   }
   // How much of what is drawn (lines, areas, dots) a thick arrow from a to b (cm) would run
   // over: how many of the squares its head's width wide along it meet something.
@@ -325,6 +347,14 @@ void draw_segments(MechanismFigure& f, const std::vector<DrawingSegment>& segmen
     if (base) f.plate({base->from, base->to, on.at}, "thick");
     else f.bar({on.from, on.at});
   }
+  // The loops' origin is fixed: a link pinned there turns about a ground pivot (the
+  // slider-crank's crank, whose loop has no ground term to draw one with).
+  bool origin_drawn = false, origin_pinned = false;
+  for (const Segment& g : segments) {
+    origin_drawn = origin_drawn || (g.kind == Segment::Kind::ground && ((g.pin_at_from && f.same(g.from, 0)) || (g.pin_at_to && f.same(g.to, 0))));
+    origin_pinned = origin_pinned || (g.kind == Segment::Kind::link && (f.same(g.from, 0) || f.same(g.to, 0)));
+  }
+  if (origin_pinned && !origin_drawn) f.pivot(0);
   for (const Segment& g : segments) {
     if (g.pin_at_from) f.dot(g.from, 0.07, "\\filldraw[fill=white]");
     if (g.pin_at_to) f.dot(g.to, 0.07, "\\filldraw[fill=white]");
@@ -435,12 +465,19 @@ void write_tikz_mechanism(std::ostream& out, const ConstraintSystem& system, con
   for (std::size_t p = 0; p < points.size(); ++p) {
     f.point(points[p], latex_escape_text(system.points[p].name));
     const std::string name = latex_symbol_name(system.points[p].name);
-    if (velocity_scale > 0 && std::abs(velocities[p]) > 0)
-      f.arrow(points[p], velocities[p] * velocity_scale, "red, thick", "$\\mathbf{v}_{" + name + "}$");
-    if (acceleration_scale > 0 && std::abs(accelerations[p]) > 0) {
-      const Planar a = accelerations[p] * acceleration_scale;
-      const Planar v = velocity_scale > 0 ? velocities[p] * velocity_scale : Planar(0);
-      f.arrow(points[p] + f.beside(points[p], v, a) / f.cm(), a, "green!50!black, thick, dashed",
+    // Each arrow beside what it would run along; where the acceleration then finds no
+    // place clear of the velocity moved so, the velocity stays at the point.
+    const Planar v = velocity_scale > 0 ? velocities[p] * velocity_scale : Planar(0);
+    const Planar a = acceleration_scale > 0 ? accelerations[p] * acceleration_scale : Planar(0);
+    Planar v_offset = std::abs(v) > 0 ? f.beside(points[p], 0, v) : Planar(0);
+    Planar a_offset = std::abs(a) > 0 ? f.beside(points[p], v, a, v_offset) : Planar(0);
+    if (!f.arrows_clear(points[p], v, v_offset, a, a_offset)) {
+      v_offset = 0;
+      a_offset = std::abs(a) > 0 ? f.beside(points[p], v, a) : Planar(0);
+    }
+    if (std::abs(v) > 0) f.arrow(points[p] + v_offset / f.cm(), v, "red, thick", "$\\mathbf{v}_{" + name + "}$");
+    if (std::abs(a) > 0) {
+      f.arrow(points[p] + a_offset / f.cm(), a, "green!50!black, thick, dashed",
               "$\\mathbf{a}_{" + name + "}$");
     }
   }

@@ -940,6 +940,60 @@ TEST_CASE("figures: a point's velocity and acceleration arrows stand apart at ev
   CHECK(side_by_side >= 1);  // example 4.2's E at least: along its guide
 }
 
+// Issue 49: an arrow along a link hid under it (Problem 4.4's a_B, toward the crank's pivot
+// A, ran the crank's length under it and ended on the pivot, labelled there). Read back at
+// values over a turn: no arrow at least 0.5 cm long runs over a link (within the bar's half
+// width) for more than half its length, sampled along it.
+TEST_CASE("figures: no velocity or acceleration arrow runs along a link at any value drawn") {
+  int arrows = 0, moved = 0;
+  for (const DrawnAt& d : drawings_over_the_range()) {
+    std::vector<Arrow> links;
+    for (const std::string& line : lines_starting(d.figure, "\\draw[very thick, blue!70!black] ")) {
+      const auto c = coordinates(line);
+      for (std::size_t k = 1; k < c.size(); ++k) links.push_back({c[k - 1], c[k]});
+    }
+    for (const char* style : {"red, thick", "green!50!black, thick, dashed"}) {
+      for (const auto& [point, arrow] : point_arrows(d.figure, style)) {
+        const double length = std::abs(arrow.to - arrow.from);
+        if (length < 0.5) continue;
+        ++arrows;
+        int over = 0;
+        constexpr int kSamples = 20;
+        for (int k = 1; k <= kSamples; ++k) {
+          const Point p = arrow.from + (arrow.to - arrow.from) * (double(k) / kSamples);
+          bool on_link = false;
+          for (const Arrow& link : links) on_link = on_link || distance_to_segment(p, link) < 0.06;
+          over += on_link;
+        }
+        CAPTURE(d.sample);
+        CAPTURE(d.input);
+        CAPTURE(point);
+        CAPTURE(style);
+        CHECK(2 * over <= kSamples);
+        bool at_joint = false;
+        for (const Arrow& link : links) at_joint = at_joint || std::abs(link.from - arrow.from) < 0.002 || std::abs(link.to - arrow.from) < 0.002;
+        moved += !at_joint;
+      }
+    }
+  }
+  CHECK(arrows >= 200);
+  CHECK(moved >= 1);  // Problem 4.4's a_B at least: beside the crank
+}
+
+// Issue 49: the slider-crank's and the piston-driven crank's crank pivot (the loops' origin,
+// no ground term ending there) was drawn as a bare pin, with no ground symbol.
+TEST_CASE("figures: a crank pivoted at the loops' origin stands on a ground symbol at every value drawn") {
+  int drawn = 0;
+  for (const DrawnAt& d : drawings_over_the_range()) {
+    if (d.sample != "slider_crank.toml" && d.sample != "piston_driven_crank.toml") continue;
+    ++drawn;
+    CAPTURE(d.sample);
+    CAPTURE(d.input);
+    CHECK(d.figure.find("\\fill[pattern=north east lines] (0.000000,0.000000) ++(-0.3,-0.35)") != std::string::npos);
+  }
+  CHECK(drawn >= 10);
+}
+
 // Issue 45: a small angle's arc was drawn up to 2.5 cm from its vertex (wide enough for its
 // symbol between the arms), far out along or past the link it measures. Read back at values
 // over a turn: every arc within a centimetre of its vertex, and ending on the link whose
