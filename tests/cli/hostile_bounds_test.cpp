@@ -129,7 +129,7 @@ TEST_CASE("problems: the source's copy never replaces a generated file, nor a ge
   }
 }
 
-TEST_CASE("check: one angle limit with eval; a class table with a variant twice or a unit it does not read is refused") {
+TEST_CASE("check: one angle limit with eval, and a class table with a variant twice or a unit it does not read is refused") {
   const auto dir = directory("check");
   const std::string four_bar = sample("four_bar.toml");
   const CommandResult eval = run_kinema({"eval", four_bar, "--at", "1e300 deg"});

@@ -169,7 +169,14 @@ void write_problem_sheet(std::ostream& out, const ProblemSet& set, const Problem
     std::string value = latex_escape_text(p.text);
     for (const GivenValue& g : variant.given)
       if (g.name == p.symbol.get_name()) value = "$" + latex_given(g) + "$";
-    if (p.formula && !varied.count(p.symbol.get_name())) value = "$" + to_latex(*p.formula) + "$";
+    // A parameter written as a formula of others is given as its value in this variant
+    // (EF = CE is 0.230 m on the sheet: a student is given numbers, not the file's names).
+    if (p.formula && !varied.count(p.symbol.get_name())) {
+      const bool length = p.dimension == Dimension::length, angle = p.dimension == Dimension::angle;
+      const double shown = length ? p.value / system.output.length_factor : angle ? to_degrees(p.value) : p.value;
+      const std::string unit = length ? scale.coordinate_unit(Dimension::length) : angle ? "deg" : "";
+      value = "$" + format_significant(shown, 6) + (unit.empty() ? "" : "\\," + latex_unit(unit)) + "$";
+    }
     out << "$" << to_latex(p.symbol) << "$ & " << value << " \\\\\n";
   }
   const Driver& input = system.input;
@@ -181,7 +188,9 @@ void write_problem_sheet(std::ostream& out, const ProblemSet& set, const Problem
     if (g.name == input.rate.get_name()) rate = "$" + latex_given(g) + "$";
   out << "\\midrule\n$" << to_latex(input.symbol) << "$ & " << at_list << " \\\\\n$" << to_latex(input.rate) << "$ & "
       << rate << " \\\\\n$" << to_latex(input.second_rate) << "$ & "
-      << latex_escape_text(input.second_rate_text.empty() ? "0" : input.second_rate_text) << " \\\\\n"
+      << (input.second_rate_text.empty() ? "$0\\," + latex_unit(scale.second_rate_unit(input.dimension)) + "$"
+                                          : latex_escape_text(input.second_rate_text))
+      << " \\\\\n"
       << "\\bottomrule\n\\end{tabular}\n\n";
   out << "\\end{minipage}\\hfill\\begin{minipage}[t]{0.48\\textwidth}\n";
   out << "\\subsection*{Find}\nAt $" << to_latex(input.symbol) << " = $ " << at_list << ":\n\\begin{itemize}\n";

@@ -466,6 +466,26 @@ TEST_CASE("problems: a variant's sheet and key compile with pdflatex, no overful
   }
 }
 
+// Issue 49: a sheet gives every datum as a value with its unit: EF = CE and Lc = CD were
+// given as those names, and the crank's angular acceleration as a bare 0.
+TEST_CASE("problems: the sheet gives a parameter written as a formula, and the driver's second rate, as values with units") {
+  const std::string text = kinema_test::read_file(kinema_test::sample("problem_4_4_set.toml"));
+  const Loaded loaded = load(text, "problem_4_4_set.toml");
+  const ProblemSet set = make_problem_set(loaded.model, *loaded.mechanism.problem, 3, 7);
+  for (const ProblemVariant& variant : set.variants) {
+    const std::string sheet = problem_sheet(set, variant);
+    double cd = 0;
+    for (const GivenValue& g : variant.given)
+      if (g.name == "CD") cd = g.si;
+    REQUIRE(cd > 0);
+    CAPTURE(cd);
+    CHECK(sheet.find("$\\mathit{EF}$ & $0.23\\,\\mathrm{m}$") != std::string::npos);  // EF = CE, not varied
+    CHECK(sheet.find("$L_{c}$ & $" + format_significant(cd, 6) + "\\,\\mathrm{m}$") != std::string::npos);  // Lc = CD, this variant's
+    CHECK(sheet.find("\\mathit{CE}$ \\\\") == std::string::npos);
+    CHECK(sheet.find("$\\alpha_{1}$ & $0\\,\\mathrm{rad/s^{2}}$") != std::string::npos);
+  }
+}
+
 TEST_CASE("problems: a bad [problem] is refused at its line, saying what to write") {
   const std::string base = four_bar_problem_text();
   const auto refused = [&](const std::string& from, const std::string& to, const std::string& message) {
