@@ -193,10 +193,24 @@
         if (s.pins[0]) ends.push(from);
         if (s.pins[1]) ends.push(to);
       });
+      // A point on a link drawn on it, as the worked solution draws it (tikz_mechanism.cpp,
+      // draw_segments): a plate with the link's segment from where the point's own vector
+      // starts (the four-bar's coupler with P); nothing more for a joint the loops already
+      // reach; else a bar.
       const base = 8 * drawing.segments.length;
+      const near = function (a, b) { return Math.hypot(a[0] - b[0], a[1] - b[1]) <= 1e-9 * extent.size; };
       drawing.points_on_links.forEach(function (p, k) {
         const from = [g[base + 4 * k], g[base + 4 * k + 1]], at = [g[base + 4 * k + 2], g[base + 4 * k + 3]];
-        if (isFinite(at[0])) out.parts.push({ kind: 'bar', ends: [from, at], label: null });
+        if (!isFinite(at[0])) return;
+        let joint = false, plate = null;
+        drawing.segments.forEach(function (s, j) {
+          if (s.link !== p.link) return;
+          const a = [g[8 * j], g[8 * j + 1]], b = [g[8 * j + 2], g[8 * j + 3]];
+          joint = joint || near(a, at) || near(b, at);
+          if ((near(a, from) && !near(b, at)) || (near(b, from) && !near(a, at))) plate = [a, b, at];
+        });
+        if (joint && !plate) return;
+        out.parts.push(plate ? { kind: 'plate', ends: plate, label: null } : { kind: 'bar', ends: [from, at], label: null });
       });
       // A loop's joint is named by the point of the file drawn at it, if any.
       const size = extent.size;
