@@ -454,19 +454,26 @@ void check_study_size(std::size_t designs, std::size_t values, const std::string
                      "or a larger step of the run");
 }
 
+std::size_t design_grid_size(const std::vector<std::size_t>& sizes) {
+  std::size_t count = sizes.empty() ? 0 : 1;
+  for (const std::size_t size : sizes) {  // counted without overflow
+    if (size != 0 && count > kMaxStudyDesigns / size) {
+      std::string shown;
+      for (const std::size_t s : sizes) shown += (shown.empty() ? "" : " x ") + std::to_string(s);
+      throw InputError("a design study of " + shown + " designs: more than the " + std::to_string(kMaxStudyDesigns) +
+                       " a study may have; vary fewer parameters or give larger steps");
+    }
+    count *= size;
+  }
+  return count;
+}
+
 Designs design_grid(const std::vector<std::string>& names, const std::vector<std::vector<double>>& axes) {
   Designs grid;
   grid.names = names;
-  std::size_t count = axes.empty() ? 0 : 1;
-  for (const std::vector<double>& axis : axes) {  // counted without overflow, refused before any is held
-    if (!axis.empty() && count > kMaxStudyDesigns / axis.size()) {
-      std::string sizes;
-      for (const std::vector<double>& a : axes) sizes += (sizes.empty() ? "" : " x ") + std::to_string(a.size());
-      throw InputError("a design study of " + sizes + " designs: more than the " + std::to_string(kMaxStudyDesigns) +
-                       " a study may have; vary fewer parameters or give larger steps");
-    }
-    count *= axis.size();
-  }
+  std::vector<std::size_t> sizes;
+  for (const std::vector<double>& axis : axes) sizes.push_back(axis.size());
+  const std::size_t count = design_grid_size(sizes);  // refused before any is held
   grid.values.assign(axes.size(), std::vector<double>(count));
   for (std::size_t i = 0; i < count; ++i) {
     std::size_t rest = i;
@@ -592,6 +599,7 @@ StudyResults run_design_study(const Model& model, const Designs& designs, const 
     DesignRunner runner(setup, inputs, options);
     const std::size_t turn = runner.uses_lanes() ? DesignLanes::kLanes : kDesignsATurn;
     for (std::size_t first = next.fetch_add(turn); first < count; first = next.fetch_add(turn)) {
+      if (options.cancelled && options.cancelled()) throw Cancelled("a design study: cancelled by its caller");
       const std::size_t last = std::min(count, first + turn);
       if (runner.uses_lanes()) {
         runner.run_lanes(designs, first, last - first, results);

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -39,6 +40,10 @@ constexpr std::size_t kMaxStudyValues = 100'000'000;
 /// above (the caller's words: "--vary", "study").
 void check_study_size(std::size_t designs, std::size_t values, const std::string& asked);
 
+/// The number of combinations of axes of these sizes; InputError (naming the sizes) for
+/// more than kMaxStudyDesigns, so that a caller can refuse a grid before copying its axes.
+std::size_t design_grid_size(const std::vector<std::size_t>& sizes);
+
 /// Every combination of the axes' values (axes[k] for names[k]), the first name varying
 /// slowest; InputError for more than kMaxStudyDesigns of them.
 Designs design_grid(const std::vector<std::string>& names, const std::vector<std::vector<double>>& axes);
@@ -64,6 +69,11 @@ struct StudyOptions {
   /// Designs solved kLanes at a time, one to a lane of the batch tape (engine/numeric/
   /// design_lanes), where the input has a rate; else each alone. The same numbers to rounding.
   bool across_designs = true;
+  /// Asked by each thread before it takes the next designs (32 at most, a lane's worth):
+  /// true stops the study, which throws Cancelled once every thread has finished the
+  /// designs in its hands; an exception it throws stops the study the same way and comes
+  /// out of run_design_study. Called from every thread at once: it must be thread-safe.
+  std::function<bool()> cancelled;
   bool wants(StudyFigure figure) const { return (figures & study_figure_bit(figure)) != 0; }
 };
 

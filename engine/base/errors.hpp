@@ -27,6 +27,12 @@ class AssemblyError : public Error {
   using Error::Error;
 };
 
+/// A run stopped because its caller asked it to (StudyOptions::cancelled).
+class Cancelled : public Error {
+ public:
+  using Error::Error;
+};
+
 /// Phi_q is rank-deficient (toggle / dead centre): rates are undefined there.
 class SingularPositionError : public Error {
  public:

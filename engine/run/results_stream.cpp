@@ -45,7 +45,8 @@ class OrderedRun {
  public:
   OrderedRun(SweepSolver& solver, const ResultsPrinter& printer, const PrintJob& job, const StreamSettings& settings,
              std::size_t block_rows, const std::function<void(const SweepBlock&)>& account)
-      : solver_(solver), printer_(printer), job_(job), settings_(settings), block_rows_(block_rows), account_(account) {}
+      : solver_(solver), printer_(printer), job_(job), settings_(settings), block_rows_(block_rows), rows_(block_rows),
+        account_(account) {}
 
   /// Runs on this thread and `threads - 1` more; rethrows the first error of any.
   void run(unsigned threads) {
@@ -76,7 +77,10 @@ class OrderedRun {
           std::lock_guard<std::mutex> lock(solve_mutex_, std::adopt_lock);
           if (failed_ || solver_.done()) return;
           turn = next_turn_++;
-          solver_.solve_next(block, block_rows_);
+          const auto started = std::chrono::steady_clock::now();
+          solver_.solve_next(block, rows_);
+          if (settings_.block_time.count() > 0)
+            rows_ = resized_block_rows(rows_, block_rows_, std::chrono::steady_clock::now() - started, settings_.block_time);
           account_(block);
         }
         if (settings_.sensitivities) settings_.sensitivities->fill(block.table, block.first, block.last);
@@ -112,8 +116,9 @@ class OrderedRun {
   const PrintJob& job_;
   const StreamSettings& settings_;
   const std::size_t block_rows_;
+  std::size_t rows_;  // the next block's (block_rows_ unless StreamSettings::block_time)
   const std::function<void(const SweepBlock&)>& account_;
-  std::mutex solve_mutex_;  // the solver and next_turn_
+  std::mutex solve_mutex_;  // the solver, next_turn_ and rows_
   std::size_t next_turn_ = 0;
   std::mutex turn_mutex_;   // sleeping on write_turn_, and error_
   std::condition_variable turn_passed_;
@@ -132,6 +137,17 @@ class OrderedRun {
 std::size_t automatic_block_rows(std::size_t total) { return std::clamp<std::size_t>(total / 128, 256, 1024); }
 
 }  // namespace
+
+std::size_t resized_block_rows(std::size_t rows, std::size_t most, std::chrono::steady_clock::duration took,
+                               std::chrono::microseconds target) {
+  const std::chrono::steady_clock::duration aim = target;
+  if (took > aim) {  // at once to the rows that take about the target (a slow stretch starts at any row)
+    const double share = double(aim.count()) / double(took.count());
+    return std::max(std::min(kMinBlockRows, most), static_cast<std::size_t>(double(rows) * share));
+  }
+  if (took * 4 < aim) return std::min(most, rows * 2);  // back up by halves: a slow stretch may go on
+  return rows;
+}
 
 RunSummary stream_results(const Model& model, const InputValues& inputs, const AnalysisOptions& options,
                           const StreamSettings& settings) {

@@ -4,6 +4,7 @@
 // in one table by analyse() on one thread.
 #pragma once
 
+#include <chrono>
 #include <cstddef>
 #include <functional>
 #include <optional>
@@ -15,6 +16,14 @@
 #include "engine/printers/printer.hpp"
 
 namespace kinema {
+
+/// The fewest rows StreamSettings::block_time makes a block.
+constexpr std::size_t kMinBlockRows = 16;
+
+/// The rows of the next block after one of `rows` rows that took `took` to solve, for blocks
+/// of about `target` and at most `most` rows (StreamSettings::block_time's rule).
+std::size_t resized_block_rows(std::size_t rows, std::size_t most, std::chrono::steady_clock::duration took,
+                               std::chrono::microseconds target);
 
 struct StreamSettings {
   /// nullptr: solve only, to check a run before printing it (its values taken out as a
@@ -31,6 +40,14 @@ struct StreamSettings {
   unsigned threads = 1;
   /// Rows a block; 0: from the run's length (a 128th of it, 256 to 1024 rows).
   std::size_t block_rows = 0;
+  /// Nonzero (a run with a printer): a block that takes longer than this to solve makes
+  /// the next ones smaller (in proportion, down to kMinBlockRows rows), and blocks solved
+  /// in under a quarter of it larger again (doubling, up to block_rows), so that each
+  /// thread comes back to `write` and `progress` within about this time even where values
+  /// are slow (one that does not assemble is sought from the last that did: half a
+  /// millisecond), and a `progress` that throws to stop the run (Python's Ctrl-C) is heard
+  /// within about it. The same bytes whatever the blocks.
+  std::chrono::microseconds block_time{0};
   std::function<void(std::string_view)> write;  ///< Takes the text in order; throws to stop the run.
   /// After each block written: values done of the run's total.
   std::function<void(std::size_t done, std::size_t total)> progress;

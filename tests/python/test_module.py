@@ -281,7 +281,8 @@ def test_with_parameters_errors_name_the_parameter():
 @pytest.mark.parametrize("value", [None, True, [0.1], {"value": 0.1}], ids=["None", "bool", "list", "dict"])
 def test_with_parameters_refuses_a_value_that_is_neither_text_nor_a_number_naming_the_parameter(value):
     # Issue 45: with_parameters(delta=None) raised RuntimeError "Unable to cast ..." naming
-    # neither the parameter nor what it takes.
+    # neither the parameter nor what it takes. Since issue 49 kinema.InputTypeError, still a
+    # TypeError (test_bounds.py).
     model = kinema.load(str(SAMPLES / "four_bar.toml"))
     with pytest.raises(TypeError) as refused:
         model.with_parameters(delta=value)

@@ -6,10 +6,12 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <functional>
 #include <optional>
+#include <stdexcept>
 #include <limits>
 #include <memory>
 #include <string>
@@ -211,6 +213,56 @@ TEST_CASE("design study: nothing derived or compiled per design, each value solv
     CHECK(many.max_rate[1][i] == many_on_one.max_rate[1][i]);
     CHECK(many.time_ratio[i] == many_on_one.time_ratio[i]);
   }
+}
+
+TEST_CASE("design study: a caller's cancellation stops every thread at its next designs; not asked, the same numbers") {
+  // Python's Ctrl-C (issue 49): the module's hook asks the interpreter between batches.
+  const Model model = sample_model("four_bar.toml");
+  const std::vector<double> inputs = turn_from(0);
+  std::vector<double> b;
+  for (std::size_t i = 0; i < 4000; ++i) b.push_back(0.110 + 0.02 * double(i) / 4000.0);
+  const Designs designs{{"b"}, {b}};
+  for (const bool lanes : {true, false}) {
+    INFO("across designs: " << lanes);
+    kinema::StudyOptions options;
+    options.threads = 2;
+    options.across_designs = lanes;
+    const StudyResults plain = kinema::run_design_study(model, designs, inputs, options);
+    std::atomic<std::size_t> asked{0};
+    options.cancelled = [&] { return ++asked > 3; };
+    const std::uint64_t solved_before = kinema::values_solved_in_process();
+    CHECK_THROWS_AS(kinema::run_design_study(model, designs, inputs, options), kinema::Cancelled);
+    // A batch (32 designs at most) is solved only after a question answered no: three of
+    // them, far from the 4,000 designs; each thread stops at its first yes.
+    CHECK(kinema::values_solved_in_process() - solved_before <= 3 * 32 * inputs.size());
+    CHECK(asked <= 3 + 2);
+    // An exception of the hook's own is what comes out.
+    options.cancelled = [] () -> bool { throw std::runtime_error("interrupted"); };
+    CHECK_THROWS_WITH_AS(kinema::run_design_study(model, designs, inputs, options), "interrupted", std::runtime_error);
+    // A hook that never cancels: the numbers of the study without one, bit for bit.
+    options.cancelled = [] { return false; };
+    const StudyResults polled = kinema::run_design_study(model, designs, inputs, options);
+    const auto same_bits = [](const std::vector<double>& x, const std::vector<double>& y) {  // NaN included
+      return x.size() == y.size() && std::memcmp(x.data(), y.data(), x.size() * sizeof(double)) == 0;
+    };
+    for (std::size_t j = 0; j < plain.max_rate.size(); ++j) CHECK(same_bits(polled.max_rate[j], plain.max_rate[j]));
+    for (std::size_t p = 0; p < plain.max_speed.size(); ++p) CHECK(same_bits(polled.max_speed[p], plain.max_speed[p]));
+    CHECK(same_bits(polled.min_transmission_angle, plain.min_transmission_angle));
+    CHECK(same_bits(polled.time_ratio, plain.time_ratio));
+    CHECK(polled.failed_values == plain.failed_values);
+  }
+}
+
+TEST_CASE("design study: a grid's size is counted, and refused past the bound, from its axes' sizes alone") {
+  CHECK(kinema::design_grid_size({2, 3, 4}) == 24);
+  CHECK(kinema::design_grid_size({}) == 0);
+  CHECK(kinema::design_grid_size({1000, 0, 100000}) == 0);
+  CHECK_THROWS_WITH_AS(kinema::design_grid_size({1000, 1000, 2}),
+                       "a design study of 1000 x 1000 x 2 designs: more than the 1000000 a study may have; vary fewer "
+                       "parameters or give larger steps",
+                       kinema::InputError);
+  const std::size_t huge = std::size_t(1) << 40;  // would overflow a plain product
+  CHECK_THROWS_AS(kinema::design_grid_size({huge, huge, huge}), kinema::InputError);
 }
 
 TEST_CASE("design study: only the figures asked for") {

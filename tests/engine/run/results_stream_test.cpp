@@ -4,6 +4,7 @@
 // and unassembled rows.
 #include <doctest/doctest.h>
 
+#include <chrono>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -76,6 +77,41 @@ TEST_CASE("engine/run/results_stream: streamed output equals the printer over th
       }
     }
   }
+}
+
+TEST_CASE("engine/run/results_stream: blocks sized by their time (Python's Ctrl-C) give the same bytes") {
+  // A target of 1 us: blocks shrink to kMinBlockRows at once and grow back by doubling when
+  // the clock reads a fast one; whatever the sizes, the printer's bytes over the whole table.
+  const kinema::ResultsPrinter& npy = *kinema::find_results_printer("npy");
+  for (const char* sample : {"piston_driven_crank.toml", "four_bar.toml"}) {
+    CAPTURE(sample);
+    const kinema::Model model = kinema::load_model(kinema_test::sample(sample));
+    const kinema::InputValues inputs = run_of(model);
+    std::ostringstream expected;
+    const kinema::MotionTable whole = kinema::analyse(model, inputs.to_vector());
+    kinema::print_view(npy, expected, kinema::PrintJob{model, &whole});
+    for (const unsigned threads : {1u, 2u}) {
+      CAPTURE(threads);
+      std::string text;
+      std::size_t blocks = 0;
+      kinema::StreamSettings settings;
+      settings.printer = &npy;
+      settings.threads = threads;
+      settings.block_rows = 512;
+      settings.block_time = std::chrono::microseconds(1);
+      settings.write = [&](std::string_view piece) { text += piece; };
+      settings.progress = [&](std::size_t, std::size_t) { ++blocks; };
+      kinema::stream_results(model, inputs, {}, settings);
+      CHECK(text == expected.str());
+      CHECK(blocks > inputs.size() / 512 + 2);  // smaller blocks than asked
+    }
+  }
+  using std::chrono::microseconds;
+  CHECK(kinema::resized_block_rows(1024, 1024, microseconds(400'000), microseconds(20'000)) == 51);
+  CHECK(kinema::resized_block_rows(20, 1024, std::chrono::seconds(10), microseconds(20'000)) == kinema::kMinBlockRows);
+  CHECK(kinema::resized_block_rows(51, 1024, microseconds(1'000), microseconds(20'000)) == 102);
+  CHECK(kinema::resized_block_rows(800, 1024, microseconds(1'000), microseconds(20'000)) == 1024);
+  CHECK(kinema::resized_block_rows(800, 1024, microseconds(10'000), microseconds(20'000)) == 800);
 }
 
 TEST_CASE("engine/run/results_stream: the summary, failures in order, progress, and a write error stops the run") {
