@@ -37,10 +37,12 @@ inline constexpr int kFinishCpuSeconds = 10;
 inline constexpr long kFinishPeakKilobytes = 2L * 1024 * 1024;
 #endif
 
-/// True in the sanitizer build. A few cases only run again what other cases run, to compare
-/// the bytes of two runs or to last long enough for a progress line; they are skipped there
-/// (`* doctest::skip(kinema_test::kSanitized)`): the release run has them, and under the
-/// sanitizers they would run the same code again at ten times the cost (CI's time limit).
+/// True in the sanitizer build. A few cases only run again what other cases run (to compare
+/// the bytes of two runs, to last long enough for a progress line, to compile with pdflatex
+/// or weigh documents that the golden outputs case shows are the release build's bytes);
+/// they are skipped there (`* doctest::skip(kinema_test::kSanitized)`): the release run has
+/// them, and under the sanitizers they would run the same code again at ten times the cost
+/// (CI's time limit).
 #if defined(__SANITIZE_ADDRESS__)
 inline constexpr bool kSanitized = true;
 #else

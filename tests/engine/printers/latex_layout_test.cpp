@@ -60,10 +60,10 @@ void check_layouts(std::size_t first, std::size_t last) {
 }  // namespace
 
 // Two test cases, so that ctest -j runs them side by side.
-TEST_CASE("kinema latex: every method and three values - no near-empty page, figures with their captions and introductions (first half)") {
+TEST_CASE("kinema latex: every method and three values - no near-empty page, figures with their captions and introductions (first half)" * doctest::skip(kinema_test::kSanitized)) {
   check_layouts(0, std::size(kinema_test::kSamples) / 2);
 }
 
-TEST_CASE("kinema latex: every method and three values - no near-empty page, figures with their captions and introductions (second half)") {
+TEST_CASE("kinema latex: every method and three values - no near-empty page, figures with their captions and introductions (second half)" * doctest::skip(kinema_test::kSanitized)) {
   check_layouts(std::size(kinema_test::kSamples) / 2, std::size(kinema_test::kSamples));
 }

@@ -258,11 +258,11 @@ void check_worked_solutions(std::size_t first, std::size_t last) {
 
 }  // namespace
 
-TEST_CASE("kinema latex: every sample's worked solution compiles, with its pages and the engine's formulas (first half)") {
+TEST_CASE("kinema latex: every sample's worked solution compiles, with its pages and the engine's formulas (first half)" * doctest::skip(kinema_test::kSanitized)) {
   check_worked_solutions(0, std::size(kSamples) / 2);
 }
 
-TEST_CASE("kinema latex: every sample's worked solution compiles, with its pages and the engine's formulas (second half)") {
+TEST_CASE("kinema latex: every sample's worked solution compiles, with its pages and the engine's formulas (second half)" * doctest::skip(kinema_test::kSanitized)) {
   check_worked_solutions(std::size(kSamples) / 2, std::size(kSamples));
 }
 
