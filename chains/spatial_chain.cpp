@@ -513,7 +513,10 @@ void add_chain_observables(ConstraintSystem& system, const Mechanism& mechanism,
     frame.name = f.name;
     frame.parent = f.parent;
     for (const auto& source : mechanism.chain->frames)
-      if (source.name == f.name) frame.where = source.where;
+      if (source.name == f.name) {
+        frame.where = source.where;
+        frame.joint = source.joint;
+      }
     frame.origin.assign(f.origin.begin(), f.origin.end());
     for (unsigned r = 0; r < 3; ++r)
       for (unsigned c = 0; c < 3; ++c) frame.rotation.push_back(f.rotation(r, c));
@@ -601,7 +604,10 @@ ConstraintSystem build_spatial_system(const Mechanism& mechanism) {
     group.kind = "closure";
     group.name = name;
     for (const ChainClosure& c : mechanism.chain->closures)
-      if (c.name == name) group.where = c.where;
+      if (c.name == name) {
+        group.where = c.where;
+        group.between = {c.from, c.to};
+      }
     group.equations = {system.equations.size()};
     system.groups.push_back(group);
     Equation e;

@@ -87,12 +87,17 @@ class FramesReader : public FileReader {
         fail(*value, "frame \"" + name + "\" must be a table with its parent: { parent = \"E0\", origin = [\"x\", \"y\", "
                                            "\"z\"], turns = [[\"z\", \"theta1\"]] }");
       }
-      check_keys(*value, {"parent", "origin", "turns"}, "frame \"" + name + "\"");
+      check_keys(*value, {"parent", "origin", "turns", "joint"}, "frame \"" + name + "\"");
       ChainFrame frame;
       frame.name = name;
       frame.where = where(*value);
       frame.parent = string_value(at(*value, "parent"), "parent");
       if (has(*value, "origin")) read_vector(at(*value, "origin"), "origin", frame.origin);
+      if (has(*value, "joint")) {
+        const Node& joint = at(*value, "joint");
+        frame.joint = string_value(joint, "joint");
+        check_name(joint, frame.joint, "joint");
+      }
       if (has(*value, "turns")) {
         const Node& turns = at(*value, "turns");
         if (!turns.is_array()) fail(turns, "turns must be a list of [axis, angle] pairs, e.g. [[\"z\", \"theta1\"]]");

@@ -161,6 +161,7 @@ struct ChainFrame {
   std::string name, parent;
   std::array<std::string, 3> origin{"0", "0", "0"};
   std::vector<FrameTurn> turns;
+  std::string joint;  ///< The letter the drawings give the joint at its origin ("A"); may be empty.
   SourceLocation where;
 };
 

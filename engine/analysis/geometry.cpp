@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "engine/base/units.hpp"
 #include "engine/base/work_count.hpp"
@@ -9,6 +10,117 @@
 #include "engine/symbolic/link_vectors.hpp"
 
 namespace kinema {
+
+ChainBodies chain_bodies(const ConstraintSystem& system) {
+  ChainBodies bodies;
+  const auto frame_named = [&](const std::string& name) {
+    return std::any_of(system.frames.begin(), system.frames.end(), [&](const FrameObservable& f) { return f.name == name; });
+  };
+  for (const FrameObservable& frame : system.frames) {
+    bodies.ground_frames.push_back(!frame_named(frame.parent));
+    bodies.joints.push_back(frame.joint);
+  }
+  const auto point_index = [&](const std::string& name) {
+    for (std::size_t p = 0; p < system.points.size(); ++p)
+      if (system.points[p].name == name) return p;
+    return system.points.size();
+  };
+  for (const PointObservable& point : system.points) bodies.point_frames.push_back(point.terms ? point.terms->frame : "");
+  for (const EquationGroup& group : system.groups) {
+    if (group.between.size() != 2) continue;
+    const std::array<std::size_t, 2> ends{point_index(group.between[0]), point_index(group.between[1])};
+    if (ends[0] < system.points.size() && ends[1] < system.points.size()) bodies.couplers.push_back(ends);
+  }
+  return bodies;
+}
+
+std::complex<double> ChainView::on_page(const std::array<double, 3>& p) const {
+  const double t = theta * M_PI / 180, f = phi * M_PI / 180;
+  return {p[0] * std::cos(f) + p[1] * std::sin(f),
+          -p[0] * std::cos(t) * std::sin(f) + p[1] * std::cos(t) * std::cos(f) + p[2] * std::sin(t)};
+}
+
+ChainView chain_view(const ConstraintSystem& system, const std::vector<PlacedFrame>& frames,
+                     const std::vector<std::array<double, 3>>& points) {
+  using Place = std::array<double, 3>;
+  const auto distance = [](const Place& a, const Place& b) { return std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]); };
+  // Places: the observer's origin, the frames' origins, then the points.
+  std::vector<Place> places{{0, 0, 0}};
+  const auto origin_of = [&](const std::string& name) {
+    for (std::size_t f = 0; f < frames.size(); ++f)
+      if (frames[f].name == name) return 1 + f;
+    return std::size_t(0);
+  };
+  for (const PlacedFrame& f : frames) places.push_back(f.origin);
+  const std::size_t first_point = places.size();
+  places.insert(places.end(), points.begin(), points.end());
+  double size = 0;
+  for (const Place& a : places)
+    for (const Place& b : places) size = std::max(size, distance(a, b));
+  if (!(size > 0)) return {};
+  // The lines drawn: the bodies (as place indices) and the observer's axes.
+  const ChainBodies bodies = chain_bodies(system);
+  std::vector<std::array<std::size_t, 2>> bars;
+  for (std::size_t f = 0; f < frames.size(); ++f)
+    if (!bodies.ground_frames[f]) bars.push_back({origin_of(frames[f].parent), 1 + f});
+  if (!points.empty()) {
+    for (std::size_t p = 0; p < points.size() && p < bodies.point_frames.size(); ++p)
+      if (!bodies.point_frames[p].empty()) bars.push_back({origin_of(bodies.point_frames[p]), first_point + p});
+    for (const auto& ends : bodies.couplers) bars.push_back({first_point + ends[0], first_point + ends[1]});
+  }
+  std::vector<std::array<Place, 2>> axes;
+  for (int c = 0; c < 3; ++c) {
+    Place tip{0, 0, 0};
+    tip[c] = size;
+    axes.push_back({Place{0, 0, 0}, tip});
+  }
+  const double same = 1e-6 * size;  // one place (a frame's origin on its parent's)
+  // A place on a line in space (B on the x axis) is on it from every side: not counted.
+  const auto off_line = [&](const Place& p, const Place& a, const Place& b) {
+    Place d{b[0] - a[0], b[1] - a[1], b[2] - a[2]}, r{p[0] - a[0], p[1] - a[1], p[2] - a[2]};
+    const double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    const double t = dd > 0 ? std::clamp((r[0] * d[0] + r[1] * d[1] + r[2] * d[2]) / dd, 0.0, 1.0) : 0.0;
+    return distance(p, {a[0] + t * d[0], a[1] + t * d[1], a[2] + t * d[2]}) > same;
+  };
+  const auto apart_seen = [&](const ChainView& view) {
+    std::vector<std::complex<double>> seen;
+    for (const Place& p : places) seen.push_back(view.on_page(p));
+    const auto from_line = [](std::complex<double> p, std::complex<double> a, std::complex<double> b) {
+      const std::complex<double> d = b - a;
+      const double t = std::norm(d) > 0 ? std::clamp(std::real((p - a) * std::conj(d)) / std::norm(d), 0.0, 1.0) : 0.0;
+      return std::abs(p - (a + t * d));
+    };
+    double nearest = std::numeric_limits<double>::infinity(), widest = 0;
+    for (std::size_t i = 0; i < places.size(); ++i) {
+      for (std::size_t j = 0; j < i; ++j) {
+        if (distance(places[i], places[j]) <= same) continue;
+        nearest = std::min(nearest, std::abs(seen[i] - seen[j]));
+        widest = std::max(widest, std::abs(seen[i] - seen[j]));
+      }
+      for (const auto& bar : bars)
+        if (off_line(places[i], places[bar[0]], places[bar[1]]))
+          nearest = std::min(nearest, from_line(seen[i], seen[bar[0]], seen[bar[1]]));
+      for (const auto& axis : axes)
+        if (off_line(places[i], axis[0], axis[1]))
+          nearest = std::min(nearest, from_line(seen[i], view.on_page(axis[0]), view.on_page(axis[1])));
+    }
+    return widest > 0 && std::isfinite(nearest) ? nearest / widest : 0.0;
+  };
+  const ChainView usual;
+  const double usual_score = apart_seen(usual);
+  ChainView best = usual;
+  double best_score = usual_score;
+  for (const double theta : {50.0, 65.0, 80.0})
+    for (int phi = 0; phi < 360; phi += 30) {
+      const ChainView view{theta, double(phi)};
+      const double score = apart_seen(view);
+      if (score > 1.1 * usual_score && score > best_score) {
+        best = view;
+        best_score = score;
+      }
+    }
+  return best;
+}
 
 std::vector<PlacedFrame> placed_frames(const Model& model, const MotionState& s) {
   count_work(Work::drawing);

@@ -109,6 +109,35 @@ struct PlacedFrame {
   std::array<std::array<double, 3>, 3> axes{};  ///< x, y, z axes, each as a unit vector.
 };
 
+/// What a spatial chain is drawn with besides its frames: a frame whose parent is no frame
+/// (the observer) is a ground pivot, drawn fixed, not joined to the observer's origin; each
+/// point stands on its frame's body (a bar from the frame's origin); each distance closure
+/// is the coupler between its two points.
+struct ChainBodies {
+  std::vector<bool> ground_frames;                   ///< Of each of system.frames.
+  std::vector<std::string> joints;                   ///< Of each frame: its origin's letter, or "".
+  std::vector<std::string> point_frames;             ///< Of each of system.points: its frame.
+  std::vector<std::array<std::size_t, 2>> couplers;  ///< Indices into system.points.
+};
+ChainBodies chain_bodies(const ConstraintSystem& system);
+
+/// A direction a spatial chain is seen from, as tikz-3dplot's \tdplotsetmaincoords{theta}{phi}
+/// (degrees): turned by phi about z, then tilted by theta about the new x.
+struct ChainView {
+  double theta = 65, phi = 120;
+  /// Where the view puts a point on the page (its x right, y up; same units as the point).
+  std::complex<double> on_page(const std::array<double, 3>& p) const;
+};
+
+/// The view, among theta 50, 65, 80 and phi every 30 degrees, in which the chain's places
+/// (the observer's origin, the frames' origins, the points at `points`, in system.points'
+/// order; none where unknown) are seen farthest apart, from each other and from the lines
+/// drawn that do not end at them (the bodies of ChainBodies, the observer's axes), for the
+/// drawing's size: a joint seen beside another, or on a link, reads as joined to it. The
+/// usual view (65, 120) unless another does 10 % better.
+ChainView chain_view(const ConstraintSystem& system, const std::vector<PlacedFrame>& frames,
+                     const std::vector<std::array<double, 3>>& points);
+
 /// Every frame of a spatial chain at a state whose position is known, in the file's order
 /// (the frames' formulas as the model's tape evaluates them).
 std::vector<PlacedFrame> placed_frames(const Model& model, const MotionState& state);

@@ -97,12 +97,22 @@ void chain_rows(const Model& model, const MotionTable& table, MotionDrawing& dra
     drawing.frame_names.push_back(frame.name);
     drawing.frame_parents.push_back(frame.parent);
   }
+  drawing.bodies = chain_bodies(model.system);
+  bool viewed = false;
   for (std::size_t r = 0; r < table.size(); ++r) {
     std::vector<double> row;
     if (table.status(r) != Status::unassembled) {
-      for (const PlacedFrame& frame : placed_frames(model, table[r])) {
+      const MotionState state = table[r];
+      const std::vector<PlacedFrame> frames = placed_frames(model, state);
+      for (const PlacedFrame& frame : frames) {
         row.insert(row.end(), frame.origin.begin(), frame.origin.end());
         for (const auto& axis : frame.axes) row.insert(row.end(), axis.begin(), axis.end());
+      }
+      if (!viewed && state.status == Status::ok) {
+        std::vector<std::array<double, 3>> points;
+        for (const PointMotion& p : state.points) points.push_back({p.position[0], p.position[1], p.position[2]});
+        drawing.view = chain_view(model.system, frames, points);
+        viewed = true;
       }
     }
     drawing.rows.push_back(std::move(row));

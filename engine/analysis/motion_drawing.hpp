@@ -39,6 +39,8 @@ struct MotionDrawing {
   // Form::chain. Each row: for each frame its origin (x, y, z), then its x, y and z axes
   // (unit vectors, observer basis): 12 values a frame.
   std::vector<std::string> frame_names, frame_parents;
+  ChainBodies bodies;
+  ChainView view;  ///< Chosen at the first drawn row (chain_view), the one a page opens at.
 
   /// One entry a table row: the coordinates above (SI), empty where the row has no
   /// position (unassembled); NaN where a part is not known at that row (points on links

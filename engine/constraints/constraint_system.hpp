@@ -77,6 +77,9 @@ struct EquationGroup {
   /// (link vectors length*exp(I*angle)); empty for groups of other kinds.
   std::optional<GiNaC::ex> vector;
   std::vector<GiNaC::ex> terms;
+  /// A spatial chain's distance closure: its two points (names in ConstraintSystem::points),
+  /// the coupler the drawings join; empty for groups of other kinds.
+  std::vector<std::string> between;
 };
 
 /// One scalar equation Phi_i(q, theta) = 0 and where it comes from.
@@ -126,6 +129,7 @@ struct AngularVelocityTerm {
 /// term along the chain, and its angular acceleration.
 struct FrameObservable {
   std::string name, parent;
+  std::string joint;  ///< The letter of the joint at its origin, for drawings ("A"); may be empty.
   SourceLocation where;
   std::vector<GiNaC::ex> origin;    ///< 3 components.
   std::vector<GiNaC::ex> rotation;  ///< 3 x 3 row-major; its columns are the frame's axes.

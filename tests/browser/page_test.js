@@ -444,6 +444,7 @@ async function checkChain(page, name, header, rows, picks) {
         }),
       };
     });
+    if (name === 'rssr_spatial_four_bar') await checkRssrBodies(page, row);
     const fields = rows[row].split(',');
     assert(view.frames >= 2, `${name}: ${view.frames} frames drawn`);
     assert(view.points.length >= 1, `${name}: no point drawn`);
@@ -487,6 +488,7 @@ async function checkChain(page, name, header, rows, picks) {
     `${name}: a point drawn outside the panel at the fit: x ${Math.min(...xs)}..${Math.max(...xs)} of ${fit.width}, y ${Math.min(...ys)}..${Math.max(...ys)} of ${fit.height}`);
   assert(spread >= 0.45, `${name}: the motion's points fill ${spread.toFixed(2)} of the panel at the fit`);
   const before = await drawingShot(page);
+  const opened = fit.yaw;
   const box = await page.locator('#mechanism').boundingBox();
   await page.mouse.move(box.x + 200, box.y + 200);
   await page.mouse.down();
@@ -494,8 +496,41 @@ async function checkChain(page, name, header, rows, picks) {
   await page.mouse.up();
   const yaw = await page.evaluate(() => Number(document.getElementById('mechanism').getAttribute('data-yaw')));
   const after = await drawingShot(page);
-  assert(Math.abs(yaw - -0.6) > 0.1, `${name}: dragging did not turn the chain`);
+  assert(Math.abs(yaw - opened) > 0.1, `${name}: dragging did not turn the chain`);
   assert(!before.equals(after), `${name}: the chain looks the same after turning`);
+}
+
+// Issue 49: the RSSR was drawn as its frames joined to the observer's origin, B and C
+// floating. Now: the crank A-B, the rocker D-C and the coupler B-C as bars between the
+// places drawn, A and D on ground pivots and lettered, no bar from A to D.
+async function checkRssrBodies(page, row) {
+  const drawn = await page.evaluate(() => {
+    const svg = document.getElementById('mechanism');
+    const at = (e) => { const m = /translate\(([^,]+),([^)]+)\)/.exec(e.getAttribute('transform')); return [Number(m[1]), Number(m[2])]; };
+    const places = {};
+    svg.querySelectorAll('[data-frame]').forEach((f) => { places[f.getAttribute('data-frame')] = at(f); });
+    svg.querySelectorAll('#overlay [data-point]').forEach((p) => { places[p.getAttribute('data-point')] = at(p); });
+    return {
+      places,
+      bars: Array.from(svg.querySelectorAll('line.bar-line')).map((l) => ['x1', 'y1', 'x2', 'y2'].map((a) => Number(l.getAttribute(a)))),
+      pivots: Array.from(svg.querySelectorAll('path.pivot')).map((p) => p.getAttribute('d').slice(1).split(' ')[0].split(',').map(Number)),
+      couplers: Array.from(svg.querySelectorAll('[data-coupler]')).map((g) => g.getAttribute('data-coupler')),
+      letters: Array.from(svg.querySelectorAll('[data-joint-letter]')).map((j) => j.getAttribute('data-joint-letter')).sort(),
+    };
+  });
+  const near = (p, q) => Math.hypot(p[0] - q[0], p[1] - q[1]) <= 0.1;
+  const joined = (a, b) => drawn.bars.filter((l) => (near(l.slice(0, 2), a) && near(l.slice(2), b)) || (near(l.slice(0, 2), b) && near(l.slice(2), a))).length;
+  const { crank, rocker, B, C } = drawn.places;
+  assert(crank && rocker && B && C, `rssr row ${row}: places drawn ${Object.keys(drawn.places)}`);
+  assert.strictEqual(drawn.bars.length, 3, `rssr row ${row}: ${drawn.bars.length} bars drawn, not the crank, coupler and rocker`);
+  assert.strictEqual(joined(crank, B), 1, `rssr row ${row}: no crank A-B`);
+  assert.strictEqual(joined(rocker, C), 1, `rssr row ${row}: no rocker D-C`);
+  assert.strictEqual(joined(B, C), 1, `rssr row ${row}: no coupler B-C`);
+  assert.strictEqual(joined(crank, rocker), 0, `rssr row ${row}: a bar from A to D`);
+  assert.deepStrictEqual(drawn.couplers, ['BC'], `rssr row ${row}: couplers ${drawn.couplers}`);
+  assert(drawn.pivots.length === 2 && [crank, rocker].every((f) => drawn.pivots.some((p) => near(p, f))),
+    `rssr row ${row}: ground pivots at ${JSON.stringify(drawn.pivots)}, frames at ${crank} and ${rocker}`);
+  assert.deepStrictEqual(drawn.letters, ['A', 'D'], `rssr row ${row}: joints lettered ${drawn.letters}`);
 }
 
 // The drawing's pixels (a clip of the tab: quicker than an element's screenshot, which waits

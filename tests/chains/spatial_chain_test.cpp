@@ -217,6 +217,15 @@ TEST_CASE("spatial_chain: bad frames, axes, points and formulas are refused with
             .find("arm.toml:31: frame \"E3\" turn angle \"theta5\" is a length") != std::string::npos);
   // An angle formula of lengths that divide out is an angle.
   CHECK(error_of(kinema_test::replaced(R"(["y", "theta5"])", R"(["y", "theta5 + L3/L1"])", arm)).empty());
+  // A joint's letter (drawings) is a name, and reaches the system's frame.
+  CHECK(error_of(kinema_test::replaced(R"(["y", "theta5"]] })", R"(["y", "theta5"]], joint = "A B" })", arm))
+            .find("arm.toml:31:") != std::string::npos);
+  CHECK(error_of(kinema_test::replaced(R"(["y", "theta5"]] })", R"(["y", "theta5"]], joint = 3 })", arm))
+            .find("arm.toml:31:") != std::string::npos);
+  const kinema::ConstraintSystem lettered = kinema::build_spatial_system(
+      kinema::read_mechanism_text(kinema_test::replaced(R"(["y", "theta5"]] })", R"(["y", "theta5"]], joint = "W" })", arm), "arm.toml"));
+  CHECK(lettered.frames.back().name == "E3");
+  CHECK(lettered.frames.back().joint == "W");
 }
 
 TEST_CASE("spatial_chain: derive prints the composition of angular velocities and each term of v and a, as seed 000") {

@@ -17,15 +17,6 @@ namespace {
 
 using Point3 = std::array<double, 3>;
 
-// Where \tdplotsetmaincoords{kTheta}{kPhi} puts a point (cm along the figure's x, y, z) on
-// the page, in cm: tikz-3dplot's main rotation.
-constexpr double kTheta = 65, kPhi = 120;
-std::complex<double> on_page(const Point3& p) {
-  const double t = kTheta * M_PI / 180, f = kPhi * M_PI / 180;
-  return {p[0] * std::cos(f) + p[1] * std::sin(f),
-          -p[0] * std::cos(t) * std::sin(f) + p[1] * std::cos(t) * std::cos(f) + p[2] * std::sin(t)};
-}
-
 }  // namespace
 
 void write_tikz_chain(std::ostream& out, const ConstraintSystem& system, const std::vector<PlacedFrame>& frames,
@@ -36,6 +27,13 @@ void write_tikz_chain(std::ostream& out, const ConstraintSystem& system, const s
       if (f.name == name) return f.origin;
     return Point3{0, 0, 0};
   };
+
+  const ChainBodies bodies = chain_bodies(system);
+  std::vector<Point3> points;
+  if (s.status == Status::ok)
+    for (const PointMotion& p : s.points) points.push_back({p.position[0], p.position[1], p.position[2]});
+  const ChainView view = chain_view(system, frames, points);
+  const auto on_page = [&](const Point3& p) { return view.on_page(p); };
 
   double size = 0;  // the drawing's extent from the observer's origin
   for (const PlacedFrame& f : frames)
@@ -66,7 +64,8 @@ void write_tikz_chain(std::ostream& out, const ConstraintSystem& system, const s
 
   out << "\\par\\medskip\\noindent The chain at this instant, drawn in three dimensions"
       << (velocity_scale > 0 ? " with the velocities of its points as arrows" : "") << ":\n"
-      << kLatexFigureBegin << "\\tdplotsetmaincoords{65}{120}\n"
+      << kLatexFigureBegin << "\\tdplotsetmaincoords{" << format_fixed(view.theta, 0) << "}{" << format_fixed(view.phi, 0)
+      << "}\n"
       << "\\begin{tikzpicture}[tdplot_main_coords, line cap=round, >=latex]\n";
   const std::string o = latex_escape_text(observer);
   const double reach = 5.0 + 0.8;
@@ -76,21 +75,57 @@ void write_tikz_chain(std::ostream& out, const ConstraintSystem& system, const s
       << "}}$};\n"
       << "\\draw[->, gray] (0,0,0) -- (0,0," << format_fixed(reach) << ") node[anchor=south] {$z_{\\text{" << o
       << "}}$};\n";
-  // Links: each frame's origin joined to its parent's (where they differ).
-  for (const PlacedFrame& f : frames)
-    out << "\\draw[very thick, blue!70!black] " << at(origin_of(f.parent)) << " -- " << at(f.origin) << ";\n";
+  // The bodies (ChainBodies), as the planar figures draw a link: a light bar under its line.
+  const auto bar = [&](const Point3& a, const Point3& b) {
+    if (at(a) == at(b)) return;  // a point at its frame's origin: no body to draw
+    out << "\\draw[line width=6pt, line cap=round, blue!12] " << at(a) << " -- " << at(b) << ";\n"
+        << "\\draw[very thick, blue!70!black] " << at(a) << " -- " << at(b) << ";\n";
+  };
+  const auto point_at = [&](std::size_t p) {
+    const PointMotion& m = s.points[p];
+    return Point3{m.position[0], m.position[1], m.position[2]};
+  };
+  // Each frame on its parent's body, or on a ground pivot (its parent the observer).
+  for (std::size_t k = 0; k < frames.size(); ++k)
+    if (!bodies.ground_frames[k]) bar(origin_of(frames[k].parent), frames[k].origin);
+  if (s.status == Status::ok) {
+    for (std::size_t p = 0; p < s.points.size(); ++p)
+      if (!bodies.point_frames[p].empty()) bar(origin_of(bodies.point_frames[p]), point_at(p));
+    for (const auto& ends : bodies.couplers) bar(point_at(ends[0]), point_at(ends[1]));
+  }
   // Each frame's triad; the names of the frames and points at each place, once. What is
   // drawn is kept, on the page, so that the names are set where they cover none of it.
   LabelBoxes drawn;
   const double dot = 1.5 * 2.54 / 72.27;  // a place's dot (1.5 pt), cm
   const auto page_of = [&](const Point3& p) { return on_page({p[0] * cm, p[1] * cm, p[2] * cm}); };
   const auto line_on_page = [&](const Point3& a, const Point3& b) { drawn.add_line(page_of(a), page_of(b), 0.03); };
+  // A ground pivot as the planar figures draw one, a triangle on hatched ground, set on the
+  // page under the place (cm).
+  const auto ground_pivot = [&](std::complex<double> c) {
+    using P = std::complex<double>;
+    const auto canvas = [](P p) {
+      return "(canvas cs:x=" + format_fixed(p.real(), 3) + "cm,y=" + format_fixed(p.imag(), 3) + "cm)";
+    };
+    out << "\\fill[pattern=north east lines] " << canvas(c + P(-0.3, -0.35)) << " rectangle " << canvas(c + P(0.3, -0.2))
+        << ";\n"
+        << "\\draw " << canvas(c + P(-0.3, -0.2)) << " -- " << canvas(c + P(0.3, -0.2)) << ";\n"
+        << "\\draw[fill=white] " << canvas(c) << " -- " << canvas(c + P(-0.15, -0.2)) << " -- " << canvas(c + P(0.15, -0.2))
+        << " -- cycle;\n";
+    drawn.add_area({c + P(-0.3, -0.35), c + P(0.3, -0.35), c + P(0.3, -0.2), c + P(-0.3, -0.2)});
+    drawn.add_area({c, c + P(-0.15, -0.2), c + P(0.15, -0.2)});
+  };
   for (int c = 0; c < 3; ++c) {
     Point3 end{0, 0, 0};
     end[c] = reach / cm;
     line_on_page({0, 0, 0}, end);
   }
-  for (const PlacedFrame& f : frames) line_on_page(origin_of(f.parent), f.origin);
+  for (std::size_t k = 0; k < frames.size(); ++k)
+    if (!bodies.ground_frames[k]) line_on_page(origin_of(frames[k].parent), frames[k].origin);
+  if (s.status == Status::ok) {
+    for (std::size_t p = 0; p < s.points.size(); ++p)
+      if (!bodies.point_frames[p].empty()) line_on_page(origin_of(bodies.point_frames[p]), point_at(p));
+    for (const auto& ends : bodies.couplers) line_on_page(point_at(ends[0]), point_at(ends[1]));
+  }
   std::map<std::string, std::pair<Point3, std::string>> names_at;  // by the place as written
   const auto name_at = [&](const Point3& p, const std::string& name) {
     auto& [place, names] = names_at[at(p)];
@@ -110,18 +145,18 @@ void write_tikz_chain(std::ostream& out, const ConstraintSystem& system, const s
       letter.centre = tip + letter.half_width;
       drawn.add(letter);
     }
+    const std::size_t k = std::size_t(&f - frames.data());
+    if (!bodies.joints[k].empty()) name_at(f.origin, bodies.joints[k]);
     name_at(f.origin, f.name);
     drawn.add(LabelBox{page_of(f.origin), dot, dot});
+    if (bodies.ground_frames[k]) ground_pivot(page_of(f.origin));
     out << "\\filldraw[fill=white] " << at(f.origin) << " circle (1.5pt);\n";
   }
   if (s.status == Status::ok) {
     for (std::size_t p = 0; p < s.points.size(); ++p) {
       const PointMotion& m = s.points[p];
       const Point3 position{m.position[0], m.position[1], m.position[2]};
-      const std::string frame = system.points[p].terms ? system.points[p].terms->frame : observer;
-      out << "\\draw[thick] " << at(origin_of(frame)) << " -- " << at(position) << ";\n"
-          << "\\fill " << at(position) << " circle (1.5pt);\n";
-      line_on_page(origin_of(frame), position);
+      out << "\\fill " << at(position) << " circle (1.5pt);\n";
       drawn.add(LabelBox{page_of(position), dot, dot});
       name_at(position, system.points[p].name);
       if (velocity_scale > 0 && m.speed() > 0) {

@@ -1,7 +1,9 @@
 // A spatial chain drawn in 3-D with tikz-3dplot (Debian's texlive-pictures): the
-// observer's axes, each frame's origin joined to its parent's and its axes as a small
-// triad, the points joined to their frames' origins, and the points' velocities as red
-// arrows, all at one solved position, to a stated scale. Needs \usepackage{tikz-3dplot}.
+// observer's axes, the chain's bodies (ChainBodies: ground pivots, each frame on its parent's
+// body, the points on their frames' bodies, the couplers), each frame's axes as a small
+// triad, and the points' velocities as red arrows, all at one solved position, to a stated
+// scale, seen from the view that keeps its places apart (chain_view). Needs
+// \usepackage{tikz-3dplot}.
 #pragma once
 
 #include <ostream>

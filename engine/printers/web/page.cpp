@@ -110,6 +110,11 @@ json drawing_json(const MotionDrawing& drawing, double per_unit, double size) {
   } else if (drawing.form == MotionDrawing::Form::chain) {
     out["frames"] = drawing.frame_names;
     out["parents"] = drawing.frame_parents;
+    out["ground_frames"] = drawing.bodies.ground_frames;
+    out["frame_joints"] = drawing.bodies.joints;
+    out["view"] = {{"theta", drawing.view.theta}, {"phi", drawing.view.phi}};
+    out["point_frames"] = drawing.bodies.point_frames;
+    out["couplers"] = drawing.bodies.couplers;
   }
   // Lengths in the output unit; the loops' unit directions (along) and blocks' angles as they are.
   const std::size_t segment_values = 8 * drawing.segments.size();

@@ -231,7 +231,10 @@
 
   // A spatial chain seen from a direction turned by dragging: the world turned about the
   // motion's centre by yaw (about z, up) and pitch (looking down), projected along the view.
-  const camera = { yaw: -0.6, pitch: 0.45, centre: [0, 0, 0] };
+  // It opens at the view the analysis chose (geometry.hpp ChainView, the worked solution's):
+  // turned by phi about z, tilted by theta from looking straight down.
+  const opening = drawing.view || { theta: 65, phi: 120 };
+  const camera = { yaw: -opening.phi * Math.PI / 180, pitch: (90 - opening.theta) * Math.PI / 180, centre: [0, 0, 0] };
   function projectVector(v) {
     const cy = Math.cos(camera.yaw), sy = Math.sin(camera.yaw), cp = Math.cos(camera.pitch), sp = Math.sin(camera.pitch);
     return [cy * v[0] - sy * v[1], cp * v[2] + sp * (sy * v[0] + cy * v[1])];
@@ -772,9 +775,28 @@
       const k = drawing.frames.indexOf(name);
       return k < 0 ? [0, 0, 0] : g.slice(12 * k, 12 * k + 3);
     };
+    // The bodies (geometry.hpp ChainBodies): each point on a bar from its frame's origin,
+    // each distance closure the coupler between its two points, each frame on its parent's
+    // body or, its parent being the observer, on a ground pivot.
+    const n = numbers[row];
+    const placed = function (p) { const at = chainPoint(n, p); return at.every(isFinite) ? at : null; };
+    const apart = function (a, b) { return Math.hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]) > 1e-9 * extent.size; };
+    if (n) {
+      points.forEach(function (p, i) {
+        const frame = drawing.point_frames[i], at = placed(p);
+        if (frame && at && apart(origin(frame), at)) drawPart({ kind: 'bar', ends: [project(origin(frame)), project(at)] }, body);
+      });
+      drawing.couplers.forEach(function (ends) {
+        const a = placed(points[ends[0]]), b = placed(points[ends[1]]);
+        if (!a || !b) return;
+        const bar = svg('g', { 'data-coupler': points[ends[0]].name + points[ends[1]].name }, body);
+        drawPart({ kind: 'bar', ends: [project(a), project(b)] }, bar);
+      });
+    }
     drawing.frames.forEach(function (name, k) {
       const o = g.slice(12 * k, 12 * k + 3);
-      line(project(origin(drawing.parents[k])), project(o), 'chain-link', body);
+      if (drawing.ground_frames[k]) drawPart({ kind: 'pivot', at: project(o) }, body);
+      else if (apart(origin(drawing.parents[k]), o)) drawPart({ kind: 'bar', ends: [project(origin(drawing.parents[k])), project(o)] }, body);
       ['x', 'y', 'z'].forEach(function (axis, a) {
         const d = g.slice(12 * k + 3 + 3 * a, 12 * k + 6 + 3 * a);
         line(project(o), project([o[0] + triad * d[0], o[1] + triad * d[1], o[2] + triad * d[2]]), 'triad-' + axis, body);
@@ -782,13 +804,16 @@
       const q = px(project(o));
       const mark = svg('g', { 'data-frame': name, transform: 'translate(' + fixed(q[0]) + ',' + fixed(q[1]) + ')' }, body);
       svg('circle', { r: 3, class: 'joint' }, mark);
-      svg('text', { x: -8, y: 16, class: 'label frame-label' }, mark, name);
+      const letter = drawing.frame_joints[k];
+      if (letter) svg('text', { x: 7, y: -7, class: 'label', 'data-joint-letter': letter }, mark, letter);
+      // Beside a ground pivot's hatching, not on it.
+      svg('text', drawing.ground_frames[k] ? { x: 17, y: 18, class: 'label frame-label' } : { x: -8, y: 16, class: 'label frame-label' },
+        mark, name);
     });
     if (s !== 'ok') return;
-    const n = numbers[row];
     points.forEach(function (p) {
-      const at = chainPoint(n, p);
-      if (!at.every(isFinite)) return;
+      const at = placed(p);
+      if (!at) return;
       const flat = project(at), q = px(flat);
       const mark = svg('g', { 'data-point': p.name, 'data-x': at[0], 'data-y': at[1], 'data-z': at[2],
         transform: 'translate(' + q[0] + ',' + q[1] + ')' }, overlay);

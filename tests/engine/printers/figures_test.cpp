@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <complex>
 #include <cstdio>
@@ -786,11 +787,27 @@ TEST_CASE("figures: every plot's tick labels apart at the axis's length, each it
 
 namespace {
 
-// Where \tdplotsetmaincoords{65}{120} puts a point of a chain's figure on the page (cm):
-// tikz-3dplot's main rotation.
-Point chain_on_page(double x, double y, double z) {
-  const double t = 65 * M_PI / 180, f = 120 * M_PI / 180;
-  return {x * std::cos(f) + y * std::sin(f), -x * std::cos(t) * std::sin(f) + y * std::cos(t) * std::cos(f) + z * std::sin(t)};
+// A chain's figure, from its \tdplotsetmaincoords{theta}{phi} to its \end{tikzpicture}, and
+// where that view puts a point of it on the page (cm): tikz-3dplot's main rotation.
+struct ChainFigure {
+  std::string text;
+  double theta = 0, phi = 0;
+  Point on_page(double x, double y, double z) const {
+    const double t = theta * M_PI / 180, f = phi * M_PI / 180;
+    return {x * std::cos(f) + y * std::sin(f), -x * std::cos(t) * std::sin(f) + y * std::cos(t) * std::cos(f) + z * std::sin(t)};
+  }
+};
+
+std::vector<ChainFigure> chain_figures(const std::string& tex) {
+  std::vector<ChainFigure> figures;
+  for (auto begin = tex.find("\\tdplotsetmaincoords{"); begin != std::string::npos;
+       begin = tex.find("\\tdplotsetmaincoords{", begin + 1)) {
+    ChainFigure figure;
+    figure.text = tex.substr(begin, tex.find("\\end{tikzpicture}", begin) - begin);
+    REQUIRE(std::sscanf(figure.text.c_str(), "\\tdplotsetmaincoords{%lf}{%lf}", &figure.theta, &figure.phi) == 2);
+    figures.push_back(figure);
+  }
+  return figures;
 }
 
 }  // namespace
@@ -802,10 +819,10 @@ TEST_CASE("figures: a spatial chain's names on no other name nor dot, each next 
   for (const char* name : {"robot_arm_slider.toml", "robot_arm_seed000.toml", "rssr_spatial_four_bar.toml"}) {
     CAPTURE(std::string(name));
     const kinema::Model model = kinema::load_model(kinema_test::sample(name));
-    const std::string tex = document_at_first_value(model);
-    const auto begin = tex.find("\\tdplotsetmaincoords");
-    REQUIRE(begin != std::string::npos);
-    std::istringstream figure(tex.substr(begin, tex.find("\\end{tikzpicture}", begin) - begin));
+    const std::vector<ChainFigure> figures = chain_figures(document_at_first_value(model));
+    REQUIRE(!figures.empty());
+    const auto chain_on_page = [&](double x, double y, double z) { return figures.front().on_page(x, y, z); };
+    std::istringstream figure(figures.front().text);
     std::vector<Point> dots;
     std::vector<kinema::LabelBox> names;
     for (std::string line; std::getline(figure, line);) {
@@ -838,6 +855,66 @@ TEST_CASE("figures: a spatial chain's names on no other name nor dot, each next 
       }
       CHECK(nearest <= 2 * kinema::label_reach(names[i]));  // beside a place
     }
+  }
+}
+
+// Issue 49: the RSSR was drawn as its frames joined to the observer's origin (a blue line
+// from the origin to the rocker's pivot D), without the crank AB, the coupler BC or the
+// rocker DC, and from a view that put D beside the origin. At four crank angles: bars
+// A-B, D-C and B-C and no other, each frame on a ground pivot, its joint lettered, and the
+// places seen apart.
+TEST_CASE("figures: the RSSR spatial four-bar is drawn as its crank, coupler and rocker at every value drawn") {
+  const kinema::Model model = kinema::load_model(kinema_test::sample("rssr_spatial_four_bar.toml"));
+  const MotionTable values = kinema::analyse(model, {0.0, M_PI / 2, M_PI, 3 * M_PI / 2});
+  const std::vector<ChainFigure> figures = chain_figures(document(model, &values));
+  REQUIRE(figures.size() == 4);
+  for (const ChainFigure& figure : figures) {
+    CAPTURE(figure.text);
+    using Place = std::array<double, 3>;
+    std::vector<Place> pivots, points;
+    std::vector<std::array<Place, 2>> bars;
+    std::istringstream lines(figure.text);
+    for (std::string line; std::getline(lines, line);) {
+      Place a, b;
+      if (std::sscanf(line.c_str(), "\\filldraw[fill=white] (%lf,%lf,%lf) circle", &a[0], &a[1], &a[2]) == 3) pivots.push_back(a);
+      if (std::sscanf(line.c_str(), "\\fill (%lf,%lf,%lf) circle", &a[0], &a[1], &a[2]) == 3) points.push_back(a);
+      if (std::sscanf(line.c_str(), "\\draw[very thick, blue!70!black] (%lf,%lf,%lf) -- (%lf,%lf,%lf);", &a[0], &a[1], &a[2],
+                      &b[0], &b[1], &b[2]) == 6)
+        bars.push_back({a, b});
+    }
+    REQUIRE(pivots.size() == 2);  // A (the crank's frame) and D (the rocker's)
+    REQUIRE(points.size() == 2);  // B and C
+    const auto same = [](const Place& p, const Place& q) { return std::hypot(p[0] - q[0], p[1] - q[1], p[2] - q[2]) < 1e-3; };
+    const auto joined = [&](const Place& p, const Place& q) {
+      return std::count_if(bars.begin(), bars.end(), [&](const std::array<Place, 2>& bar) {
+        return (same(bar[0], p) && same(bar[1], q)) || (same(bar[0], q) && same(bar[1], p));
+      });
+    };
+    CHECK(bars.size() == 3);
+    CHECK(joined(points[0], points[1]) == 1);  // the coupler BC
+    CHECK(joined(pivots[0], pivots[1]) == 0);  // no line from the origin to D
+    for (const Place& point : points) CHECK(joined(pivots[0], point) + joined(pivots[1], point) == 1);
+    for (const Place& pivot : pivots) CHECK(joined(pivot, points[0]) + joined(pivot, points[1]) == 1);
+    // Two ground pivots, each hatched; the joints lettered beside their frames' names.
+    std::size_t hatched = 0;
+    for (auto at = figure.text.find("pattern=north east lines"); at != std::string::npos;
+         at = figure.text.find("pattern=north east lines", at + 1))
+      ++hatched;
+    CHECK(hatched == 2);
+    CHECK(figure.text.find("A, crank}") != std::string::npos);
+    CHECK(figure.text.find("{D, rocker}") != std::string::npos);
+    // The places seen apart: the nearest two at least a fifth of the widest (the usual view
+    // put D beside A, a tenth).
+    std::vector<Point> seen;
+    for (const Place& p : pivots) seen.push_back(figure.on_page(p[0], p[1], p[2]));
+    for (const Place& p : points) seen.push_back(figure.on_page(p[0], p[1], p[2]));
+    double nearest = INFINITY, widest = 0;
+    for (std::size_t i = 0; i < seen.size(); ++i)
+      for (std::size_t j = 0; j < i; ++j) {
+        nearest = std::min(nearest, std::abs(seen[i] - seen[j]));
+        widest = std::max(widest, std::abs(seen[i] - seen[j]));
+      }
+    CHECK(nearest > 0.2 * widest);
   }
 }
 
