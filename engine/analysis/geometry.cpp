@@ -1,6 +1,7 @@
 #include "engine/analysis/geometry.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <limits>
 
@@ -306,6 +307,112 @@ std::vector<DrawingSegment> MechanismGeometry::segments(const MotionState& state
     used.push_back(g.block_label);
   }
   return segments;
+}
+
+std::vector<LetteredCorner> MechanismGeometry::lettered_corners(const MotionState& state,
+                                                                const std::vector<DrawingSegment>& segments) const {
+  if (segments.empty()) return {};
+  // The one-letter named points where the state places them.
+  std::vector<std::pair<char, std::complex<double>>> named;
+  double size = 0;
+  for (std::size_t p = 0; p < state.points.size() && p < system_->points.size(); ++p) {
+    const std::string& name = system_->points[p].name;
+    if (state.points[p].position.size() < 2) continue;
+    const std::complex<double> at(state.points[p].position[0], state.points[p].position[1]);
+    if (!std::isfinite(std::abs(at))) continue;
+    size = std::max(size, std::abs(at));
+    if (name.size() == 1 && std::isupper(static_cast<unsigned char>(name[0]))) named.push_back({name[0], at});
+  }
+  for (const DrawingSegment& g : segments) size = std::max({size, std::abs(g.from), std::abs(g.to)});
+  const double tolerance = 1e-9 * std::max(size, 1e-30);
+  const auto point_at = [&](std::complex<double> at) -> char {
+    for (const auto& [letter, p] : named)
+      if (std::abs(p - at) <= tolerance) return letter;
+    return 0;
+  };
+  // A term's ends as its length's name gives them: "AB*exp(I*phi)" or "I*AC", the one
+  // parameter of the term named by two capital letters.
+  const auto ends_named = [&](const GiNaC::ex& term) -> std::string {
+    std::string ends;
+    int named_lengths = 0;
+    for (const SystemParameter& parameter : system_->parameters) {
+      const std::string& name = parameter.symbol.get_name();
+      const bool two_letters = name.size() == 2 && std::isupper(static_cast<unsigned char>(name[0])) &&
+                               std::isupper(static_cast<unsigned char>(name[1])) && name[0] != name[1];
+      if (two_letters && term.has(parameter.symbol)) {
+        ends = name;
+        ++named_lengths;
+      }
+    }
+    return named_lengths == 1 ? ends : std::string();
+  };
+  std::vector<const EquationGroup*> loops;
+  for (const EquationGroup& g : system_->groups)
+    if (g.kind == "loop") loops.push_back(&g);
+  if (loops.size() != terms_.loop_term_count.size()) return {};
+  std::vector<std::pair<std::complex<double>, char>> lettered;
+  bool contradicted = false;
+  std::size_t first = 0;  // the loop's first term
+  for (std::size_t s = 0, l = 0; s < segments.size() && l < loops.size() && !contradicted; ++l) {
+    // The loop's segments in the order drawn (corners on named points; segments()).
+    const std::size_t count = terms_.loop_term_count[l];
+    const std::size_t begin = s;
+    while (s < segments.size() && (s == begin || !segments[s].loop_start)) ++s;
+    if (loops[l]->terms.size() != count || s - begin != count) {
+      first += count;
+      continue;
+    }
+    // Corner k: where drawn segment k starts (segment k - 1 ends).
+    std::vector<std::complex<double>> corners;
+    std::vector<std::string> ends;
+    for (std::size_t k = begin; k < s; ++k) {
+      corners.push_back(segments[k].from);
+      ends.push_back(segments[k].term >= first && segments[k].term < first + count
+                         ? ends_named(loops[l]->terms[segments[k].term - first])
+                         : std::string());
+    }
+    first += count;
+    std::vector<char> letter(count, 0);
+    for (std::size_t k = 0; k < count; ++k) letter[k] = point_at(corners[k]);
+    // A term's two ends carry its two letters: one end known gives the other.
+    for (bool changed = true; changed && !contradicted;) {
+      changed = false;
+      for (std::size_t k = 0; k < count; ++k) {
+        if (ends[k].empty()) continue;
+        char& start = letter[k];
+        char& end = letter[(k + 1) % count];
+        const auto other = [&](char c) { return c == ends[k][0] ? ends[k][1] : c == ends[k][1] ? ends[k][0] : char(0); };
+        if (start != 0 && end == 0 && other(start) != 0) end = other(start), changed = true;
+        if (end != 0 && start == 0 && other(end) != 0) start = other(end), changed = true;
+        // Named otherwise: the file's letters mean something else; nothing is lettered.
+        if ((start != 0 && other(start) == 0) || (end != 0 && other(end) == 0) || (start != 0 && start == end))
+          contradicted = true;
+      }
+    }
+    for (std::size_t k = 0; k < count; ++k)
+      if (letter[k] != 0 && point_at(corners[k]) == 0) lettered.push_back({corners[k], letter[k]});
+  }
+  if (contradicted) return {};
+  std::vector<LetteredCorner> found;
+  for (const auto& [at, letter] : lettered) {
+    // One letter a place and one place a letter, else none.
+    const bool clash = std::any_of(lettered.begin(), lettered.end(), [&](const auto& o) {
+      return (std::abs(o.first - at) <= tolerance) != (o.second == letter);
+    });
+    const bool again = std::any_of(found.begin(), found.end(), [&](const LetteredCorner& c) { return c.letter[0] == letter; });
+    if (clash || again) continue;
+    for (std::size_t s = 0; s < segments.size(); ++s) {  // a corner drawn: a segment's end
+      if (std::abs(segments[s].from - at) <= tolerance) {
+        found.push_back({std::string(1, letter), s, false, segments[s].from});
+        break;
+      }
+      if (std::abs(segments[s].to - at) <= tolerance) {
+        found.push_back({std::string(1, letter), s, true, segments[s].to});
+        break;
+      }
+    }
+  }
+  return found;
 }
 
 namespace {

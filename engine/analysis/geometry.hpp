@@ -48,6 +48,16 @@ struct DrawingSegment {
   bool pin_at_from = false, pin_at_to = false;
 };
 
+/// A corner of a loop the file letters by its lengths' names but not as a point (Problem
+/// 4.4's pivots A and D, from AB and CD): drawn at `segment`'s end (`at_to`, else its
+/// start), where it is at the state it was found at.
+struct LetteredCorner {
+  std::string letter;
+  std::size_t segment = 0;
+  bool at_to = false;
+  std::complex<double> at;  ///< SI.
+};
+
 /// A named point on a link: its formula's last term is a link vector of fixed length
 /// turning with that link, drawn from `from` (the point that term starts at) to the point.
 struct PointOnLink {
@@ -157,6 +167,14 @@ class MechanismGeometry {
   /// written order when it does so already): r e^{i phi} - AC - BC e^{i phi3} is drawn
   /// A -> B -> C -> A, not through B - AC.
   std::vector<DrawingSegment> segments(const MotionState& state) const;
+  /// The loops' corners the file letters without naming them as points: a term whose one
+  /// two-capital-letter length names its ends ("AB*exp(I*phi)", "I*AC") carries those letters
+  /// to its two corners, a corner known (a one-letter named point there, or a letter from the
+  /// next term) giving the other: Problem 4.4's AB and CD make the origin A and the pivot D.
+  /// None where the names disagree (a named point a term's letters do not fit); only
+  /// corners drawn (a segment's end) and not a named point; one letter a place. `segments`
+  /// are segments(state).
+  std::vector<LetteredCorner> lettered_corners(const MotionState& state, const std::vector<DrawingSegment>& segments) const;
   /// The named points that lie on a link, at a state that is ok.
   std::vector<PointOnLink> points_on_links(const MotionState& state) const;
   /// Each link's number, as DrawingSegment::link and PointOnLink::link index them.

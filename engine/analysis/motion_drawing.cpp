@@ -71,6 +71,8 @@ void loop_rows(const Model& model, const MotionTable& table, MotionDrawing& draw
         state.status == Status::ok ? geometry.points_on_links(state) : std::vector<PointOnLink>{};
     if (drawing.segments.empty()) drawing.segments = segments;
     if (drawing.points_on_links.empty()) drawing.points_on_links = on_links;
+    if (state.status == Status::ok && drawing.lettered_corners.empty())
+      drawing.lettered_corners = geometry.lettered_corners(state, segments);
     std::vector<double> row;
     for (const DrawingSegment& s : segments) {
       put(row, s.from);

@@ -35,6 +35,7 @@ struct MotionDrawing {
   std::vector<DrawingSegment> segments;
   std::vector<PointOnLink> points_on_links;
   std::vector<std::string> link_labels;
+  std::vector<LetteredCorner> lettered_corners;  ///< At the segments' ends they name (every row).
 
   // Form::chain. Each row: for each frame its origin (x, y, z), then its x, y and z axes
   // (unit vectors, observer basis): 12 values a frame.

@@ -575,6 +575,13 @@ async function checkSample(browser, file) {
     assert.strictEqual(view.readout, rows[row], `${name}: the readout's values at row ${row} are not eval's CSV row`);
     if (spatial) continue;
     joints += checkJoints(name, header, rows[row], view);
+    // Issue 49: a vector-loop file's pivots lettered as its lengths name them (AB, CD: the
+    // origin A, the pivot D at (La, Lb)), as the worked solution letters them.
+    if (name === 'problem_4_4_six_bar') {
+      const at = (letter) => view.joints.find((j) => j.name === letter);
+      assert(at('A') && Math.hypot(at('A').x, at('A').y) <= 1e-12, `${name} row ${row}: pivot A not lettered at the origin`);
+      assert(at('D') && Math.hypot(at('D').x - 0.3, at('D').y - 0.45) <= 1e-12, `${name} row ${row}: pivot D not lettered at (La, Lb)`);
+    }
     constructions.images += await checkPolygons(page, name, header, rows[row]);
     await checkArrows(page, name, header, rows[row]);
     if (await checkCentres(page, name)) constructions.centres.add(name);

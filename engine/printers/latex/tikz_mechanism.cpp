@@ -434,6 +434,7 @@ void write_tikz_mechanism(std::ostream& out, const ConstraintSystem& system, con
   f.axes();
   if (drawing) draw_linkage(f, *drawing, centre, size, system.plan.has_value());
   draw_segments(f, segments, at.points_on_links, centre, size);
+  for (const LetteredCorner& corner : at.lettered_corners) f.pivot_label(corner.at, latex_escape_text(corner.letter));
   number_segments(f, segments, link_labels);
   // The angles that are coordinates, each once: an arc from the x direction at the joint
   // its link vector (or, for joints and links, its link) starts from.

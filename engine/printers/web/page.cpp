@@ -107,6 +107,9 @@ json drawing_json(const MotionDrawing& drawing, double per_unit, double size) {
     for (const PointOnLink& p : drawing.points_on_links)
       out["points_on_links"].push_back({{"point", p.point}, {"link", p.link}, {"vector", p.vector}});
     out["link_labels"] = drawing.link_labels;
+    out["letters"] = json::array();
+    for (const LetteredCorner& c : drawing.lettered_corners)
+      out["letters"].push_back({{"letter", c.letter}, {"segment", c.segment}, {"at_to", c.at_to}});
   } else if (drawing.form == MotionDrawing::Form::chain) {
     out["frames"] = drawing.frame_names;
     out["parents"] = drawing.frame_parents;

@@ -223,6 +223,11 @@
           const x = numbers[r][p.position], y = numbers[r][p.position + 1];
           if (!name && Math.hypot(x - e[0], y - e[1]) < 1e-6 * size) name = p.name;
         });
+        // Else the letter the file's lengths give that corner (geometry.hpp lettered_corners).
+        (drawing.letters || []).forEach(function (c) {
+          const at = g.slice(8 * c.segment + (c.at_to ? 2 : 0), 8 * c.segment + (c.at_to ? 4 : 2));
+          if (!name && Math.hypot(at[0] - e[0], at[1] - e[1]) < 1e-6 * size) name = c.letter;
+        });
         out.joints.push({ name: name, at: e });
       });
     }

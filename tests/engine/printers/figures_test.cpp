@@ -1114,3 +1114,59 @@ TEST_CASE("figures: an angle's arc stays by its vertex and ends on its link at e
   CHECK(arcs >= 100);
   CHECK(small >= 5);  // angles under 25 degrees among them
 }
+
+// Issue 49: the pivots of vector-loop drawings were unlettered (Problem 4.4's A and D, though
+// its statement says "crank AB"). A corner the file's lengths letter (AB, CD: lettered_corners)
+// is where the same mechanism's joints-and-links file puts the joint of that letter, at
+// every value of a turn drawn; the worked solution and the page set the letter there; a file
+// whose lengths name no corner (the four-bar's a, b, c, d) gets none.
+TEST_CASE("figures: a vector-loop file's corners lettered by its lengths' names, where the joints file puts them") {
+  const std::vector<std::pair<const char*, const char*>> pairs = {
+      {"problem_4_4_six_bar.toml", "problem_4_4_joints.toml"},
+      {"example_4_1_r_trr.toml", "example_4_1_joints.toml"},
+      {"example_4_2_r_rtr_rrt.toml", "example_4_2_joints.toml"}};
+  for (const auto& [loops_file, joints_file] : pairs) {
+    CAPTURE(std::string(loops_file));
+    const kinema::Model loops = kinema::load_model(kinema_test::sample(loops_file));
+    const kinema::Model joints = kinema::load_model(kinema_test::sample(joints_file));
+    const kinema::MechanismGeometry geometry(loops);
+    std::vector<double> inputs;
+    for (int k = 0; k < 12; ++k) inputs.push_back(loops.system.input.values.front() + k * 30 * M_PI / 180);
+    const MotionTable on_loops = kinema::analyse(loops, inputs), on_joints = kinema::analyse(joints, inputs);
+    std::size_t lettered = 0;
+    for (std::size_t r = 0; r < on_loops.size(); ++r) {
+      if (on_loops.status(r) != kinema::Status::ok || on_joints.status(r) != kinema::Status::ok) continue;
+      CAPTURE(on_loops.input(r));
+      const auto segments = geometry.segments(on_loops[r]);
+      const auto corners = geometry.lettered_corners(on_loops[r], segments);
+      const auto drawing = kinema::linkage_drawing(joints.system, on_joints[r]);
+      REQUIRE(drawing);
+      CHECK(corners.size() == 2);
+      for (const kinema::LetteredCorner& corner : corners) {
+        CAPTURE(corner.letter);
+        const auto& s = segments.at(corner.segment);
+        CHECK(std::abs((corner.at_to ? s.to : s.from) - corner.at) == 0);
+        bool found = false;
+        const auto check = [&](const kinema::LinkageDrawing::Joint& joint) {
+          if (joint.name != corner.letter) return;
+          found = true;
+          CHECK(std::abs(joint.at - corner.at) < 1e-9);
+        };
+        for (const auto& pivot : drawing->ground_pivots) check(pivot);
+        for (const auto& link : drawing->links)
+          for (const auto& joint : link.joints) check(joint);
+        CHECK(found);
+        ++lettered;
+      }
+    }
+    CHECK(lettered >= 2 * 8);
+    // The worked solution sets each letter on its figure.
+    const std::string tex = document_at_first_value(loops);
+    for (const kinema::LetteredCorner& corner : geometry.lettered_corners(on_loops[0], geometry.segments(on_loops[0])))
+      CHECK(tex.find("{" + corner.letter + "};") != std::string::npos);
+  }
+  const kinema::Model four_bar = kinema::load_model(kinema_test::sample("four_bar.toml"));
+  const kinema::MechanismGeometry geometry(four_bar);
+  const MotionTable at = kinema::analyse(four_bar, four_bar.system.input.values);
+  CHECK(geometry.lettered_corners(at[0], geometry.segments(at[0])).empty());
+}
