@@ -32,6 +32,7 @@ std::vector<ValueAnalysis> analyse_values(const Model& model, const MotionTable&
       value.segments = geometry.segments(s);
       value.points_on_links = geometry.points_on_links(s);
       value.lettered_corners = geometry.lettered_corners(s, value.segments);
+      value.dimensions = geometry.dimensions(value.segments);
     }
     value.polygons = polygons.polygons(s);
     value.centres = instant_centres(geometry, s);

@@ -48,6 +48,7 @@ struct ValueAnalysis {
   std::vector<DrawingSegment> segments;
   std::vector<PointOnLink> points_on_links;
   std::vector<LetteredCorner> lettered_corners;
+  std::vector<DrawnDimension> dimensions;
   /// A spatial chain: its frames where the value puts them.
   std::vector<PlacedFrame> frames;
   /// Velocity and acceleration polygons (a planar mechanism at an ok value).

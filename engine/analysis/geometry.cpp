@@ -415,6 +415,55 @@ std::vector<LetteredCorner> MechanismGeometry::lettered_corners(const MotionStat
   return found;
 }
 
+std::vector<DrawnDimension> MechanismGeometry::dimensions(const std::vector<DrawingSegment>& segments) const {
+  std::vector<const EquationGroup*> loops;
+  for (const EquationGroup& g : system_->groups)
+    if (g.kind == "loop") loops.push_back(&g);
+  if (loops.size() != terms_.loop_term_count.size()) return {};
+  // Each term's formula by its index among the link vectors.
+  std::vector<GiNaC::ex> formulas;
+  for (std::size_t l = 0; l < loops.size(); ++l) {
+    if (loops[l]->terms.size() != terms_.loop_term_count[l]) return {};
+    formulas.insert(formulas.end(), loops[l]->terms.begin(), loops[l]->terms.end());
+  }
+  // The length parameter p with c p = e for c one of 1, -1, i, -i.
+  const auto one_length = [&](const GiNaC::ex& e) -> std::optional<std::size_t> {
+    for (std::size_t k = 0; k < system_->parameters.size(); ++k) {
+      const SystemParameter& p = system_->parameters[k];
+      if (p.dimension != Dimension::length || !e.has(p.symbol)) continue;
+      const GiNaC::ex ratio = GiNaC::normal(e / p.symbol);
+      for (const GiNaC::ex& c : {GiNaC::ex(1), GiNaC::ex(-1), GiNaC::ex(GiNaC::I), GiNaC::ex(-GiNaC::I)})
+        if ((ratio - c).is_zero()) return k;
+      return std::nullopt;
+    }
+    return std::nullopt;
+  };
+  GiNaC::exmap unknowns_zero;
+  for (const Coordinate& q : system_->unknowns) unknowns_zero[q.symbol] = 0;
+  GiNaC::exmap values;
+  for (const SystemParameter& p : system_->parameters) values[p.symbol] = p.value;
+  std::vector<DrawnDimension> found;
+  for (const DrawingSegment& g : segments) {
+    if (g.term >= formulas.size()) continue;
+    const GiNaC::ex& term = formulas[g.term];
+    if (g.kind == DrawingSegment::Kind::ground) {
+      if (const auto k = one_length(term)) found.push_back({g.from, g.to, *k});
+    } else if (g.kind == DrawingSegment::Kind::slider && g.fixed_guide) {
+      const GiNaC::ex constant = term.subs(unknowns_zero);
+      const auto k = one_length(constant);
+      if (!k) continue;
+      const GiNaC::ex number = GiNaC::evalf(constant.subs(values));
+      if (!GiNaC::is_a<GiNaC::numeric>(number)) continue;
+      const std::complex<double> c(GiNaC::ex_to<GiNaC::numeric>(GiNaC::real_part(number)).to_double(),
+                                   GiNaC::ex_to<GiNaC::numeric>(GiNaC::imag_part(number)).to_double());
+      // The term runs from `from` to `to`; its ground end is the one without the block.
+      if (g.block_at_from) found.push_back({g.to, g.to - c, *k});
+      else found.push_back({g.from, g.from + c, *k});
+    }
+  }
+  return found;
+}
+
 namespace {
 
 double distance_to_segment(std::complex<double> p, std::complex<double> a, std::complex<double> b) {

@@ -58,6 +58,14 @@ struct LetteredCorner {
   std::complex<double> at;  ///< SI.
 };
 
+/// A fixed length of a vector-loop drawing that one parameter of the file gives (DEF's
+/// La and I*Lb, a slider guide's offset Lc or e): drawn from `from` to `to` (SI), labelled
+/// with system.parameters[parameter]'s name.
+struct DrawnDimension {
+  std::complex<double> from, to;
+  std::size_t parameter = 0;
+};
+
 /// A named point on a link: its formula's last term is a link vector of fixed length
 /// turning with that link, drawn from `from` (the point that term starts at) to the point.
 struct PointOnLink {
@@ -175,6 +183,11 @@ class MechanismGeometry {
   /// corners drawn (a segment's end) and not a named point; one letter a place. `segments`
   /// are segments(state).
   std::vector<LetteredCorner> lettered_corners(const MotionState& state, const std::vector<DrawingSegment>& segments) const;
+  /// The ground lengths one length parameter gives: a ground term that is that parameter
+  /// (times 1, -1, i or -i), along its segment; a fixed guide's offset, a slider term's
+  /// constant part that is one, from the term's ground end towards the guide. `segments`
+  /// are segments(state).
+  std::vector<DrawnDimension> dimensions(const std::vector<DrawingSegment>& segments) const;
   /// The named points that lie on a link, at a state that is ok.
   std::vector<PointOnLink> points_on_links(const MotionState& state) const;
   /// Each link's number, as DrawingSegment::link and PointOnLink::link index them.

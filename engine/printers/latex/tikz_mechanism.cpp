@@ -231,6 +231,10 @@ class MechanismFigure {
   void pivot_label(Planar at, const std::string& text) {
     pending_.push_back({"", "font=\\small, inner sep=0pt", text, label_box(text, 10, 0), {at_cm(at), 0, 0}, -kPi / 4, false, 0, 1});
   }
+  // A length's name beside the line a-b it measures (drawn already, dashed).
+  void dimension_label(Planar a, Planar b, const std::string& name) {
+    pending_.push_back({"", "font=\\small, inner sep=1pt", name, label_box(name, 10, 1), {at_cm(a), 0, 0}, 0, true, at_cm(b), 4});
+  }
   // A link's number, circled, beside the line a-b.
   void link_number(Planar a, Planar b, const std::string& number) {
     pending_.push_back({"", "circle, draw, inner sep=1pt, font=\\scriptsize", number, circled(label_box(number, 8, 1)),
@@ -435,6 +439,15 @@ void write_tikz_mechanism(std::ostream& out, const ConstraintSystem& system, con
   if (drawing) draw_linkage(f, *drawing, centre, size, system.plan.has_value());
   draw_segments(f, segments, at.points_on_links, centre, size);
   for (const LetteredCorner& corner : at.lettered_corners) f.pivot_label(corner.at, latex_escape_text(corner.letter));
+  for (const DrawnDimension& d : at.dimensions) {
+    if (f.same(d.from, d.to)) continue;
+    // A guide's offset is drawn here; a ground term's line is drawn already.
+    const bool drawn = std::any_of(segments.begin(), segments.end(), [&](const DrawingSegment& g) {
+      return g.kind == DrawingSegment::Kind::ground && ((f.same(g.from, d.from) && f.same(g.to, d.to)) || (f.same(g.from, d.to) && f.same(g.to, d.from)));
+    });
+    if (!drawn) f.line(d.from, d.to, "gray, dashed");
+    f.dimension_label(d.from, d.to, "$" + to_latex(system.parameters[d.parameter].symbol) + "$");
+  }
   number_segments(f, segments, link_labels);
   // The angles that are coordinates, each once: an arc from the x direction at the joint
   // its link vector (or, for joints and links, its link) starts from.

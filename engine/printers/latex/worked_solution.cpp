@@ -818,6 +818,8 @@ class WorkedSolutionPrinter : public Printer {
     DocumentWriter writer(out, job.model, analysis);
     if (!job.fragment) writer.preamble();
     writer.data();
+    // A key leads with its answers (a grader looks for them first), then works them out.
+    if (job.answers) out << problem_answers_latex(job.model.system, *job.answers);
     if (is_driven_chain(job.model.system)) {  // worked out at the instant, as seed 000
       writer.chain();
     } else if (job.method == DerivationMethod::loops) {
@@ -833,7 +835,6 @@ class WorkedSolutionPrinter : public Printer {
         throw std::logic_error("a document was given no analysis of its values: build it with analyse_for_views");
       for (std::size_t row = 0; row < job.values->size(); ++row) writer.results(*job.values, row, analysis.values[row]);
     }
-    if (job.answers) out << problem_answers_latex(job.model.system, *job.answers);
     if (job.sweep) writer.plots(*job.sweep);
     if (!job.fragment) writer.end();
   }

@@ -131,7 +131,7 @@ std::string problem_quantity_latex(const ConstraintSystem& system, const std::st
 
 std::string problem_answers_latex(const ConstraintSystem& system, const std::vector<ProblemAnswer>& answers) {
   std::ostringstream out;
-  out << kLatexPartBreak << "\\subsection*{Answers}\nThe quantities the problem asks for, as computed above:\n\n"
+  out << "\\subsection*{Answers}\nThe quantities the problem asks for, as worked out below:\n\n"
       << "\\begin{tabular}{lll}\n\\toprule\nquantity & at & answer \\\\\n\\midrule\n";
   for (const ProblemAnswer& a : answers) {
     if (a.figure) {

@@ -19,7 +19,8 @@ namespace kinema {
 /// A find name in LaTeX math ("omega3" -> \omega_{3}, "vP" -> v_{P}), without the $.
 std::string problem_quantity_latex(const ConstraintSystem& system, const std::string& name);
 
-/// The key's section of the asked answers, each boxed, in the output units.
+/// The key's section of the asked answers, each boxed, in the output units: it leads the
+/// key, after the data.
 std::string problem_answers_latex(const ConstraintSystem& system, const std::vector<ProblemAnswer>& answers);
 
 /// A student's sheet for `variant`: `state` and `at` the drawing's value (the first asked,

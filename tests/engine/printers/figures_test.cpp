@@ -7,6 +7,7 @@
 #include <cmath>
 #include <complex>
 #include <cstdio>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -1169,4 +1170,44 @@ TEST_CASE("figures: a vector-loop file's corners lettered by its lengths' names,
   const kinema::MechanismGeometry geometry(four_bar);
   const MotionTable at = kinema::analyse(four_bar, four_bar.system.input.values);
   CHECK(geometry.lettered_corners(at[0], geometry.segments(at[0])).empty());
+}
+
+// Issue 49: the sheet's La, Lb and Lc were unlabelled dashed lines. A ground length that one
+// parameter gives is drawn and labelled with its name (dimensions), at every value drawn:
+// Problem 4.4's La from the origin along x, Lb up to D, Lc from the origin to the guide of
+// slider 5; the slider-crank's offset e.
+TEST_CASE("figures: ground lengths named by one parameter are drawn and labelled at every value drawn") {
+  const kinema::Model model = kinema::load_model(kinema_test::sample("problem_4_4_six_bar.toml"));
+  const kinema::MechanismGeometry geometry(model);
+  const auto value_of = [&](const std::string& name) {
+    for (const auto& p : model.system.parameters)
+      if (p.symbol.get_name() == name) return p.value;
+    FAIL("no parameter " << name);
+    return 0.0;
+  };
+  std::vector<double> inputs;
+  for (int k = 0; k < 6; ++k) inputs.push_back(model.system.input.values.front() + k * 60 * M_PI / 180);
+  const MotionTable table = kinema::analyse(model, inputs);
+  for (std::size_t r = 0; r < table.size(); ++r) {
+    if (table.status(r) != kinema::Status::ok) continue;
+    CAPTURE(table.input(r));
+    std::map<std::string, std::pair<Point, Point>> drawn;
+    for (const kinema::DrawnDimension& d : geometry.dimensions(geometry.segments(table[r])))
+      drawn[model.system.parameters[d.parameter].symbol.get_name()] = {d.from, d.to};
+    REQUIRE(drawn.size() == 3);
+    const auto& [la_from, la_to] = drawn.at("La");
+    const auto& [lb_from, lb_to] = drawn.at("Lb");
+    const auto& [lc_from, lc_to] = drawn.at("Lc");
+    CHECK(std::abs(la_from) < 1e-12);
+    CHECK(std::abs(la_to - Point(value_of("La"), 0)) < 1e-12);
+    CHECK(std::abs(lb_from - Point(value_of("La"), 0)) < 1e-12);
+    CHECK(std::abs(lb_to - Point(value_of("La"), value_of("Lb"))) < 1e-12);
+    CHECK(std::abs(lc_from) < 1e-12);
+    CHECK(std::abs(lc_to - Point(-value_of("Lc"), 0)) < 1e-12);
+  }
+  const std::string tex = document_at_first_value(model);
+  for (const char* name : {"{$L_{a}$}", "{$L_{b}$}", "{$L_{c}$}"}) CHECK(tex.find(name) != std::string::npos);
+  const kinema::Model slider = kinema::load_model(kinema_test::sample("slider_crank.toml"));
+  const std::string slider_tex = document_at_first_value(slider);
+  CHECK(slider_tex.find("{$e$}") != std::string::npos);
 }

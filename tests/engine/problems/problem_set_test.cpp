@@ -459,6 +459,14 @@ TEST_CASE("problems: a variant's sheet and key compile with pdflatex, no overful
     CHECK(pages > 0);
     // The sheet a class is handed: statement, data and drawing on one page.
     if (name == "problem_sheet") CHECK(pages == 1);
+    // Issue 49: the key leads with its boxed answers (they were on page 8 of 9).
+    if (name == "problem_key") {
+      const std::string pdf = (kinema_test::scratch_directory() / "latex" / "problem_key.pdf").string();
+      const std::string first_page = kinema_test::run_shell("pdftotext -f 1 -l 1 '" + pdf + "' -").out;
+      CHECK(first_page.find("Answers") != std::string::npos);
+      CHECK(first_page.find("The quantities the problem asks for") != std::string::npos);
+      CHECK(key.find("\\subsection*{Answers}") < key.find("\\begin{tikzpicture}"));
+    }
     for (const kinema_test::Overfull& box : kinema_test::overfull_boxes(log)) {
       INFO(box.text);
       CHECK(box.points <= 1);
@@ -483,6 +491,8 @@ TEST_CASE("problems: the sheet gives a parameter written as a formula, and the d
     CHECK(sheet.find("$L_{c}$ & $" + format_significant(cd, 6) + "\\,\\mathrm{m}$") != std::string::npos);  // Lc = CD, this variant's
     CHECK(sheet.find("\\mathit{CE}$ \\\\") == std::string::npos);
     CHECK(sheet.find("$\\alpha_{1}$ & $0\\,\\mathrm{rad/s^{2}}$") != std::string::npos);
+    // Every dimension labelled on the figure, every pivot lettered.
+    for (const char* label : {"{$L_{a}$}", "{$L_{b}$}", "{$L_{c}$}", "{A}", "{D}"}) CHECK(sheet.find(label) != std::string::npos);
   }
 }
 
