@@ -228,6 +228,31 @@ async function checkPolygons(page, name, header, csvRow) {
         assert(!(l.x0 < h.x1 - 0.5 && h.x0 + 0.5 < l.x1 && l.y0 < h.y1 - 0.5 && h.y0 + 0.5 < l.y1),
           `${name}: the polygon's label "${l.text}" (${l.x0.toFixed(1)}, ${l.y0.toFixed(1)})-(${l.x1.toFixed(1)}, ${l.y1.toFixed(1)}) covers the head of ${h.name}`);
   }
+  // Issue 49: the arrows named, a legend for their kinds, normal and tangential parts told
+  // apart by their dashes, and no head on an arrow too short for one (piled heads).
+  const marks = await page.evaluate(() => ['velocity-polygon', 'acceleration-polygon'].map((id) => {
+    const panel = document.getElementById(id);
+    const arrows = Array.from(panel.querySelectorAll('line[data-arrow]')).map((l) => {
+      const [x1, y1, x2, y2] = ['x1', 'y1', 'x2', 'y2'].map((a) => Number(l.getAttribute(a)));
+      return { name: l.getAttribute('data-arrow'), kind: l.getAttribute('class').split(' ').find((c) => c.startsWith('polygon-') && c !== 'polygon-arrow'),
+               length: Math.hypot(x2 - x1, y2 - y1), head: l.hasAttribute('marker-end'), dash: getComputedStyle(l).strokeDasharray };
+    });
+    const legend = Array.from(panel.parentNode.querySelectorAll('[data-legend]')).map((e) => 'polygon-' + e.getAttribute('data-legend'));
+    const labelled = Array.from(panel.querySelectorAll('[data-arrow-label]')).map((e) => e.getAttribute('data-arrow-label'));
+    return { arrows, legend, labelled };
+  }));
+  for (const m of marks) {
+    const long = m.arrows.filter((a) => a.length >= 20);
+    const named = long.filter((a) => m.labelled.includes(a.name)).length;
+    assert(named >= 0.75 * long.length, `${name}: ${named} of ${long.length} polygon arrows named`);
+    for (const a of m.arrows) {
+      assert(m.legend.includes(a.kind), `${name}: the polygon's legend has no ${a.kind}`);
+      assert(a.head === (a.length >= 14), `${name}: the arrow ${a.name} of ${a.length.toFixed(1)} px ${a.head ? 'has' : 'has no'} head`);
+    }
+    const dashes = (kind) => new Set(m.arrows.filter((a) => a.kind === kind).map((a) => a.dash));
+    for (const normal of dashes('polygon-normal'))
+      assert(!dashes('polygon-tangential').has(normal), `${name}: normal and tangential parts drawn with one dash ${normal}`);
+  }
   for (const bar of bars) {
     const [number] = bar.text.split(' ');
     assert(!/[0-9]{6}/.test(number) && Math.abs(numberOf(number) - 50 * bar.perPixel) <= 1e-9 * 50 * bar.perPixel,

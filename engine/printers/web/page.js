@@ -670,6 +670,57 @@
     for (let d = 10; d < length; d += 4) around([q[0] - u[0] * d, q[1] - u[1] * d], 1.5);
     return boxes;
   }
+  // Arrows shorter than this (px) are drawn without a head.
+  const kPolygonHeadless = 14;
+  // An arrow's name as the notes write it: "an_BA" is a with n above and BA below.
+  function arrowName(name, parent, attributes) {
+    const text = svg('text', attributes, parent);
+    const cut = name.indexOf('_');
+    const head = cut < 0 ? name : name.slice(0, cut), tail = cut < 0 ? '' : name.slice(cut + 1);
+    text.appendChild(document.createTextNode(head.charAt(0)));
+    if (head.length > 1) svg('tspan', { 'baseline-shift': 'super', 'font-size': '9px' }, text, head.slice(1));
+    if (tail) svg('tspan', { 'baseline-shift': 'sub', 'font-size': '9px' }, text, tail);
+    return text;
+  }
+  // Each arrow of 20 px or more named beside its middle, on no arrow, head or name placed
+  // before it: the nearer side first, then farther out.
+  function labelArrows(arrows, parent, taken) {
+    arrows.forEach(function (d) {
+      if (d.length < 20) return;
+      const u = [(d.q[0] - d.p[0]) / d.length, (d.q[1] - d.p[1]) / d.length], n = [-u[1], u[0]];
+      const middle = [(d.p[0] + d.q[0]) / 2, (d.p[1] + d.q[1]) / 2];
+      const label = arrowName(d.arrow.name, parent, { x: 0, y: 0, class: 'label polygon-label', 'data-arrow-label': d.arrow.name });
+      const measured = labelSize(label, 'arrow ' + d.arrow.name);
+      const width = (measured.width > 0 ? measured.width : 7 * d.arrow.name.length) + 2, height = measured.height > 0 ? measured.height + 2 : 17;
+      let chosen = null;
+      for (let out = 10; !chosen && out <= 60; out += 6) {
+        for (const side of [1, -1]) {
+          for (const along of [0, -0.25, 0.25]) {
+            const c = [middle[0] + side * n[0] * (out + width / 2) + u[0] * along * d.length,
+                       middle[1] + side * n[1] * (out + height / 2) + u[1] * along * d.length];
+            const box = { x0: c[0] - width / 2, x1: c[0] + width / 2, y0: c[1] - height / 2, y1: c[1] + height / 2 };
+            if (!chosen && !taken.some(function (o) { return boxesOverlap(box, o); })) chosen = box;
+          }
+        }
+      }
+      if (!chosen) { parent.removeChild(label); return; }  // no room: the legend and the vertices name it
+      taken.push(chosen);
+      label.setAttribute('x', fixed(chosen.x0 + 1));
+      label.setAttribute('y', fixed(measured.height > 0 ? chosen.y0 + 1 - measured.y : chosen.y1 - 4));
+    });
+  }
+  // What each line's colour and dash mean, for the kinds this polygon has.
+  function polygonLegend(key, kinds, order) {
+    const words = { absolute: order === 0 ? 'absolute velocity' : 'absolute acceleration', relative: 'relative (turning)',
+      sliding: 'relative (sliding)', normal: 'normal (\u03c9\u00b2r)', tangential: 'tangential (\u03b1r)', coriolis: 'Coriolis (2\u03c9v)' };
+    kinds.forEach(function (kind) {
+      const entry = node('span', 'legend-entry', key);
+      entry.setAttribute('data-legend', kind);
+      const swatch = svg('svg', { width: 26, height: 8 }, entry);
+      svg('line', { x1: 1, y1: 4, x2: 25, y2: 4, class: 'polygon-arrow polygon-' + kind }, swatch);
+      entry.appendChild(document.createTextNode(' ' + words[kind] + '  '));
+    });
+  }
   function drawPolygons() {
     const shown = toggles.polygons && toggles.polygons.checked;
     polygonArea.style.display = shown ? '' : 'none';
@@ -693,16 +744,24 @@
       svg('text', { x: 70, y: 248, class: 'tick' }, panel.svg, readable(bar, 3) + ' ' + panel.unit);
       panel.key.textContent = '';
       const place = function (p) { return [scale.cx + p[0] / scale.perPixel, scale.cy - p[1] / scale.perPixel]; };
-      const taken = [];
+      const taken = [], drawnArrows = [], kinds = [];
       polygon.arrows.forEach(function (a) {
         const p = place(a.from), q = place(a.to);
-        if (Math.hypot(q[0] - p[0], q[1] - p[1]) < 0.5) return;
-        const arrowLine = svg('line', { x1: fixed(p[0]), y1: fixed(p[1]), x2: fixed(q[0]), y2: fixed(q[1]),
-          class: 'polygon-arrow polygon-' + a.kind, 'marker-end': 'url(#head-polygon)' }, panel.svg);
+        const length = Math.hypot(q[0] - p[0], q[1] - p[1]);
+        if (length < 0.5) return;
+        // A head only on an arrow longer than one and a half heads: the heads of short
+        // arrows between close vertices piled up over each other.
+        const attributes = { x1: fixed(p[0]), y1: fixed(p[1]), x2: fixed(q[0]), y2: fixed(q[1]), class: 'polygon-arrow polygon-' + a.kind };
+        if (length >= kPolygonHeadless) attributes['marker-end'] = 'url(#head-polygon)';
+        const arrowLine = svg('line', attributes, panel.svg);
         arrowLine.setAttribute('data-arrow', a.name);
         Array.prototype.push.apply(taken, arrowBoxes(p, q));
+        drawnArrows.push({ arrow: a, p: p, q: q, length: length });
+        if (kinds.indexOf(a.kind) < 0) kinds.push(a.kind);
       });
+      labelArrows(drawnArrows, panel.svg, taken);
       drawLabelled(polygon.vertices, place, panel.svg, 'point', 'data-vertex', ' = ', taken);
+      polygonLegend(panel.key, kinds, panel.order);
     });
   }
 
