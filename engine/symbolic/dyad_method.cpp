@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "engine/base/work_count.hpp"
 #include "engine/base/errors.hpp"
@@ -468,7 +469,12 @@ class Writer {
         r[i] = -e.subs(none);
         for (int k = 0; k < 2; ++k) m[i][k] = e.expand().coeff(unknowns[std::size_t(k)], 1);
       }
-      const ex det = (m[0][0] * m[1][1] - m[0][1] * m[1][0]).expand();
+      // Collected in the first column's symbols (x_B*(y_C - y_D) + ...), in name order.
+      std::map<std::string, ex> column;
+      for (const ex& s : symbols_of(m[0][0] + m[1][0])) column[GiNaC::ex_to<GiNaC::symbol>(s).get_name()] = s;
+      GiNaC::lst by;
+      for (const auto& [name, s] : column) by.append(s);
+      const ex det = GiNaC::collect((m[0][0] * m[1][1] - m[0][1] * m[1][0]).expand(), by);
       list.push_back({MethodRelation::Kind::solution, "", "", unknowns[0], (r[0] * m[1][1] - r[1] * m[0][1]) / det});
       list.push_back({MethodRelation::Kind::solution, "", "", unknowns[1], (m[0][0] * r[1] - m[1][0] * r[0]) / det});
       return;
@@ -559,12 +565,18 @@ class Writer {
     }
     // Velocity: d/dt of each relation, linear in v_J; acceleration: d/dt again, linear in a_J.
     std::vector<ex> velocity_equations, acceleration_equations;
+    // Written collected in the rates, as the textbooks write them: (x_C - x_B)*v_Cx + ...,
+    // not multiplied out term by term (collect keeps GiNaC's canonical order: the same
+    // from every build, as expand's).
+    GiNaC::lst rates, second_rates;
+    for (const auto& [s, rate] : once) rates.append(rate);
+    for (const auto& [s, rate] : twice) second_rates.append(rate);
     for (const ex& c : constraints) {
       const ex dc = derivative(c, once).expand();
-      velocity_equations.push_back(dc.subs(same).expand());
+      velocity_equations.push_back(GiNaC::collect(dc.subs(same).expand(), rates));
       GiNaC::exmap both = once;
       for (const auto& [s, rate] : twice) both[s] = rate;
-      acceleration_equations.push_back(derivative(dc, both).expand().subs(same).expand());
+      acceleration_equations.push_back(GiNaC::collect(derivative(dc, both).expand().subs(same).expand(), second_rates));
     }
     for (const ex& e : velocity_equations) step.velocity.push_back({MethodRelation::Kind::component, "d/dt", "\\tfrac{d}{dt}", e, 0});
     solve(step.velocity, velocity_equations, {v_j.x, v_j.y});

@@ -9,11 +9,13 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <map>
 #include <string>
 #include <vector>
 
 #include "engine/symbolic/dyad_method.hpp"
 #include "engine/numeric/dyad_positions.hpp"
+#include "engine/constraints/differentiate.hpp"
 
 #include "tests/test_support.hpp"
 
@@ -214,5 +216,46 @@ TEST_CASE("dyad_method: no empty terms, and no term of the zero vector between t
               }
           }
     }
+  }
+}
+
+// Issue 49: the joint-coordinates method printed its differentiated relations multiplied
+// out (v_Bx*x_B - v_Bx*x_C + ...): each rate is now written once, times its collected
+// coefficient, and the determinant once for each x coordinate.
+TEST_CASE("dyad_method: joint coordinates' differentiated relations are collected in the rates") {
+  for (const char* name : {"problem_4_4_joints.toml", "example_4_1_joints.toml", "example_4_2_joints.toml",
+                           "problem_3_22_joints.toml", "triple_rocker_circuit.toml"}) {
+    CAPTURE(std::string(name));
+    const kinema::Model model = kinema::load_model(kinema_test::sample(name));
+    const kinema::DyadDerivation d = kinema::derive_by_dyads(model.system, DerivationMethod::joint_coordinates);
+    std::size_t checked = 0;
+    const auto once_each = [&](const ex& e, const std::string& prefix) {
+      // Each symbol named prefix... occurs as a factor of one term of the sum, not of several.
+      if (!GiNaC::is_a<GiNaC::add>(e)) return;
+      std::map<std::string, int> terms_with;
+      for (const ex& term : e) {
+        for (const ex& s : kinema::symbols_of(term)) {
+          const std::string n = GiNaC::ex_to<GiNaC::symbol>(s).get_name();
+          if (n.rfind(prefix, 0) == 0 && term.degree(s) == 1) ++terms_with[n];
+        }
+      }
+      for (const auto& [symbol, count] : terms_with) {
+        CAPTURE(e);
+        CAPTURE(symbol);
+        CHECK(count == 1);
+        ++checked;
+      }
+    };
+    for (const auto& step : d.steps) {
+      for (const MethodRelation& r : step.velocity)
+        if (r.kind == MethodRelation::Kind::component && r.text == "d/dt") once_each(r.left, "v_");
+      for (const MethodRelation& r : step.acceleration)
+        if (r.kind == MethodRelation::Kind::component && r.text == "d2/dt2") once_each(r.left, "a_");
+      for (const MethodRelation& r : step.velocity)
+        if (r.kind == MethodRelation::Kind::solution && GiNaC::ex_to<GiNaC::symbol>(r.left).get_name().rfind("v_", 0) == 0)
+          for (const ex& factor : r.right)  // the determinant: the factor to the power -1, as printed
+            if (GiNaC::is_a<GiNaC::power>(factor) && factor.op(1) == -1) once_each(factor.op(0), "x_");
+    }
+    CHECK(checked > 4);
   }
 }
