@@ -568,6 +568,47 @@ async function drawingShot(page) {
   return page.screenshot({ clip: box, animations: 'disabled', caret: 'initial' });
 }
 
+// Issue 49: the page's labels collided as the mechanism moved (problem_4_4_joints at 150
+// deg: a velocity arrow over link number 4, I24 into I03; problem_3_22_joints: an arrowhead
+// over "O2"). At 12 values over the run, with both arrows and the instant centres on: no
+// name, link number or centre's name on another, nor on an arrow's head.
+async function checkLabelsClear(page, name, rows) {
+  const ok = rows.map((r, k) => (r.split(',')[3] === 'ok' ? k : -1)).filter((k) => k >= 0);
+  const turnedOn = await page.evaluate(() => ['show-velocity', 'show-acceleration', 'show-centres'].filter((id) => {
+    const box = document.getElementById(id);
+    if (!box || box.checked) return false;
+    box.click();
+    return true;
+  }));
+  for (let k = 0; k < 12; ++k) {
+    const row = ok[Math.floor((k * (ok.length - 1)) / 11)];
+    await scrubTo(page, row);
+    const found = await page.evaluate(() => {
+      const svg = document.getElementById('mechanism'), panel = svg.getBoundingClientRect();
+      const box = (e) => { const r = e.getBoundingClientRect(); return { x0: r.left - panel.left, y0: r.top - panel.top, x1: r.right - panel.left, y1: r.bottom - panel.top }; };
+      const labels = Array.from(svg.querySelectorAll('[data-joint] > text, [data-point] > text, .link-number circle, #centres text'))
+        .filter((e) => e.textContent !== '' || e.tagName === 'circle').map((e) => ({ text: e.textContent || 'link number', ...box(e) }))
+        .filter((b) => b.x1 > b.x0 && b.x1 > 0 && b.y1 > 0 && b.x0 < panel.width && b.y0 < panel.height);  // seen
+      const heads = Array.from(svg.querySelectorAll('#overlay line[marker-end]')).filter((l) => /velocity|acceleration/.test(l.getAttribute('class'))).map((l) => {
+        const [x1, y1, x2, y2] = ['x1', 'y1', 'x2', 'y2'].map((a) => Number(l.getAttribute(a)));
+        const length = Math.hypot(x2 - x1, y2 - y1) || 1, u = [(x2 - x1) / length, (y2 - y1) / length];
+        const back = Math.min(8, length);
+        const corners = [[x2, y2], [x2 - u[0] * back - u[1] * 3, y2 - u[1] * back + u[0] * 3], [x2 - u[0] * back + u[1] * 3, y2 - u[1] * back - u[0] * 3]];
+        return { x0: Math.min(...corners.map((c) => c[0])), x1: Math.max(...corners.map((c) => c[0])),
+                 y0: Math.min(...corners.map((c) => c[1])), y1: Math.max(...corners.map((c) => c[1])) };
+      });
+      return { labels, heads };
+    });
+    const overlap = (a, b) => a.x0 < b.x1 - 1 && b.x0 < a.x1 - 1 && a.y0 < b.y1 - 1 && b.y0 < a.y1 - 1;
+    for (let i = 0; i < found.labels.length; ++i) {
+      for (let j = 0; j < i; ++j)
+        assert(!overlap(found.labels[i], found.labels[j]), `${name} row ${row}: "${found.labels[i].text}" on "${found.labels[j].text}"`);
+      for (const h of found.heads) assert(!overlap(found.labels[i], h), `${name} row ${row}: "${found.labels[i].text}" on an arrow's head`);
+    }
+  }
+  await page.evaluate((ids) => { for (const id of ids) document.getElementById(id).click(); }, turnedOn);
+}
+
 async function checkSample(browser, file) {
   const name = path.basename(file, '.toml');
   const { html, header, rows, tableRows } = pageAndCsv(file, name);
@@ -613,6 +654,7 @@ async function checkSample(browser, file) {
   }
   if (!spatial) {
     assert(joints >= 3, `${name}: no joint of the drawing is named by a point of eval's rows`);
+    await checkLabelsClear(page, name, rows);
     await scrubTo(page, picks[0]);
     const first = await drawingShot(page);
     await scrubTo(page, picks[2]);

@@ -369,6 +369,87 @@
     const g = svg('g', { class: 'link-number', transform: 'translate(' + fixed(at[0]) + ',' + fixed(at[1]) + ')' }, parent);
     svg('circle', { r: 8 }, g);
     svg('text', {}, g, part.label);
+    // Where else it may stand (arrangeLabels): either side of the link, nearer either end,
+    // then farther out; a block's number on any side of its block.
+    g.places = [at];
+    if (part.kind === 'block') {
+      const p = px(part.at), s = Math.sin(part.angle), c = Math.cos(part.angle);
+      [22, 34, 46].forEach(function (r) {
+        [[-s, -c], [s, c], [c, -s], [-c, s]].forEach(function (d) { g.places.push([p[0] + r * d[0], p[1] + r * d[1]]); });
+      });
+    } else {
+      const p = px(part.ends[0]), q = px(part.ends[1]), length = Math.hypot(q[0] - p[0], q[1] - p[1]);
+      const n = [-(q[1] - p[1]) / length, (q[0] - p[0]) / length];
+      [16, 28, 40].forEach(function (out) {
+        [0.5, 0.35, 0.65, 0.25, 0.75].forEach(function (f) {
+          [out, -out].forEach(function (side) {
+            g.places.push([p[0] + f * (q[0] - p[0]) + side * n[0], p[1] + f * (q[1] - p[1]) + side * n[1]]);
+          });
+        });
+      });
+    }
+  }
+
+  // As the mechanism moves, its labels keep clear of the arrows and of each other: each
+  // link number at the first of its places (link's middle first) on no arrow nor number
+  // placed before it; then each joint's and point's name at the first of eight places
+  // around its mark, else the nearest free one farther out, on no arrow, number, mark or
+  // name. The centres' names (drawCentres) then keep off all of these.
+  function labelObstacles() {
+    const panel = picture.getBoundingClientRect();
+    const boxes = [];
+    overlay.querySelectorAll('line.velocity, line.acceleration').forEach(function (l) {
+      const p = [Number(l.getAttribute('x1')), Number(l.getAttribute('y1'))], q = [Number(l.getAttribute('x2')), Number(l.getAttribute('y2'))];
+      if (Math.hypot(q[0] - p[0], q[1] - p[1]) > 0.5) Array.prototype.push.apply(boxes, arrowBoxes(p, q));
+    });
+    picture.querySelectorAll('circle.joint, circle.point').forEach(function (c) {
+      const r = c.getBoundingClientRect();
+      boxes.push({ x0: r.left - panel.left, y0: r.top - panel.top, x1: r.right - panel.left, y1: r.bottom - panel.top });
+    });
+    return boxes;
+  }
+  function arrangeLabels() {
+    const taken = labelObstacles();
+    const free = function (b) { return !taken.some(function (o) { return boxesOverlap(b, o); }); };
+    picture.querySelectorAll('.link-number').forEach(function (g) {
+      const places = g.places || [];
+      const box = function (c) { return { x0: c[0] - 9, x1: c[0] + 9, y0: c[1] - 9, y1: c[1] + 9 }; };
+      const chosen = places.find(function (c) { return free(box(c)); });
+      if (chosen) g.setAttribute('transform', 'translate(' + fixed(chosen[0]) + ',' + fixed(chosen[1]) + ')');
+      const m = /translate\(([^,]+),([^)]+)\)/.exec(g.getAttribute('transform'));
+      taken.push(box([Number(m[1]), Number(m[2])]));
+    });
+    picture.querySelectorAll('[data-joint] > text, [data-point] > text').forEach(function (label) {
+      const m = /translate\(([^,]+),([^)]+)\)/.exec(label.parentNode.getAttribute('transform'));
+      const at = [Number(m[1]), Number(m[2])];
+      label.setAttribute('x', 0);  // measured from its mark
+      label.setAttribute('y', 0);
+      const size = labelSize(label, 'name ' + label.textContent);
+      const width = (size.width > 0 ? size.width : 8 * label.textContent.length) + 2, height = size.height > 0 ? size.height + 2 : 17;
+      const above = size.height > 0 ? -size.y + 1 : 14;
+      const box = function (dx, dy) {
+        const x0 = at[0] + dx - 1, y0 = at[1] + dy - above;
+        return { dx: dx, dy: dy, x0: x0, x1: x0 + width, y0: y0, y1: y0 + height };
+      };
+      const around = [[7, -7], [7, 16], [-7 - width, -7], [-7 - width, 16], [9, 4], [-9 - width, 4], [-width / 2, 22], [-width / 2, -10]];
+      let chosen = null;
+      for (let k = 0; !chosen && k < around.length; ++k) {
+        const b = box(around[k][0], around[k][1]);
+        if (free(b)) chosen = b;
+      }
+      for (let k = 1; !chosen && k < 12; ++k) {
+        for (let j = 0; !chosen && j < around.length; ++j) {
+          const b = box(around[j][0], around[j][1]);
+          const cx = (b.x0 + b.x1) / 2 - at[0], cy = (b.y0 + b.y1) / 2 - at[1], d = Math.hypot(cx, cy) || 1;
+          const moved = box(around[j][0] + 5 * k * cx / d, around[j][1] + 5 * k * cy / d);
+          if (free(moved)) chosen = moved;
+        }
+      }
+      if (!chosen) chosen = box(7, -7);
+      label.setAttribute('x', fixed(chosen.dx));
+      label.setAttribute('y', fixed(chosen.dy));
+      taken.push(chosen);
+    });
   }
 
   // An arrow from a point in the panel whose tip would be beyond it (near a toggle the
@@ -489,6 +570,7 @@
         arrow(at, [n[p.acceleration], n[p.acceleration + 1]], accelerationScale, 'acceleration', overlay, n[p.acceleration + 2]);  // then its magnitude
       }
     });
+    arrangeLabels();
     if (toggles.centres && toggles.centres.checked) drawCentres(overlay);
     drawScaleBar(overlay);
   }
@@ -606,7 +688,7 @@
     // places around the mark, else of the same eight moved out from it step by step (the
     // nearest free place). Its size as drawn (a hidden panel measures nothing: then about
     // 8 px a character of the 13 px text).
-    const placed = (taken || []).slice();
+    const placed = taken || [];  // the caller's: what is placed here is taken after
     const overlaps = function (b) { return placed.some(function (o) { return boxesOverlap(b, o); }); };
     groups.forEach(function (g) {
       const text = g.names.join(separator);
@@ -786,20 +868,45 @@
         if (far > 0) line(a, b, 'kennedy', g);
       });
     });
+    // The joints' letters, the links' numbers and the arrows stay readable under the centres' names.
+    const panel = picture.getBoundingClientRect();
+    const taken = Array.from(picture.querySelectorAll('[data-joint] text, [data-point] text, .link-number')).map(function (t) {
+      const r = t.getBoundingClientRect();
+      return { x0: r.left - panel.left, y0: r.top - panel.top, x1: r.right - panel.left, y1: r.bottom - panel.top };
+    }).filter(function (b) { return b.x1 > b.x0; }).concat(labelObstacles());
+    // A name set at the first of `places` (its text's start and baseline) on nothing taken,
+    // else at the first; taken from then on.
+    const setFree = function (text, given) {
+      // Then farther out from the first, in eight directions, step by step.
+      const places = given.slice();
+      for (let k = 1; k <= 10; ++k)
+        for (let a = 0; a < 8; ++a) places.push([given[0][0] + 7 * k * Math.cos(a * Math.PI / 4), given[0][1] + 7 * k * Math.sin(a * Math.PI / 4)]);
+      let chosen = null;
+      for (let k = 0; k < places.length && !chosen; ++k) {
+        text.setAttribute('x', fixed(places[k][0]));
+        text.setAttribute('y', fixed(places[k][1]));
+        const b = text.getBBox(), box = { x0: b.x, y0: b.y, x1: b.x + b.width, y1: b.y + b.height };
+        if (!taken.some(function (o) { return boxesOverlap(box, o); })) chosen = box;
+      }
+      if (!chosen) {
+        text.setAttribute('x', fixed(places[0][0]));
+        text.setAttribute('y', fixed(places[0][1]));
+        const b = text.getBBox();
+        chosen = { x0: b.x, y0: b.y, x1: b.x + b.width, y1: b.y + b.height };
+      }
+      taken.push(chosen);
+    };
+    // A centre at infinity: an arrow from the slider it belongs to, named beside its tip.
     found.centres.forEach(function (centre) {
       if (!centre.infinite || !centre.seen_from) return;
       const p = px(centre.seen_from);
       const q = [p[0] + 60 * centre.direction[0], p[1] - 60 * centre.direction[1]];
       svg('line', { x1: fixed(p[0]), y1: fixed(p[1]), x2: fixed(q[0]), y2: fixed(q[1]), class: 'centre-infinite',
         'marker-end': 'url(#head-centre)' }, g).setAttribute('data-centre', centre.name);
-      svg('text', { x: fixed(q[0] + 4), y: fixed(q[1] - 4), class: 'label centre-label' }, g, centre.name + ' \u221e');
+      const text = svg('text', { class: 'label centre-label' }, g, centre.name + ' \u221e');
+      setFree(text, [[q[0] + 4, q[1] - 4], [q[0] + 4, q[1] + 14], [q[0] - 44, q[1] - 4], [q[0] - 44, q[1] + 14], [q[0] + 8, q[1] + 28], [q[0] - 44, q[1] + 28]]);
     });
-    // The joints' letters and the links' numbers stay readable under the centres' names.
-    const panel = picture.getBoundingClientRect();
-    const taken = Array.from(picture.querySelectorAll('[data-joint] text, [data-point] text, .link-number')).map(function (t) {
-      const r = t.getBoundingClientRect();
-      return { x0: r.left - panel.left, y0: r.top - panel.top, x1: r.right - panel.left, y1: r.bottom - panel.top };
-    }).filter(function (b) { return b.x1 > b.x0; });
+    // Names on the centres' marks (drawLabelled adds what it places to taken).
     drawLabelled(finite, px, g, 'centre', 'data-centre', ', ', taken);
     // A centre beyond the panel (the triple rocker's I02): an arrow at the panel's edge
     // towards it, with its name.
@@ -814,7 +921,9 @@
       const tail = [tip[0] - 40 * d[0] / length, tip[1] - 40 * d[1] / length];
       svg('line', { x1: fixed(tail[0]), y1: fixed(tail[1]), x2: fixed(tip[0]), y2: fixed(tip[1]), class: 'centre-infinite',
         'marker-end': 'url(#head-centre)', 'data-centre-beyond': centre.name }, g);
-      svg('text', { x: fixed(tail[0] - (d[0] > 0 ? 30 : -4)), y: fixed(tail[1] + (d[1] > 0 ? -6 : 14)), class: 'label centre-label' }, g, centre.name);
+      const text = svg('text', { class: 'label centre-label' }, g, centre.name);
+      const x = tail[0] - (d[0] > 0 ? 30 : -4), y = tail[1] + (d[1] > 0 ? -6 : 14);
+      setFree(text, [[x, y], [x, y + (d[1] > 0 ? -14 : 14)], [x + (d[0] > 0 ? -30 : 30), y], [x, y + (d[1] > 0 ? -28 : 28)]]);
     });
   }
 
