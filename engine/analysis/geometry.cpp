@@ -394,7 +394,10 @@ std::vector<LetteredCorner> MechanismGeometry::lettered_corners(const MotionStat
   }
   if (contradicted) return {};
   std::vector<LetteredCorner> found;
-  for (const auto& [at, letter] : lettered) {
+  for (const auto& corner : lettered) {
+    // (No structured binding: a lambda below uses them, which C++17 clang refuses.)
+    const std::complex<double> at = corner.first;
+    const char letter = corner.second;
     // One letter a place and one place a letter, else none.
     const bool clash = std::any_of(lettered.begin(), lettered.end(), [&](const auto& o) {
       return (std::abs(o.first - at) <= tolerance) != (o.second == letter);
