@@ -75,8 +75,14 @@ void write_tikz_chain(std::ostream& out, const ConstraintSystem& system, const s
       << "}}$};\n"
       << "\\draw[->, gray] (0,0,0) -- (0,0," << format_fixed(reach) << ") node[anchor=south] {$z_{\\text{" << o
       << "}}$};\n";
+  // What is drawn is kept, on the page, so that the names are set where they cover none of it.
+  LabelBoxes drawn;
+  const double dot = 1.5 * 2.54 / 72.27;  // a place's dot (1.5 pt), cm
+  const auto page_of = [&](const Point3& p) { return on_page({p[0] * cm, p[1] * cm, p[2] * cm}); };
+  const auto line_on_page = [&](const Point3& a, const Point3& b) { drawn.add_line(page_of(a), page_of(b), 0.03); };
   // The bodies (ChainBodies), as the planar figures draw a link: a light bar under its line.
   const auto bar = [&](const Point3& a, const Point3& b) {
+    line_on_page(a, b);
     if (at(a) == at(b)) return;  // a point at its frame's origin: no body to draw
     out << "\\draw[line width=6pt, line cap=round, blue!12] " << at(a) << " -- " << at(b) << ";\n"
         << "\\draw[very thick, blue!70!black] " << at(a) << " -- " << at(b) << ";\n";
@@ -93,12 +99,7 @@ void write_tikz_chain(std::ostream& out, const ConstraintSystem& system, const s
       if (!bodies.point_frames[p].empty()) bar(origin_of(bodies.point_frames[p]), point_at(p));
     for (const auto& ends : bodies.couplers) bar(point_at(ends[0]), point_at(ends[1]));
   }
-  // Each frame's triad; the names of the frames and points at each place, once. What is
-  // drawn is kept, on the page, so that the names are set where they cover none of it.
-  LabelBoxes drawn;
-  const double dot = 1.5 * 2.54 / 72.27;  // a place's dot (1.5 pt), cm
-  const auto page_of = [&](const Point3& p) { return on_page({p[0] * cm, p[1] * cm, p[2] * cm}); };
-  const auto line_on_page = [&](const Point3& a, const Point3& b) { drawn.add_line(page_of(a), page_of(b), 0.03); };
+  // Each frame's triad; the names of the frames and points at each place, once.
   // A ground pivot as the planar figures draw one, a triangle on hatched ground, set on the
   // page under the place (cm).
   const auto ground_pivot = [&](std::complex<double> c) {
@@ -118,13 +119,6 @@ void write_tikz_chain(std::ostream& out, const ConstraintSystem& system, const s
     Point3 end{0, 0, 0};
     end[c] = reach / cm;
     line_on_page({0, 0, 0}, end);
-  }
-  for (std::size_t k = 0; k < frames.size(); ++k)
-    if (!bodies.ground_frames[k]) line_on_page(origin_of(frames[k].parent), frames[k].origin);
-  if (s.status == Status::ok) {
-    for (std::size_t p = 0; p < s.points.size(); ++p)
-      if (!bodies.point_frames[p].empty()) line_on_page(origin_of(bodies.point_frames[p]), point_at(p));
-    for (const auto& ends : bodies.couplers) line_on_page(point_at(ends[0]), point_at(ends[1]));
   }
   std::map<std::string, std::pair<Point3, std::string>> names_at;  // by the place as written
   const auto name_at = [&](const Point3& p, const std::string& name) {
