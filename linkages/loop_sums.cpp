@@ -2,6 +2,8 @@
 // each the two paths from ground to that joint; each moving joint and link point as a point.
 #include "linkages/linkage_writer.hpp"
 
+#include <algorithm>
+
 namespace kinema::linkage_detail {
 
 LinkageWriter::Path LinkageWriter::position(std::size_t b, std::size_t j) {
@@ -55,8 +57,12 @@ std::string LinkageWriter::cycle_name(const Path& a, const Path& b, std::size_t 
   names.push_back(linkage_.joints[closing].name);
   for (std::size_t k = b.steps.size(); k-- > common;)
     if (b.steps[k].first >= 0) names.push_back(linkage_.joints[edges_[std::size_t(b.steps[k].first)].joint].name);
+  // Letters run together as the textbooks write a loop (ABCD); a joint named with more
+  // than a letter (B2, F5) would make the run one unreadable symbol (AB2BC), so then
+  // the joints are parted by '_' (A_B2_B_C), the one separator a loop name may hold.
+  const bool letters = std::all_of(names.begin(), names.end(), [](const std::string& n) { return n.size() == 1; });
   std::string name;
-  for (const std::string& n : names) name += n;
+  for (const std::string& n : names) name += (name.empty() || letters ? "" : "_") + n;
   return name;
 }
 

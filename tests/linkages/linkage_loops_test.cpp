@@ -129,7 +129,7 @@ TEST_CASE("linkages/linkage_loops: Problem 4.4 as drawn moves as its hand-writte
   // The loops found: one per joint outside the spanning tree (7 joints, 6 bodies: two).
   REQUIRE(drawn.system.groups.size() == 2);
   CHECK(drawn.system.groups[0].name == "ABCD");
-  CHECK(drawn.system.groups[1].name == "DEFF5");
+  CHECK(drawn.system.groups[1].name == "D_E_F_F5");
   check_same_motion(drawn, hand, degrees(0, 360, 7.5));
 }
 
@@ -162,7 +162,7 @@ TEST_CASE("linkages/linkage_loops: Problem 3.22 as drawn (a triangle coupler, tw
   const Model drawn = kinema::load_model(sample("problem_3_22_joints.toml"));
   const Model hand = kinema::load_model(sample("problem_3_22_six_bar_sliders.toml"));
   // The angle beta stays the file's formula in the loop it writes.
-  CHECK(drawn.system.groups.at(1).name == "O2ACDD6");
+  CHECK(drawn.system.groups.at(1).name == "O2_A_C_D_D6");
   const auto loops = kinema_test::loops_file(kinema::read_mechanism_file(sample("problem_3_22_joints.toml")));
   CHECK(loops.find("a*exp(I*(theta3 + beta))") != std::string::npos);
   check_same_motion(drawn, hand, degrees(-180, 180, 15));
@@ -460,7 +460,7 @@ TEST_CASE("linkages/linkage_loops: the solving order is the seeds': driver, then
   CHECK(text.str().find("dyad 1, RRR: links 2, 3; joints B, C, D") != std::string::npos);
   CHECK(text.str().find("dyad 2, RRT: links 4, 5; joints E, F, F5") != std::string::npos);
   CHECK(text.str().find("3(n - 1) - 2j = 3*5 - 2*7 = 1") != std::string::npos);
-  CHECK(text.str().find("independent loops (one per joint outside a spanning tree from ground): ABCD, DEFF5") !=
+  CHECK(text.str().find("independent loops (one per joint outside a spanning tree from ground): ABCD, D_E_F_F5") !=
         std::string::npos);
   // (as text between the blocks' rows, where it wraps)
   CHECK(latex.str().find("\\\\\ndyad 2, RRT: links 4, 5; joints E, F, F5") != std::string::npos);

@@ -314,7 +314,7 @@ TEST_CASE("readers/mechanism_file: a joints-and-links file is read as written, a
   const kinema::ConstraintSystem system = kinema::build_constraint_system(m);
   REQUIRE(system.groups.size() == 2);
   CHECK(system.groups[0].name == "ABCD");
-  CHECK(system.groups[1].name == "DEFF5");
+  CHECK(system.groups[1].name == "D_E_F_F5");
   CHECK(system.equations.size() == 4);
   REQUIRE(system.plan);
   CHECK(system.plan->closed_form);
