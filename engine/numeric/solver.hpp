@@ -1,7 +1,8 @@
 // The numeric rules of kinema, written once: the solver's constants, the LU
-// factorisation with partial pivoting and its solve, the singular values and
-// the reciprocal condition that decides singular positions, and the
-// second-order predictor. The scalar workspace uses them as they are; the
+// factorisation with partial pivoting and its solve, the damped Newton-Raphson
+// on the position system, the singular values and the reciprocal condition that
+// decides singular positions, and the second-order predictor. The scalar
+// workspace and the generated header use them as they are; the
 // lane-parallel workspace follows the same pivoting rule in lane form.
 //
 // The generated C++ header (`kinema codegen`, printers/code/cpp_header.cpp)
@@ -250,6 +251,110 @@ inline void least_squares_solve(double* a, double* v, const double* b, double* x
     const double coefficient = projection / (sigma * sigma);
     for (std::size_t i = 0; i < n; ++i) x[i] += v[i * n + j] * coefficient;
   }
+}
+
+// ---- Newton-Raphson on the position system ------------------------------------------
+// The position system of n unknowns as the tape's position stage writes it (TapeLayout):
+// Phi (n values), then Phi_q column by column (n x n), then Phi_theta (n).
+
+/// max |v[i]| of n values; NaN where one is NaN: Newton's residual norm.
+inline double max_magnitude(const double* v, std::size_t n) {
+  double norm = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double magnitude = std::fabs(v[i]);
+    if (std::isnan(magnitude)) return magnitude;
+    norm = magnitude > norm ? magnitude : norm;
+  }
+  return norm;
+}
+
+inline bool all_finite(const double* v, std::size_t n) {
+  for (std::size_t i = 0; i < n; ++i)
+    if (!std::isfinite(v[i])) return false;
+  return true;
+}
+
+/// Phi_q of a position system, row-major into a, with column j scaled by column_scale[j]
+/// (the unknowns' own scales: what is factorised and tested for singularity).
+inline void scaled_phi_q(const double* system, const double* column_scale, double* a, std::size_t n) {
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < n; ++j) a[i * n + j] = system[n + j * n + i] * column_scale[j];
+}
+
+/// The LU of a position system's scaled Phi_q (n x n, row-major), its pivots and the
+/// reciprocals of its diagonal: one factorisation, for any number of right-hand sides.
+struct Factorisation {
+  double* lu;
+  std::size_t* pivots;
+  double* inverse_pivots;
+};
+
+inline void factorise(const double* system, const double* column_scale, const Factorisation& f, std::size_t n) {
+  scaled_phi_q(system, column_scale, f.lu, n);
+  lu_factor(f.lu, f.pivots, n);
+  for (std::size_t c = 0; c < n; ++c) f.inverse_pivots[c] = 1.0 / f.lu[c * n + c];
+}
+
+/// Solves Phi_q x = b with the factorisation (x holds b), undoing the column scaling.
+inline void solve(const Factorisation& f, const double* column_scale, double* x, std::size_t n) {
+  lu_solve(f.lu, f.inverse_pivots, f.pivots, x, n);
+  for (std::size_t i = 0; i < n; ++i) x[i] *= column_scale[i];
+}
+
+/// The Newton step -Phi_q^-1 Phi at a position system: by the LU of the scaled Phi_q, or,
+/// where its pivots say Phi_q is (nearly) singular, by least squares on the unscaled Phi_q
+/// (the step stays defined there). `a` and `v` are n x n scratch.
+inline void newton_step(const double* system, const double* column_scale, double length_scale, const Factorisation& f,
+                        double* a, double* v, double* b, double* step, std::size_t n) {
+  factorise(system, column_scale, f, n);
+  if (pivot_ratio(f.lu, n, length_scale) > kLeastSquaresPivotRatio) {
+    for (std::size_t i = 0; i < n; ++i) step[i] = -system[i];
+    solve(f, column_scale, step, n);
+  } else {
+    for (std::size_t i = 0; i < n; ++i) {
+      b[i] = -system[i];
+      for (std::size_t j = 0; j < n; ++j) a[i * n + j] = system[n + j * n + i];
+    }
+    least_squares_solve(a, v, b, step, n);
+  }
+}
+
+/// Damped Newton-Raphson from q (n values, updated in place), the step halved until max
+/// |Phi| decreases; true when max |Phi| reaches kNewtonTolerance times the length scale, or
+/// stalls below kRoundingTolerance times it (converged to rounding all the same). `system`
+/// is what evaluates: on entry it holds the position system at q; system.step(step) writes
+/// the Newton step there (newton_step); system.try_at(trial) evaluates at a trial position
+/// and returns its max |Phi|; system.accept() makes that evaluation q's (the trial is
+/// taken). `step` and `trial` are n values of scratch.
+template <class System>
+inline bool newton(System& system, double* q, double* step, double* trial, std::size_t n, double length_scale) {
+  const double tolerance = kNewtonTolerance * length_scale;
+  double norm = system.residual();
+  bool converged = false;
+  for (int iteration = 0; iteration < kNewtonIterations && std::isfinite(norm); ++iteration) {
+    if (norm <= tolerance) {
+      converged = true;
+      break;
+    }
+    system.step(step);
+    if (!all_finite(step, n)) break;
+    double lambda = 1.0;
+    bool improved = false;
+    for (int halving = 0; halving < kStepHalvings; ++halving, lambda *= 0.5) {
+      for (std::size_t i = 0; i < n; ++i) trial[i] = q[i] + lambda * step[i];
+      const double trial_norm = system.try_at(trial);
+      if (std::isfinite(trial_norm) && trial_norm < norm) {
+        improved = true;
+        norm = trial_norm;
+        for (std::size_t i = 0; i < n; ++i) q[i] = trial[i];
+        system.accept();
+        break;
+      }
+    }
+    if (!improved) break;
+  }
+  if (!converged && norm <= kRoundingTolerance * length_scale) converged = true;
+  return converged && all_finite(q, n);
 }
 
 /// Second-order prediction of a coordinate at input + h from its value, rate and

@@ -34,7 +34,7 @@ void Workspace::reload_parameters() {
   evaluated_ = false;
 }
 
-void Workspace::evaluate_position(double input, const Eigen::VectorXd& q) {
+void Workspace::evaluate_position(double input, const double* q) {
   // Only q changed (a Newton iterate): what depends on the input alone still holds.
   const int level = evaluated_ && evaluated_input_ == input ? TapeLayout::kCoordinateLevel : TapeLayout::kInputLevel;
   registers_[layout_.input()] = input;
@@ -47,7 +47,7 @@ void Workspace::evaluate_position(double input, const Eigen::VectorXd& q) {
 
 void Workspace::position_system(double input, const Eigen::VectorXd& q, Eigen::VectorXd& phi, Eigen::MatrixXd& phi_q,
                                 Eigen::VectorXd& phi_theta) {
-  evaluate_position(input, q);
+  evaluate_position(input, q.data());
   const auto n = Eigen::Index(n_);
   phi.resize(n);
   phi_q.resize(n, n);
@@ -66,23 +66,12 @@ bool Workspace::evaluated_at(double input, const Eigen::VectorXd& q) const {
   return true;
 }
 
-double Workspace::residual_norm() const {
-  double norm = 0;
-  for (std::size_t i = 0; i < n_; ++i) {
-    const double magnitude = std::fabs(phi(i));
-    if (std::isnan(magnitude)) return magnitude;
-    norm = std::max(norm, magnitude);
-  }
-  return norm;
-}
+double Workspace::residual_norm() const { return solver::max_magnitude(position_out_.data(), n_); }
 
+solver::Factorisation Workspace::factorisation() { return {lu_.data(), pivots_.data(), inverse_pivots_.data()}; }
 
 void Workspace::factorise() {
-  const auto& column_scale = k_.column_scale();
-  for (std::size_t i = 0; i < n_; ++i)
-    for (std::size_t j = 0; j < n_; ++j) lu_[i * n_ + j] = phi_q(i, j) * column_scale[j];
-  solver::lu_factor(lu_.data(), pivots_.data(), n_);
-  for (std::size_t c = 0; c < n_; ++c) inverse_pivots_[c] = 1.0 / lu_[c * n_ + c];
+  solver::factorise(position_out_.data(), k_.column_scale().data(), factorisation(), n_);
   jacobian_ready_ = false;
 }
 
@@ -92,64 +81,39 @@ double Workspace::reciprocal_condition() const {
   // allocates) is made only then: row-major, as factorise() wrote it before the LU.
   std::vector<double> scaled;
   return solver::reciprocal_condition(lu_.data(), n_, k_.length_scale(), [&] {
-    const auto& column_scale = k_.column_scale();
     scaled.resize(n_ * n_);
-    for (std::size_t i = 0; i < n_; ++i)
-      for (std::size_t j = 0; j < n_; ++j) scaled[i * n_ + j] = phi_q(i, j) * column_scale[j];
+    solver::scaled_phi_q(position_out_.data(), k_.column_scale().data(), scaled.data(), n_);
     return scaled.data();
   });
 }
 
-void Workspace::solve_rhs(double* x) const {
+void Workspace::solve_rhs(double* x) {
   for (std::size_t i = 0; i < n_; ++i) x[i] = rhs_[i];
-  solver::lu_solve(lu_.data(), inverse_pivots_.data(), pivots_.data(), x, n_);
-  for (std::size_t i = 0; i < n_; ++i) x[i] *= k_.column_scale()[i];
+  solver::solve(factorisation(), k_.column_scale().data(), x, n_);
 }
 
 bool Workspace::solve_position(double input, Eigen::VectorXd& q, std::size_t* worst_group,
                                double* residual) {
-  const double tolerance = solver::kNewtonTolerance * k_.length_scale();
-  if (!evaluated_at(input, q)) evaluate_position(input, q);
-  double norm = residual_norm();
-  bool converged = false;
-  for (int iteration = 0; iteration < solver::kNewtonIterations && std::isfinite(norm); ++iteration) {
-    if (norm <= tolerance) {
-      converged = true;
-      break;
+  if (!evaluated_at(input, q)) evaluate_position(input, q.data());
+  // solver::newton over the tape's position stage: a trial is evaluated into the stage's
+  // own outputs, so a trial taken is already q's evaluation.
+  struct Stage {
+    Workspace& w;
+    double input;
+    double residual() const { return w.residual_norm(); }
+    void step(double* step) const {
+      solver::newton_step(w.position_out_.data(), w.k_.column_scale().data(), w.k_.length_scale(), w.factorisation(),
+                          w.least_squares_matrix_.data(), w.least_squares_scratch_.data(), w.rhs_.data(), step, w.n_);
+      w.jacobian_ready_ = false;
     }
-    factorise();
-    if (solver::pivot_ratio(lu_.data(), n_, k_.length_scale()) > solver::kLeastSquaresPivotRatio) {
-      for (std::size_t i = 0; i < n_; ++i) rhs_[i] = -phi(i);
-      solve_rhs(step_.data());
-    } else {
-      // Least-squares step: stays defined where Phi_q is (nearly) singular. The
-      // solver's routine, as the generated header takes it (unscaled Phi_q).
-      for (std::size_t i = 0; i < n_; ++i) {
-        rhs_[i] = -phi(i);
-        for (std::size_t j = 0; j < n_; ++j) least_squares_matrix_[i * n_ + j] = phi_q(i, j);
-      }
-      solver::least_squares_solve(least_squares_matrix_.data(), least_squares_scratch_.data(), rhs_.data(),
-                                  step_.data(), n_);
+    double try_at(const double* trial) const {
+      w.evaluate_position(input, trial);
+      return w.residual_norm();
     }
-    if (!step_.allFinite()) break;
-    double lambda = 1.0;
-    bool improved = false;
-    for (int halving = 0; halving < solver::kStepHalvings; ++halving, lambda *= 0.5) {
-      for (std::size_t i = 0; i < n_; ++i) trial_[i] = q[i] + lambda * step_[i];
-      evaluate_position(input, trial_);
-      const double trial_norm = residual_norm();
-      if (std::isfinite(trial_norm) && trial_norm < norm) {
-        improved = true;
-        norm = trial_norm;
-        q = trial_;
-        break;
-      }
-    }
-    if (!improved) break;
-  }
-  // Converged to rounding level even if just above the tolerance.
-  if (!converged && norm <= solver::kRoundingTolerance * k_.length_scale()) converged = true;
-  if (!evaluated_at(input, q)) evaluate_position(input, q);
+    void accept() const {}
+  } stage{*this, input};
+  const bool converged = solver::newton(stage, q.data(), step_.data(), trial_.data(), n_, k_.length_scale());
+  if (!evaluated_at(input, q)) evaluate_position(input, q.data());
   if (worst_group) {
     std::size_t row = 0;
     for (std::size_t i = 1; i < n_; ++i)
@@ -157,11 +121,11 @@ bool Workspace::solve_position(double input, Eigen::VectorXd& q, std::size_t* wo
     *worst_group = k_.equation_group(row);
   }
   if (residual) *residual = residual_norm();
-  return converged && q.allFinite();
+  return converged;
 }
 
 bool Workspace::sensitivity(double input, const Eigen::VectorXd& q, Eigen::VectorXd& dq) {
-  if (!evaluated_at(input, q)) evaluate_position(input, q);
+  if (!evaluated_at(input, q)) evaluate_position(input, q.data());
   factorise();
   if (reciprocal_condition() < solver::kSingularThreshold) return false;
   for (std::size_t i = 0; i < n_; ++i) rhs_[i] = -phi_theta(i);
@@ -171,7 +135,7 @@ bool Workspace::sensitivity(double input, const Eigen::VectorXd& q, Eigen::Vecto
 }
 
 bool Workspace::solve_jacobian(double input, const Eigen::VectorXd& q, const double* rhs, double* x) {
-  if (!evaluated_at(input, q)) evaluate_position(input, q);
+  if (!evaluated_at(input, q)) evaluate_position(input, q.data());
   if (!jacobian_ready_) {
     factorise();
     jacobian_regular_ = reciprocal_condition() >= solver::kSingularThreshold;
@@ -184,7 +148,7 @@ bool Workspace::solve_jacobian(double input, const Eigen::VectorXd& q, const dou
 }
 
 int Workspace::jacobian_sign(double input, const Eigen::VectorXd& q) {
-  if (!evaluated_at(input, q)) evaluate_position(input, q);
+  if (!evaluated_at(input, q)) evaluate_position(input, q.data());
   factorise();
   return solver::lu_determinant_sign(lu_.data(), pivots_.data(), n_);
 }
@@ -335,7 +299,7 @@ void Workspace::motion_into(double input, double rate, double second_rate, const
   state.input_second_rate = second_rate;
   state.q = q;
   state.failure = Failure{};
-  if (!evaluated_at(input, q)) evaluate_position(input, q);
+  if (!evaluated_at(input, q)) evaluate_position(input, q.data());
   state.loop_residual = residual_norm();
   // One factorisation of Phi_q: the singularity test, then velocity and acceleration.
   factorise();

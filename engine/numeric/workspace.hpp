@@ -114,18 +114,19 @@ class Workspace {
   double phi(std::size_t i) const { return position_out_[layout_.phi(i)]; }
   double phi_q(std::size_t i, std::size_t j) const { return position_out_[layout_.phi_q(i, j)]; }
   double phi_theta(std::size_t i) const { return position_out_[layout_.phi_theta(i)]; }
-  void evaluate_position(double input, const Eigen::VectorXd& q);
+  void evaluate_position(double input, const double* q);
   bool evaluated_at(double input, const Eigen::VectorXd& q) const;
   /// max |Phi| at the evaluated position (NaN if any is).
   double residual_norm() const;
   /// LU of Phi_q with its columns scaled by the column scale.
   void factorise();
+  solver::Factorisation factorisation();
   /// Reciprocal condition of the scaled Phi_q from the factorisation: the pivot
   /// ratio where that is clearly fine, else from the singular values
   /// (solver::reciprocal_condition).
   double reciprocal_condition() const;
   /// Solves Phi_q x = rhs_ with the factorisation (undoing the column scaling).
-  void solve_rhs(double* x) const;
+  void solve_rhs(double* x);
 };
 
 }  // namespace kinema

@@ -177,8 +177,8 @@ void write_opening(std::ostream& out, const ConstraintSystem& m, const HeaderSha
   }
   out << ".\n//\n"
       << "// The numeric rules are kinema's own code: namespace " << name << "::solver below is\n"
-      << "// kinema's engine/numeric/solver.hpp (its constants, LU, singular values and\n"
-      << "// reciprocal condition), and solve_position and evaluate use it as the engine\n"
+      << "// kinema's engine/numeric/solver.hpp (its constants, LU, Newton, singular values\n"
+      << "// and reciprocal condition), and solve_position and evaluate use it as the engine\n"
       << "// does, on Phi_q with the same column scaling: the header and `kinema eval` call\n"
       << "// the same positions singular.\n"
       << "#pragma once\n\n"
@@ -273,110 +273,54 @@ void write_tape_functions(std::ostream& out, const Model& model, const HeaderSha
       << "constexpr std::size_t frame_values = " << 6 * frames << ";  ///< then frames.\n";
 }
 
-/// What Workspace (engine/numeric/workspace.cpp) does, written against the pasted
-/// solver: the same text for every mechanism.
+/// solve_position: the pasted solver's Newton on the header's position_system, as the
+/// Workspace runs it on the tape: the same text for every mechanism.
 void write_newton(std::ostream& out) {
   out << R"(
-/// max |Phi| (NaN if any is): the engine's residual norm.
-inline double residual_norm(const double* phi) {
-  double norm = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double magnitude = std::fabs(phi[i]);
-    if (std::isnan(magnitude)) return magnitude;
-    norm = magnitude > norm ? magnitude : norm;
-  }
-  return norm;
-}
-
-/// Phi_q row-major with its columns scaled by column_scale: what the engine factorises.
-inline void scaled_phi_q(const double* system, double* a) {
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = 0; j < n; ++j) a[i * n + j] = system[n + j * n + i] * column_scale[j];
-}
-
-/// LU (solver::lu_factor) of the scaled Phi_q.
-struct Factorisation {
+/// The storage of one LU of the scaled Phi_q (solver::Factorisation points into it).
+struct Factors {
   double lu[n * n], inverse_pivots[n];
   std::size_t pivots[n];
+  solver::Factorisation view() { return {lu, pivots, inverse_pivots}; }
 };
 
-inline void factorise(const double* system, Factorisation& f) {
-  scaled_phi_q(system, f.lu);
-  solver::lu_factor(f.lu, f.pivots, n);
-  for (std::size_t c = 0; c < n; ++c) f.inverse_pivots[c] = 1.0 / f.lu[c * n + c];
-}
-
-/// Solves Phi_q x = b (x holds b) with the factorisation, undoing the column scaling.
-inline void solve(const Factorisation& f, double* x) {
-  solver::lu_solve(f.lu, f.inverse_pivots, f.pivots, x, n);
-  for (std::size_t i = 0; i < n; ++i) x[i] *= column_scale[i];
-}
-
-/// The Newton step at a position: by the LU, or by least squares where the pivots
-/// say Phi_q is (nearly) singular (the step stays defined there).
-inline void newton_step(const double* system, double* step) {
-  Factorisation f;
-  factorise(system, f);
-  if (solver::pivot_ratio(f.lu, n, length_scale) > solver::kLeastSquaresPivotRatio) {
-    for (std::size_t i = 0; i < n; ++i) step[i] = -system[i];
-    solve(f, step);
-  } else {
-    double a[n * n], v[n * n], b[n];
-    for (std::size_t i = 0; i < n; ++i) {
-      b[i] = -system[i];
-      for (std::size_t j = 0; j < n; ++j) a[i * n + j] = system[n + j * n + i];
-    }
-    solver::least_squares_solve(a, v, b, step, n);
+/// solver::newton's view of position_system at one input: a trial is evaluated beside
+/// q's system and copied in when it is taken.
+class Stage {
+ public:
+  Stage(const Parameters& p, double theta, const double* q) : p_(p), theta_(theta) {
+    position_system(p_, theta_, q, system_);
   }
-}
+  double residual() const { return solver::max_magnitude(system_, n); }
+  void step(double* step) {
+    solver::newton_step(system_, column_scale, length_scale, factors_.view(), a_, v_, b_, step, n);
+  }
+  double try_at(const double* trial) {
+    position_system(p_, theta_, trial, trial_);
+    return solver::max_magnitude(trial_, n);
+  }
+  void accept() {
+    for (std::size_t i = 0; i < system_size; ++i) system_[i] = trial_[i];
+  }
 
-inline bool all_finite(const double* v, std::size_t count) {
-  for (std::size_t i = 0; i < count; ++i)
-    if (!std::isfinite(v[i])) return false;
-  return true;
-}
+ private:
+  const Parameters& p_;
+  double theta_;
+  double system_[system_size], trial_[system_size];
+  Factors factors_;
+  double a_[n * n], v_[n * n], b_[n];
+};
 
 }  // namespace detail
 
-/// Damped Newton-Raphson from q (the previous solution or initial_guess) at input
-/// theta; q is updated in place. Stays on q's assembly branch for small steps of
-/// theta. False when the loops cannot be closed there.
+/// Damped Newton-Raphson (solver::newton) from q (the previous solution or
+/// initial_guess) at input theta; q is updated in place. Stays on q's assembly branch
+/// for small steps of theta. False when the loops cannot be closed there.
 inline bool solve_position(const Parameters& p, double theta, double q[unknown_count]) {
   using detail::n;
-  const double tolerance = solver::kNewtonTolerance * length_scale;
-  double system[detail::system_size];
-  detail::position_system(p, theta, q, system);
-  double norm = detail::residual_norm(system);
-  bool converged = false;
-  for (int iteration = 0; iteration < solver::kNewtonIterations && std::isfinite(norm); ++iteration) {
-    if (norm <= tolerance) {
-      converged = true;
-      break;
-    }
-    double step[n];
-    detail::newton_step(system, step);
-    if (!detail::all_finite(step, n)) break;
-    // Halve the step until the residual decreases.
-    double lambda = 1.0;
-    bool improved = false;
-    for (int halving = 0; halving < solver::kStepHalvings; ++halving, lambda *= 0.5) {
-      double trial[n], trial_system[detail::system_size];
-      for (std::size_t i = 0; i < n; ++i) trial[i] = q[i] + lambda * step[i];
-      detail::position_system(p, theta, trial, trial_system);
-      const double trial_norm = detail::residual_norm(trial_system);
-      if (std::isfinite(trial_norm) && trial_norm < norm) {
-        improved = true;
-        norm = trial_norm;
-        for (std::size_t i = 0; i < n; ++i) q[i] = trial[i];
-        for (std::size_t i = 0; i < detail::system_size; ++i) system[i] = trial_system[i];
-        break;
-      }
-    }
-    if (!improved) break;
-  }
-  // Converged to rounding level even if just above the tolerance.
-  if (!converged && norm <= solver::kRoundingTolerance * length_scale) converged = true;
-  return converged && detail::all_finite(q, n);
+  detail::Stage stage(p, theta, q);
+  double step[n], trial[n];
+  return solver::newton(stage, q, step, trial, n, length_scale);
 }
 
 /// Everything at one input value.
@@ -415,18 +359,18 @@ inline Status evaluate(const Parameters& p, double theta, double theta_rate, dou
   double system[detail::system_size];
   detail::position_system(p, theta, q, system);
   // One factorisation of Phi_q: the singularity test, then velocity and acceleration.
-  detail::Factorisation f;
-  detail::factorise(system, f);
+  detail::Factors f;
+  solver::factorise(system, column_scale, f.view(), n);
   double scaled[n * n];
   motion.reciprocal_condition = solver::reciprocal_condition(f.lu, n, length_scale, [&] {
-    detail::scaled_phi_q(system, scaled);
+    solver::scaled_phi_q(system, column_scale, scaled, n);
     return &scaled[0];
   });
   if (motion.reciprocal_condition < solver::kSingularThreshold) return Status::singular;
   for (std::size_t i = 0; i < n; ++i) motion.qd[i] = -system[n + n * n + i] * theta_rate;
-  detail::solve(f, motion.qd);
+  solver::solve(f.view(), column_scale, motion.qd, n);
   detail::acceleration_rhs(p, theta, theta_rate, theta_second_rate, q, motion.qd, motion.qdd);
-  detail::solve(f, motion.qdd);
+  solver::solve(f.view(), column_scale, motion.qdd, n);
 )";
   if (points > 0 && frames == 0) {
     out << "  detail::point_motion(p, theta, theta_rate, theta_second_rate, q, motion.qd, motion.qdd,\n"
@@ -440,9 +384,9 @@ inline Status evaluate(const Parameters& p, double theta, double theta_rate, dou
         << "    (&motion.frames[0][0])[k] = observed[detail::point_values + k];\n";
   }
   out << R"(  // Rates that overflow are a singular position all the same.
-  if (!detail::all_finite(motion.qd, n) || !detail::all_finite(motion.qdd, n) ||
-      !detail::all_finite(&motion.points[0][0], detail::point_values) ||
-      !detail::all_finite(&motion.frames[0][0], detail::frame_values)) {
+  if (!solver::all_finite(motion.qd, n) || !solver::all_finite(motion.qdd, n) ||
+      !solver::all_finite(&motion.points[0][0], detail::point_values) ||
+      !solver::all_finite(&motion.frames[0][0], detail::frame_values)) {
     for (std::size_t i = 0; i < n; ++i) motion.qd[i] = motion.qdd[i] = NAN;
     for (auto& point : motion.points)
       for (double& value : point) value = NAN;

@@ -495,3 +495,36 @@ TEST_CASE("kinema codegen: every macro of the C and C++ library headers is a res
   }
   CHECK(count > 500);
 }
+
+TEST_CASE("kinema codegen: the header's kernel is engine/numeric/solver.hpp's text, and it has no Newton or LU of its own") {
+  const std::string source = read_file(std::string(KINEMA_SAMPLES_DIR) + "/../engine/numeric/solver.hpp");
+  const std::string open = "\nnamespace kinema::solver {\n", close = "\n}  // namespace kinema::solver";
+  const std::size_t from = source.find(open), to = source.find(close);
+  REQUIRE(from != std::string::npos);
+  REQUIRE(to != std::string::npos);
+  const std::string kernel = source.substr(from + open.size(), to - from - open.size());
+  // The kernel holds the rules the header must not restate.
+  for (const char* rule : {"inline bool newton(", "inline void newton_step(", "inline void lu_factor(",
+                           "inline void lu_solve(", "inline void least_squares_solve("})
+    CHECK(kernel.find(rule) != std::string::npos);
+  const auto directory = kinema_test::scratch_directory() / "codegen_kernel";
+  std::filesystem::create_directories(directory);
+  for (const char* sample : {"four_bar.toml", "problem_4_4_joints.toml", "robot_arm_seed000.toml"}) {
+    CAPTURE(sample);
+    const std::string header = (directory / "header.hpp").string();
+    REQUIRE(kinema_test::run_kinema({"codegen", kinema_test::sample(sample), "-o", header}).exit_status == 0);
+    const std::string text = read_file(header);
+    const std::size_t at = text.find(kernel);
+    REQUIRE(at != std::string::npos);
+    const std::string rest = text.substr(0, at) + text.substr(at + kernel.size());
+    // Outside the pasted kernel: no iteration, halving, pivot search or row swap, and its
+    // rules only called (solver::...).
+    for (const char* own : {"kNewtonIterations", "kStepHalvings", "lambda", "std::swap", "std::fabs(a[",
+                            "for (int iteration", "jacobi"}) {
+      CAPTURE(own);
+      CHECK(rest.find(own) == std::string::npos);
+    }
+    CHECK(rest.find("solver::newton(") != std::string::npos);
+    CHECK(rest.find("solver::factorise(") != std::string::npos);
+  }
+}

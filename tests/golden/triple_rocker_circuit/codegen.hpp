@@ -4,8 +4,8 @@
 // Points (x, y, vx, vy, ax, ay each): B C P.
 //
 // The numeric rules are kinema's own code: namespace triple_rocker_circuit::solver below is
-// kinema's engine/numeric/solver.hpp (its constants, LU, singular values and
-// reciprocal condition), and solve_position and evaluate use it as the engine
+// kinema's engine/numeric/solver.hpp (its constants, LU, Newton, singular values
+// and reciprocal condition), and solve_position and evaluate use it as the engine
 // does, on Phi_q with the same column scaling: the header and `kinema eval` call
 // the same positions singular.
 #pragma once
@@ -251,6 +251,110 @@ inline void least_squares_solve(double* a, double* v, const double* b, double* x
   }
 }
 
+// ---- Newton-Raphson on the position system ------------------------------------------
+// The position system of n unknowns as the tape's position stage writes it (TapeLayout):
+// Phi (n values), then Phi_q column by column (n x n), then Phi_theta (n).
+
+/// max |v[i]| of n values; NaN where one is NaN: Newton's residual norm.
+inline double max_magnitude(const double* v, std::size_t n) {
+  double norm = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double magnitude = std::fabs(v[i]);
+    if (std::isnan(magnitude)) return magnitude;
+    norm = magnitude > norm ? magnitude : norm;
+  }
+  return norm;
+}
+
+inline bool all_finite(const double* v, std::size_t n) {
+  for (std::size_t i = 0; i < n; ++i)
+    if (!std::isfinite(v[i])) return false;
+  return true;
+}
+
+/// Phi_q of a position system, row-major into a, with column j scaled by column_scale[j]
+/// (the unknowns' own scales: what is factorised and tested for singularity).
+inline void scaled_phi_q(const double* system, const double* column_scale, double* a, std::size_t n) {
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < n; ++j) a[i * n + j] = system[n + j * n + i] * column_scale[j];
+}
+
+/// The LU of a position system's scaled Phi_q (n x n, row-major), its pivots and the
+/// reciprocals of its diagonal: one factorisation, for any number of right-hand sides.
+struct Factorisation {
+  double* lu;
+  std::size_t* pivots;
+  double* inverse_pivots;
+};
+
+inline void factorise(const double* system, const double* column_scale, const Factorisation& f, std::size_t n) {
+  scaled_phi_q(system, column_scale, f.lu, n);
+  lu_factor(f.lu, f.pivots, n);
+  for (std::size_t c = 0; c < n; ++c) f.inverse_pivots[c] = 1.0 / f.lu[c * n + c];
+}
+
+/// Solves Phi_q x = b with the factorisation (x holds b), undoing the column scaling.
+inline void solve(const Factorisation& f, const double* column_scale, double* x, std::size_t n) {
+  lu_solve(f.lu, f.inverse_pivots, f.pivots, x, n);
+  for (std::size_t i = 0; i < n; ++i) x[i] *= column_scale[i];
+}
+
+/// The Newton step -Phi_q^-1 Phi at a position system: by the LU of the scaled Phi_q, or,
+/// where its pivots say Phi_q is (nearly) singular, by least squares on the unscaled Phi_q
+/// (the step stays defined there). `a` and `v` are n x n scratch.
+inline void newton_step(const double* system, const double* column_scale, double length_scale, const Factorisation& f,
+                        double* a, double* v, double* b, double* step, std::size_t n) {
+  factorise(system, column_scale, f, n);
+  if (pivot_ratio(f.lu, n, length_scale) > kLeastSquaresPivotRatio) {
+    for (std::size_t i = 0; i < n; ++i) step[i] = -system[i];
+    solve(f, column_scale, step, n);
+  } else {
+    for (std::size_t i = 0; i < n; ++i) {
+      b[i] = -system[i];
+      for (std::size_t j = 0; j < n; ++j) a[i * n + j] = system[n + j * n + i];
+    }
+    least_squares_solve(a, v, b, step, n);
+  }
+}
+
+/// Damped Newton-Raphson from q (n values, updated in place), the step halved until max
+/// |Phi| decreases; true when max |Phi| reaches kNewtonTolerance times the length scale, or
+/// stalls below kRoundingTolerance times it (converged to rounding all the same). `system`
+/// is what evaluates: on entry it holds the position system at q; system.step(step) writes
+/// the Newton step there (newton_step); system.try_at(trial) evaluates at a trial position
+/// and returns its max |Phi|; system.accept() makes that evaluation q's (the trial is
+/// taken). `step` and `trial` are n values of scratch.
+template <class System>
+inline bool newton(System& system, double* q, double* step, double* trial, std::size_t n, double length_scale) {
+  const double tolerance = kNewtonTolerance * length_scale;
+  double norm = system.residual();
+  bool converged = false;
+  for (int iteration = 0; iteration < kNewtonIterations && std::isfinite(norm); ++iteration) {
+    if (norm <= tolerance) {
+      converged = true;
+      break;
+    }
+    system.step(step);
+    if (!all_finite(step, n)) break;
+    double lambda = 1.0;
+    bool improved = false;
+    for (int halving = 0; halving < kStepHalvings; ++halving, lambda *= 0.5) {
+      for (std::size_t i = 0; i < n; ++i) trial[i] = q[i] + lambda * step[i];
+      const double trial_norm = system.try_at(trial);
+      if (std::isfinite(trial_norm) && trial_norm < norm) {
+        improved = true;
+        norm = trial_norm;
+        for (std::size_t i = 0; i < n; ++i) q[i] = trial[i];
+        system.accept();
+        break;
+      }
+    }
+    if (!improved) break;
+  }
+  if (!converged && norm <= kRoundingTolerance * length_scale) converged = true;
+  return converged && all_finite(q, n);
+}
+
 /// Second-order prediction of a coordinate at input + h from its value, rate and
 /// second rate at input (the input moving at `rate` with `second_rate`): the
 /// rates give dq/dtheta and d2q/dtheta2.
@@ -474,106 +578,50 @@ constexpr std::size_t system_size = n + n * n + n;  ///< position_system's outpu
 constexpr std::size_t point_values = 18;  ///< point_motion's output: points,
 constexpr std::size_t frame_values = 0;  ///< then frames.
 
-/// max |Phi| (NaN if any is): the engine's residual norm.
-inline double residual_norm(const double* phi) {
-  double norm = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double magnitude = std::fabs(phi[i]);
-    if (std::isnan(magnitude)) return magnitude;
-    norm = magnitude > norm ? magnitude : norm;
-  }
-  return norm;
-}
-
-/// Phi_q row-major with its columns scaled by column_scale: what the engine factorises.
-inline void scaled_phi_q(const double* system, double* a) {
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = 0; j < n; ++j) a[i * n + j] = system[n + j * n + i] * column_scale[j];
-}
-
-/// LU (solver::lu_factor) of the scaled Phi_q.
-struct Factorisation {
+/// The storage of one LU of the scaled Phi_q (solver::Factorisation points into it).
+struct Factors {
   double lu[n * n], inverse_pivots[n];
   std::size_t pivots[n];
+  solver::Factorisation view() { return {lu, pivots, inverse_pivots}; }
 };
 
-inline void factorise(const double* system, Factorisation& f) {
-  scaled_phi_q(system, f.lu);
-  solver::lu_factor(f.lu, f.pivots, n);
-  for (std::size_t c = 0; c < n; ++c) f.inverse_pivots[c] = 1.0 / f.lu[c * n + c];
-}
-
-/// Solves Phi_q x = b (x holds b) with the factorisation, undoing the column scaling.
-inline void solve(const Factorisation& f, double* x) {
-  solver::lu_solve(f.lu, f.inverse_pivots, f.pivots, x, n);
-  for (std::size_t i = 0; i < n; ++i) x[i] *= column_scale[i];
-}
-
-/// The Newton step at a position: by the LU, or by least squares where the pivots
-/// say Phi_q is (nearly) singular (the step stays defined there).
-inline void newton_step(const double* system, double* step) {
-  Factorisation f;
-  factorise(system, f);
-  if (solver::pivot_ratio(f.lu, n, length_scale) > solver::kLeastSquaresPivotRatio) {
-    for (std::size_t i = 0; i < n; ++i) step[i] = -system[i];
-    solve(f, step);
-  } else {
-    double a[n * n], v[n * n], b[n];
-    for (std::size_t i = 0; i < n; ++i) {
-      b[i] = -system[i];
-      for (std::size_t j = 0; j < n; ++j) a[i * n + j] = system[n + j * n + i];
-    }
-    solver::least_squares_solve(a, v, b, step, n);
+/// solver::newton's view of position_system at one input: a trial is evaluated beside
+/// q's system and copied in when it is taken.
+class Stage {
+ public:
+  Stage(const Parameters& p, double theta, const double* q) : p_(p), theta_(theta) {
+    position_system(p_, theta_, q, system_);
   }
-}
+  double residual() const { return solver::max_magnitude(system_, n); }
+  void step(double* step) {
+    solver::newton_step(system_, column_scale, length_scale, factors_.view(), a_, v_, b_, step, n);
+  }
+  double try_at(const double* trial) {
+    position_system(p_, theta_, trial, trial_);
+    return solver::max_magnitude(trial_, n);
+  }
+  void accept() {
+    for (std::size_t i = 0; i < system_size; ++i) system_[i] = trial_[i];
+  }
 
-inline bool all_finite(const double* v, std::size_t count) {
-  for (std::size_t i = 0; i < count; ++i)
-    if (!std::isfinite(v[i])) return false;
-  return true;
-}
+ private:
+  const Parameters& p_;
+  double theta_;
+  double system_[system_size], trial_[system_size];
+  Factors factors_;
+  double a_[n * n], v_[n * n], b_[n];
+};
 
 }  // namespace detail
 
-/// Damped Newton-Raphson from q (the previous solution or initial_guess) at input
-/// theta; q is updated in place. Stays on q's assembly branch for small steps of
-/// theta. False when the loops cannot be closed there.
+/// Damped Newton-Raphson (solver::newton) from q (the previous solution or
+/// initial_guess) at input theta; q is updated in place. Stays on q's assembly branch
+/// for small steps of theta. False when the loops cannot be closed there.
 inline bool solve_position(const Parameters& p, double theta, double q[unknown_count]) {
   using detail::n;
-  const double tolerance = solver::kNewtonTolerance * length_scale;
-  double system[detail::system_size];
-  detail::position_system(p, theta, q, system);
-  double norm = detail::residual_norm(system);
-  bool converged = false;
-  for (int iteration = 0; iteration < solver::kNewtonIterations && std::isfinite(norm); ++iteration) {
-    if (norm <= tolerance) {
-      converged = true;
-      break;
-    }
-    double step[n];
-    detail::newton_step(system, step);
-    if (!detail::all_finite(step, n)) break;
-    // Halve the step until the residual decreases.
-    double lambda = 1.0;
-    bool improved = false;
-    for (int halving = 0; halving < solver::kStepHalvings; ++halving, lambda *= 0.5) {
-      double trial[n], trial_system[detail::system_size];
-      for (std::size_t i = 0; i < n; ++i) trial[i] = q[i] + lambda * step[i];
-      detail::position_system(p, theta, trial, trial_system);
-      const double trial_norm = detail::residual_norm(trial_system);
-      if (std::isfinite(trial_norm) && trial_norm < norm) {
-        improved = true;
-        norm = trial_norm;
-        for (std::size_t i = 0; i < n; ++i) q[i] = trial[i];
-        for (std::size_t i = 0; i < detail::system_size; ++i) system[i] = trial_system[i];
-        break;
-      }
-    }
-    if (!improved) break;
-  }
-  // Converged to rounding level even if just above the tolerance.
-  if (!converged && norm <= solver::kRoundingTolerance * length_scale) converged = true;
-  return converged && detail::all_finite(q, n);
+  detail::Stage stage(p, theta, q);
+  double step[n], trial[n];
+  return solver::newton(stage, q, step, trial, n, length_scale);
 }
 
 /// Everything at one input value.
@@ -603,24 +651,24 @@ inline Status evaluate(const Parameters& p, double theta, double theta_rate, dou
   double system[detail::system_size];
   detail::position_system(p, theta, q, system);
   // One factorisation of Phi_q: the singularity test, then velocity and acceleration.
-  detail::Factorisation f;
-  detail::factorise(system, f);
+  detail::Factors f;
+  solver::factorise(system, column_scale, f.view(), n);
   double scaled[n * n];
   motion.reciprocal_condition = solver::reciprocal_condition(f.lu, n, length_scale, [&] {
-    detail::scaled_phi_q(system, scaled);
+    solver::scaled_phi_q(system, column_scale, scaled, n);
     return &scaled[0];
   });
   if (motion.reciprocal_condition < solver::kSingularThreshold) return Status::singular;
   for (std::size_t i = 0; i < n; ++i) motion.qd[i] = -system[n + n * n + i] * theta_rate;
-  detail::solve(f, motion.qd);
+  solver::solve(f.view(), column_scale, motion.qd, n);
   detail::acceleration_rhs(p, theta, theta_rate, theta_second_rate, q, motion.qd, motion.qdd);
-  detail::solve(f, motion.qdd);
+  solver::solve(f.view(), column_scale, motion.qdd, n);
   detail::point_motion(p, theta, theta_rate, theta_second_rate, q, motion.qd, motion.qdd,
                        &motion.points[0][0]);
   // Rates that overflow are a singular position all the same.
-  if (!detail::all_finite(motion.qd, n) || !detail::all_finite(motion.qdd, n) ||
-      !detail::all_finite(&motion.points[0][0], detail::point_values) ||
-      !detail::all_finite(&motion.frames[0][0], detail::frame_values)) {
+  if (!solver::all_finite(motion.qd, n) || !solver::all_finite(motion.qdd, n) ||
+      !solver::all_finite(&motion.points[0][0], detail::point_values) ||
+      !solver::all_finite(&motion.frames[0][0], detail::frame_values)) {
     for (std::size_t i = 0; i < n; ++i) motion.qd[i] = motion.qdd[i] = NAN;
     for (auto& point : motion.points)
       for (double& value : point) value = NAN;
