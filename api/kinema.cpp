@@ -1,7 +1,7 @@
 // The library facade (<kinema/kinema.hpp>) over the engine. It sits above the engine as
 // the command line does (cli/), in a folder of its own so that api/kinema/ is exactly
 // what is installed and what a program's include path holds. It computes nothing: the
-// engine loads (load_model), solves (analyse) and words the failures (describe_failure);
+// engine loads (load_model), solves (solve_motion) and words the failures (describe_failure);
 // here its results are copied out under their names.
 #include <kinema/kinema.hpp>
 
@@ -99,7 +99,7 @@ std::vector<double> MechanismModel::sensitivity(const std::string& column, const
                                                 const std::vector<double>& values) const {
   const Model& model = *engine_->model;
   const Sensitivities derivatives(model, sensitivity_columns(model.system, {column + ":" + parameter}));
-  const MotionTable table = analyse(model, values);
+  const MotionTable table = solve_motion(model, values);
   std::vector<double> result(table.size());
   derivatives.rows(table, 0, table.size(), result.data(), true);  // one column: one value a row
   return result;
@@ -126,7 +126,7 @@ std::vector<Solution> MechanismModel::solve(const std::vector<std::string>& valu
 std::vector<Solution> MechanismModel::solve(const std::vector<double>& values) const {
   const ConstraintSystem& system = engine_->model->system;
   check_input_range(system, values);
-  const MotionTable table = analyse(*engine_->model, values);
+  const MotionTable table = solve_motion(*engine_->model, values);
   std::vector<Solution> solutions;
   solutions.reserve(table.size());
   for (std::size_t row = 0; row < table.size(); ++row) {

@@ -5,7 +5,7 @@
 // (bench/sympy_route.py) and the derivation itself (file -> ready evaluator).
 // Run: ./build/kinema_bench   (prints Google Benchmark's table, then the ratios)
 // "kinema" is one value per call (Workspace::advance from the previous value);
-// "kinema sweep" is analyse() over a revolution (SIMD blocks of 32 values).
+// "kinema sweep" is solve_motion() over a revolution (SIMD blocks of 32 values).
 #include <benchmark/benchmark.h>
 #include <ginac/ginac.h>
 
@@ -41,7 +41,7 @@ Case& case_for(const std::string& name) {
   c.model = std::make_unique<kinema::Model>(kinema::load_model(sample_path(name)));
   const double start = c.model->system.input.values.at(0);
   for (int i = 0; i < kAngles; ++i) c.angles.push_back(start + 2 * M_PI * i / kAngles);
-  const auto states = kinema::analyse(*c.model, c.angles);
+  const auto states = kinema::solve_motion(*c.model, c.angles);
   for (const auto& s : states) c.solutions.push_back(s.q);
   return cases.emplace(name, std::move(c)).first->second;
 }
@@ -64,12 +64,12 @@ void kinema_scalar(benchmark::State& state, const std::string& name) {
   state.SetItemsProcessed(state.iterations());
 }
 
-// What `kinema eval --sweep` does: analyse() over the revolution (continuation with a
+// What `kinema eval --sweep` does: solve_motion() over the revolution (continuation with a
 // predictor from the previous rates, results stored per angle).
 void kinema_sweep(benchmark::State& state, const std::string& name) {
   Case& c = case_for(name);
   for (auto _ : state) {
-    const auto states = kinema::analyse(*c.model, c.angles);
+    const auto states = kinema::solve_motion(*c.model, c.angles);
     benchmark::DoNotOptimize(states.q(states.size() - 1).data());
   }
   state.SetItemsProcessed(state.iterations() * c.angles.size());
@@ -78,14 +78,14 @@ void kinema_sweep(benchmark::State& state, const std::string& name) {
 // The large job: Problem 4.4 over 10^6 values of one revolution, results kept.
 void kinema_sweep_million(benchmark::State& state, unsigned threads) {
   Case& c = case_for("problem_4_4_six_bar.toml");
-  kinema::AnalysisOptions options;
+  kinema::MotionOptions options;
   options.threads = threads;
   constexpr std::size_t kValues = 1000000;
   std::vector<double> angles(kValues);
   for (std::size_t i = 0; i < kValues; ++i) angles[i] = c.angles[0] + 2 * M_PI * static_cast<double>(i) / kValues;
   std::size_t bytes = 0, batch_rows = 0;
   for (auto _ : state) {
-    const auto table = kinema::analyse(*c.model, angles, options);
+    const auto table = kinema::solve_motion(*c.model, angles, options);
     benchmark::DoNotOptimize(table.q(kValues - 1).data());
     bytes = table.bytes();
     batch_rows = table.batch_rows();

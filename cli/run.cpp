@@ -127,7 +127,7 @@ void write_page_file(const Model& model, const std::string& sweep, const std::st
     const double first = !inputs.empty() ? inputs.front() : m.input.values.empty() ? 0.0 : m.input.values.front();
     const std::vector<double> values = sweep.empty() ? plot_range(m, first) : sweep_values(m, sweep, kMaxPageRows).to_vector();
     check_input_range(m, values);
-    swept = analyse(model, values);
+    swept = solve_motion(model, values);
   }
   std::ostringstream out;
   print_page(out, model, circuit ? circuit->table : swept, circuit.has_value());
@@ -150,7 +150,7 @@ const char* const kFileHelp =
 int write_list(const Model& model, const InputValues& inputs, const std::string& format, int precision,
                const std::string& output_path, const Sensitivities* sensitivities) {
   const ConstraintSystem& m = model.system;
-  MotionTable table = analyse(model, inputs.to_vector());
+  MotionTable table = solve_motion(model, inputs.to_vector());
   int status = 0;
   for (const MotionState& state : table) {
     if (state.status == Status::ok) continue;
@@ -391,11 +391,11 @@ int run_latex(const Model& model, const CommandLine& line, std::vector<double> i
     throw InputError(m.source_file + ": no input value: give --angle VALUE or value = \"...\" under [input]");
   }
   check_input_range(m, inputs);
-  const MotionTable at_values = analyse(model, inputs);
+  const MotionTable at_values = solve_motion(model, inputs);
   for (const MotionState& s : at_values) {
     if (s.status == Status::unassembled) throw AssemblyError(m.source_file + ": " + describe_failure(m, s));
   }
-  const MotionTable sweep_table = analyse(model, plot_range(m, inputs.front()));
+  const MotionTable sweep_table = solve_motion(model, plot_range(m, inputs.front()));
   PrintJob job{model, &at_values, &sweep_table};
   job.fragment = line.fragment;
   job.method = *find_method(line.method);

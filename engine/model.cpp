@@ -95,7 +95,7 @@ Model load_model(const std::filesystem::path& path, DerivationScope scope) {
   return make_model(read_mechanism_file(path.string()), scope);
 }
 
-MotionTable analyse(const Model& model, const std::vector<double>& inputs, const AnalysisOptions& options) {
+MotionTable solve_motion(const Model& model, const std::vector<double>& inputs, const MotionOptions& options) {
   SweepSettings settings;
   settings.rate = options.rate.value_or(model.system.input.rate_value);
   settings.second_rate = options.second_rate.value_or(model.system.input.second_rate_value);

@@ -1,7 +1,8 @@
-// kinema as a library: load a mechanism, then analyse it.
+// kinema as a library: load a mechanism, then solve its motion (solve_motion); what the
+// views show beyond that is engine/analysis/analysis.hpp's Analysis, computed apart.
 //
 //   auto model = kinema::load_model("samples/four_bar.toml");
-//   kinema::MotionTable table = kinema::analyse(model, {0.1, 0.2, 0.3});  // SI inputs
+//   kinema::MotionTable table = kinema::solve_motion(model, {0.1, 0.2, 0.3});  // SI inputs
 //   double omega3 = table.qd(0)[0];
 //
 // load_model runs the whole pipeline once: file -> Mechanism (readers/) ->
@@ -62,7 +63,7 @@ Model with_parameters(const Model& model, const std::vector<std::pair<std::strin
 /// (vector loops, joints and links, a spatial chain), the dyads' assemblies settled.
 ConstraintSystem build_constraint_system(const Mechanism& mechanism);
 
-struct AnalysisOptions {
+struct MotionOptions {
   std::optional<double> rate;         ///< Input rate (SI); default: the model's.
   std::optional<double> second_rate;  ///< Input second rate (SI); default: the model's.
   unsigned threads = 1;               ///< Long runs are split into chunks on this many threads.
@@ -73,6 +74,6 @@ struct AnalysisOptions {
 /// that the assembly branch of the file's guesses is kept. A value that cannot be
 /// assembled or is singular is a row with that status and a Failure
 /// (describe_failure(model.system, state) says it in words); nothing is thrown for it.
-MotionTable analyse(const Model& model, const std::vector<double>& inputs, const AnalysisOptions& options = {});
+MotionTable solve_motion(const Model& model, const std::vector<double>& inputs, const MotionOptions& options = {});
 
 }  // namespace kinema

@@ -349,7 +349,7 @@ std::string name_argument(const char* call, const char* argument, const py::hand
 /// column in a parameter over that sweep, SI (rad/s per m), NaN where a value is not ok;
 /// the parameter's derivatives derived and compiled on the first call that asks for them
 /// (then kept with the tape, for with_parameters' copies too), solved without the GIL.
-/// Solved a block at a time straight into the array (the serial run analyse() gives, the
+/// Solved a block at a time straight into the array (the serial run solve_motion() gives, the
 /// same numbers), so that memory is the array's 8 bytes a value, not a table of every
 /// column (2.7 GB for 10^7 values of a four-bar), and Ctrl-C is heard between blocks.
 py::array_t<double> sensitivity(const PyModel& m, const py::object& column_name, const py::object& parameter_name,
@@ -367,7 +367,7 @@ py::array_t<double> sensitivity(const PyModel& m, const py::object& column_name,
   }
   Interruptible interruptible;
   interruptible.run(inputs.size(), [&] {
-    kinema::SweepSettings settings;  // analyse()'s with its default options
+    kinema::SweepSettings settings;  // solve_motion()'s with its default options
     settings.rate = m.engine->system.input.rate_value;
     settings.second_rate = m.engine->system.input.second_rate_value;
     kinema::SweepSolver solver(m.engine->kinematics, inputs, settings);
@@ -453,7 +453,7 @@ py::object numpy_sweep(const PyModel& m, const Value& first, const Value& last, 
     settings.write = [&](std::string_view text) { table.write(text); };
     settings.progress = [&](std::size_t, std::size_t) { interruptible.check(); };  // a block written
     settings.block_time = kBlockTime;  // blocks of slow values made smaller, that check() comes round
-    kinema::stream_results(*m.engine, inputs, kinema::AnalysisOptions{}, settings);
+    kinema::stream_results(*m.engine, inputs, kinema::MotionOptions{}, settings);
   });
   return table.filled();
 }
@@ -530,7 +530,7 @@ std::string page(const PyModel& m) {
   std::ostringstream out;
   {
     py::gil_scoped_release unlocked;
-    kinema::print_page(out, *m.engine, kinema::analyse(*m.engine, values), false);
+    kinema::print_page(out, *m.engine, kinema::solve_motion(*m.engine, values), false);
   }
   return out.str();
 }

@@ -39,11 +39,12 @@ foreach(file ${LIBDIR}/cmake/kinema/kinemaConfig.cmake ${LIBDIR}/cmake/kinema/ki
     message(FATAL_ERROR "not installed: ${prefix}/${file}")
   endif()
 endforeach()
-# The headers installed are the facade's (api/kinema/) and nothing else: no engine/ or
-# loops/ header, which would name GiNaC and Eigen.
+# The headers installed are the facade's (api/kinema/, and <kinema/error.hpp>, the base's
+# error with nothing but <stdexcept>) and nothing else: no engine/ or loops/ header, which
+# would name GiNaC and Eigen.
 file(GLOB_RECURSE installed_headers LIST_DIRECTORIES true RELATIVE "${prefix}/${INCLUDEDIR}" "${prefix}/${INCLUDEDIR}/*")
 file(GLOB_RECURSE facade_headers RELATIVE "${SOURCE_DIR}/api" "${SOURCE_DIR}/api/kinema/*.hpp")
-list(APPEND facade_headers kinema)  # the folder itself
+list(APPEND facade_headers kinema kinema/error.hpp)  # the folder itself; the base's error (engine/base/error.hpp)
 list(SORT installed_headers)
 list(SORT facade_headers)
 if(NOT installed_headers STREQUAL facade_headers)

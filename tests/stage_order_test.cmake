@@ -78,3 +78,20 @@ string(REGEX REPLACE "[ \n]+" " " error "${error}")
 if(status EQUAL 0 OR NOT error MATCHES "engine/model.cpp \\(model\\) includes engine/analysis/output_scale.hpp \\(analysis\\)")
   message(FATAL_ERROR "the model's include of an analysis header passed the check with the tree's own pending list (status ${status}):\n${error}")
 endif()
+
+# A program's spelling of the facade, <kinema/kinema.hpp>, is the facade's stage: the base
+# including it fails; <kinema/error.hpp> is the base's own error, which any stage may include.
+file(WRITE "${WORK_DIR}/engine/model.cpp" "#include \"engine/base/errors.hpp\"\n")
+file(WRITE "${WORK_DIR}/engine/base/errors.hpp" "#pragma once\n#include <kinema/error.hpp>\n")
+execute_process(COMMAND "${CMAKE_COMMAND}" -DROOT=${WORK_DIR} -P ${SOURCE_DIR}/cmake/stage_order.cmake
+                RESULT_VARIABLE status ERROR_VARIABLE error)
+if(NOT status EQUAL 0)
+  message(FATAL_ERROR "the base's include of <kinema/error.hpp> was refused:\n${error}")
+endif()
+file(APPEND "${WORK_DIR}/engine/base/errors.hpp" "#include <kinema/kinema.hpp>\n")
+execute_process(COMMAND "${CMAKE_COMMAND}" -DROOT=${WORK_DIR} -P ${SOURCE_DIR}/cmake/stage_order.cmake
+                RESULT_VARIABLE status ERROR_VARIABLE error)
+string(REGEX REPLACE "[ \n]+" " " error "${error}")
+if(status EQUAL 0 OR NOT error MATCHES "engine/base/errors.hpp \\(base\\) includes api/kinema/kinema.hpp \\(facade\\)")
+  message(FATAL_ERROR "the base's include of <kinema/kinema.hpp> passed the check (status ${status}):\n${error}")
+endif()

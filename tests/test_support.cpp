@@ -99,8 +99,8 @@ CommandResult run_kinema_bounded(const std::vector<std::string>& arguments, int 
   return result;
 }
 
-kinema::AnalysisOptions with_rates(double rate, double second_rate, unsigned threads, bool simd) {
-  kinema::AnalysisOptions options;
+kinema::MotionOptions with_rates(double rate, double second_rate, unsigned threads, bool simd) {
+  kinema::MotionOptions options;
   options.rate = rate;
   options.second_rate = second_rate;
   options.threads = threads;
@@ -118,7 +118,7 @@ std::string six_bar_turning_back_text() {
 
 std::string six_bar_turning_back_joints_text() {
   const kinema::Model loops = kinema::make_model(kinema::read_mechanism_text(six_bar_turning_back_text(), "six.toml"));
-  const kinema::MotionTable at = kinema::analyse(loops, loops.system.input.values);
+  const kinema::MotionTable at = kinema::solve_motion(loops, loops.system.input.values);
   if (at.status(0) != kinema::Status::ok) throw std::runtime_error("the six-bar does not assemble at its file value");
   const auto coordinate = [&](const std::string& point, int k) {
     for (std::size_t p = 0; p < loops.system.points.size(); ++p)
@@ -141,7 +141,7 @@ std::vector<ScannedExtremum> scanned_extrema(const kinema::Model& model, std::si
   const int steps = static_cast<int>(std::lround(360 / step_deg));
   std::vector<double> inputs;
   for (int k = -1; k <= steps + 1; ++k) inputs.push_back(first + k * step_deg * M_PI / 180);
-  const kinema::MotionTable turn = kinema::analyse(model, inputs);
+  const kinema::MotionTable turn = kinema::solve_motion(model, inputs);
   std::vector<ScannedExtremum> found;
   for (int k = 1; k <= steps; ++k) {
     const auto row = std::size_t(k);

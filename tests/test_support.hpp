@@ -106,7 +106,7 @@ struct ScannedExtremum {
 std::vector<ScannedExtremum> scanned_extrema(const kinema::Model& model, std::size_t j, double step_deg = 0.05);
 
 /// Analysis options with the input's rates given (and threads, SIMD on or off).
-kinema::AnalysisOptions with_rates(double rate, double second_rate, unsigned threads = 1, bool simd = true);
+kinema::MotionOptions with_rates(double rate, double second_rate, unsigned threads = 1, bool simd = true);
 
 /// The whole content of a file ("" if it cannot be read).
 std::string read_file(const std::string& path);

@@ -128,7 +128,7 @@ void transmission_over_a_turn(const Model& model, const FourBarLoop& loop, FourB
   std::vector<double> inputs;
   const double first = system.input.values.empty() ? 0.0 : system.input.values.front();
   for (int k = 0; k <= 360; ++k) inputs.push_back(first + k * kPi / 180);
-  const MotionTable turn = analyse(model, inputs);
+  const MotionTable turn = solve_motion(model, inputs);
   const FourBarLoopValues values = loop.values();
   const double nan = std::numeric_limits<double>::quiet_NaN();
   f.least_transmission = f.greatest_transmission = f.least_at = f.greatest_at = nan;

@@ -4,7 +4,7 @@
 // speeds and accelerations, whether every value assembles). Nothing is derived or compiled
 // per design: every design runs on the model's one compiled tape, whose inputs the
 // parameters are (only the work on them alone is rerun), its values solved as
-// analyse(with_parameters(model, design), inputs) solves them, on several threads, 32
+// solve_motion(with_parameters(model, design), inputs) solves them, on several threads, 32
 // designs at a time in the lanes of the batch tape where the input has a rate
 // (engine/numeric/design_lanes: the values a lane cannot solve as the scalar solver
 // would go to it).
@@ -93,7 +93,7 @@ struct StudyResults {
 };
 
 /// The figures of every design over the input values `inputs` (SI), each value solved as
-/// analyse(with_parameters(model, design), inputs) solves it. The largest rates and point
+/// solve_motion(with_parameters(model, design), inputs) solves it. The largest rates and point
 /// figures are over the values whose status is ok; the least transmission angle over those
 /// that assemble (as four_bar_figures has it); the time ratio from the rows of the first
 /// turn of the run (a crank's run of at least 360 deg), each limit position refined as

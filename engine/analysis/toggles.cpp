@@ -53,7 +53,7 @@ std::vector<Toggle> solve_with(const Model& model, Extra extra) {
   const double first = system.input.values.empty() ? 0.0 : system.input.values.front();
   std::vector<double> starts;
   for (int i = 0; i < 36; ++i) starts.push_back(first + i * kPi / 18);
-  const MotionTable solved = analyse(model, starts);
+  const MotionTable solved = solve_motion(model, starts);
   for (std::size_t row = 0; row < solved.size(); ++row) {
     if (solved.status(row) == Status::unassembled) continue;
     Eigen::VectorXd z(n + 1), f;
@@ -208,7 +208,7 @@ std::vector<std::vector<Toggle>> find_limit_positions(const Model& model, const 
   std::vector<double> inputs;
   for (int k = 0; k <= 360; ++k) inputs.push_back(first + k * kPi / 180);
   // The mechanism's own assembly, by continuation from its file value.
-  const MotionTable turn = analyse(model, inputs);
+  const MotionTable turn = solve_motion(model, inputs);
   Workspace workspace(model);
   std::vector<Eigen::VectorXd> rates(turn.size());  // dq/dtheta; empty where not assembled or singular
   if (whole_turn) *whole_turn = true;

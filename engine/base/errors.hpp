@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include <kinema/error.hpp>  // kinema::Error, the base: the library facade's (api/kinema/)
+#include "engine/base/error.hpp"  // kinema::Error, the base (also the facade's <kinema/error.hpp>)
 
 namespace kinema {
 

@@ -1,6 +1,6 @@
 // Solving blocks of kLanes consecutive input values at once, everything
 // lane-parallel: the tape, the LU of Phi_q (the scalar solver's pivoting rule,
-// done by selects), Newton, rates, points. Used by analyse() for sweeps.
+// done by selects), Newton, rates, points. Used by solve_motion() for sweeps.
 #pragma once
 
 #include <vector>

@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "engine/problems/check_report.hpp"
+#include "engine/problems/answer_verdicts.hpp"
 
 namespace kinema {
 

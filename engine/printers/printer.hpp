@@ -14,7 +14,7 @@
 #include "engine/analysis/analysis.hpp"
 #include "engine/analysis/sensitivities.hpp"
 #include "engine/model.hpp"
-#include "engine/problems/problem_set.hpp"
+#include "engine/problems/problem_answer.hpp"
 #include "engine/symbolic/dyad_derivation_types.hpp"
 
 namespace kinema {

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "engine/model.hpp"
-#include "engine/problems/check_report.hpp"
+#include "engine/problems/answer_verdicts.hpp"
 #include "readers/answers_file.hpp"
 #include "readers/class_table.hpp"
 

@@ -406,10 +406,10 @@ std::vector<MistakenRow> length_unit_slip(const EvaluationPoint& point, const So
 
 SolvedRow solve_row(const EvaluationPoint& point) {
   const Model& model = *point.model;
-  AnalysisOptions options;
+  MotionOptions options;
   options.rate = point.rate;
   options.second_rate = point.second_rate;
-  const MotionTable table = analyse(model, {point.at}, options);
+  const MotionTable table = solve_motion(model, {point.at}, options);
   const MotionState state = table[0];
   if (state.status == Status::singular) throw SingularPositionError(describe_failure(model.system, state));
   if (state.status != Status::ok) throw AssemblyError(describe_failure(model.system, state));

@@ -238,7 +238,7 @@ std::vector<ProblemAnswer> problem_answers(const Model& variant, const std::vect
   OutputScale si_scale = scale;  // lengths in metres; angles still in degrees (converted below)
   si_scale.length = 1.0;
   const std::vector<ResultColumn> columns = result_columns(system, scale);
-  const MotionTable table = analyse(variant, at);
+  const MotionTable table = solve_motion(variant, at);
   std::vector<double> shown(columns.size()), si(columns.size());
   std::vector<ProblemAnswer> answers;
   const RowScales row_scales(system, columns);
@@ -269,7 +269,7 @@ std::vector<ProblemAnswer> problem_answers(const Model& variant, const std::vect
 
 std::vector<std::string> failed_conditions(const Model& variant, const Problem& problem, const std::vector<double>& at) {
   std::vector<std::string> failed;
-  const MotionTable table = analyse(variant, at);
+  const MotionTable table = solve_motion(variant, at);
   for (std::size_t row = 0; row < table.size(); ++row) {
     if (table.status(row) != Status::ok) return {"assembles"};  // the other figures need it to move there
   }

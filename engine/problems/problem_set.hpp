@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "engine/model.hpp"
+#include "engine/problems/problem_answer.hpp"
 #include "readers/mechanism.hpp"
 
 namespace kinema {
@@ -37,20 +38,6 @@ struct GivenValue {
   double value = 0.0;
   std::string unit;
   int decimals = 0;  ///< Digits after the point that show the range's grid in `unit` (0.380 m for 5 mm steps).
-};
-
-/// An asked answer: `quantity` (an output column) at input value `at_text`, or a design
-/// figure (engine/problems/design_answers), asked once per variant: at_text empty.
-struct ProblemAnswer {
-  std::string quantity;
-  std::string at_text;  ///< "30 deg", as the file (or the drawn driver value) writes it.
-  double at_si = 0.0;
-  double si = 0.0;      ///< In SI (rad, m, s).
-  double value = 0.0;   ///< In the output units of kinema eval.
-  std::string unit;     ///< Those units ("rad/s", "mm/s").
-  std::string text;     ///< A figure that is a class in words (grashof); value and si NaN then.
-  bool figure = false;  ///< A design figure: no input value (at_text empty).
-  double scale = 0.0;   ///< What `value` is shown at for people (RowScales; 0: as it is).
 };
 
 struct ProblemVariant {

@@ -20,7 +20,7 @@ std::string variant_stem(const ProblemSet& set, const ProblemVariant& variant) {
 
 std::string problem_sheet(const ProblemSet& set, const ProblemVariant& variant) {
   // The drawing at the first asked value, analysed as kinema latex draws it.
-  const MotionTable table = analyse(variant.model, {variant.at.front()});
+  const MotionTable table = solve_motion(variant.model, {variant.at.front()});
   ViewNeeds needs;
   needs.drawings = true;
   const Analysis analysis = analyse_for_views(variant.model, &table, needs);
@@ -31,8 +31,8 @@ std::string problem_sheet(const ProblemSet& set, const ProblemVariant& variant) 
 
 std::string problem_key(const ProblemVariant& variant) {
   const Model& model = variant.model;
-  const MotionTable at_values = analyse(model, variant.at);
-  const MotionTable sweep = analyse(model, plot_range(model.system, variant.at.front()));
+  const MotionTable at_values = solve_motion(model, variant.at);
+  const MotionTable sweep = solve_motion(model, plot_range(model.system, variant.at.front()));
   PrintJob job{model, &at_values, &sweep};
   job.answers = &variant.answers;
   std::ostringstream out;

@@ -149,7 +149,7 @@ std::size_t resized_block_rows(std::size_t rows, std::size_t most, std::chrono::
   return rows;
 }
 
-RunSummary stream_results(const Model& model, const InputValues& inputs, const AnalysisOptions& options,
+RunSummary stream_results(const Model& model, const InputValues& inputs, const MotionOptions& options,
                           const StreamSettings& settings) {
   SweepSettings sweep;
   sweep.rate = options.rate.value_or(model.system.input.rate_value);

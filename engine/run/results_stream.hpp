@@ -1,7 +1,7 @@
 // Printing a run while it is solved: block by block, so that memory does not grow
 // with the number of values; the blocks formatted on several threads and written
 // in order. The bytes are those ResultsPrinter::print gives for the whole run solved
-// in one table by analyse() on one thread.
+// in one table by solve_motion() on one thread.
 #pragma once
 
 #include <chrono>
@@ -36,7 +36,7 @@ struct StreamSettings {
   /// Threads (this one and count - 1 more), each taking the next block from the solver,
   /// formatting it and writing it after the blocks before it. The solve itself stays
   /// serial, one block at a time, so the numbers are the serial run's whatever the count
-  /// (AnalysisOptions::threads is not used here).
+  /// (MotionOptions::threads is not used here).
   unsigned threads = 1;
   /// Rows a block; 0: from the run's length (a 128th of it, 256 to 1024 rows).
   std::size_t block_rows = 0;
@@ -66,7 +66,7 @@ struct RunSummary {
   std::optional<FirstFailure> first_failure;
 };
 
-RunSummary stream_results(const Model& model, const InputValues& inputs, const AnalysisOptions& options,
+RunSummary stream_results(const Model& model, const InputValues& inputs, const MotionOptions& options,
                           const StreamSettings& settings);
 
 }  // namespace kinema

@@ -29,7 +29,7 @@ void check_named_equals_indexed(const std::string& sample_name, const std::vecto
   INFO(sample_name);
   const kinema::MechanismModel facade(sample(sample_name));
   const kinema::Model model = kinema::load_model(sample(sample_name));
-  const kinema::MotionTable table = kinema::analyse(model, inputs);
+  const kinema::MotionTable table = kinema::solve_motion(model, inputs);
   const std::vector<kinema::Solution> solutions = facade.solve(inputs);
   const kinema::Names& names = facade.names();
   REQUIRE(solutions.size() == inputs.size());
@@ -157,7 +157,7 @@ TEST_CASE("facade: a value that does not assemble is a status and kinema's sente
   CHECK(s.points().empty());
   // The sentence is the engine's, as kinema eval prints it.
   const kinema::Model model = kinema::make_model(kinema::read_mechanism_text(text, "long_ground.toml"));
-  const kinema::MotionTable table = kinema::analyse(model, {kinema::degrees(30)});
+  const kinema::MotionTable table = kinema::solve_motion(model, {kinema::degrees(30)});
   CHECK(s.message() == "long_ground.toml: " + kinema::describe_failure(model.system, table[0]));
   CHECK(contains(s.message(), "ABCD"));
   // Asking it for a value throws that sentence.
@@ -175,11 +175,13 @@ TEST_CASE("facade: a value that does not assemble is a status and kinema's sente
 
 TEST_CASE("facade: <kinema/kinema.hpp> preprocesses to at most 60,000 lines and includes no GiNaC, Eigen or engine header") {
   // The compiler that builds kinema, preprocessing a file that includes the facade alone
-  // with the facade's folder as its only kinema include path (as an installed program).
+  // with the facade's folders as its only kinema include paths (as an installed program:
+  // api/kinema/ and <kinema/error.hpp>, the build's copy of the base's error).
   const std::string source = kinema_test::write_temporary("facade_only.cpp", "#include <kinema/kinema.hpp>\n");
   const std::string preprocessed = kinema_test::write_temporary("facade_only.ii", "");
   const auto result = kinema_test::run_shell(std::string(KINEMA_CXX) + " -std=c++17 -E -I " +
-                                             kinema_test::shell_quote(KINEMA_FACADE_INCLUDE_DIR) + " " +
+                                             kinema_test::shell_quote(KINEMA_FACADE_INCLUDE_DIR) + " -I " +
+                                             kinema_test::shell_quote(KINEMA_FACADE_ERROR_DIR) + " " +
                                              kinema_test::shell_quote(source) + " -o " +
                                              kinema_test::shell_quote(preprocessed));
   REQUIRE_MESSAGE(result.exit_status == 0, result.err);

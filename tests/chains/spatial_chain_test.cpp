@@ -265,7 +265,7 @@ TEST_CASE("spatial_chain: the RSSR four-bar closes its loop over a turn - rates 
   std::vector<double> times;
   const double h = 1e-3;
   for (int k = 0; k <= 6283; ++k) times.push_back(k * h);
-  const kinema::MotionTable t = kinema::analyse(model, times);
+  const kinema::MotionTable t = kinema::solve_motion(model, times);
   const double scale = model.kinematics.length_scale();
   for (std::size_t r = 1; r + 1 < t.size(); r += 37) {
     CAPTURE(times[r]);
@@ -369,7 +369,7 @@ TEST_CASE("spatial_chain: each frame's angular velocity and acceleration are eva
   for (int k = 0; k <= 3000; ++k) times.push_back(k * h);
   for (bool simd : {true, false}) {
     CAPTURE(simd);
-    const kinema::MotionTable t = kinema::analyse(model, times, kinema_test::with_rates(1, 0, 1, simd));
+    const kinema::MotionTable t = kinema::solve_motion(model, times, kinema_test::with_rates(1, 0, 1, simd));
     if (simd) CHECK(t.batch_rows() > 0);
     REQUIRE(t.frame_count() == 2);
     for (std::size_t r = 1; r + 1 < t.size(); r += 101) {
@@ -421,7 +421,7 @@ TEST_CASE("spatial_chain: a driven variable as the input (--input, or input = in
   kinema::Mechanism arm = kinema::read_mechanism_file(kArm);
   arm.chain->input = "theta1";
   const kinema::Model model = kinema::make_model(arm);
-  const kinema::MotionTable fast = kinema::analyse(model, {0.0}, kinema_test::with_rates(2, 0));
+  const kinema::MotionTable fast = kinema::solve_motion(model, {0.0}, kinema_test::with_rates(2, 0));
   REQUIRE(fast.status(0) == kinema::Status::ok);
   CHECK(fast.qd(0)[1] == doctest::Approx(2));
   CHECK(fast.point(0, 2).acceleration[1] == doctest::Approx(4 * -1.98564064606));
@@ -593,14 +593,14 @@ TEST_CASE("spatial_chain: an RSSR that cannot turn fully reports its limit posit
   // hundredth of the distance, and the reciprocal condition falls with it.
   const kinema::Model model = kinema::load_model(file);
   const double degree = M_PI / 180;
-  const kinema::MotionTable at = kinema::analyse(model, {(limit - 1) * degree, (limit - 1e-2) * degree, (limit - 1e-4) * degree});
+  const kinema::MotionTable at = kinema::solve_motion(model, {(limit - 1) * degree, (limit - 1e-2) * degree, (limit - 1e-4) * degree});
   for (std::size_t r = 0; r < 3; ++r) REQUIRE(at.status(r) == kinema::Status::ok);
   CHECK(std::fabs(at.qd(2)[0] / at.qd(1)[0]) == doctest::Approx(10).epsilon(0.02));
   CHECK(at.reciprocal_condition(2) < at.reciprocal_condition(1) / 5);
   CHECK(at.reciprocal_condition(1) < at.reciprocal_condition(0) / 5);
   // At the limit itself (to the rounding of the closed form) the position is singular:
   // one equation, one unknown, its Phi_q against the length scale.
-  const kinema::MotionTable there = kinema::analyse(model, {(limit - 1e-2) * degree, limit * degree});
+  const kinema::MotionTable there = kinema::solve_motion(model, {(limit - 1e-2) * degree, limit * degree});
   CHECK(there.status(1) == kinema::Status::singular);
   char exact[32];
   std::snprintf(exact, sizeof exact, "%.17g", limit);
@@ -698,7 +698,7 @@ TEST_CASE("spatial_chain: every spatial sample through the engine: v, a and alph
     for (double t : {0.0, 0.3, 1.1}) {
       CAPTURE(t);
       const kinema::MotionTable s =
-          kinema::analyse(model, {start + rate * (t - h), start + rate * t, start + rate * (t + h)},
+          kinema::solve_motion(model, {start + rate * (t - h), start + rate * t, start + rate * (t + h)},
                           kinema_test::with_rates(rate, 0));
       for (std::size_t r = 0; r < 3; ++r) REQUIRE(s.status(r) == kinema::Status::ok);
       const double scale = model.kinematics.length_scale();
@@ -734,7 +734,7 @@ TEST_CASE("spatial_chain: a point moving in its frame by a formula of time t") {
   const kinema::Model model = kinema::load_model(file);
   const double h = 1e-4;
   for (double t : {0.0, 0.7}) {
-    const kinema::MotionTable s = kinema::analyse(model, {t - h, t, t + h}, kinema_test::with_rates(1, 0));
+    const kinema::MotionTable s = kinema::solve_motion(model, {t - h, t, t + h}, kinema_test::with_rates(1, 0));
     const std::size_t p = 2;  // A, B, C
     REQUIRE(model.system.points[p].name == "C");
     const auto a = s.point(0, p), m = s.point(1, p), b = s.point(2, p);

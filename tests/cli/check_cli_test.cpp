@@ -67,7 +67,7 @@ kinema::MotionState four_bar_at_40(const std::string& b = "120 mm", const std::s
   text = kinema_test::replaced("b = \"120 mm\"", "b = \"" + b + "\"", text);
   text = kinema_test::replaced("rate = \"10 rad/s\"", "rate = \"" + rate + "\"", text);
   const kinema::Model model = kinema::load_model(write("four_bar_edited.toml", text), kinema::DerivationScope::evaluation);
-  const kinema::MotionTable table = kinema::analyse(model, {40 * kDeg});
+  const kinema::MotionTable table = kinema::solve_motion(model, {40 * kDeg});
   REQUIRE(table.status(0) == kinema::Status::ok);
   return table[0];
 }

@@ -31,7 +31,7 @@ std::vector<std::string> split(const std::string& line, char separator) {
 std::vector<double> engine_values(const std::vector<std::string>& asked, const std::vector<double>& inputs) {
   const kinema::Model model = kinema::load_model(kinema_test::sample("four_bar.toml"), kinema::DerivationScope::evaluation);
   const kinema::Sensitivities sensitivities(model, kinema::sensitivity_columns(model.system, asked));
-  const kinema::MotionTable table = kinema::analyse(model, inputs);
+  const kinema::MotionTable table = kinema::solve_motion(model, inputs);
   std::vector<double> values(sensitivities.columns().size() * inputs.size());
   sensitivities.rows(table, 0, table.size(), values.data());
   return values;

@@ -74,7 +74,7 @@ TEST_CASE("kinema eval: streamed output is the printer over the whole table, on 
     const double unit = dimension == kinema::Dimension::angle  ? M_PI / 180
                         : dimension == kinema::Dimension::time ? 1.0
                                                                : model.system.output.length_factor;
-    const kinema::MotionTable whole = kinema::analyse(model, kinema::parse_sweep(sweep, unit).to_vector());
+    const kinema::MotionTable whole = kinema::solve_motion(model, kinema::parse_sweep(sweep, unit).to_vector());
     REQUIRE(whole.size() > 3000);
     for (const std::string format : {"table", "csv", "json", "npy"}) {
       CAPTURE(format);

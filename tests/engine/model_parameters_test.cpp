@@ -95,7 +95,7 @@ void check_equals_edited_file(const std::string& name, const Values& values, con
   const Model edited = edited_model(name, edits);
   const WorkCounts before;
   const Model copy = kinema::with_parameters(original, values);
-  const MotionTable table = kinema::analyse(copy, inputs);
+  const MotionTable table = kinema::solve_motion(copy, inputs);
   const WorkCounts after;
   CHECK(after.compiled == before.compiled);
   CHECK(after.differentiated == before.differentiated);
@@ -107,9 +107,9 @@ void check_equals_edited_file(const std::string& name, const Values& values, con
     INFO(copy.system.parameters[p].symbol.get_name());
     CHECK(copy.system.parameters[p].value == doctest::Approx(edited.system.parameters[p].value).epsilon(1e-15));
   }
-  check_same_tables(table, kinema::analyse(edited, inputs));
+  check_same_tables(table, kinema::solve_motion(edited, inputs));
   // The original keeps its own numbers: nothing of it was changed through the shared tape.
-  check_same_tables(kinema::analyse(original, inputs), kinema::analyse(sample_model(name), inputs));
+  check_same_tables(kinema::solve_motion(original, inputs), kinema::solve_motion(sample_model(name), inputs));
 }
 
 constexpr double kDeg = kinema::kPi / 180;

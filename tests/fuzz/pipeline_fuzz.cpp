@@ -64,7 +64,7 @@ void chain_by_its_variables(const std::string& text) {
       try {
         const Model model = make_model(mechanism);
         const std::vector<double> inputs = first_values(model.system);
-        const MotionTable values = analyse(model, inputs);
+        const MotionTable values = solve_motion(model, inputs);
         print_everything(model, values, values);
       } catch (const kinema::Error&) {
         // An input without a rate, or with a second rate while others follow: refused.
@@ -112,12 +112,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     // A chain worked out at the instant along its last frame's axes (derive --basis).
     if (is_driven_chain(model.system)) (void)chain_at_instant(model.system, model.system.frames.back().name);
     const std::vector<double> inputs = first_values(model.system);
-    const MotionTable values = analyse(model, inputs);
+    const MotionTable values = solve_motion(model, inputs);
     // Every fifth value of the worked solution's plot range: the same code, a fifth of the time.
     std::vector<double> range;
     const std::vector<double> full = plot_range(model.system, inputs.front());
     for (std::size_t i = 0; i < full.size(); i += 5) range.push_back(full[i]);
-    const MotionTable over_range = analyse(model, range);
+    const MotionTable over_range = solve_motion(model, range);
     print_everything(model, values, over_range);
     // The range again as kinema eval streams it: small blocks, formatted on two threads.
     for (const std::string& name : printer_names(PrintKind::results)) {

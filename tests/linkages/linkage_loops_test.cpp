@@ -91,7 +91,7 @@ std::size_t point_index(const Model& model, const std::string& name) {
 
 // Every coordinate and every point of `hand` equal in `drawn`, row by row.
 void check_same_motion(const Model& drawn, const Model& hand, const std::vector<double>& inputs) {
-  const MotionTable a = kinema::analyse(drawn, inputs), b = kinema::analyse(hand, inputs);
+  const MotionTable a = kinema::solve_motion(drawn, inputs), b = kinema::solve_motion(hand, inputs);
   for (std::size_t row = 0; row < inputs.size(); ++row) {
     CAPTURE(inputs[row] * 180 / M_PI);
     REQUIRE(a.status(row) == b.status(row));
@@ -143,7 +143,7 @@ TEST_CASE("linkages/linkage_loops: Example 4.2 as drawn (a slider on the turning
   const Model drawn = kinema::load_model(sample("example_4_2_joints.toml"));
   const Model hand = kinema::load_model(sample("example_4_2_r_rtr_rrt.toml"));
   check_same_motion(drawn, hand, degrees(0, 360, 10));
-  const MotionTable t = kinema::analyse(drawn, {M_PI / 4});
+  const MotionTable t = kinema::solve_motion(drawn, {M_PI / 4});
   CHECK_PRINTED(coordinate_value(drawn, t, 0, "phi3", 1), "1.807");
   CHECK_PRINTED(coordinate_value(drawn, t, 0, "phi3", 2), "1.020");
   CHECK_PRINTED(coordinate_value(drawn, t, 0, "phi4", 1), "0.221");
@@ -166,7 +166,7 @@ TEST_CASE("linkages/linkage_loops: Problem 3.22 as drawn (a triangle coupler, tw
   const auto loops = kinema_test::loops_file(kinema::read_mechanism_file(sample("problem_3_22_joints.toml")));
   CHECK(loops.find("a*exp(I*(theta3 + beta))") != std::string::npos);
   check_same_motion(drawn, hand, degrees(-180, 180, 15));
-  const MotionTable t = kinema::analyse(drawn, {-120 * M_PI / 180});
+  const MotionTable t = kinema::solve_motion(drawn, {-120 * M_PI / 180});
   const double inch = 0.0254;
   CHECK_PRINTED(coordinate_value(drawn, t, 0, "theta3", 1), "-4.26");
   CHECK_PRINTED(coordinate_value(drawn, t, 0, "r1", 1) / inch, "-65.3");
@@ -288,7 +288,7 @@ TEST_CASE("linkages/linkage_loops: the four-bar as drawn: link angles from the s
   REQUIRE(m.loops.size() == 1);
   CHECK(m.loops[0].name == "ABCD");
   const Model model = kinema::make_model(m);
-  const MotionTable t = kinema::analyse(model, {40 * M_PI / 180});
+  const MotionTable t = kinema::solve_motion(model, {40 * M_PI / 180});
   REQUIRE(t.status(0) == kinema::Status::ok);
   CHECK(t.qd(0)[0] == doctest::Approx(-1.64836577).epsilon(1e-8));
   CHECK(t.qdd(0)[1] == doctest::Approx(74.5495583).epsilon(1e-8));
@@ -298,7 +298,7 @@ TEST_CASE("linkages/linkage_loops: the four-bar as drawn: link angles from the s
 
 TEST_CASE("linkages/linkage_loops: Problem 4.4 as drawn reproduces the seed's numbers") {
   const Model model = kinema::load_model(sample("problem_4_4_joints.toml"));
-  const MotionTable t = kinema::analyse(model, {M_PI / 6});
+  const MotionTable t = kinema::solve_motion(model, {M_PI / 6});
   REQUIRE(t.status(0) == kinema::Status::ok);
   CHECK_PRINTED(coordinate_value(model, t, 0, "phi2", 1), "-1.1307");
   CHECK_PRINTED(coordinate_value(model, t, 0, "phi3", 1), "-2.82169");
@@ -501,7 +501,7 @@ TEST_CASE("linkages/linkage_loops: at each slider the relative velocity, relativ
   CHECK_PRINTED(s.at("relative_acceleration")[0].get<double>(), "-0.371");
   const Model model = kinema::load_model(sample("example_4_2_joints.toml"));
   const double h = 1e-3, omega1 = 4.712;
-  const MotionTable t = kinema::analyse(model, {M_PI / 4 - h, M_PI / 4, M_PI / 4 + h});
+  const MotionTable t = kinema::solve_motion(model, {M_PI / 4 - h, M_PI / 4, M_PI / 4 + h});
   const double cb_second = (coordinate_value(model, t, 2, "CB", 0) - 2 * coordinate_value(model, t, 1, "CB", 0) +
                             coordinate_value(model, t, 0, "CB", 0)) / (h * h) * omega1 * omega1;
   const double phi3 = coordinate_value(model, t, 1, "phi3", 0);
@@ -612,7 +612,7 @@ rate = "1 rad/s"
   kinema::print_view(*kinema::find_printer(kinema::PrintKind::derivation, "text"), text, {model});
   CHECK(text.str().find("not a dyad: links 3, 4, 5, 6, solved together by Newton on their loops") != std::string::npos);
   // At the sketch's input the sketch is the solution; nearby, the loops close.
-  const MotionTable t = kinema::analyse(model, {M_PI / 4, 50 * M_PI / 180});
+  const MotionTable t = kinema::solve_motion(model, {M_PI / 4, 50 * M_PI / 180});
   REQUIRE(t.status(0) == kinema::Status::ok);
   REQUIRE(t.status(1) == kinema::Status::ok);
   CHECK(coordinate_value(model, t, 0, "theta3", 0) == doctest::Approx(M_PI / 4));

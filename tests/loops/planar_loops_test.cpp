@@ -390,7 +390,7 @@ TEST_CASE("loops/planar_loops: inverse trigonometric functions of coordinates co
       CHECK_FALSE(equation.expression.has(GiNaC::imag_part(GiNaC::wild())));
     }
     const double h = 1e-5, theta = 0.7;
-    const auto table = kinema::analyse(model, {theta - h, theta, theta + h});
+    const auto table = kinema::solve_motion(model, {theta - h, theta, theta + h});
     REQUIRE(table.status(1) == kinema::Status::ok);
     const double rate = model.system.input.rate_value;
     for (Eigen::Index i = 0; i < table.q(1).size(); ++i) {

@@ -3,6 +3,7 @@
 Run by ctest ("python: ..."), which sets KINEMA_PROGRAM (the kinema program), KINEMA_SAMPLES
 (samples/) and PYTHONPATH (the built module).
 """
+import doctest
 import html
 import json
 import math
@@ -328,3 +329,18 @@ def test_sensitivity_errors_name_the_parameter_and_the_column():
         model.sensitivity("omega3", "bb", "0 deg", "10 deg", "5 deg")
     with pytest.raises(kinema.InputError, match=r'no output column named "omega9" that has a derivative \(there are: theta3'):
         model.sensitivity("omega9", "b", "0 deg", "10 deg", "5 deg")
+
+
+def test_the_readmes_python_prints_what_it_shows():
+    # The README's snippet run as a doctest from the repository root, as a reader runs it.
+    root = SAMPLES.parent
+    block = (root / "README.md").read_text().split("```python\n")[1].split("```")[0]
+    test = doctest.DocTestParser().get_doctest(block, {}, "README", "README.md", 0)
+    runner = doctest.DocTestRunner(optionflags=doctest.NORMALIZE_WHITESPACE)
+    here = os.getcwd()
+    os.chdir(root)
+    try:
+        runner.run(test)
+    finally:
+        os.chdir(here)
+    assert runner.tries >= 4 and runner.failures == 0

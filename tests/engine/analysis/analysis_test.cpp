@@ -26,7 +26,7 @@ kinema::MotionTable printed_values(const kinema::Model& model) {
   std::vector<double> inputs = model.system.input.values;
   if (inputs.empty()) inputs = {0.3};
   inputs.push_back(inputs.back() + 0.1);
-  return kinema::analyse(model, inputs);
+  return kinema::solve_motion(model, inputs);
 }
 
 }  // namespace

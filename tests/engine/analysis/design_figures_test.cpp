@@ -122,7 +122,7 @@ TEST_CASE("design figures: an offset slider-crank's limit positions and time rat
   REQUIRE(six.size() == 1);
   const kinema::Model model = kinema::load_model(kinema_test::sample("problem_4_4_six_bar.toml"));
   for (double at : six.front().limit_inputs) {
-    const kinema::MotionTable t = kinema::analyse(model, {M_PI / 6, at / degree});
+    const kinema::MotionTable t = kinema::solve_motion(model, {M_PI / 6, at / degree});
     REQUIRE(t.status(1) == kinema::Status::ok);
     CHECK(std::fabs(t.qd(1)[3]) < 1e-8);  // vF = 0 there
   }
@@ -220,7 +220,7 @@ TEST_CASE("design figures: a slider that turns back twice a turn has every limit
       CHECK(s.maxima[k] == scan[k].maximum);
       // The position solution at the limit and either side of it: the value listed, an extremum.
       const double at = s.limit_inputs[k] * degree;
-      const kinema::MotionTable near = kinema::analyse(model, {at - nudge, at, at + nudge});
+      const kinema::MotionTable near = kinema::solve_motion(model, {at - nudge, at, at + nudge});
       for (std::size_t r = 0; r < 3; ++r) REQUIRE(near.status(r) == kinema::Status::ok);
       const double before = near.q(0)[Eigen::Index(yF)], here = near.q(1)[Eigen::Index(yF)], after = near.q(2)[Eigen::Index(yF)];
       CHECK(s.limit_values[k] == doctest::Approx(here).epsilon(1e-12));

@@ -89,7 +89,7 @@ void check_design(const Model& model, const Designs& designs, std::size_t i, con
   std::vector<std::pair<std::string, double>> values;
   for (std::size_t k = 0; k < designs.names.size(); ++k) values.emplace_back(designs.names[k], designs.values[k][i]);
   const Model design = kinema::with_parameters(model, values);
-  const MotionTable table = kinema::analyse(design, inputs);
+  const MotionTable table = kinema::solve_motion(design, inputs);
   INFO("design " << i);
   const std::optional<kinema::FourBarFigures> four_bar = kinema::four_bar_figures(design);
   CHECK(std::string(kinema::grashof_name(study.grashof[i])) == (four_bar ? four_bar->grashof : "n/a"));
@@ -343,7 +343,7 @@ void check_same_figures(const StudyResults& lanes, const StudyResults& alone,
 double least_condition(const Model& model, const Designs& designs, std::size_t i, const std::vector<double>& inputs) {
   std::vector<std::pair<std::string, double>> values;
   for (std::size_t k = 0; k < designs.names.size(); ++k) values.emplace_back(designs.names[k], designs.values[k][i]);
-  const MotionTable table = kinema::analyse(kinema::with_parameters(model, values), inputs);
+  const MotionTable table = kinema::solve_motion(kinema::with_parameters(model, values), inputs);
   double least = 1;
   for (std::size_t r = 0; r < table.size(); ++r)
     if (table.status(r) == kinema::Status::ok) least = std::min(least, table.reciprocal_condition(r));
@@ -442,7 +442,7 @@ TEST_CASE("design lanes: a value out of the loop's reach stored as the scalar ru
   lanes.solve(designs.size());
   std::size_t out_of_reach = 0, unassembled = 0;
   for (std::size_t l = 0; l < designs.size(); ++l) {
-    const MotionTable alone = kinema::analyse(separate[l], inputs);
+    const MotionTable alone = kinema::solve_motion(separate[l], inputs);
     const MotionTable& table = lanes.table(l);
     for (std::size_t r = 0; r < inputs.size(); ++r) {
       INFO("design " << l << ", row " << r);
@@ -541,7 +541,7 @@ std::pair<std::size_t, std::size_t> check_closed_lanes(const ClosedLanes& run, c
   std::size_t ok_values = 0, near_toggles = 0;
   for (std::size_t l = 0; l < run.separate.size(); ++l) {
     const Model& design = run.separate[l];
-    const MotionTable alone = kinema::analyse(design, inputs);
+    const MotionTable alone = kinema::solve_motion(design, inputs);
     const MotionTable& table = run.lanes->table(l);
     kinema::Workspace workspace(design);
     for (std::size_t r = 0; r < inputs.size(); ++r) {
@@ -666,7 +666,7 @@ TEST_CASE("design lanes: rates, second rates and points from the loop's closed f
   CHECK(double(run.lanes->closed_rate_values()) >= 0.9 * double(inputs.size() - 1));
   std::size_t compared = 0;
   for (std::size_t l = 0; l < designs.size(); ++l) {
-    const MotionTable alone = kinema::analyse(run.separate[l], inputs);
+    const MotionTable alone = kinema::solve_motion(run.separate[l], inputs);
     const MotionTable& table = run.lanes->table(l);
     // 1e-9 relative to the size of each vector (both unknowns' rates, a point's velocity),
     // or where that vanishes (a rocker at rest, its pivot's point) to a thousandth of its

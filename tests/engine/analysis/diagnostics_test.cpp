@@ -106,13 +106,13 @@ TEST_CASE("engine/analysis/diagnostics: every kind of failure in words") {
 
 TEST_CASE("engine/analysis/diagnostics: failures of real runs, in the output units of the file") {
   const kinema::Model model = kinema_unit::model_from_text(kTwoLoops, "two.toml");
-  const auto table = kinema::analyse(model, {90 * kDeg, 180 * kDeg});
+  const auto table = kinema::solve_motion(model, {90 * kDeg, 180 * kDeg});
   REQUIRE(table.status(1) == kinema::Status::unassembled);
   const std::string stops = kinema::describe_failure(model.system, table[1]);
   CAPTURE(stops);
   CHECK(has(stops, "theta2 = 180 deg cannot be reached from theta2 = 90 deg"));
 
-  const auto fresh = kinema::analyse(model, {180 * kDeg});
+  const auto fresh = kinema::solve_motion(model, {180 * kDeg});
   const std::string open = kinema::describe_failure(model.system, fresh[0]);
   CAPTURE(open);
   CHECK(has(open, "loop \"Rocker\" (two.toml:21) cannot be closed at theta2 = 180 deg"));

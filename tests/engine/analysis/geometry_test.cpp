@@ -77,7 +77,7 @@ TEST_CASE("engine/analysis/geometry: a slider's guide, and two loops each closin
 
   // Problem 4.4: ABCD (4 terms) then DEF (5 terms), each starting at the origin and closing.
   const kinema::Model six = kinema::load_model(kinema_test::sample("problem_4_4_six_bar.toml"));
-  const auto table = kinema::analyse(six, {30 * kDeg});
+  const auto table = kinema::solve_motion(six, {30 * kDeg});
   REQUIRE(table.status(0) == kinema::Status::ok);
   const auto drawn = kinema::MechanismGeometry(six).segments(table[0]);
   REQUIRE(drawn.size() == 4 + 5);
@@ -99,7 +99,7 @@ TEST_CASE("engine/analysis/geometry: a slider's guide, and two loops each closin
   // Problem 3.22: the second loop's -d - i r6 meet at (d, 0), the foot of D's fixed guide,
   // which is no joint (drawn as a pivot there before); A, C, D, B and O2 are.
   const kinema::Model p322 = kinema::load_model(kinema_test::sample("problem_3_22_six_bar_sliders.toml"));
-  const auto solved = kinema::analyse(p322, {-120 * kDeg});
+  const auto solved = kinema::solve_motion(p322, {-120 * kDeg});
   REQUIRE(solved.status(0) == kinema::Status::ok);
   const auto terms = kinema::MechanismGeometry(p322).segments(solved[0]);
   double d = 0;
@@ -128,7 +128,7 @@ TEST_CASE("engine/analysis/geometry: each link's angular velocity off the model'
     const kinema::MechanismGeometry geometry(model);
     std::vector<double> inputs = system.input.values;
     if (inputs.empty()) inputs = {0.3};
-    for (const MotionState& s : kinema::analyse(model, inputs)) {
+    for (const MotionState& s : kinema::solve_motion(model, inputs)) {
       if (s.status != kinema::Status::ok) continue;
       const auto omegas = geometry.link_angular_velocities(s);
       REQUIRE(omegas.size() == geometry.link_rates().size());
@@ -169,7 +169,7 @@ TEST_CASE("engine/analysis/geometry: a joints file's drawing stage places its jo
     REQUIRE(scale.length == 1.0);  // the columns below compared in SI
     std::vector<double> inputs;
     for (int k = 0; k < 36; ++k) inputs.push_back(k * 10 * M_PI / 180);
-    const kinema::MotionTable table = kinema::analyse(model, inputs);
+    const kinema::MotionTable table = kinema::solve_motion(model, inputs);
     const kinema::MotionDrawing drawing = kinema::motion_drawing(model, table);
     REQUIRE(drawing.rows.size() == table.size());
     const std::size_t width = kinema::result_column_count(system), begin = kinema::linkage_columns_begin(system);

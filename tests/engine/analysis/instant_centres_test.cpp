@@ -76,7 +76,7 @@ void check_kennedy(const kinema::InstantCentres& centres, double length_scale) {
 TEST_CASE("instant centres: a vector-loop file's links known by the points on them") {
   // The four-bar: A on the crank (theta2), P on the coupler (theta3), B on the rocker (theta4).
   const kinema::Model model = kinema::load_model(kinema_test::sample("four_bar.toml"));
-  const kinema::MotionTable table = kinema::analyse(model, {40 * M_PI / 180, 200 * M_PI / 180});
+  const kinema::MotionTable table = kinema::solve_motion(model, {40 * M_PI / 180, 200 * M_PI / 180});
   for (const kinema::MotionState& s : table) {
     const auto centres = kinema::instant_centres(kinema::MechanismGeometry(model), s);
     REQUIRE(centres);
@@ -104,7 +104,7 @@ TEST_CASE("instant centres: a vector-loop file's links known by the points on th
   // A slider-crank's block is a body: ground 1, crank 2, rod 3, block 4 (numbered in the
   // gap the links leave), its centre with ground at infinity across the line y = e.
   const kinema::Model slider = kinema::load_model(kinema_test::sample("slider_crank.toml"));
-  const kinema::MotionTable one = kinema::analyse(slider, slider.system.input.values);
+  const kinema::MotionTable one = kinema::solve_motion(slider, slider.system.input.values);
   const auto centres = kinema::instant_centres(kinema::MechanismGeometry(slider), one[0]);
   REQUIRE(centres);
   CHECK(centres->bodies == std::vector<std::string>{"1", "2", "3", "4"});
@@ -116,7 +116,7 @@ TEST_CASE("instant centres: a vector-loop file's links known by the points on th
   // The crank-shaper: ground 1, crank 2, block 3 in the rocker's slot, rocker 4, link 5 and
   // ram 6: all 15 centres (issue 32: 3 of them before).
   const kinema::Model shaper = kinema::load_model(kinema_test::sample("crank_shaper.toml"));
-  const kinema::MotionTable at = kinema::analyse(shaper, shaper.system.input.values);
+  const kinema::MotionTable at = kinema::solve_motion(shaper, shaper.system.input.values);
   const auto all = kinema::instant_centres(kinema::MechanismGeometry(shaper), at[0]);
   REQUIRE(all);
   CHECK(all->bodies == std::vector<std::string>{"1", "2", "3", "4", "5", "6"});
@@ -124,7 +124,7 @@ TEST_CASE("instant centres: a vector-loop file's links known by the points on th
   check_kennedy(*all, shaper.system.length_scale);
   // Example 4.2 as loops: blocks 2 (on link 3) and 5 (on the x axis), as the seed numbers them.
   const kinema::Model e42 = kinema::load_model(kinema_test::sample("example_4_2_r_rtr_rrt.toml"));
-  const kinema::MotionTable e42_at = kinema::analyse(e42, e42.system.input.values);
+  const kinema::MotionTable e42_at = kinema::solve_motion(e42, e42.system.input.values);
   const auto e42_centres = kinema::instant_centres(kinema::MechanismGeometry(e42), e42_at[0]);
   REQUIRE(e42_centres);
   CHECK(e42_centres->bodies == std::vector<std::string>{"0", "1", "2", "3", "4", "5"});
@@ -140,7 +140,7 @@ TEST_CASE("instant centres: every vector-loop sample, each centre where the two 
     CAPTURE(std::string(name));
     std::vector<double> inputs = system.input.values;
     if (inputs.empty()) inputs = {0.3};
-    const kinema::MotionTable table = kinema::analyse(model, inputs);
+    const kinema::MotionTable table = kinema::solve_motion(model, inputs);
     for (const kinema::MotionState& s : table) {
       if (s.status != kinema::Status::ok) continue;
       const auto centres = kinema::instant_centres(kinema::MechanismGeometry(model), s);
@@ -190,7 +190,7 @@ TEST_CASE("instant centres: every joints-and-links sample, each centre where the
     std::vector<double> inputs = model.system.input.values;
     if (inputs.empty()) inputs = {0.3};
     inputs.push_back(inputs.back() + (model.system.input.dimension == kinema::Dimension::angle ? 0.5 : 0.05 * model.system.length_scale));
-    const kinema::MotionTable table = kinema::analyse(model, inputs);
+    const kinema::MotionTable table = kinema::solve_motion(model, inputs);
     for (const kinema::MotionState& s : table) {
       if (s.status != kinema::Status::ok) continue;
       CAPTURE(s.input);
@@ -271,7 +271,7 @@ int compare_tape_with_construction(const kinema::Model& model, bool by_lines, in
   const double start = system.input.values.empty() ? 0.3 : system.input.values[0];
   const double span = system.input.dimension == kinema::Dimension::angle ? 2 * M_PI : system.length_scale;
   for (int k = 0; k < 24; ++k) inputs.push_back(start + k * span / 24);
-  const kinema::MotionTable table = kinema::analyse(model, inputs);
+  const kinema::MotionTable table = kinema::solve_motion(model, inputs);
   const kinema::MechanismGeometry geometry(model);
   int compared = 0;
   rows = 0;
@@ -367,10 +367,10 @@ TEST_CASE("instant centres: a joints-and-links file at rest has the centres it h
     CAPTURE(std::string(name));
     std::vector<double> inputs = model.system.input.values;
     if (inputs.empty()) inputs = {0.3};
-    kinema::AnalysisOptions at_rest;
+    kinema::MotionOptions at_rest;
     at_rest.rate = 0.0;
     at_rest.second_rate = 0.0;
-    const kinema::MotionTable moving = kinema::analyse(model, inputs), resting = kinema::analyse(model, inputs, at_rest);
+    const kinema::MotionTable moving = kinema::solve_motion(model, inputs), resting = kinema::solve_motion(model, inputs, at_rest);
     const kinema::MechanismGeometry geometry(model);
     for (std::size_t r = 0; r < moving.size(); ++r) {
       if (moving.status(r) != kinema::Status::ok || resting.status(r) != kinema::Status::ok) continue;
@@ -423,7 +423,7 @@ TEST_CASE("instant centres: every pin's centre is at its pin at theta = 0 and at
     const kinema::MechanismGeometry geometry(model);
     for (const double input : pin_test_inputs(model)) {
       CAPTURE(input);
-      const kinema::MotionTable table = kinema::analyse(model, {input});
+      const kinema::MotionTable table = kinema::solve_motion(model, {input});
       if (table.status(0) != kinema::Status::ok) continue;
       const auto centres = kinema::instant_centres(geometry, table[0]);
       REQUIRE(centres);
@@ -471,7 +471,7 @@ TEST_CASE("instant centres: every pin's centre is at its pin at theta = 0 and at
   int checked = 0;
   for (const double input : pin_test_inputs(four_bar)) {
     CAPTURE(input);
-    const kinema::MotionTable table = kinema::analyse(four_bar, {input});
+    const kinema::MotionTable table = kinema::solve_motion(four_bar, {input});
     REQUIRE(table.status(0) == kinema::Status::ok);
     const kinema::MotionState& s = table[0];
     const auto centres = kinema::instant_centres(geometry, s);

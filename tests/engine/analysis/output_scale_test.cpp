@@ -120,7 +120,7 @@ TEST_CASE("engine/analysis/output_scale: result_rows of a block = result_values 
     std::vector<double> inputs;
     const double start = model.system.input.values.empty() ? 0.0 : model.system.input.values.front();
     for (int k = 0; k < 24; ++k) inputs.push_back(start + 0.3 * k);
-    const kinema::MotionTable table = kinema::analyse(model, inputs);
+    const kinema::MotionTable table = kinema::solve_motion(model, inputs);
     for (std::size_t r = 0; r < table.size(); ++r) undefined_rows += table.status(r) != kinema::Status::ok;
     check_table(model.system, table);
   }
@@ -147,7 +147,7 @@ TEST_CASE("engine/analysis/problem_scale: each value of a row is shown at its co
     const std::vector<kinema::ResultColumn> columns = kinema::result_columns(system, scale);
     const kinema::RowScales row_scales(system, columns);
     const double start = system.input.values.empty() ? 0.0 : system.input.values.front();
-    const kinema::MotionTable table = kinema::analyse(model, {start, start + 0.7, start + 1.9});
+    const kinema::MotionTable table = kinema::solve_motion(model, {start, start + 0.7, start + 1.9});
     for (std::size_t r = 0; r < table.size(); ++r) {
       if (table.status(r) != kinema::Status::ok) continue;
       std::vector<double> row(columns.size());

@@ -39,7 +39,7 @@ TEST_CASE("polygons: every named point's image is its velocity and acceleration,
     const double step = model.system.input.dimension == kinema::Dimension::angle ? 0.7 : 0.1 * model.system.length_scale;
     if (!inputs.empty()) inputs.push_back(inputs.back() + step);
     if (inputs.empty()) inputs = {0.3, 0.3 + step};
-    const kinema::MotionTable table = kinema::analyse(model, inputs);
+    const kinema::MotionTable table = kinema::solve_motion(model, inputs);
     int checked = 0;
     for (const kinema::MotionState& s : table) {
       const auto polygons = builder.polygons(s);
@@ -110,7 +110,7 @@ TEST_CASE("polygons: the four-bar's polygon as a textbook draws it") {
   const kinema::Model model = kinema::load_model(kinema_test::sample("four_bar.toml"));
   const kinema::PolygonBuilder builder(model);
   const double theta2 = 40 * M_PI / 180;
-  const kinema::MotionTable table = kinema::analyse(model, {theta2});
+  const kinema::MotionTable table = kinema::solve_motion(model, {theta2});
   const kinema::MotionState s = table[0];
   const auto polygons = builder.polygons(s);
   REQUIRE(polygons);
@@ -162,7 +162,7 @@ TEST_CASE("polygons: a block sliding on a turning link has its Coriolis part 2 o
   // Example 4.1 (R-TRR): the block B slides along the driver (AB = r), which turns at omega1.
   const kinema::Model model = kinema::load_model(kinema_test::sample("example_4_1_r_trr.toml"));
   const kinema::PolygonBuilder builder(model);
-  const kinema::MotionTable table = kinema::analyse(model, model.system.input.values);
+  const kinema::MotionTable table = kinema::solve_motion(model, model.system.input.values);
   const kinema::MotionState s = table[0];
   const auto polygons = builder.polygons(s);
   REQUIRE(polygons);

@@ -54,7 +54,7 @@ TEST_CASE("four-bar sweep keeps the open branch and matches the closed form") {
   std::vector<double> inputs;
   for (int i = 0; i <= 360; ++i) inputs.push_back(i * deg);
   const double w2 = model.system.input.rate_value;
-  const auto states = kinema::analyse(model, inputs, kinema_test::with_rates(w2, 0.0));
+  const auto states = kinema::solve_motion(model, inputs, kinema_test::with_rates(w2, 0.0));
   const double a = 0.04, b = 0.12, c = 0.08;
   for (const auto& s : states) {
     REQUIRE(s.status == kinema::Status::ok);
@@ -134,7 +134,7 @@ TEST_CASE("Workspace::advance steps along the open branch and refuses to cross a
   const kinema::Model model = kinema::load_model(kinema_test::sample("four_bar.toml"));
   const double w2 = model.system.input.rate_value, a2 = 3.0;
   kinema::Workspace workspace(model);
-  kinema::MotionState state = kinema::analyse(model, {0.0}, kinema_test::with_rates(w2, a2))[0];
+  kinema::MotionState state = kinema::solve_motion(model, {0.0}, kinema_test::with_rates(w2, a2))[0];
   REQUIRE(state.status == kinema::Status::ok);
   // Small steps (the predicted path) and a 30 deg jump (continuation) over two turns.
   for (double theta = 0.1 * deg; theta <= 720 * deg; theta += (theta > 400 * deg ? 30 : 0.1) * deg) {
@@ -151,7 +151,7 @@ TEST_CASE("Workspace::advance steps along the open branch and refuses to cross a
   // The triple rocker cannot turn through 180 deg: advance says so and keeps the state.
   const kinema::Model rocker = kinema::load_model(kinema_test::write_temporary("rocker_advance.toml", kTripleRocker));
   kinema::Workspace rocker_workspace(rocker);
-  kinema::MotionState at_90 = kinema::analyse(rocker, {90 * deg}, kinema_test::with_rates(1.0, 0.0))[0];
+  kinema::MotionState at_90 = kinema::solve_motion(rocker, {90 * deg}, kinema_test::with_rates(1.0, 0.0))[0];
   REQUIRE(at_90.status == kinema::Status::ok);
   const kinema::MotionState before = at_90;
   CHECK_FALSE(rocker_workspace.advance(180 * deg, 1.0, 0.0, at_90));
@@ -171,7 +171,7 @@ TEST_CASE("branch: a vector-loop sweep runs on past a singular row (the parallel
   REQUIRE(loops.kinematics.closed_form() == nullptr);
   std::vector<double> inputs;
   for (int d = 0; d <= 350; d += 10) inputs.push_back(d * deg);
-  const kinema::MotionTable by_loops = kinema::analyse(loops, inputs), by_joints = kinema::analyse(joints, inputs);
+  const kinema::MotionTable by_loops = kinema::solve_motion(loops, inputs), by_joints = kinema::solve_motion(joints, inputs);
   for (std::size_t row = 0; row < inputs.size(); ++row) {
     CAPTURE(inputs[row] / deg);
     REQUIRE(by_loops.status(row) != kinema::Status::unassembled);

@@ -142,7 +142,7 @@ TEST_CASE("circuit: a crank's circuit is one turn without toggles, the rows of t
     for (std::size_t r = 0; r < t.size(); ++r) inputs.push_back(settings.start + r * kDegree * (settings.rate < 0 ? -1 : 1));
     inputs.back() = t.input(t.size() - 1);
     CHECK(inputs.back() == doctest::Approx(settings.start + 2 * M_PI * (settings.rate < 0 ? -1 : 1)));
-    const MotionTable sweep = kinema::analyse(model, inputs);
+    const MotionTable sweep = kinema::solve_motion(model, inputs);
     for (std::size_t r = 0; r < t.size(); ++r) {
       CAPTURE(r);
       CHECK(t.input(r) == doctest::Approx(inputs[r]).epsilon(1e-14));

@@ -40,7 +40,7 @@ TEST_CASE("engine/numeric/dyad_positions: the dyads' closed forms are the loops'
     const double start = model.system.input.values.at(0);
     std::vector<double> inputs;
     for (int k = 0; k <= 24; ++k) inputs.push_back(start + k * M_PI / 180);  // a 24 deg stretch from the file's value
-    const kinema::MotionTable table = kinema::analyse(model, inputs);
+    const kinema::MotionTable table = kinema::solve_motion(model, inputs);
     for (std::size_t row = 0; row < inputs.size(); ++row) {
       CAPTURE(row);
       REQUIRE(table.status(row) == kinema::Status::ok);
@@ -97,7 +97,7 @@ TEST_CASE("engine/numeric/dyad_positions: a list goes the short way round, and a
   REQUIRE(model.kinematics.closed_form() != nullptr);
   REQUIRE(model.system.points.at(0).name == "B");
   // 300 deg is -60 deg: reached directly (continuation from 0 would run into the toggle at 70.4 deg).
-  const kinema::MotionTable list = kinema::analyse(model, {0, degrees(300), degrees(-60), degrees(60)});
+  const kinema::MotionTable list = kinema::solve_motion(model, {0, degrees(300), degrees(-60), degrees(60)});
   for (std::size_t row = 0; row < 4; ++row) {
     CAPTURE(row);
     REQUIRE(list.status(row) == kinema::Status::ok);
@@ -107,7 +107,7 @@ TEST_CASE("engine/numeric/dyad_positions: a list goes the short way round, and a
   // The same mechanism as hand-written loops goes the short way too, to the same position.
   const kinema::Mechanism drawn = kinema::read_mechanism_text(kTripleRocker, "rocker.toml");
   const kinema::Model loops = kinema::make_model(kinema::read_mechanism_text(kinema_test::loops_file(drawn), "loops.toml"));
-  const kinema::MotionTable by_loops = kinema::analyse(loops, {0, degrees(300)});
+  const kinema::MotionTable by_loops = kinema::solve_motion(loops, {0, degrees(300)});
   REQUIRE(by_loops.status(1) == kinema::Status::ok);
   CHECK(by_loops.failure(1).kind == kinema::Failure::Kind::none);
   REQUIRE(loops.system.points.at(0).name == "B");
@@ -118,7 +118,7 @@ TEST_CASE("engine/numeric/dyad_positions: a list goes the short way round, and a
         CHECK(by_loops.point(row, point).position[axis] ==
               doctest::Approx(list.point(row, point).position[axis]).epsilon(1e-9));
 
-  const kinema::MotionTable beyond = kinema::analyse(model, {0, degrees(100)});
+  const kinema::MotionTable beyond = kinema::solve_motion(model, {0, degrees(100)});
   REQUIRE(beyond.status(1) == kinema::Status::unassembled);
   CHECK(beyond.failure(1).kind == kinema::Failure::Kind::dyad_open);
   CHECK(kinema::describe_failure(model.system, degrees(100), beyond.failure(1)) ==
@@ -133,7 +133,7 @@ TEST_CASE("engine/numeric/dyad_positions: across a gap the motion resumes on the
   // Twice over: out of range at both ends, then back in.
   std::vector<double> there_and_back = inputs;
   there_and_back.insert(there_and_back.end(), inputs.rbegin(), inputs.rend());
-  const kinema::MotionTable table = kinema::analyse(model, there_and_back);
+  const kinema::MotionTable table = kinema::solve_motion(model, there_and_back);
   std::size_t ok = 0, unassembled = 0;
   for (std::size_t row = 0; row < there_and_back.size(); ++row) {
     CAPTURE(there_and_back[row] * 180 / M_PI);
@@ -155,7 +155,7 @@ TEST_CASE("engine/numeric/dyad_positions: Problem 4.1's parallelogram stays a pa
   const kinema::Model parallelogram = kinema::load_model(kinema_test::sample("problem_4_1_parallelogram.toml"));
   const kinema::Model crossed = kinema::load_model(kinema_test::sample("problem_4_1_antiparallelogram.toml"));
   const double omega1 = 4 * M_PI;  // 120 rpm
-  const kinema::MotionTable at30 = kinema::analyse(parallelogram, {degrees(30)});
+  const kinema::MotionTable at30 = kinema::solve_motion(parallelogram, {degrees(30)});
   REQUIRE(at30.status(0) == kinema::Status::ok);
   CHECK(std::fabs(at30.qd(0)[0]) < 1e-9);               // the coupler does not turn
   CHECK(at30.qd(0)[1] == doctest::Approx(omega1));      // the rocker turns with the crank
@@ -172,7 +172,7 @@ TEST_CASE("engine/numeric/dyad_positions: Problem 4.1's parallelogram stays a pa
     for (const kinema::Model* model : {&parallelogram, &crossed}) {
       const bool is_parallelogram = model == &parallelogram;
       CAPTURE(is_parallelogram);
-      const kinema::MotionTable table = kinema::analyse(*model, inputs);
+      const kinema::MotionTable table = kinema::solve_motion(*model, inputs);
       std::size_t ok = 0;
       for (std::size_t row = 0; row < inputs.size(); ++row) {
         CAPTURE(inputs[row] * 180 / M_PI);

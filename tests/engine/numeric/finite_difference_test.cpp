@@ -25,7 +25,7 @@ void check_against_finite_differences(const SweepCase& c) {
   for (double v = c.start; v <= c.stop + 1e-12; v += c.step) inputs.push_back(v);
   const double rate = model.system.input.rate_value;
   const double second_rate = model.system.input.second_rate_value;
-  const auto states = kinema::analyse(model, inputs);
+  const auto states = kinema::solve_motion(model, inputs);
   const bool angle_input = model.system.input.dimension == kinema::Dimension::angle;
   const double h = angle_input ? 1e-4 : 1e-5 * k.length_scale();
   kinema::Workspace workspace(k);

@@ -56,10 +56,10 @@ bool same_position(const kinema::Model& model, const kinema::MotionTable& a, std
 // A sample's own lengths assemble somewhere in the turn (a copy's need not).
 void check_alone_equals_sweep(const kinema::Model& model, const std::vector<double>& inputs, const std::string& what,
                               bool assembles = true) {
-  const kinema::MotionTable sweep = kinema::analyse(model, inputs);
+  const kinema::MotionTable sweep = kinema::solve_motion(model, inputs);
   std::size_t compared = 0;
   for (std::size_t row = 0; row < inputs.size(); ++row) {
-    const kinema::MotionTable alone = kinema::analyse(model, {inputs[row]});
+    const kinema::MotionTable alone = kinema::solve_motion(model, {inputs[row]});
     INFO(what << " at " << inputs[row] / kDeg << " deg");
     CHECK(kinema::status_name(alone.status(0)) == std::string(kinema::status_name(sweep.status(row))));
     if (sweep.status(row) == kinema::Status::unassembled || alone.status(0) == kinema::Status::unassembled) continue;
@@ -127,19 +127,19 @@ TEST_CASE("engine/numeric/same answer: a gap down to 1e-6 of a turn is never ste
     const kinema::Model model = kinema::make_model(kinema::read_mechanism_text(four_bar_with_b(b), "gap.toml"));
     INFO("gap of " << gap_in_turns << " turn, b = " << b << " mm");
     for (const std::vector<double>& run : {std::vector<double>{175 * kDeg, 185 * kDeg}, turn(170, 190, 10)}) {
-      const kinema::MotionTable table = kinema::analyse(model, run);
+      const kinema::MotionTable table = kinema::solve_motion(model, run);
       const std::size_t last = table.size() - 1;
       REQUIRE(table.status(0) == kinema::Status::ok);
       REQUIRE(table.status(last) == kinema::Status::ok);
       // 185 deg is reached past the gap, so it says so, and it is the file's assembly there
       // (the value asked alone), not the one across the gap from 175 deg.
       CHECK(table.failure(last).kind == kinema::Failure::Kind::resumed_after_gap);
-      const kinema::MotionTable alone = kinema::analyse(model, {run.back()});
+      const kinema::MotionTable alone = kinema::solve_motion(model, {run.back()});
       std::string why;
       CHECK_MESSAGE(same_position(model, alone, 0, table, last, why), why);
     }
     // Row by row in steps of 1 deg across the gap: the row after it says so.
-    const kinema::MotionTable fine = kinema::analyse(model, turn(170, 190, 1));
+    const kinema::MotionTable fine = kinema::solve_motion(model, turn(170, 190, 1));
     bool resumed = false;
     for (std::size_t row = 0; row < fine.size(); ++row)
       resumed = resumed || fine.failure(row).kind == kinema::Failure::Kind::resumed_after_gap ||
@@ -151,7 +151,7 @@ TEST_CASE("engine/numeric/same answer: a gap down to 1e-6 of a turn is never ste
 TEST_CASE("engine/numeric/same answer: a crank through a change point is not a gap") {
   // b + c = a + d exactly: the branches cross at 180 deg (a change point), no gap.
   const kinema::Model model = kinema::make_model(kinema::read_mechanism_text(four_bar_with_b(60), "change.toml"));
-  const kinema::MotionTable table = kinema::analyse(model, {175 * kDeg, 185 * kDeg});
+  const kinema::MotionTable table = kinema::solve_motion(model, {175 * kDeg, 185 * kDeg});
   CHECK(table.status(1) == kinema::Status::ok);
   CHECK(table.failure(1).kind == kinema::Failure::Kind::none);
 }
@@ -191,10 +191,10 @@ ABCD = "a*exp(I*theta2) + b*exp(I*theta3) - c*exp(I*theta4) - d"
 )toml";
   const kinema::Model model = kinema::make_model(kinema::read_mechanism_text(text, "rocker.toml"));
   REQUIRE(model.kinematics.periodic_input());
-  const kinema::MotionTable list = kinema::analyse(model, {0.0, 300 * kDeg});
+  const kinema::MotionTable list = kinema::solve_motion(model, {0.0, 300 * kDeg});
   REQUIRE(list.status(1) == kinema::Status::ok);  // 300 deg is -60 deg
   CHECK(list.failure(1).kind == kinema::Failure::Kind::none);
-  const kinema::MotionTable minus = kinema::analyse(model, {0.0, -60 * kDeg});
+  const kinema::MotionTable minus = kinema::solve_motion(model, {0.0, -60 * kDeg});
   std::string why;
   CHECK_MESSAGE(same_position(model, list, 1, minus, 1, why), why);
 }
@@ -204,7 +204,7 @@ TEST_CASE("engine/numeric/same answer: a sweep back after a gap is on the file's
   std::string text = kinema_test::read_file(kinema_test::sample("four_bar.toml"));
   text.replace(text.find("c = \"80 mm\""), 11, "c = \"50 mm\"");
   const kinema::Model model = kinema::make_model(kinema::read_mechanism_text(text, "c50.toml"));
-  const kinema::MotionTable table = kinema::analyse(model, turn(40, 400, 10));
+  const kinema::MotionTable table = kinema::solve_motion(model, turn(40, 400, 10));
   const std::size_t last = table.size() - 1;
   REQUIRE(table.status(0) == kinema::Status::ok);
   REQUIRE(table.status(last) == kinema::Status::ok);

@@ -75,7 +75,7 @@ void check_against_finite_differences(const std::string& sample, const std::vect
   const kinema::OutputScale scale(system);
   const std::size_t width = kinema::result_column_count(system), rows = inputs.size();
   const std::vector<kinema::ResultColumn> columns = kinema::result_columns(system, scale);
-  const MotionTable table = kinema::analyse(model, inputs);
+  const MotionTable table = kinema::solve_motion(model, inputs);
   std::size_t compared = 0;
   for (const kinema::SystemParameter& p : system.parameters) {
     if (!p.written) continue;
@@ -89,7 +89,7 @@ void check_against_finite_differences(const std::string& sample, const std::vect
     sensitivities.rows(table, 0, rows, exact.data());
     const double h = difference_step(p, system.length_scale);
     const Model above = moved(model, name, p.value + h), below = moved(model, name, p.value - h);
-    const MotionTable above_table = kinema::analyse(above, inputs), below_table = kinema::analyse(below, inputs);
+    const MotionTable above_table = kinema::solve_motion(above, inputs), below_table = kinema::solve_motion(below, inputs);
     for (std::size_t r = 0; r < rows; ++r)
       REQUIRE((table.status(r) == kinema::Status::ok && above_table.status(r) == kinema::Status::ok &&
                below_table.status(r) == kinema::Status::ok));
@@ -167,7 +167,7 @@ TEST_CASE("engine/numeric/sensitivity: a formula parameter given alone does not 
   // d/dEF with EF given (its formula "CE" dropped, as with_parameters drops it) leaves CE's
   // links alone, and d/dCE = its own part + d/dEF's (EF follows CE one for one).
   const Model model = sample_model("problem_4_4_joints.toml");
-  const MotionTable table = kinema::analyse(model, {kinema::from_degrees(30)});
+  const MotionTable table = kinema::solve_motion(model, {kinema::from_degrees(30)});
   const auto values = [&](const std::string& asked) {
     const kinema::Sensitivities s(model, kinema::sensitivity_columns(model.system, {asked}));
     std::vector<double> row(s.columns().size());
@@ -177,7 +177,7 @@ TEST_CASE("engine/numeric/sensitivity: a formula parameter given alone does not 
   const std::vector<double> ce = values("CE"), ef = values("EF");
   const std::vector<double> ce_alone = [&] {  // CE with EF held: EF given its value
     const Model held = kinema::with_parameters(model, {{"EF", model.system.parameters[kinema::written_parameter_index(model.system, "EF")].value}});
-    const MotionTable t = kinema::analyse(held, {kinema::from_degrees(30)});
+    const MotionTable t = kinema::solve_motion(held, {kinema::from_degrees(30)});
     // Its derivatives are not the file's (EF no longer follows CE), though it shares the tape.
     CHECK(&kinema::ParameterSensitivity(held.system, held.derivation, held.kinematics, "CE").tape() !=
           &kinema::ParameterSensitivity(model.system, model.derivation, model.kinematics, "CE").tape());
@@ -228,10 +228,10 @@ TEST_CASE("engine/numeric/sensitivity: a parameter's derivatives are compiled on
   const kinema::ParameterSensitivity copied(copy.system, copy.derivation, copy.kinematics, "b");
   CHECK(&copied.tape() == &first.tape());
   const std::vector<double> inputs = inputs_between(0.1, 6.0, 7);
-  const MotionTable table = kinema::analyse(copy, inputs);
+  const MotionTable table = kinema::solve_motion(copy, inputs);
   const Model above = kinema::with_parameters(model, {{"b", changed + h}});
   const Model below = kinema::with_parameters(model, {{"b", changed - h}});
-  const MotionTable plus = kinema::analyse(above, inputs), minus = kinema::analyse(below, inputs);
+  const MotionTable plus = kinema::solve_motion(above, inputs), minus = kinema::solve_motion(below, inputs);
   kinema::SensitivityWorkspace workspace(copied);
   kinema::StateDerivatives derivatives;
   for (std::size_t r = 0; r < inputs.size(); ++r) {

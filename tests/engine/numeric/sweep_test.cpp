@@ -1,4 +1,4 @@
-// engine/numeric/sweep: solve_sweep (and analyse, which calls it) turns what
+// engine/numeric/sweep: solve_sweep (and solve_motion, which calls it) turns what
 // cannot be solved into rows with a status and a structured Failure: the
 // group that stays open, where a branch stops, a row after a gap, a singular
 // row; what can be solved matches the closed-form four-bar.
@@ -184,12 +184,12 @@ TEST_CASE("engine/numeric/sweep: the piston's dead centre is a singular row with
   CHECK(dead.points.empty());
 }
 
-TEST_CASE("engine/numeric/sweep: analyse takes the model's rates unless told otherwise") {
+TEST_CASE("engine/numeric/sweep: solve_motion takes the model's rates unless told otherwise") {
   const kinema::Model model = kinema::load_model(kinema_test::sample("four_bar.toml"));
-  const MotionTable by_default = kinema::analyse(model, degrees({40, 41}));
+  const MotionTable by_default = kinema::solve_motion(model, degrees({40, 41}));
   CHECK(by_default.input_rate() == model.system.input.rate_value);
   CHECK(by_default.input_second_rate() == model.system.input.second_rate_value);
-  const MotionTable given = kinema::analyse(model, degrees({40, 41}), kinema_test::with_rates(-5.0, 1.0));
+  const MotionTable given = kinema::solve_motion(model, degrees({40, 41}), kinema_test::with_rates(-5.0, 1.0));
   CHECK(given.input_rate() == -5.0);
   CHECK(given.input_second_rate() == 1.0);
   // Rates scale with the input rate: omega3 at -5 rad/s is -1/2 of omega3 at 10 rad/s.

@@ -20,11 +20,11 @@ TEST_CASE("batch (SIMD blocks), threads and both equal the scalar one-by-one run
     for (int i = 0; i < 2000; ++i) {
       inputs.push_back(angle ? input.values.at(0) + 2 * M_PI * i / 2000.0 : 0.101 + 0.098 * i / 2000.0);
     }
-    const auto serial = kinema::analyse(model, inputs, kinema_test::with_rates(input.rate_value, input.second_rate_value, 1, false));
+    const auto serial = kinema::solve_motion(model, inputs, kinema_test::with_rates(input.rate_value, input.second_rate_value, 1, false));
     for (const auto& [threads, batch] : {std::pair{1u, true}, std::pair{3u, false}, std::pair{3u, true}}) {
     CAPTURE(threads);
     CAPTURE(batch);
-    const auto parallel = kinema::analyse(model, inputs, kinema_test::with_rates(input.rate_value, input.second_rate_value, threads, batch));
+    const auto parallel = kinema::solve_motion(model, inputs, kinema_test::with_rates(input.rate_value, input.second_rate_value, threads, batch));
     REQUIRE(serial.size() == parallel.size());
     CHECK(serial.batch_rows() == 0);
     // The SIMD path does the bulk of a fine sweep (not a fallback that never engages).

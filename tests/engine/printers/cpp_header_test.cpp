@@ -178,7 +178,7 @@ TEST_CASE("kinema codegen: the header's numbers and singular positions are the e
     const double step = input.dimension == kinema::Dimension::angle ? M_PI / 180 : 0.001;
     std::vector<double> walk;
     for (int i = 0; i < 5; ++i) walk.push_back(input.values.at(0) + i * step);
-    const auto walked = kinema::analyse(model, walk, options);
+    const auto walked = kinema::solve_motion(model, walk, options);
     // The sweep, by the engine; the header is then run at each assembled position from
     // the engine's q (Newton converges at once), so both judge the same position.
     // Around each singular position it finds, the sweep is refined (10^-2 to 10^-13
@@ -186,7 +186,7 @@ TEST_CASE("kinema codegen: the header's numbers and singular positions are the e
     // and where the singular values cross the threshold.
     std::vector<double> inputs = sweep_of(model);
     {
-      const auto first_run = kinema::analyse(model, inputs, options);
+      const auto first_run = kinema::solve_motion(model, inputs, options);
       const double unit = input.dimension == kinema::Dimension::angle ? 1.0 : model.kinematics.length_scale();
       for (std::size_t row = 0; row < first_run.size(); ++row) {
         if (first_run.status(row) != kinema::Status::singular) continue;
@@ -195,7 +195,7 @@ TEST_CASE("kinema codegen: the header's numbers and singular positions are the e
       }
       std::sort(inputs.begin(), inputs.end());
     }
-    const auto swept = kinema::analyse(model, inputs, options);
+    const auto swept = kinema::solve_motion(model, inputs, options);
 
     std::ostringstream stdin_text;
     stdin_text.precision(17);  // the driver must see the same numbers as the engine

@@ -65,7 +65,7 @@ std::string document_at_first_value(const kinema::Model& model) {
   const kinema::Printer* printer = kinema::find_printer(kinema::PrintKind::document, "latex");
   REQUIRE(printer != nullptr);
   const kinema::MotionTable values =
-      kinema::analyse(model, {model.system.input.values.empty() ? 0.5 : model.system.input.values.front()});
+      kinema::solve_motion(model, {model.system.input.values.empty() ? 0.5 : model.system.input.values.front()});
   kinema::PrintJob job{model, &values, nullptr};
   job.fragment = true;
   std::ostringstream out;

@@ -41,8 +41,8 @@ std::string document(const kinema::Model& model, const MotionTable* values, cons
 // The worked solution at the file's first value (or 0), with its plots over the range.
 std::string document_at_first_value(const kinema::Model& model) {
   const double first = model.system.input.values.empty() ? 0.0 : model.system.input.values.front();
-  const MotionTable values = kinema::analyse(model, {first});
-  const MotionTable sweep = kinema::analyse(model, kinema::plot_range(model.system, first));
+  const MotionTable values = kinema::solve_motion(model, {first});
+  const MotionTable sweep = kinema::solve_motion(model, kinema::plot_range(model.system, first));
   return document(model, &values, &sweep);
 }
 
@@ -153,7 +153,7 @@ TEST_CASE("engine/printers/figures: every slider block on the guide its loop equ
     CAPTURE(std::string(c.sample));
     const kinema::Model model = kinema::load_model(kinema_test::sample(c.sample));
     const double input = model.system.input.values.empty() ? 0.5 : model.system.input.values.front();
-    const MotionTable values = kinema::analyse(model, {input});
+    const MotionTable values = kinema::solve_motion(model, {input});
     REQUIRE(values.status(0) == kinema::Status::ok);
     const Drawing d = read_drawing(mechanism_figure(document(model, &values)));
     REQUIRE_FALSE(d.blocks.empty());
@@ -180,7 +180,7 @@ TEST_CASE("engine/printers/figures: every slider block on the guide its loop equ
     REQUIRE(cm > 0);
     // The guide is the constraint's line: the sliding point, solved at two other inputs,
     // lies on the hatched line its block is drawn on.
-    const MotionTable others = kinema::analyse(model, {input + 0.4, input + 1.3});
+    const MotionTable others = kinema::solve_motion(model, {input + 0.4, input + 1.3});
     for (const char* name : c.sliding) {
       CAPTURE(std::string(name));
       std::size_t p = 0;
@@ -203,7 +203,7 @@ TEST_CASE("engine/printers/figures: every slider block on the guide its loop equ
   }
   // Example 4.1: the block at B on crank 1 (drawn from A through B), ground at A and C only.
   const kinema::Model model = kinema::load_model(kinema_test::sample("example_4_1_r_trr.toml"));
-  const MotionTable values = kinema::analyse(model, model.system.input.values);
+  const MotionTable values = kinema::solve_motion(model, model.system.input.values);
   const std::string figure = mechanism_figure(document(model, &values));
   const Drawing d = read_drawing(figure);
   const Point B = drawn_point(d, "B");
@@ -239,7 +239,7 @@ TEST_CASE("engine/printers/figures: instant centres, every one listed and drawn 
     CAPTURE(std::string(name));
     const kinema::Model model = kinema::load_model(kinema_test::sample(name));
     const double input = model.system.input.values.empty() ? 0.5 : model.system.input.values.front();
-    const MotionTable values = kinema::analyse(model, {input});
+    const MotionTable values = kinema::solve_motion(model, {input});
     const auto centres = kinema::instant_centres(kinema::MechanismGeometry(model), values[0]);
     REQUIRE(centres);
     const std::string tex = document(model, &values);
@@ -294,7 +294,7 @@ TEST_CASE("engine/printers/figures: instant centres, every one listed and drawn 
   }
   // Example 4.2: the arrow of I05 (slider 5 on the ground) starts at E, not at slider 2.
   const kinema::Model model = kinema::load_model(kinema_test::sample("example_4_2_joints.toml"));
-  const MotionTable values = kinema::analyse(model, model.system.input.values);
+  const MotionTable values = kinema::solve_motion(model, model.system.input.values);
   const auto centres = kinema::instant_centres(kinema::MechanismGeometry(model), values[0]);
   REQUIRE(centres);
   const kinema::InstantCentre* i05 = centres->find(0, 5);
@@ -305,7 +305,7 @@ TEST_CASE("engine/printers/figures: instant centres, every one listed and drawn 
       CHECK(std::abs(*i05->seen_from - Point(values[0].points[p].position[0], values[0].points[p].position[1])) < 1e-9);
   // The crank-shaper: no bar from C to O4 (the ram's vector is no link); the ram a block.
   const kinema::Model shaper = kinema::load_model(kinema_test::sample("crank_shaper.toml"));
-  const MotionTable shaper_values = kinema::analyse(shaper, shaper.system.input.values);
+  const MotionTable shaper_values = kinema::solve_motion(shaper, shaper.system.input.values);
   const std::string figure = figure_after(document(shaper, &shaper_values), "\\subsubsection*{Instant centres}");
   const Drawing d = read_drawing(figure);
   REQUIRE(d.blocks.size() == 2);  // blocks at A and C
@@ -376,8 +376,8 @@ TEST_CASE("engine/printers/figures: plots unwrapped, without a line back to the 
   // Example 4.1 as joints: phi3 from its file value (about 58.6 deg), not 360-420 deg.
   const kinema::Model model = kinema::load_model(kinema_test::sample("example_4_1_joints.toml"));
   const double first = model.system.input.values.front();
-  const MotionTable sweep = kinema::analyse(model, kinema::plot_range(model.system, first));
-  const MotionTable values = kinema::analyse(model, {first});
+  const MotionTable sweep = kinema::solve_motion(model, kinema::plot_range(model.system, first));
+  const MotionTable values = kinema::solve_motion(model, {first});
   const auto axes = plotted_axes(document(model, &values, &sweep));
   for (const Curve& c : axes[0])
     for (const Point& p : c.points)
@@ -388,7 +388,7 @@ TEST_CASE("engine/printers/figures: polygons fill the width at a round scale, ev
   for (const char* name : {"crank_shaper.toml", "problem_4_4_joints.toml", "four_bar.toml", "example_4_2_r_rtr_rrt.toml"}) {
     CAPTURE(std::string(name));
     const kinema::Model model = kinema::load_model(kinema_test::sample(name));
-    const MotionTable values = kinema::analyse(model, model.system.input.values.empty() ? std::vector<double>{0.5}
+    const MotionTable values = kinema::solve_motion(model, model.system.input.values.empty() ? std::vector<double>{0.5}
                                                                                         : model.system.input.values);
     const auto polygons = kinema::PolygonBuilder(model).polygons(values[0]);
     REQUIRE(polygons);
@@ -459,7 +459,7 @@ TEST_CASE("engine/printers/figures: the drawing's axes, angle arcs, numbered blo
                            "example_4_1_r_trr.toml", "four_bar.toml", "problem_3_22_joints.toml", "example_4_2_joints.toml"}) {
     CAPTURE(std::string(name));
     const kinema::Model model = kinema::load_model(kinema_test::sample(name));
-    const MotionTable values = kinema::analyse(model, model.system.input.values.empty() ? std::vector<double>{0.5}
+    const MotionTable values = kinema::solve_motion(model, model.system.input.values.empty() ? std::vector<double>{0.5}
                                                                                         : model.system.input.values);
     const std::string figure = mechanism_figure(document(model, &values));
     const Drawing d = read_drawing(figure);
@@ -521,7 +521,7 @@ TEST_CASE("figures: every velocity and acceleration arrow is labelled, every bar
     const kinema::Model model = kinema::load_model(kinema_test::sample(name));
     if (!model.system.frames.empty()) continue;  // spatial chains are drawn in projection elsewhere
     CAPTURE(name);
-    const MotionTable values = kinema::analyse(model, {model.system.input.values.front()});
+    const MotionTable values = kinema::solve_motion(model, {model.system.input.values.front()});
     const std::string figure = mechanism_figure(document(model, &values));
     const auto velocities = lines_starting(figure, "\\draw[-latex, red, thick] ");
     const auto accelerations = lines_starting(figure, "\\draw[-latex, green!50!black, thick, dashed] ");
@@ -547,7 +547,7 @@ TEST_CASE("figures: every velocity and acceleration arrow is labelled, every bar
 // direction to the coordinate's value, labelled with its symbol.
 TEST_CASE("figures: a joints-and-links drawing marks each link angle that is a coordinate with its arc") {
   const kinema::Model model = kinema::load_model(kinema_test::sample("problem_4_4_joints.toml"));
-  const MotionTable values = kinema::analyse(model, {model.system.input.values.front()});
+  const MotionTable values = kinema::solve_motion(model, {model.system.input.values.front()});
   const std::string figure = mechanism_figure(document(model, &values));
   std::vector<double> drawn;
   for (const std::string& line : lines_starting(figure, "\\draw[->, gray] ")) {
@@ -638,7 +638,7 @@ TEST_CASE("figures: instant centres' labels on no other label, dot, pivot or blo
   int figures = 0;
   for (const char* name : kinema_test::kSamples) {
     const kinema::Model model = kinema::load_model(kinema_test::sample(name));
-    const MotionTable values = kinema::analyse(model, {model.system.input.values.empty() ? 0.5 : model.system.input.values.front()});
+    const MotionTable values = kinema::solve_motion(model, {model.system.input.values.empty() ? 0.5 : model.system.input.values.front()});
     const std::string figure = figure_after(document(model, &values), "\\subsubsection*{Instant centres}");
     if (figure.empty()) continue;
     CAPTURE(std::string(name));
@@ -683,7 +683,7 @@ TEST_CASE("figures: polygon labels on no other label nor dot, each within a labe
   int figures = 0;
   for (const char* name : kinema_test::kSamples) {
     const kinema::Model model = kinema::load_model(kinema_test::sample(name));
-    const MotionTable values = kinema::analyse(model, {model.system.input.values.empty() ? 0.5 : model.system.input.values.front()});
+    const MotionTable values = kinema::solve_motion(model, {model.system.input.values.empty() ? 0.5 : model.system.input.values.front()});
     const std::string tex = document(model, &values);
     for (auto at = tex.find("\\begin{tikzpicture}[line cap=round, >=latex]\n\\draw[->, "); at != std::string::npos;
          at = tex.find("\\begin{tikzpicture}[line cap=round, >=latex]\n\\draw[->, ", at + 1)) {
@@ -866,7 +866,7 @@ TEST_CASE("figures: a spatial chain's names on no other name nor dot, each next 
 // places seen apart.
 TEST_CASE("figures: the RSSR spatial four-bar is drawn as its crank, coupler and rocker at every value drawn") {
   const kinema::Model model = kinema::load_model(kinema_test::sample("rssr_spatial_four_bar.toml"));
-  const MotionTable values = kinema::analyse(model, {0.0, M_PI / 2, M_PI, 3 * M_PI / 2});
+  const MotionTable values = kinema::solve_motion(model, {0.0, M_PI / 2, M_PI, 3 * M_PI / 2});
   const std::vector<ChainFigure> figures = chain_figures(document(model, &values));
   REQUIRE(figures.size() == 4);
   for (const ChainFigure& figure : figures) {
@@ -938,7 +938,7 @@ std::vector<DrawnAt> drawings_over_the_range() {
     const std::vector<double> range = kinema::plot_range(model.system, first);
     std::vector<double> inputs = model.system.input.values;
     for (std::size_t k = 0; k < 8; ++k) inputs.push_back(range[k * (range.size() - 1) / 8]);
-    const MotionTable values = kinema::analyse(model, inputs);
+    const MotionTable values = kinema::solve_motion(model, inputs);
     const std::string tex = document(model, &values);
     const std::string sentence = "The mechanism at this instant, drawn to scale";
     std::size_t row = 0;
@@ -1133,7 +1133,7 @@ TEST_CASE("figures: a vector-loop file's corners lettered by its lengths' names,
     const kinema::MechanismGeometry geometry(loops);
     std::vector<double> inputs;
     for (int k = 0; k < 12; ++k) inputs.push_back(loops.system.input.values.front() + k * 30 * M_PI / 180);
-    const MotionTable on_loops = kinema::analyse(loops, inputs), on_joints = kinema::analyse(joints, inputs);
+    const MotionTable on_loops = kinema::solve_motion(loops, inputs), on_joints = kinema::solve_motion(joints, inputs);
     std::size_t lettered = 0;
     for (std::size_t r = 0; r < on_loops.size(); ++r) {
       if (on_loops.status(r) != kinema::Status::ok || on_joints.status(r) != kinema::Status::ok) continue;
@@ -1168,7 +1168,7 @@ TEST_CASE("figures: a vector-loop file's corners lettered by its lengths' names,
   }
   const kinema::Model four_bar = kinema::load_model(kinema_test::sample("four_bar.toml"));
   const kinema::MechanismGeometry geometry(four_bar);
-  const MotionTable at = kinema::analyse(four_bar, four_bar.system.input.values);
+  const MotionTable at = kinema::solve_motion(four_bar, four_bar.system.input.values);
   CHECK(geometry.lettered_corners(at[0], geometry.segments(at[0])).empty());
 }
 
@@ -1187,7 +1187,7 @@ TEST_CASE("figures: ground lengths named by one parameter are drawn and labelled
   };
   std::vector<double> inputs;
   for (int k = 0; k < 6; ++k) inputs.push_back(model.system.input.values.front() + k * 60 * M_PI / 180);
-  const MotionTable table = kinema::analyse(model, inputs);
+  const MotionTable table = kinema::solve_motion(model, inputs);
   for (std::size_t r = 0; r < table.size(); ++r) {
     if (table.status(r) != kinema::Status::ok) continue;
     CAPTURE(table.input(r));

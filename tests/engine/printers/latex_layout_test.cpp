@@ -40,7 +40,7 @@ void check_layouts(std::size_t first, std::size_t last) {
     const kinema::Model model = kinema::load_model(kinema_test::sample(sample));
     std::vector<kinema::DerivationMethod> methods = kinema_test::methods_of(model);
     if (methods.size() > 1) methods.erase(methods.begin());  // the loops: the default document's
-    const kinema::MotionTable sweep = kinema::analyse(model, kinema::plot_range(model.system, model.system.input.values.front()));
+    const kinema::MotionTable sweep = kinema::solve_motion(model, kinema::plot_range(model.system, model.system.input.values.front()));
     for (std::size_t m = 0; m < methods.size(); ++m) {
       const std::vector<double> inputs =
           m == 0 ? three_values(model, sweep) : std::vector<double>{model.system.input.values.front()};

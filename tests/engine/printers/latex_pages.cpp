@@ -183,12 +183,12 @@ void check_layout(const std::string& name, const MarkedFigures& marked, int page
 
 std::string worked_solution_sparse_plots(const kinema::Model& model, kinema::DerivationMethod method,
                                          const std::vector<double>& inputs) {
-  const kinema::MotionTable values = kinema::analyse(model, inputs);
+  const kinema::MotionTable values = kinema::solve_motion(model, inputs);
   const std::vector<double> range = kinema::plot_range(model.system, inputs.front());
   std::vector<double> sparse;
   for (std::size_t k = 0; k < range.size(); k += 6) sparse.push_back(range[k]);
   if (sparse.back() != range.back()) sparse.push_back(range.back());  // the run's last value kept
-  const kinema::MotionTable sweep = kinema::analyse(model, sparse);
+  const kinema::MotionTable sweep = kinema::solve_motion(model, sparse);
   kinema::PrintJob job{model, &values, &sweep};
   job.method = method;
   std::ostringstream out;

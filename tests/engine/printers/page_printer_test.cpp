@@ -39,7 +39,7 @@ std::size_t occurrences(const std::string& text, const std::string& what) {
 TEST_CASE("engine/analysis/motion_drawing: joints where the table's points are at each assembled row, none where it does not assemble") {
   const kinema::Model model =
       kinema::load_model(kinema_test::sample("triple_rocker_circuit.toml"), kinema::DerivationScope::evaluation);
-  const kinema::MotionTable table = kinema::analyse(model, turn_in_degrees(10));
+  const kinema::MotionTable table = kinema::solve_motion(model, turn_in_degrees(10));
   const kinema::MotionDrawing drawing = kinema::motion_drawing(model, table);
   REQUIRE(drawing.form == kinema::MotionDrawing::Form::linkage);
   REQUIRE(drawing.rows.size() == table.size());
@@ -72,7 +72,7 @@ TEST_CASE("engine/printers/web/page: the file's strings stay data inside their s
                             "title = " + nlohmann::json(hostile).dump()),
       "four_bar.toml");
   const kinema::Model model = kinema::make_model(mechanism, kinema::DerivationScope::full);
-  const kinema::MotionTable table = kinema::analyse(model, turn_in_degrees(30));
+  const kinema::MotionTable table = kinema::solve_motion(model, turn_in_degrees(30));
   std::ostringstream out;
   kinema::print_page(out, model, table, false);
   const std::string page = out.str();
@@ -108,7 +108,7 @@ TEST_CASE("engine/base/sha256: the digests of FIPS 180-4's examples") {
 // The data a sample's page carries (a turn at 30 deg steps).
 nlohmann::json page_data(const std::string& name) {
   const kinema::Model model = kinema::load_model(kinema_test::sample(name));
-  const kinema::MotionTable table = kinema::analyse(model, turn_in_degrees(30));
+  const kinema::MotionTable table = kinema::solve_motion(model, turn_in_degrees(30));
   std::ostringstream out;
   kinema::print_page(out, model, table, false);
   const std::string page = out.str(), open = "id=\"kinema-data\">";
@@ -140,7 +140,7 @@ TEST_CASE("engine/printers/web/page: vector-loop, joints and chain files' pages 
   CHECK(page_data("robot_arm_seed000.toml")["resolve"]["frame_count"] == 3);
   // Each slider's range is the analysis's over the page's rows (engine/analysis/slider_ranges); a follower has none.
   const kinema::Model model = kinema::load_model(kinema_test::sample("problem_4_4_six_bar.toml"));
-  const kinema::MotionTable table = kinema::analyse(model, turn_in_degrees(30));
+  const kinema::MotionTable table = kinema::solve_motion(model, turn_in_degrees(30));
   const kinema::Resolving analysed = *kinema::resolving(model, &table);
   for (std::size_t k = 0; k < analysed.parameters.size(); ++k) {
     const kinema::Resolving::Parameter& p = analysed.parameters[k];
@@ -199,7 +199,7 @@ TEST_CASE("engine/printers/web/page: base64 of hex digests as RFC 4648 gives the
 // polygon vertex, to the five digits the page draws.
 TEST_CASE("engine/printers/web/page_constructions: each row's centres and polygons are the analysis's") {
   const kinema::Model model = kinema::load_model(kinema_test::sample("problem_4_4_joints.toml"), kinema::DerivationScope::evaluation);
-  const kinema::MotionTable table = kinema::analyse(model, turn_in_degrees(45));
+  const kinema::MotionTable table = kinema::solve_motion(model, turn_in_degrees(45));
   kinema::ViewNeeds needs;
   needs.motion = true;
   const kinema::Analysis analysis = kinema::analyse_for_views(model, &table, needs);
@@ -269,7 +269,7 @@ TEST_CASE("engine/printers/web/page_constructions: every pin's centre at its joi
     if (model.system.plan)
       for (const kinema::Strokes& s : kinema::slider_strokes(model))
         for (double limit : s.limit_inputs) inputs.push_back(limit * M_PI / 180);
-    const kinema::MotionTable table = kinema::analyse(model, inputs);
+    const kinema::MotionTable table = kinema::solve_motion(model, inputs);
     kinema::ViewNeeds needs;
     needs.motion = true;
     const kinema::Analysis analysis = kinema::analyse_for_views(model, &table, needs);
@@ -308,7 +308,7 @@ TEST_CASE("engine/printers/web/page: Problem 4.4's pages at 0.5 deg steps are at
   for (const char* name : {"problem_4_4_six_bar.toml", "problem_4_4_joints.toml"}) {
     CAPTURE(name);
     const kinema::Model model = kinema::load_model(kinema_test::sample(name));
-    const kinema::MotionTable table = kinema::analyse(model, inputs);
+    const kinema::MotionTable table = kinema::solve_motion(model, inputs);
     std::ostringstream out;
     kinema::print_page(out, model, table, false);
     MESSAGE(std::string(name) << ": " << out.str().size() << " bytes");

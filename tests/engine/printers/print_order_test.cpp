@@ -59,7 +59,7 @@ TEST_CASE("engine/printers: every sample prints the same formulas whatever GiNaC
     const kinema::Mechanism mechanism = kinema::read_mechanism_file(path);
     const kinema::Model first = kinema::make_model(mechanism);
     // Numbers from one model for both: only the formulas are compared.
-    const kinema::MotionTable values = kinema::analyse(
+    const kinema::MotionTable values = kinema::solve_motion(
         first, {mechanism.input.values.empty() ? 0.0 : mechanism.input.values.front()});  // chains: time 0
     const std::vector<std::string> expected = printed(first, values);
     for (const int others : {1, 37, 500}) {

@@ -56,7 +56,7 @@ TEST_CASE("engine/printers/printer: printer_names in a stable order") {
 
 TEST_CASE("engine/printers/printer: each printer prints something of its own from one model") {
   const kinema::Model model = kinema::load_model(kinema_test::sample("four_bar.toml"));
-  const kinema::MotionTable values = kinema::analyse(model, {0.7});
+  const kinema::MotionTable values = kinema::solve_motion(model, {0.7});
   kinema::PrintJob job{model, &values};
   job.code_namespace = "unit_four_bar";
   std::set<std::string> outputs;

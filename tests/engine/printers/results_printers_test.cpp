@@ -54,10 +54,10 @@ struct PistonRun {
   kinema::Model model = kinema::load_model(kinema_test::sample("piston_driven_crank.toml"));
   MotionTable table{{0.17, 0.2, 0.25}, 2, {2, 2}, -2.0, 5.0};
   PistonRun() {
-    table.set(0, kinema::analyse(model, {0.17})[0]);
+    table.set(0, kinema::solve_motion(model, {0.17})[0]);
     kinema::Workspace workspace(model);
     table.set(1, workspace.motion(0.2, -2.0, 5.0, Eigen::VectorXd::Zero(2)));
-    table.set(2, kinema::analyse(model, {0.25})[0]);
+    table.set(2, kinema::solve_motion(model, {0.25})[0]);
   }
 };
 
@@ -229,7 +229,7 @@ TEST_CASE("engine/printers/results: table: one block per value, the numbers as f
 
 TEST_CASE("engine/printers/results: an angle input is printed unwrapped, coordinates wrapped") {
   const kinema::Model model = kinema::load_model(kinema_test::sample("four_bar.toml"));
-  const MotionTable table = kinema::analyse(model, {40 * kDeg, 400 * kDeg});
+  const MotionTable table = kinema::solve_motion(model, {40 * kDeg, 400 * kDeg});
   REQUIRE(table.status(1) == Status::ok);
   const std::vector<std::string> lines = split(print("csv", model, table), '\n');
   REQUIRE(lines.size() == 3);
@@ -249,7 +249,7 @@ TEST_CASE("engine/printers/results: an angle input is printed unwrapped, coordin
 // Issue 9, finding 16: a row reached after a gap says so in the CSV too (its last column).
 TEST_CASE("engine/printers/results: csv: a row resumed after a gap carries the note") {
   const kinema::Model model = kinema::load_model(kinema_test::sample("piston_driven_crank.toml"));
-  const MotionTable table = kinema::analyse(model, {0.17, 0.25, 0.18});
+  const MotionTable table = kinema::solve_motion(model, {0.17, 0.25, 0.18});
   REQUIRE(table.status(1) == Status::unassembled);
   REQUIRE(table.failure(2).kind == kinema::Failure::Kind::resumed_after_gap);
   const std::vector<std::string> lines = split(print("csv", model, table), '\n');

@@ -36,7 +36,7 @@ std::string print(PrintKind kind, const kinema::Model& model, const MotionTable*
 // The worked solution of a sample at the file's own input values, as `kinema latex` writes it.
 std::string worked_solution(const std::string& sample) {
   const kinema::Model model = kinema::load_model(kinema_test::sample(sample));
-  const MotionTable values = kinema::analyse(model, model.system.input.values);
+  const MotionTable values = kinema::solve_motion(model, model.system.input.values);
   return print(PrintKind::document, model, &values);
 }
 
@@ -225,7 +225,7 @@ TEST_CASE("engine/printers/latex: no round-off anywhere in a worked solution, ev
   const std::regex noise(R"(10\^\{-(1[3-9]|[2-9][0-9]|[0-9]{3,})\}|[0-9]e-(1[3-9]|[2-9][0-9]|[0-9]{3,}))");
   for (const std::string sample : kinema_test::kSamples) {
     const kinema::Model model = kinema::load_model(kinema_test::sample(sample));
-    const MotionTable values = kinema::analyse(model, model.system.input.values);
+    const MotionTable values = kinema::solve_motion(model, model.system.input.values);
     for (kinema::DerivationMethod method : {kinema::DerivationMethod::loops, kinema::DerivationMethod::relative_velocity,
                                             kinema::DerivationMethod::joint_coordinates}) {
       if (method != kinema::DerivationMethod::loops) {
@@ -345,7 +345,7 @@ TEST_CASE("engine/printers/latex: the driver's rate as the file wrote it, and it
   // "15 rpm = 1.571 rad/s" and 12.3456 rpm as 1.29284 rad/s alone.
   const auto document_of = [](const std::string& name, const std::string& text) {
     const kinema::Model model = kinema::load_model(kinema_test::write_temporary(name, text));
-    const MotionTable values = kinema::analyse(model, model.system.input.values);
+    const MotionTable values = kinema::solve_motion(model, model.system.input.values);
     return std::make_pair(model.system.input.rate_text, print(PrintKind::document, model, &values));
   };
   const auto [degrees_text, degrees] =

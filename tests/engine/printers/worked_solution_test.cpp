@@ -58,8 +58,8 @@ double wrapped_degrees(double radians) {
 
 TEST_CASE("engine/printers/worked_solution: a standalone document with every section") {
   const kinema::Model model = kinema::load_model(kinema_test::sample("four_bar.toml"));
-  const MotionTable values = kinema::analyse(model, {40 * kDeg});
-  const MotionTable sweep = kinema::analyse(model, kinema::plot_range(model.system, 40 * kDeg));
+  const MotionTable values = kinema::solve_motion(model, {40 * kDeg});
+  const MotionTable sweep = kinema::solve_motion(model, kinema::plot_range(model.system, 40 * kDeg));
   const std::string tex = document(model, &values, &sweep);
   CAPTURE(tex.substr(0, 3000));
 
@@ -107,7 +107,7 @@ TEST_CASE("engine/printers/worked_solution: a standalone document with every sec
 
 TEST_CASE("engine/printers/worked_solution: the numbers are put into the solved formulas") {
   const kinema::Model model = kinema::load_model(kinema_test::sample("four_bar.toml"));
-  const MotionTable values = kinema::analyse(model, {40 * kDeg});
+  const MotionTable values = kinema::solve_motion(model, {40 * kDeg});
   const std::string tex = document(model, &values, nullptr);
   const auto at = tex.find("Numeric substitution (lengths in mm):\n\\begin{align*}\n");
   REQUIRE(at != std::string::npos);
@@ -147,7 +147,7 @@ TEST_CASE("engine/printers/worked_solution: the numbers are put into the solved 
 
 TEST_CASE("engine/printers/worked_solution: a fragment has no preamble and no document environment") {
   const kinema::Model model = kinema::load_model(kinema_test::sample("four_bar.toml"));
-  const MotionTable values = kinema::analyse(model, {40 * kDeg});
+  const MotionTable values = kinema::solve_motion(model, {40 * kDeg});
   const std::string fragment = document(model, &values, nullptr, true);
   const std::string whole = document(model, &values, nullptr, false);
   for (const char* preamble : {"\\documentclass", "\\usepackage", "\\begin{document}", "\\end{document}"}) {
@@ -177,7 +177,7 @@ TEST_CASE("engine/printers/worked_solution: sliding links, failures in words, us
   MotionTable values({0.2, 0.25}, 2, {2, 2}, -2.0, 5.0);
   kinema::Workspace workspace(piston);
   values.set(0, workspace.motion(0.2, -2.0, 5.0, Eigen::VectorXd::Zero(2)));
-  values.set(1, kinema::analyse(piston, {0.25})[0]);
+  values.set(1, kinema::solve_motion(piston, {0.25})[0]);
   REQUIRE(values.status(0) == kinema::Status::singular);
   REQUIRE(values.status(1) == kinema::Status::unassembled);
   const std::string failed = document(piston, &values, nullptr, true);
@@ -203,7 +203,7 @@ TEST_CASE("engine/printers/worked_solution: a joints-and-links drawing follows t
   // Problem 3.22 as drawn: the triangle coupler 3 as a plate, two slider blocks on two
   // hatched fixed guides, the crank as a bar, the fixed pivot O2; its loops are not drawn.
   const kinema::Model model = kinema::load_model(kinema_test::sample("problem_3_22_joints.toml"));
-  const MotionTable values = kinema::analyse(model, model.system.input.values);
+  const MotionTable values = kinema::solve_motion(model, model.system.input.values);
   // The mechanism's drawing: what comes before the polygons and instant centres.
   const std::string whole = document(model, &values, nullptr);
   const std::string tex = whole.substr(0, whole.find("\\subsubsection*{Velocity and acceleration polygons}"));
@@ -218,7 +218,7 @@ TEST_CASE("engine/printers/worked_solution: a joints-and-links drawing follows t
   // A vector-loop file is drawn from its loops; C, on link 3 by its formula, makes a plate
   // with link 3's vector from A (to B), its links numbered by their angles.
   const kinema::Model loops = kinema::load_model(kinema_test::sample("problem_3_22_six_bar_sliders.toml"));
-  const MotionTable loop_values = kinema::analyse(loops, loops.system.input.values);
+  const MotionTable loop_values = kinema::solve_motion(loops, loops.system.input.values);
   const std::string loop_document = document(loops, &loop_values, nullptr);
   const std::string loop_drawing =
       loop_document.substr(0, loop_document.find("\\subsubsection*{Velocity and acceleration polygons}"));
@@ -232,7 +232,7 @@ TEST_CASE("engine/printers/worked_solution: a joints-and-links drawing follows t
 
 TEST_CASE("engine/printers/worked_solution: a joints-and-links document gives the slider blocks and the relative terms") {
   const kinema::Model model = kinema::load_model(kinema_test::sample("example_4_1_joints.toml"));
-  const MotionTable values = kinema::analyse(model, model.system.input.values);
+  const MotionTable values = kinema::solve_motion(model, model.system.input.values);
   const std::string tex = document(model, &values, nullptr);
   CHECK(has(tex, "slider block & angle & $\\omega$ & $\\alpha$"));
   CHECK(has(tex, "2 & $45$ & $3.141$ & $0$"));  // block 2 turns with the crank
@@ -258,7 +258,7 @@ TEST_CASE("engine/printers/worked_solution: polygons drawn to scale read off the
     CAPTURE(std::string(name));
     const std::vector<double> inputs =
         model.system.input.values.empty() ? std::vector<double>{0.3} : model.system.input.values;
-    const MotionTable values = kinema::analyse(model, inputs);
+    const MotionTable values = kinema::solve_motion(model, inputs);
     const std::string tex = document(model, &values, nullptr, true);
     const kinema::PolygonBuilder builder(model);
     const kinema::OutputScale scale(model.system);
@@ -355,7 +355,7 @@ TEST_CASE("engine/printers/worked_solution: three methods, one answer for every 
     ++samples;
     const std::vector<double> inputs =
         model.system.input.values.empty() ? std::vector<double>{0.3} : model.system.input.values;
-    const MotionTable values = kinema::analyse(model, inputs);
+    const MotionTable values = kinema::solve_motion(model, inputs);
     const kinema::PolygonBuilder builder(model);
     const kinema::OutputScale scale(model.system);
     const std::string tex = document(model, &values, nullptr, true);
@@ -382,7 +382,7 @@ TEST_CASE("engine/printers/worked_solution: three methods, one answer for every 
   CHECK(samples >= 6);
   // A vector-loop file: its links known by the points on them (the four-bar: 2, 3, 4).
   const kinema::Model loops = kinema::load_model(kinema_test::sample("four_bar.toml"));
-  const MotionTable one = kinema::analyse(loops, {40 * kDeg});
+  const MotionTable one = kinema::solve_motion(loops, {40 * kDeg});
   const std::string tex = document(loops, &one, nullptr, true);
   CHECK(has(tex, "\\subsubsection*{Three methods, one answer}"));
   const auto polygons = kinema::PolygonBuilder(loops).polygons(one[0]);
@@ -402,7 +402,7 @@ TEST_CASE("engine/printers/worked_solution: three methods, one answer for every 
 
 TEST_CASE("engine/printers/worked_solution: the points' paths (coupler curves) over the run") {
   const kinema::Model model = kinema::load_model(kinema_test::sample("four_bar.toml"));
-  const MotionTable sweep = kinema::analyse(model, kinema::plot_range(model.system, 40 * kDeg));
+  const MotionTable sweep = kinema::solve_motion(model, kinema::plot_range(model.system, 40 * kDeg));
   const std::string tex = document(model, nullptr, &sweep, true);
   const auto paths = tex.find("Paths of the points over the run");
   REQUIRE(paths != std::string::npos);
@@ -432,7 +432,7 @@ TEST_CASE("engine/printers/worked_solution: the points' paths are inside their b
   for (const char* name : {"crank_shaper.toml", "four_bar.toml"}) {
     CAPTURE(std::string(name));
     const kinema::Model model = kinema::load_model(kinema_test::sample(name));
-    const MotionTable sweep = kinema::analyse(model, kinema::plot_range(model.system, model.system.input.values.at(0)));
+    const MotionTable sweep = kinema::solve_motion(model, kinema::plot_range(model.system, model.system.input.values.at(0)));
     const std::string tex = document(model, nullptr, &sweep, true);
     const auto paths = tex.find("Paths of the points over the run");
     REQUIRE(paths != std::string::npos);
@@ -472,7 +472,7 @@ TEST_CASE("engine/printers/worked_solution: a plot's gaps are judged curve by cu
   points += "H = \"1e5*a*cos(theta2)\"\n";
   const kinema::Model model = kinema::load_model(kinema_test::write_temporary(
       "fast_point.toml", kinema_test::replaced("[points]\n", points)));
-  const MotionTable sweep = kinema::analyse(model, kinema::plot_range(model.system, 40 * kDeg));
+  const MotionTable sweep = kinema::solve_motion(model, kinema::plot_range(model.system, 40 * kDeg));
   const std::string tex = document(model, nullptr, &sweep, true);
   std::size_t curves = 0;
   for (auto legend = tex.find("\\addlegendentry{H}"); legend != std::string::npos;
@@ -490,8 +490,8 @@ TEST_CASE("engine/printers/worked_solution: textbook scaffolding - statement, nu
   for (const std::string sample : kinema_test::kSamples) {
     CAPTURE(sample);
     const kinema::Model model = kinema::load_model(kinema_test::sample(sample));
-    const MotionTable values = kinema::analyse(model, model.system.input.values);
-    const MotionTable sweep = kinema::analyse(model, kinema::plot_range(model.system, model.system.input.values.at(0)));
+    const MotionTable values = kinema::solve_motion(model, model.system.input.values);
+    const MotionTable sweep = kinema::solve_motion(model, kinema::plot_range(model.system, model.system.input.values.at(0)));
     const std::string tex = document(model, &values, &sweep);
     const kinema::ConstraintSystem& system = model.system;
     // "Given ... Find ...", naming the driver and every unknown.

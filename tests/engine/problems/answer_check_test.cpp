@@ -36,7 +36,7 @@ Model edited_model(const std::string& sample, const std::vector<std::pair<std::s
 
 // The model's state at one input value (SI), as kinema eval solves it.
 MotionState state_at(const Model& model, double at) {
-  const MotionTable table = analyse(model, {at});
+  const MotionTable table = solve_motion(model, {at});
   REQUIRE(table.status(0) == Status::ok);
   return table[0];
 }

@@ -85,7 +85,7 @@ double eval_column(const Model& model, const std::string& name, double at) {
   const OutputScale scale(model.system);
   const std::vector<ResultColumn> columns = result_columns(model.system, scale);
   std::vector<double> values(columns.size());
-  const MotionTable table = analyse(model, {at});
+  const MotionTable table = solve_motion(model, {at});
   REQUIRE(table.status(0) == Status::ok);
   result_values(model.system, scale, table, 0, values.data());
   std::string column = name;
@@ -128,7 +128,7 @@ TEST_CASE("problems: every variant meets its conditions, evaluated again from th
   for (const ProblemVariant& variant : set.variants) {
     CAPTURE(variant.number);
     const Model fresh = make_model(read_mechanism_text(edited(text, variant, "omega2"), "edited.toml"));
-    const MotionTable table = analyse(fresh, variant.at);
+    const MotionTable table = solve_motion(fresh, variant.at);
     for (std::size_t row = 0; row < table.size(); ++row) CHECK(table.status(row) == Status::ok);
     const std::optional<FourBarFigures> figures = four_bar_figures(fresh);
     REQUIRE(figures);

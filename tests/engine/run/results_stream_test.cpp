@@ -1,6 +1,6 @@
 // engine/run/results_stream: a run printed while it is solved, block by block and
 // on several formatting threads, gives the bytes of the printer over the whole table
-// that analyse() solves in one piece, for every format and sample, through singular
+// that solve_motion() solves in one piece, for every format and sample, through singular
 // and unassembled rows.
 #include <doctest/doctest.h>
 
@@ -46,7 +46,7 @@ TEST_CASE("engine/run/results_stream: streamed output equals the printer over th
     CAPTURE(name);
     const kinema::Model model = kinema::load_model(kinema_test::sample(sample));
     const kinema::InputValues inputs = run_of(model);
-    const kinema::MotionTable whole = kinema::analyse(model, inputs.to_vector());
+    const kinema::MotionTable whole = kinema::solve_motion(model, inputs.to_vector());
     std::size_t failures = 0, resumed = 0;
     for (std::size_t row = 0; row < whole.size(); ++row) {
       failures += whole.status(row) != kinema::Status::ok;
@@ -88,7 +88,7 @@ TEST_CASE("engine/run/results_stream: blocks sized by their time (Python's Ctrl-
     const kinema::Model model = kinema::load_model(kinema_test::sample(sample));
     const kinema::InputValues inputs = run_of(model);
     std::ostringstream expected;
-    const kinema::MotionTable whole = kinema::analyse(model, inputs.to_vector());
+    const kinema::MotionTable whole = kinema::solve_motion(model, inputs.to_vector());
     kinema::print_view(npy, expected, kinema::PrintJob{model, &whole});
     for (const unsigned threads : {1u, 2u}) {
       CAPTURE(threads);
@@ -117,7 +117,7 @@ TEST_CASE("engine/run/results_stream: blocks sized by their time (Python's Ctrl-
 TEST_CASE("engine/run/results_stream: the summary, failures in order, progress, and a write error stops the run") {
   const kinema::Model model = kinema::load_model(kinema_test::sample("piston_driven_crank.toml"));
   const kinema::InputValues inputs = run_of(model);
-  const kinema::MotionTable whole = kinema::analyse(model, inputs.to_vector());
+  const kinema::MotionTable whole = kinema::solve_motion(model, inputs.to_vector());
   std::vector<double> failed;
   std::size_t last_done = 0, reports = 0;
   kinema::StreamSettings settings;  // no printer: solve only
@@ -167,8 +167,8 @@ TEST_CASE("engine/run/results_stream: a model derived for evaluation only gives 
     const kinema::Model full = kinema::load_model(kinema_test::sample(sample));
     const kinema::Model evaluation = kinema::load_model(kinema_test::sample(sample), kinema::DerivationScope::evaluation);
     const kinema::InputValues inputs = run_of(full);
-    const kinema::MotionTable a = kinema::analyse(full, inputs.to_vector());
-    const kinema::MotionTable b = kinema::analyse(evaluation, inputs.to_vector());
+    const kinema::MotionTable a = kinema::solve_motion(full, inputs.to_vector());
+    const kinema::MotionTable b = kinema::solve_motion(evaluation, inputs.to_vector());
     REQUIRE(a.size() == b.size());
     const kinema::OutputScale scale(full.system);
     std::vector<double> x(kinema::result_columns(full.system, scale).size()), y(x.size());

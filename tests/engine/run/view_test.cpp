@@ -59,7 +59,7 @@ Printed analyse_then_print(PrintKind kind, const char* name, kinema::PrintJob jo
 TEST_CASE("a printer given the analysis solves, derives and analyses nothing: the analysis did it, once") {
   SUBCASE("the table's and JSON's heads: a four-bar's figures over the turn, solved in the analysis") {
     const kinema::Model model = kinema::load_model(kinema_test::sample("four_bar.toml"));
-    const kinema::MotionTable values = kinema::analyse(model, model.system.input.values);
+    const kinema::MotionTable values = kinema::solve_motion(model, model.system.input.values);
     for (const char* format : {"table", "json"}) {
       CAPTURE(format);
       const WorkDone before;
@@ -72,7 +72,7 @@ TEST_CASE("a printer given the analysis solves, derives and analyses nothing: th
   }
   SUBCASE("a derivation dyad by dyad, and a worked solution with its drawings, polygons and centres") {
     const kinema::Model model = kinema::load_model(kinema_test::sample("example_4_2_joints.toml"), kinema::DerivationScope::full);
-    const kinema::MotionTable values = kinema::analyse(model, model.system.input.values);
+    const kinema::MotionTable values = kinema::solve_motion(model, model.system.input.values);
     kinema::PrintJob job{model, &values};
     job.method = kinema::DerivationMethod::relative_velocity;
     for (const PrintKind kind : {PrintKind::derivation, PrintKind::document}) {
@@ -89,7 +89,7 @@ TEST_CASE("a printer given the analysis solves, derives and analyses nothing: th
   }
   SUBCASE("a spatial chain worked out at the instant, in text and in a document") {
     const kinema::Model model = kinema::load_model(kinema_test::sample("robot_arm_seed000.toml"), kinema::DerivationScope::full);
-    const kinema::MotionTable values = kinema::analyse(model, model.system.input.values);
+    const kinema::MotionTable values = kinema::solve_motion(model, model.system.input.values);
     for (const PrintKind kind : {PrintKind::derivation, PrintKind::document}) {
       const WorkDone before;
       const Printed p = analyse_then_print(kind, kind == PrintKind::derivation ? "text" : "latex", kinema::PrintJob{model, &values});
@@ -101,7 +101,7 @@ TEST_CASE("a printer given the analysis solves, derives and analyses nothing: th
 
 TEST_CASE("a printer that needs an analysis and is given none says so, rather than working it out") {
   const kinema::Model model = kinema::load_model(kinema_test::sample("four_bar.toml"));
-  const kinema::MotionTable values = kinema::analyse(model, model.system.input.values);
+  const kinema::MotionTable values = kinema::solve_motion(model, model.system.input.values);
   std::ostringstream out;
   CHECK_THROWS_AS(kinema::find_printer(PrintKind::results, "table")->print(out, kinema::PrintJob{model, &values}),
                   std::logic_error);

@@ -247,7 +247,7 @@ TEST_CASE("derivation: a loop with functions nested as deep as accepted is deriv
   CHECK(derived.peak_kilobytes < 2 * 1024 * 1024);
   // The solved formulas give eval's numbers (finite differences check eval elsewhere).
   const kinema::Model model = kinema::load_model(path);
-  const kinema::MotionTable t = kinema::analyse(model, {0.7});
+  const kinema::MotionTable t = kinema::solve_motion(model, {0.7});
   REQUIRE(t.status(0) == kinema::Status::ok);
   GiNaC::exmap at;
   for (std::size_t p = 0; p < model.system.parameters.size(); ++p)

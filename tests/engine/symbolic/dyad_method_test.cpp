@@ -40,7 +40,7 @@ std::size_t check_method(const std::string& name, DerivationMethod method) {
   const kinema::ConstraintSystem& system = model.system;
   const kinema::DyadDerivation derivation = kinema::derive_by_dyads(system, method);
   const double x = system.input.values.front();
-  const kinema::MotionTable table = kinema::analyse(model, {x});
+  const kinema::MotionTable table = kinema::solve_motion(model, {x});
   REQUIRE(table.status(0) == kinema::Status::ok);
   const kinema::MotionState state = table[0];
   const kinema::SolvingPlan& frames = *system.plan;
