@@ -10,7 +10,7 @@
 namespace kinema {
 
 /// Most input values a file lists or sweeps: they are held in memory (8 bytes each), and
-/// a library run of them (analyse) holds every row.
+/// a library run of them (solve_motion) holds every row.
 constexpr std::size_t kMaxValuesPerRun = 10'000'000;
 
 /// Most values of a command-line sweep: streamed (computed, solved and written a block
